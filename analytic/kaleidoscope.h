@@ -1,0 +1,69 @@
+// vgroove analytic: the kaleidoscopic V-groove model for symmetric grooves.
+//
+// Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces".
+// ACM TOG 37(6), 2018. Sec. 4.1, Eq. (4)-(6), App. B.
+//
+// Sign convention (the same as sim/geometry.h, written again here because analytic/ must not
+// include sim/): angles from the macrosurface normal n, counter-clockwise positive; a direction
+// at angle theta is (-sin theta, cos theta). theta_i is the direction towards the light, theta_o
+// the exit direction (a flat mirror gives theta_o = -theta_i). The groove's apex is the origin;
+// its left facet runs to the rim a at angle +theta_v/2, the right facet to b at -theta_v/2, both
+// of unit length (the paper's bounding circle).
+//
+// The paper's equations are written for light that hits the left facet first; the right facet
+// is its mirror image (theta_i -> -theta_i, and theta_o -> -theta_o on the way back).
+//
+// Offsets: f(p) = i_perp . p with i_perp = (-cos theta_i, -sin theta_i), the perpendicular of i
+// oriented so that the left rim has f_a > 0 whenever the left facet is lit. For a point at angle
+// theta on the unit circle, f = sin(theta - theta_i).
+//
+// The printed Eq. (6) clamps only f_b; the corrected form clamps f_k too (see
+// validation/ERRATA.md, E1). Both are available, so a suite can report the printed form's error.
+#pragma once
+
+namespace vgroove::analytic {
+
+enum class FacetSide { left, right };
+
+// Which form of Eq. (6) to evaluate.
+enum class Eq6Form {
+  corrected,  // f_k = max(0, f(k)), clamped into [f_b, f_a]
+  printed,    // f_k = f(k) as printed; only f_b = max(f(b), 0)
+};
+
+// Eq. (4): the larger of the two bounce counts (k - 1 or k) for light hitting the left facet
+// first. theta_v = pi - 2|theta_s| is the aperture.
+int bounce_count(double theta_i, double theta_v);
+
+// Eq. (5): exit angle after n reflections for light hitting the left facet first,
+// theta_o = (-1)^n (theta_i + pi - n theta_v), wrapped into (-pi, pi].
+double exit_angle(double theta_i, double theta_v, int n);
+// The same for light that hits `first` first (the right facet by mirroring).
+double exit_angle(double theta_i, double theta_v, int n, FacetSide first);
+
+// One of the model's outcomes: n reflections, a fraction G of the rays aimed at the facet.
+struct BounceShare {
+  int n;
+  double G;
+  double theta_o;
+};
+
+// The model's prediction for the rays aimed at one facet: over its projected width f_a (the
+// paper's normalization of G), the fractions with k - 1 and k reflections and the shadowed one.
+struct FacetPrediction {
+  bool lit = false;  // f_a > 0: the light reaches the facet
+  int k = 0;         // Eq. (4)
+  double f_a = 0, f_b = 0, f_k = 0;
+  BounceShare fewer{0, 0.0, 0.0};  // k - 1 reflections: rays between f_k and f_a
+  BounceShare more{0, 0.0, 0.0};   // k reflections: rays between f_b and f_k
+  double shadow = 0.0;             // f_b / f_a: rays that meet the other facet's rim first
+};
+
+// Eq. (6) for the rays aimed at `first`.
+FacetPrediction G_kaleidoscopic(double theta_i, double theta_v, FacetSide first,
+                                Eq6Form form = Eq6Form::corrected);
+
+// Width of the beam that enters the opening, in the same units as f: 2 sin(theta_v/2) cos(theta_i).
+double opening_width(double theta_i, double theta_v);
+
+}  // namespace vgroove::analytic

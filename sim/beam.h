@@ -1,0 +1,48 @@
+// vgroove sim: where the rays of a parallel beam cross the rim line.
+//
+// A beam from incident angle theta_i is parallel; crossing the rim line, its rays are spread
+// along x. Uniform spacing along the rim line is uniform spacing across the beam (the map from
+// perpendicular offset to x is affine), so a placement along x has the beam's own measure.
+#pragma once
+
+#include "sim/groove.h"
+#include "sim/rng.h"
+#include "sim/tracer.h"
+
+namespace vgroove::sim {
+
+enum class Sampling : unsigned char {
+  stratified,  // midpoints of N equal strata
+  random,      // independent uniform positions from a seeded stream
+};
+const char* sampling_name(Sampling s);
+
+struct Interval {
+  double lo, hi;
+  double width() const { return hi - lo; }
+};
+
+// The groove's opening on the rim line.
+Interval opening(const Groove& g);
+
+// Rays aimed at one facet, as if the other were absent: between the rim line crossings of the
+// lines through the apex and through the facet's rim (the facet's projected width, the paper's
+// f_a). The part of it outside the opening is shadowed by the other facet's rim.
+Interval aimed_at(const Groove& g, double theta_i, Side side);
+
+// Position of ray j of n in the interval.
+inline double sample_position(Sampling sampling, const Interval& iv, long j, long n, Rng& rng) {
+  const double u = sampling == Sampling::stratified ? (static_cast<double>(j) + 0.5) / static_cast<double>(n)
+                                                    : rng.uniform();
+  return iv.lo + u * (iv.hi - iv.lo);
+}
+
+// The direction the beam's rays travel in: -i.
+inline Vec2 beam_direction(double theta_i) { return -direction_at(theta_i); }
+
+// The ray of the beam travelling along dir that crosses the rim line at x.
+inline Ray2 beam_ray(const Groove& g, const Vec2& dir, double x) {
+  return Ray2{Vec2(x, g.rim_height), dir};
+}
+
+}  // namespace vgroove::sim

@@ -1,0 +1,36 @@
+// vgroove sim: one explicit V-groove, two facets meeting at an apex.
+//
+// The apex is the origin; each facet is the segment from the apex to its rim, rim = length * edge.
+// Both rims lie on the rim line y = rim_height (the macrosurface: Lee et al. 2018, Sec. 5 assumes
+// all peaks lie on it). A symmetric groove of aperture theta_v has unit facets (the paper's
+// bounding circle of radius 1).
+#pragma once
+
+#include "sim/geometry.h"
+
+namespace vgroove::sim {
+
+enum class Side : unsigned char { left = 0, right = 1 };
+inline Side other(Side s) { return s == Side::left ? Side::right : Side::left; }
+inline const char* side_name(Side s) { return s == Side::left ? "left" : "right"; }
+
+struct Facet {
+  Vec2 edge;      // unit vector from the apex towards the rim
+  double length;  // apex to rim
+  Vec2 normal;    // unit normal pointing into the groove
+  Vec2 rim() const { return length * edge; }
+};
+
+struct Groove {
+  Facet facet[2];     // indexed by Side
+  double rim_height;  // y of both rims
+  double theta_v;     // aperture (radians)
+  const Facet& operator[](Side s) const { return facet[static_cast<int>(s)]; }
+  // x of the rims on the rim line: the opening is [rim_x(left), rim_x(right)].
+  double rim_x(Side s) const { return (*this)[s].rim().x(); }
+};
+
+// Symmetric groove, aperture theta_v in (0, pi]; facets of unit length.
+Groove make_symmetric_groove(double theta_v);
+
+}  // namespace vgroove::sim

@@ -1,0 +1,37 @@
+// vgroove sim: deterministic random streams, one per work item.
+//
+// A stream is keyed by (seed, a, b) — for example (suite seed, case index, facet) — so the numbers
+// a work item sees never depend on which thread runs it or in which order.
+#pragma once
+
+#include <cstdint>
+
+namespace vgroove::sim {
+
+// SplitMix64 (Steele, Lea, Flood 2014): a 64-bit counter through a bijective mixer.
+inline std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+class Rng {
+ public:
+  Rng(std::uint64_t seed, std::uint64_t a, std::uint64_t b)
+      : state_(splitmix64(splitmix64(splitmix64(seed) ^ a) ^ (b * 0xd1b54a32d192ed03ULL))) {}
+  std::uint64_t next_u64() {
+    state_ += 0x9e3779b97f4a7c15ULL;
+    std::uint64_t z = state_;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  }
+  // Uniform in [0, 1) with 53 random bits.
+  double uniform() { return static_cast<double>(next_u64() >> 11) * 0x1.0p-53; }
+
+ private:
+  std::uint64_t state_;
+};
+
+}  // namespace vgroove::sim

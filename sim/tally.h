@@ -1,0 +1,45 @@
+// vgroove sim: what happened to the rays of a beam, per facet hit first and bounce count k.
+//
+// Each (facet, k) bin keeps its ray count, the exit direction of its first ray, and the largest
+// angle between any later ray's exit direction and that one (all rays of a bin should leave in
+// one direction), so no per-ray trigonometry is needed. Tallies merge exactly: counts add, and a
+// merged bin keeps the first tally's reference direction.
+#pragma once
+
+#include "sim/tracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace vgroove::sim {
+
+struct BounceBin {
+  std::int64_t count = 0;
+  Vec2 exit_dir = Vec2::Zero();  // of the first ray in the bin
+  // Largest sine of the angle between any ray's exit direction and exit_dir (a bound after
+  // merging: sin(a + b) <= sin a + sin b), and whether any ray left at more than 90 deg from it.
+  double spread_sin = 0.0;
+  bool reversed = false;
+  double theta_o() const { return angle_from_normal(exit_dir); }
+  // Largest angle between two exit directions of the bin, bounded from above (radians).
+  double spread() const { return reversed ? M_PI : std::asin(std::min(1.0, spread_sin)); }
+};
+
+struct Tally {
+  std::vector<BounceBin> bins[2];  // [first facet][k], k = bounce count
+  std::int64_t rays = 0;
+  std::int64_t escaped = 0;
+  std::int64_t blocked = 0;
+  std::int64_t vertex_hits = 0;
+  std::int64_t bounce_limit = 0;
+  std::int64_t bounces = 0;  // reflections summed over escaped rays
+
+  void add(const TraceResult& r);
+  void merge(const Tally& other);
+  std::int64_t count(Side first, int k) const;
+  int max_bounces() const;  // largest k with a ray, 0 if none
+};
+
+}  // namespace vgroove::sim

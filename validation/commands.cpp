@@ -1,0 +1,245 @@
+#include "validation/commands.h"
+
+#include "analytic/kaleidoscope.h"
+#include "sim/beam.h"
+#include "sim/tally.h"
+#include "validation/atomic_file.h"
+#include "validation/report.h"
+#include "validation/suite_run.h"
+#include "validation/user_error.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <unistd.h>
+
+namespace vgroove::validation {
+
+namespace {
+
+constexpr double kRad = M_PI / 180.0;
+constexpr long kMaxRays = 1'000'000'000;
+
+double deg(double rad) { return std::round(rad / kRad * 1e9) / 1e9; }
+
+void check_rays(long rays, const std::string& what) {
+  if (rays < 1 || rays > kMaxRays)
+    throw UserError(what + " = " + std::to_string(rays) + " is out of range [1, " + std::to_string(kMaxRays) + "]");
+}
+
+sim::Sampling parse_sampling(const std::string& s, const std::string& what) {
+  if (s == "stratified") return sim::Sampling::stratified;
+  if (s == "random") return sim::Sampling::random;
+  throw UserError(what + " = \"" + s + "\" is not one of \"stratified\", \"random\"");
+}
+
+analytic::Eq6Form parse_form(const std::string& s, const std::string& what) {
+  if (s == "corrected") return analytic::Eq6Form::corrected;
+  if (s == "printed") return analytic::Eq6Form::printed;
+  throw UserError(what + " = \"" + s + "\" is not one of \"corrected\", \"printed\"");
+}
+
+// One row of the trace/analytic JSON: the same shape from both, so the two can be diffed.
+nlohmann::json bounce_row(const char* facet, int k, double fraction, double theta_o) {
+  return {{"first_facet", facet}, {"k", k}, {"fraction", fraction}, {"theta_o_deg", deg(theta_o)}};
+}
+
+void print_rows(const nlohmann::json& rows) {
+  std::printf("  first facet    k   fraction      theta_o (deg)\n");
+  for (const auto& r : rows)
+    std::printf("  %-11s %4d   %-12.6g  %.9g\n", r["first_facet"].get<std::string>().c_str(), r["k"].get<int>(),
+                r["fraction"].get<double>(), r["theta_o_deg"].get<double>());
+}
+
+// Progress on stderr, only when it is a terminal and the run takes a while.
+ProgressFn terminal_progress(const std::string& label) {
+  if (!::isatty(STDERR_FILENO)) return {};
+  auto start = std::chrono::steady_clock::now();
+  auto last = std::make_shared<std::chrono::steady_clock::time_point>(start);
+  auto mu = std::make_shared<std::mutex>();
+  return [=](std::size_t done, std::size_t total) {
+    std::lock_guard<std::mutex> lock(*mu);
+    const auto now = std::chrono::steady_clock::now();
+    if (done < total && now - *last < std::chrono::milliseconds(250)) return;
+    if (now - start < std::chrono::seconds(1) && done < total) return;
+    *last = now;
+    std::fprintf(stderr, "\r%s: %zu/%zu cases (%.0f%%)%s", label.c_str(), done, total,
+                 100.0 * static_cast<double>(done) / static_cast<double>(total), done == total ? "\n" : "");
+  };
+}
+
+}  // namespace
+
+int cmd_trace(const TraceArgs& a) {
+  check_theta_v(a.theta_v_deg, "--theta-v-deg");
+  check_theta_i(a.theta_i_deg, "--theta-i-deg");
+  check_rays(a.rays, "--rays");
+  if (a.max_bounces < 1) throw UserError("--max-bounces = " + std::to_string(a.max_bounces) + " is out of range [1, 2147483647]");
+  const sim::Sampling sampling = parse_sampling(a.sampling, "--sampling");
+  const double theta_v = a.theta_v_deg * kRad, theta_i = a.theta_i_deg * kRad;
+  const sim::Groove g = sim::make_symmetric_groove(theta_v);
+  const sim::Interval open = sim::opening(g);
+  const sim::Vec2 dir = sim::beam_direction(theta_i);
+  sim::Rng rng(a.seed, 0, 0);
+  sim::Tally tally;
+  for (long j = 0; j < a.rays; ++j)
+    tally.add(sim::trace(g, sim::beam_ray(g, dir, sim::sample_position(sampling, open, j, a.rays, rng)),
+                         sim::TraceOptions{a.max_bounces}));
+  nlohmann::json rows = nlohmann::json::array();
+  double max_spread = 0.0;
+  for (int f = 0; f < 2; ++f)
+    for (std::size_t k = 0; k < tally.bins[f].size(); ++k) {
+      const sim::BounceBin& b = tally.bins[f][k];
+      if (b.count == 0) continue;
+      rows.push_back(bounce_row(f == 0 ? "left" : "right", static_cast<int>(k),
+                                static_cast<double>(b.count) / static_cast<double>(a.rays), b.theta_o()));
+      max_spread = std::max(max_spread, b.spread());
+    }
+  nlohmann::json j = provenance();
+  j["inputs"] = {{"theta_v_deg", a.theta_v_deg}, {"theta_i_deg", a.theta_i_deg}, {"rays", a.rays},
+                 {"sampling", a.sampling}, {"seed", a.seed}, {"max_bounces", a.max_bounces}};
+  j["bounces"] = rows;
+  j["rays"] = tally.rays;
+  j["buckets"] = {{"escaped", tally.escaped}, {"blocked", tally.blocked}, {"vertex_hit", tally.vertex_hits},
+                  {"bounce_limit", tally.bounce_limit}};
+  j["max_exit_spread_rad"] = max_spread;
+  if (a.json) {
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::printf("trace: theta_v %g deg, theta_i %g deg, %ld rays (%s, seed %llu); fractions of the beam entering the opening\n",
+                a.theta_v_deg, a.theta_i_deg, a.rays, a.sampling.c_str(), static_cast<unsigned long long>(a.seed));
+    print_rows(rows);
+    std::printf("  escaped %lld, vertex hits %lld, bounce limit %lld; largest exit-angle spread in a bin %.3g rad\n",
+                static_cast<long long>(tally.escaped), static_cast<long long>(tally.vertex_hits),
+                static_cast<long long>(tally.bounce_limit), max_spread);
+  }
+  return 0;
+}
+
+int cmd_analytic(const AnalyticArgs& a) {
+  check_theta_v(a.theta_v_deg, "--theta-v-deg");
+  check_theta_i(a.theta_i_deg, "--theta-i-deg");
+  const analytic::Eq6Form form = parse_form(a.eq6_form, "--eq6-form");
+  const double theta_v = a.theta_v_deg * kRad, theta_i = a.theta_i_deg * kRad;
+  const double width = analytic::opening_width(theta_i, theta_v);
+  nlohmann::json rows = nlohmann::json::array();
+  nlohmann::json facets = nlohmann::json::object();
+  for (analytic::FacetSide side : {analytic::FacetSide::left, analytic::FacetSide::right}) {
+    const char* name = side == analytic::FacetSide::left ? "left" : "right";
+    const analytic::FacetPrediction p = analytic::G_kaleidoscopic(theta_i, theta_v, side, form);
+    if (!p.lit) {
+      facets[name] = nullptr;
+      continue;
+    }
+    // G is normalized by the facet's projected width f_a; the beam entering the opening is
+    // `width` wide, of which this facet receives f_a - f_b.
+    for (const analytic::BounceShare& s : {p.fewer, p.more})
+      if (s.G != 0.0) rows.push_back(bounce_row(name, s.n, s.G * p.f_a / width, s.theta_o));
+    facets[name] = {{"k", p.k}, {"f_a", p.f_a}, {"f_b", p.f_b}, {"f_k", p.f_k},
+                    {"G", {{std::to_string(p.fewer.n), p.fewer.G}, {std::to_string(p.more.n), p.more.G}}},
+                    {"shadow", p.shadow}};
+  }
+  nlohmann::json j = provenance();
+  j["inputs"] = {{"theta_v_deg", a.theta_v_deg}, {"theta_i_deg", a.theta_i_deg}, {"eq6_form", a.eq6_form}};
+  j["bounces"] = rows;
+  j["facets"] = facets;
+  if (a.json) {
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::printf("analytic (Lee et al. 2018, Eq. 4-6, %s): theta_v %g deg, theta_i %g deg; fractions of the beam entering the opening\n",
+                a.eq6_form.c_str(), a.theta_v_deg, a.theta_i_deg);
+    print_rows(rows);
+  }
+  return 0;
+}
+
+namespace {
+CaseOptions options_with_overrides(const Suite& suite, long rays, const std::string& sampling,
+                                   const std::string& form, long long seed) {
+  CaseOptions o = suite.options;
+  if (rays != 0) check_rays(rays, "--rays"), o.rays = rays;
+  if (!sampling.empty()) o.sampling = parse_sampling(sampling, "--sampling");
+  if (!form.empty()) o.form = parse_form(form, "--eq6-form");
+  if (seed >= 0) o.seed = static_cast<std::uint64_t>(seed);
+  return o;
+}
+void check_threads(int threads) {
+  if (threads < 0 || threads > 1024)
+    throw UserError("--threads = " + std::to_string(threads) + " is out of range [0, 1024] (0: all cores)");
+}
+}  // namespace
+
+int cmd_validate(const ValidateArgs& a) {
+  check_threads(a.threads);
+  const Suite suite = load_suite(a.suite);
+  const CaseOptions opt = options_with_overrides(suite, a.rays, a.sampling, a.eq6_form, a.seed);
+  if (!a.out.empty()) check_writable_target(a.out, a.force);  // fail before the work, not after
+  const SuiteRun run = run_suite(suite, opt, a.threads, terminal_progress("validate " + suite.name));
+  print_table(std::cout, suite, run);
+  if (!a.out.empty()) {
+    write_file_atomically(a.out, report_json(suite, run).dump(1) + "\n", a.force);
+    std::cout << "report: " << a.out << "\n";
+  }
+  return run.summary.pass() ? 0 : 1;
+}
+
+int cmd_bench_accuracy(const AccuracyArgs& a) {
+  check_threads(a.threads);
+  const Suite suite = load_suite(a.suite);
+  for (long r : a.rays) check_rays(r, "--rays");
+  std::vector<sim::Sampling> samplings;
+  for (const auto& s : a.samplings) samplings.push_back(parse_sampling(s, "--sampling"));
+  if (!a.out.empty()) check_writable_target(a.out, a.force);
+
+  nlohmann::json runs = nlohmann::json::array();
+  std::printf("accuracy against rays: suite %s (%zu cases), vgroove %s (git %s)\n", suite.name.c_str(), suite.cases(),
+              version_string(), git_revision());
+  std::printf("  %-10s %10s %12s %12s %12s %10s %8s\n", "sampling", "rays/facet", "max L1", "mean L1", "rays",
+              "wall s", "pass");
+  int threads_used = 0;
+  for (sim::Sampling smp : samplings)
+    for (long rays : a.rays) {
+      CaseOptions o = suite.options;
+      o.rays = rays;
+      o.sampling = smp;
+      const SuiteRun run = run_suite(suite, o, a.threads,
+                                     terminal_progress(std::string(sim::sampling_name(smp)) + " " + std::to_string(rays)));
+      threads_used = run.threads;
+      const Summary& s = run.summary;
+      std::printf("  %-10s %10ld %12.4g %12.4g %12lld %10.3f %8s\n", sim::sampling_name(smp), rays, s.max_l1,
+                  s.mean_l1, static_cast<long long>(s.rays), s.wall_s, s.pass() ? "yes" : "no");
+      std::fflush(stdout);
+      runs.push_back({{"sampling", sim::sampling_name(smp)}, {"rays_per_facet", rays}, {"max_l1", s.max_l1},
+                      {"mean_l1", s.mean_l1}, {"max_theta_o_error_rad", s.max_theta_o_error}, {"rays", s.rays},
+                      {"bounces", s.bounces}, {"wall_s", s.wall_s}, {"bounces_per_s", s.bounces_per_s},
+                      {"pass", s.pass()}});
+    }
+  // Which placement reaches the suite's thresholds first, in wall time.
+  std::string fastest = "none";
+  double fastest_s = 0.0;
+  for (const auto& r : runs)
+    if (r["pass"].get<bool>() && (fastest == "none" || r["wall_s"].get<double>() < fastest_s))
+      fastest = r["sampling"].get<std::string>() + " at " + std::to_string(r["rays_per_facet"].get<long>()) +
+                " rays per facet",
+      fastest_s = r["wall_s"].get<double>();
+  std::printf("  reaches the thresholds (max L1 <= %g, mean L1 <= %g) soonest: %s\n", suite.thresholds.max_l1,
+              suite.thresholds.mean_l1, fastest.c_str());
+  if (!a.out.empty()) {
+    nlohmann::json j = provenance();
+    j["suite"] = suite.name;
+    j["suite_file"] = suite.file;
+    j["seed"] = suite.options.seed;
+    j["threads"] = threads_used;
+    j["runs"] = runs;
+    j["thresholds"] = {{"max_l1", suite.thresholds.max_l1}, {"mean_l1", suite.thresholds.mean_l1}};
+    j["soonest_to_thresholds"] = fastest;
+    write_file_atomically(a.out, j.dump(1) + "\n", a.force);
+    std::printf("report: %s\n", a.out.c_str());
+  }
+  return 0;
+}
+
+}  // namespace vgroove::validation

@@ -1,0 +1,52 @@
+// vgroove CLI: the subcommands, each a function from parsed options to an exit status.
+// main.cpp only parses; these validate values (UserError naming the option) and run.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vgroove::validation {
+
+struct TraceArgs {
+  double theta_v_deg = 90.0;
+  double theta_i_deg = 0.0;
+  long rays = 1000;
+  std::string sampling = "stratified";
+  std::uint64_t seed = 1;
+  int max_bounces = 100000;
+  bool json = false;
+};
+int cmd_trace(const TraceArgs& a);
+
+struct AnalyticArgs {
+  double theta_v_deg = 90.0;
+  double theta_i_deg = 0.0;
+  std::string eq6_form = "corrected";
+  bool json = false;
+};
+int cmd_analytic(const AnalyticArgs& a);
+
+struct ValidateArgs {
+  std::string suite;
+  std::string out;
+  long rays = 0;     // 0: the suite's
+  int threads = 0;   // 0: all cores
+  std::string sampling;  // empty: the suite's
+  std::string eq6_form;  // empty: the suite's
+  long long seed = -1;   // -1: the suite's
+  bool force = false;
+};
+int cmd_validate(const ValidateArgs& a);
+
+struct AccuracyArgs {
+  std::string suite;
+  std::string out;
+  std::vector<long> rays{1000, 10000, 100000};
+  std::vector<std::string> samplings{"stratified", "random"};
+  int threads = 0;
+  bool force = false;
+};
+int cmd_bench_accuracy(const AccuracyArgs& a);
+
+}  // namespace vgroove::validation

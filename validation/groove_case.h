@@ -1,0 +1,42 @@
+// vgroove validation: one (theta_v, theta_i) configuration, traced and predicted.
+//
+// The error follows the paper's normalization of G (Lee et al. 2018, Eq. 6): for each facet the
+// light reaches, N rays aimed at it (spread over its projected width f_a) are traced; the error
+// is the L1 distance between the traced fractions per bounce count and G, with the shadowed rays
+// (blocked by the other facet's rim) a bin of their own. Rays the model has no bin for (vertex
+// hits, the bounce limit, a different facet hit first) count against it in full. A case's error
+// is the larger of its facets'.
+#pragma once
+
+#include "validation/suite.h"
+
+#include <cstdint>
+
+namespace vgroove::validation {
+
+struct FacetOutcome {
+  bool compared = false;  // the light reaches this facet
+  double l1 = 0.0;
+  std::int64_t rays = 0;
+  std::int64_t bounces = 0;
+  std::int64_t vertex_hits = 0;
+  std::int64_t bounce_limit = 0;
+  std::int64_t wrong_first = 0;    // aimed at this facet, hit the other one first
+  int k = 0;                       // Eq. (4)
+  double theta_o_error = 0.0;      // largest |traced - Eq. (5)| over the rays (radians)
+};
+
+struct CaseOutcome {
+  double theta_v = 0.0, theta_i = 0.0;  // radians
+  FacetOutcome facet[2];                // [left, right]
+  double l1 = 0.0;                      // max over compared facets
+  std::int64_t rays = 0;
+  std::int64_t bounces = 0;
+  double theta_o_error = 0.0;
+};
+
+// `stream` names the case's random stream (its index in the suite): with random sampling, the
+// rays of facet f come from Rng(seed, stream, f), whichever thread runs the case.
+CaseOutcome run_case(double theta_v, double theta_i, const CaseOptions& opt, std::uint64_t stream);
+
+}  // namespace vgroove::validation

@@ -1,0 +1,24 @@
+// vgroove validation: the report JSON and the table on stdout.
+//
+// The report carries what is needed to rerun and diff a run: tool, version, git revision, suite
+// file, seed, sampling, rays, threads, wall time, every case's figures, the summary, the
+// thresholds and pass/fail.
+#pragma once
+
+#include "validation/suite_run.h"
+
+#include <nlohmann/json.hpp>
+
+#include <ostream>
+
+namespace vgroove::validation {
+
+// {"tool", "version", "git"} for every JSON the tool writes.
+nlohmann::json provenance();
+const char* version_string();
+const char* git_revision();
+
+nlohmann::json report_json(const Suite& suite, const SuiteRun& run);
+void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run);
+
+}  // namespace vgroove::validation

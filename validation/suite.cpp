@@ -1,0 +1,112 @@
+#include "validation/suite.h"
+
+#include "validation/json_reader.h"
+
+#include <cmath>
+#include <limits>
+
+namespace vgroove::validation {
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+constexpr long kMaxRays = 1'000'000'000;
+constexpr std::size_t kMaxValues = 1'000'000;
+
+// A list of degrees, or {"from", "to", "step"} (inclusive of "to" when the steps land on it).
+std::vector<double> read_degrees(JsonObject& o, const std::string& key, double lo, bool lo_closed,
+                                 double hi, bool hi_closed) {
+  const nlohmann::json& v = o.raw(key);
+  std::vector<double> out;
+  auto check = [&](double x, const std::string& where) {
+    const bool ok = std::isfinite(x) && (lo_closed ? x >= lo : x > lo) && (hi_closed ? x <= hi : x < hi);
+    if (!ok)
+      throw UserError(o.file() + ": " + where + " = " + number_text(x) + " is out of range " +
+                      interval_text(lo, lo_closed, hi, hi_closed));
+  };
+  if (v.is_array()) {
+    if (v.empty()) o.fail(key, "is an empty list");
+    for (std::size_t n = 0; n < v.size(); ++n) {
+      const std::string where = o.path(key) + "/" + std::to_string(n);
+      if (!v[n].is_number()) throw UserError(o.file() + ": " + where + " = " + v[n].dump() + " must be a number");
+      check(v[n].get<double>(), where);
+      out.push_back(v[n].get<double>());
+    }
+    return out;
+  }
+  if (!v.is_object()) o.fail(key, "= " + v.dump() + " must be a list of numbers or {\"from\", \"to\", \"step\"}");
+  JsonObject r(v, o.file(), o.path(key));
+  const double inf = std::numeric_limits<double>::infinity();
+  const double from = r.number("from", -inf, false, inf, false);
+  const double to = r.number("to", -inf, false, inf, false);
+  const double step = r.number("step", 0.0, false, inf, false);
+  r.finish();
+  check(from, r.path("from"));
+  check(to, r.path("to"));
+  if (to < from) throw UserError(o.file() + ": " + r.path("to") + " = " + number_text(to) + " is below from = " + number_text(from));
+  // Count the steps once, so no rounding accumulates: from + n * step.
+  const double span = (to - from) / step;
+  if (span > static_cast<double>(kMaxValues))
+    throw UserError(o.file() + ": " + o.path(key) + " has more than " + std::to_string(kMaxValues) + " values");
+  const auto n = static_cast<std::size_t>(std::floor(span + 1e-9)) + 1;
+  for (std::size_t m = 0; m < n; ++m) out.push_back(std::min(to, from + static_cast<double>(m) * step));
+  return out;
+}
+
+}  // namespace
+
+void check_theta_v(double deg, const std::string& what) {
+  if (!(std::isfinite(deg) && deg > 0.0 && deg <= 180.0))
+    throw UserError(what + " = " + number_text(deg) + " is out of range (0, 180]");
+}
+
+void check_theta_i(double deg, const std::string& what) {
+  if (!(std::isfinite(deg) && deg > -90.0 && deg < 90.0))
+    throw UserError(what + " = " + number_text(deg) + " is out of range (-90, 90)");
+}
+
+Suite load_suite(const std::string& file) {
+  const nlohmann::json j = read_json_file(file);
+  JsonObject root(j, file, "");
+  Suite s;
+  s.file = file;
+  s.name = root.string("name");
+  s.description = root.string_or("description", "");
+  const std::string kind = root.one_of("kind", {"table1_symmetric"});
+  (void)kind;
+  {
+    JsonObject groove = root.object("groove");
+    groove.one_of("type", {"symmetric"});
+    for (double d : read_degrees(groove, "theta_v_deg", 0.0, false, 180.0, true)) s.theta_v.push_back(d * kDeg);
+    groove.finish();
+  }
+  for (double d : read_degrees(root, "theta_i_deg", -90.0, false, 90.0, false)) s.theta_i.push_back(d * kDeg);
+  s.options.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
+  const std::string stratified = "stratified";
+  s.options.sampling = root.one_of("sampling", {"stratified", "random"}, &stratified) == "random"
+                           ? sim::Sampling::random
+                           : sim::Sampling::stratified;
+  s.options.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
+  s.options.max_bounces = static_cast<int>(root.integer_or("max_bounces", 100000, 1, 100'000'000));
+  const std::string corrected = "corrected";
+  s.options.form = root.one_of("eq6_form", {"corrected", "printed"}, &corrected) == "printed"
+                       ? analytic::Eq6Form::printed
+                       : analytic::Eq6Form::corrected;
+  {
+    JsonObject t = root.object("thresholds");
+    s.thresholds.max_l1 = t.number("max_l1", 0.0, true, 2.0, true);
+    s.thresholds.mean_l1 = t.number("mean_l1", 0.0, true, 2.0, true);
+    s.thresholds.max_theta_o_error_rad = t.number("max_theta_o_error_rad", 0.0, true, M_PI, true);
+    t.finish();
+  }
+  if (root.has("paper")) {
+    JsonObject p = root.object("paper");
+    s.paper = PaperFigures{p.string("source"), p.number("max_l1", 0.0, true, 2.0, true),
+                           p.number("mean_l1", 0.0, true, 2.0, true)};
+    p.finish();
+  }
+  root.finish();
+  return s;
+}
+
+}  // namespace vgroove::validation

@@ -1,0 +1,48 @@
+#include "validation/suite_run.h"
+
+#include <chrono>
+
+namespace vgroove::validation {
+
+SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads, const ProgressFn& progress) {
+  SuiteRun run;
+  run.options = options;
+  run.threads = resolve_threads(threads);
+  const std::size_t ni = suite.theta_i.size();
+  run.cases.resize(suite.cases());
+  const auto t0 = std::chrono::steady_clock::now();
+  parallel_for(
+      run.cases.size(), run.threads,
+      [&](std::size_t c) { run.cases[c] = run_case(suite.theta_v[c / ni], suite.theta_i[c % ni], options, c); },
+      progress);
+  Summary& s = run.summary;
+  s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  // Sums in suite order: the same figures for any thread count.
+  s.cases = run.cases.size();
+  double sum_l1 = 0.0;
+  for (std::size_t c = 0; c < run.cases.size(); ++c) {
+    const CaseOutcome& o = run.cases[c];
+    sum_l1 += o.l1;
+    if (o.l1 > s.max_l1 || c == 0) s.max_l1 = o.l1, s.worst_case = c;
+    s.max_theta_o_error = std::max(s.max_theta_o_error, o.theta_o_error);
+    s.rays += o.rays;
+    s.bounces += o.bounces;
+    for (const FacetOutcome& f : o.facet) {
+      if (!f.compared) continue;
+      ++s.facets_compared;
+      s.vertex_hits += f.vertex_hits;
+      s.bounce_limit += f.bounce_limit;
+      s.wrong_first += f.wrong_first;
+    }
+  }
+  s.mean_l1 = s.cases ? sum_l1 / static_cast<double>(s.cases) : 0.0;
+  s.rays_per_case = s.cases ? static_cast<double>(s.rays) / static_cast<double>(s.cases) : 0.0;
+  s.bounces_per_s = s.wall_s > 0 ? static_cast<double>(s.bounces) / s.wall_s : 0.0;
+  s.pass_max_l1 = s.max_l1 <= suite.thresholds.max_l1;
+  s.pass_mean_l1 = s.mean_l1 <= suite.thresholds.mean_l1;
+  s.pass_theta_o = s.max_theta_o_error <= suite.thresholds.max_theta_o_error_rad;
+  return run;
+}
+
+}  // namespace vgroove::validation

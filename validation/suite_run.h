@@ -1,0 +1,41 @@
+// vgroove validation: run every case of a suite and sum up against its thresholds.
+#pragma once
+
+#include "validation/groove_case.h"
+#include "validation/parallel.h"
+#include "validation/suite.h"
+
+#include <vector>
+
+namespace vgroove::validation {
+
+struct Summary {
+  std::size_t cases = 0;
+  std::size_t facets_compared = 0;
+  double max_l1 = 0.0;
+  double mean_l1 = 0.0;
+  std::size_t worst_case = 0;  // index of the case with max_l1
+  double max_theta_o_error = 0.0;
+  std::int64_t rays = 0;
+  std::int64_t bounces = 0;
+  std::int64_t vertex_hits = 0;
+  std::int64_t bounce_limit = 0;
+  std::int64_t wrong_first = 0;
+  double rays_per_case = 0.0;
+  double wall_s = 0.0;
+  double bounces_per_s = 0.0;
+  bool pass_max_l1 = false, pass_mean_l1 = false, pass_theta_o = false;
+  bool pass() const { return pass_max_l1 && pass_mean_l1 && pass_theta_o; }
+};
+
+struct SuiteRun {
+  CaseOptions options;  // as run (after command-line overrides)
+  int threads = 1;
+  std::vector<CaseOutcome> cases;  // in suite order: theta_v outer, theta_i inner
+  Summary summary;
+};
+
+SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads,
+                   const ProgressFn& progress = {});
+
+}  // namespace vgroove::validation
