@@ -23,7 +23,7 @@ namespace {
 constexpr double kRad = M_PI / 180.0;
 constexpr long kMaxRays = 1'000'000'000;
 
-double deg(double rad) { return std::round(rad / kRad * 1e9) / 1e9; }
+double deg(double rad) { return output_deg(rad); }
 
 void check_rays(long rays, const std::string& what) {
   if (rays < 1 || rays > kMaxRays)

@@ -9,9 +9,7 @@
 namespace vgroove::validation {
 
 namespace {
-constexpr double kDeg = 180.0 / M_PI;
-// Degrees at the JSON edge, rounded to 1e-9 deg so that 5 reads as 5 and not 4.999999999999999.
-double deg(double rad) { return std::round(rad * kDeg * 1e9) / 1e9; }
+double deg(double rad) { return output_deg(rad); }
 
 const char* form_name(analytic::Eq6Form f) { return f == analytic::Eq6Form::corrected ? "corrected" : "printed"; }
 
@@ -21,6 +19,8 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 }  // namespace
+
+double output_deg(double rad) { return std::round(rad * (180.0 / M_PI) * 1e9) / 1e9 + 0.0; }
 
 const char* version_string() { return VGROOVE_VERSION; }
 const char* git_revision() { return VGROOVE_GIT; }

@@ -17,6 +17,8 @@ namespace vgroove::validation {
 nlohmann::json provenance();
 const char* version_string();
 const char* git_revision();
+// Radians to degrees for output, rounded to 1e-9 deg so that 5 prints as 5, never -0.
+double output_deg(double rad);
 
 nlohmann::json report_json(const Suite& suite, const SuiteRun& run);
 void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run);
