@@ -1,5 +1,6 @@
 #include "sim/groove.h"
 
+#include <algorithm>
 #include <cassert>
 
 namespace vgroove::sim {
@@ -17,6 +18,24 @@ Groove make_symmetric_groove(double theta_v) {
   g.facet[1].normal = Vec2(-std::cos(half), std::sin(half));
   g.rim_height = std::cos(half);
   g.theta_v = theta_v;
+  return g;
+}
+
+Groove make_nonsymmetric_groove(double theta_l, double theta_r) {
+  assert(theta_l < 0.0 && theta_l >= -0.5 * M_PI && theta_r > 0.0 && theta_r <= 0.5 * M_PI);
+  assert(M_PI + theta_l - theta_r > 0.0);
+  Groove g;
+  // Edges perpendicular to the normals, pointing up from the apex.
+  g.facet[0].edge = direction_at(theta_l + 0.5 * M_PI);
+  g.facet[1].edge = direction_at(theta_r - 0.5 * M_PI);
+  g.facet[0].normal = direction_at(theta_l);
+  g.facet[1].normal = direction_at(theta_r);
+  // Equal rim heights: length * edge.y equal for both facets.
+  const double h_l = g.facet[0].edge.y(), h_r = g.facet[1].edge.y();
+  g.facet[0].length = h_r / std::max(h_l, h_r);
+  g.facet[1].length = h_l / std::max(h_l, h_r);
+  g.rim_height = g.facet[0].length * h_l;
+  g.theta_v = M_PI + theta_l - theta_r;
   return g;
 }
 

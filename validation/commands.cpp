@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <unistd.h>
@@ -71,16 +72,35 @@ ProgressFn terminal_progress(const std::string& label) {
   };
 }
 
+// The groove the options name, checked; nonsymmetric grooves need both facet angles.
+GrooveParams groove_from(const GrooveArgs& g) {
+  if (!g.nonsymmetric) {
+    check_theta_v(g.theta_v_deg, "--theta-v-deg");
+    return GrooveParams::make_symmetric(g.theta_v_deg * kRad);
+  }
+  if (g.theta_v_given)
+    throw UserError("--theta-v-deg cannot be combined with --theta-l-deg/--theta-r-deg (the aperture follows from them)");
+  check_theta_l(g.theta_l_deg, "--theta-l-deg");
+  check_theta_r(g.theta_r_deg, "--theta-r-deg");
+  GrooveParams p = GrooveParams::make_nonsymmetric(g.theta_l_deg * kRad, g.theta_r_deg * kRad);
+  if (p.degenerate())
+    throw UserError("--theta-l-deg = " + number_text(g.theta_l_deg) + " with --theta-r-deg = " +
+                    number_text(g.theta_r_deg) + " gives a zero aperture (theta_v = 180 + theta_l - theta_r must be > 0)");
+  return p;
+}
+
+nlohmann::json groove_inputs(const GrooveParams& p) { return groove_json(p); }
+
 }  // namespace
 
 int cmd_trace(const TraceArgs& a) {
-  check_theta_v(a.theta_v_deg, "--theta-v-deg");
+  const GrooveParams params = groove_from(a.groove);
   check_theta_i(a.theta_i_deg, "--theta-i-deg");
   check_rays(a.rays, "--rays");
   if (a.max_bounces < 1) throw UserError("--max-bounces = " + std::to_string(a.max_bounces) + " is out of range [1, 2147483647]");
   const sim::Sampling sampling = parse_sampling(a.sampling, "--sampling");
-  const double theta_v = a.theta_v_deg * kRad, theta_i = a.theta_i_deg * kRad;
-  const sim::Groove g = sim::make_symmetric_groove(theta_v);
+  const double theta_i = a.theta_i_deg * kRad;
+  const sim::Groove g = make_groove(params);
   const sim::Interval open = sim::opening(g);
   const sim::Vec2 dir = sim::beam_direction(theta_i);
   sim::Rng rng(a.seed, 0, 0);
@@ -99,8 +119,9 @@ int cmd_trace(const TraceArgs& a) {
       max_spread = std::max(max_spread, b.spread());
     }
   nlohmann::json j = provenance();
-  j["inputs"] = {{"theta_v_deg", a.theta_v_deg}, {"theta_i_deg", a.theta_i_deg}, {"rays", a.rays},
-                 {"sampling", a.sampling}, {"seed", a.seed}, {"max_bounces", a.max_bounces}};
+  j["inputs"] = groove_inputs(params);
+  j["inputs"].update({{"theta_i_deg", a.theta_i_deg}, {"rays", a.rays}, {"sampling", a.sampling}, {"seed", a.seed},
+                      {"max_bounces", a.max_bounces}});
   j["bounces"] = rows;
   j["rays"] = tally.rays;
   j["buckets"] = {{"escaped", tally.escaped}, {"blocked", tally.blocked}, {"vertex_hit", tally.vertex_hits},
@@ -109,8 +130,9 @@ int cmd_trace(const TraceArgs& a) {
   if (a.json) {
     std::cout << j.dump(2) << "\n";
   } else {
-    std::printf("trace: theta_v %g deg, theta_i %g deg, %ld rays (%s, seed %llu); fractions of the beam entering the opening\n",
-                a.theta_v_deg, a.theta_i_deg, a.rays, a.sampling.c_str(), static_cast<unsigned long long>(a.seed));
+    std::printf("trace: %s, theta_i %g deg, %ld rays (%s, seed %llu); fractions of the beam entering the opening\n",
+                groove_text(params).c_str(), a.theta_i_deg, a.rays, a.sampling.c_str(),
+                static_cast<unsigned long long>(a.seed));
     print_rows(rows);
     std::printf("  escaped %lld, vertex hits %lld, bounce limit %lld; largest exit-angle spread in a bin %.3g rad\n",
                 static_cast<long long>(tally.escaped), static_cast<long long>(tally.vertex_hits),
@@ -120,37 +142,53 @@ int cmd_trace(const TraceArgs& a) {
 }
 
 int cmd_analytic(const AnalyticArgs& a) {
-  check_theta_v(a.theta_v_deg, "--theta-v-deg");
+  const GrooveParams params = groove_from(a.groove);
   check_theta_i(a.theta_i_deg, "--theta-i-deg");
   const analytic::Eq6Form form = parse_form(a.eq6_form, "--eq6-form");
-  const double theta_v = a.theta_v_deg * kRad, theta_i = a.theta_i_deg * kRad;
-  const double width = analytic::opening_width(theta_i, theta_v);
+  const double theta_i = a.theta_i_deg * kRad;
   nlohmann::json rows = nlohmann::json::array();
   nlohmann::json facets = nlohmann::json::object();
-  for (analytic::FacetSide side : {analytic::FacetSide::left, analytic::FacetSide::right}) {
-    const char* name = side == analytic::FacetSide::left ? "left" : "right";
-    const analytic::FacetPrediction p = analytic::G_kaleidoscopic(theta_i, theta_v, side, form);
+  // G is normalized by each facet's projected width f_a; the beam entering the opening is as wide
+  // as the two facets' unshadowed parts together, f_a - f_b summed.
+  ModelShares m[2];
+  double width = 0.0;
+  for (sim::Side side : {sim::Side::left, sim::Side::right}) {
+    m[static_cast<int>(side)] = model_shares(params, theta_i, side, form);
+    const ModelShares& p = m[static_cast<int>(side)];
+    if (p.lit) width += p.f_a * (1.0 - p.shadow);
+  }
+  for (sim::Side side : {sim::Side::left, sim::Side::right}) {
+    const ModelShares& p = m[static_cast<int>(side)];
+    const char* name = sim::side_name(side);
     if (!p.lit) {
       facets[name] = nullptr;
       continue;
     }
-    // G is normalized by the facet's projected width f_a; the beam entering the opening is
-    // `width` wide, of which this facet receives f_a - f_b.
-    for (const analytic::BounceShare& s : {p.fewer, p.more})
-      if (s.G != 0.0) rows.push_back(bounce_row(name, s.n, s.G * p.f_a / width, s.theta_o));
-    facets[name] = {{"k", p.k}, {"f_a", p.f_a}, {"f_b", p.f_b}, {"f_k", p.f_k},
-                    {"G", {{std::to_string(p.fewer.n), p.fewer.G}, {std::to_string(p.more.n), p.more.G}}},
-                    {"shadow", p.shadow}};
+    // Zones that share a bounce count (k_b - 1 = 1 when k_b = 2) are one row.
+    std::map<int, std::pair<double, double>> by_n;  // n -> (G, theta_o)
+    for (int z = 0; z < p.shares; ++z) {
+      auto& e = by_n[p.share[z].n];
+      e.first += p.share[z].G;
+      e.second = p.share[z].theta_o;
+    }
+    nlohmann::json G = nlohmann::json::object();
+    for (const auto& [n, e] : by_n) {
+      G[std::to_string(n)] = e.first;
+      if (e.first != 0.0) rows.push_back(bounce_row(name, n, e.first * p.f_a / width, e.second));
+    }
+    facets[name] = {{"k", p.k}, {"f_a", p.f_a}, {"G", G}, {"shadow", p.shadow}};
   }
   nlohmann::json j = provenance();
-  j["inputs"] = {{"theta_v_deg", a.theta_v_deg}, {"theta_i_deg", a.theta_i_deg}, {"eq6_form", a.eq6_form}};
+  j["inputs"] = groove_inputs(params);
+  j["inputs"].update({{"theta_i_deg", a.theta_i_deg}, {"eq6_form", a.eq6_form}});
   j["bounces"] = rows;
   j["facets"] = facets;
   if (a.json) {
     std::cout << j.dump(2) << "\n";
   } else {
-    std::printf("analytic (Lee et al. 2018, Eq. 4-6, %s): theta_v %g deg, theta_i %g deg; fractions of the beam entering the opening\n",
-                a.eq6_form.c_str(), a.theta_v_deg, a.theta_i_deg);
+    std::printf("analytic (Lee et al. 2018, %s): %s, theta_i %g deg; fractions of the beam entering the opening\n",
+                params.symmetric ? (a.eq6_form == "printed" ? "Eq. 4-6 as printed" : "Eq. 4-6") : "Eq. 7-9",
+                groove_text(params).c_str(), a.theta_i_deg);
     print_rows(rows);
   }
   return 0;
@@ -174,21 +212,31 @@ void check_threads(int threads) {
 
 int cmd_validate(const ValidateArgs& a) {
   check_threads(a.threads);
-  const Suite suite = load_suite(a.suite);
-  const CaseOptions opt = options_with_overrides(suite, a.rays, a.sampling, a.eq6_form, a.seed);
+  const SuiteSet set = load_suite_set(a.suite);
+  std::vector<CaseOptions> opts;
+  for (const Suite& suite : set.suites) opts.push_back(options_with_overrides(suite, a.rays, a.sampling, a.eq6_form, a.seed));
   if (!a.out.empty()) check_writable_target(a.out, a.force);  // fail before the work, not after
-  const SuiteRun run = run_suite(suite, opt, a.threads, terminal_progress("validate " + suite.name));
-  print_table(std::cout, suite, run);
+  std::vector<SuiteRun> runs;
+  bool pass = true;
+  for (std::size_t n = 0; n < set.suites.size(); ++n) {
+    runs.push_back(run_suite(set.suites[n], opts[n], a.threads, terminal_progress("validate " + set.suites[n].name)));
+    pass = pass && runs.back().summary.pass();
+  }
+  print_set_table(std::cout, set, runs);
   if (!a.out.empty()) {
-    write_file_atomically(a.out, report_json(suite, run).dump(1) + "\n", a.force);
+    write_file_atomically(a.out, report_json(set, runs).dump(1) + "\n", a.force);
     std::cout << "report: " << a.out << "\n";
   }
-  return run.summary.pass() ? 0 : 1;
+  return pass ? 0 : 1;
 }
 
 int cmd_bench_accuracy(const AccuracyArgs& a) {
   check_threads(a.threads);
-  const Suite suite = load_suite(a.suite);
+  const SuiteSet set = load_suite_set(a.suite);
+  if (set.suites.size() != 1)
+    throw UserError(a.suite + ": is a set of " + std::to_string(set.suites.size()) +
+                    " suites; `bench accuracy` takes one suite file (e.g. data/suites/table1_symmetric.json)");
+  const Suite& suite = set.suites.front();
   for (long r : a.rays) check_rays(r, "--rays");
   std::vector<sim::Sampling> samplings;
   for (const auto& s : a.samplings) samplings.push_back(parse_sampling(s, "--sampling"));

@@ -8,8 +8,16 @@
 
 namespace vgroove::validation {
 
-struct TraceArgs {
+// A groove on the command line: --theta-v-deg (symmetric) or --theta-l-deg with --theta-r-deg.
+struct GrooveArgs {
   double theta_v_deg = 90.0;
+  double theta_l_deg = 0.0, theta_r_deg = 0.0;
+  bool nonsymmetric = false;  // set when --theta-l-deg / --theta-r-deg were given
+  bool theta_v_given = false;
+};
+
+struct TraceArgs {
+  GrooveArgs groove;
   double theta_i_deg = 0.0;
   long rays = 1000;
   std::string sampling = "stratified";
@@ -20,7 +28,7 @@ struct TraceArgs {
 int cmd_trace(const TraceArgs& a);
 
 struct AnalyticArgs {
-  double theta_v_deg = 90.0;
+  GrooveArgs groove;
   double theta_i_deg = 0.0;
   std::string eq6_form = "corrected";
   bool json = false;

@@ -17,11 +17,40 @@ analytic::FacetSide to_analytic(sim::Side s) {
   return s == sim::Side::left ? analytic::FacetSide::left : analytic::FacetSide::right;
 }
 
-FacetOutcome run_facet(const sim::Groove& g, double theta_i, sim::Side side, const CaseOptions& opt,
-                       std::uint64_t stream) {
+}  // namespace
+
+sim::Groove make_groove(const GrooveParams& p) {
+  return p.symmetric ? sim::make_symmetric_groove(p.theta_v) : sim::make_nonsymmetric_groove(p.theta_l, p.theta_r);
+}
+
+ModelShares model_shares(const GrooveParams& p, double theta_i, sim::Side side, analytic::Eq6Form form) {
+  ModelShares m;
+  if (p.symmetric) {
+    const auto pred = analytic::G_kaleidoscopic(theta_i, p.theta_v, to_analytic(side), form);
+    m.lit = pred.lit, m.k = pred.k, m.f_a = pred.f_a, m.shadow = pred.shadow;
+    m.share[0] = pred.fewer, m.share[1] = pred.more, m.shares = 2;
+  } else {
+    const auto pred = analytic::G_nonsymmetric(theta_i, p.theta_l, p.theta_r, to_analytic(side));
+    m.lit = pred.lit, m.k = pred.k_b, m.f_a = pred.f_a, m.shadow = pred.shadow;
+    for (int z = 0; z < 4; ++z) m.share[z] = pred.share[z];
+    m.shares = 4;
+  }
+  return m;
+}
+
+double model_exit_angle(const GrooveParams& p, double theta_i, int n, sim::Side side) {
+  return p.symmetric ? analytic::exit_angle(theta_i, p.theta_v, n, to_analytic(side))
+                     : analytic::exit_angle_nonsymmetric(theta_i, p.theta_l, p.theta_r, n, to_analytic(side));
+}
+
+namespace {
+
+FacetOutcome run_facet(const GrooveParams& params, const sim::Groove& g, double theta_i, sim::Side side,
+                       const CaseOptions& opt, std::uint64_t stream) {
   FacetOutcome out;
-  const analytic::FacetPrediction pred =
-      analytic::G_kaleidoscopic(theta_i, g.theta_v, to_analytic(side), opt.form);
+  const ModelShares pred = model_shares(params, theta_i, side, opt.form);
+  // The model's f_a is in units of the longer facet, the tracer's too (unit facets or the longer
+  // one of unit length), so one threshold serves both kinds.
   if (!pred.lit || pred.f_a < kMinProjectedWidth) return out;
   out.compared = true;
   out.k = pred.k;
@@ -47,16 +76,21 @@ FacetOutcome run_facet(const sim::Groove& g, double theta_i, sim::Side side, con
   double l1 = std::abs(static_cast<double>(tally.blocked) / n - pred.shadow);
   l1 += static_cast<double>(tally.vertex_hits + tally.bounce_limit + out.wrong_first) / n;
   const auto& bins = tally.bins[static_cast<int>(side)];
-  const int kmax = std::max(static_cast<int>(bins.size()) - 1, pred.more.n);
+  // Shares of the model outside the traced bins (a count below 0 or past the last bin) count too.
+  int kmax = static_cast<int>(bins.size()) - 1;
+  for (int z = 0; z < pred.shares; ++z) {
+    kmax = std::max(kmax, pred.share[z].n);
+    if (pred.share[z].n < 0) l1 += std::abs(pred.share[z].G);
+  }
   for (int k = 0; k <= kmax; ++k) {
     const double traced = k < static_cast<int>(bins.size()) ? static_cast<double>(bins[k].count) / n : 0.0;
     double model = 0.0;
-    if (k == pred.fewer.n) model += pred.fewer.G;
-    if (k == pred.more.n) model += pred.more.G;
+    for (int z = 0; z < pred.shares; ++z)
+      if (pred.share[z].n == k) model += pred.share[z].G;
     l1 += std::abs(traced - model);
     if (traced > 0.0) {
-      // Eq. (5) holds for any bounce count, so every traced bin is checked, predicted or not.
-      const double theta_o = analytic::exit_angle(theta_i, g.theta_v, k, to_analytic(side));
+      // Eq. (5) and (8) hold for any bounce count, so every traced bin is checked, predicted or not.
+      const double theta_o = model_exit_angle(params, theta_i, k, side);
       const double err = std::abs(sim::angle_between(sim::direction_at(theta_o), bins[k].exit_dir)) + bins[k].spread();
       out.theta_o_error = std::max(out.theta_o_error, err);
     }
@@ -67,14 +101,15 @@ FacetOutcome run_facet(const sim::Groove& g, double theta_i, sim::Side side, con
 
 }  // namespace
 
-CaseOutcome run_case(double theta_v, double theta_i, const CaseOptions& opt, std::uint64_t stream) {
+CaseOutcome run_case(const GrooveParams& groove, double theta_i, const CaseOptions& opt, std::uint64_t stream) {
   CaseOutcome c;
-  c.theta_v = theta_v;
+  c.groove = groove;
   c.theta_i = theta_i;
-  const sim::Groove g = sim::make_symmetric_groove(theta_v);
+  if (groove.degenerate()) return c;
+  const sim::Groove g = make_groove(groove);
   for (sim::Side s : {sim::Side::left, sim::Side::right}) {
     FacetOutcome& f = c.facet[static_cast<int>(s)];
-    f = run_facet(g, theta_i, s, opt, stream);
+    f = run_facet(groove, g, theta_i, s, opt, stream);
     if (!f.compared) continue;
     c.l1 = std::max(c.l1, f.l1);
     c.rays += f.rays;

@@ -27,7 +27,8 @@ struct FacetOutcome {
 };
 
 struct CaseOutcome {
-  double theta_v = 0.0, theta_i = 0.0;  // radians
+  GrooveParams groove;
+  double theta_i = 0.0;                 // radians
   FacetOutcome facet[2];                // [left, right]
   double l1 = 0.0;                      // max over compared facets
   std::int64_t rays = 0;
@@ -37,6 +38,21 @@ struct CaseOutcome {
 
 // `stream` names the case's random stream (its index in the suite): with random sampling, the
 // rays of facet f come from Rng(seed, stream, f), whichever thread runs the case.
-CaseOutcome run_case(double theta_v, double theta_i, const CaseOptions& opt, std::uint64_t stream);
+// A degenerate groove (GrooveParams::degenerate) gives an outcome with no facet compared.
+CaseOutcome run_case(const GrooveParams& groove, double theta_i, const CaseOptions& opt, std::uint64_t stream);
+
+// The model's side of a case, whichever groove kind: shares of the rays aimed at `side`.
+struct ModelShares {
+  bool lit = false;
+  int k = 0;  // Eq. (4), or k_b of Eq. (7)
+  double f_a = 0.0;
+  double shadow = 0.0;
+  analytic::BounceShare share[4] = {{0, 0.0, 0.0}, {0, 0.0, 0.0}, {0, 0.0, 0.0}, {0, 0.0, 0.0}};
+  int shares = 0;
+};
+ModelShares model_shares(const GrooveParams& groove, double theta_i, sim::Side side, analytic::Eq6Form form);
+// Eq. (5) or Eq. (8) for n reflections.
+double model_exit_angle(const GrooveParams& groove, double theta_i, int n, sim::Side side);
+sim::Groove make_groove(const GrooveParams& groove);
 
 }  // namespace vgroove::validation

@@ -17,6 +17,25 @@ template <class T>
 void add_list(CLI::App* app, const std::string& name, std::vector<T>& v, const std::string& help) {
   app->add_option(name, v, help)->delimiter(',')->capture_default_str();
 }
+// --theta-v-deg for a symmetric groove, or --theta-l-deg with --theta-r-deg for a nonsymmetric one.
+void add_groove_options(CLI::App* app, GrooveArgs& g) {
+  auto* v = app->add_option("--theta-v-deg", g.theta_v_deg, "symmetric groove: aperture theta_v in degrees, (0, 180]")
+                ->capture_default_str();
+  auto* l = app->add_option("--theta-l-deg", g.theta_l_deg,
+                            "nonsymmetric groove: angle of the left facet's normal from n, [-90, 0) (Lee et al. "
+                            "2018, Fig. 5; counter-clockwise positive, so the left facet's normal leans right and "
+                            "theta_l < 0)");
+  auto* r = app->add_option("--theta-r-deg", g.theta_r_deg,
+                            "nonsymmetric groove: angle of the right facet's normal, (0, 90]; aperture "
+                            "theta_v = 180 + theta_l - theta_r; a symmetric groove is theta_l = -theta_r");
+  l->needs(r);
+  r->needs(l);
+  app->callback([&g, v, l]() {
+    g.nonsymmetric = l->count() > 0;
+    g.theta_v_given = v->count() > 0;
+  });
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -31,7 +50,7 @@ int main(int argc, char** argv) {
   TraceArgs ta;
   auto* trace = app.add_subcommand("trace", "Trace a beam through one symmetric V-groove exactly; print the fraction "
                                             "of the beam and the exit angle per (facet hit first, bounce count k).");
-  trace->add_option("--theta-v-deg", ta.theta_v_deg, "groove aperture theta_v in degrees, (0, 180]")->capture_default_str();
+  add_groove_options(trace, ta.groove);
   trace->add_option("--theta-i-deg", ta.theta_i_deg, "incident angle theta_i in degrees, (-90, 90)")->capture_default_str();
   trace->add_option("--rays", ta.rays, "rays across the groove's opening, >= 1")->capture_default_str();
   trace->add_option("--sampling", ta.sampling, "ray placement: stratified (midpoints of equal strata) or random")
@@ -44,7 +63,7 @@ int main(int argc, char** argv) {
   AnalyticArgs aa;
   auto* an = app.add_subcommand("analytic", "Evaluate the kaleidoscopic model (Eq. 4-6) for one symmetric V-groove; "
                                             "same output as trace.");
-  an->add_option("--theta-v-deg", aa.theta_v_deg, "groove aperture theta_v in degrees, (0, 180]")->capture_default_str();
+  add_groove_options(an, aa.groove);
   an->add_option("--theta-i-deg", aa.theta_i_deg, "incident angle theta_i in degrees, (-90, 90)")->capture_default_str();
   an->add_option("--eq6-form", aa.eq6_form, "corrected (see validation/ERRATA.md) or printed (as in the paper)")
       ->capture_default_str();

@@ -29,6 +29,21 @@ nlohmann::json provenance() {
   return {{"tool", "vgroove"}, {"version", VGROOVE_VERSION}, {"git", VGROOVE_GIT}};
 }
 
+nlohmann::json groove_json(const GrooveParams& g) {
+  if (g.symmetric) return {{"theta_v_deg", deg(g.theta_v)}};
+  return {{"theta_l_deg", deg(g.theta_l)}, {"theta_r_deg", deg(g.theta_r)}, {"theta_v_deg", deg(g.theta_v)}};
+}
+
+std::string groove_text(const GrooveParams& g) {
+  char buf[128];
+  if (g.symmetric)
+    std::snprintf(buf, sizeof buf, "theta_v %.9g deg", deg(g.theta_v));
+  else
+    std::snprintf(buf, sizeof buf, "theta_l %.9g, theta_r %.9g deg (theta_v %.9g)", deg(g.theta_l), deg(g.theta_r),
+                  deg(g.theta_v));
+  return buf;
+}
+
 nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
   const Summary& s = run.summary;
   nlohmann::json j = provenance();
@@ -46,8 +61,17 @@ nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
       "facet and G (Eq. 6); a case's error is the larger of its facets'";
   nlohmann::json cases = nlohmann::json::array();
   for (const CaseOutcome& c : run.cases) {
-    nlohmann::json jc = {{"theta_v_deg", deg(c.theta_v)}, {"theta_i_deg", deg(c.theta_i)}, {"l1", c.l1},
-                         {"rays", c.rays}, {"bounces", c.bounces}, {"theta_o_error_rad", c.theta_o_error}};
+    nlohmann::json jc = groove_json(c.groove);
+    jc["theta_i_deg"] = deg(c.theta_i);
+    if (c.groove.degenerate()) {
+      jc["degenerate"] = "zero aperture: no opening, no light enters; not compared";
+      cases.push_back(std::move(jc));
+      continue;
+    }
+    jc["l1"] = c.l1;
+    jc["rays"] = c.rays;
+    jc["bounces"] = c.bounces;
+    jc["theta_o_error_rad"] = c.theta_o_error;
     for (int f = 0; f < 2; ++f) {
       const FacetOutcome& fo = c.facet[f];
       const char* name = f == 0 ? "left" : "right";
@@ -62,11 +86,18 @@ nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
   }
   j["cases"] = std::move(cases);
   const CaseOutcome& worst = run.cases.empty() ? CaseOutcome{} : run.cases[s.worst_case];
+  nlohmann::json worst_j = groove_json(worst.groove);
+  worst_j["theta_i_deg"] = deg(worst.theta_i);
+  nlohmann::json degenerate = nlohmann::json::array();
+  for (const GrooveParams& g : suite.grooves)
+    if (g.degenerate()) degenerate.push_back(groove_json(g));
   j["summary"] = {{"cases", s.cases},
+                  {"degenerate_cases", s.degenerate_cases},
+                  {"degenerate_grooves", degenerate},
                   {"facets_compared", s.facets_compared},
                   {"max_l1", s.max_l1},
                   {"mean_l1", s.mean_l1},
-                  {"worst_case", {{"theta_v_deg", deg(worst.theta_v)}, {"theta_i_deg", deg(worst.theta_i)}}},
+                  {"worst_case", worst_j},
                   {"max_theta_o_error_rad", s.max_theta_o_error},
                   {"rays", s.rays},
                   {"rays_per_case", s.rays_per_case},
@@ -88,7 +119,8 @@ nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
 void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run) {
   const Summary& s = run.summary;
   os << "vgroove " << VGROOVE_VERSION << " (git " << VGROOVE_GIT << ")  suite " << suite.name << ": " << s.cases
-     << " cases, " << run.options.rays << " rays per lit facet, " << sim::sampling_name(run.options.sampling)
+     << " cases" << (s.degenerate_cases ? " (+" + std::to_string(s.degenerate_cases) + " degenerate, not compared)" : "")
+     << ", " << run.options.rays << " rays per lit facet, " << sim::sampling_name(run.options.sampling)
      << ", seed " << run.options.seed << ", Eq. 6 " << form_name(run.options.form) << ", " << run.threads
      << " threads\n";
   os << "                      max L1      mean L1     max |theta_o err|\n";
@@ -103,12 +135,61 @@ void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run) {
   os << "  " << (s.pass_max_l1 ? "ok   " : "FAIL ") << "          " << (s.pass_mean_l1 ? "  ok  " : "  FAIL")
      << "      " << (s.pass_theta_o ? "   ok" : " FAIL") << "\n";
   const CaseOutcome& w = run.cases[s.worst_case];
-  os << "  worst case: theta_v " << deg(w.theta_v) << " deg, theta_i " << deg(w.theta_i) << " deg (L1 "
+  os << "  worst case: " << groove_text(w.groove) << ", theta_i " << deg(w.theta_i) << " deg (L1 "
      << fmt("%.4g", w.l1) << ")\n";
+  if (s.degenerate_cases) {
+    os << "  degenerate (zero aperture, no opening; listed in the report, not compared):";
+    for (const GrooveParams& g : suite.grooves)
+      if (g.degenerate()) os << " " << groove_text(g) << ";";
+    os << "\n";
+  }
   os << "  rays " << s.rays << ", bounces " << s.bounces << ", vertex hits " << s.vertex_hits << ", bounce limit "
      << s.bounce_limit << ", wall " << fmt("%.3f", s.wall_s) << " s, " << fmt("%.1f", s.bounces_per_s / 1e6)
      << " M bounces/s\n";
   os << (s.pass() ? "PASS" : "FAIL") << "\n";
+}
+
+nlohmann::json report_json(const SuiteSet& set, const std::vector<SuiteRun>& runs) {
+  if (set.suites.size() == 1) return report_json(set.suites.front(), runs.front());
+  nlohmann::json j = provenance();
+  j["suite"] = set.name;
+  j["suite_file"] = set.file;
+  j["threads"] = runs.empty() ? 0 : runs.front().threads;
+  double wall = 0.0;
+  bool pass = true;
+  nlohmann::json parts = nlohmann::json::array();
+  for (std::size_t n = 0; n < runs.size(); ++n) {
+    parts.push_back(report_json(set.suites[n], runs[n]));
+    wall += runs[n].summary.wall_s;
+    pass = pass && runs[n].summary.pass();
+  }
+  j["wall_s"] = wall;
+  j["suites"] = std::move(parts);
+  j["pass"] = pass;
+  return j;
+}
+
+void print_set_table(std::ostream& os, const SuiteSet& set, const std::vector<SuiteRun>& runs) {
+  for (std::size_t n = 0; n < runs.size(); ++n) {
+    if (n) os << "\n";
+    print_table(os, set.suites[n], runs[n]);
+  }
+  if (runs.size() < 2) return;
+  os << "\n" << set.name << ": the paper's figures beside ours\n";
+  os << "  column                 paper max L1  ours max L1   paper mean L1  ours mean L1   cases   wall s\n";
+  bool pass = true;
+  for (std::size_t n = 0; n < runs.size(); ++n) {
+    const Suite& su = set.suites[n];
+    const Summary& s = runs[n].summary;
+    pass = pass && s.pass();
+    os << "  ";
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "%-22s %12.4g %12.4g %14.4g %13.4g %7zu %8.3f\n", su.name.c_str(),
+                  su.paper ? su.paper->max_l1 : NAN, s.max_l1, su.paper ? su.paper->mean_l1 : NAN, s.mean_l1,
+                  s.cases, s.wall_s);
+    os << buf;
+  }
+  os << (pass ? "PASS" : "FAIL") << "\n";
 }
 
 }  // namespace vgroove::validation

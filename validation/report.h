@@ -10,6 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include <ostream>
+#include <string>
+#include <vector>
 
 namespace vgroove::validation {
 
@@ -22,5 +24,13 @@ double output_deg(double rad);
 
 nlohmann::json report_json(const Suite& suite, const SuiteRun& run);
 void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run);
+
+// A set of suites: one report with every suite's, and the paper's table beside ours.
+nlohmann::json report_json(const SuiteSet& set, const std::vector<SuiteRun>& runs);
+void print_set_table(std::ostream& os, const SuiteSet& set, const std::vector<SuiteRun>& runs);
+
+// The groove's angles for output (degrees).
+nlohmann::json groove_json(const GrooveParams& g);
+std::string groove_text(const GrooveParams& g);
 
 }  // namespace vgroove::validation

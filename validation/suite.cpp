@@ -3,6 +3,7 @@
 #include "validation/json_reader.h"
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 namespace vgroove::validation {
@@ -65,19 +66,37 @@ void check_theta_i(double deg, const std::string& what) {
     throw UserError(what + " = " + number_text(deg) + " is out of range (-90, 90)");
 }
 
-Suite load_suite(const std::string& file) {
-  const nlohmann::json j = read_json_file(file);
+void check_theta_l(double deg, const std::string& what) {
+  if (!(std::isfinite(deg) && deg >= -90.0 && deg < 0.0))
+    throw UserError(what + " = " + number_text(deg) +
+                    " is out of range [-90, 0) (the left facet's normal leans right: theta_l < 0)");
+}
+
+void check_theta_r(double deg, const std::string& what) {
+  if (!(std::isfinite(deg) && deg > 0.0 && deg <= 90.0))
+    throw UserError(what + " = " + number_text(deg) +
+                    " is out of range (0, 90] (the right facet's normal leans left: theta_r > 0)");
+}
+
+namespace {
+Suite load_suite_from(const nlohmann::json& j, const std::string& file) {
   JsonObject root(j, file, "");
   Suite s;
   s.file = file;
   s.name = root.string("name");
   s.description = root.string_or("description", "");
-  const std::string kind = root.one_of("kind", {"table1_symmetric"});
-  (void)kind;
+  root.one_of("kind", {"table1"});
   {
     JsonObject groove = root.object("groove");
-    groove.one_of("type", {"symmetric"});
-    for (double d : read_degrees(groove, "theta_v_deg", 0.0, false, 180.0, true)) s.theta_v.push_back(d * kDeg);
+    if (groove.one_of("type", {"symmetric", "nonsymmetric"}) == "symmetric") {
+      for (double d : read_degrees(groove, "theta_v_deg", 0.0, false, 180.0, true))
+        s.grooves.push_back(GrooveParams::make_symmetric(d * kDeg));
+    } else {
+      const auto ls = read_degrees(groove, "theta_l_deg", -90.0, true, 0.0, false);
+      const auto rs = read_degrees(groove, "theta_r_deg", 0.0, false, 90.0, true);
+      for (double l : ls)
+        for (double r : rs) s.grooves.push_back(GrooveParams::make_nonsymmetric(l * kDeg, r * kDeg));
+    }
     groove.finish();
   }
   for (double d : read_degrees(root, "theta_i_deg", -90.0, false, 90.0, false)) s.theta_i.push_back(d * kDeg);
@@ -107,6 +126,40 @@ Suite load_suite(const std::string& file) {
   }
   root.finish();
   return s;
+}
+}  // namespace
+
+Suite load_suite(const std::string& file) {
+  const nlohmann::json j = read_json_file(file);
+  if (j.is_object() && j.contains("suites"))
+    throw UserError(file + ": is a set of suites (it has /suites); run it with `vgroove validate`");
+  return load_suite_from(j, file);
+}
+
+SuiteSet load_suite_set(const std::string& file) {
+  const nlohmann::json j = read_json_file(file);
+  SuiteSet set;
+  set.file = file;
+  if (!(j.is_object() && j.contains("suites"))) {
+    set.suites.push_back(load_suite_from(j, file));
+    set.name = set.suites.front().name;
+    set.description = set.suites.front().description;
+    return set;
+  }
+  JsonObject root(j, file, "");
+  set.name = root.string("name");
+  set.description = root.string_or("description", "");
+  const nlohmann::json& list = root.raw("suites");
+  if (!list.is_array() || list.empty()) root.fail("suites", "must be a non-empty list of suite files");
+  root.finish();
+  const std::filesystem::path dir = std::filesystem::path(file).parent_path();
+  for (std::size_t n = 0; n < list.size(); ++n) {
+    if (!list[n].is_string())
+      throw UserError(file + ": /suites/" + std::to_string(n) + " = " + list[n].dump() + " must be a file name");
+    const std::string sub = (dir / list[n].get<std::string>()).string();
+    set.suites.push_back(load_suite(sub));
+  }
+  return set;
 }
 
 }  // namespace vgroove::validation

@@ -3,9 +3,10 @@
 // Degrees at this edge only: the spec's *_deg values become radians in Suite.
 #pragma once
 
-#include "analytic/kaleidoscope.h"
+#include "analytic/kaleidoscope_nonsymmetric.h"
 #include "sim/beam.h"
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -35,22 +36,50 @@ struct CaseOptions {
   analytic::Eq6Form form = analytic::Eq6Form::corrected;
 };
 
+// One groove of a suite (radians). Symmetric grooves are given by theta_v; nonsymmetric ones by
+// the facet normals' angles theta_l < 0 < theta_r (Lee et al. 2018, Fig. 5), with
+// theta_v = pi + theta_l - theta_r.
+struct GrooveParams {
+  bool symmetric = true;
+  double theta_v = 0.0;
+  double theta_l = 0.0, theta_r = 0.0;
+  // Zero aperture (theta_l = -90, theta_r = 90 deg: two parallel vertical walls meeting at the
+  // apex): no opening, no light enters, the model is undefined. Reported, not compared.
+  bool degenerate() const { return !(theta_v > 0.0); }
+  static GrooveParams make_symmetric(double theta_v) { return {true, theta_v, 0.0, 0.0}; }
+  static GrooveParams make_nonsymmetric(double theta_l, double theta_r) {
+    return {false, M_PI + theta_l - theta_r, theta_l, theta_r};
+  }
+};
+
 struct Suite {
   std::string file;
   std::string name;
   std::string description;
-  std::vector<double> theta_v;  // radians
+  std::vector<GrooveParams> grooves;
   std::vector<double> theta_i;  // radians
   CaseOptions options;
   Thresholds thresholds;
   std::optional<PaperFigures> paper;
-  std::size_t cases() const { return theta_v.size() * theta_i.size(); }
+  std::size_t cases() const { return grooves.size() * theta_i.size(); }
+};
+
+// A suite file, or a set of them: {"name", "description", "suites": ["a.json", ...]} with paths
+// relative to the set's own file (data/suites/table1.json runs both columns of Table 1).
+struct SuiteSet {
+  std::string file;
+  std::string name;
+  std::string description;
+  std::vector<Suite> suites;
 };
 
 Suite load_suite(const std::string& file);
+SuiteSet load_suite_set(const std::string& file);
 
-// Range checks shared by the JSON and the command line (radians in, UserError naming `what`).
+// Range checks shared by the JSON and the command line (degrees in, UserError naming `what`).
 void check_theta_v(double theta_v_deg, const std::string& what);
 void check_theta_i(double theta_i_deg, const std::string& what);
+void check_theta_l(double theta_l_deg, const std::string& what);
+void check_theta_r(double theta_r_deg, const std::string& what);
 
 }  // namespace vgroove::validation

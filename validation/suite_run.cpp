@@ -13,18 +13,23 @@ SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads, 
   const auto t0 = std::chrono::steady_clock::now();
   parallel_for(
       run.cases.size(), run.threads,
-      [&](std::size_t c) { run.cases[c] = run_case(suite.theta_v[c / ni], suite.theta_i[c % ni], options, c); },
+      [&](std::size_t c) { run.cases[c] = run_case(suite.grooves[c / ni], suite.theta_i[c % ni], options, c); },
       progress);
   Summary& s = run.summary;
   s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   // Sums in suite order: the same figures for any thread count.
-  s.cases = run.cases.size();
   double sum_l1 = 0.0;
+  bool first = true;
   for (std::size_t c = 0; c < run.cases.size(); ++c) {
     const CaseOutcome& o = run.cases[c];
+    if (o.groove.degenerate()) {
+      ++s.degenerate_cases;
+      continue;
+    }
+    ++s.cases;
     sum_l1 += o.l1;
-    if (o.l1 > s.max_l1 || c == 0) s.max_l1 = o.l1, s.worst_case = c;
+    if (o.l1 > s.max_l1 || first) s.max_l1 = o.l1, s.worst_case = c, first = false;
     s.max_theta_o_error = std::max(s.max_theta_o_error, o.theta_o_error);
     s.rays += o.rays;
     s.bounces += o.bounces;

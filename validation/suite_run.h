@@ -10,7 +10,8 @@
 namespace vgroove::validation {
 
 struct Summary {
-  std::size_t cases = 0;
+  std::size_t cases = 0;             // compared: all but the degenerate ones
+  std::size_t degenerate_cases = 0;  // zero-aperture grooves: listed, not compared
   std::size_t facets_compared = 0;
   double max_l1 = 0.0;
   double mean_l1 = 0.0;
@@ -31,7 +32,7 @@ struct Summary {
 struct SuiteRun {
   CaseOptions options;  // as run (after command-line overrides)
   int threads = 1;
-  std::vector<CaseOutcome> cases;  // in suite order: theta_v outer, theta_i inner
+  std::vector<CaseOutcome> cases;  // in suite order: groove outer, theta_i inner
   Summary summary;
 };
 

@@ -1,0 +1,51 @@
+// vgroove analytic: the kaleidoscopic model for nonsymmetric V-grooves.
+//
+// Lee et al. 2018, "Practical Multiple Scattering for Rough Surfaces", Sec. 4.2, Eq. (7)-(9).
+// Conventions as in analytic/kaleidoscope.h (angles from n, counter-clockwise positive).
+//
+// The paper's facet angles theta_l and theta_r are the angles of the facets' inward normals s_l,
+// s_r from n, with these signs: the left facet's normal leans right, theta_l < 0, the right
+// facet's leans left, theta_r > 0 (a symmetric groove has theta_l = -theta_r = -|theta_s|). Only
+// these signs make the printed aperture theta_v = |pi + theta_l - theta_r| equal pi - 2|theta_s| and
+// Eq. (8) reduce to Eq. (5) in the symmetric limit. The left facet runs from the apex along the
+// angle theta_l + pi/2, the right one along theta_r - pi/2. Both rims lie at one height (Sec. 5: all
+// peaks on the macrosurface), so the facets' lengths are in the ratio
+// l_L : l_R = sin(theta_r) : sin(-theta_l); the longer one has unit length. Each facet's rim and
+// its images in the unfolded fan lie on its own circle (Fig. 5a).
+//
+// Unfolded fan for light hitting the left facet first: vertex P_j at angle theta_l + pi/2 + j theta_v,
+// on the left facet's circle for even j and the right facet's for odd j; P_0 = a. A ray of offset
+// f (f(p) = i_perp . p as in the symmetric model) makes at least j + 1 reflections when f <= f(P_j)
+// and it already made j. The paper's transition points, not printed, follow (validation/ERRATA.md,
+// E2): k_2 = P_1, k_b = P_{k_b - 1}, k_a = P_{k_b}.
+#pragma once
+
+#include "analytic/kaleidoscope.h"
+
+namespace vgroove::analytic {
+
+// Aperture theta_v = pi + theta_l - theta_r (Fig. 5).
+double aperture(double theta_l, double theta_r);
+
+// Eq. (7): k_b = 2 floor((pi + 2 theta_i - (theta_l + theta_r)) / (2 theta_v) + 0.5); k_a = k_b + 1.
+int bounce_count_kb(double theta_i, double theta_l, double theta_r);
+
+// Eq. (8): exit angle after k reflections, light hitting the left facet first, wrapped into (-pi, pi].
+double exit_angle_nonsymmetric(double theta_i, double theta_l, double theta_r, int k);
+// The same for light hitting `first` first (the right facet by the paper's mirroring).
+double exit_angle_nonsymmetric(double theta_i, double theta_l, double theta_r, int k, FacetSide first);
+
+// The model's prediction for the rays aimed at one facet, normalized by its projected width f_a.
+struct NonsymmetricPrediction {
+  bool lit = false;
+  int k_b = 0;  // Eq. (7)
+  double f_a = 0, f_b = 0, f_2 = 0, f_ka = 0, f_kb = 0;
+  // Eq. (9)'s zones: 1, k_b - 1, k_b, k_b + 1 reflections (two may share a count when k_b = 2).
+  BounceShare share[4] = {{0, 0.0, 0.0}, {0, 0.0, 0.0}, {0, 0.0, 0.0}, {0, 0.0, 0.0}};
+  double shadow = 0.0;  // f_b / f_a
+};
+
+// Eq. (9) for the rays aimed at `first`. Requires theta_l < 0 < theta_r and a positive aperture.
+NonsymmetricPrediction G_nonsymmetric(double theta_i, double theta_l, double theta_r, FacetSide first);
+
+}  // namespace vgroove::analytic

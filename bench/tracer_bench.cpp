@@ -1,0 +1,91 @@
+// vgroove bench: exact single-groove tracer throughput, in bounces and rays per second.
+//
+// One symmetric groove, theta_i = 20 deg, N rays placed stratified across the whole opening
+// (sim::opening). At theta_i = 20 deg only the right facet is lit for theta_v < 40 deg, and every
+// ray entering the opening escapes after k - 1 or k reflections (Lee et al. 2018, Eq. 4), so
+// the bounces per ray go from ~140 at theta_v = 1 deg (the long-aperture, many-bounce case)
+// to 1-2 at theta_v = 150 deg (the short case). A long case measures the reflection loop; a
+// short one mostly the per-ray set-up (first hit against both facets, result, tally).
+#include "sim/beam.h"
+#include "sim/groove.h"
+#include "sim/tally.h"
+#include "sim/tracer.h"
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdint>
+
+namespace {
+
+using namespace vgroove;
+
+constexpr double kThetaIDeg = 20.0;
+constexpr long kRays = 1000;  // per iteration: the suite's rays per lit facet
+
+double deg(double d) { return d * M_PI / 180.0; }
+
+struct TracerSetup {
+  sim::Groove g;
+  sim::Interval open;
+  sim::Vec2 dir;
+  sim::TraceOptions opt;
+  explicit TracerSetup(double theta_v_deg)
+      : g(sim::make_symmetric_groove(deg(theta_v_deg))),
+        open(sim::opening(g)),
+        dir(sim::beam_direction(deg(kThetaIDeg))) {}
+};
+
+void report(benchmark::State& state, std::int64_t bounces, std::int64_t rays) {
+  state.counters["bounces_per_s"] = benchmark::Counter(static_cast<double>(bounces), benchmark::Counter::kIsRate);
+  state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+  // Bounces per escaped ray, for reading the rates: iteration-invariant, so averaged.
+  state.counters["bounces_per_ray"] =
+      benchmark::Counter(rays ? static_cast<double>(bounces) / static_cast<double>(rays) : 0.0);
+}
+
+// The tracer alone: escaped rays' bounces are summed, nothing else is kept.
+void BM_trace_groove(benchmark::State& state) {
+  const TracerSetup s(static_cast<double>(state.range(0)));
+  sim::Rng rng(1, 0, 0);  // unused by stratified placement
+  std::int64_t bounces = 0, rays = 0;
+  for (auto _ : state) {
+    for (long j = 0; j < kRays; ++j) {
+      const double x = sim::sample_position(sim::Sampling::stratified, s.open, j, kRays, rng);
+      const sim::TraceResult r = sim::trace(s.g, sim::beam_ray(s.g, s.dir, x), s.opt);
+      benchmark::DoNotOptimize(r);
+      if (r.how == sim::Termination::escaped) bounces += r.bounces;
+    }
+    rays += kRays;
+  }
+  report(state, bounces, rays);
+}
+
+// The per-ray cost as the validator pays it (validation/groove_case.cpp): placement, trace and
+// sim::Tally::add into a fresh tally per batch of rays.
+void BM_trace_groove_tally(benchmark::State& state) {
+  const TracerSetup s(static_cast<double>(state.range(0)));
+  sim::Rng rng(1, 0, 0);
+  std::int64_t bounces = 0, rays = 0;
+  for (auto _ : state) {
+    sim::Tally tally;
+    for (long j = 0; j < kRays; ++j) {
+      const double x = sim::sample_position(sim::Sampling::stratified, s.open, j, kRays, rng);
+      tally.add(sim::trace(s.g, sim::beam_ray(s.g, s.dir, x), s.opt));
+    }
+    benchmark::DoNotOptimize(tally);
+    bounces += tally.bounces;  // escaped rays only
+    rays += tally.rays;
+  }
+  report(state, bounces, rays);
+}
+
+void theta_v_args(benchmark::internal::Benchmark* b) {
+  b->ArgName("theta_v_deg");
+  for (int theta_v_deg : {1, 5, 30, 90, 150}) b->Arg(theta_v_deg);
+}
+
+}  // namespace
+
+BENCHMARK(BM_trace_groove)->Apply(theta_v_args);
+BENCHMARK(BM_trace_groove_tally)->Apply(theta_v_args);

@@ -1,0 +1,64 @@
+// Tests of sim/rng.h: streams keyed by (seed, a, b), reproducible and distinct; uniform() in [0, 1).
+#include "sim/rng.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace vgroove::sim {
+namespace {
+
+std::vector<std::uint64_t> draws(Rng rng, int n) {
+  std::vector<std::uint64_t> v;
+  for (int j = 0; j < n; ++j) v.push_back(rng.next_u64());
+  return v;
+}
+
+TEST(Rng, SameKeyGivesTheSameStream) {
+  EXPECT_EQ(draws(Rng(2018, 5, 1), 1000), draws(Rng(2018, 5, 1), 1000));
+}
+
+TEST(Rng, EachKeyComponentChangesTheStream) {
+  const auto base = draws(Rng(2018, 5, 1), 64);
+  EXPECT_NE(draws(Rng(2018, 5, 0), 64), base) << "b";
+  EXPECT_NE(draws(Rng(2018, 6, 1), 64), base) << "a";
+  EXPECT_NE(draws(Rng(2019, 5, 1), 64), base) << "seed";
+  // Swapping a and b is a different work item, so a different stream.
+  EXPECT_NE(draws(Rng(2018, 1, 5), 64), base) << "a <-> b";
+}
+
+TEST(Rng, NeighbouringStreamsShareNoDraws) {
+  // The facets of one case use (seed, case, 0) and (seed, case, 1): no value may repeat between
+  // them (64-bit values: a repeat among 2 x 10^4 draws would have probability ~ 1e-11).
+  const auto l = draws(Rng(1, 0, 0), 10000), r = draws(Rng(1, 0, 1), 10000);
+  std::vector<std::uint64_t> all(l);
+  all.insert(all.end(), r.begin(), r.end());
+  std::sort(all.begin(), all.end());
+  EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
+}
+
+TEST(Rng, UniformIsInTheUnitIntervalWithMeanOneHalf) {
+  // The mean of N uniform draws has standard deviation sqrt(1/12) / sqrt(N).
+  constexpr int n = 1'000'000;
+  Rng rng(42, 0, 0);
+  double sum = 0.0, lo = 1.0, hi = 0.0;
+  for (int j = 0; j < n; ++j) {
+    const double u = rng.uniform();
+    ASSERT_GE(u, 0.0) << "draw " << j;
+    ASSERT_LT(u, 1.0) << "draw " << j;
+    sum += u;
+    lo = std::min(lo, u);
+    hi = std::max(hi, u);
+  }
+  const double sigma = std::sqrt(1.0 / 12.0 / n);
+  EXPECT_NEAR(sum / n, 0.5, 5 * sigma);
+  // The extremes of 10^6 draws lie within ~1e-5 of the ends (probability of more: e^-10).
+  EXPECT_LT(lo, 1e-5);
+  EXPECT_GT(hi, 1.0 - 1e-5);
+}
+
+}  // namespace
+}  // namespace vgroove::sim
