@@ -1,23 +1,16 @@
 #include "validation/json_reader.h"
 
+#include <charconv>
 #include <cmath>
 #include <fstream>
-#include <sstream>
 
 namespace vgroove::validation {
 
 std::string number_text(double v) {
-  std::ostringstream os;
-  os.precision(17);
-  os << v;
-  // Prefer the short form when it reads back the same.
-  for (int p = 1; p <= 17; ++p) {
-    std::ostringstream s;
-    s.precision(p);
-    s << v;
-    if (std::stod(s.str()) == v) return s.str();
-  }
-  return os.str();
+  // The shortest text that reads back as the same double (10 -> "10", 0.1 -> "0.1").
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
 }
 
 std::string interval_text(double lo, bool lo_closed, double hi, bool hi_closed) {
