@@ -198,7 +198,7 @@ namespace {
 CaseOptions options_with_overrides(const Suite& suite, long rays, const std::string& sampling,
                                    const std::string& form, long long seed) {
   CaseOptions o = suite.options;
-  if (rays != 0) check_rays(rays, "--rays"), o.rays = rays;
+  if (rays != kUnset) check_rays(rays, "--rays"), o.rays = rays;
   if (!sampling.empty()) o.sampling = parse_sampling(sampling, "--sampling");
   if (!form.empty()) o.form = parse_form(form, "--eq6-form");
   if (seed >= 0) o.seed = static_cast<std::uint64_t>(seed);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -35,10 +36,13 @@ struct AnalyticArgs {
 };
 int cmd_analytic(const AnalyticArgs& a);
 
+// An option the user did not give (any value they can give is checked).
+inline constexpr long kUnset = std::numeric_limits<long>::min();
+
 struct ValidateArgs {
   std::string suite;
   std::string out;
-  long rays = 0;     // 0: the suite's
+  long rays = kUnset;  // kUnset: the suite's
   int threads = 0;   // 0: all cores
   std::string sampling;  // empty: the suite's
   std::string eq6_form;  // empty: the suite's
