@@ -72,4 +72,15 @@ NonsymmetricPrediction G_nonsymmetric(double theta_i, double theta_l, double the
   return p;
 }
 
+double dtheta_h_dtheta_l(int k) {
+  // d/d theta_l of Eq. (8): (-1)^k (-1/2 - k) + 1/2; theta_h moves at half that rate.
+  const double sign = (k % 2 == 0) ? 1.0 : -1.0;
+  return 0.5 * (0.5 - sign * (k + 0.5));
+}
+
+double jacobian_ds_l_do(double theta_sl, double theta_h, double theta_d, int k) {
+  // Lee et al. 2018, after Eq. (23).
+  return std::sin(theta_sl) / (std::abs(dtheta_h_dtheta_l(k)) * std::sin(theta_h)) / (4.0 * std::cos(theta_d));
+}
+
 }  // namespace vgroove::analytic

@@ -48,4 +48,13 @@ struct NonsymmetricPrediction {
 // Eq. (9) for the rays aimed at `first`. Requires theta_l < 0 < theta_r and a positive aperture.
 NonsymmetricPrediction G_nonsymmetric(double theta_i, double theta_l, double theta_r, FacetSide first);
 
+// d theta_h / d theta_l at fixed theta_r and k, from Eq. (8) with theta_h = (theta_i + theta_o) / 2:
+// 0.5 (0.5 - (-1)^k (k + 0.5)). Its reciprocal is the angular factor of the Jacobian printed after
+// Eq. (23); validation/ERRATA.md records the check against the tracer.
+double dtheta_h_dtheta_l(int k);
+
+// The Jacobian |ds_l/do| as printed after Eq. (23):
+// sin(theta_sl) / (0.5 |0.5 - (-1)^k (k + 0.5)| sin(theta_h)) * 1 / (4 cos(theta_d)).
+double jacobian_ds_l_do(double theta_sl, double theta_h, double theta_d, int k);
+
 }  // namespace vgroove::analytic
