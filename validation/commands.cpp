@@ -219,7 +219,12 @@ int cmd_validate(const ValidateArgs& a) {
   std::vector<SuiteRun> runs;
   bool pass = true;
   for (std::size_t n = 0; n < set.suites.size(); ++n) {
-    runs.push_back(run_suite(set.suites[n], opts[n], a.threads, terminal_progress("validate " + set.suites[n].name)));
+    runs.push_back(
+        run_suite(set.suites[n], opts[n], a.threads, terminal_progress("validate " + set.suites[n].name), a.cancel));
+    if (runs.back().interrupted) {
+      std::cerr << "\nvgroove: interrupted; no report written\n";
+      return kExitInterrupted;
+    }
     pass = pass && runs.back().summary.pass();
   }
   print_set_table(std::cout, set, runs);
@@ -253,8 +258,13 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
       CaseOptions o = suite.options;
       o.rays = rays;
       o.sampling = smp;
-      const SuiteRun run = run_suite(suite, o, a.threads,
-                                     terminal_progress(std::string(sim::sampling_name(smp)) + " " + std::to_string(rays)));
+      const SuiteRun run = run_suite(
+          suite, o, a.threads, terminal_progress(std::string(sim::sampling_name(smp)) + " " + std::to_string(rays)),
+          a.cancel);
+      if (run.interrupted) {
+        std::fprintf(stderr, "\nvgroove: interrupted; no report written\n");
+        return kExitInterrupted;
+      }
       threads_used = run.threads;
       const Summary& s = run.summary;
       std::printf("  %-10s %10ld %12.4g %12.4g %12lld %10.3f %8s\n", sim::sampling_name(smp), rays, s.max_l1,

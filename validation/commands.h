@@ -2,6 +2,7 @@
 // main.cpp only parses; these validate values (UserError naming the option) and run.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -48,6 +49,7 @@ struct ValidateArgs {
   std::string eq6_form;  // empty: the suite's
   long long seed = -1;   // -1: the suite's
   bool force = false;
+  const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: no report is written
 };
 int cmd_validate(const ValidateArgs& a);
 
@@ -58,7 +60,11 @@ struct AccuracyArgs {
   std::vector<std::string> samplings{"stratified", "random"};
   int threads = 0;
   bool force = false;
+  const std::atomic<bool>* cancel = nullptr;
 };
 int cmd_bench_accuracy(const AccuracyArgs& a);
+
+// Exit status of a run stopped by Ctrl-C (128 + SIGINT, as a shell reports it).
+inline constexpr int kExitInterrupted = 130;
 
 }  // namespace vgroove::validation

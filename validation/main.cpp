@@ -7,11 +7,21 @@
 
 #include <CLI/CLI.hpp>
 
+#include <atomic>
+#include <csignal>
 #include <iostream>
 
 using namespace vgroove::validation;
 
 namespace {
+// Set by the first Ctrl-C; long runs poll it between chunks and stop without writing a report.
+// A second Ctrl-C ends the process at once (the handler restores the default action).
+std::atomic<bool> interrupted{false};
+extern "C" void on_sigint(int) {
+  interrupted.store(true);
+  std::signal(SIGINT, SIG_DFL);
+}
+
 // Comma-separated values in one option: --rays 1000,10000.
 template <class T>
 void add_list(CLI::App* app, const std::string& name, std::vector<T>& v, const std::string& help) {
@@ -94,6 +104,9 @@ int main(int argc, char** argv) {
   acc->add_option("--out", ac.out, "report JSON to write");
   acc->add_flag("--force", ac.force, "overwrite an existing report");
 
+  va.cancel = &interrupted;
+  ac.cancel = &interrupted;
+  std::signal(SIGINT, on_sigint);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -22,12 +22,15 @@ inline int resolve_threads(int requested) {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
+// Runs fn(i) for i in [0, n). When *cancel becomes true, workers stop at their next chunk and
+// parallel_for returns false (some items not run); true when all ran.
 template <class Fn>
-void parallel_for(std::size_t n, int threads, Fn&& fn, const ProgressFn& progress = {},
-                  std::size_t chunk = 16) {
+bool parallel_for(std::size_t n, int threads, Fn&& fn, const ProgressFn& progress = {},
+                  const std::atomic<bool>* cancel = nullptr, std::size_t chunk = 16) {
   std::atomic<std::size_t> next{0}, done{0};
   auto worker = [&](bool reports) {
     for (;;) {
+      if (cancel && cancel->load(std::memory_order_relaxed)) return;
       const std::size_t begin = next.fetch_add(chunk);
       if (begin >= n) return;
       const std::size_t end = std::min(n, begin + chunk);
@@ -41,7 +44,9 @@ void parallel_for(std::size_t n, int threads, Fn&& fn, const ProgressFn& progres
   for (int k = 1; k < t; ++k) pool.emplace_back(worker, false);
   worker(true);
   for (auto& th : pool) th.join();
-  if (progress) progress(n, n);
+  const bool complete = done.load() == n;
+  if (progress && complete) progress(n, n);
+  return complete;
 }
 
 }  // namespace vgroove::validation

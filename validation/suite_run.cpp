@@ -4,17 +4,18 @@
 
 namespace vgroove::validation {
 
-SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads, const ProgressFn& progress) {
+SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads, const ProgressFn& progress,
+                   const std::atomic<bool>* cancel) {
   SuiteRun run;
   run.options = options;
   run.threads = resolve_threads(threads);
   const std::size_t ni = suite.theta_i.size();
   run.cases.resize(suite.cases());
   const auto t0 = std::chrono::steady_clock::now();
-  parallel_for(
+  run.interrupted = !parallel_for(
       run.cases.size(), run.threads,
       [&](std::size_t c) { run.cases[c] = run_case(suite.grooves[c / ni], suite.theta_i[c % ni], options, c); },
-      progress);
+      progress, cancel);
   Summary& s = run.summary;
   s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 

@@ -34,9 +34,11 @@ struct SuiteRun {
   int threads = 1;
   std::vector<CaseOutcome> cases;  // in suite order: groove outer, theta_i inner
   Summary summary;
+  bool interrupted = false;  // cancelled before every case ran: the summary is not meaningful
 };
 
+// `cancel` (may be null) is polled between chunks of cases: set it from a signal handler to stop.
 SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads,
-                   const ProgressFn& progress = {});
+                   const ProgressFn& progress = {}, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace vgroove::validation
