@@ -31,8 +31,9 @@ NonsymmetricPrediction left_first(double theta_i, double theta_l, double theta_r
   NonsymmetricPrediction p;
   const double theta_v = aperture(theta_l, theta_r);
   // Facet lengths: equal rim heights, l_L sin(-theta_l) = l_R sin(theta_r); the longer is 1.
-  const double h_l = std::sin(-theta_l), h_r = std::sin(theta_r);
-  const double len_l = h_r / std::max(h_l, h_r), len_r = h_l / std::max(h_l, h_r);
+  // A facet at 0 deg has no height, so the other has no length; both at 0 is the flat mirror.
+  const double h_l = std::sin(-theta_l), h_r = std::sin(theta_r), h_max = std::max(h_l, h_r);
+  const double len_l = h_max > 0.0 ? h_r / h_max : 1.0, len_r = h_max > 0.0 ? h_l / h_max : 1.0;
   const double phi_a = theta_l + 0.5 * M_PI;  // angle of the left rim a from n
   // f of fan vertex P_j (the circle alternates with j), and of the right rim b = P_{-1}.
   auto f_vertex = [&](int j) {

@@ -45,7 +45,7 @@ struct NonsymmetricPrediction {
   double shadow = 0.0;  // f_b / f_a
 };
 
-// Eq. (9) for the rays aimed at `first`. Requires theta_l < 0 < theta_r and a positive aperture.
+// Eq. (9) for the rays aimed at `first`. Requires theta_l <= 0 <= theta_r and a positive aperture.
 NonsymmetricPrediction G_nonsymmetric(double theta_i, double theta_l, double theta_r, FacetSide first);
 
 // d theta_h / d theta_l at fixed theta_r and k, from Eq. (8) with theta_h = (theta_i + theta_o) / 2:

@@ -22,7 +22,7 @@ Groove make_symmetric_groove(double theta_v) {
 }
 
 Groove make_nonsymmetric_groove(double theta_l, double theta_r) {
-  assert(theta_l < 0.0 && theta_l >= -0.5 * M_PI && theta_r > 0.0 && theta_r <= 0.5 * M_PI);
+  assert(theta_l <= 0.0 && theta_l >= -0.5 * M_PI && theta_r >= 0.0 && theta_r <= 0.5 * M_PI);
   assert(M_PI + theta_l - theta_r > 0.0);
   Groove g;
   // Edges perpendicular to the normals, pointing up from the apex.
@@ -31,9 +31,12 @@ Groove make_nonsymmetric_groove(double theta_l, double theta_r) {
   g.facet[0].normal = direction_at(theta_l);
   g.facet[1].normal = direction_at(theta_r);
   // Equal rim heights: length * edge.y equal for both facets.
-  const double h_l = g.facet[0].edge.y(), h_r = g.facet[1].edge.y();
-  g.facet[0].length = h_r / std::max(h_l, h_r);
-  g.facet[1].length = h_l / std::max(h_l, h_r);
+  // A facet at 0 deg is flat (edge.y is 0 up to rounding): the other facet then has (almost) no
+  // length, and both flat is the flat mirror, with unit facets.
+  const double h_l = std::max(0.0, g.facet[0].edge.y()), h_r = std::max(0.0, g.facet[1].edge.y());
+  const double h_max = std::max(h_l, h_r);
+  g.facet[0].length = h_max > 0.0 ? h_r / h_max : 1.0;
+  g.facet[1].length = h_max > 0.0 ? h_l / h_max : 1.0;
   g.rim_height = g.facet[0].length * h_l;
   g.theta_v = M_PI + theta_l - theta_r;
   return g;

@@ -34,7 +34,7 @@ struct Groove {
 Groove make_symmetric_groove(double theta_v);
 
 // Nonsymmetric groove from the angles of the facets' inward normals (Lee et al. 2018, Fig. 5):
-// theta_l in [-pi/2, 0) for the left facet (its normal leans right), theta_r in (0, pi/2] for the
+// theta_l in [-pi/2, 0] for the left facet (its normal leans right), theta_r in [0, pi/2] for the
 // right one; aperture theta_v = pi + theta_l - theta_r > 0. The rims lie at one height, so the facets
 // differ in length; the longer has unit length.
 Groove make_nonsymmetric_groove(double theta_l, double theta_r);

@@ -96,6 +96,28 @@ FacetOutcome run_facet(const GrooveParams& params, const sim::Groove& g, double 
     }
   }
   out.l1 = l1;
+  out.non_finite = !std::isfinite(out.l1) || !std::isfinite(out.theta_o_error);
+  for (const auto& side_bins : tally.bins)
+    for (const sim::BounceBin& b : side_bins)
+      if (b.count > 0 && !b.exit_dir.allFinite()) out.non_finite = true;
+
+  if (opt.probe_vertices) {
+    // The line through the apex, the facet's own rim, and both rims of the opening.
+    const sim::Interval open = sim::opening(g);
+    for (double x : {aim.lo, aim.hi, open.lo, open.hi}) {
+      const sim::TraceResult r = sim::trace(g, sim::beam_ray(g, dir, x), topt);
+      ++out.probe_rays;
+      switch (r.how) {
+        case sim::Termination::escaped:
+          ++out.probe_escaped;
+          if (!r.exit_dir.allFinite()) out.non_finite = true;
+          break;
+        case sim::Termination::vertex_hit: ++out.probe_vertex_hits; break;
+        case sim::Termination::blocked: ++out.probe_blocked; break;
+        case sim::Termination::bounce_limit: ++out.probe_bounce_limit; break;
+      }
+    }
+  }
   return out;
 }
 
@@ -115,6 +137,7 @@ CaseOutcome run_case(const GrooveParams& groove, double theta_i, const CaseOptio
     c.rays += f.rays;
     c.bounces += f.bounces;
     c.theta_o_error = std::max(c.theta_o_error, f.theta_o_error);
+    c.non_finite = c.non_finite || f.non_finite;
   }
   return c;
 }

@@ -88,6 +88,13 @@ long long JsonObject::integer(const std::string& key, long long lo, long long hi
   return x;
 }
 
+bool JsonObject::boolean_or(const std::string& key, bool fallback) {
+  if (!has(key)) return fallback;
+  const auto& v = raw(key);
+  if (!v.is_boolean()) fail(key, "= " + v.dump() + " must be true or false");
+  return v.get<bool>();
+}
+
 long long JsonObject::integer_or(const std::string& key, long long fallback, long long lo, long long hi) {
   return has(key) ? integer(key, lo, hi) : fallback;
 }

@@ -34,6 +34,7 @@ class JsonObject {
   double number_or(const std::string& key, double fallback, double lo, bool lo_closed, double hi,
                    bool hi_closed);
   long long integer(const std::string& key, long long lo, long long hi);
+  bool boolean_or(const std::string& key, bool fallback);
   long long integer_or(const std::string& key, long long fallback, long long lo, long long hi);
 
   // Rejects every key that no call above has read.

@@ -32,11 +32,11 @@ void add_groove_options(CLI::App* app, GrooveArgs& g) {
   auto* v = app->add_option("--theta-v-deg", g.theta_v_deg, "symmetric groove: aperture theta_v in degrees, (0, 180]")
                 ->capture_default_str();
   auto* l = app->add_option("--theta-l-deg", g.theta_l_deg,
-                            "nonsymmetric groove: angle of the left facet's normal from n, [-90, 0) (Lee et al. "
+                            "nonsymmetric groove: angle of the left facet's normal from n, [-90, 0] (Lee et al. "
                             "2018, Fig. 5; counter-clockwise positive, so the left facet's normal leans right and "
-                            "theta_l < 0)");
+                            "theta_l <= 0)");
   auto* r = app->add_option("--theta-r-deg", g.theta_r_deg,
-                            "nonsymmetric groove: angle of the right facet's normal, (0, 90]; aperture "
+                            "nonsymmetric groove: angle of the right facet's normal, [0, 90]; aperture "
                             "theta_v = 180 + theta_l - theta_r; a symmetric groove is theta_l = -theta_r");
   l->needs(r);
   r->needs(l);

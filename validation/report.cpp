@@ -89,8 +89,9 @@ nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
   nlohmann::json worst_j = groove_json(worst.groove);
   worst_j["theta_i_deg"] = deg(worst.theta_i);
   nlohmann::json degenerate = nlohmann::json::array();
-  for (const GrooveParams& g : suite.grooves)
-    if (g.degenerate()) degenerate.push_back(groove_json(g));
+  for (const CaseOutcome& c : run.cases)
+    if (c.groove.degenerate() && (degenerate.empty() || degenerate.back() != groove_json(c.groove)))
+      degenerate.push_back(groove_json(c.groove));
   j["summary"] = {{"cases", s.cases},
                   {"degenerate_cases", s.degenerate_cases},
                   {"degenerate_grooves", degenerate},
@@ -105,8 +106,15 @@ nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
                   {"vertex_hits", s.vertex_hits},
                   {"bounce_limit", s.bounce_limit},
                   {"wrong_first_facet", s.wrong_first},
+                  {"non_finite_cases", s.non_finite_cases},
                   {"wall_s", s.wall_s},
                   {"bounces_per_s", s.bounces_per_s}};
+  if (run.options.probe_vertices)
+    j["summary"]["vertex_probes"] = {{"rays", s.probe_rays},
+                                     {"escaped", s.probe_escaped},
+                                     {"vertex_hit", s.probe_vertex_hits},
+                                     {"blocked", s.probe_blocked},
+                                     {"bounce_limit", s.probe_bounce_limit}};
   j["thresholds"] = {{"max_l1", suite.thresholds.max_l1},
                      {"mean_l1", suite.thresholds.mean_l1},
                      {"max_theta_o_error_rad", suite.thresholds.max_theta_o_error_rad}};
@@ -139,13 +147,19 @@ void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run) {
      << fmt("%.4g", w.l1) << ")\n";
   if (s.degenerate_cases) {
     os << "  degenerate (zero aperture, no opening; listed in the report, not compared):";
-    for (const GrooveParams& g : suite.grooves)
-      if (g.degenerate()) os << " " << groove_text(g) << ";";
+    std::string last;
+    for (const CaseOutcome& c : run.cases)
+      if (c.groove.degenerate() && groove_text(c.groove) != last) os << " " << (last = groove_text(c.groove)) << ";";
     os << "\n";
   }
   os << "  rays " << s.rays << ", bounces " << s.bounces << ", vertex hits " << s.vertex_hits << ", bounce limit "
      << s.bounce_limit << ", wall " << fmt("%.3f", s.wall_s) << " s, " << fmt("%.1f", s.bounces_per_s / 1e6)
      << " M bounces/s\n";
+  if (run.options.probe_vertices)
+    os << "  rays aimed exactly at the apex and rims: " << s.probe_rays << " (escaped " << s.probe_escaped
+       << ", vertex hits " << s.probe_vertex_hits << ", blocked " << s.probe_blocked << ", bounce limit "
+       << s.probe_bounce_limit << "), every one accounted for\n";
+  if (s.non_finite_cases) os << "  NaN or infinity in " << s.non_finite_cases << " cases\n";
   os << (s.pass() ? "PASS" : "FAIL") << "\n";
 }
 

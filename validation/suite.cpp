@@ -54,6 +54,20 @@ std::vector<double> read_degrees(JsonObject& o, const std::string& key, double l
   return out;
 }
 
+std::vector<GrooveParams> read_grooves(JsonObject& groove) {
+  std::vector<GrooveParams> out;
+  if (groove.one_of("type", {"symmetric", "nonsymmetric"}) == "symmetric") {
+    for (double d : read_degrees(groove, "theta_v_deg", 0.0, false, 180.0, true))
+      out.push_back(GrooveParams::make_symmetric(d * kDeg));
+  } else {
+    const auto ls = read_degrees(groove, "theta_l_deg", -90.0, true, 0.0, true);
+    const auto rs = read_degrees(groove, "theta_r_deg", 0.0, true, 90.0, true);
+    for (double l : ls)
+      for (double r : rs) out.push_back(GrooveParams::make_nonsymmetric(l * kDeg, r * kDeg));
+  }
+  return out;
+}
+
 }  // namespace
 
 void check_theta_v(double deg, const std::string& what) {
@@ -67,15 +81,15 @@ void check_theta_i(double deg, const std::string& what) {
 }
 
 void check_theta_l(double deg, const std::string& what) {
-  if (!(std::isfinite(deg) && deg >= -90.0 && deg < 0.0))
+  if (!(std::isfinite(deg) && deg >= -90.0 && deg <= 0.0))
     throw UserError(what + " = " + number_text(deg) +
-                    " is out of range [-90, 0) (the left facet's normal leans right: theta_l < 0)");
+                    " is out of range [-90, 0] (the left facet's normal leans right: theta_l <= 0)");
 }
 
 void check_theta_r(double deg, const std::string& what) {
-  if (!(std::isfinite(deg) && deg > 0.0 && deg <= 90.0))
+  if (!(std::isfinite(deg) && deg >= 0.0 && deg <= 90.0))
     throw UserError(what + " = " + number_text(deg) +
-                    " is out of range (0, 90] (the right facet's normal leans left: theta_r > 0)");
+                    " is out of range [0, 90] (the right facet's normal leans left: theta_r >= 0)");
 }
 
 namespace {
@@ -86,20 +100,32 @@ Suite load_suite_from(const nlohmann::json& j, const std::string& file) {
   s.name = root.string("name");
   s.description = root.string_or("description", "");
   root.one_of("kind", {"table1"});
-  {
+  if (root.has("groove") || root.has("theta_i_deg")) {
     JsonObject groove = root.object("groove");
-    if (groove.one_of("type", {"symmetric", "nonsymmetric"}) == "symmetric") {
-      for (double d : read_degrees(groove, "theta_v_deg", 0.0, false, 180.0, true))
-        s.grooves.push_back(GrooveParams::make_symmetric(d * kDeg));
-    } else {
-      const auto ls = read_degrees(groove, "theta_l_deg", -90.0, true, 0.0, false);
-      const auto rs = read_degrees(groove, "theta_r_deg", 0.0, false, 90.0, true);
-      for (double l : ls)
-        for (double r : rs) s.grooves.push_back(GrooveParams::make_nonsymmetric(l * kDeg, r * kDeg));
-    }
+    s.grooves = read_grooves(groove);
     groove.finish();
+    for (double d : read_degrees(root, "theta_i_deg", -90.0, false, 90.0, false)) s.theta_i.push_back(d * kDeg);
   }
-  for (double d : read_degrees(root, "theta_i_deg", -90.0, false, 90.0, false)) s.theta_i.push_back(d * kDeg);
+  if (root.has("cases")) {
+    const nlohmann::json& list = root.raw("cases");
+    if (!list.is_array()) root.fail("cases", "must be a list of {theta_v_deg | theta_l_deg, theta_r_deg; theta_i_deg}");
+    for (std::size_t n = 0; n < list.size(); ++n) {
+      JsonObject c(list[n], file, root.path("cases") + "/" + std::to_string(n));
+      SuiteCase sc;
+      if (c.has("theta_v_deg")) {
+        sc.groove = GrooveParams::make_symmetric(c.number("theta_v_deg", 0.0, false, 180.0, true) * kDeg);
+      } else {
+        const double l = c.number("theta_l_deg", -90.0, true, 0.0, true);
+        const double r = c.number("theta_r_deg", 0.0, true, 90.0, true);
+        sc.groove = GrooveParams::make_nonsymmetric(l * kDeg, r * kDeg);
+      }
+      sc.theta_i = c.number("theta_i_deg", -90.0, false, 90.0, false) * kDeg;
+      c.string_or("note", "");
+      c.finish();
+      s.listed.push_back(sc);
+    }
+  }
+  if (s.cases() == 0) root.fail("cases", "is missing: a suite needs \"groove\" with \"theta_i_deg\", or \"cases\"");
   s.options.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
   const std::string stratified = "stratified";
   s.options.sampling = root.one_of("sampling", {"stratified", "random"}, &stratified) == "random"
@@ -107,6 +133,7 @@ Suite load_suite_from(const nlohmann::json& j, const std::string& file) {
                            : sim::Sampling::stratified;
   s.options.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
   s.options.max_bounces = static_cast<int>(root.integer_or("max_bounces", 100000, 1, 100'000'000));
+  s.options.probe_vertices = root.boolean_or("probe_vertices", false);
   const std::string corrected = "corrected";
   s.options.form = root.one_of("eq6_form", {"corrected", "printed"}, &corrected) == "printed"
                        ? analytic::Eq6Form::printed

@@ -34,6 +34,9 @@ struct CaseOptions {
   std::uint64_t seed = 1;
   int max_bounces = 100000;
   analytic::Eq6Form form = analytic::Eq6Form::corrected;
+  // Also trace, per lit facet, the rays aimed exactly at the apex and at the rims (measure zero:
+  // reported apart, never in the error) to show they are accounted for and yield no NaN.
+  bool probe_vertices = false;
 };
 
 // One groove of a suite (radians). Symmetric grooves are given by theta_v; nonsymmetric ones by
@@ -52,16 +55,28 @@ struct GrooveParams {
   }
 };
 
+struct SuiteCase {
+  GrooveParams groove;
+  double theta_i = 0.0;  // radians
+};
+
+// The cases are the grid grooves x theta_i (groove outer), then the listed ones.
 struct Suite {
   std::string file;
   std::string name;
   std::string description;
   std::vector<GrooveParams> grooves;
   std::vector<double> theta_i;  // radians
+  std::vector<SuiteCase> listed;
   CaseOptions options;
   Thresholds thresholds;
   std::optional<PaperFigures> paper;
-  std::size_t cases() const { return grooves.size() * theta_i.size(); }
+  std::size_t cases() const { return grooves.size() * theta_i.size() + listed.size(); }
+  SuiteCase case_at(std::size_t c) const {
+    const std::size_t grid = grooves.size() * theta_i.size();
+    if (c < grid) return {grooves[c / theta_i.size()], theta_i[c % theta_i.size()]};
+    return listed[c - grid];
+  }
 };
 
 // A suite file, or a set of them: {"name", "description", "suites": ["a.json", ...]} with paths

@@ -22,11 +22,13 @@ struct Summary {
   std::int64_t vertex_hits = 0;
   std::int64_t bounce_limit = 0;
   std::int64_t wrong_first = 0;
+  std::int64_t probe_rays = 0, probe_escaped = 0, probe_vertex_hits = 0, probe_blocked = 0, probe_bounce_limit = 0;
+  std::size_t non_finite_cases = 0;  // cases with a NaN or infinity anywhere: always a failure
   double rays_per_case = 0.0;
   double wall_s = 0.0;
   double bounces_per_s = 0.0;
   bool pass_max_l1 = false, pass_mean_l1 = false, pass_theta_o = false;
-  bool pass() const { return pass_max_l1 && pass_mean_l1 && pass_theta_o; }
+  bool pass() const { return pass_max_l1 && pass_mean_l1 && pass_theta_o && non_finite_cases == 0; }
 };
 
 struct SuiteRun {
