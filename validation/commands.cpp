@@ -99,6 +99,7 @@ int cmd_trace(const TraceArgs& a) {
   check_rays(a.rays, "--rays");
   if (a.max_bounces < 1) throw UserError("--max-bounces = " + std::to_string(a.max_bounces) + " is out of range [1, 2147483647]");
   const sim::Sampling sampling = parse_sampling(a.sampling, "--sampling");
+  if (a.dry_run) return 0;
   const double theta_i = a.theta_i_deg * kRad;
   const sim::Groove g = make_groove(params);
   const sim::Interval open = sim::opening(g);
@@ -145,6 +146,7 @@ int cmd_analytic(const AnalyticArgs& a) {
   const GrooveParams params = groove_from(a.groove);
   check_theta_i(a.theta_i_deg, "--theta-i-deg");
   const analytic::Eq6Form form = parse_form(a.eq6_form, "--eq6-form");
+  if (a.dry_run) return 0;
   const double theta_i = a.theta_i_deg * kRad;
   nlohmann::json rows = nlohmann::json::array();
   nlohmann::json facets = nlohmann::json::object();
@@ -216,6 +218,7 @@ int cmd_validate(const ValidateArgs& a) {
   std::vector<CaseOptions> opts;
   for (const Suite& suite : set.suites) opts.push_back(options_with_overrides(suite, a.rays, a.sampling, a.eq6_form, a.seed));
   if (!a.out.empty()) check_writable_target(a.out, a.force);  // fail before the work, not after
+  if (a.dry_run) return 0;
   std::vector<SuiteRun> runs;
   bool pass = true;
   for (std::size_t n = 0; n < set.suites.size(); ++n) {
@@ -246,6 +249,7 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
   std::vector<sim::Sampling> samplings;
   for (const auto& s : a.samplings) samplings.push_back(parse_sampling(s, "--sampling"));
   if (!a.out.empty()) check_writable_target(a.out, a.force);
+  if (a.dry_run) return 0;
 
   nlohmann::json runs = nlohmann::json::array();
   std::printf("accuracy against rays: suite %s (%zu cases), vgroove %s (git %s)\n", suite.name.c_str(), suite.cases(),

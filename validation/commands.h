@@ -19,6 +19,7 @@ struct GrooveArgs {
 };
 
 struct TraceArgs {
+  bool dry_run = false;  // check the values, do no work
   GrooveArgs groove;
   double theta_i_deg = 0.0;
   long rays = 1000;
@@ -30,6 +31,7 @@ struct TraceArgs {
 int cmd_trace(const TraceArgs& a);
 
 struct AnalyticArgs {
+  bool dry_run = false;  // check the values, do no work
   GrooveArgs groove;
   double theta_i_deg = 0.0;
   std::string eq6_form = "corrected";
@@ -41,6 +43,7 @@ int cmd_analytic(const AnalyticArgs& a);
 inline constexpr long kUnset = std::numeric_limits<long>::min();
 
 struct ValidateArgs {
+  bool dry_run = false;  // check the values, do no work
   std::string suite;
   std::string out;
   long rays = kUnset;  // kUnset: the suite's
@@ -54,6 +57,7 @@ struct ValidateArgs {
 int cmd_validate(const ValidateArgs& a);
 
 struct AccuracyArgs {
+  bool dry_run = false;  // check the values, do no work
   std::string suite;
   std::string out;
   std::vector<long> rays{1000, 10000, 100000};
