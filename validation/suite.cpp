@@ -92,8 +92,7 @@ void check_theta_r(double deg, const std::string& what) {
                     " is out of range [0, 90] (the right facet's normal leans left: theta_r >= 0)");
 }
 
-namespace {
-Suite load_suite_from(const nlohmann::json& j, const std::string& file) {
+Suite parse_suite(const nlohmann::json& j, const std::string& file) {
   JsonObject root(j, file, "");
   Suite s;
   s.file = file;
@@ -154,21 +153,21 @@ Suite load_suite_from(const nlohmann::json& j, const std::string& file) {
   root.finish();
   return s;
 }
-}  // namespace
 
 Suite load_suite(const std::string& file) {
   const nlohmann::json j = read_json_file(file);
   if (j.is_object() && j.contains("suites"))
     throw UserError(file + ": is a set of suites (it has /suites); run it with `vgroove validate`");
-  return load_suite_from(j, file);
+  return parse_suite(j, file);
 }
 
-SuiteSet load_suite_set(const std::string& file) {
-  const nlohmann::json j = read_json_file(file);
+SuiteSet load_suite_set(const std::string& file) { return parse_suite_set(read_json_file(file), file); }
+
+SuiteSet parse_suite_set(const nlohmann::json& j, const std::string& file) {
   SuiteSet set;
   set.file = file;
   if (!(j.is_object() && j.contains("suites"))) {
-    set.suites.push_back(load_suite_from(j, file));
+    set.suites.push_back(parse_suite(j, file));
     set.name = set.suites.front().name;
     set.description = set.suites.front().description;
     return set;

@@ -6,6 +6,8 @@
 #include "analytic/kaleidoscope_nonsymmetric.h"
 #include "sim/beam.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -90,6 +92,9 @@ struct SuiteSet {
 
 Suite load_suite(const std::string& file);
 SuiteSet load_suite_set(const std::string& file);
+// The same from parsed JSON; `file` names it in messages (and anchors a set's relative paths).
+Suite parse_suite(const nlohmann::json& j, const std::string& file);
+SuiteSet parse_suite_set(const nlohmann::json& j, const std::string& file);
 
 // Range checks shared by the JSON and the command line (degrees in, UserError naming `what`).
 void check_theta_v(double theta_v_deg, const std::string& what);

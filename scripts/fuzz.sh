@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Fuzzes the suite JSON loader and the command-line parser with libFuzzer (clang, with ASan and
+# UBSan) for SECONDS each (default 60). New interesting inputs are kept in tests/fuzz/corpus/TARGET;
+# a finding (crash, hang, sanitizer report, uncaught exception) stops with a non-zero exit and
+# leaves the input as crash-*/timeout-* in the build-fuzz directory.
+#   scripts/fuzz.sh [SECONDS] [TARGET...]        e.g. scripts/fuzz.sh 600
+set -euo pipefail
+cd "$(dirname "$0")/.."
+secs=${1:-60}
+shift || true
+targets=("$@")
+((${#targets[@]})) || targets=(suite_loader_fuzz cli_fuzz)
+
+scripts/install-deps.sh clang libclang-rt-14-dev
+cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+      -DVGROOVE_FUZZ=ON -DVGROOVE_BUILD_TESTS=OFF -DVGROOVE_BUILD_BENCH=OFF >/dev/null
+cmake --build build-fuzz --target "${targets[@]}" >&2
+for t in "${targets[@]}"; do
+  corpus=tests/fuzz/corpus/$t
+  mkdir -p "$corpus"
+  seeds=()
+  [[ $t == suite_loader_fuzz ]] && seeds=(data/suites)
+  echo "fuzz: $t for $secs s (corpus $corpus)" >&2
+  (cd build-fuzz && ./"$t" -max_total_time="$secs" -timeout=10 -rss_limit_mb=4096 -close_fd_mask=3 \
+      -print_final_stats=1 "../$corpus" "${seeds[@]/#/../}")
+done
