@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -49,6 +50,19 @@ TEST(BounceCount, HandPoints) {
   EXPECT_EQ(bounce_count(deg(10), deg(60)), 4);   // 200 / 60 = 3.33
   EXPECT_EQ(bounce_count(0.0, deg(180)), 2);      // a flat mirror: 1 reflection (k - 1)
   EXPECT_EQ(bounce_count(0.0, deg(0.1)), 1801);
+}
+
+TEST(BounceCount, NarrowestGroovesDoNotOverflow) {
+  // Library bug (analytic/kaleidoscope.cpp, bounce_count): floor((pi + 2 theta_i) / theta_v) is
+  // cast to int. Any theta_v in (0, pi] is accepted (validation::check_theta_v takes (0, 180]
+  // deg), but below pi / INT_MAX = 1.46e-9 rad (8.4e-8 deg) the count does not fit: the cast is
+  // undefined behaviour and on x86 gives INT_MIN, so k = -2147483647 and fewer.n = INT_MIN.
+  const double theta_v = deg(1e-8);  // pi / theta_v = 1.8e10 reflections
+  EXPECT_GE(bounce_count(0.0, theta_v), 1);
+  const FacetPrediction p = G_kaleidoscopic(0.0, theta_v, FacetSide::left);
+  ASSERT_TRUE(p.lit);
+  EXPECT_GE(p.fewer.n, 0);
+  EXPECT_GE(p.more.n, 1);
 }
 
 TEST(BounceCount, IntegerPointsStillPredictTheHandCounts) {
@@ -225,24 +239,30 @@ TEST_P(EqFourBoundary, FractionsPerBounceCountAreContinuous) {
     const std::string where = "theta_v=" + std::to_string(v) + " theta_i=" + std::to_string(i) + " " + name(s) +
                               " (pi + 2 theta_i)/theta_v=" + std::to_string(q) + "\n below:" + dump(below) +
                               "\n at:" + dump(at) + "\n above:" + dump(above);
-    if (below.empty() && above.empty()) continue;  // not lit
+    // Integer points are chosen where the facet is lit on both sides (f_a well above 0).
+    ASSERT_FALSE(below.empty() || at.empty() || above.empty()) << where;
     std::map<int, double> all;
     for (const auto* m : {&below, &at, &above})
       for (const auto& [n, g] : *m) all[n] = 0.0;
+    // The shares are (f_a - f_k) / f_a and the like, with |d f / d theta_i| <= 1: moving theta_i
+    // by eps moves a share by at most about 2 eps / f_a. That is far below 1e-9 unless the facet's
+    // projected width f_a is tiny (a 0.1 deg groove: f_a = sin 0.05 deg, slope ~ 2300).
+    const double f_a = G_kaleidoscopic(deg(i), deg(v), s).f_a;
+    const double tol = std::max(1e-9, 4.0 * eps / f_a);
     for (const auto& [n, unused] : all) {
       const auto get = [n = n](const std::map<int, double>& m) {
         const auto it = m.find(n);
         return it == m.end() ? 0.0 : it->second;
       };
-      EXPECT_NEAR(get(below), get(above), 1e-9) << where << "\n n=" << n;
-      EXPECT_NEAR(get(at), get(above), 1e-9) << where << "\n n=" << n;
+      EXPECT_NEAR(get(below), get(above), tol) << where << "\n n=" << n;
+      EXPECT_NEAR(get(at), get(above), tol) << where << "\n n=" << n;
     }
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(Integers, EqFourBoundary,
                          testing::Values(AnglePair{60, 0}, AnglePair{36, 0}, AnglePair{40, 10}, AnglePair{40, -10},
-                                         AnglePair{90, 0}, AnglePair{30, 15}, AnglePair{72, -18},
+                                         AnglePair{90, 0}, AnglePair{50, -15}, AnglePair{72, -18},
                                          AnglePair{0.1, 0}),
                          pair_name);
 

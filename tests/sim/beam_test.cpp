@@ -70,11 +70,11 @@ TEST_P(AimedAt, SpansTheFacetsProjectedWidth) {
 INSTANTIATE_TEST_SUITE_P(Grid, AimedAt,
                          testing::Combine(testing::Values(1.0, 45.0, 90.0, 150.0, 180.0),
                                           testing::Values(-80.0, -30.0, 0.0, 10.0, 60.0)),
-                         [](const testing::TestParamInfo<std::tuple<double, double>>& info) {
+                         [](const testing::TestParamInfo<std::tuple<double, double>>& param) {
                            const auto name = [](double d) {
                              return (d < 0 ? "m" : "") + std::to_string(static_cast<int>(std::abs(d)));
                            };
-                           return "v" + name(std::get<0>(info.param)) + "_i" + name(std::get<1>(info.param));
+                           return "v" + name(std::get<0>(param.param)) + "_i" + name(std::get<1>(param.param));
                          });
 
 TEST(Beam, StratifiedPositionsAreStratumMidpoints) {

@@ -213,9 +213,10 @@ TEST_P(TracerGrid, MirroredBeamGivesTheMirroredTally) {
       const BounceBin& bt = t.bins[static_cast<int>(s)][k];
       const BounceBin& bm = m.bins[static_cast<int>(other(s))][k];
       EXPECT_NEAR(bm.theta_o(), -bt.theta_o(), 1e-12) << where << " first=" << side_name(s) << " k=" << k;
-      if (p.count(other(s), k) > 0)
+      if (p.count(other(s), k) > 0) {
         EXPECT_NEAR(p.bins[static_cast<int>(other(s))][k].theta_o(), -bt.theta_o(), 1e-12)
             << where << " first=" << side_name(s) << " k=" << k;
+      }
     }
 }
 

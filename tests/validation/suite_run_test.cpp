@@ -1,0 +1,124 @@
+// Tests of validation/suite_run.h: results do not depend on the thread count, and the summary
+// is what its cases say.
+#include "validation/suite_run.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+namespace vgroove::validation {
+namespace {
+
+double deg(double d) { return d * M_PI / 180.0; }
+
+// 5 x 11 = 55 cases: more than three chunks of 16, so 2 and 8 threads really share the work.
+Suite small_suite() {
+  Suite s;
+  s.file = "(in code)";
+  s.name = "determinism";
+  for (double v : {3.0, 17.5, 45.0, 90.0, 150.0}) s.grooves.push_back(GrooveParams::make_symmetric(deg(v)));
+  for (double i : {-85.0, -60.0, -33.0, -10.0, -1.5, 0.0, 2.0, 25.0, 44.0, 70.0, 88.0}) s.theta_i.push_back(deg(i));
+  s.options.rays = 400;
+  s.options.sampling = sim::Sampling::random;
+  s.options.seed = 77;
+  s.thresholds = {0.2, 0.1, 1e-9};
+  return s;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+void expect_identical(const CaseOutcome& a, const CaseOutcome& b, std::size_t c, int threads) {
+  const auto where = [&] { return "case " + std::to_string(c) + ", threads=" + std::to_string(threads); };
+  EXPECT_TRUE(same_bits(a.groove.theta_v, b.groove.theta_v)) << where();
+  EXPECT_TRUE(same_bits(a.theta_i, b.theta_i)) << where();
+  EXPECT_TRUE(same_bits(a.l1, b.l1)) << where() << ": " << a.l1 << " vs " << b.l1;
+  EXPECT_TRUE(same_bits(a.theta_o_error, b.theta_o_error)) << where();
+  EXPECT_EQ(a.rays, b.rays) << where();
+  EXPECT_EQ(a.bounces, b.bounces) << where();
+  for (int f = 0; f < 2; ++f) {
+    const FacetOutcome &x = a.facet[f], &y = b.facet[f];
+    EXPECT_EQ(x.compared, y.compared) << where() << " facet " << f;
+    EXPECT_TRUE(same_bits(x.l1, y.l1)) << where() << " facet " << f;
+    EXPECT_EQ(x.rays, y.rays) << where() << " facet " << f;
+    EXPECT_EQ(x.bounces, y.bounces) << where() << " facet " << f;
+    EXPECT_EQ(x.vertex_hits, y.vertex_hits) << where() << " facet " << f;
+    EXPECT_EQ(x.bounce_limit, y.bounce_limit) << where() << " facet " << f;
+    EXPECT_EQ(x.wrong_first, y.wrong_first) << where() << " facet " << f;
+    EXPECT_EQ(x.k, y.k) << where() << " facet " << f;
+    EXPECT_TRUE(same_bits(x.theta_o_error, y.theta_o_error)) << where() << " facet " << f;
+  }
+}
+
+TEST(RunSuite, ResultsAreBitIdenticalForAnyThreadCount) {
+  const Suite s = small_suite();
+  const SuiteRun one = run_suite(s, s.options, 1);
+  ASSERT_EQ(one.cases.size(), s.cases());
+  EXPECT_EQ(one.threads, 1);
+  for (int threads : {2, 8}) {
+    const SuiteRun many = run_suite(s, s.options, threads);
+    EXPECT_EQ(many.threads, threads);
+    ASSERT_EQ(many.cases.size(), one.cases.size());
+    for (std::size_t c = 0; c < one.cases.size(); ++c) expect_identical(one.cases[c], many.cases[c], c, threads);
+    const Summary &a = one.summary, &b = many.summary;
+    EXPECT_TRUE(same_bits(a.max_l1, b.max_l1)) << "threads=" << threads;
+    EXPECT_TRUE(same_bits(a.mean_l1, b.mean_l1)) << "threads=" << threads;
+    EXPECT_EQ(a.worst_case, b.worst_case) << "threads=" << threads;
+    EXPECT_EQ(a.rays, b.rays) << "threads=" << threads;
+    EXPECT_EQ(a.bounces, b.bounces) << "threads=" << threads;
+    EXPECT_EQ(a.facets_compared, b.facets_compared) << "threads=" << threads;
+  }
+}
+
+TEST(RunSuite, CasesAreInSuiteOrderAndEachIsItsOwnRunCase) {
+  // Case c is (theta_v[c / n_i], theta_i[c % n_i]) with random stream c, whoever runs it.
+  const Suite s = small_suite();
+  const SuiteRun run = run_suite(s, s.options, 2);
+  const std::size_t ni = s.theta_i.size();
+  for (std::size_t c : {std::size_t{0}, std::size_t{13}, std::size_t{54}}) {
+    EXPECT_EQ(run.cases[c].groove.theta_v, s.grooves[c / ni].theta_v) << "case " << c;
+    EXPECT_EQ(run.cases[c].theta_i, s.theta_i[c % ni]) << "case " << c;
+    expect_identical(run.cases[c], run_case(s.grooves[c / ni], s.theta_i[c % ni], s.options, c), c, 0);
+  }
+}
+
+TEST(RunSuite, SummaryIsWhatTheCasesSay) {
+  const Suite s = small_suite();
+  const SuiteRun run = run_suite(s, s.options, 2);
+  const Summary& sum = run.summary;
+  double max_l1 = 0.0, total = 0.0, max_err = 0.0;
+  std::int64_t rays = 0;
+  std::size_t facets = 0;
+  for (const CaseOutcome& c : run.cases) {
+    max_l1 = std::max(max_l1, c.l1);
+    total += c.l1;
+    max_err = std::max(max_err, c.theta_o_error);
+    rays += c.rays;
+    for (const FacetOutcome& f : c.facet) facets += f.compared;
+  }
+  EXPECT_EQ(sum.cases, s.cases());
+  EXPECT_EQ(sum.max_l1, max_l1);
+  EXPECT_EQ(run.cases[sum.worst_case].l1, max_l1);
+  EXPECT_DOUBLE_EQ(sum.mean_l1, total / static_cast<double>(s.cases()));
+  EXPECT_EQ(sum.max_theta_o_error, max_err);
+  EXPECT_EQ(sum.rays, rays);
+  EXPECT_EQ(sum.facets_compared, facets);
+  EXPECT_EQ(sum.pass_max_l1, max_l1 <= s.thresholds.max_l1);
+  EXPECT_EQ(sum.pass_theta_o, max_err <= s.thresholds.max_theta_o_error_rad);
+  // 400 random rays per facet: the model holds within a few binomial sigmas, and Eq. (5) exactly.
+  EXPECT_LE(sum.max_theta_o_error, 1e-9);
+  EXPECT_EQ(sum.vertex_hits, 0);
+  EXPECT_EQ(sum.wrong_first, 0);
+}
+
+TEST(RunSuite, CancelledRunSaysSo) {
+  const Suite s = small_suite();
+  const std::atomic<bool> cancel{true};
+  const SuiteRun run = run_suite(s, s.options, 2, {}, &cancel);
+  EXPECT_TRUE(run.interrupted);
+  const SuiteRun full = run_suite(s, s.options, 2);
+  EXPECT_FALSE(full.interrupted);
+}
+
+}  // namespace
+}  // namespace vgroove::validation
