@@ -2,12 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace vgroove::analytic {
 
+int saturate_to_int(double k) {
+  // Apertures below pi / INT_MAX (8e-8 deg) would overflow int: such k mean "more than any ray
+  // can be traced", and saturate rather than wrap.
+  if (!(k < static_cast<double>(std::numeric_limits<int>::max()))) return std::numeric_limits<int>::max();
+  if (!(k > static_cast<double>(std::numeric_limits<int>::min()))) return std::numeric_limits<int>::min();
+  return static_cast<int>(k);
+}
+
 int bounce_count(double theta_i, double theta_v) {
   // Lee et al. 2018, Eq. (4): k = floor((pi + 2 theta_i) / (pi - 2|theta_s|)) + 1.
-  return static_cast<int>(std::floor((M_PI + 2.0 * theta_i) / theta_v)) + 1;
+  return saturate_to_int(std::floor((M_PI + 2.0 * theta_i) / theta_v) + 1.0);
 }
 
 double exit_angle(double theta_i, double theta_v, int n) {

@@ -31,8 +31,11 @@ enum class Eq6Form {
   printed,    // f_k = f(k) as printed; only f_b = max(f(b), 0)
 };
 
+// A count computed in double, as int; saturates instead of overflowing (apertures < 8e-8 deg).
+int saturate_to_int(double k);
+
 // Eq. (4): the larger of the two bounce counts (k - 1 or k) for light hitting the left facet
-// first. theta_v = pi - 2|theta_s| is the aperture.
+// first. theta_v = pi - 2|theta_s| is the aperture; below pi / INT_MAX the count saturates.
 int bounce_count(double theta_i, double theta_v);
 
 // Eq. (5): exit angle after n reflections for light hitting the left facet first,

@@ -10,7 +10,7 @@ double aperture(double theta_l, double theta_r) { return M_PI + theta_l - theta_
 int bounce_count_kb(double theta_i, double theta_l, double theta_r) {
   // Lee et al. 2018, Eq. (7).
   const double theta_v = aperture(theta_l, theta_r);
-  return 2 * static_cast<int>(std::floor((M_PI + 2.0 * theta_i - (theta_l + theta_r)) / (2.0 * theta_v) + 0.5));
+  return saturate_to_int(2.0 * std::floor((M_PI + 2.0 * theta_i - (theta_l + theta_r)) / (2.0 * theta_v) + 0.5));
 }
 
 double exit_angle_nonsymmetric(double theta_i, double theta_l, double theta_r, int k) {

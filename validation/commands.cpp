@@ -26,6 +26,12 @@ constexpr long kMaxRays = 1'000'000'000;
 
 double deg(double rad) { return output_deg(rad); }
 
+void check_seed(long long seed, const std::string& what) {
+  if (seed < 0)
+    throw UserError(what + " = " + std::to_string(seed) + " is out of range [0, " +
+                    std::to_string(std::numeric_limits<long long>::max()) + "]");
+}
+
 void check_rays(long rays, const std::string& what) {
   if (rays < 1 || rays > kMaxRays)
     throw UserError(what + " = " + std::to_string(rays) + " is out of range [1, " + std::to_string(kMaxRays) + "]");
@@ -83,9 +89,11 @@ GrooveParams groove_from(const GrooveArgs& g) {
   check_theta_l(g.theta_l_deg, "--theta-l-deg");
   check_theta_r(g.theta_r_deg, "--theta-r-deg");
   GrooveParams p = GrooveParams::make_nonsymmetric(g.theta_l_deg * kRad, g.theta_r_deg * kRad);
-  if (p.degenerate())
+  const double v = 180.0 + g.theta_l_deg - g.theta_r_deg;
+  if (p.degenerate() || v < kMinApertureDeg)
     throw UserError("--theta-l-deg = " + number_text(g.theta_l_deg) + " with --theta-r-deg = " +
-                    number_text(g.theta_r_deg) + " gives a zero aperture (theta_v = 180 + theta_l - theta_r must be > 0)");
+                    number_text(g.theta_r_deg) + " gives the aperture theta_v = 180 + theta_l - theta_r = " +
+                    number_text(v) + ", out of range [" + number_text(kMinApertureDeg) + ", 180]");
   return p;
 }
 
@@ -99,12 +107,13 @@ int cmd_trace(const TraceArgs& a) {
   check_rays(a.rays, "--rays");
   if (a.max_bounces < 1) throw UserError("--max-bounces = " + std::to_string(a.max_bounces) + " is out of range [1, 2147483647]");
   const sim::Sampling sampling = parse_sampling(a.sampling, "--sampling");
+  check_seed(a.seed, "--seed");
   if (a.dry_run) return 0;
   const double theta_i = a.theta_i_deg * kRad;
   const sim::Groove g = make_groove(params);
   const sim::Interval open = sim::opening(g);
   const sim::Vec2 dir = sim::beam_direction(theta_i);
-  sim::Rng rng(a.seed, 0, 0);
+  sim::Rng rng(static_cast<std::uint64_t>(a.seed), 0, 0);
   sim::Tally tally;
   for (long j = 0; j < a.rays; ++j)
     tally.add(sim::trace(g, sim::beam_ray(g, dir, sim::sample_position(sampling, open, j, a.rays, rng)),
@@ -131,9 +140,9 @@ int cmd_trace(const TraceArgs& a) {
   if (a.json) {
     std::cout << j.dump(2) << "\n";
   } else {
-    std::printf("trace: %s, theta_i %g deg, %ld rays (%s, seed %llu); fractions of the beam entering the opening\n",
+    std::printf("trace: %s, theta_i %g deg, %ld rays (%s, seed %lld); fractions of the beam entering the opening\n",
                 groove_text(params).c_str(), a.theta_i_deg, a.rays, a.sampling.c_str(),
-                static_cast<unsigned long long>(a.seed));
+                a.seed);
     print_rows(rows);
     std::printf("  escaped %lld, vertex hits %lld, bounce limit %lld; largest exit-angle spread in a bin %.3g rad\n",
                 static_cast<long long>(tally.escaped), static_cast<long long>(tally.vertex_hits),
@@ -203,7 +212,7 @@ CaseOptions options_with_overrides(const Suite& suite, long rays, const std::str
   if (rays != kUnset) check_rays(rays, "--rays"), o.rays = rays;
   if (!sampling.empty()) o.sampling = parse_sampling(sampling, "--sampling");
   if (!form.empty()) o.form = parse_form(form, "--eq6-form");
-  if (seed >= 0) o.seed = static_cast<std::uint64_t>(seed);
+  if (seed != kUnsetSeed) check_seed(seed, "--seed"), o.seed = static_cast<std::uint64_t>(seed);
   return o;
 }
 void check_threads(int threads) {

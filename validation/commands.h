@@ -24,7 +24,7 @@ struct TraceArgs {
   double theta_i_deg = 0.0;
   long rays = 1000;
   std::string sampling = "stratified";
-  std::uint64_t seed = 1;
+  long long seed = 1;  // >= 0
   int max_bounces = 100000;
   bool json = false;
 };
@@ -41,6 +41,7 @@ int cmd_analytic(const AnalyticArgs& a);
 
 // An option the user did not give (any value they can give is checked).
 inline constexpr long kUnset = std::numeric_limits<long>::min();
+inline constexpr long long kUnsetSeed = std::numeric_limits<long long>::min();
 
 struct ValidateArgs {
   bool dry_run = false;  // check the values, do no work
@@ -50,7 +51,7 @@ struct ValidateArgs {
   int threads = 0;   // 0: all cores
   std::string sampling;  // empty: the suite's
   std::string eq6_form;  // empty: the suite's
-  long long seed = -1;   // -1: the suite's
+  long long seed = kUnsetSeed;  // kUnsetSeed: the suite's
   bool force = false;
   const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: no report is written
 };

@@ -54,16 +54,28 @@ std::vector<double> read_degrees(JsonObject& o, const std::string& key, double l
   return out;
 }
 
+// A nonsymmetric aperture 180 + theta_l - theta_r is 0 (degenerate: listed, not compared) or at
+// least kMinApertureDeg.
+void check_aperture(double l, double r, const std::string& where) {
+  const double v = 180.0 + l - r;
+  if (v != 0.0 && v < kMinApertureDeg)
+    throw UserError(where + ": theta_l = " + number_text(l) + ", theta_r = " + number_text(r) + " give the aperture " +
+                    number_text(v) + " deg, out of range [" + number_text(kMinApertureDeg) + ", 180] (or exactly 0)");
+}
+
 std::vector<GrooveParams> read_grooves(JsonObject& groove) {
   std::vector<GrooveParams> out;
   if (groove.one_of("type", {"symmetric", "nonsymmetric"}) == "symmetric") {
-    for (double d : read_degrees(groove, "theta_v_deg", 0.0, false, 180.0, true))
+    for (double d : read_degrees(groove, "theta_v_deg", kMinApertureDeg, true, 180.0, true))
       out.push_back(GrooveParams::make_symmetric(d * kDeg));
   } else {
     const auto ls = read_degrees(groove, "theta_l_deg", -90.0, true, 0.0, true);
     const auto rs = read_degrees(groove, "theta_r_deg", 0.0, true, 90.0, true);
     for (double l : ls)
-      for (double r : rs) out.push_back(GrooveParams::make_nonsymmetric(l * kDeg, r * kDeg));
+      for (double r : rs) {
+        check_aperture(l, r, groove.file() + ": " + groove.pointer());
+        out.push_back(GrooveParams::make_nonsymmetric(l * kDeg, r * kDeg));
+      }
   }
   return out;
 }
@@ -71,8 +83,9 @@ std::vector<GrooveParams> read_grooves(JsonObject& groove) {
 }  // namespace
 
 void check_theta_v(double deg, const std::string& what) {
-  if (!(std::isfinite(deg) && deg > 0.0 && deg <= 180.0))
-    throw UserError(what + " = " + number_text(deg) + " is out of range (0, 180]");
+  if (!(std::isfinite(deg) && deg >= kMinApertureDeg && deg <= 180.0))
+    throw UserError(what + " = " + number_text(deg) + " is out of range [" + number_text(kMinApertureDeg) +
+                    ", 180] (a narrower groove needs more than 1.8e8 reflections)");
 }
 
 void check_theta_i(double deg, const std::string& what) {
@@ -112,10 +125,11 @@ Suite parse_suite(const nlohmann::json& j, const std::string& file) {
       JsonObject c(list[n], file, root.path("cases") + "/" + std::to_string(n));
       SuiteCase sc;
       if (c.has("theta_v_deg")) {
-        sc.groove = GrooveParams::make_symmetric(c.number("theta_v_deg", 0.0, false, 180.0, true) * kDeg);
+        sc.groove = GrooveParams::make_symmetric(c.number("theta_v_deg", kMinApertureDeg, true, 180.0, true) * kDeg);
       } else {
         const double l = c.number("theta_l_deg", -90.0, true, 0.0, true);
         const double r = c.number("theta_r_deg", 0.0, true, 90.0, true);
+        check_aperture(l, r, file + ": " + c.pointer());
         sc.groove = GrooveParams::make_nonsymmetric(l * kDeg, r * kDeg);
       }
       sc.theta_i = c.number("theta_i_deg", -90.0, false, 90.0, false) * kDeg;

@@ -96,6 +96,10 @@ SuiteSet load_suite_set(const std::string& file);
 Suite parse_suite(const nlohmann::json& j, const std::string& file);
 SuiteSet parse_suite_set(const nlohmann::json& j, const std::string& file);
 
+// The narrowest aperture accepted (degrees): pi / theta_v reflections, about 1.8e8 here, must
+// stay far inside int, and the tracer takes about a second per ray at that depth.
+inline constexpr double kMinApertureDeg = 1e-6;
+
 // Range checks shared by the JSON and the command line (degrees in, UserError naming `what`).
 void check_theta_v(double theta_v_deg, const std::string& what);
 void check_theta_i(double theta_i_deg, const std::string& what);

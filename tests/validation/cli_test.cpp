@@ -66,9 +66,9 @@ void expect_user_error(const CliRun& r, const std::string& option, const std::st
 }
 
 TEST(Cli, ThetaVOutOfRange) {
-  expect_user_error(vgroove("trace --theta-v-deg 195"), "--theta-v-deg", "(0, 180]");
-  expect_user_error(vgroove("trace --theta-v-deg 0"), "--theta-v-deg", "(0, 180]");
-  expect_user_error(vgroove("analytic --theta-v-deg 195"), "--theta-v-deg", "(0, 180]");
+  expect_user_error(vgroove("trace --theta-v-deg 195"), "--theta-v-deg", "[1e-06, 180]");
+  expect_user_error(vgroove("trace --theta-v-deg 0"), "--theta-v-deg", "[1e-06, 180]");
+  expect_user_error(vgroove("analytic --theta-v-deg 195"), "--theta-v-deg", "[1e-06, 180]");
 }
 
 TEST(Cli, ThetaIOutOfRange) {
@@ -88,9 +88,8 @@ TEST(Cli, BadChoice) {
 }
 
 TEST(Cli, NarrowestAcceptedGrooveGivesNoNegativeBounceCount) {
-  // --theta-v-deg 1e-8 is inside the accepted range (0, 180]; the model must then either refuse
-  // it (exit 2) or predict a non-negative count. Library bug: Eq. (4) overflows int for theta_v
-  // below pi / INT_MAX (8.4e-8 deg) and the rows say k = -2147483648 (see the analytic tests).
+  // --theta-v-deg 1e-8: Eq. (4) would overflow int below pi / INT_MAX (8.4e-8 deg); the CLI must
+  // either refuse it (exit 2, as it does: the range starts at 1e-6 deg) or predict k >= 0.
   const CliRun a = vgroove("analytic --json --theta-v-deg 1e-8");
   if (a.status == 2) return;
   ASSERT_EQ(a.status, 0) << a;
@@ -173,7 +172,7 @@ TEST(Cli, ValidateSpecErrorIsNamed) {
   const CliRun r = vgroove("validate " + quoted(f));
   EXPECT_EQ(r.status, 2) << r;
   EXPECT_EQ(lines(r.err), 1) << r;
-  EXPECT_CONTAINS(r.err, f + ": /groove/theta_v_deg/0 = 195 is out of range (0, 180]");
+  EXPECT_CONTAINS(r.err, f + ": /groove/theta_v_deg/0 = 195 is out of range [1e-06, 180]");
 }
 
 TEST(Cli, ValidateRefusesToOverwriteWithoutForce) {

@@ -118,17 +118,17 @@ TEST_F(SuiteSpec, ThetaVAboveTheRangeIsNamed) {
   json j = valid_spec();
   j["groove"]["theta_v_deg"] = {30, 195};
   const std::string m = error_of(j);
-  EXPECT_CONTAINS(m, file_ + ": /groove/theta_v_deg/1 = 195 is out of range (0, 180]");
+  EXPECT_CONTAINS(m, file_ + ": /groove/theta_v_deg/1 = 195 is out of range [1e-06, 180]");
 }
 
 TEST_F(SuiteSpec, ThetaVZeroAndRangeEndsAreChecked) {
   json j = valid_spec();
   j["groove"]["theta_v_deg"] = {0};
-  EXPECT_CONTAINS(error_of(j), file_ + ": /groove/theta_v_deg/0 = 0 is out of range (0, 180]");
+  EXPECT_CONTAINS(error_of(j), file_ + ": /groove/theta_v_deg/0 = 0 is out of range [1e-06, 180]");
   j["groove"]["theta_v_deg"] = {{"from", 5}, {"to", 195}, {"step", 5}};
-  EXPECT_CONTAINS(error_of(j), file_ + ": /groove/theta_v_deg/to = 195 is out of range (0, 180]");
+  EXPECT_CONTAINS(error_of(j), file_ + ": /groove/theta_v_deg/to = 195 is out of range [1e-06, 180]");
   j["groove"]["theta_v_deg"] = {{"from", -5}, {"to", 90}, {"step", 5}};
-  EXPECT_CONTAINS(error_of(j), file_ + ": /groove/theta_v_deg/from = -5 is out of range (0, 180]");
+  EXPECT_CONTAINS(error_of(j), file_ + ": /groove/theta_v_deg/from = -5 is out of range [1e-06, 180]");
 }
 
 TEST_F(SuiteSpec, GrazingThetaIIsNamed) {
@@ -256,8 +256,11 @@ TEST(CheckAngles, CommandLineRangeMessages) {
     }
     return std::string("no UserError");
   };
-  EXPECT_EQ(msg([] { check_theta_v(195, "--theta-v-deg"); }), "--theta-v-deg = 195 is out of range (0, 180]");
-  EXPECT_EQ(msg([] { check_theta_v(0, "--theta-v-deg"); }), "--theta-v-deg = 0 is out of range (0, 180]");
+  const std::string why = " (a narrower groove needs more than 1.8e8 reflections)";
+  EXPECT_EQ(msg([] { check_theta_v(195, "--theta-v-deg"); }), "--theta-v-deg = 195 is out of range [1e-06, 180]" + why);
+  EXPECT_EQ(msg([] { check_theta_v(0, "--theta-v-deg"); }), "--theta-v-deg = 0 is out of range [1e-06, 180]" + why);
+  EXPECT_EQ(msg([] { check_theta_v(1e-8, "--theta-v-deg"); }), "--theta-v-deg = 1e-08 is out of range [1e-06, 180]" + why);
+  EXPECT_NO_THROW(check_theta_v(1e-6, "x"));
   EXPECT_EQ(msg([] { check_theta_i(90, "--theta-i-deg"); }), "--theta-i-deg = 90 is out of range (-90, 90)");
   EXPECT_EQ(msg([] { check_theta_i(-90, "--theta-i-deg"); }), "--theta-i-deg = -90 is out of range (-90, 90)");
   EXPECT_NO_THROW(check_theta_v(180, "x"));
