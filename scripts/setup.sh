@@ -9,6 +9,7 @@ scripts/install-deps.sh
 
 build=${VGROOVE_BUILD_DIR:-build}
 # Configuring again is cheap and keeps the options right for a build dir made by hand.
+# VGROOVE_CMAKE_ARGS comes last, so it can override these (scripts/test.sh --sanitize does).
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DVGROOVE_BUILD_TESTS=ON -DVGROOVE_BUILD_BENCH=ON \
       ${VGROOVE_CMAKE_ARGS:-} >/dev/null
 if (($#)); then
