@@ -5,6 +5,17 @@
 
 namespace vgroove::sim {
 
+void finish_groove(Groove& g) {
+  for (Facet& f : g.facet) {
+    const Vec2& n = f.normal;
+    f.r_xx = 1.0 - 2.0 * n.x() * n.x();
+    f.r_xy = -2.0 * n.x() * n.y();
+    f.r_yy = 1.0 - 2.0 * n.y() * n.y();
+  }
+  g.facet[0].turn_to_other = cross(g.facet[0].edge, g.facet[1].edge);
+  g.facet[1].turn_to_other = cross(g.facet[1].edge, g.facet[0].edge);
+}
+
 Groove make_symmetric_groove(double theta_v) {
   assert(theta_v > 0.0 && theta_v <= M_PI);
   const double half = 0.5 * theta_v;
@@ -18,6 +29,7 @@ Groove make_symmetric_groove(double theta_v) {
   g.facet[1].normal = Vec2(-std::cos(half), std::sin(half));
   g.rim_height = std::cos(half);
   g.theta_v = theta_v;
+  finish_groove(g);
   return g;
 }
 
@@ -39,6 +51,7 @@ Groove make_nonsymmetric_groove(double theta_l, double theta_r) {
   g.facet[1].length = h_max > 0.0 ? h_l / h_max : 1.0;
   g.rim_height = g.facet[0].length * h_l;
   g.theta_v = M_PI + theta_l - theta_r;
+  finish_groove(g);
   return g;
 }
 

@@ -18,7 +18,15 @@ struct Facet {
   Vec2 edge;      // unit vector from the apex towards the rim
   double length;  // apex to rim
   Vec2 normal;    // unit normal pointing into the groove
+  // Mirror reflection on the facet, I - 2 n n^T (symmetric): d' = (r_xx d.x + r_xy d.y,
+  // r_xy d.x + r_yy d.y), shorter to evaluate than d - 2 (d.n) n.
+  double r_xx, r_xy, r_yy;
+  // cross(edge, other facet's edge): its sign says on which side the other facet lies.
+  double turn_to_other;
   Vec2 rim() const { return length * edge; }
+  Vec2 reflect(const Vec2& d) const {
+    return Vec2(r_xx * d.x() + r_xy * d.y(), r_xy * d.x() + r_yy * d.y());
+  }
 };
 
 struct Groove {
@@ -29,6 +37,9 @@ struct Groove {
   // x of the rims on the rim line: the opening is [rim_x(left), rim_x(right)].
   double rim_x(Side s) const { return (*this)[s].rim().x(); }
 };
+
+// Fills the derived members (reflection matrices, turn_to_other) from edges and normals.
+void finish_groove(Groove& g);
 
 // Symmetric groove, aperture theta_v in (0, pi]; facets of unit length.
 Groove make_symmetric_groove(double theta_v);

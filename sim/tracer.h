@@ -8,6 +8,7 @@
 
 #include "sim/groove.h"
 
+#include <cmath>
 #include <cstdint>
 
 namespace vgroove::sim {
@@ -42,24 +43,39 @@ struct NoBounceObserver {
 };
 
 namespace detail {
-// Ray against the facet segment from the apex (origin) to its rim: p + t d = s e.
-// Returns the segment parameter s when the ray meets the segment ahead (t > 0; t >= 0 from the
-// rim line, where a flat groove's facets lie), else a negative value.
-// Crossing with e and d gives s = cross(p, d) / cross(e, d), t = cross(p, e) / cross(e, d).
-inline double hit_facet(const Vec2& p, const Vec2& d, const Facet& f, bool from_rim_line = false,
-                        double* t_out = nullptr) {
-  const double denom = cross(f.edge, d);
-  if (denom == 0.0) return -1.0;  // parallel to the facet: no single crossing
-  const double t = cross(p, f.edge) / denom;
-  if (t_out) *t_out = t;
-  const double s = cross(p, d) / denom;
-  if (t < 0.0 || (t == 0.0 && !from_rim_line) || s < 0.0 || s > f.length) return -1.0;
-  return s;
+// Where the ray p + t d meets the facet segment from the apex (origin) to its rim, s e with
+// 0 <= s <= length. Crossing p + t d = s e with e and with d gives
+//   t = cross(p, e) / cross(e, d),   s = cross(p, d) / cross(e, d).
+// The tests compare signs and products, so the only division is the one that yields s for a
+// hit. Returns s, or a negative value for a miss; `t_num`/`t_den` give t when both facets answer.
+struct FacetHit {
+  double s = -1.0;
+  double t_num = 0.0, t_den = 1.0;
+};
+inline FacetHit hit_facet_from_rim_line(const Vec2& p, const Vec2& d, const Facet& f) {
+  FacetHit h;
+  const double den = cross(f.edge, d);
+  if (den == 0.0) return h;  // parallel to the facet: no single crossing
+  const double tn = cross(p, f.edge), sn = cross(p, d);
+  // t >= 0: a flat groove's facets lie on the rim line itself, where the ray starts.
+  if (tn * den < 0.0 || sn * den < 0.0 || std::abs(sn) > f.length * std::abs(den)) return h;
+  h.s = sn / den;
+  h.t_num = tn;
+  h.t_den = den;
+  return h;
 }
 }  // namespace detail
 
 // Traces one ray from where it crosses the rim line. The observer sees every reflection; with
 // the default observer the loop does nothing else.
+//
+// After the first hit the ray is on facet f at p = s e_f, and both facet lines pass through the
+// apex, so the next crossing needs no position: with d the reflected direction and o the other
+// facet,
+//   s' = cross(p, d) / cross(e_o, d) = s * cross(e_f, d) / cross(e_o, d),
+//   t  = cross(p, e_o) / cross(e_o, d) = s * cross(e_f, e_o) / cross(e_o, d),
+// so t > 0 exactly when cross(e_o, d) has the sign of cross(e_f, e_o) (s > 0), and s' is s times
+// a ratio of the direction alone: the position is a single number carried along the facets.
 template <class Observer = NoBounceObserver>
 TraceResult trace(const Groove& g, const Ray2& ray, const TraceOptions& opt = {},
                   Observer&& obs = Observer{}) {
@@ -74,19 +90,17 @@ TraceResult trace(const Groove& g, const Ray2& ray, const TraceOptions& opt = {}
     r.how = Termination::vertex_hit;  // grazes a rim exactly
     return r;
   }
-  Vec2 p = ray.origin;
   Vec2 d = ray.dir;
   // First hit: either facet. The groove is convex, so a line entering the opening leaves it
   // through one facet; both answer only near the apex, and then the nearer one is hit.
-  double tl = 0.0, tr = 0.0;
-  const double sl = detail::hit_facet(p, d, g[Side::left], true, &tl);
-  const double sr = detail::hit_facet(p, d, g[Side::right], true, &tr);
+  const detail::FacetHit hl = detail::hit_facet_from_rim_line(ray.origin, d, g[Side::left]);
+  const detail::FacetHit hr = detail::hit_facet_from_rim_line(ray.origin, d, g[Side::right]);
   Side on;
   double s;
-  if (sl >= 0.0 && (sr < 0.0 || tl <= tr)) {
-    on = Side::left, s = sl;
-  } else if (sr >= 0.0) {
-    on = Side::right, s = sr;
+  if (hl.s >= 0.0 && (hr.s < 0.0 || hl.t_num / hl.t_den <= hr.t_num / hr.t_den)) {
+    on = Side::left, s = hl.s;
+  } else if (hr.s >= 0.0) {
+    on = Side::right, s = hr.s;
   } else {
     // Entered the opening yet met no facet: impossible for a closed groove, and reported
     // as a vertex hit (the only way is through a vertex by rounding) rather than dropped.
@@ -96,6 +110,7 @@ TraceResult trace(const Groove& g, const Ray2& ray, const TraceOptions& opt = {}
   r.first = on;
   for (;;) {
     const Facet& f = g[on];
+    const Facet& o = g[other(on)];
     if (s == 0.0 || s == f.length) {  // exactly on the apex or a rim: reflection undefined
       r.how = Termination::vertex_hit;
       return r;
@@ -105,12 +120,16 @@ TraceResult trace(const Groove& g, const Ray2& ray, const TraceOptions& opt = {}
       return r;
     }
     obs.on_bounce(on, d, f);
-    p = s * f.edge;  // on the facet line by construction: no drift off the surface
-    d = reflect(d, f.normal);
+    d = f.reflect(d);
     ++r.bounces;
+    const double den = cross(o.edge, d);
+    if (!(den * f.turn_to_other > 0.0)) break;  // t <= 0: leaves through the opening
+    const double c = cross(f.edge, d);
+    const double ratio = c / den;  // of the direction alone: off the position's dependency chain
+    // 0 <= s' <= length, tested without waiting for the division (s > 0, den != 0).
+    if (c * den < 0.0 || s * std::abs(c) > o.length * std::abs(den)) break;  // passes the other facet
+    s *= ratio;
     on = other(on);
-    s = detail::hit_facet(p, d, g[on]);
-    if (s < 0.0) break;  // misses the other facet: leaves through the opening
   }
   r.exit_dir = d;
   r.how = Termination::escaped;
