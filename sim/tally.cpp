@@ -17,20 +17,7 @@ void add_to_bin(BounceBin& b, std::int64_t n, const Vec2& dir, double spread_sin
 }
 }  // namespace
 
-void Tally::add(const TraceResult& r) {
-  ++rays;
-  switch (r.how) {
-    case Termination::blocked: ++blocked; return;
-    case Termination::vertex_hit: ++vertex_hits; return;
-    case Termination::bounce_limit: ++bounce_limit; return;
-    case Termination::escaped: break;
-  }
-  ++escaped;
-  bounces += r.bounces;
-  auto& v = bins[static_cast<int>(r.first)];
-  if (static_cast<int>(v.size()) <= r.bounces) v.resize(r.bounces + 1);
-  add_to_bin(v[r.bounces], 1, r.exit_dir, 0.0, false);
-}
+void Tally::add_first(BounceBin& b, const Vec2& dir) { add_to_bin(b, 1, dir, 0.0, false); }
 
 void Tally::merge(const Tally& o) {
   rays += o.rays;

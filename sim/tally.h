@@ -36,10 +36,34 @@ struct Tally {
   std::int64_t bounce_limit = 0;
   std::int64_t bounces = 0;  // reflections summed over escaped rays
 
-  void add(const TraceResult& r);
+  void add(const TraceResult& r) {  // inline: called once per ray in the hot loop
+    ++rays;
+    switch (r.how) {
+      case Termination::blocked: ++blocked; return;
+      case Termination::vertex_hit: ++vertex_hits; return;
+      case Termination::bounce_limit: ++bounce_limit; return;
+      case Termination::escaped: break;
+    }
+    ++escaped;
+    bounces += r.bounces;
+    auto& v = bins[static_cast<int>(r.first)];
+    if (static_cast<int>(v.size()) <= r.bounces) {
+      v.resize(r.bounces + 1);
+    } else if (BounceBin& b = v[r.bounces]; b.count > 0) {
+      // The common case: a bin that has rays already.
+      b.spread_sin = std::max(b.spread_sin, std::abs(cross(b.exit_dir, r.exit_dir)));
+      b.reversed = b.reversed || b.exit_dir.dot(r.exit_dir) <= 0.0;
+      ++b.count;
+      return;
+    }
+    add_first(v[r.bounces], r.exit_dir);
+  }
   void merge(const Tally& other);
   std::int64_t count(Side first, int k) const;
   int max_bounces() const;  // largest k with a ray, 0 if none
+
+ private:
+  static void add_first(BounceBin& b, const Vec2& dir);
 };
 
 }  // namespace vgroove::sim

@@ -125,10 +125,9 @@ TraceResult trace(const Groove& g, const Ray2& ray, const TraceOptions& opt = {}
     const double den = cross(o.edge, d);
     if (!(den * f.turn_to_other > 0.0)) break;  // t <= 0: leaves through the opening
     const double c = cross(f.edge, d);
-    const double ratio = c / den;  // of the direction alone: off the position's dependency chain
-    // 0 <= s' <= length, tested without waiting for the division (s > 0, den != 0).
+    // 0 <= s' <= length, tested without a division (s > 0, den != 0).
     if (c * den < 0.0 || s * std::abs(c) > o.length * std::abs(den)) break;  // passes the other facet
-    s *= ratio;
+    s *= c / den;  // the ratio depends on the direction alone: off the position's dependency chain
     on = other(on);
   }
   r.exit_dir = d;
