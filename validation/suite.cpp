@@ -85,7 +85,7 @@ std::vector<GrooveParams> read_grooves(JsonObject& groove) {
 void check_theta_v(double deg, const std::string& what) {
   if (!(std::isfinite(deg) && deg >= kMinApertureDeg && deg <= 180.0))
     throw UserError(what + " = " + number_text(deg) + " is out of range [" + number_text(kMinApertureDeg) +
-                    ", 180] (a narrower groove needs more than 1.8e8 reflections)");
+                    ", 180] (below 1e-06 deg a groove needs over 1.8e8 reflections)");
 }
 
 void check_theta_i(double deg, const std::string& what) {

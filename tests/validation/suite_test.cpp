@@ -256,7 +256,7 @@ TEST(CheckAngles, CommandLineRangeMessages) {
     }
     return std::string("no UserError");
   };
-  const std::string why = " (a narrower groove needs more than 1.8e8 reflections)";
+  const std::string why = " (below 1e-06 deg a groove needs over 1.8e8 reflections)";
   EXPECT_EQ(msg([] { check_theta_v(195, "--theta-v-deg"); }), "--theta-v-deg = 195 is out of range [1e-06, 180]" + why);
   EXPECT_EQ(msg([] { check_theta_v(0, "--theta-v-deg"); }), "--theta-v-deg = 0 is out of range [1e-06, 180]" + why);
   EXPECT_EQ(msg([] { check_theta_v(1e-8, "--theta-v-deg"); }), "--theta-v-deg = 1e-08 is out of range [1e-06, 180]" + why);
