@@ -119,7 +119,13 @@ nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
                      {"mean_l1", suite.thresholds.mean_l1},
                      {"max_theta_o_error_rad", suite.thresholds.max_theta_o_error_rad}};
   if (suite.paper)
+  {
     j["paper"] = {{"source", suite.paper->source}, {"max_l1", suite.paper->max_l1}, {"mean_l1", suite.paper->mean_l1}};
+    if (!suite.paper->placement.empty()) {
+      j["paper"]["consistent_with_placement"] = suite.paper->placement;
+      j["paper"]["placement_evidence"] = suite.paper->placement_evidence;
+    }
+  }
   j["pass"] = s.pass();
   return j;
 }
@@ -142,6 +148,9 @@ void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run) {
      << " rad\n";
   os << "  " << (s.pass_max_l1 ? "ok   " : "FAIL ") << "          " << (s.pass_mean_l1 ? "  ok  " : "  FAIL")
      << "      " << (s.pass_theta_o ? "   ok" : " FAIL") << "\n";
+  if (suite.paper && !suite.paper->placement.empty())
+    os << "  the paper's figures are consistent with " << suite.paper->placement << " ray placement: "
+       << suite.paper->placement_evidence << "\n";
   const CaseOutcome& w = run.cases[s.worst_case];
   os << "  worst case: " << groove_text(w.groove) << ", theta_i " << deg(w.theta_i) << " deg (L1 "
      << fmt("%.4g", w.l1) << ")\n";

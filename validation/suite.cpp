@@ -161,7 +161,10 @@ Suite parse_suite(const nlohmann::json& j, const std::string& file) {
   if (root.has("paper")) {
     JsonObject p = root.object("paper");
     s.paper = PaperFigures{p.string("source"), p.number("max_l1", 0.0, true, 2.0, true),
-                           p.number("mean_l1", 0.0, true, 2.0, true)};
+                           p.number("mean_l1", 0.0, true, 2.0, true), "", ""};
+    const std::string none;
+    s.paper->placement = p.one_of("placement", {"stratified", "random", "unknown"}, &none);
+    s.paper->placement_evidence = p.string_or("placement_evidence", "");
     p.finish();
   }
   root.finish();

@@ -27,6 +27,9 @@ struct PaperFigures {
   std::string source;
   double max_l1;
   double mean_l1;
+  // Which ray placement the paper's figures are consistent with, and the measurement that says so.
+  std::string placement;
+  std::string placement_evidence;
 };
 
 // How a suite's rays are cast; the same for every case.
