@@ -97,8 +97,16 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   va.cancel = ac.cancel = ctx.cancel;
   try {
     app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    // One line, like every other input error.
+    std::cerr << "vgroove: error: " << e.what() << " (see vgroove --help)\n";
+    return 2;
   }
   try {
     if (*trace) return cmd_trace(ta);
