@@ -95,6 +95,13 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
 
   ta.dry_run = aa.dry_run = va.dry_run = ac.dry_run = ctx.dry_run;
   va.cancel = ac.cancel = ctx.cancel;
+  PlotArgs pa;
+  auto* plot = app.add_subcommand("plot", "Draw a report as SVG (from the JSON alone, nothing recomputed): the "
+                                          "accuracy-against-time report of `bench accuracy`.");
+  plot->add_option("report", pa.report, "report JSON, e.g. from `vgroove bench accuracy ... --out acc.json`")->required();
+  plot->add_option("--out", pa.out, "SVG to write (default: the report's name with .svg)");
+  plot->add_flag("--force", pa.force, "overwrite an existing file");
+  pa.dry_run = ctx.dry_run;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -113,6 +120,7 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
     if (*an) return cmd_analytic(aa);
     if (*val) return cmd_validate(va);
     if (*acc) return cmd_bench_accuracy(ac);
+    if (*plot) return cmd_plot(pa);
   } catch (const UserError& e) {
     std::cerr << "vgroove: error: " << e.what() << "\n";
     return 2;

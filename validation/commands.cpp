@@ -4,6 +4,8 @@
 #include "sim/beam.h"
 #include "sim/tally.h"
 #include "validation/atomic_file.h"
+#include "validation/json_reader.h"
+#include "validation/plot.h"
 #include "validation/report.h"
 #include "validation/suite_run.h"
 #include "validation/user_error.h"
@@ -310,6 +312,22 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
     write_file_atomically(a.out, j.dump(1) + "\n", a.force);
     std::printf("report: %s\n", a.out.c_str());
   }
+  return 0;
+}
+
+int cmd_plot(const PlotArgs& a) {
+  const nlohmann::json report = read_json_file(a.report);
+  std::string out = a.out;
+  if (out.empty()) {
+    out = a.report;
+    const auto dot = out.rfind(".json");
+    out = (dot != std::string::npos && dot + 5 == out.size() ? out.substr(0, dot) : out) + ".svg";
+  }
+  const std::string svg = accuracy_svg(report, a.report);
+  check_writable_target(out, a.force);
+  if (a.dry_run) return 0;
+  write_file_atomically(out, svg, a.force);
+  std::printf("plot: %s\n", out.c_str());
   return 0;
 }
 

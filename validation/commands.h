@@ -69,6 +69,14 @@ struct AccuracyArgs {
 };
 int cmd_bench_accuracy(const AccuracyArgs& a);
 
+struct PlotArgs {
+  bool dry_run = false;
+  std::string report;
+  std::string out;  // default: the report's name with .svg
+  bool force = false;
+};
+int cmd_plot(const PlotArgs& a);
+
 // Exit status of a run stopped by Ctrl-C (128 + SIGINT, as a shell reports it).
 inline constexpr int kExitInterrupted = 130;
 

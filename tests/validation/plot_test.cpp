@@ -1,0 +1,42 @@
+// The accuracy plot is drawn from the report alone: every run is a point, every placement two lines.
+#include "validation/plot.h"
+#include "validation/user_error.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace vgroove::validation {
+namespace {
+
+std::size_t count(const std::string& s, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t p = s.find(what); p != std::string::npos; p = s.find(what, p + 1)) ++n;
+  return n;
+}
+
+TEST(AccuracyPlot, OnePointPerRunAndTwoLinesPerPlacement) {
+  const nlohmann::json report = {
+      {"suite", "s"}, {"version", "0"}, {"git", "g"}, {"threads", 2}, {"seed", 1},
+      {"runs",
+       {{{"sampling", "stratified"}, {"rays_per_facet", 1000}, {"wall_s", 0.1}, {"max_l1", 2e-3}, {"mean_l1", 4e-4}},
+        {{"sampling", "stratified"}, {"rays_per_facet", 10000}, {"wall_s", 1.0}, {"max_l1", 2e-4}, {"mean_l1", 4e-5}},
+        {{"sampling", "random"}, {"rays_per_facet", 1000}, {"wall_s", 0.3}, {"max_l1", 1e-1}, {"mean_l1", 1e-2}}}}};
+  const std::string svg = accuracy_svg(report, "r.json");
+  EXPECT_EQ(count(svg, "<circle"), 6u);  // max and mean per run
+  EXPECT_EQ(count(svg, "<path"), 4u);    // max and mean per placement
+  EXPECT_NE(svg.find("N=10000"), std::string::npos);
+  EXPECT_NE(svg.find("git g"), std::string::npos);
+}
+
+TEST(AccuracyPlot, RefusesOtherJson) {
+  try {
+    accuracy_svg(nlohmann::json{{"cases", nlohmann::json::array()}}, "report.json");
+    FAIL() << "no UserError";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("report.json: not an accuracy report"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace vgroove::validation

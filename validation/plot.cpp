@@ -1,0 +1,115 @@
+#include "validation/plot.h"
+
+#include "validation/user_error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <vector>
+
+namespace vgroove::validation {
+
+namespace {
+
+struct Point {
+  double wall_s, max_l1, mean_l1;
+  long rays;
+};
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+// Decades that cover [lo, hi] (both > 0).
+std::pair<double, double> log_range(double lo, double hi) {
+  return {std::floor(std::log10(lo)), std::ceil(std::log10(hi))};
+}
+
+}  // namespace
+
+std::string accuracy_svg(const nlohmann::json& report, const std::string& file) {
+  if (!report.is_object() || !report.contains("runs") || !report["runs"].is_array() || report["runs"].empty())
+    throw UserError(file + ": not an accuracy report (no /runs): make one with `vgroove bench accuracy ... --out`");
+  std::map<std::string, std::vector<Point>> lines;
+  double tmin = INFINITY, tmax = 0, emin = INFINITY, emax = 0;
+  for (std::size_t n = 0; n < report["runs"].size(); ++n) {
+    const auto& r = report["runs"][n];
+    try {
+      const Point p{r.at("wall_s").get<double>(), r.at("max_l1").get<double>(), r.at("mean_l1").get<double>(),
+                    r.at("rays_per_facet").get<long>()};
+      if (!(p.wall_s > 0 && p.max_l1 > 0 && p.mean_l1 > 0)) continue;  // log axes: nothing to draw at 0
+      lines[r.at("sampling").get<std::string>()].push_back(p);
+      tmin = std::min(tmin, p.wall_s), tmax = std::max(tmax, p.wall_s);
+      emin = std::min(emin, p.mean_l1), emax = std::max(emax, p.max_l1);
+    } catch (const nlohmann::json::exception& e) {
+      throw UserError(file + ": /runs/" + std::to_string(n) + " is not an accuracy run: " + e.what());
+    }
+  }
+  if (lines.empty()) throw UserError(file + ": no run with positive wall time and error to plot");
+  const auto [tx0, tx1] = log_range(tmin, tmax);
+  const auto [ey0, ey1] = log_range(emin, emax);
+  const double W = 720, H = 480, L = 80, R = 160, T = 48, B = 60;
+  auto X = [&](double t) { return L + (std::log10(t) - tx0) / std::max(1.0, tx1 - tx0) * (W - L - R); };
+  auto Y = [&](double e) { return H - B - (std::log10(e) - ey0) / std::max(1.0, ey1 - ey0) * (H - T - B); };
+  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"720\" height=\"480\" font-family=\"sans-serif\" font-size=\"12\">\n";
+  svg += "<rect width=\"720\" height=\"480\" fill=\"white\"/>\n";
+  const std::string title = "L1 error against wall time: " + report.value("suite", std::string("?"));
+  const std::string made_by = "vgroove " + report.value("version", std::string("?")) + ", git " +
+                              report.value("git", std::string("?")) + ", " +
+                              std::to_string(report.value("threads", 0)) + " threads, seed " +
+                              std::to_string(report.value("seed", 0ULL));
+  svg += "<text x=\"" + fmt("%.0f", L) + "\" y=\"20\" font-size=\"14\">" + title + "</text>\n";
+  svg += "<text x=\"" + fmt("%.0f", L) + "\" y=\"34\" font-size=\"10\" fill=\"#555\">" + made_by + "</text>\n";
+  // Axes with a grid line per decade.
+  for (double d = tx0; d <= tx1; d += 1) {
+    const double x = X(std::pow(10.0, d));
+    svg += "<line x1=\"" + fmt("%.1f", x) + "\" y1=\"" + fmt("%.1f", T) + "\" x2=\"" + fmt("%.1f", x) + "\" y2=\"" +
+           fmt("%.1f", H - B) + "\" stroke=\"#ddd\"/>\n";
+    svg += "<text x=\"" + fmt("%.1f", x) + "\" y=\"" + fmt("%.1f", H - B + 18) + "\" text-anchor=\"middle\">1e" +
+           fmt("%.0f", d) + "</text>\n";
+  }
+  for (double d = ey0; d <= ey1; d += 1) {
+    const double y = Y(std::pow(10.0, d));
+    svg += "<line x1=\"" + fmt("%.1f", L) + "\" y1=\"" + fmt("%.1f", y) + "\" x2=\"" + fmt("%.1f", W - R) + "\" y2=\"" +
+           fmt("%.1f", y) + "\" stroke=\"#ddd\"/>\n";
+    svg += "<text x=\"" + fmt("%.1f", L - 8) + "\" y=\"" + fmt("%.1f", y + 4) + "\" text-anchor=\"end\">1e" +
+           fmt("%.0f", d) + "</text>\n";
+  }
+  svg += "<text x=\"" + fmt("%.1f", (L + W - R) / 2) + "\" y=\"" + fmt("%.1f", H - 16) +
+         "\" text-anchor=\"middle\">wall time (s)</text>\n";
+  svg += "<text x=\"20\" y=\"" + fmt("%.1f", (T + H - B) / 2) + "\" transform=\"rotate(-90 20 " +
+         fmt("%.1f", (T + H - B) / 2) + ")\" text-anchor=\"middle\">L1 error</text>\n";
+  const char* colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd"};
+  int c = 0, legend = 0;
+  for (auto& [sampling, pts] : lines) {
+    std::sort(pts.begin(), pts.end(), [](const Point& a, const Point& b) { return a.wall_s < b.wall_s; });
+    const std::string color = colors[c++ % 4];
+    for (int which = 0; which < 2; ++which) {
+      std::string path;
+      for (const Point& p : pts)
+        path += (path.empty() ? "M" : " L") + fmt("%.1f", X(p.wall_s)) + "," + fmt("%.1f", Y(which ? p.mean_l1 : p.max_l1));
+      svg += "<path d=\"" + path + "\" fill=\"none\" stroke=\"" + color + "\" stroke-width=\"2\"" +
+             (which ? " stroke-dasharray=\"6 4\"" : "") + "/>\n";
+      for (const Point& p : pts) {
+        const double x = X(p.wall_s), y = Y(which ? p.mean_l1 : p.max_l1);
+        svg += "<circle cx=\"" + fmt("%.1f", x) + "\" cy=\"" + fmt("%.1f", y) + "\" r=\"3\" fill=\"" + color + "\"/>\n";
+        if (!which)
+          svg += "<text x=\"" + fmt("%.1f", x + 5) + "\" y=\"" + fmt("%.1f", y - 5) + "\" font-size=\"10\">N=" +
+                 std::to_string(p.rays) + "</text>\n";
+      }
+      const double ly = T + 20 + 18 * legend++;
+      svg += "<line x1=\"" + fmt("%.1f", W - R + 10) + "\" y1=\"" + fmt("%.1f", ly) + "\" x2=\"" + fmt("%.1f", W - R + 34) +
+             "\" y2=\"" + fmt("%.1f", ly) + "\" stroke=\"" + color + "\" stroke-width=\"2\"" +
+             (which ? " stroke-dasharray=\"6 4\"" : "") + "/>\n";
+      svg += "<text x=\"" + fmt("%.1f", W - R + 40) + "\" y=\"" + fmt("%.1f", ly + 4) + "\">" + sampling +
+             (which ? " mean" : " max") + "</text>\n";
+    }
+  }
+  svg += "</svg>\n";
+  return svg;
+}
+
+}  // namespace vgroove::validation
