@@ -1,0 +1,120 @@
+#include "sim/microsurface.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+namespace vgroove::sim {
+
+Microsurface make_microsurface(const MicrosurfaceOptions& opt) {
+  assert(opt.alpha > 0.0 && opt.grooves > 0);
+  Microsurface m;
+  m.options = opt;
+  m.theta_m.reserve(static_cast<std::size_t>(opt.grooves));
+  m.grooves.reserve(static_cast<std::size_t>(opt.grooves));
+  // The steepest facet that still leaves an opening: a slope that rounds to +-pi/2 would close the
+  // groove (aperture 0); the next angle down gives an aperture of ~4e-16 rad, whose rays end in
+  // the bounce-limit bucket instead of being lost to an invalid groove.
+  const double steepest = std::nextafter(0.5 * M_PI, 0.0);
+  for (int j = 0; j < opt.grooves; ++j) {
+    Rng rng(opt.seed, kGrooveStream, static_cast<std::uint64_t>(j));
+    const double t = std::min(steepest, std::abs(sample_theta_m(opt.ndf, opt.alpha, uniform_open(rng))));
+    m.theta_m.push_back(t);
+    // make_symmetric_groove's left facet normal is at -(pi - theta_v)/2 = -t, the right one at +t.
+    m.grooves.push_back(make_symmetric_groove(M_PI - 2.0 * t));
+  }
+  return m;
+}
+
+MicrosurfaceTally::MicrosurfaceTally(int bins_, int max_k_)
+    : bins(bins_),
+      max_k(max_k_),
+      by_k(static_cast<std::size_t>(max_k_) + 2, 0),
+      theta_o(static_cast<std::size_t>(bins_), 0),
+      theta_o_by_k((static_cast<std::size_t>(max_k_) + 2) * static_cast<std::size_t>(bins_), 0) {
+  assert(bins_ > 0 && max_k_ >= 0);
+}
+
+int MicrosurfaceTally::bin_of(double theta) const {
+  const int j = static_cast<int>(std::floor((theta + 0.5 * M_PI) / bin_width()));
+  // theta is inside (-pi/2, pi/2) here; the clamp only absorbs rounding of the division there.
+  return std::clamp(j, 0, bins - 1);
+}
+
+void MicrosurfaceTally::add(const TraceResult& r) {
+  ++rays;
+  switch (r.how) {
+    case Termination::blocked: ++blocked; return;
+    case Termination::vertex_hit: ++vertex_hits; return;
+    case Termination::bounce_limit: ++bounce_limit; return;
+    case Termination::escaped: break;
+  }
+  if (!(r.exit_dir.y() > 0.0)) {
+    ++not_upward;
+    return;
+  }
+  ++escaped;
+  bounces += r.bounces;
+  max_k_seen = std::max(max_k_seen, r.bounces);
+  const int row = row_of(r.bounces);
+  const int bin = bin_of(angle_from_normal(r.exit_dir));
+  ++by_k[static_cast<std::size_t>(row)];
+  ++theta_o[static_cast<std::size_t>(bin)];
+  ++theta_o_by_k[static_cast<std::size_t>(row) * bins + bin];
+}
+
+void MicrosurfaceTally::merge(const MicrosurfaceTally& o) {
+  assert(o.bins == bins && o.max_k == max_k);
+  rays += o.rays;
+  escaped += o.escaped;
+  blocked += o.blocked;
+  vertex_hits += o.vertex_hits;
+  bounce_limit += o.bounce_limit;
+  not_upward += o.not_upward;
+  bounces += o.bounces;
+  max_k_seen = std::max(max_k_seen, o.max_k_seen);
+  for (std::size_t i = 0; i < by_k.size(); ++i) by_k[i] += o.by_k[i];
+  for (std::size_t i = 0; i < theta_o.size(); ++i) theta_o[i] += o.theta_o[i];
+  for (std::size_t i = 0; i < theta_o_by_k.size(); ++i) theta_o_by_k[i] += o.theta_o_by_k[i];
+}
+
+std::int64_t chunk_count(const MicrosurfaceTraceOptions& opt) {
+  return (opt.rays + kRaysPerChunk - 1) / kRaysPerChunk;
+}
+
+MicrosurfaceTally trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOptions& opt,
+                                           std::int64_t chunk) {
+  assert(std::abs(opt.theta_i) < 0.5 * M_PI && opt.rays >= 0);
+  MicrosurfaceTally tally(opt.theta_o_bins, opt.max_k);
+  const std::int64_t begin = chunk * kRaysPerChunk;
+  const std::int64_t end = std::min(opt.rays, begin + kRaysPerChunk);
+  if (begin >= end || surface.grooves.empty()) return tally;
+  Rng rng(opt.seed, kRayStream, static_cast<std::uint64_t>(chunk));
+  const Vec2 dir = beam_direction(opt.theta_i);
+  const double g_count = static_cast<double>(surface.grooves.size());
+  const int last = static_cast<int>(surface.grooves.size()) - 1;
+  for (std::int64_t j = begin; j < end; ++j) {
+    // Landing point on the macrosurface [0, G) in units of the groove width: groove index and
+    // fraction f across its opening.
+    const double u = opt.sampling == Sampling::stratified
+                         ? (static_cast<double>(j) + 0.5) / static_cast<double>(opt.rays)
+                         : uniform_open(rng);
+    const double x = u * g_count;
+    const int g = std::min(last, static_cast<int>(x));
+    const double f = x - g;
+    const Groove& groove = surface.grooves[static_cast<std::size_t>(g)];
+    const double xl = groove.rim_x(Side::left), xr = groove.rim_x(Side::right);
+    // f = 0 lands exactly on the left peak: sim::trace reports it as a vertex hit.
+    tally.add(trace(groove, beam_ray(groove, dir, xl + f * (xr - xl)), opt.trace));
+  }
+  return tally;
+}
+
+MicrosurfaceTally trace_microsurface(const Microsurface& surface, const MicrosurfaceTraceOptions& opt) {
+  MicrosurfaceTally total(opt.theta_o_bins, opt.max_k);
+  const std::int64_t n = chunk_count(opt);
+  for (std::int64_t c = 0; c < n; ++c) total.merge(trace_microsurface_chunk(surface, opt, c));
+  return total;
+}
+
+}  // namespace vgroove::sim

@@ -1,0 +1,121 @@
+// vgroove sim: a procedural flatland microsurface of many symmetric V-grooves, and the light it
+// scatters, traced exactly.
+//
+// Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces". ACM TOG
+// 37(6), 2018: Sec. 5 (each facet belongs to one V-groove; all peaks lie on the macrosurface, so
+// shadowing, masking and interreflection stay inside one groove) and Sec. 7.1 (brute-force
+// simulation on procedural microsurfaces, Fig. 11).
+//
+// The surface. G grooves side by side, peaks on the line y = 0 (the macrosurface), each spanning
+// the same width W = 1/G of it. Groove j is symmetric with facet normals at -theta_j (its left
+// facet) and +theta_j (its right facet), so its aperture is theta_v = pi - 2 theta_j. Each facet
+// covers half the groove's width on the macrosurface.
+//
+// Why theta_j = |sample_theta_m(u_j)|. The NDF says which fraction of the macrosurface's length
+// lies under facets with normals in d theta: D2(theta) cos(theta) d theta, the density that
+// sample_theta_m draws from. The grooves have equal widths, so groove j carries the fraction 1/G
+// of the length, split equally between +theta_j and -theta_j. Drawing |theta_j| from the folded
+// density 2 D2 cos (D2 is even) and splitting it in two halves gives back D2 cos on each side.
+// (Had the facets equal lengths instead, a groove's width would be 2 L cos theta_j and the draw
+// would need the density proportional to D2 alone: the width is what the draw has to weight.)
+//
+// Tracing. A ray from theta_i lands at a point of the macrosurface drawn uniformly (a parallel
+// beam crosses a line uniformly), falls into the groove under that point and is traced with
+// sim::trace in that groove; it cannot reach another groove, since it leaves through the
+// groove's own opening (all peaks on one line). Grooves are built with unit facets and the ray's
+// landing point is scaled to their opening: reflection does not depend on scale.
+//
+// Determinism. Groove j's angle comes from Rng(surface seed, kGrooveStream, j); the rays are cut
+// into chunks of kRaysPerChunk, chunk c drawing from Rng(ray seed, kRayStream, c). A chunk's tally
+// depends only on (surface, options, c), and tallies hold integer counts, so any split of the
+// chunks over threads, merged in any order, gives bit-identical results.
+#pragma once
+
+#include "sim/beam.h"
+#include "sim/groove.h"
+#include "sim/rng.h"
+#include "sim/slope_sampling.h"
+#include "sim/tracer.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace vgroove::sim {
+
+struct MicrosurfaceOptions {
+  NdfKind ndf = NdfKind::ggx;
+  double alpha = 0.5;  // roughness, > 0
+  int grooves = 10000;
+  std::uint64_t seed = 0;
+};
+
+struct Microsurface {
+  MicrosurfaceOptions options;
+  std::vector<double> theta_m;  // |theta_m| of each groove, in [0, pi/2)
+  std::vector<Groove> grooves;  // aperture pi - 2 theta_m[j], unit facets (make_symmetric_groove)
+};
+
+inline constexpr std::uint64_t kGrooveStream = 0x67726f6f7665ULL;  // "groove"
+inline constexpr std::uint64_t kRayStream = 0x72617973ULL;         // "rays"
+inline constexpr std::int64_t kRaysPerChunk = 1 << 15;
+
+// Uniform in the open interval (0, 1): the midpoints of 2^53 equal strata, never 0 or 1 (an
+// endpoint would put a facet at exactly +-pi/2, or a ray exactly on a peak).
+inline double uniform_open(Rng& rng) { return (static_cast<double>(rng.next_u64() >> 11) + 0.5) * 0x1.0p-53; }
+
+Microsurface make_microsurface(const MicrosurfaceOptions& opt);
+
+struct MicrosurfaceTraceOptions {
+  double theta_i = 0.0;  // direction towards the light, in (-pi/2, pi/2)
+  std::int64_t rays = 100000;
+  Sampling sampling = Sampling::random;  // landing points: seeded uniform, or stratified midpoints
+  std::uint64_t seed = 0;
+  int theta_o_bins = 90;  // equal bins over (-pi/2, pi/2)
+  int max_k = 16;         // per-k histograms for k = 0..max_k; larger k share the last row
+  TraceOptions trace;
+};
+
+// What happened to the rays. Every ray is in exactly one of escaped, blocked, vertex_hits,
+// bounce_limit, not_upward; every escaped ray in one k row and one theta_o bin.
+struct MicrosurfaceTally {
+  int bins = 0;
+  int max_k = 0;
+  std::int64_t rays = 0;
+  std::int64_t escaped = 0;       // left going up: counted in by_k and the histograms
+  std::int64_t blocked = 0;       // never entered its groove (not expected: peaks on one line)
+  std::int64_t vertex_hits = 0;   // hit a peak or a groove's bottom exactly
+  std::int64_t bounce_limit = 0;  // still inside after TraceOptions::max_bounces reflections
+  std::int64_t not_upward = 0;    // "escaped" along or below the horizon (not expected), kept apart
+  std::int64_t bounces = 0;       // reflections summed over escaped rays
+  int max_k_seen = 0;             // largest bounce count of an escaped ray
+  std::vector<std::int64_t> by_k;         // [k], k = 0..max_k + 1 (the last: more than max_k)
+  std::vector<std::int64_t> theta_o;      // [bin], all escaped rays
+  std::vector<std::int64_t> theta_o_by_k; // [k * bins + bin], rows as in by_k
+
+  MicrosurfaceTally() = default;
+  MicrosurfaceTally(int bins_, int max_k_);
+
+  // Fraction of the rays that left (with F = 1 the albedo); 1 - albedo() = lost() / rays.
+  double albedo() const { return rays > 0 ? static_cast<double>(escaped) / static_cast<double>(rays) : 0.0; }
+  std::int64_t lost() const { return blocked + vertex_hits + bounce_limit + not_upward; }
+  double bin_width() const { return M_PI / bins; }
+  double bin_lo(int j) const { return -0.5 * M_PI + j * bin_width(); }
+  double bin_center(int j) const { return bin_lo(j) + 0.5 * bin_width(); }
+  int bin_of(double theta) const;
+  int row_of(int k) const { return k > max_k ? max_k + 1 : k; }
+  std::int64_t hist(int k_row, int bin) const { return theta_o_by_k[static_cast<std::size_t>(k_row) * bins + bin]; }
+
+  void add(const TraceResult& r);
+  void merge(const MicrosurfaceTally& other);  // same bins and max_k
+};
+
+std::int64_t chunk_count(const MicrosurfaceTraceOptions& opt);
+
+// The rays of chunk c (kRaysPerChunk of them; the last chunk holds the rest).
+MicrosurfaceTally trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOptions& opt,
+                                           std::int64_t chunk);
+
+// All chunks, merged in order (one thread; a caller may run the chunks on several and merge).
+MicrosurfaceTally trace_microsurface(const Microsurface& surface, const MicrosurfaceTraceOptions& opt);
+
+}  // namespace vgroove::sim
