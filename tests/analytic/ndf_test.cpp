@@ -8,6 +8,8 @@
 // int D cos = 1 over the hemisphere, D2 so that int D2 cos = 1 over (-pi/2, pi/2).
 #include "analytic/ndf.h"
 
+#include "tests/stats.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,28 +24,7 @@ namespace {
 
 double deg(double d) { return d * M_PI / 180.0; }
 
-// Tanh-sinh (double exponential) quadrature of f over [a, b]: x = c + d tanh((pi/2) sinh t),
-// trapezoidal in t with step h. The nodes crowd both ends doubly exponentially, so a peak at an
-// end (split the range there) and integrable end singularities (D2_phong ~ cos^p with p < 0 for
-// alpha > 1) converge to near machine precision. A node's distance to its end is computed
-// directly, not as a difference.
-template <class F>
-double tanh_sinh(F&& f, double a, double b, double h = 1.0 / 64.0) {
-  const double c = 0.5 * (a + b), d = 0.5 * (b - a);
-  double sum = 0.0;
-  for (int k = -static_cast<int>(4.5 / h); k <= static_cast<int>(4.5 / h); ++k) {
-    const double t = k * h;
-    const double s = 0.5 * M_PI * std::sinh(t);
-    const double ch = std::cosh(s);
-    const double w = 0.5 * M_PI * std::cosh(t) / (ch * ch);
-    if (!(w > 0.0)) continue;  // beyond |s| ~ 355 the weight underflows
-    // 1 - tanh|s| = 2 / (exp(2|s|) + 1): the distance of the node to the nearer end, over d.
-    const double delta = d * 2.0 / (std::exp(2.0 * std::abs(s)) + 1.0);
-    const double x = k < 0 ? a + delta : (k > 0 ? b - delta : c);
-    sum += w * f(x);
-  }
-  return d * h * sum;
-}
+using vgroove::test_stats::tanh_sinh;
 
 // 3D: 2 pi int_0^{pi/2} D cos sin dtheta.
 double integral_3d(NdfKind kind, double alpha) {

@@ -13,6 +13,8 @@
 #include "sim/microsurface.h"
 #include "sim/slope_sampling.h"
 
+#include "tests/stats.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -31,94 +33,7 @@ double deg(double d) { return d * M_PI / 180.0; }
 // ---------------------------------------------------------------------------------------------
 // Numerical helpers (independent of the code under test).
 
-// Tanh-sinh quadrature of f over [a, b] (see tests/analytic/ndf_test.cpp): integrable end
-// singularities and end peaks converge to near machine precision.
-template <class F>
-double tanh_sinh(F&& f, double a, double b, double h = 1.0 / 64.0) {
-  const double c = 0.5 * (a + b), d = 0.5 * (b - a);
-  double sum = 0.0;
-  for (int k = -static_cast<int>(4.5 / h); k <= static_cast<int>(4.5 / h); ++k) {
-    const double t = k * h;
-    const double s = 0.5 * M_PI * std::sinh(t);
-    const double ch = std::cosh(s);
-    const double w = 0.5 * M_PI * std::cosh(t) / (ch * ch);
-    if (!(w > 0.0)) continue;
-    const double delta = d * 2.0 / (std::exp(2.0 * std::abs(s)) + 1.0);
-    sum += w * f(k < 0 ? a + delta : (k > 0 ? b - delta : c));
-  }
-  return d * h * sum;
-}
-
-// Regularized upper incomplete gamma Q(a, x) (series for P below a + 1, Lentz's continued
-// fraction above): the chi-square survival function is Q(dof/2, stat/2).
-double gamma_q(double a, double x) {
-  if (!(x > 0.0)) return 1.0;
-  const double ln_front = -x + a * std::log(x) - std::lgamma(a);
-  if (x < a + 1.0) {
-    double ap = a, del = 1.0 / a, sum = del;
-    for (int n = 0; n < 100000 && std::abs(del) > 1e-17 * std::abs(sum); ++n) {
-      ap += 1.0;
-      del *= x / ap;
-      sum += del;
-    }
-    return 1.0 - sum * std::exp(ln_front);
-  }
-  constexpr double tiny = 1e-300;
-  double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, h = d;
-  for (int i = 1; i < 100000; ++i) {
-    const double an = -i * (i - a);
-    b += 2.0;
-    d = an * d + b;
-    if (std::abs(d) < tiny) d = tiny;
-    c = b + an / c;
-    if (std::abs(c) < tiny) c = tiny;
-    d = 1.0 / d;
-    const double del = d * c;
-    h *= del;
-    if (std::abs(del - 1.0) < 1e-16) break;
-  }
-  return std::exp(ln_front) * h;
-}
-
-struct ChiSquare {
-  double stat = 0.0;
-  int dof = 0;
-  double p = 1.0;
-  std::string table;  // the pooled cells, for the failure message
-};
-
-// Goodness of fit of observed counts to expected counts over bins [edges[j], edges[j+1]];
-// adjacent bins are pooled until each cell expects at least 5 (a leftover joins the last cell).
-ChiSquare chi_square_gof(const std::vector<double>& edges, const std::vector<double>& expected,
-                         const std::vector<std::int64_t>& observed) {
-  struct Cell { double lo, hi, e; std::int64_t o; };
-  std::vector<Cell> cells;
-  Cell acc{edges[0], edges[0], 0.0, 0};
-  for (std::size_t j = 0; j < expected.size(); ++j) {
-    acc.hi = edges[j + 1];
-    acc.e += expected[j];
-    acc.o += observed[j];
-    if (acc.e >= 5.0) {
-      cells.push_back(acc);
-      acc = Cell{edges[j + 1], edges[j + 1], 0.0, 0};
-    }
-  }
-  if (acc.e > 0.0 || acc.o > 0) {
-    if (cells.empty()) cells.push_back(acc);
-    else { cells.back().hi = acc.hi; cells.back().e += acc.e; cells.back().o += acc.o; }
-  }
-  ChiSquare r;
-  std::ostringstream os;
-  os.precision(6);
-  for (const Cell& c : cells) {
-    r.stat += (c.o - c.e) * (c.o - c.e) / c.e;
-    os << "  [" << c.lo << ", " << c.hi << "): expected " << c.e << ", observed " << c.o << "\n";
-  }
-  r.dof = static_cast<int>(cells.size()) - 1;  // the total is fixed
-  r.p = gamma_q(0.5 * r.dof, 0.5 * r.stat);
-  r.table = os.str();
-  return r;
-}
+using namespace vgroove::test_stats;  // tanh_sinh, gamma_q, ChiSquare, chi_square
 
 // Two samples, same bins: are they draws from one law? Cells pooled until a + b >= 10 (5 per
 // sample); stat = sum (a sqrt(Nb/Na) - b sqrt(Na/Nb))^2 / (a + b), dof = cells - 1.
