@@ -101,4 +101,14 @@ inline ChiSquare chi_square_gof(const std::vector<double>& edges, const std::vec
   return r;
 }
 
+// Bin edges over (-pi/2, pi/2) equally spaced in slope/alpha, so each bin holds a comparable share
+// of a distribution of roughness alpha (the outer edges exactly +-pi/2).
+inline std::vector<double> slope_bin_edges(double alpha, int bins) {
+  std::vector<double> edges(bins + 1);
+  for (int j = 0; j <= bins; ++j) edges[j] = std::atan(alpha * std::tan(-0.5 * M_PI + j * M_PI / bins));
+  edges.front() = -0.5 * M_PI;
+  edges.back() = 0.5 * M_PI;
+  return edges;
+}
+
 }  // namespace vgroove::test_stats

@@ -47,7 +47,7 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   app.require_subcommand(1);
 
   TraceArgs ta;
-  auto* trace = app.add_subcommand("trace", "Trace a beam through one symmetric V-groove exactly; print the fraction "
+  auto* trace = app.add_subcommand("trace", "Trace a beam through one V-groove (symmetric or not) exactly; print the fraction "
                                             "of the beam and the exit angle per (facet hit first, bounce count k).");
   add_groove_options(trace, ta.groove);
   trace->add_option("--theta-i-deg", ta.theta_i_deg, "incident angle theta_i in degrees, (-90, 90)")->capture_default_str();
@@ -60,11 +60,12 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   trace->add_flag("--json", ta.json, "print JSON (the same shape as `analytic --json`)");
 
   AnalyticArgs aa;
-  auto* an = app.add_subcommand("analytic", "Evaluate the kaleidoscopic model (Eq. 4-6) for one symmetric V-groove; "
-                                            "same output as trace.");
+  auto* an = app.add_subcommand("analytic", "Evaluate the kaleidoscopic model (Eq. 4-6 symmetric, Eq. 7-9 nonsymmetric) for one "
+                                            "V-groove; same output as trace.");
   add_groove_options(an, aa.groove);
   an->add_option("--theta-i-deg", aa.theta_i_deg, "incident angle theta_i in degrees, (-90, 90)")->capture_default_str();
-  an->add_option("--eq6-form", aa.eq6_form, "corrected (see validation/ERRATA.md) or printed (as in the paper)")
+  an->add_option("--eq6-form", aa.eq6_form,
+                "symmetric grooves: corrected (see validation/ERRATA.md) or printed (as in the paper)")
       ->capture_default_str();
   an->add_flag("--json", aa.json, "print JSON (the same shape as `trace --json`)");
 

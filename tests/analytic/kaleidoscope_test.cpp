@@ -5,6 +5,8 @@
 // width), f(b) = -sin(half + theta_i), and the transition point f(k) = sin(k theta_v - half - theta_i).
 #include "analytic/kaleidoscope.h"
 
+#include "tests/param_names.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -152,17 +154,8 @@ TEST(GKaleidoscopic, PrintedFormGivesANegativeShareAtNormalIncidence) {
 }
 
 // ---------------------------------------------------------------------------------------------
-using AnglePair = std::tuple<double, double>;  // (theta_v_deg, theta_i_deg)
-std::string pair_name(const testing::TestParamInfo<AnglePair>& info) {
-  const auto text = [](double d) {
-    std::ostringstream os;
-    os << d;
-    std::string s = os.str();
-    for (char& c : s) c = c == '.' ? 'p' : c == '-' ? 'm' : c;
-    return s;
-  };
-  return "v" + text(std::get<0>(info.param)) + "_i" + text(std::get<1>(info.param));
-}
+using test_names::AnglePair;
+using test_names::pair_name;
 
 class ModelGrid : public testing::TestWithParam<AnglePair> {};
 

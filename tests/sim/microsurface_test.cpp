@@ -184,10 +184,7 @@ TEST_P(SlopeSampling, SamplesFollowThePdf) {
   const auto [kind, alpha] = GetParam();
   constexpr int n = 100000, bins = 40;
   constexpr double level = 1e-3 / 15.0;
-  std::vector<double> edges(bins + 1);
-  for (int j = 0; j <= bins; ++j) edges[j] = std::atan(alpha * std::tan(-0.5 * M_PI + j * M_PI / bins));
-  edges.front() = -0.5 * M_PI;
-  edges.back() = 0.5 * M_PI;
+  const std::vector<double> edges = slope_bin_edges(alpha, bins);
   std::vector<double> expected(bins);
   for (int j = 0; j < bins; ++j)
     expected[j] = n * tanh_sinh([&](double t) { return theta_m_pdf(kind, alpha, t); }, edges[j], edges[j + 1]);

@@ -13,6 +13,8 @@
 
 #include "analytic/kaleidoscope.h"
 
+#include "tests/param_names.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -72,17 +74,8 @@ void expect_clean(const CaseOutcome& c, long rays) {
       << describe(c);
 }
 
-using AnglePair = std::tuple<double, double>;  // (theta_v_deg, theta_i_deg)
-std::string pair_name(const testing::TestParamInfo<AnglePair>& info) {
-  const auto text = [](double d) {
-    std::ostringstream os;
-    os << d;
-    std::string s = os.str();
-    for (char& c : s) c = c == '.' ? 'p' : c == '-' ? 'm' : c;
-    return s;
-  };
-  return "v" + text(std::get<0>(info.param)) + "_i" + text(std::get<1>(info.param));
-}
+using test_names::AnglePair;
+using test_names::pair_name;
 
 // ---------------------------------------------------------------------------------------------
 // Agreement on a grid outside the paper's sweep (the paper uses whole degrees, theta_v = 1 + 5 n).

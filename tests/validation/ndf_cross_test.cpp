@@ -84,10 +84,7 @@ TEST(NdfCross, SamplesFollowAnalyticD2Cos) {
   constexpr double level = 1e-3 / 9.0;
   for (sim::NdfKind k : kKinds)
     for (double alpha : {0.1, 0.7, 1.5}) {
-      std::vector<double> edges(bins + 1);
-      for (int j = 0; j <= bins; ++j) edges[j] = std::atan(alpha * std::tan(-0.5 * M_PI + j * M_PI / bins));
-      edges.front() = -0.5 * M_PI;
-      edges.back() = 0.5 * M_PI;
+      const std::vector<double> edges = slope_bin_edges(alpha, bins);
       std::vector<double> expected(bins);
       for (int j = 0; j < bins; ++j)
         expected[j] = n * tanh_sinh([&](double v) { return d2_cos(k, alpha, v); }, edges[j], edges[j + 1]);
