@@ -26,7 +26,6 @@ namespace {
 constexpr double kRad = M_PI / 180.0;
 constexpr long kMaxRays = 1'000'000'000;
 
-double deg(double rad) { return output_deg(rad); }
 
 void check_seed(long long seed, const std::string& what) {
   if (seed < 0)
@@ -53,7 +52,7 @@ analytic::Eq6Form parse_form(const std::string& s, const std::string& what) {
 
 // One row of the trace/analytic JSON: the same shape from both, so the two can be diffed.
 nlohmann::json bounce_row(const char* facet, int k, double fraction, double theta_o) {
-  return {{"first_facet", facet}, {"k", k}, {"fraction", fraction}, {"theta_o_deg", deg(theta_o)}};
+  return {{"first_facet", facet}, {"k", k}, {"fraction", fraction}, {"theta_o_deg", output_deg(theta_o)}};
 }
 
 void print_rows(const nlohmann::json& rows) {
@@ -99,8 +98,6 @@ GrooveParams groove_from(const GrooveArgs& g) {
   return p;
 }
 
-nlohmann::json groove_inputs(const GrooveParams& p) { return groove_json(p); }
-
 }  // namespace
 
 int cmd_trace(const TraceArgs& a) {
@@ -131,7 +128,7 @@ int cmd_trace(const TraceArgs& a) {
       max_spread = std::max(max_spread, b.spread());
     }
   nlohmann::json j = provenance();
-  j["inputs"] = groove_inputs(params);
+  j["inputs"] = groove_json(params);
   j["inputs"].update({{"theta_i_deg", a.theta_i_deg}, {"rays", a.rays}, {"sampling", a.sampling}, {"seed", a.seed},
                       {"max_bounces", a.max_bounces}});
   j["bounces"] = rows;
@@ -192,7 +189,7 @@ int cmd_analytic(const AnalyticArgs& a) {
     facets[name] = {{"k", p.k}, {"f_a", p.f_a}, {"G", G}, {"shadow", p.shadow}};
   }
   nlohmann::json j = provenance();
-  j["inputs"] = groove_inputs(params);
+  j["inputs"] = groove_json(params);
   j["inputs"].update({{"theta_i_deg", a.theta_i_deg}, {"eq6_form", a.eq6_form}});
   j["bounces"] = rows;
   j["facets"] = facets;

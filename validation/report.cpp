@@ -9,7 +9,6 @@
 namespace vgroove::validation {
 
 namespace {
-double deg(double rad) { return output_deg(rad); }
 
 const char* form_name(analytic::Eq6Form f) { return f == analytic::Eq6Form::corrected ? "corrected" : "printed"; }
 
@@ -30,17 +29,17 @@ nlohmann::json provenance() {
 }
 
 nlohmann::json groove_json(const GrooveParams& g) {
-  if (g.symmetric) return {{"theta_v_deg", deg(g.theta_v)}};
-  return {{"theta_l_deg", deg(g.theta_l)}, {"theta_r_deg", deg(g.theta_r)}, {"theta_v_deg", deg(g.theta_v)}};
+  if (g.symmetric) return {{"theta_v_deg", output_deg(g.theta_v)}};
+  return {{"theta_l_deg", output_deg(g.theta_l)}, {"theta_r_deg", output_deg(g.theta_r)}, {"theta_v_deg", output_deg(g.theta_v)}};
 }
 
 std::string groove_text(const GrooveParams& g) {
   char buf[128];
   if (g.symmetric)
-    std::snprintf(buf, sizeof buf, "theta_v %.9g deg", deg(g.theta_v));
+    std::snprintf(buf, sizeof buf, "theta_v %.9g deg", output_deg(g.theta_v));
   else
-    std::snprintf(buf, sizeof buf, "theta_l %.9g, theta_r %.9g deg (theta_v %.9g)", deg(g.theta_l), deg(g.theta_r),
-                  deg(g.theta_v));
+    std::snprintf(buf, sizeof buf, "theta_l %.9g, theta_r %.9g deg (theta_v %.9g)", output_deg(g.theta_l), output_deg(g.theta_r),
+                  output_deg(g.theta_v));
   return buf;
 }
 
@@ -62,7 +61,7 @@ nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
   nlohmann::json cases = nlohmann::json::array();
   for (const CaseOutcome& c : run.cases) {
     nlohmann::json jc = groove_json(c.groove);
-    jc["theta_i_deg"] = deg(c.theta_i);
+    jc["theta_i_deg"] = output_deg(c.theta_i);
     if (c.groove.degenerate()) {
       jc["degenerate"] = "zero aperture: no opening, no light enters; not compared";
       cases.push_back(std::move(jc));
@@ -87,7 +86,7 @@ nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
   j["cases"] = std::move(cases);
   const CaseOutcome& worst = run.cases.empty() ? CaseOutcome{} : run.cases[s.worst_case];
   nlohmann::json worst_j = groove_json(worst.groove);
-  worst_j["theta_i_deg"] = deg(worst.theta_i);
+  worst_j["theta_i_deg"] = output_deg(worst.theta_i);
   nlohmann::json degenerate = nlohmann::json::array();
   for (const CaseOutcome& c : run.cases)
     if (c.groove.degenerate() && (degenerate.empty() || degenerate.back() != groove_json(c.groove)))
@@ -152,7 +151,7 @@ void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run) {
     os << "  the paper's figures are consistent with " << suite.paper->placement << " ray placement: "
        << suite.paper->placement_evidence << "\n";
   const CaseOutcome& w = run.cases[s.worst_case];
-  os << "  worst case: " << groove_text(w.groove) << ", theta_i " << deg(w.theta_i) << " deg (L1 "
+  os << "  worst case: " << groove_text(w.groove) << ", theta_i " << output_deg(w.theta_i) << " deg (L1 "
      << fmt("%.4g", w.l1) << ")\n";
   if (s.degenerate_cases) {
     os << "  degenerate (zero aperture, no opening; listed in the report, not compared):";
