@@ -1,0 +1,1 @@
+#include "analytic/bounce_percentiles.h"

@@ -1,0 +1,1 @@
+#include "analytic/brdf_flatland.h"

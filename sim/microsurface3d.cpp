@@ -1,0 +1,1 @@
+#include "sim/microsurface3d.h"

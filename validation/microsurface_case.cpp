@@ -1,0 +1,1 @@
+#include "validation/microsurface_case.h"
