@@ -1,1 +1,209 @@
 #include "sim/microsurface3d.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+namespace vgroove::sim {
+
+double theta_m_pdf_3d(NdfKind kind, double alpha, double theta_m) {
+  if (!(theta_m >= 0.0 && theta_m < 0.5 * M_PI)) return 0.0;
+  const double c = std::cos(theta_m), s = std::sin(theta_m), a2 = alpha * alpha;
+  switch (kind) {
+    case NdfKind::ggx: {
+      // 2 a^2 sin / (cos^3 (a^2 + tan^2)^2) with the cos^4 of tan^4 moved into the bracket:
+      // finite up to pi/2.
+      const double q = a2 * c * c + s * s;
+      return 2.0 * a2 * s * c / (q * q);
+    }
+    case NdfKind::beckmann: {
+      if (c == 0.0) return 0.0;  // exp(-tan^2/a^2) wins over 1/cos^3
+      const double t = s / c;
+      return 2.0 * std::exp(-t * t / a2) * s / (a2 * c * c * c);
+    }
+    case NdfKind::phong:  // (p + 2) cos^(p+1) sin, p + 2 = 2/a^2
+      return (2.0 / a2) * std::pow(c, 2.0 / a2 - 1.0) * s;
+  }
+  return 0.0;
+}
+
+double theta_m_cdf_3d(NdfKind kind, double alpha, double theta_m) {
+  if (!(theta_m > 0.0)) return 0.0;
+  if (theta_m >= 0.5 * M_PI) return 1.0;
+  const double c = std::cos(theta_m), s = std::sin(theta_m), a2 = alpha * alpha;
+  switch (kind) {
+    case NdfKind::ggx: return s * s / (a2 * c * c + s * s);  // tan^2 / (a^2 + tan^2)
+    case NdfKind::beckmann: {
+      const double t = s / c;
+      return -std::expm1(-t * t / a2);
+    }
+    case NdfKind::phong: return -std::expm1((2.0 / a2) * std::log(c));  // 1 - cos^(p+2)
+  }
+  return 0.0;
+}
+
+double sample_theta_m_3d(NdfKind kind, double alpha, double u) {
+  assert(u > 0.0 && u < 1.0 && alpha > 0.0);
+  switch (kind) {
+    case NdfKind::ggx: return std::atan(alpha * std::sqrt(u / (1.0 - u)));
+    case NdfKind::beckmann: return std::atan(alpha * std::sqrt(-std::log1p(-u)));
+    case NdfKind::phong: {
+      // cos theta = (1 - u)^(a^2/2); 1 - cos theta = 2 sin^2(theta/2) keeps small angles exact.
+      const double w = -std::expm1(0.5 * alpha * alpha * std::log1p(-u));
+      return 2.0 * std::asin(std::sqrt(0.5 * w));
+    }
+  }
+  return 0.0;
+}
+
+void add_groove3d(Microsurface3d& m, double theta_m, double phi_a) {
+  // The steepest facet that still leaves an opening (as in make_microsurface): an angle that
+  // rounds to pi/2 would close the groove.
+  const double t = std::min(std::nextafter(0.5 * M_PI, 0.0), theta_m);
+  m.theta_m.push_back(t);
+  m.phi_a.push_back(phi_a);
+  m.frames.push_back(GrooveFrame3d{std::cos(phi_a), std::sin(phi_a)});
+  // make_symmetric_groove's facet normals are at -t (left, leaning towards +a) and +t: the 2D
+  // images of s = dir(t, phi_a) and s' = dir(t, phi_a + pi).
+  m.grooves.push_back(make_symmetric_groove(M_PI - 2.0 * t));
+}
+
+Microsurface3d make_microsurface3d(const Microsurface3dOptions& opt) {
+  assert(opt.alpha > 0.0 && opt.grooves > 0);
+  Microsurface3d m;
+  m.options = opt;
+  const auto n = static_cast<std::size_t>(opt.grooves);
+  m.theta_m.reserve(n);
+  m.phi_a.reserve(n);
+  m.frames.reserve(n);
+  m.grooves.reserve(n);
+  for (int j = 0; j < opt.grooves; ++j) {
+    Rng rng(opt.seed, kGroove3dStream, static_cast<std::uint64_t>(j));
+    const double t = sample_theta_m_3d(opt.ndf, opt.alpha, uniform_open(rng));
+    const double phi = M_PI * uniform_open(rng);
+    add_groove3d(m, t, phi);
+  }
+  return m;
+}
+
+Trace3dResult trace_groove3d(const Groove& g, const GrooveFrame3d& frame, const Vec3& i, double f,
+                             const TraceOptions& opt) {
+  const double ia = i.x() * frame.cos_phi_a + i.y() * frame.sin_phi_a;
+  const double iu = -i.x() * frame.sin_phi_a + i.y() * frame.cos_phi_a;
+  const double in = i.z();
+  // |(i.a, i.n)| = sqrt(1 - (i.u)^2) for a unit i; > 0 since i.n > 0.
+  const double r = std::sqrt(ia * ia + in * in);
+  // The ray travels along -i: in the cross-section along -(i.a, i.n) / r.
+  const Vec2 d(-ia / r, -in / r);
+  const double xl = g.rim_x(Side::left), xr = g.rim_x(Side::right);
+  Trace3dResult out;
+  out.trace = trace(g, beam_ray(g, d, xl + f * (xr - xl)), opt);
+  if (out.trace.how == Termination::escaped) {
+    const Vec2& e = out.trace.exit_dir;
+    // o = r (e_x a + e_y n) - (i.u) u.
+    const double oa = r * e.x();
+    out.o = Vec3(oa * frame.cos_phi_a + iu * frame.sin_phi_a, oa * frame.sin_phi_a - iu * frame.cos_phi_a,
+                 r * e.y());
+  }
+  return out;
+}
+
+Microsurface3dTally::Microsurface3dTally(int theta_bins_, int phi_bins_, int max_k_)
+    : theta_bins(theta_bins_),
+      phi_bins(phi_bins_),
+      max_k(max_k_),
+      by_k(static_cast<std::size_t>(max_k_) + 2, 0),
+      hist(static_cast<std::size_t>(theta_bins_) * static_cast<std::size_t>(phi_bins_), 0),
+      hist_by_k((static_cast<std::size_t>(max_k_) + 2) * static_cast<std::size_t>(theta_bins_) *
+                    static_cast<std::size_t>(phi_bins_),
+                0) {
+  assert(theta_bins_ > 0 && phi_bins_ > 0 && phi_bins_ % 2 == 0 && max_k_ >= 0);
+}
+
+int Microsurface3dTally::theta_bin_of(double theta_o) const {
+  // theta_o is in [0, pi/2) here; the clamp only absorbs rounding of the division.
+  return std::clamp(static_cast<int>(std::floor(theta_o / theta_width())), 0, theta_bins - 1);
+}
+
+int Microsurface3dTally::phi_bin_of(double phi_o) const {
+  // Bin p covers [(p - 1/2) d, (p + 1/2) d), taken modulo 2 pi: phi in (-pi, -pi + d/2) wraps to
+  // the bin centred on pi.
+  int p = static_cast<int>(std::floor(phi_o / phi_width() + 0.5));
+  p %= phi_bins;
+  return p < 0 ? p + phi_bins : p;
+}
+
+void Microsurface3dTally::add(const Trace3dResult& r) {
+  ++rays;
+  switch (r.trace.how) {
+    case Termination::blocked: ++blocked; return;
+    case Termination::vertex_hit: ++vertex_hits; return;
+    case Termination::bounce_limit: ++bounce_limit; return;
+    case Termination::escaped: break;
+  }
+  if (!(r.o.z() > 0.0)) {
+    ++not_upward;
+    return;
+  }
+  ++escaped;
+  const int k = r.trace.bounces;
+  bounces += k;
+  max_k_seen = std::max(max_k_seen, k);
+  const int row = row_of(k);
+  // acos is exact enough here: bins are far wider than its error near o.z = 1 (~1e-8 rad).
+  const int t = theta_bin_of(std::acos(std::min(1.0, r.o.z())));
+  const int p = phi_bin_of(std::atan2(r.o.y(), r.o.x()));
+  ++by_k[static_cast<std::size_t>(row)];
+  ++hist[static_cast<std::size_t>(t) * phi_bins + p];
+  ++hist_by_k[index(row, t, p)];
+}
+
+void Microsurface3dTally::merge(const Microsurface3dTally& o) {
+  assert(o.theta_bins == theta_bins && o.phi_bins == phi_bins && o.max_k == max_k);
+  rays += o.rays;
+  escaped += o.escaped;
+  blocked += o.blocked;
+  vertex_hits += o.vertex_hits;
+  bounce_limit += o.bounce_limit;
+  not_upward += o.not_upward;
+  bounces += o.bounces;
+  max_k_seen = std::max(max_k_seen, o.max_k_seen);
+  for (std::size_t i = 0; i < by_k.size(); ++i) by_k[i] += o.by_k[i];
+  for (std::size_t i = 0; i < hist.size(); ++i) hist[i] += o.hist[i];
+  for (std::size_t i = 0; i < hist_by_k.size(); ++i) hist_by_k[i] += o.hist_by_k[i];
+}
+
+std::int64_t chunk_count(const Microsurface3dTraceOptions& opt) {
+  return (opt.rays + kRaysPerChunk - 1) / kRaysPerChunk;
+}
+
+Microsurface3dTally trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt,
+                                               std::int64_t chunk) {
+  assert(opt.theta_i >= 0.0 && opt.theta_i < 0.5 * M_PI && opt.rays >= 0);
+  Microsurface3dTally tally(opt.theta_bins, opt.phi_bins, opt.max_k);
+  const std::int64_t begin = chunk * kRaysPerChunk;
+  const std::int64_t end = std::min(opt.rays, begin + kRaysPerChunk);
+  if (begin >= end || surface.grooves.empty()) return tally;
+  Rng rng(opt.seed, kRay3dStream, static_cast<std::uint64_t>(chunk));
+  // dir(theta_i, pi), with its y written as the exact 0 (sin pi rounds to 1.2e-16).
+  const Vec3 i(-std::sin(opt.theta_i), 0.0, std::cos(opt.theta_i));
+  const double g_count = static_cast<double>(surface.grooves.size());
+  const int last = static_cast<int>(surface.grooves.size()) - 1;
+  for (std::int64_t j = begin; j < end; ++j) {
+    // Equal macro areas: the groove uniformly; then the landing point uniformly across it.
+    const int g = std::min(last, static_cast<int>(uniform_open(rng) * g_count));
+    const double f = uniform_open(rng);
+    const auto gi = static_cast<std::size_t>(g);
+    tally.add(trace_groove3d(surface.grooves[gi], surface.frames[gi], i, f, opt.trace));
+  }
+  return tally;
+}
+
+Microsurface3dTally trace_microsurface3d(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt) {
+  Microsurface3dTally total(opt.theta_bins, opt.phi_bins, opt.max_k);
+  const std::int64_t n = chunk_count(opt);
+  for (std::int64_t c = 0; c < n; ++c) total.merge(trace_microsurface3d_chunk(surface, opt, c));
+  return total;
+}
+
+}  // namespace vgroove::sim

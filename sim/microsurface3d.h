@@ -2,16 +2,172 @@
 // a 3D NDF, traced exactly with the 2D tracer in each groove's cross-section and lifted back to 3D
 // (DESIGN.md, "3D from 2D").
 //
-// TODO(helper 3D sim): derivation, conventions.
+// Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces". ACM TOG
+// 37(6), 2018: Sec. 3 and 5.1 (a surface of V-grooves, all ridges on the macrosurface), Sec. 7.1
+// (brute-force simulation, Fig. 11). Derived here independently of analytic/ (never included).
+//
+// Frame. Macrosurface normal n = (0, 0, 1); the direction at polar angle theta and azimuth phi is
+// (sin theta cos phi, sin theta sin phi, cos theta). The light is at i = dir(theta_i, pi), so its
+// mirror direction is at phi = 0. Directions point away from the surface; rays travel along -i.
+//
+// The surface. G grooves of equal macro area, all ridges in the plane z = 0. Groove j has the
+// horizontal direction a = (cos phi_a, sin phi_a, 0) across it, its axis u = n x a, and facet
+// normals s = dir(theta_m, phi_a), s' = dir(theta_m, phi_a + pi): aperture pi - 2 theta_m.
+//
+// Why (theta_m, phi_a) has the density 2 D(theta_m) cos(theta_m) sin(theta_m) on [0, pi/2) x
+// [0, pi). The NDF D (3D, 2 pi int D cos sin dtheta = 1) says which fraction of the macrosurface's
+// area lies under facet normals in the solid angle ds: D(s) cos(theta_s) ds, with ds = sin dtheta
+// dphi. A groove at phi_a holds normals at phi_a and phi_a + pi, half its area each, so folding
+// phi in [0, 2 pi) onto the groove azimuth in [0, pi) doubles the density: 2 D cos sin dtheta dphi_a.
+// The grooves have equal macro areas, so each is drawn from that law: phi_a uniform on [0, pi)
+// and theta_m with the density p(theta) = 2 pi D(theta) cos(theta) sin(theta), whose integrals
+// are in closed form (x = tan^2 theta):
+//   GGX:      D = alpha^2 / (pi cos^4 (alpha^2 + x)^2),  P(theta) = x / (alpha^2 + x),
+//   Beckmann: D = exp(-x / alpha^2) / (pi alpha^2 cos^4),  P(theta) = 1 - exp(-x / alpha^2),
+//   Phong:    D = (p + 2) cos^p / (2 pi), p = 2/alpha^2 - 2,  P(theta) = 1 - cos^(p+2) theta.
+// (d/dtheta of x/(alpha^2 + x) is alpha^2 x' / (alpha^2 + x)^2 with x' = 2 tan / cos^2; the other
+// two likewise.) The inverses: tan theta = alpha sqrt(u / (1 - u)), tan theta = alpha
+// sqrt(-log(1 - u)), cos theta = (1 - u)^(alpha^2 / 2).
+//
+// Tracing. A parallel beam from i lands on each groove in proportion to its macro area (all
+// ridges on z = 0, so no groove shadows another), uniformly across its opening. Inside a groove
+// reflections keep the travel direction's component along u and act in the cross-section plane
+// (x-axis a, y-axis n, the 2D convention of sim/geometry.h: the direction at signed angle t is
+// (-sin t, cos t)) as in 2D. The projected incident direction (i.a, i.n) / |.| has the 2D angle
+// t_i = atan2(-(i.a), i.n); the groove seen in the cross-section is the 2D symmetric groove of
+// aperture pi - 2 theta_m (its facet normals (sin theta_m, cos theta_m) and (-sin theta_m,
+// cos theta_m) are the 2D directions at -theta_m and +theta_m). A ray crosses the rim line at a
+// uniform point of the opening (the beam's cross-section maps affinely onto it) and is traced with
+// sim::trace; the unit 2D exit direction (e_x, e_y) lifts to
+//   o = sqrt(1 - (i.u)^2) (e_x a + e_y n) - (i.u) u,
+// a unit vector (|(i.a, i.n)| = sqrt(1 - (i.u)^2)) whose u-component is that of the reflected
+// travel direction; a flat groove returns the mirror direction, and (i + o) has no u-component.
+//
+// Determinism. Groove j's (theta_m, phi_a) come from Rng(surface seed, kGroove3dStream, j); the
+// rays are cut into chunks of kRaysPerChunk, chunk c drawing from Rng(ray seed, kRay3dStream, c).
+// A chunk's tally depends only on (surface, options, c) and holds integer counts, so any split of
+// the chunks over threads, merged in any order, gives bit-identical results.
 #pragma once
 
 #include "sim/microsurface.h"
 
+#include <Eigen/Core>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
 namespace vgroove::sim {
+
+using Vec3 = Eigen::Vector3d;
+
+// The direction at polar angle theta and azimuth phi.
+inline Vec3 direction3(double theta, double phi) {
+  return Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+}
+
+// The groove polar angle theta_m in [0, pi/2): density 2 pi D cos sin (above), its distribution
+// function, and its inverse (u in (0, 1) to theta_m, monotone). Matched pair: tests check them together.
+double theta_m_pdf_3d(NdfKind kind, double alpha, double theta_m);
+double theta_m_cdf_3d(NdfKind kind, double alpha, double theta_m);
+double sample_theta_m_3d(NdfKind kind, double alpha, double u);
+
+struct Microsurface3dOptions {
+  NdfKind ndf = NdfKind::ggx;
+  double alpha = 0.5;  // roughness, > 0 (Phong: alpha < sqrt(2), so that p > -1)
+  int grooves = 10000;
+  std::uint64_t seed = 0;
+};
+
+// One groove's frame: a across it, u along its axis.
+struct GrooveFrame3d {
+  double cos_phi_a = 1.0, sin_phi_a = 0.0;
+  Vec3 a() const { return Vec3(cos_phi_a, sin_phi_a, 0.0); }
+  Vec3 u() const { return Vec3(-sin_phi_a, cos_phi_a, 0.0); }  // n x a
+};
+
+struct Microsurface3d {
+  Microsurface3dOptions options;
+  std::vector<double> theta_m;        // [0, pi/2)
+  std::vector<double> phi_a;          // [0, pi)
+  std::vector<GrooveFrame3d> frames;  // from phi_a
+  std::vector<Groove> grooves;        // cross-sections: aperture pi - 2 theta_m, unit facets
+};
+
+inline constexpr std::uint64_t kGroove3dStream = 0x67726f6f76653364ULL;  // "groove3d"
+inline constexpr std::uint64_t kRay3dStream = 0x7261797333ULL;             // "rays3"
+
+Microsurface3d make_microsurface3d(const Microsurface3dOptions& opt);
+// Appends one groove (for tests and hand-made surfaces).
+void add_groove3d(Microsurface3d& m, double theta_m, double phi_a);
+
+// One ray in one groove: i towards the light (unit, i.z > 0), f in (0, 1) the landing point across
+// the opening from the rim at -a to the rim at +a. o is valid when trace.how == escaped.
+struct Trace3dResult {
+  TraceResult trace;  // in the cross-section (exit_dir = (e_x, e_y))
+  Vec3 o = Vec3::Zero();
+};
+Trace3dResult trace_groove3d(const Groove& g, const GrooveFrame3d& frame, const Vec3& i, double f,
+                             const TraceOptions& opt = {});
+
+struct Microsurface3dTraceOptions {
+  double theta_i = 0.0;  // polar angle of the light, in [0, pi/2); its azimuth is pi
+  std::int64_t rays = 100000;
+  std::uint64_t seed = 0;
+  int theta_bins = 90;  // equal bins over [0, pi/2)
+  int phi_bins = 72;    // equal bins centred on phi = 0; even
+  int max_k = 16;       // per-k histograms for k = 0..max_k; larger k share the last row
+  TraceOptions trace;
+};
 
 // Histogram layout shared with analytic::Lobe3d (analytic/brdf_3d.h): theta_o in [0, pi/2) in
 // theta_bins equal bins; phi_o in phi_bins equal bins centred on phi = 0, phi_bins even; the light
 // at polar angle theta_i and azimuth pi; rows k = 0..max_k (+1 for k > max_k);
 // index [(row * theta_bins + t) * phi_bins + p].
+//
+// Every ray is in exactly one of escaped, blocked, vertex_hits, bounce_limit, not_upward; every
+// escaped ray in one k row and one (theta_o, phi_o) bin.
+struct Microsurface3dTally {
+  int theta_bins = 0;
+  int phi_bins = 0;
+  int max_k = 0;
+  std::int64_t rays = 0;
+  std::int64_t escaped = 0;       // left going up: counted in by_k and the histograms
+  std::int64_t blocked = 0;       // never entered its groove (not expected: ridges on one plane)
+  std::int64_t vertex_hits = 0;   // hit a ridge or a groove's bottom exactly
+  std::int64_t bounce_limit = 0;  // still inside after TraceOptions::max_bounces reflections
+  std::int64_t not_upward = 0;    // "escaped" along or below the horizon (not expected), kept apart
+  std::int64_t bounces = 0;       // reflections summed over escaped rays
+  int max_k_seen = 0;             // largest bounce count of an escaped ray
+  std::vector<std::int64_t> by_k;       // [row]
+  std::vector<std::int64_t> hist;       // [t * phi_bins + p], all escaped rays
+  std::vector<std::int64_t> hist_by_k;  // [(row * theta_bins + t) * phi_bins + p]
+
+  Microsurface3dTally() = default;
+  Microsurface3dTally(int theta_bins_, int phi_bins_, int max_k_);
+
+  double albedo() const { return rays > 0 ? static_cast<double>(escaped) / static_cast<double>(rays) : 0.0; }
+  std::int64_t lost() const { return blocked + vertex_hits + bounce_limit + not_upward; }
+  double theta_width() const { return 0.5 * M_PI / theta_bins; }
+  double phi_width() const { return 2.0 * M_PI / phi_bins; }
+  int theta_bin_of(double theta_o) const;
+  int phi_bin_of(double phi_o) const;  // phi_o in [-pi, pi]
+  int row_of(int k) const { return k > max_k ? max_k + 1 : k; }
+  std::size_t index(int row, int t, int p) const {
+    return (static_cast<std::size_t>(row) * theta_bins + t) * phi_bins + p;
+  }
+
+  void add(const Trace3dResult& r);
+  void merge(const Microsurface3dTally& other);  // same bins and max_k
+};
+
+std::int64_t chunk_count(const Microsurface3dTraceOptions& opt);
+
+// The rays of chunk c (kRaysPerChunk of them; the last chunk holds the rest).
+Microsurface3dTally trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt,
+                                               std::int64_t chunk);
+
+// All chunks, merged in order (one thread; a caller may run the chunks on several and merge).
+Microsurface3dTally trace_microsurface3d(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt);
 
 }  // namespace vgroove::sim
