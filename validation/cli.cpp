@@ -2,6 +2,7 @@
 
 #include "validation/commands.h"
 #include "validation/report.h"
+#include "validation/simulate.h"
 #include "validation/user_error.h"
 
 #include <CLI/CLI.hpp>
@@ -103,6 +104,17 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   plot->add_option("--out", pa.out, "SVG to write (default: the report's name with .svg)");
   plot->add_flag("--force", pa.force, "overwrite an existing file");
   pa.dry_run = ctx.dry_run;
+  SimulateArgs sa;
+  auto* simu = app.add_subcommand("simulate", "Run a scene (data/scenes/*.json): trace every theta_i with the effects it "
+                                               "chooses (Fresnel, histograms, energy per k); print a table, write the "
+                                               "result JSON.");
+  simu->add_option("scene", sa.scene, "scene spec, e.g. data/scenes/gold_groove.json")->required();
+  simu->add_option("--out", sa.out, "result JSON to write (refuses to overwrite without --force)");
+  simu->add_option("--threads", sa.threads, "worker threads (default 0: all cores); results do not depend on it")
+      ->capture_default_str();
+  simu->add_flag("--force", sa.force, "overwrite an existing result");
+  sa.dry_run = ctx.dry_run;
+  sa.cancel = ctx.cancel;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -122,6 +134,7 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
     if (*val) return cmd_validate(va);
     if (*acc) return cmd_bench_accuracy(ac);
     if (*plot) return cmd_plot(pa);
+    if (*simu) return cmd_simulate(sa);
   } catch (const UserError& e) {
     std::cerr << "vgroove: error: " << e.what() << "\n";
     return 2;
