@@ -1,1 +1,66 @@
+// vgroove bench: procedural microsurface throughput, in rays per second on one core.
+//
+// The flatland surface (sim::trace_microsurface: one groove per ray, 2D exit angle binned) and the
+// 3D one (sim::trace_microsurface3d: groove and landing point drawn, the cross-section traced with
+// the same 2D tracer, the exit lifted to 3D and binned in (theta_o, phi_o)), GGX alpha 0.3 and
+// 1.0, theta_i 0 and 60 deg, 10^4 grooves (the surface is built once, outside the timing). One
+// iteration traces one chunk of kRaysPerChunk rays with default bins (90; 90 x 72 in 3D). Rougher
+// surfaces have deeper grooves: bounces_per_ray says how much of the time is the reflection loop.
+#include "sim/microsurface.h"
+#include "sim/microsurface3d.h"
+
 #include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdint>
+
+namespace {
+
+using namespace vgroove;
+
+constexpr int kGrooves = 10000;
+
+double deg(double d) { return d * M_PI / 180.0; }
+
+void report(benchmark::State& state, std::int64_t rays, std::int64_t bounces) {
+  state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+  state.counters["bounces_per_ray"] =
+      benchmark::Counter(rays ? static_cast<double>(bounces) / static_cast<double>(rays) : 0.0);
+}
+
+// Arguments: alpha in hundredths, theta_i in degrees.
+void BM_microsurface_flatland(benchmark::State& state) {
+  const double alpha = static_cast<double>(state.range(0)) / 100.0;
+  const sim::Microsurface m = sim::make_microsurface({sim::NdfKind::ggx, alpha, kGrooves, 1});
+  sim::MicrosurfaceTraceOptions opt;
+  opt.theta_i = deg(static_cast<double>(state.range(1)));
+  opt.rays = sim::kRaysPerChunk;
+  std::int64_t rays = 0, bounces = 0;
+  for (auto _ : state) {
+    const sim::MicrosurfaceTally t = sim::trace_microsurface(m, opt);
+    benchmark::DoNotOptimize(t.escaped);
+    rays += t.rays;
+    bounces += t.bounces;
+  }
+  report(state, rays, bounces);
+}
+BENCHMARK(BM_microsurface_flatland)->ArgsProduct({{30, 100}, {0, 60}})->Unit(benchmark::kMillisecond);
+
+void BM_microsurface_3d(benchmark::State& state) {
+  const double alpha = static_cast<double>(state.range(0)) / 100.0;
+  const sim::Microsurface3d m = sim::make_microsurface3d({sim::NdfKind::ggx, alpha, kGrooves, 1});
+  sim::Microsurface3dTraceOptions opt;
+  opt.theta_i = deg(static_cast<double>(state.range(1)));
+  opt.rays = sim::kRaysPerChunk;
+  std::int64_t rays = 0, bounces = 0;
+  for (auto _ : state) {
+    const sim::Microsurface3dTally t = sim::trace_microsurface3d(m, opt);
+    benchmark::DoNotOptimize(t.escaped);
+    rays += t.rays;
+    bounces += t.bounces;
+  }
+  report(state, rays, bounces);
+}
+BENCHMARK(BM_microsurface_3d)->ArgsProduct({{30, 100}, {0, 60}})->Unit(benchmark::kMillisecond);
+
+}  // namespace
