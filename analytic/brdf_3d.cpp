@@ -1,1 +1,576 @@
 #include "analytic/brdf_3d.h"
+
+#include "analytic/kaleidoscope.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace vgroove::analytic {
+
+Dir3 dir3(double theta, double phi) {
+  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+
+namespace {
+
+double dot(const Dir3& a, const Dir3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+// The cross-section of the groove that holds h: the 2D angles of i, o and h, and c = |i_perp|.
+struct Plane {
+  double t_i = 0.0, t_o = 0.0, t_h = 0.0;
+  double c = 1.0;        // sqrt(1 - (i.u)^2): the length of i's projection on the cross-section
+  double sin_h = 0.0;    // sin(theta_h)
+  double cos_d = 1.0;    // i.h
+};
+
+// h = (i + o)/|i + o|, a = the horizontal direction of h, so that t_h = -theta_h <= 0 and the
+// facet with normal h is the "left" one (2D angle -theta_m). Returns false when h = n exactly.
+bool make_plane(const Dir3& i, const Dir3& o, Plane& p) {
+  Dir3 h{i.x + o.x, i.y + o.y, i.z + o.z};
+  const double len = std::sqrt(dot(h, h));
+  h = {h.x / len, h.y / len, h.z / len};
+  const double rho = std::hypot(h.x, h.y);
+  p.cos_d = dot(i, h);
+  p.sin_h = rho;
+  if (!(rho > 0.0)) return false;
+  const Dir3 a{h.x / rho, h.y / rho, 0.0};
+  const double ia = dot(i, a), oa = dot(o, a);
+  p.t_i = std::atan2(-ia, i.z);
+  p.t_o = std::atan2(-oa, o.z);
+  p.t_h = -std::atan2(rho, h.z);
+  p.c = std::hypot(ia, i.z);
+  return true;
+}
+
+// Fresnel along the 2D path: prod_j F(c |d_j . s_j|), the first facet `first`.
+double fresnel_product(const FresnelFn& F, double t_i, double theta_m, FacetSide first, int k, double c) {
+  if (!F) return 1.0;
+  double dx = std::sin(t_i), dy = -std::cos(t_i);  // travel direction (into the groove)
+  const double sm = std::sin(theta_m), cm = std::cos(theta_m);
+  bool left = first == FacetSide::left;
+  double prod = 1.0;
+  for (int j = 0; j < k; ++j) {
+    // Left facet normal at 2D angle -theta_m: (sin, cos); right at +theta_m: (-sin, cos).
+    const double nx = left ? sm : -sm, ny = cm;
+    const double dn = dx * nx + dy * ny;
+    prod *= F(c * std::abs(dn));
+    dx -= 2.0 * dn * nx;
+    dy -= 2.0 * dn * ny;
+    left = !left;
+  }
+  return prod;
+}
+
+// The outcome of exactly k reflections of Eq. (6) for the rays aimed at `first`, or G = 0.
+struct KShare {
+  double G = 0.0;        // fraction of the facet's lit width f_a
+  double f_a = 0.0;
+  double theta_o = 0.0;  // 2D exit angle
+};
+KShare share_k(double t_i, double theta_v, FacetSide first, int k) {
+  const FacetPrediction p = G_kaleidoscopic(t_i, theta_v, first);
+  KShare s;
+  if (!p.lit) return s;
+  s.f_a = p.f_a;
+  if (p.fewer.n == k) {
+    s.G = p.fewer.G;
+    s.theta_o = p.fewer.theta_o;
+  } else if (p.more.n == k) {
+    s.G = p.more.G;
+    s.theta_o = p.more.theta_o;
+  }
+  return s;
+}
+
+// Eq. (16) for one k in the cross-section `p` (p valid: sin_h > 0).
+double brdf_k_in_plane(const Plane& p, double cos_i, double cos_o, int k, NdfKind ndf, double alpha,
+                       const FresnelFn& F) {
+  const double sgn = (k % 2 == 0) ? 1.0 : -1.0;
+  double sum = 0.0;
+  for (FacetSide side : {FacetSide::left, FacetSide::right}) {
+    // Eq. (5) inverted: left: t_o = (-1)^k (t_i + pi - k theta_v); right: -t_o = (-1)^k (-t_i + pi - k theta_v).
+    const double base = side == FacetSide::left ? p.t_i + M_PI - sgn * p.t_o : -p.t_i + M_PI + sgn * p.t_o;
+    const int j_lo = static_cast<int>(std::ceil(-base / (2.0 * M_PI)));
+    const int j_hi = static_cast<int>(std::floor((k * M_PI - base) / (2.0 * M_PI)));
+    for (int j = j_lo; j <= j_hi; ++j) {
+      const double theta_v = (base + 2.0 * M_PI * j) / k;
+      if (!(theta_v > 0.0 && theta_v <= M_PI)) continue;
+      const KShare s = share_k(p.t_i, theta_v, side, k);
+      if (!(s.G > 0.0)) continue;
+      // The outcome's exit angle must be t_o (it is by construction, up to the 2 pi wrap).
+      if (std::abs(std::remainder(s.theta_o - p.t_o, 2.0 * M_PI)) > 1e-9) continue;
+      const double theta_m = 0.5 * (M_PI - theta_v);
+      const double i_dot_s = p.c * s.f_a;  // |i.s| = c f_a: f_a is the 2D cosine of incidence
+      // Lee et al. 2018, Eq. (16) with the Jacobian of Eq. (13).
+      sum += std::sin(theta_m) / (k * p.sin_h) * fresnel_product(F, p.t_i, theta_m, side, k, p.c) * i_dot_s *
+             D(ndf, theta_m, alpha) * s.G / (4.0 * p.cos_d * cos_i * cos_o);
+    }
+  }
+  return sum;
+}
+
+double ct_at(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, const FresnelFn& F) {
+  const double cos_i = i.z, cos_o = o.z;
+  if (!(cos_i > 0.0 && cos_o > 0.0)) return 0.0;
+  Dir3 h{i.x + o.x, i.y + o.y, i.z + o.z};
+  const double len = std::sqrt(dot(h, h));
+  h = {h.x / len, h.y / len, h.z / len};
+  const double theta_h = std::atan2(std::hypot(h.x, h.y), h.z);
+  const double ih = dot(i, h), oh = dot(o, h);
+  // Lee et al. 2018, Eq. (3) with the V-cavity G1 of Eq. (2).
+  const double G = std::min(G1_vcavity(ih, cos_i, h.z), G1_vcavity(oh, cos_o, h.z));
+  const double Fr = F ? F(ih) : 1.0;
+  // Lee et al. 2018, Eq. (1).
+  return Fr * D(ndf, theta_h, alpha) * G / (4.0 * cos_i * cos_o);
+}
+
+double brdf_range(const Dir3& i, const Dir3& o, int k_lo, int k_hi, NdfKind ndf, double alpha, const FresnelFn& F) {
+  const double cos_i = i.z, cos_o = o.z;
+  // Below or at the horizon: no flux (a set of measure zero; see the header).
+  if (!(cos_i > 0.0 && cos_o > 0.0)) return 0.0;
+  Plane p;
+  if (!make_plane(i, o, p)) {
+    // h = n: the limit of Eq. (16) is Cook-Torrance with G = 1 for k = 1 (sin theta_s / sin theta_h
+    // -> 1) and diverges like 1 / sin(theta_h) for k >= 2.
+    if (k_hi >= 2) return std::numeric_limits<double>::infinity();
+    return k_lo <= 1 ? ct_at(i, o, ndf, alpha, F) : 0.0;
+  }
+  double sum = 0.0;
+  for (int k = std::max(1, k_lo); k <= k_hi; ++k) sum += brdf_k_in_plane(p, cos_i, cos_o, k, ndf, alpha, F);
+  return sum;
+}
+
+}  // namespace
+
+double vgroove_brdf_k(const Dir3& i, const Dir3& o, int k, NdfKind ndf, double alpha) {
+  return brdf_range(i, o, k, k, ndf, alpha, FresnelFn{});
+}
+double vgroove_brdf_k(const Dir3& i, const Dir3& o, int k, NdfKind ndf, double alpha, const FresnelFn& F) {
+  return brdf_range(i, o, k, k, ndf, alpha, F);
+}
+double vgroove_brdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, int max_k) {
+  return brdf_range(i, o, 1, max_k, ndf, alpha, FresnelFn{});
+}
+double vgroove_brdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, int max_k, const FresnelFn& F) {
+  return brdf_range(i, o, 1, max_k, ndf, alpha, F);
+}
+double cook_torrance(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha) {
+  return ct_at(i, o, ndf, alpha, FresnelFn{});
+}
+double cook_torrance(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, const FresnelFn& F) {
+  return ct_at(i, o, ndf, alpha, F);
+}
+
+double groove_cdf(NdfKind ndf, double alpha, double theta_m) {
+  if (!(theta_m > 0.0)) return 0.0;
+  if (!(theta_m < 0.5 * M_PI)) return 1.0;
+  const double t = std::tan(theta_m), t2 = t * t;
+  switch (ndf) {
+    case NdfKind::ggx:
+      return t2 / (alpha * alpha + t2);
+    case NdfKind::beckmann:
+      return -std::expm1(-t2 / (alpha * alpha));
+    case NdfKind::phong: {
+      // 1 - cos^(p+2), p + 2 = 2 / alpha^2; log cos = log1p(-2 sin^2(theta/2)) keeps small angles exact.
+      const double s = std::sin(0.5 * theta_m);
+      return -std::expm1((phong_exponent(alpha) + 2.0) * std::log1p(-2.0 * s * s));
+    }
+  }
+  return 0.0;
+}
+
+double groove_cdf_inverse(NdfKind ndf, double alpha, double u) {
+  if (!(u > 0.0)) return 0.0;
+  if (!(u < 1.0)) return 0.5 * M_PI;
+  switch (ndf) {
+    case NdfKind::ggx:
+      return std::atan(alpha * std::sqrt(u / (1.0 - u)));
+    case NdfKind::beckmann:
+      return std::atan(alpha * std::sqrt(-std::log1p(-u)));
+    case NdfKind::phong: {
+      const double one_minus_cos = -std::expm1(std::log1p(-u) / (phong_exponent(alpha) + 2.0));
+      return 2.0 * std::asin(std::sqrt(0.5 * one_minus_cos));
+    }
+  }
+  return 0.0;
+}
+
+// ------------------------------------------------------------------------------------------
+// The lobes: push-forward of the groove distribution.
+namespace {
+
+constexpr std::array<double, 8> kGl8x = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
+                                         -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
+                                         0.7966664774136267,  0.9602898564975363};
+constexpr std::array<double, 8> kGl8w = {0.1012285362903763, 0.2223810344533745, 0.3137066678684264,
+                                         0.3626837833783620, 0.3626837833783620, 0.3137066678684264,
+                                         0.2223810344533745, 0.1012285362903763};
+
+constexpr std::array<double, 4> kGl4x = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
+                                         0.8611363115940526};
+constexpr std::array<double, 4> kGl4w = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
+                                         0.3478548451374538};
+constexpr std::array<double, 2> kGl2x = {-0.5773502691896257, 0.5773502691896257};
+constexpr std::array<double, 2> kGl2w = {1.0, 1.0};
+
+// Gauss-Legendre nodes and weights of order n on [-1, 1] (Newton on P_n).
+void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
+  x.assign(n, 0.0);
+  w.assign(n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    double z = std::cos(M_PI * (i + 0.75) / (n + 0.5));
+    double dp = 1.0;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1.0, p1 = z;
+      for (int j = 2; j <= n; ++j) {
+        const double p2 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p0) / j;
+        p0 = p1;
+        p1 = p2;
+      }
+      if (n == 1) p0 = 1.0;
+      dp = n * (z * p1 - p0) / (z * z - 1.0);
+      const double dz = p1 / dp;
+      z -= dz;
+      if (std::abs(dz) < 1e-16) break;
+    }
+    x[i] = -z;
+    w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
+  }
+}
+
+enum class LobeModel { vgroove, cook_torrance };
+
+struct LobeRun {
+  NdfKind ndf;
+  double alpha;
+  double theta_i;
+  int tb, pb, max_k;
+  LobeModel model;
+  Lobe3d* out;
+};
+
+// One groove azimuth: the geometry of the cross-section.
+struct Azimuth {
+  double tau;     // projected incident angle t_i
+  double iu;      // i.u
+  double c;       // sqrt(1 - iu^2)
+  double ca, sa;  // cos, sin phi_a
+};
+
+// The bin of the 2D exit angle t in the cross-section, or -1 below the horizon.
+int bin_of(const LobeRun& r, const Azimuth& az, double t) {
+  // o = c (-sin t a + cos t n) - iu u, a = (ca, sa, 0), u = (-sa, ca, 0).
+  const double ox = -az.c * std::sin(t) * az.ca + az.iu * az.sa;
+  const double oy = -az.c * std::sin(t) * az.sa - az.iu * az.ca;
+  const double oz = az.c * std::cos(t);
+  if (!(oz > 0.0)) return -1;
+  const double theta = std::atan2(std::hypot(ox, oy), oz);
+  const double dphi = 2.0 * M_PI / r.pb;
+  int tb = static_cast<int>(theta / (0.5 * M_PI / r.tb));
+  tb = std::min(tb, r.tb - 1);
+  int p = static_cast<int>(std::floor((std::atan2(oy, ox) + 0.5 * dphi) / dphi));
+  p = ((p % r.pb) + r.pb) % r.pb;
+  return tb * r.pb + p;
+}
+
+// The 2D exit angles at which the arc of exits crosses a bin edge (theta_o edges, the horizon
+// and the phi_o lines), all in (-pi/2, pi/2] (escaping exits have cos t > 0).
+void edge_crossings(const LobeRun& r, const Azimuth& az, std::vector<double>& T) {
+  T.clear();
+  T.push_back(-0.5 * M_PI);
+  T.push_back(0.5 * M_PI);
+  for (int b = 1; b < r.tb; ++b) {
+    // o_z = c cos t = cos(theta_b).
+    const double q = std::cos(b * 0.5 * M_PI / r.tb) / az.c;
+    if (q < 1.0) {
+      const double t = std::acos(q);
+      T.push_back(t);
+      T.push_back(-t);
+    }
+  }
+  const double dphi = 2.0 * M_PI / r.pb;
+  for (int p = 0; p < r.pb / 2; ++p) {
+    // o on the line at azimuth phi_b: c sin t sin(phi_a - phi_b) = -(i.u) cos(phi_a - phi_b).
+    const double d = std::atan2(az.sa, az.ca) - (p + 0.5) * dphi;
+    const double den = az.c * std::sin(d);
+    if (den == 0.0) continue;
+    const double v = -az.iu * std::cos(d) / den;
+    if (std::abs(v) < 1.0) T.push_back(std::asin(v));
+  }
+  std::sort(T.begin(), T.end());
+}
+
+// The weight P(theta_v) per unit CDF and the exit angle for one facet and k.
+struct Outcome {
+  double P = 0.0;
+  double t_o = 0.0;
+};
+Outcome outcome_ct(const Azimuth& az, FacetSide side, double theta_v, double w);
+Outcome outcome(const LobeRun& r, const Azimuth& az, FacetSide side, int k, double theta_v) {
+  Outcome res;
+  const double w = opening_width(az.tau, theta_v);
+  if (!(w > 0.0)) return res;
+  if (r.model == LobeModel::vgroove) {
+    const KShare s = share_k(az.tau, theta_v, side, k);
+    res.P = s.G * s.f_a / w;
+    res.t_o = s.theta_o;
+    return res;
+  }
+  return outcome_ct(az, side, theta_v, w);
+}
+
+// The same weight without the exit angle, inlined for the quadrature nodes: Eq. (4) and the
+// corrected Eq. (6) for the facet with the (mirrored) projected angle tf (see kaleidoscope.cpp).
+double weight_k(const LobeRun& r, const Azimuth& az, FacetSide side, int k, double theta_v) {
+  if (r.model == LobeModel::cook_torrance) return outcome(r, az, side, k, theta_v).P;
+  const double tf = side == FacetSide::left ? az.tau : -az.tau;
+  const double f_a = std::sin(0.5 * theta_v - tf);
+  if (!(f_a > 0.0)) return 0.0;
+  const double f_b = std::max(0.0, -std::sin(0.5 * theta_v + tf));
+  const int K = saturate_to_int(std::floor((M_PI + 2.0 * tf) / theta_v) + 1.0);
+  if (K != k && K != k + 1) return 0.0;
+  const double f_k = std::clamp(std::sin(K * theta_v - 0.5 * theta_v - tf), f_b, f_a);
+  const double Gf = K == k ? f_k - f_b : f_a - f_k;  // G f_a of the k-reflection outcome
+  return Gf / (2.0 * std::sin(0.5 * theta_v) * std::cos(az.tau));
+}
+
+Outcome outcome_ct(const Azimuth& az, FacetSide side, double theta_v, double w) {
+  Outcome res;
+  // Cook-Torrance: one reflection off the facet, V-cavity G = min(G1(i), G1(o)) in the
+  // cross-section (the ratios of Eq. (2) are invariant under the projection).
+  const double theta_m = 0.5 * (M_PI - theta_v);
+  const double t_s = side == FacetSide::left ? -theta_m : theta_m;
+  const double f_a = std::cos(az.tau - t_s);
+  if (!(f_a > 0.0)) return res;
+  const double t_o = std::remainder(2.0 * t_s - az.tau, 2.0 * M_PI);
+  const double G = std::min(G1_vcavity_inplane(az.tau, t_s), G1_vcavity_inplane(t_o, t_s));
+  res.P = G * f_a / w;
+  res.t_o = t_o;
+  return res;
+}
+
+// Which branch of the V-cavity min is active (for the Cook-Torrance breakpoints).
+int ct_branch(const Azimuth& az, FacetSide side, double theta_v) {
+  const double theta_m = 0.5 * (M_PI - theta_v);
+  const double t_s = side == FacetSide::left ? -theta_m : theta_m;
+  const double t_o = 2.0 * t_s - az.tau;
+  const double gi = 2.0 * std::cos(t_s) * std::cos(az.tau) / std::abs(std::cos(az.tau - t_s));
+  const double go = 2.0 * std::cos(t_s) * std::cos(t_o) / std::abs(std::cos(t_o - t_s));
+  if (gi >= 1.0 && go >= 1.0) return 0;
+  return gi < go ? 1 : 2;
+}
+
+struct Scratch {
+  std::vector<double> T, X;
+};
+
+// Integrate one facet's k-reflection outcomes over theta_v in [x_lo, x_hi] with the weight
+// `weight` (the phi_a quadrature weight), depositing into the bins (and their mirror images).
+void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, double x_lo, double x_hi,
+                    double weight, Scratch& sc) {
+  if (!(x_hi > x_lo)) return;
+  const double tf = side == FacetSide::left ? az.tau : -az.tau;
+  std::vector<double>& X = sc.X;
+  X.clear();
+  X.push_back(x_lo);
+  X.push_back(x_hi);
+  auto add = [&](double x) {
+    if (x > x_lo && x < x_hi) X.push_back(x);
+  };
+  // Where Eq. (4) or (6) change form: lit (theta_v = 2 tf), f_b clamp (theta_v = -2 tf), K changes
+  // ((pi + 2 tf) / j), the f_k clamp at psi = 0 ((pi + tf) / (j - 1/2)).
+  add(2.0 * tf);
+  add(-2.0 * tf);
+  for (int j = std::max(1, k - 1); j <= k + 2; ++j) {
+    add((M_PI + 2.0 * tf) / j);
+    add((M_PI + tf) / (j - 0.5));
+  }
+  // Where the exit crosses a bin edge: t = sigma (-1)^k (tf + pi - k theta_v) (mod 2 pi),
+  // sigma = +1 for the left facet, -1 for the right (its mirror image).
+  const int kk = r.model == LobeModel::vgroove ? k : 1;
+  const double sgn = ((kk % 2 == 0) ? 1.0 : -1.0) * (side == FacetSide::left ? 1.0 : -1.0);
+  // v = tf + pi - k theta_v sweeps [v_lo, v_hi]; t = sgn (v - 2 pi j) must lie in (-pi/2, pi/2],
+  // so only the sorted crossings inside each window sgn [v_lo - 2 pi j, v_hi - 2 pi j] matter.
+  const double v_lo = tf + M_PI - kk * x_hi, v_hi = tf + M_PI - kk * x_lo;
+  const int jj_lo = static_cast<int>(std::floor((v_lo - 0.5 * M_PI) / (2.0 * M_PI)));
+  const int jj_hi = static_cast<int>(std::ceil((v_hi + 0.5 * M_PI) / (2.0 * M_PI)));
+  for (int j = jj_lo; j <= jj_hi; ++j) {
+    const double a = sgn * (v_lo - 2.0 * M_PI * j), b = sgn * (v_hi - 2.0 * M_PI * j);
+    const auto first = std::lower_bound(sc.T.begin(), sc.T.end(), std::min(a, b));
+    const auto last = std::upper_bound(sc.T.begin(), sc.T.end(), std::max(a, b));
+    for (auto it = first; it != last; ++it) add((tf + M_PI - sgn * *it - 2.0 * M_PI * j) / kk);
+  }
+  std::sort(X.begin(), X.end());
+  if (r.model == LobeModel::cook_torrance) {
+    // The V-cavity min switches branch: located by scanning and bisection.
+    const size_t n0 = X.size();
+    for (size_t s = 0; s + 1 < n0; ++s) {
+      const int m = 16;
+      for (int q = 0; q < m; ++q) {
+        double a = X[s] + (X[s + 1] - X[s]) * q / m, b = X[s] + (X[s + 1] - X[s]) * (q + 1) / m;
+        const int ba = ct_branch(az, side, a), bb = ct_branch(az, side, b);
+        if (ba == bb) continue;
+        for (int it = 0; it < 60; ++it) {
+          const double mid = 0.5 * (a + b);
+          (ct_branch(az, side, mid) == ba ? a : b) = mid;
+        }
+        X.push_back(0.5 * (a + b));
+      }
+    }
+    std::sort(X.begin(), X.end());
+  }
+  const int row = std::min(k, r.max_k + 1);
+  Lobe3d& L = *r.out;
+  for (size_t s = 0; s + 1 < X.size(); ++s) {
+    const double x0 = X[s], x1 = X[s + 1];
+    if (!(x1 > x0)) continue;
+    const Outcome mid = outcome(r, az, side, k, 0.5 * (x0 + x1));
+    if (!(mid.P > 0.0)) continue;
+    const int bin = bin_of(r, az, mid.t_o);
+    if (bin < 0) continue;
+    // Gauss-Legendre in w = sqrt(CDF(theta_m)): du = 2 w dw, smooth where D peaks at theta_m = 0.
+    const double w0 = std::sqrt(groove_cdf(r.ndf, r.alpha, 0.5 * (M_PI - x1)));
+    const double w1 = std::sqrt(groove_cdf(r.ndf, r.alpha, 0.5 * (M_PI - x0)));
+    if (!(w1 > w0)) continue;
+    // Order by the piece's mass: Gauss-Legendre of order 2 already integrates cubics exactly, and
+    // pieces lighter than 1e-9 (the narrow bands of high k) are short and smooth.
+    const double mass = (w1 - w0) * (w1 + w0);
+    const double* gx = kGl8x.data();
+    const double* gw = kGl8w.data();
+    size_t nq = kGl8x.size();
+    if (mass < 1e-9) {
+      gx = kGl2x.data();
+      gw = kGl2w.data();
+      nq = 2;
+    } else if (mass < 1e-6) {
+      gx = kGl4x.data();
+      gw = kGl4w.data();
+      nq = 4;
+    }
+    double sum = 0.0;
+    for (size_t q = 0; q < nq; ++q) {
+      const double w = 0.5 * (w0 + w1) + 0.5 * (w1 - w0) * gx[q];
+      const double theta_v = M_PI - 2.0 * groove_cdf_inverse(r.ndf, r.alpha, w * w);
+      sum += gw[q] * weight_k(r, az, side, k, theta_v) * 2.0 * w;
+    }
+    const double val = weight * 0.5 * (w1 - w0) * sum;
+    const int t = bin / r.pb, p = bin % r.pb;
+    // The mirror image pi - phi_a of the groove (y -> -y) sends the same flux to phi_o -> -phi_o.
+    L.hist_by_k[(static_cast<size_t>(row) * r.tb + t) * r.pb + p] += val;
+    L.hist_by_k[(static_cast<size_t>(row) * r.tb + t) * r.pb + (r.pb - p) % r.pb] += val;
+  }
+}
+
+// The tail beyond the explicit bands (theta_v < x_cut for the facet): midpoint rule in the CDF.
+void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, double x_cut, double weight) {
+  const double u0 = groove_cdf(r.ndf, r.alpha, 0.5 * (M_PI - x_cut));
+  const double mass = 1.0 - u0;
+  if (!(mass > 0.0)) return;
+  const int n = 1024;
+  Lobe3d& L = *r.out;
+  for (int q = 0; q < n; ++q) {
+    const double u = u0 + mass * (q + 0.5) / n;
+    const double theta_v = M_PI - 2.0 * groove_cdf_inverse(r.ndf, r.alpha, u);
+    const FacetPrediction p = G_kaleidoscopic(az.tau, theta_v, side);
+    if (!p.lit) continue;
+    const double w = opening_width(az.tau, theta_v);
+    for (const BounceShare& b : {p.fewer, p.more}) {
+      if (!(b.G > 0.0)) continue;
+      const int bin = bin_of(r, az, b.theta_o);
+      if (bin < 0) continue;
+      const int row = std::min(b.n, r.max_k + 1);
+      const int t = bin / r.pb, pp = bin % r.pb;
+      const double val = weight * mass / n * b.G * p.f_a / w;
+      L.hist_by_k[(static_cast<size_t>(row) * r.tb + t) * r.pb + pp] += val;
+      L.hist_by_k[(static_cast<size_t>(row) * r.tb + t) * r.pb + (r.pb - pp) % r.pb] += val;
+    }
+  }
+}
+
+Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins, int max_k, LobeModel model,
+                const Lobe3dOptions& opt) {
+  Lobe3d L;
+  L.theta_bins = theta_bins;
+  L.phi_bins = phi_bins;
+  L.max_k = max_k;
+  const int rows = max_k + 2;
+  L.by_k.assign(rows, 0.0);
+  L.hist.assign(static_cast<size_t>(theta_bins) * phi_bins, 0.0);
+  L.hist_by_k.assign(static_cast<size_t>(rows) * theta_bins * phi_bins, 0.0);
+  LobeRun r{ndf, alpha, theta_i, theta_bins, phi_bins, max_k, model, &L};
+  std::vector<double> gx, gw;
+  gauss_legendre(opt.phi_order, gx, gw);
+  Scratch sc;
+  // The light at i = dir3(theta_i, pi): i.a = -sin(theta_i) cos(phi_a), i.u = sin(theta_i) sin(phi_a).
+  const double si = std::sin(theta_i), ci = std::cos(theta_i);
+  const double h = 0.5 * M_PI / opt.phi_panels;
+  // k beyond which the bands stop and the tail takes over.
+  const int k_cap = 256;
+  for (int panel = 0; panel < opt.phi_panels; ++panel) {
+    for (int q = 0; q < opt.phi_order; ++q) {
+      const double phi_a = h * (panel + 0.5 + 0.5 * gx[q]);
+      // Area fraction 2 D cos sin d theta_m d phi_a = (1/pi) dCDF d phi_a; phi_a in [0, pi/2] and
+      // its mirror image pi - phi_a (y -> -y) cover [0, pi).
+      const double weight = 0.5 * h * gw[q] / M_PI;
+      Azimuth az;
+      az.ca = std::cos(phi_a);
+      az.sa = std::sin(phi_a);
+      az.tau = std::atan2(si * az.ca, ci);
+      az.iu = si * az.sa;
+      az.c = std::sqrt(std::max(0.0, 1.0 - az.iu * az.iu));
+      edge_crossings(r, az, sc.T);
+      {
+        for (FacetSide side : {FacetSide::left, FacetSide::right}) {
+          const double tf = side == FacetSide::left ? az.tau : -az.tau;
+          const double span = M_PI + 2.0 * tf;  // Eq. (4): K = floor(span / theta_v) + 1
+          if (model == LobeModel::cook_torrance) {
+            integrate_band(r, az, side, 1, 0.0, M_PI, weight, sc);
+            continue;
+          }
+          int k = 1;
+          for (;; ++k) {
+            // K in {k, k + 1} <=> theta_v in [span / (k + 1), span / (k - 1)).
+            const double x_lo = span / (k + 1), x_hi = k == 1 ? M_PI : std::min(M_PI, span / (k - 1));
+            integrate_band(r, az, side, k, x_lo, x_hi, weight, sc);
+            if (k >= k_cap) break;
+            // Stop once the grooves left (theta_v < span / (k + 1)) weigh nothing.
+            if (k >= max_k + 1 && 1.0 - groove_cdf(ndf, alpha, 0.5 * (M_PI - x_lo)) < 1e-16) break;
+          }
+          if (k >= k_cap) integrate_tail(r, az, side, span / (k + 1), weight);
+        }
+      }
+    }
+  }
+  for (int row = 0; row < rows; ++row) {
+    for (int t = 0; t < theta_bins; ++t) {
+      for (int p = 0; p < phi_bins; ++p) {
+        const double v = L.hist_by_k[(static_cast<size_t>(row) * theta_bins + t) * phi_bins + p];
+        L.by_k[row] += v;
+        L.hist[static_cast<size_t>(t) * phi_bins + p] += v;
+      }
+    }
+    L.albedo += L.by_k[row];
+  }
+  return L;
+}
+
+}  // namespace
+
+Lobe3d vgroove_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins, int max_k) {
+  return vgroove_lobe_3d(ndf, alpha, theta_i, theta_bins, phi_bins, max_k, Lobe3dOptions{});
+}
+Lobe3d vgroove_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins, int max_k,
+                       const Lobe3dOptions& opt) {
+  return run_lobe(ndf, alpha, theta_i, theta_bins, phi_bins, max_k, LobeModel::vgroove, opt);
+}
+Lobe3d cook_torrance_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins) {
+  return cook_torrance_lobe_3d(ndf, alpha, theta_i, theta_bins, phi_bins, Lobe3dOptions{});
+}
+Lobe3d cook_torrance_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins,
+                             const Lobe3dOptions& opt) {
+  return run_lobe(ndf, alpha, theta_i, theta_bins, phi_bins, 1, LobeModel::cook_torrance, opt);
+}
+
+}  // namespace vgroove::analytic
