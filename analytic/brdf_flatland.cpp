@@ -1,1 +1,358 @@
 #include "analytic/brdf_flatland.h"
+
+#include "analytic/kaleidoscope.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+namespace vgroove::analytic {
+
+namespace {
+
+constexpr double kHalfPi = 0.5 * M_PI;
+
+// Left facet of the groove of aperture theta_v: theta_s = -(pi - theta_v)/2.
+double theta_s_left(double theta_v) { return 0.5 * theta_v - kHalfPi; }
+
+// w_n of the header's step (b) for the left facet at incidence theta_i: the projected width
+// (unit facet) of the rays aimed at it that leave after n reflections.
+double width_left(double theta_i, double theta_v, int n) {
+  const FacetPrediction p = G_kaleidoscopic(theta_i, theta_v, FacetSide::left);
+  if (!p.lit) return 0.0;
+  double w = 0.0;
+  // Lee et al. 2018, Eq. (6) times f_a: G(k-1) f_a = f_a - f_k, G(k) f_a = f_k - f_b.
+  if (p.fewer.n == n) w += p.f_a - p.f_k;
+  if (p.more.n == n) w += p.f_k - p.f_b;
+  return w;
+}
+
+// rho2 cos(theta_o) cos(theta_i) from the left facets, step (d) of the header.
+double left_term(NdfKind ndf, double alpha, double theta_i, double theta_o, int k) {
+  const double sign = (k % 2 == 0) ? 1.0 : -1.0;
+  // Eq. (5) inverted: k theta_v = theta_i + pi - (-1)^k theta_o + 2 pi m, theta_v in (0, pi].
+  const double base = theta_i + M_PI - sign * theta_o;
+  const int m_lo = static_cast<int>(std::ceil(-base / (2.0 * M_PI)));
+  double sum = 0.0;
+  for (int m = m_lo;; ++m) {
+    const double theta_v = (base + 2.0 * M_PI * m) / k;
+    if (!(theta_v > 0.0)) continue;
+    if (theta_v > M_PI) break;
+    const double w = width_left(theta_i, theta_v, k);
+    // |d theta_s / d theta_o| = 1 / (2k): the flatland Eq. (13).
+    if (w > 0.0) sum += D2(ndf, theta_s_left(theta_v), alpha) * w / (2.0 * k);
+  }
+  return sum;
+}
+
+// ---- Gauss-Legendre ----------------------------------------------------------------------------
+
+struct GaussLegendre {
+  std::vector<double> x, w;  // on [-1, 1]
+};
+
+GaussLegendre make_gauss_legendre(int n) {
+  GaussLegendre g;
+  g.x.resize(static_cast<std::size_t>(n));
+  g.w.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    double x = std::cos(M_PI * (i + 0.75) / (n + 0.5));  // Newton from the Chebyshev-like guess
+    double dp = 1.0;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1.0, p1 = x;
+      for (int j = 2; j <= n; ++j) {
+        const double p2 = ((2.0 * j - 1.0) * x * p1 - (j - 1.0) * p0) / j;
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = n * (x * p1 - p0) / (x * x - 1.0);
+      const double dx = p1 / dp;
+      x -= dx;
+      if (std::abs(dx) < 1e-16) break;
+    }
+    g.x[static_cast<std::size_t>(i)] = x;
+    g.w[static_cast<std::size_t>(i)] = 2.0 / ((1.0 - x * x) * dp * dp);
+  }
+  return g;
+}
+
+template <class F>
+double integrate(const GaussLegendre& g, F&& f, double a, double b) {
+  const double c = 0.5 * (a + b), d = 0.5 * (b - a);
+  double s = 0.0;
+  for (std::size_t i = 0; i < g.x.size(); ++i) s += g.w[i] * f(c + d * g.x[i]);
+  return d * s;
+}
+
+// ---- The binned lobe ---------------------------------------------------------------------------
+
+struct Accumulator {
+  int bins, max_k;
+  std::vector<double> hist;  // [row * bins + bin]
+  double below = 0.0;
+  double tail = 0.0;
+
+  int row_of(int n) const { return std::min(n, max_k + 1); }
+  void add(int n, int bin, double v) { hist[static_cast<std::size_t>(row_of(n)) * bins + bin] += v; }
+};
+
+struct LobeContext {
+  NdfKind ndf;
+  double alpha;
+  int bins;
+  double bin_w;
+  GaussLegendre gl_hi, gl_mid, gl_lo;
+  std::vector<double> peak_points;  // theta_v values graded around theta_s = 0
+};
+
+const GaussLegendre& order_for(const LobeContext& c, int k) {
+  // Pieces of Eq. (4) shrink like pi/k^2 and the integrand varies little across them.
+  return k <= 8 ? c.gl_hi : (k <= 64 ? c.gl_mid : c.gl_lo);
+}
+
+// Flux of the left facets at incidence theta_i (the right facets: mirror = true, called with
+// -theta_i; the bin is then flipped) for the k-pieces k = 1..n_res + 1, into the bins.
+void add_left_resolved(const LobeContext& c, double theta_i, bool mirror, int n_res, Accumulator& acc) {
+  const double lit_lo = std::max(0.0, 2.0 * theta_i);  // f_a = sin(theta_v/2 - theta_i) > 0
+  const double cpk = M_PI + 2.0 * theta_i;             // Eq. (4): k changes at theta_v = cpk / m
+  const double inv_cos = 1.0 / std::cos(theta_i);
+  std::vector<double> cuts;
+  for (int k = 1; k <= n_res + 1; ++k) {
+    // Eq. (4): k on (cpk / k, cpk / (k - 1)].
+    const double hi = std::min(M_PI, k == 1 ? M_PI : cpk / (k - 1));
+    const double lo = std::max(lit_lo, cpk / k);
+    if (hi <= lit_lo) break;
+    if (!(hi > lo)) continue;
+    cuts.assign({lo, hi});
+    auto cut = [&](double v) {
+      if (v > lo && v < hi) cuts.push_back(v);
+    };
+    cut(-2.0 * theta_i);  // f_b = max(0, -sin(theta_v/2 + theta_i)) switches
+    // f(k) = sin((k - 1/2) theta_v - theta_i) = 0 (the clamp at 0), and f(k) = f(b) (kth = 2 pi j).
+    const double kh = k - 0.5;
+    for (int j = static_cast<int>(std::ceil((kh * lo - theta_i) / M_PI));
+         j <= static_cast<int>(std::floor((kh * hi - theta_i) / M_PI)); ++j)
+      cut((theta_i + j * M_PI) / kh);
+    for (int j = static_cast<int>(std::ceil(k * lo / (2.0 * M_PI)));
+         j <= static_cast<int>(std::floor(k * hi / (2.0 * M_PI))); ++j)
+      cut(2.0 * M_PI * j / k);
+    for (double v : c.peak_points) cut(v);
+    std::sort(cuts.begin(), cuts.end());
+    const GaussLegendre& gl = order_for(c, k);
+    for (std::size_t p = 0; p + 1 < cuts.size(); ++p) {
+      const double a = cuts[p], b = cuts[p + 1];
+      if (!(b > a)) continue;
+      for (int n = k - 1; n <= k; ++n) {
+        if (n == 0) continue;  // k = 1: w_0 = f_a - f_k = 0 exactly (f_k = f_a)
+        // Eq. (5), unwrapped: y = (-1)^n (theta_i + pi - n theta_v), linear in theta_v.
+        const double sgn = (n % 2 == 0) ? 1.0 : -1.0;
+        auto y_of = [&](double v) { return sgn * (theta_i + M_PI - n * v); };
+        auto v_of = [&](double y) { return (theta_i + M_PI - sgn * y) / n; };
+        const double ya = std::min(y_of(a), y_of(b)), yb = std::max(y_of(a), y_of(b));
+        // Bin edges -pi/2 + j w on the whole circle (2 bins of them per turn).
+        const long j0 = static_cast<long>(std::floor((ya + kHalfPi) / c.bin_w));
+        const long j1 = static_cast<long>(std::floor((yb + kHalfPi) / c.bin_w));
+        for (long j = j0; j <= j1; ++j) {
+          const double y_lo = std::max(ya, -kHalfPi + j * c.bin_w);
+          const double y_hi = std::min(yb, -kHalfPi + (j + 1) * c.bin_w);
+          if (!(y_hi > y_lo)) continue;
+          const double v1 = std::clamp(v_of(y_lo), a, b), v2 = std::clamp(v_of(y_hi), a, b);
+          const double va = std::min(v1, v2), vb = std::max(v1, v2);
+          if (!(vb > va)) continue;
+          // d Phi_n = D2 w_n d theta_s / cos theta_i, d theta_s = d theta_v / 2.
+          const double flux = integrate(gl, [&](double v) {
+            return D2(c.ndf, theta_s_left(v), c.alpha) * width_left(theta_i, v, n);
+          }, va, vb) * 0.5 * inv_cos;
+          long bin = j % (2L * c.bins);
+          if (bin < 0) bin += 2L * c.bins;
+          if (bin >= c.bins) {
+            acc.below += flux;
+            continue;
+          }
+          const int b_out = mirror ? c.bins - 1 - static_cast<int>(bin) : static_cast<int>(bin);
+          acc.add(n, b_out, flux);
+        }
+      }
+    }
+  }
+}
+
+// Flux of the left facets with theta_v in (lit_lo, upper]: all of it leaves (f_a - f_b).
+// Graded towards theta_v = 0, where D2 may diverge (Phong, alpha > 1).
+double left_flux_below(const LobeContext& c, double theta_i, double upper) {
+  const double lit_lo = std::max(0.0, 2.0 * theta_i);
+  if (!(upper > lit_lo)) return 0.0;
+  const double inv_cos = 1.0 / std::cos(theta_i);
+  auto f = [&](double v) {
+    const FacetPrediction p = G_kaleidoscopic(theta_i, v, FacetSide::left);
+    return p.lit ? D2(c.ndf, theta_s_left(v), c.alpha) * (p.f_a - p.f_b) : 0.0;
+  };
+  // Below v0 the facet angle theta_s = theta_v/2 - pi/2 is no longer resolved in double (its
+  // rounding, ~1e-16, is a relative error 2e-16/theta_v in cos theta_s, the quantity D2 depends
+  // on near the horizon): there the integrand is extrapolated as the power law it is, I(v) =
+  // I(v0) (v/v0)^e with e fitted on [v0/2, v0] (Phong: D2 ~ cos^p ~ (v/2)^p and f_a - f_b ~ v,
+  // e = p + 1 > -1; GGX: e = 1; Beckmann: I = 0), whose integral over (0, v0) is I(v0) v0/(e+1).
+  const double v0 = std::ldexp(1.0, -24);
+  double s = 0.0;
+  double start = lit_lo;
+  if (lit_lo < v0 && upper > v0) {
+    const double i1 = f(v0), i2 = f(0.5 * v0);
+    if (i1 > 0.0 && i2 > 0.0) {
+      const double e = std::log2(i1 / i2);
+      if (e > -1.0) s += i1 * v0 / (e + 1.0);
+    }
+    start = v0;
+  }
+  std::vector<double> cuts{start, upper};
+  if (-2.0 * theta_i > start && -2.0 * theta_i < upper) cuts.push_back(-2.0 * theta_i);
+  // Dyadic grading towards v0, where D2 may diverge like theta_v^-1.5.
+  for (double v = 0.5 * upper; v > start; v *= 0.5) cuts.push_back(v);
+  std::sort(cuts.begin(), cuts.end());
+  for (std::size_t p = 0; p + 1 < cuts.size(); ++p)
+    if (cuts[p + 1] > cuts[p]) s += integrate(c.gl_mid, f, cuts[p], cuts[p + 1]);
+  return s * 0.5 * inv_cos;
+}
+
+int bin_of(double theta, int bins, bool lower_side) {
+  const double u = (theta + kHalfPi) / (M_PI / bins);
+  int j = static_cast<int>(std::floor(u));
+  if (lower_side && j == u) --j;  // exactly on an edge: the bin below it
+  return std::clamp(j, 0, bins - 1);
+}
+
+FlatlandLobe make_layout(int bins, int max_k) {
+  FlatlandLobe lobe;
+  lobe.bins = bins;
+  lobe.max_k = max_k;
+  lobe.by_k.assign(static_cast<std::size_t>(max_k) + 2, 0.0);
+  lobe.theta_o.assign(static_cast<std::size_t>(bins), 0.0);
+  lobe.theta_o_by_k.assign((static_cast<std::size_t>(max_k) + 2) * static_cast<std::size_t>(bins), 0.0);
+  return lobe;
+}
+
+void finish(FlatlandLobe& lobe) {
+  for (int r = 0; r < lobe.max_k + 2; ++r)
+    for (int b = 0; b < lobe.bins; ++b) {
+      const double v = lobe.theta_o_by_k[static_cast<std::size_t>(r) * lobe.bins + b];
+      lobe.by_k[static_cast<std::size_t>(r)] += v;
+      lobe.theta_o[static_cast<std::size_t>(b)] += v;
+    }
+  lobe.albedo = 0.0;
+  for (double v : lobe.by_k) lobe.albedo += v;
+}
+
+std::vector<double> peak_points(double alpha) {
+  std::vector<double> pts;
+  // theta_s = +-atan(alpha s): geometric grading around the peak of D2 (its poles and its width
+  // scale with alpha), so Gauss-Legendre converges on every piece however small alpha is.
+  for (double s = 1.0 / 64.0; s <= 64.0; s *= 2.0) pts.push_back(M_PI - 2.0 * std::atan(alpha * s));
+  return pts;
+}
+
+}  // namespace
+
+double flatland_brdf_k(NdfKind ndf, double alpha, double theta_i, double theta_o, int k) {
+  assert(k >= 1 && alpha > 0.0);
+  if (!(std::abs(theta_i) < kHalfPi && std::abs(theta_o) < kHalfPi)) return 0.0;
+  // Step (d): left facets at (theta_i, theta_o), right facets by the mirror.
+  const double sum = left_term(ndf, alpha, theta_i, theta_o, k) + left_term(ndf, alpha, -theta_i, -theta_o, k);
+  return sum / (std::cos(theta_i) * std::cos(theta_o));
+}
+
+double flatland_brdf(NdfKind ndf, double alpha, double theta_i, double theta_o, int max_k) {
+  double s = 0.0;
+  for (int k = 1; k <= max_k; ++k) s += flatland_brdf_k(ndf, alpha, theta_i, theta_o, k);
+  return s;
+}
+
+double flatland_brdf_single(NdfKind ndf, double alpha, double theta_i, double theta_o) {
+  if (!(std::abs(theta_i) < kHalfPi && std::abs(theta_o) < kHalfPi)) return 0.0;
+  // Lee et al. 2018, Eq. (1) in flatland (header, step e): d theta_h / d theta_o = 1/2.
+  const double theta_h = 0.5 * (theta_i + theta_o);
+  const double cos_d = std::cos(theta_o - theta_h);
+  // Eq. (3): G = min(G1(i, h), G1(o, h)), Eq. (2) for each.
+  const double G = std::min(G1_vcavity_inplane(theta_i, theta_h), G1_vcavity_inplane(theta_o, theta_h));
+  return D2(ndf, theta_h, alpha) * cos_d * G / (2.0 * std::cos(theta_i) * std::cos(theta_o));
+}
+
+FlatlandLobe flatland_lobe(NdfKind ndf, double alpha, double theta_i, int bins, int max_k) {
+  return flatland_lobe(ndf, alpha, theta_i, bins, max_k, FlatlandLobeOptions{});
+}
+
+FlatlandLobe flatland_lobe(NdfKind ndf, double alpha, double theta_i, int bins, int max_k,
+                           const FlatlandLobeOptions& opt) {
+  assert(bins > 0 && max_k >= 0 && alpha > 0.0 && std::abs(theta_i) < kHalfPi);
+  LobeContext c{ndf, alpha, bins, M_PI / bins,
+                make_gauss_legendre(opt.quadrature_order),
+                make_gauss_legendre(std::max(4, opt.quadrature_order / 2)),
+                make_gauss_legendre(std::max(3, opt.quadrature_order / 4)),
+                peak_points(alpha)};
+  // Grooves with k >= n + 2 (theta_v <= (pi + 2 theta)/(n + 1)) only make n + 1 or more
+  // reflections; raise n until their flux is negligible.
+  auto tail_flux = [&](int n) {
+    return left_flux_below(c, theta_i, std::min(M_PI, (M_PI + 2.0 * theta_i) / (n + 1))) +
+           left_flux_below(c, -theta_i, std::min(M_PI, (M_PI - 2.0 * theta_i) / (n + 1)));
+  };
+  int n_res = max_k + 1;
+  double tail = tail_flux(n_res);
+  while (tail > 1e-13 && n_res < opt.resolve_cap) {
+    n_res = std::min(opt.resolve_cap, 2 * n_res);
+    tail = tail_flux(n_res);
+  }
+  Accumulator acc{bins, max_k, std::vector<double>((static_cast<std::size_t>(max_k) + 2) * bins, 0.0)};
+  add_left_resolved(c, theta_i, false, n_res, acc);
+  add_left_resolved(c, -theta_i, true, n_res, acc);
+  // The narrow-groove limit (header, Limits): half the tail at +theta_i, half at -theta_i.
+  const double a = std::abs(theta_i);
+  acc.add(max_k + 1, bin_of(a, bins, false), 0.5 * tail);
+  acc.add(max_k + 1, bin_of(-a, bins, true), 0.5 * tail);
+
+  FlatlandLobe lobe = make_layout(bins, max_k);
+  lobe.theta_o_by_k = std::move(acc.hist);
+  lobe.n_resolved = n_res;
+  lobe.tail = tail;
+  lobe.below = acc.below;
+  finish(lobe);
+  return lobe;
+}
+
+FlatlandLobe flatland_single_lobe(NdfKind ndf, double alpha, double theta_i, int bins) {
+  assert(bins > 0 && alpha > 0.0 && std::abs(theta_i) < kHalfPi);
+  FlatlandLobe lobe = make_layout(bins, 1);
+  const GaussLegendre gl = make_gauss_legendre(16);
+  const double w = M_PI / bins;
+  // Over theta_h: theta_o = 2 theta_h - theta_i covers (-pi/2, pi/2) for theta_h in
+  // ((theta_i - pi/2)/2, (theta_i + pi/2)/2). The flux density per d theta_h is
+  // rho_CT2 cos(theta_o) d theta_o = D2(h) cos(theta_d) G d theta_h / cos(theta_i) (step e).
+  const double inv_cos = 1.0 / std::cos(theta_i);
+  auto f = [&](double h) {
+    const double theta_o = 2.0 * h - theta_i;
+    const double G = std::min(G1_vcavity_inplane(theta_i, h), G1_vcavity_inplane(theta_o, h));
+    return D2(ndf, h, alpha) * std::cos(theta_i - h) * G * inv_cos;
+  };
+  std::vector<double> cuts;
+  // Kinks of Eq. (2)-(3): G1(i) = 1 at cos(theta_i + h) = 0, G1(o) = 1 at cos(theta_o + h) = 0,
+  // G1(i) = G1(o) at cos(theta_i) = cos(theta_o) (h = 0 or h = theta_i); the peak grading.
+  const double extra[] = {-theta_i + kHalfPi, -theta_i - kHalfPi, (theta_i + kHalfPi) / 3.0,
+                          (theta_i - kHalfPi) / 3.0, 0.0, theta_i};
+  std::vector<double> pts(std::begin(extra), std::end(extra));
+  for (double s = 1.0 / 64.0; s <= 64.0; s *= 2.0) {
+    pts.push_back(std::atan(alpha * s));
+    pts.push_back(-std::atan(alpha * s));
+  }
+  for (int b = 0; b < bins; ++b) {
+    const double lo = 0.5 * (-kHalfPi + b * w + theta_i), hi = 0.5 * (-kHalfPi + (b + 1) * w + theta_i);
+    cuts.assign({lo, hi});
+    for (double v : pts)
+      if (v > lo && v < hi) cuts.push_back(v);
+    std::sort(cuts.begin(), cuts.end());
+    double s = 0.0;
+    for (std::size_t p = 0; p + 1 < cuts.size(); ++p) s += integrate(gl, f, cuts[p], cuts[p + 1]);
+    lobe.theta_o_by_k[static_cast<std::size_t>(bins) + b] = s;
+  }
+  lobe.n_resolved = 1;
+  finish(lobe);
+  return lobe;
+}
+
+}  // namespace vgroove::analytic
