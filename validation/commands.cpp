@@ -5,6 +5,7 @@
 #include "sim/tally.h"
 #include "validation/atomic_file.h"
 #include "validation/json_reader.h"
+#include "validation/microsurface_case.h"
 #include "validation/plot.h"
 #include "validation/report.h"
 #include "validation/suite_run.h"
@@ -220,8 +221,67 @@ void check_threads(int threads) {
 }
 }  // namespace
 
+namespace {
+// Suites of procedural microsurfaces: "kind" brdf (Fig. 11), furnace, table2.
+bool is_microsurface_suite(const nlohmann::json& j) {
+  if (!j.is_object() || !j.contains("kind") || !j["kind"].is_string()) return false;
+  const std::string k = j["kind"].get<std::string>();
+  return k == "brdf" || k == "furnace" || k == "table2";
+}
+
+int validate_microsurface(const ValidateArgs& a, const nlohmann::json& j) {
+  const std::string kind = j["kind"].get<std::string>();
+  if (!a.sampling.empty())
+    throw UserError("--sampling applies to single-groove suites; " + a.suite + " (kind " + kind +
+                    ") lands its rays at random points of the surface");
+  if (!a.eq6_form.empty())
+    throw UserError("--eq6-form applies to single-groove suites; " + a.suite + " (kind " + kind +
+                    ") uses the corrected Eq. 6 throughout");
+  if (a.rays != kUnset) check_rays(a.rays, "--rays");
+  if (a.seed != kUnsetSeed) check_seed(a.seed, "--seed");
+  const long rays = a.rays != kUnset ? a.rays : 0;
+  auto with_seed = [&](auto suite) {
+    if (a.seed != kUnsetSeed) suite.seed = static_cast<std::uint64_t>(a.seed);
+    return suite;
+  };
+  std::string report;
+  bool pass = false;
+  if (kind == "table2") {
+    const Table2Suite suite = with_seed(parse_table2_suite(j, a.suite));
+    if (!a.out.empty()) check_writable_target(a.out, a.force);
+    if (a.dry_run) return 0;
+    const Table2Run run = run_table2_suite(suite, rays, a.threads, a.cancel);
+    if (run.interrupted) {
+      std::cerr << "\nvgroove: interrupted; no report written\n";
+      return kExitInterrupted;
+    }
+    print_table2(std::cout, suite, run);
+    report = table2_report_json(suite, run).dump(1) + "\n";
+    pass = run.pass;
+  } else {
+    const BrdfSuite suite = with_seed(parse_brdf_suite(j, a.suite));
+    if (!a.out.empty()) check_writable_target(a.out, a.force);
+    if (a.dry_run) return 0;
+    const BrdfRun run = run_brdf_suite(suite, rays, a.threads, terminal_progress("validate " + suite.name), a.cancel);
+    if (run.interrupted) {
+      std::cerr << "\nvgroove: interrupted; no report written\n";
+      return kExitInterrupted;
+    }
+    print_brdf_table(std::cout, suite, run);
+    report = brdf_report_json(suite, run).dump(1) + "\n";
+    pass = run.pass;
+  }
+  if (!a.out.empty()) {
+    write_file_atomically(a.out, report, a.force);
+    std::cout << "report: " << a.out << "\n";
+  }
+  return pass ? 0 : 1;
+}
+}  // namespace
+
 int cmd_validate(const ValidateArgs& a) {
   check_threads(a.threads);
+  if (const nlohmann::json j = read_json_file(a.suite); is_microsurface_suite(j)) return validate_microsurface(a, j);
   const SuiteSet set = load_suite_set(a.suite);
   std::vector<CaseOptions> opts;
   for (const Suite& suite : set.suites) opts.push_back(options_with_overrides(suite, a.rays, a.sampling, a.eq6_form, a.seed));
@@ -319,6 +379,18 @@ int cmd_plot(const PlotArgs& a) {
     out = a.report;
     const auto dot = out.rfind(".json");
     out = (dot != std::string::npos && dot + 5 == out.size() ? out.substr(0, dot) : out) + ".svg";
+  }
+  if (is_brdf_report(report)) {
+    // The Fig. 11 grid: one SVG per (NDF, dimension), named after --out (or the report).
+    const std::string base = out.size() > 4 && out.compare(out.size() - 4, 4, ".svg") == 0 ? out.substr(0, out.size() - 4) : out;
+    const auto svgs = brdf_grid_svgs(report, a.report);
+    for (const auto& [suffix, svg] : svgs) check_writable_target(base + "-" + suffix + ".svg", a.force);
+    if (a.dry_run) return 0;
+    for (const auto& [suffix, svg] : svgs) {
+      write_file_atomically(base + "-" + suffix + ".svg", svg, a.force);
+      std::printf("plot: %s\n", (base + "-" + suffix + ".svg").c_str());
+    }
+    return 0;
   }
   const std::string svg = accuracy_svg(report, a.report);
   check_writable_target(out, a.force);

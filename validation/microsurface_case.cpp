@@ -1,1 +1,644 @@
 #include "validation/microsurface_case.h"
+
+#include "analytic/bounce_percentiles.h"
+#include "analytic/brdf_3d.h"
+#include "analytic/brdf_flatland.h"
+#include "sim/microsurface.h"
+#include "sim/microsurface3d.h"
+#include "validation/json_reader.h"
+#include "validation/report.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace vgroove::validation {
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+constexpr long kMaxRays = 1'000'000'000;
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// analytic/ and sim/ each name the NDFs (they never include each other); the names match.
+sim::NdfKind to_sim(analytic::NdfKind k) {
+  switch (k) {
+    case analytic::NdfKind::beckmann: return sim::NdfKind::beckmann;
+    case analytic::NdfKind::ggx: return sim::NdfKind::ggx;
+    case analytic::NdfKind::phong: return sim::NdfKind::phong;
+  }
+  return sim::NdfKind::ggx;
+}
+
+analytic::NdfKind parse_ndf(const std::string& s) {
+  if (s == "beckmann") return analytic::NdfKind::beckmann;
+  if (s == "phong") return analytic::NdfKind::phong;
+  return analytic::NdfKind::ggx;
+}
+
+// A non-empty list of strings, each one of `allowed`.
+std::vector<std::string> read_names(JsonObject& o, const std::string& key, const std::vector<std::string>& allowed) {
+  const nlohmann::json& v = o.raw(key);
+  if (!v.is_array() || v.empty()) o.fail(key, "= " + v.dump() + " must be a non-empty list");
+  std::vector<std::string> out;
+  for (std::size_t n = 0; n < v.size(); ++n) {
+    const std::string where = o.path(key) + "/" + std::to_string(n);
+    std::string list;
+    for (const auto& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";
+    if (!v[n].is_string() || std::find(allowed.begin(), allowed.end(), v[n].get<std::string>()) == allowed.end())
+      throw UserError(o.file() + ": " + where + " = " + v[n].dump() + " is not one of " + list);
+    out.push_back(v[n].get<std::string>());
+  }
+  return out;
+}
+
+// A non-empty list of numbers in the range.
+std::vector<double> read_numbers(JsonObject& o, const std::string& key, double lo, bool lo_closed, double hi,
+                                 bool hi_closed) {
+  const nlohmann::json& v = o.raw(key);
+  if (!v.is_array() || v.empty()) o.fail(key, "= " + v.dump() + " must be a non-empty list of numbers");
+  std::vector<double> out;
+  for (std::size_t n = 0; n < v.size(); ++n) {
+    const std::string where = o.path(key) + "/" + std::to_string(n);
+    if (!v[n].is_number()) throw UserError(o.file() + ": " + where + " = " + v[n].dump() + " must be a number");
+    const double x = v[n].get<double>();
+    const bool ok = std::isfinite(x) && (lo_closed ? x >= lo : x > lo) && (hi_closed ? x <= hi : x < hi);
+    if (!ok)
+      throw UserError(o.file() + ": " + where + " = " + number_text(x) + " is out of range " +
+                      interval_text(lo, lo_closed, hi, hi_closed));
+    out.push_back(x);
+  }
+  return out;
+}
+
+std::vector<analytic::NdfKind> read_ndfs(JsonObject& o) {
+  std::vector<analytic::NdfKind> out;
+  for (const auto& s : read_names(o, "ndf", {"ggx", "beckmann", "phong"})) out.push_back(parse_ndf(s));
+  return out;
+}
+
+// The roughest surface a suite may ask for: the issue's hard cases reach alpha = 2.
+constexpr double kMaxAlpha = 2.0;
+
+double sum(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return s;
+}
+
+bool all_finite(const std::vector<double>& v) {
+  return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+}
+
+double l1(const std::vector<double>& a, const std::vector<double>& b) {
+  double s = 0.0;
+  for (std::size_t n = 0; n < a.size(); ++n) s += std::abs(a[n] - b[n]);
+  return s;
+}
+
+std::vector<double> normalized(std::vector<double> v) {
+  const double s = sum(v);
+  if (s > 0.0)
+    for (double& x : v) x /= s;
+  return v;
+}
+
+template <class Int>
+std::vector<double> fractions(const std::vector<Int>& counts, double total) {
+  std::vector<double> out(counts.size());
+  for (std::size_t n = 0; n < counts.size(); ++n) out[n] = total > 0.0 ? static_cast<double>(counts[n]) / total : 0.0;
+  return out;
+}
+
+// The comparison shared by both dimensions, from the per-(row, bin) fractions of the incident flux.
+void compare(BrdfOutcome& out, const BrdfSuite& suite, const std::vector<double>& sim_joint,
+             const std::vector<double>& model_joint, int bins, double model_tolerance) {
+  const int rows = suite.max_k + 2;
+  std::vector<double> sim_total(static_cast<std::size_t>(bins), 0.0), model_total(static_cast<std::size_t>(bins), 0.0);
+  for (int r = 0; r < rows; ++r)
+    for (int b = 0; b < bins; ++b) {
+      const std::size_t n = static_cast<std::size_t>(r) * bins + b;
+      sim_total[static_cast<std::size_t>(b)] += sim_joint[n];
+      model_total[static_cast<std::size_t>(b)] += model_joint[n];
+    }
+  const double N = static_cast<double>(out.rays), G = static_cast<double>(suite.grooves);
+  const std::vector<double> p = normalized(model_total);
+  out.l1 = l1(normalized(sim_total), p);
+  const ExpectedL1 e = expected_l1(p, N, G);
+  out.l1_expected = e.mean;
+  out.l1_threshold = e.mean + suite.sigmas * e.sd + model_tolerance;
+  out.l1_k = l1(sim_joint, model_joint);
+  const ExpectedL1 ek = expected_l1(model_joint, N, G);
+  out.l1_k_expected = ek.mean;
+  out.l1_k_threshold = ek.mean + suite.sigmas * ek.sd + model_tolerance;
+  // The albedo: a binomial fraction of the same N rays over G grooves, plus one ray's worth
+  // (the count is an integer) and the model's tolerance.
+  const double a = std::clamp(out.albedo_model, 0.0, 1.0);
+  out.albedo_threshold = suite.sigmas * std::sqrt(a * (1.0 - a) * (1.0 / N + 1.0 / G)) + 1.0 / N + model_tolerance;
+  out.non_finite = !(std::isfinite(out.l1) && std::isfinite(out.l1_k) && std::isfinite(out.albedo_model) &&
+                     std::isfinite(out.albedo_single) && all_finite(model_joint));
+  const bool albedo_ok = std::abs(out.albedo_sim - out.albedo_model) <= out.albedo_threshold;
+  out.pass = !out.non_finite && albedo_ok &&
+             (suite.kind == "furnace" || (out.l1 <= out.l1_threshold && out.l1_k <= out.l1_k_threshold));
+}
+
+BrdfOutcome run_flatland(const BrdfSuite& suite, const BrdfCase& c, long rays) {
+  BrdfOutcome out;
+  out.c = c;
+  const int bins = suite.flatland_bins;
+  const auto t0 = Clock::now();
+  sim::MicrosurfaceOptions mo;
+  mo.ndf = to_sim(c.ndf);
+  mo.alpha = c.alpha;
+  mo.grooves = suite.grooves;
+  mo.seed = suite.seed;
+  const sim::Microsurface surface = sim::make_microsurface(mo);
+  sim::MicrosurfaceTraceOptions to;
+  to.theta_i = c.theta_i;
+  to.rays = rays;
+  to.sampling = sim::Sampling::random;
+  to.seed = suite.seed;
+  to.theta_o_bins = bins;
+  to.max_k = suite.max_k;
+  const sim::MicrosurfaceTally t = sim::trace_microsurface(surface, to);
+  out.sim_wall_s = seconds_since(t0);
+  out.rays = t.rays, out.escaped = t.escaped, out.lost = t.lost(), out.bounces = t.bounces;
+  out.max_k_seen = t.max_k_seen;
+  out.albedo_sim = t.albedo();
+
+  const auto t1 = Clock::now();
+  const analytic::FlatlandLobe lobe = analytic::flatland_lobe(c.ndf, c.alpha, c.theta_i, bins, suite.max_k);
+  const analytic::FlatlandLobe single = analytic::flatland_single_lobe(c.ndf, c.alpha, c.theta_i, bins);
+  out.model_wall_s = seconds_since(t1);
+  out.albedo_model = lobe.albedo;
+  out.albedo_single = single.albedo;
+  const double N = static_cast<double>(t.rays);
+  out.by_k_sim = fractions(t.by_k, N);
+  out.by_k_model = lobe.by_k;
+  compare(out, suite, fractions(t.theta_o_by_k, N), lobe.theta_o_by_k, bins, suite.model_tolerance_flatland);
+
+  const double width = M_PI / bins;
+  for (int b = 0; b < bins; ++b) {
+    out.plane_theta_deg.push_back(output_deg(-0.5 * M_PI + (b + 0.5) * width));
+    out.plane_sim.push_back(static_cast<double>(t.theta_o[static_cast<std::size_t>(b)]) / N / width);
+    out.plane_model.push_back(lobe.theta_o[static_cast<std::size_t>(b)] / width);
+    out.plane_single.push_back(single.theta_o[static_cast<std::size_t>(b)] / width);
+  }
+  for (int k = 1; k <= std::min(kPlotK, suite.max_k); ++k) {
+    std::vector<double> s, m;
+    for (int b = 0; b < bins; ++b) {
+      s.push_back(static_cast<double>(t.hist(k, b)) / N / width);
+      m.push_back(lobe.theta_o_by_k[static_cast<std::size_t>(k) * bins + b] / width);
+    }
+    out.plane_sim_k.push_back(std::move(s));
+    out.plane_model_k.push_back(std::move(m));
+  }
+  return out;
+}
+
+BrdfOutcome run_3d(const BrdfSuite& suite, const BrdfCase& c, long rays) {
+  BrdfOutcome out;
+  out.c = c;
+  const int tb = suite.theta_bins, pb = suite.phi_bins, bins = tb * pb;
+  const auto t0 = Clock::now();
+  sim::Microsurface3dOptions mo;
+  mo.ndf = to_sim(c.ndf);
+  mo.alpha = c.alpha;
+  mo.grooves = suite.grooves;
+  mo.seed = suite.seed;
+  const sim::Microsurface3d surface = sim::make_microsurface3d(mo);
+  sim::Microsurface3dTraceOptions to;
+  to.theta_i = c.theta_i;
+  to.rays = rays;
+  to.seed = suite.seed;
+  to.theta_bins = tb;
+  to.phi_bins = pb;
+  to.max_k = suite.max_k;
+  const sim::Microsurface3dTally t = sim::trace_microsurface3d(surface, to);
+  out.sim_wall_s = seconds_since(t0);
+  out.rays = t.rays, out.escaped = t.escaped, out.lost = t.lost(), out.bounces = t.bounces;
+  out.max_k_seen = t.max_k_seen;
+  out.albedo_sim = t.albedo();
+
+  const auto t1 = Clock::now();
+  const analytic::Lobe3d lobe = analytic::vgroove_lobe_3d(c.ndf, c.alpha, c.theta_i, tb, pb, suite.max_k);
+  const analytic::Lobe3d single = analytic::cook_torrance_lobe_3d(c.ndf, c.alpha, c.theta_i, tb, pb);
+  out.model_wall_s = seconds_since(t1);
+  out.albedo_model = lobe.albedo;
+  out.albedo_single = single.albedo;
+  const double N = static_cast<double>(t.rays);
+  out.by_k_sim = fractions(t.by_k, N);
+  out.by_k_model = lobe.by_k;
+  compare(out, suite, fractions(t.hist_by_k, N), lobe.hist_by_k, bins, suite.model_tolerance_3d);
+
+  // The plane of incidence: phi bin pb/2 (towards the light, signed angle +theta) and phi bin 0
+  // (the mirror side, -theta), as fractions per steradian of each bin.
+  const double dt = 0.5 * M_PI / tb, dp = 2.0 * M_PI / pb;
+  auto solid_angle = [&](int t_) { return dp * (std::cos(t_ * dt) - std::cos((t_ + 1) * dt)); };
+  auto push = [&](int t_, int p_) {
+    const std::size_t n = static_cast<std::size_t>(t_) * pb + p_;
+    const double w = solid_angle(t_);
+    out.plane_sim.push_back(static_cast<double>(t.hist[n]) / N / w);
+    out.plane_model.push_back(lobe.hist[n] / w);
+    out.plane_single.push_back(single.hist[n] / w);
+  };
+  for (int t_ = tb - 1; t_ >= 0; --t_) out.plane_theta_deg.push_back(output_deg(-(t_ + 0.5) * dt)), push(t_, 0);
+  for (int t_ = 0; t_ < tb; ++t_) out.plane_theta_deg.push_back(output_deg((t_ + 0.5) * dt)), push(t_, pb / 2);
+  for (int k = 1; k <= std::min(kPlotK, suite.max_k); ++k) {
+    std::vector<double> s, m;
+    auto pushk = [&](int t_, int p_) {
+      const std::size_t n = (static_cast<std::size_t>(k) * tb + t_) * pb + p_;
+      s.push_back(static_cast<double>(t.hist_by_k[n]) / N / solid_angle(t_));
+      m.push_back(lobe.hist_by_k[n] / solid_angle(t_));
+    };
+    for (int t_ = tb - 1; t_ >= 0; --t_) pushk(t_, 0);
+    for (int t_ = 0; t_ < tb; ++t_) pushk(t_, pb / 2);
+    out.plane_sim_k.push_back(std::move(s));
+    out.plane_model_k.push_back(std::move(m));
+  }
+  return out;
+}
+
+nlohmann::json suite_inputs(const BrdfSuite& s) {
+  nlohmann::json ndfs = nlohmann::json::array(), dims = nlohmann::json::array(), ti = nlohmann::json::array();
+  for (auto n : s.ndfs) ndfs.push_back(analytic::ndf_name(n));
+  for (auto d : s.dims) dims.push_back(surface_dim_name(d));
+  for (double t : s.theta_i) ti.push_back(output_deg(t));
+  return {{"ndf", ndfs},
+          {"alpha", s.alphas},
+          {"theta_i_deg", ti},
+          {"dimensions", dims},
+          {"grooves", s.grooves},
+          {"flatland_bins", s.flatland_bins},
+          {"theta_bins", s.theta_bins},
+          {"phi_bins", s.phi_bins},
+          {"max_k", s.max_k},
+          {"sigmas", s.sigmas},
+          {"model_tolerance", {{"flatland", s.model_tolerance_flatland}, {"3d", s.model_tolerance_3d}}}};
+}
+
+}  // namespace
+
+const char* surface_dim_name(SurfaceDim d) { return d == SurfaceDim::flatland ? "flatland" : "3d"; }
+
+BrdfCase BrdfSuite::case_at(std::size_t c) const {
+  BrdfCase out;
+  const std::size_t nt = theta_i.size(), na = alphas.size(), nn = ndfs.size();
+  out.theta_i = theta_i[c % nt];
+  out.alpha = alphas[(c / nt) % na];
+  out.ndf = ndfs[(c / (nt * na)) % nn];
+  out.dim = dims[c / (nt * na * nn)];
+  return out;
+}
+
+ExpectedL1 expected_l1(const std::vector<double>& p, double rays, double grooves) {
+  const double inv = 1.0 / rays + (grooves > 0.0 ? 1.0 / grooves : 0.0);
+  double mean = 0.0, var = 0.0;
+  for (double q : p) {
+    const double v = std::max(0.0, q * (1.0 - q)) * inv;
+    mean += std::sqrt(2.0 * v / M_PI);
+    var += (1.0 - 2.0 / M_PI) * v;
+  }
+  return {mean, std::sqrt(var)};
+}
+
+BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
+  JsonObject root(j, file, "");
+  BrdfSuite s;
+  s.file = file;
+  s.name = root.string("name");
+  s.description = root.string_or("description", "");
+  s.kind = root.one_of("kind", {"brdf", "furnace"});
+  s.ndfs = read_ndfs(root);
+  s.alphas = read_numbers(root, "alpha", 0.0, false, kMaxAlpha, true);
+  for (double d : read_numbers(root, "theta_i_deg", 0.0, true, 90.0, false)) s.theta_i.push_back(d * kDeg);
+  for (const auto& d : read_names(root, "dimensions", {"flatland", "3d"}))
+    s.dims.push_back(d == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d);
+  s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
+  s.grooves = static_cast<int>(root.integer("grooves", 1, 10'000'000));
+  s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
+  s.flatland_bins = static_cast<int>(root.integer_or("flatland_bins", s.flatland_bins, 1, 100000));
+  s.theta_bins = static_cast<int>(root.integer_or("theta_bins", s.theta_bins, 1, 10000));
+  s.phi_bins = static_cast<int>(root.integer_or("phi_bins", s.phi_bins, 2, 10000));
+  if (s.phi_bins % 2 != 0)
+    root.fail("phi_bins", "= " + std::to_string(s.phi_bins) + " must be even (the plane of incidence runs through two bins)");
+  s.max_k = static_cast<int>(root.integer_or("max_k", s.max_k, 1, 10000));
+  {
+    JsonObject t = root.object("thresholds");
+    s.sigmas = t.number("sigmas", 0.0, false, 100.0, true);
+    JsonObject m = t.object("model_tolerance");
+    s.model_tolerance_flatland = m.number("flatland", 0.0, true, 2.0, true);
+    s.model_tolerance_3d = m.number("3d", 0.0, true, 2.0, true);
+    m.finish();
+    t.finish();
+  }
+  root.finish();
+  return s;
+}
+
+BrdfOutcome run_brdf_case(const BrdfSuite& suite, const BrdfCase& c, long rays) {
+  return c.dim == SurfaceDim::flatland ? run_flatland(suite, c, rays) : run_3d(suite, c, rays);
+}
+
+BrdfRun run_brdf_suite(const BrdfSuite& suite, long rays, int threads, const ProgressFn& progress,
+                       const std::atomic<bool>* cancel) {
+  BrdfRun run;
+  run.threads = resolve_threads(threads);
+  run.cases.resize(suite.cases());
+  const long n_rays = rays > 0 ? rays : suite.rays;
+  const auto t0 = Clock::now();
+  // One case per work item: each case's rays run in order on one thread, so the results do not
+  // depend on the thread count.
+  const bool complete = parallel_for(
+      suite.cases(), run.threads, [&](std::size_t c) { run.cases[c] = run_brdf_case(suite, suite.case_at(c), n_rays); },
+      progress, cancel, 1);
+  run.wall_s = seconds_since(t0);
+  run.interrupted = !complete;
+  run.pass = complete && std::all_of(run.cases.begin(), run.cases.end(), [](const BrdfOutcome& o) { return o.pass; });
+  return run;
+}
+
+nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run) {
+  nlohmann::json j = provenance();
+  j["suite"] = suite.name;
+  j["suite_file"] = suite.file;
+  j["kind"] = suite.kind;
+  j["description"] = suite.description;
+  j["seed"] = suite.seed;
+  j["threads"] = run.threads;
+  j["wall_s"] = run.wall_s;
+  j["inputs"] = suite_inputs(suite);
+  nlohmann::json cases = nlohmann::json::array();
+  std::int64_t rays = 0, bounces = 0;
+  double worst_ratio = 0.0, worst_albedo = 0.0, worst_single = 1.0;
+  std::size_t passed = 0;
+  for (const BrdfOutcome& o : run.cases) {
+    rays += o.rays, bounces += o.bounces;
+    passed += o.pass;
+    if (suite.kind != "furnace") worst_ratio = std::max({worst_ratio, o.l1 / o.l1_threshold, o.l1_k / o.l1_k_threshold});
+    worst_albedo = std::max(worst_albedo, std::abs(o.albedo_sim - o.albedo_model));
+    worst_single = std::min(worst_single, o.albedo_single);
+    nlohmann::json c = {{"ndf", analytic::ndf_name(o.c.ndf)},
+                        {"alpha", o.c.alpha},
+                        {"theta_i_deg", output_deg(o.c.theta_i)},
+                        {"dimension", surface_dim_name(o.c.dim)},
+                        {"rays", o.rays},
+                        {"escaped", o.escaped},
+                        {"lost", o.lost},
+                        {"bounces", o.bounces},
+                        {"max_k_seen", o.max_k_seen},
+                        {"sim_wall_s", o.sim_wall_s},
+                        {"model_wall_s", o.model_wall_s},
+                        {"albedo_sim", o.albedo_sim},
+                        {"albedo_model", o.albedo_model},
+                        {"albedo_cook_torrance", o.albedo_single},
+                        {"cook_torrance_energy_lost", 1.0 - o.albedo_single},
+                        {"albedo_difference", o.albedo_sim - o.albedo_model},
+                        {"albedo_threshold", o.albedo_threshold},
+                        {"by_k_sim", o.by_k_sim},
+                        {"by_k_model", o.by_k_model},
+                        {"non_finite", o.non_finite},
+                        {"pass", o.pass}};
+    if (suite.kind != "furnace") {
+      c["l1"] = o.l1;
+      c["l1_expected"] = o.l1_expected;
+      c["l1_threshold"] = o.l1_threshold;
+      c["l1_by_k"] = o.l1_k;
+      c["l1_by_k_expected"] = o.l1_k_expected;
+      c["l1_by_k_threshold"] = o.l1_k_threshold;
+      c["plane"] = {{"theta_deg", o.plane_theta_deg},
+                    {"unit", o.c.dim == SurfaceDim::flatland ? "fraction of the flux per radian"
+                                                             : "fraction of the flux per steradian"},
+                    {"sim", o.plane_sim},
+                    {"model", o.plane_model},
+                    {"cook_torrance", o.plane_single},
+                    {"sim_by_k", o.plane_sim_k},
+                    {"model_by_k", o.plane_model_k}};
+    }
+    cases.push_back(std::move(c));
+  }
+  j["cases"] = std::move(cases);
+  j["summary"] = {{"cases", run.cases.size()},
+                  {"passed", passed},
+                  {"rays", rays},
+                  {"bounces", bounces},
+                  {"worst_error_over_threshold", worst_ratio},
+                  {"largest_albedo_difference", worst_albedo},
+                  {"lowest_cook_torrance_albedo", worst_single},
+                  {"wall_s", run.wall_s}};
+  j["thresholds"] = {{"rule", "expected L1 + sigmas x its standard deviation + model tolerance (per case)"},
+                     {"sigmas", suite.sigmas}};
+  j["pass"] = run.pass;
+  return j;
+}
+
+void print_brdf_table(std::ostream& os, const BrdfSuite& suite, const BrdfRun& run) {
+  char line[400];
+  std::snprintf(line, sizeof line, "%s (%s): %zu cases, %ld rays x %d grooves each, vgroove %s (git %s), %d threads\n",
+                suite.name.c_str(), suite.kind.c_str(), run.cases.size(), suite.rays, suite.grooves, version_string(),
+                git_revision(), run.threads);
+  os << line;
+  if (suite.kind == "furnace") {
+    std::snprintf(line, sizeof line, "  %-8s %-8s %5s %7s %12s %12s %12s %10s %5s\n", "dim", "ndf", "alpha", "theta_i",
+                  "albedo sim", "albedo model", "CT albedo", "wall s", "pass");
+  } else {
+    std::snprintf(line, sizeof line, "  %-8s %-8s %5s %7s %9s %9s %9s %9s %10s %9s %8s %5s\n", "dim", "ndf", "alpha",
+                  "theta_i", "L1", "L1 thr", "L1 by k", "thr", "albedo", "CT alb", "wall s", "pass");
+  }
+  os << line;
+  for (const BrdfOutcome& o : run.cases) {
+    if (suite.kind == "furnace")
+      std::snprintf(line, sizeof line, "  %-8s %-8s %5.2f %7.2f %12.9f %12.9f %12.6f %10.3f %5s\n",
+                    surface_dim_name(o.c.dim), analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta_i),
+                    o.albedo_sim, o.albedo_model, o.albedo_single, o.sim_wall_s + o.model_wall_s, o.pass ? "yes" : "NO");
+    else
+      std::snprintf(line, sizeof line, "  %-8s %-8s %5.2f %7.2f %9.5f %9.5f %9.5f %9.5f %10.7f %9.5f %8.3f %5s\n",
+                    surface_dim_name(o.c.dim), analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta_i), o.l1,
+                    o.l1_threshold, o.l1_k, o.l1_k_threshold, o.albedo_sim, o.albedo_single,
+                    o.sim_wall_s + o.model_wall_s, o.pass ? "yes" : "NO");
+    os << line;
+  }
+  std::size_t passed = 0;
+  for (const auto& o : run.cases) passed += o.pass;
+  std::snprintf(line, sizeof line, "  %zu/%zu cases pass; wall %.2f s\n", passed, run.cases.size(), run.wall_s);
+  os << line;
+}
+
+// ---- Table 2 ----
+
+namespace {
+constexpr analytic::PercentileMeasure kOtherMeasures[] = {analytic::PercentileMeasure::solid_angle,
+                                                           analytic::PercentileMeasure::flatland};
+
+// The q-th percentile of the traced bounce counts: the smallest k with at least the fraction q of
+// the escaped rays at k bounces or fewer.
+int percentile_of_counts(const std::vector<std::int64_t>& by_k, double q) {
+  std::int64_t total = 0;
+  for (auto c : by_k) total += c;
+  std::int64_t run = 0;
+  for (std::size_t k = 0; k < by_k.size(); ++k) {
+    run += by_k[k];
+    if (static_cast<double>(run) >= q * static_cast<double>(total)) return static_cast<int>(k);
+  }
+  return static_cast<int>(by_k.size()) - 1;
+}
+}  // namespace
+
+Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file) {
+  JsonObject root(j, file, "");
+  Table2Suite s;
+  s.file = file;
+  s.name = root.string("name");
+  s.description = root.string_or("description", "");
+  root.one_of("kind", {"table2"});
+  s.ndfs = read_ndfs(root);
+  s.alphas = read_numbers(root, "alpha", 0.0, false, kMaxAlpha, true);
+  for (double p : read_numbers(root, "percentiles", 0.0, false, 100.0, false)) s.percentiles.push_back(p / 100.0);
+  s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
+  s.grooves = static_cast<int>(root.integer("grooves", 1, 10'000'000));
+  s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
+  JsonObject paper = root.object("paper");
+  s.source = paper.string("source");
+  const nlohmann::json& rows = paper.raw("max_bounces");
+  const std::size_t per_row = s.ndfs.size() * s.alphas.size();
+  if (!rows.is_array() || rows.size() != s.percentiles.size())
+    paper.fail("max_bounces", "must be a list of " + std::to_string(s.percentiles.size()) + " rows (one per percentile)");
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    if (!rows[r].is_array() || rows[r].size() != per_row)
+      throw UserError(file + ": " + paper.path("max_bounces") + "/" + std::to_string(r) + " must be a list of " +
+                      std::to_string(per_row) + " integers (ndf outer, alpha inner)");
+    for (std::size_t n = 0; n < per_row; ++n) {
+      if (!rows[r][n].is_number_integer() || rows[r][n].get<long long>() < 1 || rows[r][n].get<long long>() > 1000000)
+        throw UserError(file + ": " + paper.path("max_bounces") + "/" + std::to_string(r) + "/" + std::to_string(n) +
+                        " = " + rows[r][n].dump() + " must be an integer in [1, 1000000]");
+      s.paper.push_back(rows[r][n].get<int>());
+    }
+  }
+  paper.finish();
+  root.finish();
+  return s;
+}
+
+Table2Run run_table2_suite(const Table2Suite& s, long rays, int threads, const std::atomic<bool>* cancel) {
+  Table2Run run;
+  run.threads = resolve_threads(threads);
+  const auto t0 = Clock::now();
+  const std::size_t na = s.alphas.size(), nn = s.ndfs.size(), nq = s.percentiles.size();
+  auto at = [&](std::size_t q, std::size_t n, std::size_t a) { return (q * nn + n) * na + a; };
+  run.ours.resize(nq * nn * na);
+  run.alternatives.assign(std::size(kOtherMeasures), std::vector<int>(nq * nn * na));
+  run.traced.resize(nq * nn * na);
+  for (std::size_t q = 0; q < nq; ++q)
+    for (std::size_t n = 0; n < nn; ++n)
+      for (std::size_t a = 0; a < na; ++a) {
+        run.ours[at(q, n, a)] = analytic::max_bounces_at_percentile(s.ndfs[n], s.alphas[a], s.percentiles[q],
+                                                                     analytic::PercentileMeasure::projected_area);
+        for (std::size_t m = 0; m < std::size(kOtherMeasures); ++m)
+          run.alternatives[m][at(q, n, a)] =
+              analytic::max_bounces_at_percentile(s.ndfs[n], s.alphas[a], s.percentiles[q], kOtherMeasures[m]);
+        run.agree += run.ours[at(q, n, a)] == s.paper[at(q, n, a)];
+      }
+  // The simulation column: procedural 3D surfaces lit at normal incidence, bounce counts traced.
+  const long n_rays = rays > 0 ? rays : s.rays;
+  const bool complete = parallel_for(
+      nn * na, run.threads,
+      [&](std::size_t item) {
+        const std::size_t n = item / na, a = item % na;
+        sim::Microsurface3dOptions mo;
+        mo.ndf = to_sim(s.ndfs[n]);
+        mo.alpha = s.alphas[a];
+        mo.grooves = s.grooves;
+        mo.seed = s.seed;
+        const sim::Microsurface3d surface = sim::make_microsurface3d(mo);
+        sim::Microsurface3dTraceOptions to;
+        to.theta_i = 0.0;
+        to.rays = n_rays;
+        to.seed = s.seed;
+        to.theta_bins = 1;
+        to.phi_bins = 2;
+        to.max_k = 1000;
+        const sim::Microsurface3dTally t = sim::trace_microsurface3d(surface, to);
+        for (std::size_t q = 0; q < nq; ++q) run.traced[at(q, n, a)] = percentile_of_counts(t.by_k, s.percentiles[q]);
+      },
+      {}, cancel, 1);
+  run.interrupted = !complete;
+  run.wall_s = seconds_since(t0);
+  run.pass = complete && run.agree == static_cast<int>(run.ours.size());
+  return run;
+}
+
+nlohmann::json table2_report_json(const Table2Suite& s, const Table2Run& run) {
+  nlohmann::json j = provenance();
+  j["suite"] = s.name;
+  j["suite_file"] = s.file;
+  j["kind"] = "table2";
+  j["description"] = s.description;
+  j["seed"] = s.seed;
+  j["threads"] = run.threads;
+  j["wall_s"] = run.wall_s;
+  j["source"] = s.source;
+  j["assumptions"] = {
+      {"percentile_measure", "projected area: D(s) cos(theta_s) ds, the fraction of the macrosurface under facets "
+                             "flatter than theta_m (the paper's sampling pdf |s.n| D(s), Sec. 6)"},
+      {"incident_angle", "normal incidence: N = Eq. (4) at theta_i = 0, floor(pi / theta_v) + 1, theta_v = pi - 2 theta_m"},
+      {"phong_exponent", "alpha_p = 2 / alpha^2 - 2 (Walter et al. 2007)"}};
+  nlohmann::json rows = nlohmann::json::array();
+  const std::size_t na = s.alphas.size(), nn = s.ndfs.size();
+  for (std::size_t q = 0; q < s.percentiles.size(); ++q)
+    for (std::size_t n = 0; n < nn; ++n)
+      for (std::size_t a = 0; a < na; ++a) {
+        const std::size_t i = (q * nn + n) * na + a;
+        nlohmann::json alt;
+        for (std::size_t m = 0; m < std::size(kOtherMeasures); ++m)
+          alt[analytic::percentile_measure_name(kOtherMeasures[m])] = run.alternatives[m][i];
+        rows.push_back({{"percentile", 100.0 * s.percentiles[q]},
+                        {"ndf", analytic::ndf_name(s.ndfs[n])},
+                        {"alpha", s.alphas[a]},
+                        {"paper", s.paper[i]},
+                        {"ours", run.ours[i]},
+                        {"agree", run.ours[i] == s.paper[i]},
+                        {"other_readings", alt},
+                        {"traced_percentile_k", run.traced[i]}});
+      }
+  j["entries"] = rows;
+  j["summary"] = {{"entries", run.ours.size()}, {"agree", run.agree}, {"rays_per_surface", s.rays},
+                  {"grooves", s.grooves}};
+  j["pass"] = run.pass;
+  return j;
+}
+
+void print_table2(std::ostream& os, const Table2Suite& s, const Table2Run& run) {
+  char line[256];
+  std::snprintf(line, sizeof line, "%s: maximum bounces at percentiles of D (%s), vgroove %s (git %s)\n", s.name.c_str(),
+                s.source.c_str(), version_string(), git_revision());
+  os << line;
+  os << "  cell: paper / ours (projected-area percentile, Eq. 4 at theta_i = 0) / traced percentile of k\n";
+  std::string head = "  perc.  ";
+  for (auto n : s.ndfs)
+    for (double a : s.alphas) {
+      std::snprintf(line, sizeof line, " %8.8s %-4.2g", analytic::ndf_name(n), a);
+      head += line;
+    }
+  os << head << "\n";
+  const std::size_t na = s.alphas.size(), nn = s.ndfs.size();
+  for (std::size_t q = 0; q < s.percentiles.size(); ++q) {
+    std::snprintf(line, sizeof line, "  %4.0f%%  ", 100.0 * s.percentiles[q]);
+    std::string row = line;
+    for (std::size_t n = 0; n < nn; ++n)
+      for (std::size_t a = 0; a < na; ++a) {
+        const std::size_t i = (q * nn + n) * na + a;
+        std::snprintf(line, sizeof line, " %4d/%-3d/%-4d", s.paper[i], run.ours[i], run.traced[i]);
+        row += line;
+      }
+    os << row << "\n";
+  }
+  std::snprintf(line, sizeof line, "  %d/%zu entries agree with the paper; %ld rays per traced surface; wall %.2f s\n",
+                run.agree, run.ours.size(), s.rays, run.wall_s);
+  os << line;
+}
+
+}  // namespace vgroove::validation

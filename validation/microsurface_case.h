@@ -1,1 +1,139 @@
+// vgroove validation: suites of procedural microsurfaces — the BRDF against the light traced in
+// a rough surface (Lee et al. 2018, Fig. 11), the white furnace (Fig. 12), and Table 2.
+//
+// A "brdf" or "furnace" suite is the grid ndf x alpha x theta_i x dimension. Each case builds a
+// procedural surface of G grooves from the NDF (sim/microsurface.h in flatland,
+// sim/microsurface3d.h in 3D), traces N rays exactly and compares the histograms of exit
+// direction (total and per bounce count k) with the analytic BRDF integrated over the same bins
+// (analytic/brdf_flatland.h, analytic/brdf_3d.h).
+//
+// Thresholds come from the sample count, not from tuning. A simulated bin fraction s_b scatters
+// around the model's p_b for two reasons: the N rays (multinomial: variance p_b (1 - p_b) / N) and
+// the G grooves drawn from the NDF (each ray picks one of G grooves, so the mixture's bin
+// probability is itself an average of G draws: variance Var_g(p_gb) / G <= p_b (1 - p_b) / G,
+// since a groove's share p_gb lies in [0, 1]). With v_b = p_b (1 - p_b) (1/N + 1/G) as the bound,
+// a correct model shows an L1 error sum_b |s_b - p_b| of mean about sum_b sqrt(2 v_b / pi) (the
+// mean of |normal|) and standard deviation about sqrt(sum_b (1 - 2/pi) v_b); the threshold is
+//   expected + sigmas x sd + model_tolerance,
+// with `sigmas` and the analytic lobe's own quadrature error (`model_tolerance`) from the suite.
+// The report shows the error next to the expected value and the threshold.
 #pragma once
+
+#include "analytic/ndf.h"
+#include "validation/parallel.h"
+
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace vgroove::validation {
+
+enum class SurfaceDim : unsigned char { flatland, three_d };
+const char* surface_dim_name(SurfaceDim d);
+
+struct BrdfCase {
+  analytic::NdfKind ndf = analytic::NdfKind::ggx;
+  double alpha = 0.5;
+  double theta_i = 0.0;  // radians, >= 0
+  SurfaceDim dim = SurfaceDim::flatland;
+};
+
+struct BrdfSuite {
+  std::string file, name, description;
+  std::string kind;  // "brdf" (Fig. 11: lobes and albedo) or "furnace" (albedo only)
+  std::vector<analytic::NdfKind> ndfs;
+  std::vector<double> alphas;
+  std::vector<double> theta_i;  // radians
+  std::vector<SurfaceDim> dims;
+  long rays = 1000000;
+  int grooves = 250000;
+  std::uint64_t seed = 1;
+  int flatland_bins = 90;  // theta_o over (-90, 90) deg
+  int theta_bins = 30;     // 3D: theta_o over [0, 90) deg
+  int phi_bins = 24;       // 3D: phi_o, centred on the plane of incidence
+  int max_k = 16;
+  double sigmas = 5.0;
+  double model_tolerance_flatland = 1e-6;
+  double model_tolerance_3d = 1e-4;
+  std::size_t cases() const { return ndfs.size() * alphas.size() * theta_i.size() * dims.size(); }
+  // Order: dimension, ndf, alpha, theta_i (innermost).
+  BrdfCase case_at(std::size_t c) const;
+};
+
+// Expected L1 error of a histogram of N rays over G grooves against its exact bin probabilities p
+// (see the header comment): mean and standard deviation.
+struct ExpectedL1 {
+  double mean = 0.0, sd = 0.0;
+};
+ExpectedL1 expected_l1(const std::vector<double>& p, double rays, double grooves);
+
+struct BrdfOutcome {
+  BrdfCase c;
+  std::int64_t rays = 0, escaped = 0, lost = 0, bounces = 0;
+  int max_k_seen = 0;
+  double sim_wall_s = 0.0, model_wall_s = 0.0;
+  double albedo_sim = 0.0, albedo_model = 0.0, albedo_single = 0.0;  // single: Cook-Torrance (V-cavity G)
+  double albedo_threshold = 0.0;
+  double l1 = 0.0, l1_expected = 0.0, l1_threshold = 0.0;        // normalized lobes, all k
+  double l1_k = 0.0, l1_k_expected = 0.0, l1_k_threshold = 0.0;  // joint (k, bin), fractions of the flux
+  std::vector<double> by_k_sim, by_k_model;                      // rows k = 0..max_k + 1
+  // The lobe on the plane of incidence for plots (flatland: every bin; 3D: the phi bins through
+  // the plane, as a signed angle: negative on the mirror side, the flatland convention), as
+  // densities: fraction per radian (flatland) or per steradian (3D).
+  std::vector<double> plane_theta_deg;
+  std::vector<double> plane_sim, plane_model, plane_single;
+  std::vector<std::vector<double>> plane_sim_k, plane_model_k;  // k = 1..kPlotK
+  bool non_finite = false;
+  bool pass = false;
+};
+inline constexpr int kPlotK = 4;
+
+struct BrdfRun {
+  std::vector<BrdfOutcome> cases;
+  int threads = 1;
+  double wall_s = 0.0;
+  bool interrupted = false;
+  bool pass = false;
+};
+
+BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file);
+// rays > 0 overrides the suite's.
+BrdfRun run_brdf_suite(const BrdfSuite& suite, long rays, int threads, const ProgressFn& progress = {},
+                       const std::atomic<bool>* cancel = nullptr);
+BrdfOutcome run_brdf_case(const BrdfSuite& suite, const BrdfCase& c, long rays);
+nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run);
+void print_brdf_table(std::ostream& os, const BrdfSuite& suite, const BrdfRun& run);
+
+// Table 2: the paper's maximum bounce counts at percentiles of D, recomputed (analytic/
+// bounce_percentiles.h) under each reading of "percentile", and the bounce counts traced on
+// procedural 3D surfaces at normal incidence beside them.
+struct Table2Suite {
+  std::string file, name, description, source;
+  std::vector<analytic::NdfKind> ndfs;
+  std::vector<double> alphas;
+  std::vector<double> percentiles;  // fractions in (0, 1)
+  std::vector<int> paper;           // [row (percentile)][ndf][alpha], row-major
+  long rays = 200000;
+  int grooves = 100000;
+  std::uint64_t seed = 1;
+};
+struct Table2Run {
+  std::vector<int> ours;                       // the reading that reproduces the table
+  std::vector<std::vector<int>> alternatives;  // per other reading, same layout
+  std::vector<int> traced;                     // percentile of the traced bounce counts
+  int agree = 0;
+  int threads = 1;
+  double wall_s = 0.0;
+  bool interrupted = false;
+  bool pass = false;  // all entries agree
+};
+Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file);
+Table2Run run_table2_suite(const Table2Suite& suite, long rays, int threads, const std::atomic<bool>* cancel = nullptr);
+nlohmann::json table2_report_json(const Table2Suite& suite, const Table2Run& run);
+void print_table2(std::ostream& os, const Table2Suite& suite, const Table2Run& run);
+
+}  // namespace vgroove::validation

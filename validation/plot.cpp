@@ -112,4 +112,101 @@ std::string accuracy_svg(const nlohmann::json& report, const std::string& file) 
   return svg;
 }
 
+bool is_brdf_report(const nlohmann::json& report) {
+  return report.is_object() && report.value("kind", std::string()) == "brdf" && report.contains("cases");
+}
+
+std::vector<std::pair<std::string, std::string>> brdf_grid_svgs(const nlohmann::json& report, const std::string& file) {
+  if (!is_brdf_report(report) || !report["cases"].is_array() || report["cases"].empty())
+    throw UserError(file + ": not a brdf suite report (no /cases): make one with `vgroove validate data/suites/fig11.json --out R`");
+  // Group the cases by (ndf, dimension); within a group, columns by alpha, rows by theta_i.
+  struct Panel {
+    double alpha, theta_i;
+    const nlohmann::json* c;
+  };
+  std::map<std::string, std::vector<Panel>> groups;
+  std::vector<std::string> order;
+  for (std::size_t n = 0; n < report["cases"].size(); ++n) {
+    const auto& c = report["cases"][n];
+    try {
+      if (!c.contains("plane")) continue;
+      const std::string key = c.at("ndf").get<std::string>() + "-" + c.at("dimension").get<std::string>();
+      if (!groups.count(key)) order.push_back(key);
+      groups[key].push_back({c.at("alpha").get<double>(), c.at("theta_i_deg").get<double>(), &c});
+    } catch (const nlohmann::json::exception& e) {
+      throw UserError(file + ": /cases/" + std::to_string(n) + " is not a brdf case: " + e.what());
+    }
+  }
+  if (groups.empty()) throw UserError(file + ": no case with a lobe on the plane of incidence to plot");
+  const std::string made_by = "vgroove " + report.value("version", std::string("?")) + ", git " +
+                              report.value("git", std::string("?")) + ", seed " +
+                              std::to_string(report.value("seed", 0ULL));
+  const char* k_colors[] = {"#1f77b4", "#ff7f0e", "#9467bd", "#8c564b"};
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const std::string& key : order) {
+    const auto& panels = groups[key];
+    std::vector<double> alphas, thetas;
+    for (const auto& p : panels) {
+      if (std::find(alphas.begin(), alphas.end(), p.alpha) == alphas.end()) alphas.push_back(p.alpha);
+      if (std::find(thetas.begin(), thetas.end(), p.theta_i) == thetas.end()) thetas.push_back(p.theta_i);
+    }
+    std::sort(alphas.begin(), alphas.end());
+    std::sort(thetas.begin(), thetas.end());
+    const double PW = 260, PH = 170, M = 40, TOP = 60;
+    const double W = M + PW * alphas.size() + 20, H = TOP + PH * thetas.size() + 30;
+    std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + fmt("%.0f", W) + "\" height=\"" +
+                      fmt("%.0f", H) + "\" font-family=\"sans-serif\" font-size=\"10\">\n";
+    svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+    svg += "<text x=\"" + fmt("%.0f", M) + "\" y=\"18\" font-size=\"14\">" + report.value("suite", std::string("?")) +
+           ": " + key + " (bars: traced; red: analytic, bin-integrated; dashed: k = 1..4; black dotted: Cook-Torrance)</text>\n";
+    svg += "<text x=\"" + fmt("%.0f", M) + "\" y=\"32\" fill=\"#555\">" + made_by +
+           "; x: theta_o on the plane of incidence, -90..90 deg (negative: mirror side); y: " +
+           panels.front().c->at("plane").value("unit", std::string("density")) + "</text>\n";
+    for (const auto& p : panels) {
+      const std::size_t col = static_cast<std::size_t>(std::find(alphas.begin(), alphas.end(), p.alpha) - alphas.begin());
+      const std::size_t row = static_cast<std::size_t>(std::find(thetas.begin(), thetas.end(), p.theta_i) - thetas.begin());
+      const double x0 = M + PW * col + 8, y0 = TOP + PH * row + 8, w = PW - 16, h = PH - 28;
+      const auto& pl = p.c->at("plane");
+      const auto th = pl.at("theta_deg").get<std::vector<double>>();
+      const auto sim = pl.at("sim").get<std::vector<double>>();
+      const auto model = pl.at("model").get<std::vector<double>>();
+      const auto ct = pl.at("cook_torrance").get<std::vector<double>>();
+      double ymax = 0.0;
+      for (std::size_t n = 0; n < th.size(); ++n) ymax = std::max({ymax, sim[n], model[n]});
+      if (!(ymax > 0)) ymax = 1.0;
+      auto X = [&](double deg) { return x0 + (deg + 90.0) / 180.0 * w; };
+      auto Y = [&](double v) { return y0 + h - std::min(v, 1.05 * ymax) / (1.05 * ymax) * h; };
+      svg += "<rect x=\"" + fmt("%.1f", x0) + "\" y=\"" + fmt("%.1f", y0) + "\" width=\"" + fmt("%.1f", w) +
+             "\" height=\"" + fmt("%.1f", h) + "\" fill=\"none\" stroke=\"#999\"/>\n";
+      const double bw = th.size() > 1 ? std::abs(X(th[1]) - X(th[0])) : w;
+      for (std::size_t n = 0; n < th.size(); ++n)
+        if (sim[n] > 0)
+          svg += "<rect x=\"" + fmt("%.2f", X(th[n]) - 0.5 * bw) + "\" y=\"" + fmt("%.2f", Y(sim[n])) + "\" width=\"" +
+                 fmt("%.2f", bw) + "\" height=\"" + fmt("%.2f", y0 + h - Y(sim[n])) + "\" fill=\"#8fd18f\"/>\n";
+      auto line = [&](const std::vector<double>& v, const std::string& style) {
+        std::string d;
+        for (std::size_t n = 0; n < th.size(); ++n) d += (d.empty() ? "M" : " L") + fmt("%.1f", X(th[n])) + "," + fmt("%.1f", Y(v[n]));
+        svg += "<path d=\"" + d + "\" fill=\"none\" " + style + "/>\n";
+      };
+      if (pl.contains("model_by_k")) {
+        const auto& mk = pl.at("model_by_k");
+        for (std::size_t k = 0; k < mk.size() && k < 4; ++k)
+          line(mk[k].get<std::vector<double>>(), std::string("stroke=\"") + k_colors[k] + "\" stroke-width=\"1\" stroke-dasharray=\"4 2\"");
+      }
+      line(ct, "stroke=\"black\" stroke-width=\"1\" stroke-dasharray=\"1 2\"");
+      line(model, "stroke=\"#d62728\" stroke-width=\"1.5\"");
+      const bool pass = p.c->value("pass", false);
+      svg += "<text x=\"" + fmt("%.1f", x0 + 4) + "\" y=\"" + fmt("%.1f", y0 + 12) + "\">alpha " + fmt("%.2g", p.alpha) +
+             ", theta_i " + fmt("%.0f", p.theta_i) + "</text>\n";
+      svg += "<text x=\"" + fmt("%.1f", x0 + 4) + "\" y=\"" + fmt("%.1f", y0 + h + 14) + "\" fill=\"" +
+             (pass ? "#555" : "#d62728") + "\">L1 " + fmt("%.4f", p.c->value("l1", 0.0)) + " (thr " +
+             fmt("%.4f", p.c->value("l1_threshold", 0.0)) + "), " + fmt("%.2g", p.c->value("rays", 0.0)) + " rays, " +
+             fmt("%.2f", p.c->value("sim_wall_s", 0.0) + p.c->value("model_wall_s", 0.0)) + " s</text>\n";
+    }
+    svg += "</svg>\n";
+    out.emplace_back(key, std::move(svg));
+  }
+  return out;
+}
+
 }  // namespace vgroove::validation
