@@ -201,20 +201,6 @@ double groove_cdf_inverse(NdfKind ndf, double alpha, double u) {
 // The lobes: push-forward of the groove distribution.
 namespace {
 
-constexpr std::array<double, 8> kGl8x = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
-                                         -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
-                                         0.7966664774136267,  0.9602898564975363};
-constexpr std::array<double, 8> kGl8w = {0.1012285362903763, 0.2223810344533745, 0.3137066678684264,
-                                         0.3626837833783620, 0.3626837833783620, 0.3137066678684264,
-                                         0.2223810344533745, 0.1012285362903763};
-
-constexpr std::array<double, 4> kGl4x = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
-                                         0.8611363115940526};
-constexpr std::array<double, 4> kGl4w = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
-                                         0.3478548451374538};
-constexpr std::array<double, 2> kGl2x = {-0.5773502691896257, 0.5773502691896257};
-constexpr std::array<double, 2> kGl2w = {1.0, 1.0};
-
 // Gauss-Legendre nodes and weights of order n on [-1, 1] (Newton on P_n).
 void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
   x.assign(n, 0.0);
@@ -238,6 +224,16 @@ void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
     x[i] = -z;
     w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
   }
+}
+
+// The rules used per piece (orders 2, 4, 8), computed once.
+struct GlRule {
+  std::vector<double> x, w;
+  explicit GlRule(int n) { gauss_legendre(n, x, w); }
+};
+const GlRule& gl_rule(int n) {
+  static const GlRule r2(2), r4(4), r8(8);
+  return n == 2 ? r2 : (n == 4 ? r4 : r8);
 }
 
 enum class LobeModel { vgroove, cook_torrance };
@@ -437,23 +433,12 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
     // Order by the piece's mass: Gauss-Legendre of order 2 already integrates cubics exactly, and
     // pieces lighter than 1e-9 (the narrow bands of high k) are short and smooth.
     const double mass = (w1 - w0) * (w1 + w0);
-    const double* gx = kGl8x.data();
-    const double* gw = kGl8w.data();
-    size_t nq = kGl8x.size();
-    if (mass < 1e-9) {
-      gx = kGl2x.data();
-      gw = kGl2w.data();
-      nq = 2;
-    } else if (mass < 1e-6) {
-      gx = kGl4x.data();
-      gw = kGl4w.data();
-      nq = 4;
-    }
+    const GlRule& rule = gl_rule(mass < 1e-9 ? 2 : (mass < 1e-6 ? 4 : 8));
     double sum = 0.0;
-    for (size_t q = 0; q < nq; ++q) {
-      const double w = 0.5 * (w0 + w1) + 0.5 * (w1 - w0) * gx[q];
+    for (size_t q = 0; q < rule.x.size(); ++q) {
+      const double w = 0.5 * (w0 + w1) + 0.5 * (w1 - w0) * rule.x[q];
       const double theta_v = M_PI - 2.0 * groove_cdf_inverse(r.ndf, r.alpha, w * w);
-      sum += gw[q] * weight_k(r, az, side, k, theta_v) * 2.0 * w;
+      sum += rule.w[q] * weight_k(r, az, side, k, theta_v) * 2.0 * w;
     }
     const double val = weight * 0.5 * (w1 - w0) * sum;
     const int t = bin / r.pb, p = bin % r.pb;
@@ -463,12 +448,13 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
   }
 }
 
-// The tail beyond the explicit bands (theta_v < x_cut for the facet): midpoint rule in the CDF.
-void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, double x_cut, double weight) {
-  const double u0 = groove_cdf(r.ndf, r.alpha, 0.5 * (M_PI - x_cut));
+// The tail beyond the explicit bands: midpoint rule in the CDF.
+// The outcomes of more than k_cap reflections come from theta_v < span / k_cap (Eq. 4).
+void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_cap, int n, double weight) {
+  const double tf = side == FacetSide::left ? az.tau : -az.tau;
+  const double u0 = groove_cdf(r.ndf, r.alpha, 0.5 * (M_PI - (M_PI + 2.0 * tf) / k_cap));
   const double mass = 1.0 - u0;
   if (!(mass > 0.0)) return;
-  const int n = 1024;
   Lobe3d& L = *r.out;
   for (int q = 0; q < n; ++q) {
     const double u = u0 + mass * (q + 0.5) / n;
@@ -477,7 +463,7 @@ void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, double 
     if (!p.lit) continue;
     const double w = opening_width(az.tau, theta_v);
     for (const BounceShare& b : {p.fewer, p.more}) {
-      if (!(b.G > 0.0)) continue;
+      if (!(b.G > 0.0) || b.n <= k_cap) continue;
       const int bin = bin_of(r, az, b.theta_o);
       if (bin < 0) continue;
       const int row = std::min(b.n, r.max_k + 1);
@@ -505,42 +491,61 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
   Scratch sc;
   // The light at i = dir3(theta_i, pi): i.a = -sin(theta_i) cos(phi_a), i.u = sin(theta_i) sin(phi_a).
   const double si = std::sin(theta_i), ci = std::cos(theta_i);
-  const double h = 0.5 * M_PI / opt.phi_panels;
-  // k beyond which the bands stop and the tail takes over.
-  const int k_cap = 256;
-  for (int panel = 0; panel < opt.phi_panels; ++panel) {
-    for (int q = 0; q < opt.phi_order; ++q) {
-      const double phi_a = h * (panel + 0.5 + 0.5 * gx[q]);
-      // Area fraction 2 D cos sin d theta_m d phi_a = (1/pi) dCDF d phi_a; phi_a in [0, pi/2] and
-      // its mirror image pi - phi_a (y -> -y) cover [0, pi).
-      const double weight = 0.5 * h * gw[q] / M_PI;
-      Azimuth az;
-      az.ca = std::cos(phi_a);
-      az.sa = std::sin(phi_a);
-      az.tau = std::atan2(si * az.ca, ci);
-      az.iu = si * az.sa;
-      az.c = std::sqrt(std::max(0.0, 1.0 - az.iu * az.iu));
-      edge_crossings(r, az, sc.T);
-      {
-        for (FacetSide side : {FacetSide::left, FacetSide::right}) {
-          const double tf = side == FacetSide::left ? az.tau : -az.tau;
-          const double span = M_PI + 2.0 * tf;  // Eq. (4): K = floor(span / theta_v) + 1
-          if (model == LobeModel::cook_torrance) {
-            integrate_band(r, az, side, 1, 0.0, M_PI, weight, sc);
-            continue;
-          }
-          int k = 1;
-          for (;; ++k) {
-            // K in {k, k + 1} <=> theta_v in [span / (k + 1), span / (k - 1)).
-            const double x_lo = span / (k + 1), x_hi = k == 1 ? M_PI : std::min(M_PI, span / (k - 1));
-            integrate_band(r, az, side, k, x_lo, x_hi, weight, sc);
-            if (k >= k_cap) break;
-            // Stop once the grooves left (theta_v < span / (k + 1)) weigh nothing.
-            if (k >= max_k + 1 && 1.0 - groove_cdf(ndf, alpha, 0.5 * (M_PI - x_lo)) < 1e-16) break;
-          }
-          if (k >= k_cap) integrate_tail(r, az, side, span / (k + 1), weight);
-        }
+  // The phi_a nodes. Where c(phi_a) = cos(theta_b) a theta_o edge starts to cut the arc of exits
+  // (at t = 0, its crossings move like sqrt(phi_a - phi*)), so the per-bin integrands have
+  // square-root points there: the range is split at them and each piece mapped by the smoothstep
+  // phi = phi0 + (phi1 - phi0) s^2 (3 - 2 s), whose zero end slopes turn sqrt into smooth.
+  std::vector<double> cuts{0.0, 0.5 * M_PI};
+  for (int b = 1; b < theta_bins; ++b) {
+    const double sb = std::sin(b * 0.5 * M_PI / theta_bins);
+    if (sb < si) cuts.push_back(std::asin(sb / si));
+  }
+  std::sort(cuts.begin(), cuts.end());
+  std::vector<std::pair<double, double>> nodes;  // (phi_a, weight in phi_a)
+  const int panels_total = std::max(opt.phi_panels, static_cast<int>(cuts.size()) - 1);
+  for (size_t c = 0; c + 1 < cuts.size(); ++c) {
+    const double p0 = cuts[c], p1 = cuts[c + 1];
+    if (!(p1 > p0)) continue;
+    const int np = std::max(1, static_cast<int>(std::lround(panels_total * (p1 - p0) / (0.5 * M_PI))));
+    for (int panel = 0; panel < np; ++panel) {
+      for (int q = 0; q < opt.phi_order; ++q) {
+        const double sq = (panel + 0.5 + 0.5 * gx[q]) / np;
+        const double phi = p0 + (p1 - p0) * sq * sq * (3.0 - 2.0 * sq);
+        const double dphi = (p1 - p0) * 6.0 * sq * (1.0 - sq) * 0.5 * gw[q] / np;
+        nodes.emplace_back(phi, dphi);
       }
+    }
+  }
+  // k beyond which the bands stop and the tail takes over.
+  const int k_cap = std::max(opt.k_bands, max_k + 1);
+  for (const auto& [phi_a, dphi] : nodes) {
+    // Area fraction 2 D cos sin d theta_m d phi_a = (1/pi) dCDF d phi_a; phi_a in [0, pi/2] and
+    // its mirror image pi - phi_a (y -> -y) cover [0, pi).
+    const double weight = dphi / M_PI;
+    Azimuth az;
+    az.ca = std::cos(phi_a);
+    az.sa = std::sin(phi_a);
+    az.tau = std::atan2(si * az.ca, ci);
+    az.iu = si * az.sa;
+    az.c = std::sqrt(std::max(0.0, 1.0 - az.iu * az.iu));
+    edge_crossings(r, az, sc.T);
+    for (FacetSide side : {FacetSide::left, FacetSide::right}) {
+      const double tf = side == FacetSide::left ? az.tau : -az.tau;
+      const double span = M_PI + 2.0 * tf;  // Eq. (4): K = floor(span / theta_v) + 1
+      if (model == LobeModel::cook_torrance) {
+        integrate_band(r, az, side, 1, 0.0, M_PI, weight, sc);
+        continue;
+      }
+      int k = 1;
+      for (;; ++k) {
+        // K in {k, k + 1} <=> theta_v in [span / (k + 1), span / (k - 1)).
+        const double x_lo = span / (k + 1), x_hi = k == 1 ? M_PI : std::min(M_PI, span / (k - 1));
+        integrate_band(r, az, side, k, x_lo, x_hi, weight, sc);
+        if (k >= k_cap) break;
+        // Stop once the grooves with outcomes beyond k (theta_v < span / k) weigh nothing.
+        if (k >= max_k + 1 && 1.0 - groove_cdf(ndf, alpha, 0.5 * (M_PI - span / k)) < 1e-16) break;
+      }
+      if (k >= k_cap) integrate_tail(r, az, side, k_cap, opt.tail_strata, weight);
     }
   }
   for (int row = 0; row < rows; ++row) {

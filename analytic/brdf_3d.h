@@ -92,8 +92,8 @@ double groove_cdf_inverse(NdfKind ndf, double alpha, double u);
 // and each k, the arc of exit directions swept by theta_m is cut where it crosses a bin edge or
 // where Eq. (4)/(6) change form, and each piece is integrated exactly in smoothness by
 // Gauss-Legendre in w = sqrt(CDF(theta_m)). by_k and albedo are exact to rounding; hist is limited
-// by the phi_a quadrature (see the tests for the measured error). Beyond k = 256 (mass < 2e-4 for
-// alpha <= 2) the lobe deposits by a 256-stratum midpoint rule in the CDF.
+// by the phi_a quadrature (see the tests for the measured error). Beyond k = k_bands the lobe
+// deposits by a midpoint rule in the CDF (exact in by_k, approximate in the bins).
 struct Lobe3d {
   int theta_bins = 0;
   int phi_bins = 0;
@@ -105,8 +105,10 @@ struct Lobe3d {
 };
 
 struct Lobe3dOptions {
-  int phi_panels = 96;  // Gauss-Legendre panels over phi_a in [0, pi/2]
-  int phi_order = 8;    // nodes per panel
+  int phi_panels = 384; // Gauss-Legendre panels over phi_a in [0, pi/2]
+  int phi_order = 2;    // nodes per panel (the integrands have kinks: many low-order panels win)
+  int k_bands = 32;     // k beyond which a midpoint rule in the CDF replaces the exact bands
+  int tail_strata = 512;
 };
 
 Lobe3d vgroove_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins, int max_k);
