@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <string>
 #include <sys/wait.h>
@@ -353,6 +354,34 @@ TEST(Simulate, FlatMirrorAtNormalIncidence) {
     const double F = ((n - 1) * (n - 1) + k * k) / ((n + 1) * (n + 1) + k * k);
     EXPECT_NEAR(t.energy[c] / 1000.0, F, 1e-12) << s.channels[c].name;
     EXPECT_NEAR(r.model[0].energy[c], F, 1e-12) << s.channels[c].name;
+  }
+}
+
+// A right-angled groove (theta_v = 90) at normal incidence: every ray reflects twice, at 45 deg
+// both times (its direction turns by 90 deg at the first facet and meets the second at 45 deg),
+// so the energy is F(45 deg)^2. At 45 deg the p reflectance is the square of the s one (Abeles'
+// relation: r_p = r_s^2 when cos^2 = sin^2), so F = (R_s + R_s^2) / 2 with
+// R_s = |c - w|^2 / |c + w|^2, c = 1/sqrt(2), w = sqrt((eta + i kappa)^2 - 1/2): written out here
+// with std::complex, independently of optics/.
+TEST(Simulate, RightAngledGrooveAtNormalIncidence) {
+  json j = base_scene();
+  j["geometry"] = {{"kind", "groove"}, {"theta_v_deg", 90}};
+  j["light"] = {{"theta_i_deg", {0}}, {"rays", 1000}};
+  j["effects"]["fresnel"] = json::parse(R"({"kind": "conductor", "channels": [
+      {"name": "a", "eta": 0.2, "kappa": 3.0}, {"name": "b", "eta": 1.5, "kappa": 0.5}, {"name": "c", "eta": 1.5, "kappa": 0}]})");
+  const Scene s = parse_scene(j, "test");
+  const SimulationResult r = simulate(s, 1);
+  const ThetaTally& t = r.tallies.at(0);
+  ASSERT_EQ(t.by_k.size(), 3u);
+  EXPECT_EQ(t.by_k[2], 1000);
+  for (std::size_t c = 0; c < s.channels.size(); ++c) {
+    const std::complex<double> n(s.channels[c].eta, s.channels[c].kappa);
+    const double cos45 = std::sqrt(0.5);
+    const std::complex<double> w = std::sqrt(n * n - 0.5);
+    const double Rs = std::norm(cos45 - w) / std::norm(cos45 + w);
+    const double F = 0.5 * (Rs + Rs * Rs);
+    EXPECT_NEAR(t.energy[c] / 1000.0, F * F, 1e-12) << s.channels[c].name;
+    EXPECT_NEAR(r.model[0].energy[c], F * F, 1e-12) << s.channels[c].name;
   }
 }
 
