@@ -74,8 +74,13 @@ ExpectedL1 expected_l1(const std::vector<double>& p, double rays, double grooves
 struct BrdfOutcome {
   BrdfCase c;
   std::int64_t rays = 0, escaped = 0, lost = 0, bounces = 0;
+  // Rays still inside after the tracer's bounce limit (10^5 reflections): grooves narrower than
+  // pi / 10^5 rad, which only the roughest Phong surfaces (alpha >= 1.5, exponent < -1) draw
+  // often. With F = 1 they keep their energy; the furnace counts them as reflected and says so.
+  std::int64_t in_flight = 0;
   int max_k_seen = 0;
   double sim_wall_s = 0.0, model_wall_s = 0.0;
+  // albedo_sim: escaped / rays ("brdf"), (escaped + in_flight) / rays ("furnace": nothing absorbed).
   double albedo_sim = 0.0, albedo_model = 0.0, albedo_single = 0.0;  // single: Cook-Torrance (V-cavity G)
   double albedo_threshold = 0.0;
   double l1 = 0.0, l1_expected = 0.0, l1_threshold = 0.0;        // normalized lobes, all k
