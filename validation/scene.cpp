@@ -161,6 +161,11 @@ Scene parse_scene(const nlohmann::json& j, const std::string& file) {
         JsonObject h = r.object("theta_o_histograms");
         s.record.theta_o_bins = static_cast<int>(h.integer("bins", 1, 100000));
         s.record.histogram_max_k = static_cast<int>(h.integer_or("max_k", 16, 0, 1000));
+        // Each work item holds its own histograms: bound their size (8 MB of counts).
+        const long long cells = static_cast<long long>(s.record.theta_o_bins) * (s.record.histogram_max_k + 2);
+        if (cells > kMaxHistogramCells)
+          throw UserError(h.file() + ": " + h.pointer() + ": bins x (max_k + 2) = " + std::to_string(cells) +
+                          " histogram cells, out of range [1, " + std::to_string(kMaxHistogramCells) + "]");
         h.finish();
       }
       s.record.energy_per_k = r.boolean_or("energy_per_k", false);

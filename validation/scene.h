@@ -31,10 +31,11 @@
 //         {"kind": "schlick", "channels": [{"name": "r", "F0": 0.9}, ...]}   F0 in [0, 1]
 //                                                   1 to 64 channels, names unique and non-empty
 //       "record": {                                 optional; counts per bounce count k are always kept
+//                                                   (k = 0..4096, larger k in one row ">4096")
 //         "theta_o_histograms": {"bins": 90, "max_k": 16},   optional: exit-angle histograms over
 //                                                   (-90, 90) deg, bins in [1, 100000], one total and one
 //                                                   per k = 0..max_k ([0, 1000], default 16; larger k share
-//                                                   a last row)
+//                                                   a last row); bins x (max_k + 2) <= 1000000
 //         "energy_per_k": true},                    optional, default false: the energy per k per channel
 //                                                   (needs a Fresnel effect: without one it is the count)
 //       "max_bounces": 100000}                      optional, [1, 100000000]: rays still inside are counted
@@ -92,6 +93,7 @@ struct SceneRecord {
 };
 
 inline constexpr int kMaxChannels = 64;
+inline constexpr long long kMaxHistogramCells = 1'000'000;
 
 struct Scene {
   std::string file;

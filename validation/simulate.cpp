@@ -120,7 +120,7 @@ ThetaTally run_chunk(const Setup& s, double theta_i, std::int64_t chunk) {
       continue;
     }
     ++t.escaped;
-    const auto k = static_cast<std::size_t>(r.bounces);
+    const auto k = static_cast<std::size_t>(std::min(r.bounces, kMaxKRow + 1));
     t.bounces += r.bounces;
     if (k >= t.by_k.size()) t.by_k.resize(k + 1, 0);
     ++t.by_k[k];
@@ -183,6 +183,14 @@ std::string geometry_text(const Scene& s) {
   std::snprintf(buf, sizeof buf, "microsurface %s alpha %g, %d grooves (seed %llu)", sim::ndf_name(s.geometry.ndf),
                 s.geometry.alpha, s.geometry.grooves, static_cast<unsigned long long>(s.geometry.surface_seed));
   return buf;
+}
+
+// The JSON key of row k: "k", or ">4096" for the shared last row.
+std::string k_key(std::size_t k) {
+  if (k <= static_cast<std::size_t>(kMaxKRow)) return std::to_string(k);
+  std::string key(">");
+  key += std::to_string(kMaxKRow);
+  return key;
 }
 
 }  // namespace
@@ -262,18 +270,29 @@ SimulationResult simulate(const Scene& scene, int threads, const std::atomic<boo
   const ChunkFn fn = pick_chunk_fn(scene);
   const std::size_t T = r.theta_i.size();
   const auto chunks = static_cast<std::size_t>((scene.light.rays + sim::kRaysPerChunk - 1) / sim::kRaysPerChunk);
-  std::vector<ThetaTally> slots(T * chunks);
-  const bool complete = parallel_for(
-      T * chunks, r.threads,
-      [&](std::size_t i) { slots[i] = fn(s, r.theta_i[i / chunks], static_cast<std::int64_t>(i % chunks)); }, {},
-      cancel, 1);
-  r.interrupted = !complete;
+  // Items are theta-major: merging each wave's slots in item order merges every theta_i's chunks
+  // in chunk order.
+  const std::size_t items = T * chunks, wave = static_cast<std::size_t>(std::max(8, 4 * r.threads));
+  r.tallies.assign(T, empty_tally(scene));
+  std::vector<ThetaTally> slots(wave);
+  for (std::size_t w0 = 0; w0 < items; w0 += wave) {
+    const std::size_t n = std::min(wave, items - w0);
+    const bool complete = parallel_for(
+        n, r.threads,
+        [&](std::size_t i) {
+          const std::size_t item = w0 + i;
+          slots[i] = fn(s, r.theta_i[item / chunks], static_cast<std::int64_t>(item % chunks));
+        },
+        {}, cancel, 1);
+    if (!complete) {
+      r.interrupted = true;
+      break;
+    }
+    for (std::size_t i = 0; i < n; ++i) r.tallies[(w0 + i) / chunks].merge(slots[i]);
+  }
   for (std::size_t t = 0; t < T; ++t) {
-    ThetaTally total = empty_tally(scene);
-    for (std::size_t c = 0; c < chunks; ++c) total.merge(slots[t * chunks + c]);  // in chunk order
-    r.rays += total.rays;
-    r.bounces += total.bounces;
-    r.tallies.push_back(std::move(total));
+    r.rays += r.tallies[t].rays;
+    r.bounces += r.tallies[t].bounces;
     r.model.push_back(model_figures(scene, r.theta_i[t]));
   }
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -342,7 +361,7 @@ nlohmann::json result_json(const Scene& scene, const SimulationResult& r) {
                 {"mean_k", ta.mean_k()}};
     json counts = json::object();  // sparse: only the k that occur
     for (std::size_t k = 0; k < ta.by_k.size(); ++k)
-      if (ta.by_k[k] > 0) counts[std::to_string(k)] = ta.by_k[k];
+      if (ta.by_k[k] > 0) counts[k_key(k)] = ta.by_k[k];
     row["counts_per_k"] = counts;
     if (C > 0) {
       json energy = json::object();
@@ -354,7 +373,7 @@ nlohmann::json result_json(const Scene& scene, const SimulationResult& r) {
       for (std::size_t c = 0; c < C; ++c) {
         json ks = json::object();
         for (std::size_t k = 0; k * C + c < ta.energy_by_k.size(); ++k)
-          if (k < ta.by_k.size() && ta.by_k[k] > 0) ks[std::to_string(k)] = ta.energy_by_k[k * C + c] / n;
+          if (k < ta.by_k.size() && ta.by_k[k] > 0) ks[k_key(k)] = ta.energy_by_k[k * C + c] / n;
         per[scene.channels[c].name] = ks;
       }
       row["energy_per_k"] = per;

@@ -18,7 +18,14 @@
 //
 // Determinism. The work items are (theta_i, chunk); each fills its own tally, and the tallies of
 // a theta_i are merged in chunk order, so the results (the energy sums included) are bit-identical
-// for any thread count.
+// for any thread count. Items run in waves of a few per thread, merged after each wave, so memory
+// does not grow with the number of chunks.
+//
+// Cost, measured (Release, 1 thread, a 10 deg groove, 4 x 10^6 rays, 4.8 x 10^7 reflections,
+// best of 3 on the shared 2-core machine): fresnel none 0.52 s (11 ns per reflection); conductor
+// with 1 channel 4.7-5.0 s (the complex square root of the exact conductor Fresnel dominates);
+// conductor over 3 channels in one pass 9.9 s, against 14.6 s for 3 one-channel passes; Schlick
+// over 3 channels 1.1 s. So one observer carrying C reflectances is the cheaper choice.
 #pragma once
 
 #include "validation/scene.h"
@@ -35,6 +42,8 @@ namespace vgroove::validation {
 
 // What the rays of one theta_i did. Every ray is in exactly one of escaped, blocked, vertex_hits,
 // bounce_limit, not_upward; every escaped ray in one k of by_k.
+inline constexpr int kMaxKRow = 4096;
+
 struct ThetaTally {
   std::int64_t rays = 0;
   std::int64_t escaped = 0;
@@ -43,7 +52,10 @@ struct ThetaTally {
   std::int64_t bounce_limit = 0;  // still inside after max_bounces reflections
   std::int64_t not_upward = 0;    // left along or below the horizon (not expected), kept apart
   std::int64_t bounces = 0;       // reflections summed over escaped rays
-  std::vector<std::int64_t> by_k;  // [k], escaped rays with k reflections, up to the largest k seen
+  // [k], escaped rays with k reflections, up to the largest k seen; rays with more than kMaxKRow
+  // reflections share the row kMaxKRow + 1 (so that one ray escaping after 10^7 reflections
+  // cannot cost a tally 10^7 rows: memory stays bounded for any legal scene).
+  std::vector<std::int64_t> by_k;
   // Fresnel: the throughput of the escaped rays summed, per channel [c], and per k [k * C + c]
   // when energy_per_k is asked for.
   std::vector<double> energy;

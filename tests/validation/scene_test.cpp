@@ -429,6 +429,35 @@ TEST(Simulate, MicrosurfaceCountsMatchTraceMicrosurface) {
   EXPECT_FALSE(out["results"][0].contains("model"));  // a microsurface has no single-groove model
 }
 
+// Rays with more than kMaxKRow reflections share one row (memory stays bounded), while the mean k
+// stays exact. A 0.03 deg groove at normal incidence: Eq. (4) gives about 180 / 0.03 = 6000
+// reflections per ray, so every ray lands in the shared row.
+TEST(Simulate, DeepPathsShareTheLastRow) {
+  json j = base_scene();
+  j["geometry"] = {{"kind", "groove"}, {"theta_v_deg", 0.03}};
+  j["light"] = {{"theta_i_deg", {0}}, {"rays", 10}};
+  j["effects"]["record"] = {{"energy_per_k", true}};
+  const Scene s = parse_scene(j, "test");
+  const SimulationResult r = simulate(s, 1);
+  const ThetaTally& t = r.tallies.at(0);
+  EXPECT_EQ(t.escaped, 10);
+  ASSERT_EQ(t.by_k.size(), static_cast<std::size_t>(kMaxKRow) + 2);
+  EXPECT_EQ(t.by_k.back(), 10);
+  // The model k takes the values k - 1 and k on each facet: D = 3 jumps of 1 over N = 10 strata (see above).
+  EXPECT_NEAR(t.mean_k(), r.model[0].mean_k, 3.0 / 10);
+  EXPECT_GT(t.mean_k(), 5990.0);
+  const json out = result_json(s, r);
+  EXPECT_EQ(out["results"][0]["counts_per_k"], json::parse(R"({">4096": 10})"));
+  EXPECT_NEAR(out["results"][0]["energy_per_k"]["r"][">4096"].get<double>(), t.energy[0] / 10, 1e-15);
+}
+
+TEST(SceneSpec, HistogramSizeIsBounded) {
+  json j = base_scene();
+  j["effects"]["record"] = {{"theta_o_histograms", {{"bins", 100000}, {"max_k", 16}}}};
+  EXPECT_EQ(error_of(j), "s.json: /effects/record/theta_o_histograms: bins x (max_k + 2) = 1800000 histogram cells, "
+                         "out of range [1, 1000000]");
+}
+
 // ---------------------------------------------------------------------------------------------
 // The command line
 
