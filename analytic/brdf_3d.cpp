@@ -90,6 +90,9 @@ double brdf_k_in_plane(const Plane& p, double cos_i, double cos_o, int k, NdfKin
   const double sgn = (k % 2 == 0) ? 1.0 : -1.0;
   double sum = 0.0;
   for (FacetSide side : {FacetSide::left, FacetSide::right}) {
+    // k = 1: s = h is the left facet by the choice of a (t_h <= 0); the right facet's solution
+    // theta_m = -theta_h exists only as the rounding image of theta_h = 0.
+    if (k == 1 && side == FacetSide::right) continue;
     // Eq. (5) inverted: left: t_o = (-1)^k (t_i + pi - k theta_v); right: -t_o = (-1)^k (-t_i + pi - k theta_v).
     const double base = side == FacetSide::left ? p.t_i + M_PI - sgn * p.t_o : -p.t_i + M_PI + sgn * p.t_o;
     const int j_lo = static_cast<int>(std::ceil(-base / (2.0 * M_PI)));
@@ -103,8 +106,11 @@ double brdf_k_in_plane(const Plane& p, double cos_i, double cos_o, int k, NdfKin
       if (std::abs(std::remainder(s.theta_o - p.t_o, 2.0 * M_PI)) > 1e-9) continue;
       const double theta_m = 0.5 * (M_PI - theta_v);
       const double i_dot_s = p.c * s.f_a;  // |i.s| = c f_a: f_a is the 2D cosine of incidence
+      // k = 1: s = h, so sin(theta_s)/sin(theta_h) = 1 exactly (Eq. 25); computing it would
+      // divide two rounding errors next to the mirror direction.
+      const double ratio = k == 1 ? 1.0 : std::sin(theta_m) / (k * p.sin_h);
       // Lee et al. 2018, Eq. (16) with the Jacobian of Eq. (13).
-      sum += std::sin(theta_m) / (k * p.sin_h) * fresnel_product(F, p.t_i, theta_m, side, k, p.c) * i_dot_s *
+      sum += ratio * fresnel_product(F, p.t_i, theta_m, side, k, p.c) * i_dot_s *
              D(ndf, theta_m, alpha) * s.G / (4.0 * p.cos_d * cos_i * cos_o);
     }
   }
@@ -360,6 +366,8 @@ int ct_branch(const Azimuth& az, FacetSide side, double theta_v) {
 
 struct Scratch {
   std::vector<double> T, X;
+  double band_total = 0.0;                          // flux deposited by the bands at this node
+  std::vector<std::pair<size_t, double>> tail;      // the tail's deposits at this node
 };
 
 // Integrate one facet's k-reflection outcomes over theta_v in [x_lo, x_hi] with the weight
@@ -426,36 +434,60 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
     if (!(mid.P > 0.0)) continue;
     const int bin = bin_of(r, az, mid.t_o);
     if (bin < 0) continue;
-    // Gauss-Legendre in w = sqrt(CDF(theta_m)): du = 2 w dw, smooth where D peaks at theta_m = 0.
-    const double w0 = std::sqrt(groove_cdf(r.ndf, r.alpha, 0.5 * (M_PI - x1)));
-    const double w1 = std::sqrt(groove_cdf(r.ndf, r.alpha, 0.5 * (M_PI - x0)));
-    if (!(w1 > w0)) continue;
-    // Order by the piece's mass: Gauss-Legendre of order 2 already integrates cubics exactly, and
-    // pieces lighter than 1e-9 (the narrow bands of high k) are short and smooth.
-    const double mass = (w1 - w0) * (w1 + w0);
-    const GlRule& rule = gl_rule(mass < 1e-9 ? 2 : (mass < 1e-6 ? 4 : 8));
-    double sum = 0.0;
-    for (size_t q = 0; q < rule.x.size(); ++q) {
-      const double w = 0.5 * (w0 + w1) + 0.5 * (w1 - w0) * rule.x[q];
-      const double theta_v = M_PI - 2.0 * groove_cdf_inverse(r.ndf, r.alpha, w * w);
-      sum += rule.w[q] * weight_k(r, az, side, k, theta_v) * 2.0 * w;
+    // The weight is dCDF(theta_m) = 2 pi D cos sin d theta_m. Near theta_m = 0, where D peaks
+    // (width alpha), Gauss-Legendre runs in w = sqrt(CDF) (du = 2 w dw, theta_m(w) analytic at
+    // w = 0); above the median in theta_m itself, since theta_m(w) is singular at w = 1 (sqrt for
+    // GGX, log for Beckmann). Pieces are cut to at most 0.05 in w or theta_m.
+    const double m0 = 0.5 * (M_PI - x1), m1 = 0.5 * (M_PI - x0);
+    const double m_half = groove_cdf_inverse(r.ndf, r.alpha, 0.5);
+    double val = 0.0;
+    auto gl_pieces = [&](double a0, double a1, bool in_w) {
+      if (!(a1 > a0)) return;
+      // In theta_m also at most a ratio 1.25 per piece: D's tail above the median falls off on the
+      // scale of theta_m itself (a power law for GGX, faster for Beckmann and Phong).
+      const double len = in_w ? 0.05 : std::min(0.05, 0.25 * a0);
+      const int pieces = static_cast<int>(std::ceil((a1 - a0) / len));
+      for (int pc = 0; pc < pieces; ++pc) {
+        const double b0 = a0 + (a1 - a0) * pc / pieces, b1 = a0 + (a1 - a0) * (pc + 1) / pieces;
+        const double mass_est = in_w ? (b1 - b0) * (b1 + b0) : 1.0;
+        // Order by the piece's mass: pieces lighter than 1e-9 (narrow bands of high k) are short.
+        const GlRule& rule = gl_rule(mass_est < 1e-9 ? 2 : (mass_est < 1e-6 ? 4 : 8));
+        double sum = 0.0;
+        for (size_t q = 0; q < rule.x.size(); ++q) {
+          const double v = 0.5 * (b0 + b1) + 0.5 * (b1 - b0) * rule.x[q];
+          if (in_w) {
+            const double theta_v = M_PI - 2.0 * groove_cdf_inverse(r.ndf, r.alpha, v * v);
+            sum += rule.w[q] * weight_k(r, az, side, k, theta_v) * 2.0 * v;
+          } else {
+            const double pdf = 2.0 * M_PI * D(r.ndf, v, r.alpha) * std::cos(v) * std::sin(v);
+            sum += rule.w[q] * weight_k(r, az, side, k, M_PI - 2.0 * v) * pdf;
+          }
+        }
+        val += 0.5 * (b1 - b0) * sum;
+      }
+    };
+    if (m0 < m_half) {
+      gl_pieces(std::sqrt(groove_cdf(r.ndf, r.alpha, m0)), std::sqrt(groove_cdf(r.ndf, r.alpha, std::min(m1, m_half))),
+                true);
     }
-    const double val = weight * 0.5 * (w1 - w0) * sum;
+    if (m1 > m_half) gl_pieces(std::max(m0, m_half), m1, false);
+    val *= weight;
     const int t = bin / r.pb, p = bin % r.pb;
     // The mirror image pi - phi_a of the groove (y -> -y) sends the same flux to phi_o -> -phi_o.
     L.hist_by_k[(static_cast<size_t>(row) * r.tb + t) * r.pb + p] += val;
     L.hist_by_k[(static_cast<size_t>(row) * r.tb + t) * r.pb + (r.pb - p) % r.pb] += val;
+    sc.band_total += 2.0 * val;
   }
 }
 
 // The tail beyond the explicit bands: midpoint rule in the CDF.
 // The outcomes of more than k_cap reflections come from theta_v < span / k_cap (Eq. 4).
-void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_cap, int n, double weight) {
+void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_cap, int n, double weight,
+                    Scratch& sc) {
   const double tf = side == FacetSide::left ? az.tau : -az.tau;
   const double u0 = groove_cdf(r.ndf, r.alpha, 0.5 * (M_PI - (M_PI + 2.0 * tf) / k_cap));
   const double mass = 1.0 - u0;
   if (!(mass > 0.0)) return;
-  Lobe3d& L = *r.out;
   for (int q = 0; q < n; ++q) {
     const double u = u0 + mass * (q + 0.5) / n;
     const double theta_v = M_PI - 2.0 * groove_cdf_inverse(r.ndf, r.alpha, u);
@@ -469,8 +501,8 @@ void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_c
       const int row = std::min(b.n, r.max_k + 1);
       const int t = bin / r.pb, pp = bin % r.pb;
       const double val = weight * mass / n * b.G * p.f_a / w;
-      L.hist_by_k[(static_cast<size_t>(row) * r.tb + t) * r.pb + pp] += val;
-      L.hist_by_k[(static_cast<size_t>(row) * r.tb + t) * r.pb + (r.pb - pp) % r.pb] += val;
+      sc.tail.emplace_back((static_cast<size_t>(row) * r.tb + t) * r.pb + pp, val);
+      sc.tail.emplace_back((static_cast<size_t>(row) * r.tb + t) * r.pb + (r.pb - pp) % r.pb, val);
     }
   }
 }
@@ -529,6 +561,8 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
     az.iu = si * az.sa;
     az.c = std::sqrt(std::max(0.0, 1.0 - az.iu * az.iu));
     edge_crossings(r, az, sc.T);
+    sc.band_total = 0.0;
+    sc.tail.clear();
     for (FacetSide side : {FacetSide::left, FacetSide::right}) {
       const double tf = side == FacetSide::left ? az.tau : -az.tau;
       const double span = M_PI + 2.0 * tf;  // Eq. (4): K = floor(span / theta_v) + 1
@@ -545,8 +579,15 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
         // Stop once the grooves with outcomes beyond k (theta_v < span / k) weigh nothing.
         if (k >= max_k + 1 && 1.0 - groove_cdf(ndf, alpha, 0.5 * (M_PI - span / k)) < 1e-16) break;
       }
-      if (k >= k_cap) integrate_tail(r, az, side, k_cap, opt.tail_strata, weight);
+      if (k >= k_cap) integrate_tail(r, az, side, k_cap, opt.tail_strata, weight, sc);
     }
+    // The tail's total is known exactly: each groove sends all its flux somewhere (Eq. 6 over both
+    // facets sums to 1), so the tail carries 2 weight - band_total. The midpoint rule only
+    // distributes it.
+    double tail_total = 0.0;
+    for (const auto& d : sc.tail) tail_total += d.second;
+    const double scale = tail_total > 0.0 ? (2.0 * weight - sc.band_total) / tail_total : 0.0;
+    for (const auto& d : sc.tail) L.hist_by_k[d.first] += scale * d.second;
   }
   for (int row = 0; row < rows; ++row) {
     for (int t = 0; t < theta_bins; ++t) {
