@@ -4,6 +4,7 @@
 #include "sim/beam.h"
 #include "sim/tally.h"
 #include "validation/atomic_file.h"
+#include "validation/cost_curve.h"
 #include "validation/json_reader.h"
 #include "validation/microsurface_case.h"
 #include "validation/plot.h"
@@ -357,6 +358,21 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
       fastest_s = r["wall_s"].get<double>();
   std::printf("  reaches the thresholds (max L1 <= %g, mean L1 <= %g) soonest: %s\n", suite.thresholds.max_l1,
               suite.thresholds.mean_l1, fastest.c_str());
+  // The tracer's cost grows like pi / theta_v; the model's does not (one thread, theta_i = 30 deg).
+  const double kTheta_i = 30.0 * kRad;
+  const std::vector<double> apertures_deg = {1, 2, 5, 10, 20, 45, 90, 135, 180};
+  std::vector<double> apertures;
+  for (double d : apertures_deg) apertures.push_back(d * kRad);
+  const std::vector<CostPoint> cost = cost_vs_theta_v(apertures, kTheta_i, 20000);
+  nlohmann::json cost_json = nlohmann::json::array();
+  std::printf("  cost against theta_v (one thread, theta_i = 30 deg, 20000 stratified rays):\n");
+  std::printf("  %10s %12s %14s %16s %8s\n", "theta_v", "bounces/ray", "tracer ns/ray", "model ns/eval", "ratio");
+  for (const CostPoint& c : cost) {
+    std::printf("  %10.0f %12.2f %14.1f %16.1f %8.1f\n", output_deg(c.theta_v), c.bounces_per_ray, c.tracer_ns_per_ray,
+                c.model_ns_per_eval, c.tracer_ns_per_ray / c.model_ns_per_eval);
+    cost_json.push_back({{"theta_v_deg", output_deg(c.theta_v)}, {"bounces_per_ray", c.bounces_per_ray},
+                         {"tracer_ns_per_ray", c.tracer_ns_per_ray}, {"model_ns_per_eval", c.model_ns_per_eval}});
+  }
   if (!a.out.empty()) {
     nlohmann::json j = provenance();
     j["suite"] = suite.name;
@@ -366,6 +382,7 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
     j["runs"] = runs;
     j["thresholds"] = {{"max_l1", suite.thresholds.max_l1}, {"mean_l1", suite.thresholds.mean_l1}};
     j["soonest_to_thresholds"] = fastest;
+    j["cost_vs_theta_v"] = {{"theta_i_deg", 30.0}, {"rays", 20000}, {"threads", 1}, {"points", cost_json}};
     write_file_atomically(a.out, j.dump(1) + "\n", a.force);
     std::printf("report: %s\n", a.out.c_str());
   }
