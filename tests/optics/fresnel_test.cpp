@@ -1,7 +1,7 @@
 // Tests of optics/fresnel.h. Every expected value is derived by hand from the Fresnel equations
-// at chosen points (derivations in the comments) or is an identity of those equations; no
-// published table is used (none is among the project's sources), so no material constants are
-// claimed: the indices below are chosen values, not measured metals.
+// at chosen points (derivations in the comments) or is an identity of those equations; the
+// indices below are chosen values, not measured metals. Published constants (Johnson & Christy
+// 1972, Rakic 1995) are checked in metals_reference_test.cpp against data/reference/metals.json.
 #include "optics/fresnel.h"
 
 #include <gtest/gtest.h>
