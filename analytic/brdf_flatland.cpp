@@ -142,8 +142,12 @@ void add_left_resolved(const LobeContext& c, double theta_i, bool mirror, int n_
     for (std::size_t p = 0; p + 1 < cuts.size(); ++p) {
       const double a = cuts[p], b = cuts[p + 1];
       if (!(b > a)) continue;
-      for (int n = k - 1; n <= k; ++n) {
-        if (n == 0) continue;  // k = 1: w_0 = f_a - f_k = 0 exactly (f_k = f_a)
+      // The sub-intervals of [a, b] on which n reflections land in one bin.
+      struct Sub { int n; double va, vb; long bin; };
+      Sub subs[2 * 64];
+      int count = 0;
+      bool overflow = false;
+      for (int n = std::max(1, k - 1); n <= k; ++n) {  // k = 1: w_0 = f_a - f_k = 0 (f_k = f_a)
         // Eq. (5), unwrapped: y = (-1)^n (theta_i + pi - n theta_v), linear in theta_v.
         const double sgn = (n % 2 == 0) ? 1.0 : -1.0;
         auto y_of = [&](double v) { return sgn * (theta_i + M_PI - n * v); };
@@ -159,18 +163,64 @@ void add_left_resolved(const LobeContext& c, double theta_i, bool mirror, int n_
           const double v1 = std::clamp(v_of(y_lo), a, b), v2 = std::clamp(v_of(y_hi), a, b);
           const double va = std::min(v1, v2), vb = std::max(v1, v2);
           if (!(vb > va)) continue;
-          // d Phi_n = D2 w_n d theta_s / cos theta_i, d theta_s = d theta_v / 2.
-          const double flux = integrate(gl, [&](double v) {
-            return D2(c.ndf, theta_s_left(v), c.alpha) * width_left(theta_i, v, n);
-          }, va, vb) * 0.5 * inv_cos;
           long bin = j % (2L * c.bins);
           if (bin < 0) bin += 2L * c.bins;
-          if (bin >= c.bins) {
-            acc.below += flux;
-            continue;
-          }
-          const int b_out = mirror ? c.bins - 1 - static_cast<int>(bin) : static_cast<int>(bin);
-          acc.add(n, b_out, flux);
+          if (count == 2 * 64) overflow = true;
+          else subs[count++] = {n, va, vb, bin};
+        }
+      }
+      auto deposit = [&](const Sub& u, double flux) {
+        if (u.bin >= c.bins) {
+          acc.below += flux;
+          return;
+        }
+        const int b_out = mirror ? c.bins - 1 - static_cast<int>(u.bin) : static_cast<int>(u.bin);
+        acc.add(u.n, b_out, flux);
+      };
+      // d Phi_n = D2 w_n d theta_s / cos theta_i, d theta_s = d theta_v / 2.
+      if (!overflow && count == 2 && subs[0].va == a && subs[0].vb == b && subs[1].va == a && subs[1].vb == b) {
+        // Both counts stay in one bin each (large k): one evaluation of Eq. (6) per node.
+        const double h = 0.5 * (b - a), m = 0.5 * (a + b);
+        double s0 = 0.0, s1 = 0.0;
+        for (std::size_t q = 0; q < gl.x.size(); ++q) {
+          const double v = m + h * gl.x[q];
+          const FacetPrediction pr = G_kaleidoscopic(theta_i, v, FacetSide::left);
+          if (!pr.lit) continue;
+          const double d = gl.w[q] * D2(c.ndf, theta_s_left(v), c.alpha);
+          const double w_fewer = pr.f_a - pr.f_k, w_more = pr.f_k - pr.f_b;
+          s0 += d * ((pr.fewer.n == subs[0].n ? w_fewer : 0.0) + (pr.more.n == subs[0].n ? w_more : 0.0));
+          s1 += d * ((pr.fewer.n == subs[1].n ? w_fewer : 0.0) + (pr.more.n == subs[1].n ? w_more : 0.0));
+        }
+        deposit(subs[0], s0 * h * 0.5 * inv_cos);
+        deposit(subs[1], s1 * h * 0.5 * inv_cos);
+        continue;
+      }
+      auto one = [&](const Sub& u) {
+        deposit(u, integrate(gl, [&](double v) {
+          return D2(c.ndf, theta_s_left(v), c.alpha) * width_left(theta_i, v, u.n);
+        }, u.va, u.vb) * 0.5 * inv_cos);
+      };
+      if (!overflow) {
+        for (int q = 0; q < count; ++q) one(subs[q]);
+        continue;
+      }
+      // Many bins crossed on one piece (only with very many bins): the plain path.
+      for (int n = std::max(1, k - 1); n <= k; ++n) {
+        const double sgn = (n % 2 == 0) ? 1.0 : -1.0;
+        auto y_of = [&](double v) { return sgn * (theta_i + M_PI - n * v); };
+        auto v_of = [&](double y) { return (theta_i + M_PI - sgn * y) / n; };
+        const double ya = std::min(y_of(a), y_of(b)), yb = std::max(y_of(a), y_of(b));
+        const long j0 = static_cast<long>(std::floor((ya + kHalfPi) / c.bin_w));
+        const long j1 = static_cast<long>(std::floor((yb + kHalfPi) / c.bin_w));
+        for (long j = j0; j <= j1; ++j) {
+          const double y_lo = std::max(ya, -kHalfPi + j * c.bin_w);
+          const double y_hi = std::min(yb, -kHalfPi + (j + 1) * c.bin_w);
+          if (!(y_hi > y_lo)) continue;
+          const double v1 = std::clamp(v_of(y_lo), a, b), v2 = std::clamp(v_of(y_hi), a, b);
+          if (!(std::max(v1, v2) > std::min(v1, v2))) continue;
+          long bin = j % (2L * c.bins);
+          if (bin < 0) bin += 2L * c.bins;
+          one(Sub{n, std::min(v1, v2), std::max(v1, v2), bin});
         }
       }
     }
