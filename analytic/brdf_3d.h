@@ -30,7 +30,7 @@
 //   - G(i, o, s) = the 2D Eq. (6) fraction (corrected form, ERRATA E1) of the facet hit first,
 //     evaluated at the projected angle t_i, and
 //   - s_m the solutions of Eq. (5) written with the projected angles t_i, t_o (not the 3D
-//     theta_i, theta_o: App. A Eq. (27) holds in the plane of incidence only; see ERRATA A3).
+//     theta_i, theta_o: App. A Eq. (27) holds in the plane of incidence only; see ERRATA E3D).
 // The solutions: for the facet hit first (left or right) and k, theta_v = (+-t_i + pi -+ (-1)^k
 // t_o + 2 pi j) / k; every j with theta_v in (0, pi] and an Eq. (6) outcome of exactly k
 // reflections counts. "m = 1, 2" of Eq. (16) is generically one solution per facet, but the
