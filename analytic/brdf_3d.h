@@ -91,9 +91,13 @@ double groove_cdf_inverse(NdfKind ndf, double alpha, double u);
 // each groove azimuth (Gauss-Legendre in phi_a, mirror symmetry phi_a -> pi - phi_a), each facet
 // and each k, the arc of exit directions swept by theta_m is cut where it crosses a bin edge or
 // where Eq. (4)/(6) change form, and each piece is integrated exactly in smoothness by
-// Gauss-Legendre in w = sqrt(CDF(theta_m)). by_k and albedo are exact to rounding; hist is limited
-// by the phi_a quadrature (see the tests for the measured error). Beyond k = k_bands the lobe
-// deposits by a midpoint rule in the CDF (exact in by_k, approximate in the bins).
+// Gauss-Legendre in w = sqrt(CDF(theta_m)) (theta_m above the median). by_k and albedo are exact
+// to rounding (albedo - 1 < 3e-14 for F = 1); hist is limited by the phi_a quadrature, whose
+// integrands have kinks where arcs meet bin corners: against Eq. (16) integrated over single bins,
+// < 1e-8 at and beside the specular peak, up to 1.6e-6 in the back-scattering plane, and the
+// 384 -> 768 panel change is <= 1e-5 per bin (GGX 0.5 at 30 deg). Beyond k = k_bands the lobe
+// deposits by a midpoint rule in the CDF, scaled to the tail's exact total. Cost at 45 x 36 bins,
+// max_k 16: 0.1-1.1 s per case (2 loaded cores).
 struct Lobe3d {
   int theta_bins = 0;
   int phi_bins = 0;
