@@ -525,3 +525,42 @@ TEST(SimulateCli, WritesTheResultAndRefusesToOverwrite) {
 
 }  // namespace
 }  // namespace vgroove::validation
+
+namespace vgroove::validation {
+namespace {
+
+// Published metals through a traced groove. In a 60 deg groove lit at theta_i = 60 deg the light
+// falls along the right facet's normal (its normal is at +60 deg) and parallel to the left facet:
+// every ray reflects once, at normal incidence, straight back. The traced energy is then the
+// normal-incidence reflectance ((n-1)^2 + k^2) / ((n+1)^2 + k^2) of each published (n, k) in
+// data/reference/metals.json (Johnson & Christy 1972; Rakic 1995), whose R_normal column was
+// computed independently of the code (6 significant digits).
+TEST(SceneMetals, PublishedConstantsThroughANormalIncidenceGroove) {
+  const json ref = json::parse(testing_files::read_text(std::string(VGROOVE_SOURCE_DIR) + "/data/reference/metals.json"));
+  json scene = {{"scene", "metals"},
+                {"geometry", {{"kind", "groove"}, {"theta_v_deg", 60}}},
+                {"light", {{"theta_i_deg", {60}}, {"rays", 1000}, {"sampling", "stratified"}, {"seed", 1}}},
+                {"effects", {{"fresnel", {{"kind", "conductor"}, {"wavelengths", json::array()}}}}}};
+  std::vector<double> expected;
+  for (const auto& m : ref.at("metals"))
+    for (const auto& s : m.at("samples")) {
+      // Names must be unique: the same wavelength appears for several metals.
+      scene["effects"]["fresnel"]["wavelengths"].push_back(
+          {{"lambda_nm", s.at("lambda_nm").get<double>() + 1e-3 * static_cast<double>(expected.size())},
+           {"eta", s.at("eta")},
+           {"kappa", s.at("kappa")}});
+      expected.push_back(s.at("R_normal").get<double>());
+    }
+  ASSERT_EQ(expected.size(), 12u);
+  const Scene s = parse_scene(scene, "metals.json");
+  const SimulationResult r = simulate(s, 1);
+  ASSERT_EQ(r.tallies.size(), 1u);
+  const ThetaTally& t = r.tallies[0];
+  EXPECT_EQ(t.escaped, 1000);
+  EXPECT_EQ(t.bounces, 1000);  // one reflection each
+  for (std::size_t c = 0; c < expected.size(); ++c)
+    EXPECT_NEAR(t.energy[c] / static_cast<double>(t.rays), expected[c], 5e-6 * expected[c]) << "sample " << c;
+}
+
+}  // namespace
+}  // namespace vgroove::validation
