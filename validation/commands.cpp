@@ -410,10 +410,17 @@ int cmd_plot(const PlotArgs& a) {
     return 0;
   }
   const std::string svg = accuracy_svg(report, a.report);
+  const std::string cost = cost_svg(report);
+  const std::string cost_out = (out.size() > 4 && out.compare(out.size() - 4, 4, ".svg") == 0 ? out.substr(0, out.size() - 4) : out) + "-cost.svg";
   check_writable_target(out, a.force);
+  if (!cost.empty()) check_writable_target(cost_out, a.force);
   if (a.dry_run) return 0;
   write_file_atomically(out, svg, a.force);
   std::printf("plot: %s\n", out.c_str());
+  if (!cost.empty()) {
+    write_file_atomically(cost_out, cost, a.force);
+    std::printf("plot: %s\n", cost_out.c_str());
+  }
   return 0;
 }
 

@@ -112,6 +112,73 @@ std::string accuracy_svg(const nlohmann::json& report, const std::string& file) 
   return svg;
 }
 
+std::string cost_svg(const nlohmann::json& report) {
+  if (!report.contains("cost_vs_theta_v") || !report["cost_vs_theta_v"].contains("points") ||
+      !report["cost_vs_theta_v"]["points"].is_array())
+    return {};
+  struct C {
+    double v, tracer, model;
+  };
+  std::vector<C> c;
+  for (const auto& p : report["cost_vs_theta_v"]["points"])
+    if (p.is_object() && p.value("theta_v_deg", 0.0) > 0 && p.value("tracer_ns_per_ray", 0.0) > 0 &&
+        p.value("model_ns_per_eval", 0.0) > 0)
+      c.push_back({p["theta_v_deg"].get<double>(), p["tracer_ns_per_ray"].get<double>(), p["model_ns_per_eval"].get<double>()});
+  if (c.empty()) return {};
+  double vmin = INFINITY, vmax = 0, nmin = INFINITY, nmax = 0;
+  for (const auto& q : c) {
+    vmin = std::min(vmin, q.v), vmax = std::max(vmax, q.v);
+    nmin = std::min({nmin, q.tracer, q.model}), nmax = std::max({nmax, q.tracer, q.model});
+  }
+  const auto [vx0, vx1] = log_range(vmin, vmax);
+  const auto [ny0, ny1] = log_range(nmin, nmax);
+  const double W = 720, H = 420, L = 80, R = 190, T = 48, B = 60;
+  auto X = [&](double v) { return L + (std::log10(v) - vx0) / std::max(1.0, vx1 - vx0) * (W - L - R); };
+  auto Y = [&](double n) { return H - B - (std::log10(n) - ny0) / std::max(1.0, ny1 - ny0) * (H - T - B); };
+  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"720\" height=\"420\" font-family=\"sans-serif\" font-size=\"12\">\n";
+  svg += "<rect width=\"720\" height=\"420\" fill=\"white\"/>\n";
+  svg += "<text x=\"80\" y=\"20\" font-size=\"14\">Cost against aperture: one traced ray vs one model evaluation</text>\n";
+  svg += "<text x=\"80\" y=\"34\" font-size=\"10\" fill=\"#555\">vgroove " + report.value("version", std::string("?")) +
+         ", git " + report.value("git", std::string("?")) + "; one thread, theta_i = " +
+         fmt("%.0f", report["cost_vs_theta_v"].value("theta_i_deg", 0.0)) + " deg</text>\n";
+  for (double d = vx0; d <= vx1; d += 1) {
+    const double x = X(std::pow(10.0, d));
+    svg += "<line x1=\"" + fmt("%.1f", x) + "\" y1=\"" + fmt("%.1f", T) + "\" x2=\"" + fmt("%.1f", x) + "\" y2=\"" +
+           fmt("%.1f", H - B) + "\" stroke=\"#ddd\"/>\n";
+    svg += "<text x=\"" + fmt("%.1f", x) + "\" y=\"" + fmt("%.1f", H - B + 18) + "\" text-anchor=\"middle\">" +
+           fmt("%g", std::pow(10.0, d)) + "</text>\n";
+  }
+  for (double d = ny0; d <= ny1; d += 1) {
+    const double y = Y(std::pow(10.0, d));
+    svg += "<line x1=\"" + fmt("%.1f", L) + "\" y1=\"" + fmt("%.1f", y) + "\" x2=\"" + fmt("%.1f", W - R) + "\" y2=\"" +
+           fmt("%.1f", y) + "\" stroke=\"#ddd\"/>\n";
+    svg += "<text x=\"" + fmt("%.1f", L - 8) + "\" y=\"" + fmt("%.1f", y + 4) + "\" text-anchor=\"end\">" +
+           fmt("%g", std::pow(10.0, d)) + "</text>\n";
+  }
+  svg += "<text x=\"" + fmt("%.1f", (L + W - R) / 2) + "\" y=\"" + fmt("%.1f", H - 16) +
+         "\" text-anchor=\"middle\">theta_v (deg)</text>\n";
+  svg += "<text x=\"20\" y=\"" + fmt("%.1f", (T + H - B) / 2) + "\" transform=\"rotate(-90 20 " +
+         fmt("%.1f", (T + H - B) / 2) + ")\" text-anchor=\"middle\">ns</text>\n";
+  const char* color[2] = {"#1f77b4", "#d62728"};
+  const char* label[2] = {"tracer, per ray", "model Eq. 4-6, per eval."};
+  for (int which = 0; which < 2; ++which) {
+    std::string path;
+    for (const auto& q : c)
+      path += (path.empty() ? "M" : " L") + fmt("%.1f", X(q.v)) + "," + fmt("%.1f", Y(which ? q.model : q.tracer));
+    svg += "<path d=\"" + path + "\" fill=\"none\" stroke=\"" + color[which] + "\" stroke-width=\"2\"/>\n";
+    for (const auto& q : c)
+      svg += "<circle cx=\"" + fmt("%.1f", X(q.v)) + "\" cy=\"" + fmt("%.1f", Y(which ? q.model : q.tracer)) +
+             "\" r=\"3\" fill=\"" + color[which] + "\"/>\n";
+    const double ly = T + 20 + 18 * which;
+    svg += "<line x1=\"" + fmt("%.1f", W - R + 10) + "\" y1=\"" + fmt("%.1f", ly) + "\" x2=\"" + fmt("%.1f", W - R + 34) +
+           "\" y2=\"" + fmt("%.1f", ly) + "\" stroke=\"" + color[which] + "\" stroke-width=\"2\"/>\n";
+    svg += "<text x=\"" + fmt("%.1f", W - R + 40) + "\" y=\"" + fmt("%.1f", ly + 4) + "\" font-size=\"10\">" +
+           label[which] + "</text>\n";
+  }
+  svg += "</svg>\n";
+  return svg;
+}
+
 bool is_brdf_report(const nlohmann::json& report) {
   return report.is_object() && report.value("kind", std::string()) == "brdf" && report.contains("cases");
 }

@@ -16,6 +16,10 @@ namespace vgroove::validation {
 // Throws UserError naming `file` if the JSON is not such a report.
 std::string accuracy_svg(const nlohmann::json& report, const std::string& file);
 
+// The tracer's cost per ray and the model's per evaluation against theta_v, log-log, from the
+// `cost_vs_theta_v` of a `bench accuracy` report; empty when the report has none.
+std::string cost_svg(const nlohmann::json& report);
+
 // The Fig. 11 grid of a "brdf" suite report (`vgroove validate data/suites/fig11.json --out R`):
 // one SVG per (NDF, dimension), one panel per (theta_i row, alpha column), each with the traced
 // lobe on the plane of incidence as bars, the analytic BRDF integrated over the same bins as a

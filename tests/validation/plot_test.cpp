@@ -38,5 +38,20 @@ TEST(AccuracyPlot, RefusesOtherJson) {
   }
 }
 
+// The cost curves: one point per aperture on each of the two lines; nothing without the data.
+TEST(AccuracyPlot, CostCurveHasTracerAndModelLines) {
+  nlohmann::json report = {{"version", "0"}, {"git", "g"}};
+  EXPECT_TRUE(cost_svg(report).empty());
+  report["cost_vs_theta_v"] = {{"theta_i_deg", 30.0},
+                               {"points",
+                                {{{"theta_v_deg", 1.0}, {"tracer_ns_per_ray", 500.0}, {"model_ns_per_eval", 150.0}},
+                                 {{"theta_v_deg", 10.0}, {"tracer_ns_per_ray", 50.0}, {"model_ns_per_eval", 150.0}},
+                                 {{"theta_v_deg", 100.0}, {"tracer_ns_per_ray", 10.0}, {"model_ns_per_eval", 160.0}}}}};
+  const std::string svg = cost_svg(report);
+  EXPECT_EQ(count(svg, "<circle"), 6u);
+  EXPECT_EQ(count(svg, "<path"), 2u);
+  EXPECT_NE(svg.find("theta_i = 30 deg"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace vgroove::validation
