@@ -61,6 +61,26 @@ void BM_trace_groove(benchmark::State& state) {
   report(state, bounces, rays);
 }
 
+// The same rays through sim::BeamTracer, which computes the direction-only quantities of the
+// beam once: every ray is still traced fully, with the same results bit for bit (bounce count,
+// termination, exit direction), and escaped rays' bounces are summed as above.
+void BM_trace_beam(benchmark::State& state) {
+  const TracerSetup s(static_cast<double>(state.range(0)));
+  const sim::BeamTracer beam(s.g, s.dir, s.opt);
+  sim::Rng rng(1, 0, 0);  // unused by stratified placement
+  std::int64_t bounces = 0, rays = 0;
+  for (auto _ : state) {
+    for (long j = 0; j < kRays; ++j) {
+      const double x = sim::sample_position(sim::Sampling::stratified, s.open, j, kRays, rng);
+      const sim::TraceResult r = beam.trace(x);
+      benchmark::DoNotOptimize(r);
+      if (r.how == sim::Termination::escaped) bounces += r.bounces;
+    }
+    rays += kRays;
+  }
+  report(state, bounces, rays);
+}
+
 // The per-ray cost as the validator pays it (validation/groove_case.cpp): placement, trace and
 // sim::Tally::add into a fresh tally per batch of rays.
 void BM_trace_groove_tally(benchmark::State& state) {
@@ -88,4 +108,5 @@ void theta_v_args(benchmark::internal::Benchmark* b) {
 }  // namespace
 
 BENCHMARK(BM_trace_groove)->Apply(theta_v_args);
+BENCHMARK(BM_trace_beam)->Apply(theta_v_args);
 BENCHMARK(BM_trace_groove_tally)->Apply(theta_v_args);

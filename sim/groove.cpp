@@ -14,6 +14,7 @@ void finish_groove(Groove& g) {
   }
   g.facet[0].turn_to_other = cross(g.facet[0].edge, g.facet[1].edge);
   g.facet[1].turn_to_other = cross(g.facet[1].edge, g.facet[0].edge);
+  for (int i = 0; i < 2; ++i) g.rim_xs[i] = g.facet[i].rim().x();
 }
 
 Groove make_symmetric_groove(double theta_v) {

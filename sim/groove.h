@@ -33,12 +33,14 @@ struct Groove {
   Facet facet[2];     // indexed by Side
   double rim_height;  // y of both rims
   double theta_v;     // aperture (radians)
+  double rim_xs[2];   // facet[s].rim().x(), kept by finish_groove: the tracer's first test per ray
   const Facet& operator[](Side s) const { return facet[static_cast<int>(s)]; }
   // x of the rims on the rim line: the opening is [rim_x(left), rim_x(right)].
-  double rim_x(Side s) const { return (*this)[s].rim().x(); }
+  double rim_x(Side s) const { return rim_xs[static_cast<int>(s)]; }
 };
 
-// Fills the derived members (reflection matrices, turn_to_other) from edges and normals.
+// Fills the derived members (reflection matrices, turn_to_other, rim_xs) from edges, normals and
+// lengths.
 void finish_groove(Groove& g);
 
 // Symmetric groove, aperture theta_v in (0, pi]; facets of unit length.

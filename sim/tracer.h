@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 namespace vgroove::sim {
 
@@ -64,6 +65,64 @@ inline FacetHit hit_facet_from_rim_line(const Vec2& p, const Vec2& d, const Face
   h.t_den = den;
   return h;
 }
+// The same test when sn = cross(p, d) and den = cross(e, d) are known and sn den >= 0.
+inline double hit_facet_with(const Vec2& p, const Facet& f, double sn, double den) {
+  if (den == 0.0 || cross(p, f.edge) * den < 0.0 || std::abs(sn) > f.length * std::abs(den)) return -1.0;
+  return sn / den;
+}
+}  // namespace detail
+
+namespace detail {
+enum class Step : unsigned char { next, escaped, vertex_hit, bounce_limit };
+
+// One reflection on facet f (the ray is at s e_f, travelling along d), then where it goes: onto
+// the other facet o (s updated) or out through the opening. Facets are passed, not indexed, so
+// the loop below runs with both facets fixed in registers.
+template <class Observer>
+[[gnu::always_inline]] inline Step bounce(Side on, const Facet& f, const Facet& o, Vec2& d, double& s, int& bounces,
+                   int max_bounces, Observer& obs) {
+  if (s == 0.0 || s == f.length) return Step::vertex_hit;  // exactly on the apex or a rim
+  if (bounces == max_bounces) return Step::bounce_limit;
+  obs.on_bounce(on, d, f);
+  d = f.reflect(d);
+  ++bounces;
+  const double den = cross(o.edge, d);
+  if (!(den * f.turn_to_other > 0.0)) return Step::escaped;  // t <= 0: leaves through the opening
+  const double c = cross(f.edge, d);
+  // 0 <= s' <= length, tested without a division (s > 0, den != 0).
+  if (c * den < 0.0 || s * std::abs(c) > o.length * std::abs(den)) return Step::escaped;  // passes the other facet
+  s *= c / den;  // the ratio depends on the direction alone: off the position's dependency chain
+  return Step::next;
+}
+
+// The reflections from facet `on` until the ray leaves, hits a vertex or reaches max_bounces,
+// alternating between the facets, each with both facets fixed.
+template <class Observer>
+[[gnu::always_inline]] inline Step reflect_until_done(const Groove& g, Side on, Vec2& d, double& s, int& bounces,
+                                                      int max_bounces, Observer& obs) {
+  const Facet& fl = g[Side::left];
+  const Facet& fr = g[Side::right];
+  Step st;
+  if (on == Side::right) goto on_right;
+  for (;;) {
+    st = bounce(Side::left, fl, fr, d, s, bounces, max_bounces, obs);
+    if (st != Step::next) break;
+  on_right:
+    st = bounce(Side::right, fr, fl, d, s, bounces, max_bounces, obs);
+    if (st != Step::next) break;
+  }
+  return st;
+}
+
+inline void finish(TraceResult& r, Step st, int bounces, const Vec2& d) {
+  r.bounces = bounces;
+  if (st == Step::escaped) [[likely]] {
+    r.exit_dir = d;
+    r.how = Termination::escaped;
+  } else {
+    r.how = st == Step::vertex_hit ? Termination::vertex_hit : Termination::bounce_limit;
+  }
+}
 }  // namespace detail
 
 // Traces one ray from where it crosses the rim line. The observer sees every reflection; with
@@ -76,62 +135,193 @@ inline FacetHit hit_facet_from_rim_line(const Vec2& p, const Vec2& d, const Face
 //   t  = cross(p, e_o) / cross(e_o, d) = s * cross(e_f, e_o) / cross(e_o, d),
 // so t > 0 exactly when cross(e_o, d) has the sign of cross(e_f, e_o) (s > 0), and s' is s times
 // a ratio of the direction alone: the position is a single number carried along the facets.
+//
+// The first hit: s = cross(p, d) / cross(e, d) for either facet, the numerator shared. Both
+// facets are tested by signs and products; only the facet that answers is divided for (both
+// answer only at the apex up to rounding, and then the nearer one, by t, is taken).
 template <class Observer = NoBounceObserver>
-TraceResult trace(const Groove& g, const Ray2& ray, const TraceOptions& opt = {},
+[[gnu::always_inline]] inline TraceResult trace(const Groove& g, const Ray2& ray, const TraceOptions& opt = {},
                   Observer&& obs = Observer{}) {
   TraceResult r;
   // Where the ray crosses the rim line decides whether it enters this groove at all.
   const double x_rim = ray.origin.x();
-  if (x_rim < g.rim_x(Side::left) || x_rim > g.rim_x(Side::right)) {
-    r.how = Termination::blocked;
-    return r;
+  const double x_l = g.rim_x(Side::left), x_r = g.rim_x(Side::right);
+  if (!(x_rim > x_l && x_rim < x_r)) [[unlikely]] {
+    if (x_rim < x_l || x_rim > x_r) {
+      r.how = Termination::blocked;
+      return r;
+    }
+    if (x_rim == x_l || x_rim == x_r) {
+      r.how = Termination::vertex_hit;  // grazes a rim exactly
+      return r;
+    }
+    // NaN: traced as any other ray (it meets no facet and is reported as a vertex hit)
   }
-  if (x_rim == g.rim_x(Side::left) || x_rim == g.rim_x(Side::right)) {
-    r.how = Termination::vertex_hit;  // grazes a rim exactly
-    return r;
-  }
+  const Facet& fl = g[Side::left];
+  const Facet& fr = g[Side::right];
   Vec2 d = ray.dir;
   // First hit: either facet. The groove is convex, so a line entering the opening leaves it
   // through one facet; both answer only near the apex, and then the nearer one is hit.
-  const detail::FacetHit hl = detail::hit_facet_from_rim_line(ray.origin, d, g[Side::left]);
-  const detail::FacetHit hr = detail::hit_facet_from_rim_line(ray.origin, d, g[Side::right]);
+  // s = cross(p, d) / cross(e, d) >= 0 for both facets needs the numerator's sign against each
+  // denominator: when it excludes one facet (sn den < 0 is one of its miss tests), only the
+  // other is tested in full; otherwise (sn = 0, or the ray runs more grazing than a facet) both.
+  const double sn = cross(ray.origin, d);
+  const double den_l = cross(fl.edge, d), den_r = cross(fr.edge, d);
+  const bool away_l = sn * den_l < 0.0, away_r = sn * den_r < 0.0;
   Side on;
   double s;
-  if (hl.s >= 0.0 && (hr.s < 0.0 || hl.t_num / hl.t_den <= hr.t_num / hr.t_den)) {
-    on = Side::left, s = hl.s;
-  } else if (hr.s >= 0.0) {
-    on = Side::right, s = hr.s;
+  if (away_r & !away_l) [[likely]] {
+    on = Side::left;
+    s = detail::hit_facet_with(ray.origin, fl, sn, den_l);
+  } else if (away_l & !away_r) [[likely]] {
+    on = Side::right;
+    s = detail::hit_facet_with(ray.origin, fr, sn, den_r);
   } else {
-    // Entered the opening yet met no facet: impossible for a closed groove, and reported
-    // as a vertex hit (the only way is through a vertex by rounding) rather than dropped.
+    const detail::FacetHit hl = detail::hit_facet_from_rim_line(ray.origin, d, fl);
+    const detail::FacetHit hr = detail::hit_facet_from_rim_line(ray.origin, d, fr);
+    if (hl.s >= 0.0 && (hr.s < 0.0 || hl.t_num / hl.t_den <= hr.t_num / hr.t_den)) on = Side::left, s = hl.s;
+    else on = Side::right, s = hr.s;
+  }
+  // s < 0 or NaN: entered the opening yet met no facet. Impossible for a closed groove, and
+  // reported as a vertex hit (the only way is through a vertex by rounding) rather than dropped.
+  if (!(s >= 0.0)) [[unlikely]] {
     r.how = Termination::vertex_hit;
     return r;
   }
   r.first = on;
+  // The reflections, alternating between the facets, each with both facets fixed.
+  detail::Step st;
+  int bounces = 0;
+  const int max_bounces = opt.max_bounces;
+  if (on == Side::right) goto on_right;
   for (;;) {
-    const Facet& f = g[on];
-    const Facet& o = g[other(on)];
-    if (s == 0.0 || s == f.length) {  // exactly on the apex or a rim: reflection undefined
-      r.how = Termination::vertex_hit;
-      return r;
-    }
-    if (r.bounces == opt.max_bounces) {
-      r.how = Termination::bounce_limit;
-      return r;
-    }
-    obs.on_bounce(on, d, f);
-    d = f.reflect(d);
-    ++r.bounces;
-    const double den = cross(o.edge, d);
-    if (!(den * f.turn_to_other > 0.0)) break;  // t <= 0: leaves through the opening
-    const double c = cross(f.edge, d);
-    // 0 <= s' <= length, tested without a division (s > 0, den != 0).
-    if (c * den < 0.0 || s * std::abs(c) > o.length * std::abs(den)) break;  // passes the other facet
-    s *= c / den;  // the ratio depends on the direction alone: off the position's dependency chain
-    on = other(on);
+    st = detail::bounce(Side::left, fl, fr, d, s, bounces, max_bounces, obs);
+    if (st != detail::Step::next) break;
+  on_right:
+    st = detail::bounce(Side::right, fr, fl, d, s, bounces, max_bounces, obs);
+    if (st != detail::Step::next) break;
   }
-  r.exit_dir = d;
-  r.how = Termination::escaped;
+  r.bounces = bounces;
+  if (st == detail::Step::escaped) [[likely]] {
+    r.exit_dir = d;
+    r.how = Termination::escaped;
+  } else {
+    r.how = st == detail::Step::vertex_hit ? Termination::vertex_hit : Termination::bounce_limit;
+  }
+  return r;
+}
+
+// The rays of one parallel beam in one groove: sim::trace for many rays of one direction.
+//
+// Everything sim::trace computes from the direction alone is computed once here, by the same
+// operations in the same order: the first hit's denominators cross(e, d), and for each facet the
+// ray may hit first, the directions after each reflection with their crossing tests
+// (cross(e_o, d) against the turn, cross(e_f, d) against it) and ratios cross(e_f, d) /
+// cross(e_o, d). Per ray only what depends on the position is left: s, its tests against the
+// precomputed bounds and its products with the ratios. So every result (bounce count, first
+// facet, termination, exit direction bit for bit) and every observer call is sim::trace's for
+// the ray beam_ray(g, dir, x); the tests check that. Still ray-segment intersection in the real
+// groove, step by step: the table is the ray's own sequence of directions, not an unfolding.
+//
+// Rays outside or at the ends of the opening are handed to sim::trace, rays past the table
+// (more than kMaxTable reflections) to its reflection loop.
+class BeamTracer {
+ public:
+  BeamTracer(const Groove& g, const Vec2& dir, const TraceOptions& opt = {});
+
+  const Groove& groove() const { return g_; }
+  const Vec2& dir() const { return dir_; }
+
+  // sim::trace(groove(), beam_ray(groove(), dir(), x_rim), opt, obs).
+  template <class Observer = NoBounceObserver>
+  TraceResult trace(double x_rim, Observer&& obs = Observer{}) const;
+
+  // Reflections tabulated per first facet, at most this many (a 0.01 deg groove needs 18,000).
+  static constexpr int kMaxTable = 1 << 15;
+
+ private:
+  // The first hit when the numerator's sign excludes neither facet (a beam more grazing than a
+  // facet): both tested in full, as sim::trace. False when neither answers.
+  bool first_hit_both(double x_rim, double sn, bool away_l, bool away_r, int& f, double& s) const;
+
+  // Reflection k (0-based) of a ray that hit facet `first` first: on facet first for even k,
+  // on the other for odd k, leaving along d_out.
+  struct Reflection {
+    Vec2 d_out;
+    double abs_c;   // |cross(e_f, d_out)|
+    double limit;   // length_o |cross(e_o, d_out)|: past the other facet when s abs_c > limit
+    double ratio;   // cross(e_f, d_out) / cross(e_o, d_out): s on the other facet is s ratio
+    bool leaves;    // leaves whatever s: t <= 0, or the crossing on the far side of the apex
+  };
+  Groove g_;
+  Vec2 dir_;
+  TraceOptions opt_;
+  double h_dx_;            // rim_height dir.x, the position-free part of cross(p, dir)
+  double den_[2];          // cross(e_f, dir) per facet
+  double h_ex_[2];         // rim_height e_f.x, the position-free part of cross(p, e_f)
+  double limit_[2];        // length_f |den_f|
+  std::vector<Reflection> table_[2];  // by first facet
+};
+
+template <class Observer>
+[[gnu::always_inline]] inline TraceResult BeamTracer::trace(double x_rim, Observer&& obs) const {
+  const double x_l = g_.rim_x(Side::left), x_r = g_.rim_x(Side::right);
+  if (!(x_rim > x_l && x_rim < x_r)) [[unlikely]]
+    return sim::trace(g_, Ray2{Vec2(x_rim, g_.rim_height), dir_}, opt_, obs);
+  // cross(p, d) and cross(p, e) for p = (x_rim, rim_height), as sim::trace forms them.
+  const double sn = x_rim * dir_.y() - h_dx_;
+  const bool away_l = sn * den_[0] < 0.0, away_r = sn * den_[1] < 0.0;
+  TraceResult r;
+  int f;
+  double s;
+  if (away_r & !away_l) [[likely]] f = 0;
+  else if (away_l & !away_r) [[likely]] f = 1;
+  else f = -1;
+  if (f >= 0) [[likely]] {
+    // One facet excluded by the numerator's sign (the beam within the groove's aperture).
+    const double den = den_[f];
+    if (den == 0.0 || (x_rim * g_.facet[f].edge.y() - h_ex_[f]) * den < 0.0 || std::abs(sn) > limit_[f])
+        [[unlikely]] {
+      r.how = Termination::vertex_hit;  // entered the opening yet met no facet (as sim::trace)
+      return r;
+    }
+    s = sn / den;
+  } else if (!first_hit_both(x_rim, sn, away_l, away_r, f, s)) {
+    r.how = Termination::vertex_hit;
+    return r;
+  }
+  if (!(s >= 0.0)) [[unlikely]] {
+    r.how = Termination::vertex_hit;
+    return r;
+  }
+  const Side first = static_cast<Side>(f);
+  const Facet& f0 = g_.facet[f];
+  r.first = first;
+  const Facet& f1 = g_.facet[1 - f];
+  const std::vector<Reflection>& tab = table_[f];
+  const int n = static_cast<int>(tab.size());
+  int k = 0;
+  for (;;) {
+    const Facet& on = (k & 1) ? f1 : f0;
+    if (s == 0.0 || s == on.length) [[unlikely]] {  // exactly on the apex or a rim
+      detail::finish(r, detail::Step::vertex_hit, k, dir_);
+      return r;
+    }
+    if (k == n) break;
+    const Reflection& e = tab[k];
+    obs.on_bounce((k & 1) ? other(first) : first, k ? tab[k - 1].d_out : dir_, on);
+    ++k;
+    if (e.leaves || s * e.abs_c > e.limit) {
+      detail::finish(r, detail::Step::escaped, k, e.d_out);
+      return r;
+    }
+    s *= e.ratio;
+  }
+  // Past the table: the bounce limit, or the reflection loop from here on.
+  Vec2 d = n ? tab[n - 1].d_out : dir_;
+  const detail::Step st = detail::reflect_until_done(g_, (k & 1) ? other(first) : first, d, s, k,
+                                                     opt_.max_bounces, obs);
+  detail::finish(r, st, k, d);
   return r;
 }
 
