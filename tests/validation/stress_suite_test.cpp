@@ -27,7 +27,9 @@ TEST(StressSuite, PassesWithEveryRayAccountedForAndNoNaN) {
     EXPECT_TRUE(std::isfinite(c.l1) && std::isfinite(c.theta_o_error))
         << "theta_v=" << c.groove.theta_v << " theta_i=" << c.theta_i;
     for (const FacetOutcome& f : c.facet)
-      if (f.compared) EXPECT_EQ(f.rays, suite.options.rays) << "theta_v=" << c.groove.theta_v << " theta_i=" << c.theta_i;
+      if (f.compared) {
+        EXPECT_EQ(f.rays, suite.options.rays) << "theta_v=" << c.groove.theta_v << " theta_i=" << c.theta_i;
+      }
   }
   // The narrowest aperture really is deep: 0.01 deg makes about 18,000 reflections.
   std::int64_t deepest = 0;
