@@ -1,5 +1,6 @@
 // Tests of the vgroove command line, through the built binary: exit status 2 and one line on
 // stderr for bad input, no silent overwrite, and trace / analytic agreeing in the same JSON shape.
+#include "cli_run.h"
 #include "test_files.h"
 
 #include <gtest/gtest.h>
@@ -17,34 +18,11 @@ namespace vgroove::validation {
 namespace {
 
 using nlohmann::json;
+using testing_files::CliRun;
 using testing_files::read_text;
+using testing_files::vgroove;
 using testing_files::TempDir;
 using testing_files::write_text;
-
-struct CliRun {
-  int status = -1;  // exit status, -1 if the process did not exit normally
-  std::string out, err;
-};
-
-std::ostream& operator<<(std::ostream& os, const CliRun& r) {
-  return os << "exit " << r.status << "\n--- stdout:\n" << r.out << "\n--- stderr:\n" << r.err;
-}
-
-// Runs `vgroove <args>` (args already shell-quoted where needed).
-CliRun vgroove(const std::string& args) {
-  TempDir dir;
-  const std::string err = dir.file("stderr");
-  const std::string cmd = std::string("'") + VGROOVE_BIN + "' " + args + " 2>'" + err + "'";
-  CliRun r;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) r.out.append(buf, n);
-  const int st = ::pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  r.err = read_text(err);
-  return r;
-}
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
 

@@ -3,6 +3,7 @@
 // kaleidoscopic model with the same Fresnel (Lee et al. 2018, Eq. (11)); the flat mirror at
 // normal incidence against the closed form; bit-identical results for any thread count; the
 // counts against sim::trace_microsurface; and a CLI that leaves no file behind on bad input.
+#include "cli_run.h"
 #include "test_files.h"
 
 #include "sim/microsurface.h"
@@ -461,25 +462,8 @@ TEST(SceneSpec, HistogramSizeIsBounded) {
 // ---------------------------------------------------------------------------------------------
 // The command line
 
-struct CliRun {
-  int status = -1;
-  std::string out, err;
-};
-
-CliRun vgroove(const std::string& args) {
-  TempDir dir;
-  const std::string err = dir.file("stderr");
-  const std::string cmd = std::string("'") + VGROOVE_BIN + "' " + args + " 2>'" + err + "'";
-  CliRun r;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) r.out.append(buf, n);
-  const int st = ::pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  r.err = read_text(err);
-  return r;
-}
+using testing_files::CliRun;
+using testing_files::vgroove;
 
 TEST(SimulateCli, BadInputWritesNothing) {
   TempDir dir;
