@@ -149,6 +149,16 @@ void compare(BrdfOutcome& out, const BrdfSuite& suite, const std::vector<double>
              (suite.kind == "furnace" || (out.l1 <= out.l1_threshold && out.l1_k <= out.l1_k_threshold));
 }
 
+// The counts a flatland or 3D tally share (sim::MicrosurfaceTally, sim::Microsurface3dTally).
+template <class Tally>
+void take_counts(BrdfOutcome& out, const Tally& t, const BrdfSuite& suite) {
+  out.rays = t.rays, out.escaped = t.escaped, out.lost = t.lost(), out.bounces = t.bounces;
+  out.max_k_seen = t.max_k_seen;
+  out.in_flight = t.bounce_limit;
+  out.albedo_sim = static_cast<double>(t.escaped + (suite.kind == "furnace" ? t.bounce_limit : 0)) /
+                   static_cast<double>(t.rays);
+}
+
 BrdfOutcome run_flatland(const BrdfSuite& suite, const BrdfCase& c, long rays) {
   BrdfOutcome out;
   out.c = c;
@@ -169,11 +179,7 @@ BrdfOutcome run_flatland(const BrdfSuite& suite, const BrdfCase& c, long rays) {
   to.max_k = suite.max_k;
   const sim::MicrosurfaceTally t = sim::trace_microsurface(surface, to);
   out.sim_wall_s = seconds_since(t0);
-  out.rays = t.rays, out.escaped = t.escaped, out.lost = t.lost(), out.bounces = t.bounces;
-  out.max_k_seen = t.max_k_seen;
-  out.in_flight = t.bounce_limit;
-  out.albedo_sim = static_cast<double>(t.escaped + (suite.kind == "furnace" ? t.bounce_limit : 0)) /
-                   static_cast<double>(t.rays);
+  take_counts(out, t, suite);
 
   const auto t1 = Clock::now();
   const analytic::FlatlandLobe lobe = analytic::flatland_lobe(c.ndf, c.alpha, c.theta_i, bins, suite.max_k);
@@ -225,11 +231,7 @@ BrdfOutcome run_3d(const BrdfSuite& suite, const BrdfCase& c, long rays) {
   to.max_k = suite.max_k;
   const sim::Microsurface3dTally t = sim::trace_microsurface3d(surface, to);
   out.sim_wall_s = seconds_since(t0);
-  out.rays = t.rays, out.escaped = t.escaped, out.lost = t.lost(), out.bounces = t.bounces;
-  out.max_k_seen = t.max_k_seen;
-  out.in_flight = t.bounce_limit;
-  out.albedo_sim = static_cast<double>(t.escaped + (suite.kind == "furnace" ? t.bounce_limit : 0)) /
-                   static_cast<double>(t.rays);
+  take_counts(out, t, suite);
 
   const auto t1 = Clock::now();
   const analytic::Lobe3d lobe = analytic::vgroove_lobe_3d(c.ndf, c.alpha, c.theta_i, tb, pb, suite.max_k);
