@@ -59,11 +59,11 @@ FacetOutcome run_facet(const GrooveParams& params, const sim::Groove& g, double 
   const sim::Vec2 dir = sim::beam_direction(theta_i);
   sim::Rng rng(opt.seed, stream, static_cast<std::uint64_t>(side));
   const sim::TraceOptions topt{opt.max_bounces};
+  // One beam, one direction: BeamTracer computes once what depends on the direction only and
+  // traces each ray exactly as sim::trace does (bit for bit).
+  const sim::BeamTracer beam(g, dir, topt);
   sim::Tally tally;
-  for (long j = 0; j < opt.rays; ++j) {
-    const double x = sim::sample_position(opt.sampling, aim, j, opt.rays, rng);
-    tally.add(sim::trace(g, sim::beam_ray(g, dir, x), topt));
-  }
+  for (long j = 0; j < opt.rays; ++j) tally.add(beam.trace(sim::sample_position(opt.sampling, aim, j, opt.rays, rng)));
 
   const double n = static_cast<double>(opt.rays);
   out.rays = tally.rays;
