@@ -42,20 +42,7 @@ int MicrosurfaceTally::bin_of(double theta) const {
 }
 
 void MicrosurfaceTally::add(const TraceResult& r) {
-  ++rays;
-  switch (r.how) {
-    case Termination::blocked: ++blocked; return;
-    case Termination::vertex_hit: ++vertex_hits; return;
-    case Termination::bounce_limit: ++bounce_limit; return;
-    case Termination::escaped: break;
-  }
-  if (!(r.exit_dir.y() > 0.0)) {
-    ++not_upward;
-    return;
-  }
-  ++escaped;
-  bounces += r.bounces;
-  max_k_seen = std::max(max_k_seen, r.bounces);
+  if (!count(r.how, r.bounces, r.exit_dir.y() > 0.0)) return;
   const int row = row_of(r.bounces);
   const int bin = bin_of(angle_from_normal(r.exit_dir));
   ++by_k[static_cast<std::size_t>(row)];
@@ -65,14 +52,7 @@ void MicrosurfaceTally::add(const TraceResult& r) {
 
 void MicrosurfaceTally::merge(const MicrosurfaceTally& o) {
   assert(o.bins == bins && o.max_k == max_k);
-  rays += o.rays;
-  escaped += o.escaped;
-  blocked += o.blocked;
-  vertex_hits += o.vertex_hits;
-  bounce_limit += o.bounce_limit;
-  not_upward += o.not_upward;
-  bounces += o.bounces;
-  max_k_seen = std::max(max_k_seen, o.max_k_seen);
+  merge_fates(o);
   for (std::size_t i = 0; i < by_k.size(); ++i) by_k[i] += o.by_k[i];
   for (std::size_t i = 0; i < theta_o.size(); ++i) theta_o[i] += o.theta_o[i];
   for (std::size_t i = 0; i < theta_o_by_k.size(); ++i) theta_o_by_k[i] += o.theta_o_by_k[i];

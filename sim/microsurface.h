@@ -33,6 +33,7 @@
 
 #include "sim/beam.h"
 #include "sim/groove.h"
+#include "sim/ray_fates.h"
 #include "sim/rng.h"
 #include "sim/slope_sampling.h"
 #include "sim/tracer.h"
@@ -77,17 +78,9 @@ struct MicrosurfaceTraceOptions {
 
 // What happened to the rays. Every ray is in exactly one of escaped, blocked, vertex_hits,
 // bounce_limit, not_upward; every escaped ray in one k row and one theta_o bin.
-struct MicrosurfaceTally {
+struct MicrosurfaceTally : RayFates {
   int bins = 0;
   int max_k = 0;
-  std::int64_t rays = 0;
-  std::int64_t escaped = 0;       // left going up: counted in by_k and the histograms
-  std::int64_t blocked = 0;       // never entered its groove (not expected: peaks on one line)
-  std::int64_t vertex_hits = 0;   // hit a peak or a groove's bottom exactly
-  std::int64_t bounce_limit = 0;  // still inside after TraceOptions::max_bounces reflections
-  std::int64_t not_upward = 0;    // "escaped" along or below the horizon (not expected), kept apart
-  std::int64_t bounces = 0;       // reflections summed over escaped rays
-  int max_k_seen = 0;             // largest bounce count of an escaped ray
   std::vector<std::int64_t> by_k;         // [k], k = 0..max_k + 1 (the last: more than max_k)
   std::vector<std::int64_t> theta_o;      // [bin], all escaped rays
   std::vector<std::int64_t> theta_o_by_k; // [k * bins + bin], rows as in by_k
@@ -95,9 +88,6 @@ struct MicrosurfaceTally {
   MicrosurfaceTally() = default;
   MicrosurfaceTally(int bins_, int max_k_);
 
-  // Fraction of the rays that left (with F = 1 the albedo); 1 - albedo() = lost() / rays.
-  double albedo() const { return rays > 0 ? static_cast<double>(escaped) / static_cast<double>(rays) : 0.0; }
-  std::int64_t lost() const { return blocked + vertex_hits + bounce_limit + not_upward; }
   double bin_width() const { return M_PI / bins; }
   double bin_lo(int j) const { return -0.5 * M_PI + j * bin_width(); }
   double bin_center(int j) const { return bin_lo(j) + 0.5 * bin_width(); }

@@ -134,21 +134,8 @@ int Microsurface3dTally::phi_bin_of(double phi_o) const {
 }
 
 void Microsurface3dTally::add(const Trace3dResult& r) {
-  ++rays;
-  switch (r.trace.how) {
-    case Termination::blocked: ++blocked; return;
-    case Termination::vertex_hit: ++vertex_hits; return;
-    case Termination::bounce_limit: ++bounce_limit; return;
-    case Termination::escaped: break;
-  }
-  if (!(r.o.z() > 0.0)) {
-    ++not_upward;
-    return;
-  }
-  ++escaped;
   const int k = r.trace.bounces;
-  bounces += k;
-  max_k_seen = std::max(max_k_seen, k);
+  if (!count(r.trace.how, k, r.o.z() > 0.0)) return;
   const int row = row_of(k);
   // acos is exact enough here: bins are far wider than its error near o.z = 1 (~1e-8 rad).
   const int t = theta_bin_of(std::acos(std::min(1.0, r.o.z())));
@@ -160,14 +147,7 @@ void Microsurface3dTally::add(const Trace3dResult& r) {
 
 void Microsurface3dTally::merge(const Microsurface3dTally& o) {
   assert(o.theta_bins == theta_bins && o.phi_bins == phi_bins && o.max_k == max_k);
-  rays += o.rays;
-  escaped += o.escaped;
-  blocked += o.blocked;
-  vertex_hits += o.vertex_hits;
-  bounce_limit += o.bounce_limit;
-  not_upward += o.not_upward;
-  bounces += o.bounces;
-  max_k_seen = std::max(max_k_seen, o.max_k_seen);
+  merge_fates(o);
   for (std::size_t i = 0; i < by_k.size(); ++i) by_k[i] += o.by_k[i];
   for (std::size_t i = 0; i < hist.size(); ++i) hist[i] += o.hist[i];
   for (std::size_t i = 0; i < hist_by_k.size(); ++i) hist_by_k[i] += o.hist_by_k[i];

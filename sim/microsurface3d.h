@@ -127,18 +127,10 @@ struct Microsurface3dTraceOptions {
 //
 // Every ray is in exactly one of escaped, blocked, vertex_hits, bounce_limit, not_upward; every
 // escaped ray in one k row and one (theta_o, phi_o) bin.
-struct Microsurface3dTally {
+struct Microsurface3dTally : RayFates {
   int theta_bins = 0;
   int phi_bins = 0;
   int max_k = 0;
-  std::int64_t rays = 0;
-  std::int64_t escaped = 0;       // left going up: counted in by_k and the histograms
-  std::int64_t blocked = 0;       // never entered its groove (not expected: ridges on one plane)
-  std::int64_t vertex_hits = 0;   // hit a ridge or a groove's bottom exactly
-  std::int64_t bounce_limit = 0;  // still inside after TraceOptions::max_bounces reflections
-  std::int64_t not_upward = 0;    // "escaped" along or below the horizon (not expected), kept apart
-  std::int64_t bounces = 0;       // reflections summed over escaped rays
-  int max_k_seen = 0;             // largest bounce count of an escaped ray
   std::vector<std::int64_t> by_k;       // [row]
   std::vector<std::int64_t> hist;       // [t * phi_bins + p], all escaped rays
   std::vector<std::int64_t> hist_by_k;  // [(row * theta_bins + t) * phi_bins + p]
@@ -146,8 +138,6 @@ struct Microsurface3dTally {
   Microsurface3dTally() = default;
   Microsurface3dTally(int theta_bins_, int phi_bins_, int max_k_);
 
-  double albedo() const { return rays > 0 ? static_cast<double>(escaped) / static_cast<double>(rays) : 0.0; }
-  std::int64_t lost() const { return blocked + vertex_hits + bounce_limit + not_upward; }
   double theta_width() const { return 0.5 * M_PI / theta_bins; }
   double phi_width() const { return 2.0 * M_PI / phi_bins; }
   int theta_bin_of(double theta_o) const;

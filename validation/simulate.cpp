@@ -108,20 +108,8 @@ ThetaTally run_chunk(const Setup& s, double theta_i, std::int64_t chunk) {
     const double xl = groove.rim_x(sim::Side::left), xr = groove.rim_x(sim::Side::right);
     if constexpr (kEnergy) obs.reset();
     const sim::TraceResult r = sim::trace(groove, sim::beam_ray(groove, dir, xl + f * (xr - xl)), opt, obs);
-    ++t.rays;
-    switch (r.how) {
-      case sim::Termination::blocked: ++t.blocked; continue;
-      case sim::Termination::vertex_hit: ++t.vertex_hits; continue;
-      case sim::Termination::bounce_limit: ++t.bounce_limit; continue;
-      case sim::Termination::escaped: break;
-    }
-    if (!(r.exit_dir.y() > 0.0)) {
-      ++t.not_upward;
-      continue;
-    }
-    ++t.escaped;
+    if (!t.count(r.how, r.bounces, r.exit_dir.y() > 0.0)) continue;
     const auto k = static_cast<std::size_t>(std::min(r.bounces, kMaxKRow + 1));
-    t.bounces += r.bounces;
     if (k >= t.by_k.size()) t.by_k.resize(k + 1, 0);
     ++t.by_k[k];
     if constexpr (kEnergy)
@@ -196,13 +184,7 @@ std::string k_key(std::size_t k) {
 }  // namespace
 
 void ThetaTally::merge(const ThetaTally& o) {
-  rays += o.rays;
-  escaped += o.escaped;
-  blocked += o.blocked;
-  vertex_hits += o.vertex_hits;
-  bounce_limit += o.bounce_limit;
-  not_upward += o.not_upward;
-  bounces += o.bounces;
+  merge_fates(o);
   if (o.by_k.size() > by_k.size()) by_k.resize(o.by_k.size(), 0);
   for (std::size_t k = 0; k < o.by_k.size(); ++k) by_k[k] += o.by_k[k];
   for (std::size_t c = 0; c < o.energy.size(); ++c) energy[c] += o.energy[c];
@@ -452,7 +434,7 @@ void print_result_table(std::ostream& os, const Scene& scene, const SimulationRe
     os << "\n";
   }
   std::int64_t lost = 0;
-  for (const ThetaTally& ta : r.tallies) lost += ta.blocked + ta.vertex_hits + ta.bounce_limit + ta.not_upward;
+  for (const ThetaTally& ta : r.tallies) lost += ta.lost();
   std::snprintf(buf, sizeof buf, "  %lld rays, %lld bounces, %lld lost (vertex hits, bounce limit, ...); %d threads, %.3f s\n",
                 static_cast<long long>(r.rays), static_cast<long long>(r.bounces), static_cast<long long>(lost),
                 r.threads, r.wall_s);

@@ -28,6 +28,7 @@
 // over 3 channels 1.1 s. So one observer carrying C reflectances is the cheaper choice.
 #pragma once
 
+#include "sim/ray_fates.h"
 #include "validation/scene.h"
 
 #include <nlohmann/json.hpp>
@@ -44,14 +45,7 @@ namespace vgroove::validation {
 // bounce_limit, not_upward; every escaped ray in one k of by_k.
 inline constexpr int kMaxKRow = 4096;
 
-struct ThetaTally {
-  std::int64_t rays = 0;
-  std::int64_t escaped = 0;
-  std::int64_t blocked = 0;       // landed outside its groove (not expected: peaks on one line)
-  std::int64_t vertex_hits = 0;   // hit a vertex exactly: reflection undefined
-  std::int64_t bounce_limit = 0;  // still inside after max_bounces reflections
-  std::int64_t not_upward = 0;    // left along or below the horizon (not expected), kept apart
-  std::int64_t bounces = 0;       // reflections summed over escaped rays
+struct ThetaTally : sim::RayFates {
   // [k], escaped rays with k reflections, up to the largest k seen; rays with more than kMaxKRow
   // reflections share the row kMaxKRow + 1 (so that one ray escaping after 10^7 reflections
   // cannot cost a tally 10^7 rows: memory stays bounded for any legal scene).
