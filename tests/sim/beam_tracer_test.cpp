@@ -1,0 +1,123 @@
+// Tests of sim::BeamTracer: it must give what sim::trace gives, bit for bit, for every ray of
+// the beam (bounce count, termination, facet hit first, exit direction) and show the observer
+// the same reflections in the same order: the validation's Table 1 figures rest on it.
+//
+// The rays cover the hard corners: narrow grooves (the reflection table's end and the loop past
+// it), grazing beams (a beam more grazing than a facet, where both facets are tested), rays
+// exactly through the apex and the rims, rays outside the opening, and small bounce limits.
+#include "sim/beam.h"
+#include "sim/tracer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace vgroove::sim {
+namespace {
+
+double deg(double d) { return d * M_PI / 180.0; }
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// Records every reflection the tracer reports.
+struct Recorder {
+  struct Bounce {
+    Side side;
+    double dx, dy;
+  };
+  std::vector<Bounce> seen;
+  void on_bounce(Side s, const Vec2& d, const Facet&) { seen.push_back({s, d.x(), d.y()}); }
+};
+
+// Positions on the rim line worth tracing: stratified across a band wider than the opening
+// (some rays blocked), the rims, the line through the apex, and their floating-point neighbours.
+std::vector<double> positions(const Groove& g, const Vec2& dir, long n) {
+  const double lo = g.rim_x(Side::left), hi = g.rim_x(Side::right), w = hi - lo;
+  std::vector<double> x;
+  for (long j = 0; j < n; ++j) x.push_back(lo - 0.05 * w + 1.1 * w * (static_cast<double>(j) + 0.5) / static_cast<double>(n));
+  const double apex_x = g.rim_height * dir.x() / dir.y();  // (x, h) + t dir passes through (0, 0)
+  for (double v : {lo, hi, apex_x, 0.0}) {
+    x.push_back(v);
+    x.push_back(std::nextafter(v, -INFINITY));
+    x.push_back(std::nextafter(v, INFINITY));
+  }
+  return x;
+}
+
+std::string where(const Groove& g, const Vec2& dir, double x, int max_bounces) {
+  std::ostringstream o;
+  o.precision(17);
+  o << "facet edges (" << g.facet[0].edge.transpose() << ") (" << g.facet[1].edge.transpose() << "), dir ("
+    << dir.transpose() << "), x " << x << ", max_bounces " << max_bounces;
+  return o.str();
+}
+
+// Compares BeamTracer with sim::trace on every position; adds the rays compared to `compared`.
+void expect_identical(const Groove& g, double theta_i, int max_bounces, long n, long& compared) {
+  const Vec2 dir = beam_direction(theta_i);
+  const TraceOptions opt{max_bounces};
+  const BeamTracer beam(g, dir, opt);
+  for (double x : positions(g, dir, n)) {
+    Recorder ra, rb;
+    const TraceResult a = trace(g, beam_ray(g, dir, x), opt, ra);
+    const TraceResult b = beam.trace(x, rb);
+    const std::string at = where(g, dir, x, max_bounces);
+    ASSERT_EQ(a.how, b.how) << at;
+    ASSERT_EQ(a.bounces, b.bounces) << at;
+    ASSERT_EQ(a.first, b.first) << at;
+    ASSERT_TRUE(same_bits(a.exit_dir.x(), b.exit_dir.x()) && same_bits(a.exit_dir.y(), b.exit_dir.y()))
+        << at << ": exit " << a.exit_dir.transpose() << " vs " << b.exit_dir.transpose();
+    ASSERT_EQ(ra.seen.size(), rb.seen.size()) << at;
+    for (std::size_t k = 0; k < ra.seen.size(); ++k) {
+      ASSERT_EQ(ra.seen[k].side, rb.seen[k].side) << at << ", reflection " << k;
+      ASSERT_TRUE(same_bits(ra.seen[k].dx, rb.seen[k].dx) && same_bits(ra.seen[k].dy, rb.seen[k].dy))
+          << at << ", reflection " << k;
+    }
+    ++compared;
+  }
+}
+
+const double kThetaIDeg[] = {-89.9, -75.0, -40.0, -20.0, -1e-9, 0.0, 10.0, 20.0, 45.0, 60.0, 80.0, 89.9};
+
+TEST(BeamTracer, SymmetricGroovesMatchTraceBitForBit) {
+  long compared = 0;
+  for (double theta_v : {0.05, 0.5, 1.0, 5.0, 30.0, 60.0, 90.0, 120.0, 150.0, 179.0, 180.0}) {
+    const Groove g = make_symmetric_groove(deg(theta_v));
+    for (double ti : kThetaIDeg) expect_identical(g, deg(ti), TraceOptions{}.max_bounces, theta_v < 1.0 ? 101 : 997, compared);
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(compared, 100000);
+}
+
+TEST(BeamTracer, NonsymmetricGroovesMatchTraceBitForBit) {
+  long compared = 0;
+  const double facets[][2] = {{-10.0, 80.0}, {-45.0, 30.0}, {-89.0, 2.0}, {-5.0, 5.5}, {-60.0, 60.0}, {0.0, 45.0}};
+  for (const auto& lr : facets) {
+    const Groove g = make_nonsymmetric_groove(deg(lr[0]), deg(lr[1]));
+    for (double ti : kThetaIDeg) expect_identical(g, deg(ti), TraceOptions{}.max_bounces, 997, compared);
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(compared, 50000);
+}
+
+// The bounce limit inside the table, at its end and past it (a 0.05 deg groove makes ~3600
+// reflections; the table holds at most kMaxTable).
+TEST(BeamTracer, BounceLimitsMatchTrace) {
+  long compared = 0;
+  for (int max_bounces : {0, 1, 2, 3, 50, 3000}) {
+    for (double theta_v : {0.05, 1.0, 30.0, 150.0}) {
+      const Groove g = make_symmetric_groove(deg(theta_v));
+      for (double ti : {0.0, 20.0, 89.9}) expect_identical(g, deg(ti), max_bounces, 211, compared);
+      if (HasFatalFailure()) return;
+    }
+  }
+  EXPECT_GT(compared, 10000);
+}
+
+}  // namespace
+}  // namespace vgroove::sim
