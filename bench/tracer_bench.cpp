@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 namespace {
 
@@ -81,6 +82,26 @@ void BM_trace_beam(benchmark::State& state) {
   report(state, bounces, rays);
 }
 
+// The same rays through the batch trace of sim::BeamTracer (results identical to trace, ray by
+// ray): the positions are placed into an array, then traced together, blocks of rays at a time.
+void BM_trace_beam_batch(benchmark::State& state) {
+  const TracerSetup s(static_cast<double>(state.range(0)));
+  const sim::BeamTracer beam(s.g, s.dir, s.opt);
+  sim::Rng rng(1, 0, 0);  // unused by stratified placement
+  std::vector<double> x(kRays);
+  std::vector<sim::TraceResult> out(kRays);
+  std::int64_t bounces = 0, rays = 0;
+  for (auto _ : state) {
+    for (long j = 0; j < kRays; ++j) x[j] = sim::sample_position(sim::Sampling::stratified, s.open, j, kRays, rng);
+    beam.trace(x.data(), kRays, out.data());
+    benchmark::DoNotOptimize(out.data());
+    for (const sim::TraceResult& r : out)
+      if (r.how == sim::Termination::escaped) bounces += r.bounces;
+    rays += kRays;
+  }
+  report(state, bounces, rays);
+}
+
 // The per-ray cost as the validator pays it (validation/groove_case.cpp): placement, trace and
 // sim::Tally::add into a fresh tally per batch of rays.
 void BM_trace_groove_tally(benchmark::State& state) {
@@ -109,4 +130,5 @@ void theta_v_args(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(BM_trace_groove)->Apply(theta_v_args);
 BENCHMARK(BM_trace_beam)->Apply(theta_v_args);
+BENCHMARK(BM_trace_beam_batch)->Apply(theta_v_args);
 BENCHMARK(BM_trace_groove_tally)->Apply(theta_v_args);

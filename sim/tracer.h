@@ -8,6 +8,7 @@
 
 #include "sim/groove.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -236,6 +237,15 @@ class BeamTracer {
   template <class Observer = NoBounceObserver>
   TraceResult trace(double x_rim, Observer&& obs = Observer{}) const;
 
+  // out[j] = trace(x_rim[j], obs) for j < n, the observer called in the same order. Rays go in
+  // blocks: a block's first hits and first reflections are computed together, without branches
+  // (so the compiler vectorizes them); rays that reflect again go on one by one.
+  template <class Observer = NoBounceObserver>
+  void trace(const double* x_rim, long n, TraceResult* out, Observer&& obs = Observer{}) const;
+
+  // Rays per block of the batch trace.
+  static constexpr int kBlock = 256;
+
   // Reflections tabulated per first facet, at most this many (a 0.01 deg groove needs 18,000).
   static constexpr int kMaxTable = 1 << 15;
 
@@ -243,6 +253,21 @@ class BeamTracer {
   // The first hit when the numerator's sign excludes neither facet (a beam more grazing than a
   // facet): both tested in full, as sim::trace. False when neither answers.
   bool first_hit_both(double x_rim, double sn, bool away_l, bool away_r, int& f, double& s) const;
+
+  // The reflections of a ray whose first hit is at s e_f on facet f, as trace() goes on from there.
+  template <class Observer>
+  TraceResult reflect_from(int f, double s, Observer& obs) const;
+
+  // What the batch trace knows of a block of rays after the first hit and first reflection:
+  // path 0, the ray hit facet f and left after one reflection; path 1, it hit facet f at s and
+  // reflects again; path 2, anything else (outside the opening, a vertex, both facets tested,
+  // an empty table), for trace() to take from the start. 64-bit lanes, for the vectorizer.
+  struct BlockHits {
+    double s[kBlock];
+    std::int64_t f[kBlock];
+    std::int64_t path[kBlock];
+  };
+  void first_hits(const double* x_rim, int n, BlockHits& h) const;
 
   // Reflection k (0-based) of a ray that hit facet `first` first: on facet first for even k,
   // on the other for odd k, leaving along d_out.
@@ -294,6 +319,12 @@ template <class Observer>
     r.how = Termination::vertex_hit;
     return r;
   }
+  return reflect_from(f, s, obs);
+}
+
+template <class Observer>
+[[gnu::always_inline]] inline TraceResult BeamTracer::reflect_from(int f, double s, Observer& obs) const {
+  TraceResult r;
   const Side first = static_cast<Side>(f);
   const Facet& f0 = g_.facet[f];
   r.first = first;
@@ -323,6 +354,29 @@ template <class Observer>
                                                      opt_.max_bounces, obs);
   detail::finish(r, st, k, d);
   return r;
+}
+
+template <class Observer>
+void BeamTracer::trace(const double* x_rim, long n, TraceResult* out, Observer&& obs) const {
+  BlockHits h;
+  for (long j0 = 0; j0 < n; j0 += kBlock) {
+    const int m = static_cast<int>(std::min<long>(kBlock, n - j0));
+    first_hits(x_rim + j0, m, h);
+    for (int j = 0; j < m; ++j) {
+      TraceResult& r = out[j0 + j];
+      const int f = static_cast<int>(h.f[j]);
+      if (h.path[j] == 0) [[likely]] {
+        obs.on_bounce(static_cast<Side>(f), dir_, g_.facet[f]);
+        r = TraceResult{};
+        r.first = static_cast<Side>(f);
+        detail::finish(r, detail::Step::escaped, 1, table_[f][0].d_out);
+      } else if (h.path[j] == 1) {
+        r = reflect_from(f, h.s[j], obs);
+      } else {
+        r = trace(x_rim[j0 + j], obs);
+      }
+    }
+  }
 }
 
 }  // namespace vgroove::sim
