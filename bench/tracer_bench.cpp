@@ -92,7 +92,7 @@ void BM_trace_beam_batch(benchmark::State& state) {
   std::vector<sim::TraceResult> out(kRays);
   std::int64_t bounces = 0, rays = 0;
   for (auto _ : state) {
-    for (long j = 0; j < kRays; ++j) x[j] = sim::sample_position(sim::Sampling::stratified, s.open, j, kRays, rng);
+    sim::sample_positions(sim::Sampling::stratified, s.open, 0, static_cast<int>(kRays), kRays, rng, x.data());
     beam.trace(x.data(), kRays, out.data());
     benchmark::DoNotOptimize(out.data());
     for (const sim::TraceResult& r : out)

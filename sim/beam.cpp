@@ -15,6 +15,23 @@ double rim_line_x(const Groove& g, double theta_i, const Vec2& p) {
 }
 }  // namespace
 
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+// An AVX2 copy (four divisions per instruction) beside the x86-64 one, picked when the program starts.
+[[gnu::target_clones("avx2", "default")]]
+#endif
+void sample_positions(Sampling sampling, const Interval& iv, long j0, int count, long n, Rng& rng,
+                      double* __restrict out) {
+  const double lo = iv.lo, width = iv.hi - iv.lo;
+  if (sampling == Sampling::stratified) {
+    // static_cast<double>(j) + 0.5 as sample_position forms it: j0 + i is exact in a double
+    // (j < 2^53), and the loop's counter is that double, so the lanes need no integer conversion.
+    const double nd = static_cast<double>(n), jd0 = static_cast<double>(j0);
+    for (int i = 0; i < count; ++i) out[i] = lo + ((jd0 + static_cast<double>(i)) + 0.5) / nd * width;
+  } else {
+    for (int i = 0; i < count; ++i) out[i] = lo + rng.uniform() * width;
+  }
+}
+
 Interval aimed_at(const Groove& g, double theta_i, Side side) {
   const double x_apex = rim_line_x(g, theta_i, Vec2::Zero());
   const double x_rim = g.rim_x(side);

@@ -37,6 +37,11 @@ inline double sample_position(Sampling sampling, const Interval& iv, long j, lon
   return iv.lo + u * (iv.hi - iv.lo);
 }
 
+// Positions of rays j0, ..., j0 + count - 1 of n into out: out[i] == sample_position(sampling, iv,
+// j0 + i, n, rng) for each i in turn (random placement draws the stream's next count numbers).
+// Stratified positions of a block are computed together (vectorized), bit for bit the same.
+void sample_positions(Sampling sampling, const Interval& iv, long j0, int count, long n, Rng& rng, double* out);
+
 // The direction the beam's rays travel in: -i.
 inline Vec2 beam_direction(double theta_i) { return -direction_at(theta_i); }
 

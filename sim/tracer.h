@@ -32,9 +32,10 @@ struct TraceOptions {
   int max_bounces = 100000;
 };
 
+// 32 bytes: the direction (16-byte aligned) first, so the small members share one padding.
 struct TraceResult {
-  int bounces = 0;
   Vec2 exit_dir = Vec2::Zero();  // valid when how == escaped
+  int bounces = 0;
   Side first = Side::left;       // facet hit first; valid when bounces > 0
   Termination how = Termination::escaped;
 };

@@ -60,10 +60,17 @@ FacetOutcome run_facet(const GrooveParams& params, const sim::Groove& g, double 
   sim::Rng rng(opt.seed, stream, static_cast<std::uint64_t>(side));
   const sim::TraceOptions topt{opt.max_bounces};
   // One beam, one direction: BeamTracer computes once what depends on the direction only and
-  // traces each ray exactly as sim::trace does (bit for bit).
+  // traces each ray exactly as sim::trace does (bit for bit), a block of rays at a time.
   const sim::BeamTracer beam(g, dir, topt);
   sim::Tally tally;
-  for (long j = 0; j < opt.rays; ++j) tally.add(beam.trace(sim::sample_position(opt.sampling, aim, j, opt.rays, rng)));
+  double xs[sim::BeamTracer::kBlock];
+  sim::TraceResult results[sim::BeamTracer::kBlock];
+  for (long j0 = 0; j0 < opt.rays; j0 += sim::BeamTracer::kBlock) {
+    const int m = static_cast<int>(std::min<long>(sim::BeamTracer::kBlock, opt.rays - j0));
+    sim::sample_positions(opt.sampling, aim, j0, m, opt.rays, rng, xs);
+    beam.trace(xs, m, results);
+    for (int j = 0; j < m; ++j) tally.add(results[j]);
+  }
 
   const double n = static_cast<double>(opt.rays);
   out.rays = tally.rays;

@@ -3,8 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <tuple>
+#include <vector>
 
 namespace vgroove::sim {
 namespace {
@@ -93,6 +96,25 @@ TEST(Beam, RandomPositionsStayInsideAndFollowTheStream) {
     ASSERT_GE(x, iv.lo) << "j=" << j;
     ASSERT_LT(x, iv.hi) << "j=" << j;
     ASSERT_EQ(x, iv.lo + b.uniform() * iv.width()) << "j=" << j;
+  }
+}
+
+// The block placement gives sample_position's values bit for bit (==, not near), for both
+// samplings, blocks of any length from any start, and counts up to 2^40.
+TEST(Beam, BlockPositionsAreTheSinglePositions) {
+  const Interval iv{-0.7071067811865476, 0.31};
+  for (long n : {1L, 7L, 1000L, 1000003L, 1L << 40}) {
+    for (long j0 : {0L, 1L, n / 3, n - 1}) {
+      for (Sampling sampling : {Sampling::stratified, Sampling::random}) {
+        const int count = static_cast<int>(std::min<long>(261, n - j0));
+        Rng a(5, static_cast<std::uint64_t>(n), static_cast<std::uint64_t>(j0)), b = a;
+        std::vector<double> block(static_cast<std::size_t>(count));
+        sample_positions(sampling, iv, j0, count, n, a, block.data());
+        for (int i = 0; i < count; ++i)
+          ASSERT_EQ(block[i], sample_position(sampling, iv, j0 + i, n, b))
+              << sampling_name(sampling) << " n=" << n << " j=" << j0 + i;
+      }
+    }
   }
 }
 
