@@ -366,9 +366,9 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
   const std::vector<CostPoint> cost = cost_vs_theta_v(apertures, kTheta_i, 20000);
   nlohmann::json cost_json = nlohmann::json::array();
   std::printf("  cost against theta_v (one thread, theta_i = 30 deg, 20000 stratified rays):\n");
-  std::printf("  %10s %12s %14s %16s %8s\n", "theta_v", "bounces/ray", "tracer ns/ray", "model ns/eval", "ratio");
+  std::printf("  %10s %12s %14s %16s %13s\n", "theta_v", "bounces/ray", "tracer ns/ray", "model ns/eval", "tracer/model");
   for (const CostPoint& c : cost) {
-    std::printf("  %10.0f %12.2f %14.1f %16.1f %8.1f\n", output_deg(c.theta_v), c.bounces_per_ray, c.tracer_ns_per_ray,
+    std::printf("  %10.0f %12.2f %14.1f %16.1f %13.3f\n", output_deg(c.theta_v), c.bounces_per_ray, c.tracer_ns_per_ray,
                 c.model_ns_per_eval, c.tracer_ns_per_ray / c.model_ns_per_eval);
     cost_json.push_back({{"theta_v_deg", output_deg(c.theta_v)}, {"bounces_per_ray", c.bounces_per_ray},
                          {"tracer_ns_per_ray", c.tracer_ns_per_ray}, {"model_ns_per_eval", c.model_ns_per_eval}});

@@ -5,6 +5,7 @@
 #include "sim/groove.h"
 #include "sim/tracer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -25,12 +26,21 @@ std::vector<CostPoint> cost_vs_theta_v(const std::vector<double>& theta_v, doubl
     const sim::Interval open = sim::opening(g);
     std::int64_t bounces = 0;
     double sink = 0.0;
+    // The tracer as the validation runs it (validation/groove_case.cpp): one BeamTracer per beam,
+    // its construction timed too, and blocks of stratified positions through the batch trace.
+    sim::Rng unused(0, 0, 0);
+    double xs[sim::BeamTracer::kBlock];
+    sim::TraceResult traced[sim::BeamTracer::kBlock];
     auto t0 = Clock::now();
-    for (long r = 0; r < rays; ++r) {
-      const double x = open.lo + (static_cast<double>(r) + 0.5) / static_cast<double>(rays) * (open.hi - open.lo);
-      const sim::TraceResult t = sim::trace(g, sim::beam_ray(g, dir, x));
-      bounces += t.bounces;
-      sink += t.exit_dir.x();
+    const sim::BeamTracer beam(g, dir);
+    for (long r0 = 0; r0 < rays; r0 += sim::BeamTracer::kBlock) {
+      const int m = static_cast<int>(std::min<long>(sim::BeamTracer::kBlock, rays - r0));
+      sim::sample_positions(sim::Sampling::stratified, open, r0, m, rays, unused, xs);
+      beam.trace(xs, m, traced);
+      for (int j = 0; j < m; ++j) {
+        bounces += traced[j].bounces;
+        sink += traced[j].exit_dir.x();
+      }
     }
     p.tracer_ns_per_ray = ns_since(t0) / static_cast<double>(rays);
     p.bounces_per_ray = static_cast<double>(bounces) / static_cast<double>(rays);

@@ -17,7 +17,8 @@ struct CostPoint {
   double model_ns_per_eval = 0.0;  // Eq. 4-6 for both facets: k, theta_o and G of each
 };
 
-// Symmetric grooves of the given apertures lit at theta_i, `rays` stratified across the opening.
+// Symmetric grooves of the given apertures lit at theta_i, `rays` stratified across the opening,
+// traced as the validation traces them (sim::BeamTracer's batch trace).
 std::vector<CostPoint> cost_vs_theta_v(const std::vector<double>& theta_v, double theta_i, long rays);
 
 }  // namespace vgroove::validation
