@@ -6,6 +6,10 @@
 // the bounces per ray go from ~140 at theta_v = 1 deg (the long-aperture, many-bounce case)
 // to 1-2 at theta_v = 150 deg (the short case). A long case measures the reflection loop; a
 // short one mostly the per-ray set-up (first hit against both facets, result, tally).
+//
+// Three ways to trace the same rays, with the same results ray by ray: sim::trace per ray
+// (BM_trace_groove), sim::BeamTracer per ray (BM_trace_beam), and BeamTracer's batch trace over
+// an array of positions (BM_trace_beam_batch: what the validation runs).
 #include "sim/beam.h"
 #include "sim/groove.h"
 #include "sim/tally.h"
