@@ -66,27 +66,8 @@ MicrosurfaceTally trace_microsurface_chunk(const Microsurface& surface, const Mi
                                            std::int64_t chunk) {
   assert(std::abs(opt.theta_i) < 0.5 * M_PI && opt.rays >= 0);
   MicrosurfaceTally tally(opt.theta_o_bins, opt.max_k);
-  const std::int64_t begin = chunk * kRaysPerChunk;
-  const std::int64_t end = std::min(opt.rays, begin + kRaysPerChunk);
-  if (begin >= end || surface.grooves.empty()) return tally;
-  Rng rng(opt.seed, kRayStream, static_cast<std::uint64_t>(chunk));
-  const Vec2 dir = beam_direction(opt.theta_i);
-  const double g_count = static_cast<double>(surface.grooves.size());
-  const int last = static_cast<int>(surface.grooves.size()) - 1;
-  for (std::int64_t j = begin; j < end; ++j) {
-    // Landing point on the macrosurface [0, G) in units of the groove width: groove index and
-    // fraction f across its opening.
-    const double u = opt.sampling == Sampling::stratified
-                         ? (static_cast<double>(j) + 0.5) / static_cast<double>(opt.rays)
-                         : uniform_open(rng);
-    const double x = u * g_count;
-    const int g = std::min(last, static_cast<int>(x));
-    const double f = x - g;
-    const Groove& groove = surface.grooves[static_cast<std::size_t>(g)];
-    const double xl = groove.rim_x(Side::left), xr = groove.rim_x(Side::right);
-    // f = 0 lands exactly on the left peak: sim::trace reports it as a vertex hit.
-    tally.add(trace(groove, beam_ray(groove, dir, xl + f * (xr - xl)), opt.trace));
-  }
+  for_each_landing(surface.grooves, opt.theta_i, opt.sampling, opt.rays, opt.seed, chunk,
+                   [&](const Groove& groove, const Ray2& ray) { tally.add(trace(groove, ray, opt.trace)); });
   return tally;
 }
 

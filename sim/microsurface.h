@@ -38,6 +38,7 @@
 #include "sim/slope_sampling.h"
 #include "sim/tracer.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -100,6 +101,35 @@ struct MicrosurfaceTally : RayFates {
 };
 
 std::int64_t chunk_count(const MicrosurfaceTraceOptions& opt);
+
+// The rays of chunk c of a beam of `rays` rays from theta_i over grooves of equal width side by
+// side (all of a microsurface's, or a single groove): for each ray in order, the groove its
+// landing point falls in and the ray crossing that groove's opening, handed to fn(groove, ray).
+// Landing points are stratified midpoints j + 1/2 of `rays`, or drawn from Rng(seed, kRayStream, c).
+template <class Fn>
+void for_each_landing(const std::vector<Groove>& grooves, double theta_i, Sampling sampling, std::int64_t rays,
+                      std::uint64_t seed, std::int64_t chunk, Fn&& fn) {
+  const std::int64_t begin = chunk * kRaysPerChunk;
+  const std::int64_t end = std::min(rays, begin + kRaysPerChunk);
+  if (begin >= end || grooves.empty()) return;
+  Rng rng(seed, kRayStream, static_cast<std::uint64_t>(chunk));
+  const Vec2 dir = beam_direction(theta_i);
+  const double g_count = static_cast<double>(grooves.size());
+  const int last = static_cast<int>(grooves.size()) - 1;
+  for (std::int64_t j = begin; j < end; ++j) {
+    // Landing point on the macrosurface [0, G) in units of the groove width: groove index and
+    // fraction f across its opening (one groove: f = u exactly).
+    const double u = sampling == Sampling::stratified ? (static_cast<double>(j) + 0.5) / static_cast<double>(rays)
+                                                      : uniform_open(rng);
+    const double x = u * g_count;
+    const int g = std::min(last, static_cast<int>(x));
+    const double f = x - g;
+    const Groove& groove = grooves[static_cast<std::size_t>(g)];
+    const double xl = groove.rim_x(Side::left), xr = groove.rim_x(Side::right);
+    // f = 0 lands exactly on the left peak: sim::trace reports it as a vertex hit.
+    fn(groove, beam_ray(groove, dir, xl + f * (xr - xl)));
+  }
+}
 
 // The rays of chunk c (kRaysPerChunk of them; the last chunk holds the rest).
 MicrosurfaceTally trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOptions& opt,

@@ -85,30 +85,16 @@ ThetaTally run_chunk(const Setup& s, double theta_i, std::int64_t chunk) {
   static_assert(kEnergy || !kEnergyPerK, "energy per k needs a Fresnel observer");
   const Scene& scene = *s.scene;
   ThetaTally t = empty_tally(scene);
-  const std::int64_t n = scene.light.rays;
-  const std::int64_t begin = chunk * sim::kRaysPerChunk, end = std::min(n, begin + sim::kRaysPerChunk);
-  sim::Rng rng(scene.light.seed, sim::kRayStream, static_cast<std::uint64_t>(chunk));
-  const bool stratified = scene.light.sampling == sim::Sampling::stratified;
-  const sim::Vec2 dir = sim::beam_direction(theta_i);
   const sim::TraceOptions opt{scene.max_bounces};
-  const double g_count = static_cast<double>(s.grooves.size());
-  const int last = static_cast<int>(s.grooves.size()) - 1;
   const std::size_t C = static_cast<std::size_t>(s.channels);
   const int bins = scene.record.theta_o_bins;
   const int max_k = scene.record.histogram_max_k;
   Observer obs = make_observer<Observer>(s);
-  for (std::int64_t j = begin; j < end; ++j) {
-    const double u = stratified ? (static_cast<double>(j) + 0.5) / static_cast<double>(n) : sim::uniform_open(rng);
-    // The groove under the landing point and the point's fraction f across its opening (one
-    // groove: g = 0, f = u exactly).
-    const double x = u * g_count;
-    const int g = std::min(last, static_cast<int>(x));
-    const double f = x - g;
-    const sim::Groove& groove = s.grooves[static_cast<std::size_t>(g)];
-    const double xl = groove.rim_x(sim::Side::left), xr = groove.rim_x(sim::Side::right);
+  sim::for_each_landing(s.grooves, theta_i, scene.light.sampling, scene.light.rays, scene.light.seed, chunk,
+                        [&](const sim::Groove& groove, const sim::Ray2& ray) {
     if constexpr (kEnergy) obs.reset();
-    const sim::TraceResult r = sim::trace(groove, sim::beam_ray(groove, dir, xl + f * (xr - xl)), opt, obs);
-    if (!t.count(r.how, r.bounces, r.exit_dir.y() > 0.0)) continue;
+    const sim::TraceResult r = sim::trace(groove, ray, opt, obs);
+    if (!t.count(r.how, r.bounces, r.exit_dir.y() > 0.0)) return;
     const auto k = static_cast<std::size_t>(std::min(r.bounces, kMaxKRow + 1));
     if (k >= t.by_k.size()) t.by_k.resize(k + 1, 0);
     ++t.by_k[k];
@@ -127,7 +113,7 @@ ThetaTally run_chunk(const Setup& s, double theta_i, std::int64_t chunk) {
       ++t.theta_o[static_cast<std::size_t>(bin)];
       ++t.theta_o_by_k[static_cast<std::size_t>(row) * static_cast<std::size_t>(bins) + static_cast<std::size_t>(bin)];
     }
-  }
+  });
   return t;
 }
 
