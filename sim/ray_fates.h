@@ -1,9 +1,9 @@
 // vgroove sim: what happened to a set of traced rays, one bucket per fate.
 //
-// Shared by the tallies of procedural surfaces (sim/microsurface.h, sim/microsurface3d.h) and of
-// scenes (validation/simulate.h): every ray counted is in exactly one of escaped, blocked,
-// vertex_hits, bounce_limit, not_upward; the caller bins the escaped ones. Integer counts, so any
-// merge order gives the same totals.
+// Shared by the tallies of single grooves (sim/tally.h), procedural surfaces (sim/microsurface.h,
+// sim/microsurface3d.h) and scenes (validation/simulate.h): every ray counted is in exactly one of
+// escaped, blocked, vertex_hits, bounce_limit, not_upward; the caller bins the escaped ones.
+// Integer counts, so any merge order gives the same totals.
 #pragma once
 
 #include "sim/tracer.h"

@@ -20,12 +20,7 @@ void add_to_bin(BounceBin& b, std::int64_t n, const Vec2& dir, double spread_sin
 void Tally::add_first(BounceBin& b, const Vec2& dir) { add_to_bin(b, 1, dir, 0.0, false); }
 
 void Tally::merge(const Tally& o) {
-  rays += o.rays;
-  escaped += o.escaped;
-  blocked += o.blocked;
-  vertex_hits += o.vertex_hits;
-  bounce_limit += o.bounce_limit;
-  bounces += o.bounces;
+  merge_fates(o);
   for (int f = 0; f < 2; ++f) {
     if (bins[f].size() < o.bins[f].size()) bins[f].resize(o.bins[f].size());
     for (std::size_t k = 0; k < o.bins[f].size(); ++k)

@@ -6,6 +6,7 @@
 // merged bin keeps the first tally's reference direction.
 #pragma once
 
+#include "sim/ray_fates.h"
 #include "sim/tracer.h"
 
 #include <algorithm>
@@ -27,25 +28,13 @@ struct BounceBin {
   double spread() const { return reversed ? M_PI : std::asin(std::min(1.0, spread_sin)); }
 };
 
-struct Tally {
+// The fates of the rays (sim::RayFates: every ray in one bucket; a single groove's escaped rays
+// all count as upward, so not_upward stays 0), and the escaped ones by (facet hit first, k).
+struct Tally : RayFates {
   std::vector<BounceBin> bins[2];  // [first facet][k], k = bounce count
-  std::int64_t rays = 0;
-  std::int64_t escaped = 0;
-  std::int64_t blocked = 0;
-  std::int64_t vertex_hits = 0;
-  std::int64_t bounce_limit = 0;
-  std::int64_t bounces = 0;  // reflections summed over escaped rays
 
   void add(const TraceResult& r) {  // inline: called once per ray in the hot loop
-    ++rays;
-    switch (r.how) {
-      case Termination::blocked: ++blocked; return;
-      case Termination::vertex_hit: ++vertex_hits; return;
-      case Termination::bounce_limit: ++bounce_limit; return;
-      case Termination::escaped: break;
-    }
-    ++escaped;
-    bounces += r.bounces;
+    if (!count(r.how, r.bounces, true)) return;
     auto& v = bins[static_cast<int>(r.first)];
     if (static_cast<int>(v.size()) <= r.bounces) {
       v.resize(r.bounces + 1);
@@ -59,6 +48,7 @@ struct Tally {
     add_first(v[r.bounces], r.exit_dir);
   }
   void merge(const Tally& other);
+  using RayFates::count;
   std::int64_t count(Side first, int k) const;
   int max_bounces() const;  // largest k with a ray, 0 if none
 
