@@ -9,6 +9,8 @@
 #include "sim/rng.h"
 #include "sim/tracer.h"
 
+#include <algorithm>
+
 namespace vgroove::sim {
 
 enum class Sampling : unsigned char {
@@ -41,6 +43,20 @@ inline double sample_position(Sampling sampling, const Interval& iv, long j, lon
 // j0 + i, n, rng) for each i in turn (random placement draws the stream's next count numbers).
 // Stratified positions of a block are computed together (vectorized), bit for bit the same.
 void sample_positions(Sampling sampling, const Interval& iv, long j0, int count, long n, Rng& rng, double* out);
+
+// Traces the n rays of a beam placed over iv (sample_position's rays 0..n-1, in order) with the
+// batch trace, a block at a time, and hands each result to fn(j, result).
+template <class Fn>
+void trace_beam(const BeamTracer& beam, Sampling sampling, const Interval& iv, long n, Rng& rng, Fn&& fn) {
+  double x[BeamTracer::kBlock];
+  TraceResult traced[BeamTracer::kBlock];
+  for (long j0 = 0; j0 < n; j0 += BeamTracer::kBlock) {
+    const int m = static_cast<int>(std::min<long>(BeamTracer::kBlock, n - j0));
+    sample_positions(sampling, iv, j0, m, n, rng, x);
+    beam.trace(x, m, traced);
+    for (int j = 0; j < m; ++j) fn(j0 + j, traced[j]);
+  }
+}
 
 // The direction the beam's rays travel in: -i.
 inline Vec2 beam_direction(double theta_i) { return -direction_at(theta_i); }

@@ -261,8 +261,9 @@ class BeamTracer {
 
   // What the batch trace knows of a block of rays after the first hit and first reflection:
   // path 0, the ray hit facet f and left after one reflection; path 1, it hit facet f at s and
-  // reflects again; path 2, anything else (outside the opening, a vertex, both facets tested,
-  // an empty table), for trace() to take from the start. 64-bit lanes, for the vectorizer.
+  // reflects again; path 2, anything else (outside or at the ends of the opening, no facet met,
+  // the apex or a rim hit, an empty table), for trace() to take from the start. 64-bit lanes,
+  // for the vectorizer.
   struct BlockHits {
     double s[kBlock];
     std::int64_t f[kBlock];

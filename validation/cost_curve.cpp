@@ -27,21 +27,14 @@ std::vector<CostPoint> cost_vs_theta_v(const std::vector<double>& theta_v, doubl
     std::int64_t bounces = 0;
     double sink = 0.0;
     // The tracer as the validation runs it (validation/groove_case.cpp): one BeamTracer per beam,
-    // its construction timed too, and blocks of stratified positions through the batch trace.
+    // its construction timed too, and the stratified rays through sim::trace_beam.
     sim::Rng unused(0, 0, 0);
-    double xs[sim::BeamTracer::kBlock];
-    sim::TraceResult traced[sim::BeamTracer::kBlock];
     auto t0 = Clock::now();
     const sim::BeamTracer beam(g, dir);
-    for (long r0 = 0; r0 < rays; r0 += sim::BeamTracer::kBlock) {
-      const int m = static_cast<int>(std::min<long>(sim::BeamTracer::kBlock, rays - r0));
-      sim::sample_positions(sim::Sampling::stratified, open, r0, m, rays, unused, xs);
-      beam.trace(xs, m, traced);
-      for (int j = 0; j < m; ++j) {
-        bounces += traced[j].bounces;
-        sink += traced[j].exit_dir.x();
-      }
-    }
+    sim::trace_beam(beam, sim::Sampling::stratified, open, rays, unused, [&](long, const sim::TraceResult& t) {
+      bounces += t.bounces;
+      sink += t.exit_dir.x();
+    });
     p.tracer_ns_per_ray = ns_since(t0) / static_cast<double>(rays);
     p.bounces_per_ray = static_cast<double>(bounces) / static_cast<double>(rays);
     // The model at as many incident angles (a spread of 1e-3 rad, so nothing is hoisted out of

@@ -63,14 +63,7 @@ FacetOutcome run_facet(const GrooveParams& params, const sim::Groove& g, double 
   // traces each ray exactly as sim::trace does (bit for bit), a block of rays at a time.
   const sim::BeamTracer beam(g, dir, topt);
   sim::Tally tally;
-  double xs[sim::BeamTracer::kBlock];
-  sim::TraceResult results[sim::BeamTracer::kBlock];
-  for (long j0 = 0; j0 < opt.rays; j0 += sim::BeamTracer::kBlock) {
-    const int m = static_cast<int>(std::min<long>(sim::BeamTracer::kBlock, opt.rays - j0));
-    sim::sample_positions(opt.sampling, aim, j0, m, opt.rays, rng, xs);
-    beam.trace(xs, m, results);
-    for (int j = 0; j < m; ++j) tally.add(results[j]);
-  }
+  sim::trace_beam(beam, opt.sampling, aim, opt.rays, rng, [&](long, const sim::TraceResult& r) { tally.add(r); });
 
   const double n = static_cast<double>(opt.rays);
   out.rays = tally.rays;

@@ -154,5 +154,27 @@ TEST(BeamTracer, BounceLimitsMatchTrace) {
   EXPECT_GT(compared, 10000);
 }
 
+// sim::trace_beam hands over ray j's result for sample_position's ray j, for both samplings and
+// a count that leaves a partial last block.
+TEST(BeamTracer, TraceBeamGivesEachPlacedRaysResultInOrder) {
+  const Groove g = make_symmetric_groove(deg(37.0));
+  const Vec2 dir = beam_direction(deg(25.0));
+  const BeamTracer beam(g, dir);
+  const Interval iv = aimed_at(g, deg(25.0), Side::right);
+  constexpr long n = 3 * BeamTracer::kBlock + 17;
+  for (Sampling sampling : {Sampling::stratified, Sampling::random}) {
+    Rng a(9, 1, 2), b(9, 1, 2);
+    long next = 0;
+    trace_beam(beam, sampling, iv, n, a, [&](long j, const TraceResult& r) {
+      ASSERT_EQ(j, next++);
+      const TraceResult e = trace(g, beam_ray(g, dir, sample_position(sampling, iv, j, n, b)));
+      ASSERT_TRUE(r.how == e.how && r.bounces == e.bounces && r.first == e.first &&
+                  same_bits(r.exit_dir.x(), e.exit_dir.x()) && same_bits(r.exit_dir.y(), e.exit_dir.y()))
+          << sampling_name(sampling) << " ray " << j;
+    });
+    EXPECT_EQ(next, n) << sampling_name(sampling);
+  }
+}
+
 }  // namespace
 }  // namespace vgroove::sim
