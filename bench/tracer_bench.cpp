@@ -8,8 +8,8 @@
 // short one mostly the per-ray set-up (first hit against both facets, result, tally).
 //
 // Three ways to trace the same rays, with the same results ray by ray: sim::trace per ray
-// (BM_trace_groove), sim::BeamTracer per ray (BM_trace_beam), and BeamTracer's batch trace over
-// an array of positions (BM_trace_beam_batch: what the validation runs).
+// (BM_trace_groove), sim::BeamTracer per ray (BM_trace_beam), and BeamTracer's batch trace through
+// sim::trace_beam (BM_trace_beam_batch: what the validation runs).
 #include "sim/beam.h"
 #include "sim/groove.h"
 #include "sim/tally.h"
@@ -19,7 +19,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <vector>
 
 namespace {
 
@@ -87,20 +86,18 @@ void BM_trace_beam(benchmark::State& state) {
 }
 
 // The same rays through the batch trace of sim::BeamTracer (results identical to trace, ray by
-// ray): the positions are placed into an array, then traced together, blocks of rays at a time.
+// ray), as the validation runs it: sim::trace_beam places a block of positions, traces them
+// together and hands each result over.
 void BM_trace_beam_batch(benchmark::State& state) {
   const TracerSetup s(static_cast<double>(state.range(0)));
   const sim::BeamTracer beam(s.g, s.dir, s.opt);
   sim::Rng rng(1, 0, 0);  // unused by stratified placement
-  std::vector<double> x(kRays);
-  std::vector<sim::TraceResult> out(kRays);
   std::int64_t bounces = 0, rays = 0;
   for (auto _ : state) {
-    sim::sample_positions(sim::Sampling::stratified, s.open, 0, static_cast<int>(kRays), kRays, rng, x.data());
-    beam.trace(x.data(), kRays, out.data());
-    benchmark::DoNotOptimize(out.data());
-    for (const sim::TraceResult& r : out)
+    sim::trace_beam(beam, sim::Sampling::stratified, s.open, kRays, rng, [&](long, const sim::TraceResult& r) {
+      benchmark::DoNotOptimize(r);
       if (r.how == sim::Termination::escaped) bounces += r.bounces;
+    });
     rays += kRays;
   }
   report(state, bounces, rays);
