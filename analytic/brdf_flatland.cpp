@@ -142,33 +142,39 @@ void add_left_resolved(const LobeContext& c, double theta_i, bool mirror, int n_
     for (std::size_t p = 0; p + 1 < cuts.size(); ++p) {
       const double a = cuts[p], b = cuts[p + 1];
       if (!(b > a)) continue;
-      // The sub-intervals of [a, b] on which n reflections land in one bin.
+      // The sub-intervals of [a, b] on which n reflections land in one bin, n = k - 1 and k, each
+      // handed to fn.
       struct Sub { int n; double va, vb; long bin; };
+      auto for_each_sub = [&](auto&& fn) {
+        for (int n = std::max(1, k - 1); n <= k; ++n) {  // k = 1: w_0 = f_a - f_k = 0 (f_k = f_a)
+          // Eq. (5), unwrapped: y = (-1)^n (theta_i + pi - n theta_v), linear in theta_v.
+          const double sgn = (n % 2 == 0) ? 1.0 : -1.0;
+          auto y_of = [&](double v) { return sgn * (theta_i + M_PI - n * v); };
+          auto v_of = [&](double y) { return (theta_i + M_PI - sgn * y) / n; };
+          const double ya = std::min(y_of(a), y_of(b)), yb = std::max(y_of(a), y_of(b));
+          // Bin edges -pi/2 + j w on the whole circle (2 bins of them per turn).
+          const long j0 = static_cast<long>(std::floor((ya + kHalfPi) / c.bin_w));
+          const long j1 = static_cast<long>(std::floor((yb + kHalfPi) / c.bin_w));
+          for (long j = j0; j <= j1; ++j) {
+            const double y_lo = std::max(ya, -kHalfPi + j * c.bin_w);
+            const double y_hi = std::min(yb, -kHalfPi + (j + 1) * c.bin_w);
+            if (!(y_hi > y_lo)) continue;
+            const double v1 = std::clamp(v_of(y_lo), a, b), v2 = std::clamp(v_of(y_hi), a, b);
+            const double va = std::min(v1, v2), vb = std::max(v1, v2);
+            if (!(vb > va)) continue;
+            long bin = j % (2L * c.bins);
+            if (bin < 0) bin += 2L * c.bins;
+            fn(Sub{n, va, vb, bin});
+          }
+        }
+      };
       Sub subs[2 * 64];
       int count = 0;
       bool overflow = false;
-      for (int n = std::max(1, k - 1); n <= k; ++n) {  // k = 1: w_0 = f_a - f_k = 0 (f_k = f_a)
-        // Eq. (5), unwrapped: y = (-1)^n (theta_i + pi - n theta_v), linear in theta_v.
-        const double sgn = (n % 2 == 0) ? 1.0 : -1.0;
-        auto y_of = [&](double v) { return sgn * (theta_i + M_PI - n * v); };
-        auto v_of = [&](double y) { return (theta_i + M_PI - sgn * y) / n; };
-        const double ya = std::min(y_of(a), y_of(b)), yb = std::max(y_of(a), y_of(b));
-        // Bin edges -pi/2 + j w on the whole circle (2 bins of them per turn).
-        const long j0 = static_cast<long>(std::floor((ya + kHalfPi) / c.bin_w));
-        const long j1 = static_cast<long>(std::floor((yb + kHalfPi) / c.bin_w));
-        for (long j = j0; j <= j1; ++j) {
-          const double y_lo = std::max(ya, -kHalfPi + j * c.bin_w);
-          const double y_hi = std::min(yb, -kHalfPi + (j + 1) * c.bin_w);
-          if (!(y_hi > y_lo)) continue;
-          const double v1 = std::clamp(v_of(y_lo), a, b), v2 = std::clamp(v_of(y_hi), a, b);
-          const double va = std::min(v1, v2), vb = std::max(v1, v2);
-          if (!(vb > va)) continue;
-          long bin = j % (2L * c.bins);
-          if (bin < 0) bin += 2L * c.bins;
-          if (count == 2 * 64) overflow = true;
-          else subs[count++] = {n, va, vb, bin};
-        }
-      }
+      for_each_sub([&](const Sub& u) {
+        if (count == 2 * 64) overflow = true;
+        else subs[count++] = u;
+      });
       auto deposit = [&](const Sub& u, double flux) {
         if (u.bin >= c.bins) {
           acc.below += flux;
@@ -204,25 +210,8 @@ void add_left_resolved(const LobeContext& c, double theta_i, bool mirror, int n_
         for (int q = 0; q < count; ++q) one(subs[q]);
         continue;
       }
-      // Many bins crossed on one piece (only with very many bins): the plain path.
-      for (int n = std::max(1, k - 1); n <= k; ++n) {
-        const double sgn = (n % 2 == 0) ? 1.0 : -1.0;
-        auto y_of = [&](double v) { return sgn * (theta_i + M_PI - n * v); };
-        auto v_of = [&](double y) { return (theta_i + M_PI - sgn * y) / n; };
-        const double ya = std::min(y_of(a), y_of(b)), yb = std::max(y_of(a), y_of(b));
-        const long j0 = static_cast<long>(std::floor((ya + kHalfPi) / c.bin_w));
-        const long j1 = static_cast<long>(std::floor((yb + kHalfPi) / c.bin_w));
-        for (long j = j0; j <= j1; ++j) {
-          const double y_lo = std::max(ya, -kHalfPi + j * c.bin_w);
-          const double y_hi = std::min(yb, -kHalfPi + (j + 1) * c.bin_w);
-          if (!(y_hi > y_lo)) continue;
-          const double v1 = std::clamp(v_of(y_lo), a, b), v2 = std::clamp(v_of(y_hi), a, b);
-          if (!(std::max(v1, v2) > std::min(v1, v2))) continue;
-          long bin = j % (2L * c.bins);
-          if (bin < 0) bin += 2L * c.bins;
-          one(Sub{n, std::min(v1, v2), std::max(v1, v2), bin});
-        }
-      }
+      // Many bins crossed on one piece (only with very many bins): each sub-interval as it comes.
+      for_each_sub(one);
     }
   }
 }
