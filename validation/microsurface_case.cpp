@@ -34,6 +34,17 @@ sim::NdfKind to_sim(analytic::NdfKind k) {
   return sim::NdfKind::ggx;
 }
 
+// The procedural surface of one (NDF, alpha): flatland or 3D options have the same fields.
+template <class Options>
+Options surface_options(analytic::NdfKind ndf, double alpha, int grooves, std::uint64_t seed) {
+  Options o;
+  o.ndf = to_sim(ndf);
+  o.alpha = alpha;
+  o.grooves = grooves;
+  o.seed = seed;
+  return o;
+}
+
 analytic::NdfKind parse_ndf(const std::string& s) {
   if (s == "beckmann") return analytic::NdfKind::beckmann;
   if (s == "phong") return analytic::NdfKind::phong;
@@ -164,12 +175,8 @@ BrdfOutcome run_flatland(const BrdfSuite& suite, const BrdfCase& c, long rays) {
   out.c = c;
   const int bins = suite.flatland_bins;
   const auto t0 = Clock::now();
-  sim::MicrosurfaceOptions mo;
-  mo.ndf = to_sim(c.ndf);
-  mo.alpha = c.alpha;
-  mo.grooves = suite.grooves;
-  mo.seed = suite.seed;
-  const sim::Microsurface surface = sim::make_microsurface(mo);
+  const sim::Microsurface surface = sim::make_microsurface(
+      surface_options<sim::MicrosurfaceOptions>(c.ndf, c.alpha, suite.grooves, suite.seed));
   sim::MicrosurfaceTraceOptions to;
   to.theta_i = c.theta_i;
   to.rays = rays;
@@ -216,12 +223,8 @@ BrdfOutcome run_3d(const BrdfSuite& suite, const BrdfCase& c, long rays) {
   out.c = c;
   const int tb = suite.theta_bins, pb = suite.phi_bins, bins = tb * pb;
   const auto t0 = Clock::now();
-  sim::Microsurface3dOptions mo;
-  mo.ndf = to_sim(c.ndf);
-  mo.alpha = c.alpha;
-  mo.grooves = suite.grooves;
-  mo.seed = suite.seed;
-  const sim::Microsurface3d surface = sim::make_microsurface3d(mo);
+  const sim::Microsurface3d surface = sim::make_microsurface3d(
+      surface_options<sim::Microsurface3dOptions>(c.ndf, c.alpha, suite.grooves, suite.seed));
   sim::Microsurface3dTraceOptions to;
   to.theta_i = c.theta_i;
   to.rays = rays;
@@ -558,12 +561,8 @@ Table2Run run_table2_suite(const Table2Suite& s, long rays, int threads, const s
       nn * na, run.threads,
       [&](std::size_t item) {
         const std::size_t n = item / na, a = item % na;
-        sim::Microsurface3dOptions mo;
-        mo.ndf = to_sim(s.ndfs[n]);
-        mo.alpha = s.alphas[a];
-        mo.grooves = s.grooves;
-        mo.seed = s.seed;
-        const sim::Microsurface3d surface = sim::make_microsurface3d(mo);
+        const sim::Microsurface3d surface = sim::make_microsurface3d(
+            surface_options<sim::Microsurface3dOptions>(s.ndfs[n], s.alphas[a], s.grooves, s.seed));
         sim::Microsurface3dTraceOptions to;
         to.theta_i = 0.0;
         to.rays = n_rays;
