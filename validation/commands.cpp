@@ -28,6 +28,12 @@ namespace {
 constexpr double kRad = M_PI / 180.0;
 constexpr long kMaxRays = 1'000'000'000;
 
+// A run stopped by Ctrl-C: nothing is written, and the exit status says why.
+int interrupted_no_report() {
+  std::cerr << "\nvgroove: interrupted; no report written\n";
+  return kExitInterrupted;
+}
+
 
 void check_seed(long long seed, const std::string& what) {
   if (seed < 0)
@@ -252,10 +258,7 @@ int validate_microsurface(const ValidateArgs& a, const nlohmann::json& j) {
     if (!a.out.empty()) check_writable_target(a.out, a.force);
     if (a.dry_run) return 0;
     const Table2Run run = run_table2_suite(suite, rays, a.threads, a.cancel);
-    if (run.interrupted) {
-      std::cerr << "\nvgroove: interrupted; no report written\n";
-      return kExitInterrupted;
-    }
+    if (run.interrupted) return interrupted_no_report();
     print_table2(std::cout, suite, run);
     report = table2_report_json(suite, run).dump(1) + "\n";
     pass = run.pass;
@@ -264,10 +267,7 @@ int validate_microsurface(const ValidateArgs& a, const nlohmann::json& j) {
     if (!a.out.empty()) check_writable_target(a.out, a.force);
     if (a.dry_run) return 0;
     const BrdfRun run = run_brdf_suite(suite, rays, a.threads, terminal_progress("validate " + suite.name), a.cancel);
-    if (run.interrupted) {
-      std::cerr << "\nvgroove: interrupted; no report written\n";
-      return kExitInterrupted;
-    }
+    if (run.interrupted) return interrupted_no_report();
     print_brdf_table(std::cout, suite, run);
     report = brdf_report_json(suite, run).dump(1) + "\n";
     pass = run.pass;
@@ -293,10 +293,7 @@ int cmd_validate(const ValidateArgs& a) {
   for (std::size_t n = 0; n < set.suites.size(); ++n) {
     runs.push_back(
         run_suite(set.suites[n], opts[n], a.threads, terminal_progress("validate " + set.suites[n].name), a.cancel));
-    if (runs.back().interrupted) {
-      std::cerr << "\nvgroove: interrupted; no report written\n";
-      return kExitInterrupted;
-    }
+    if (runs.back().interrupted) return interrupted_no_report();
     pass = pass && runs.back().summary.pass();
   }
   print_set_table(std::cout, set, runs);
@@ -334,10 +331,7 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
       const SuiteRun run = run_suite(
           suite, o, a.threads, terminal_progress(std::string(sim::sampling_name(smp)) + " " + std::to_string(rays)),
           a.cancel);
-      if (run.interrupted) {
-        std::fprintf(stderr, "\nvgroove: interrupted; no report written\n");
-        return kExitInterrupted;
-      }
+      if (run.interrupted) return interrupted_no_report();
       threads_used = run.threads;
       const Summary& s = run.summary;
       std::printf("  %-10s %10ld %12.4g %12.4g %12lld %10.3f %8s\n", sim::sampling_name(smp), rays, s.max_l1,
