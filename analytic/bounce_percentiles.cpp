@@ -1,6 +1,6 @@
-#include "analytic/bounce_percentiles.h"
+#include "vgroove/analytic/bounce_percentiles.h"
 
-#include "analytic/kaleidoscope.h"
+#include "vgroove/analytic/kaleidoscope.h"
 
 #include <cassert>
 #include <cmath>

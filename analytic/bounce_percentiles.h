@@ -20,7 +20,7 @@
 // the report can show that they do not reproduce the table.
 #pragma once
 
-#include "analytic/ndf.h"
+#include "vgroove/analytic/ndf.h"
 
 namespace vgroove::analytic {
 

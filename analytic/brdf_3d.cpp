@@ -1,6 +1,6 @@
-#include "analytic/brdf_3d.h"
+#include "vgroove/analytic/brdf_3d.h"
 
-#include "analytic/kaleidoscope.h"
+#include "vgroove/analytic/kaleidoscope.h"
 
 #include <algorithm>
 #include <array>

@@ -64,8 +64,8 @@
 //     evaluation (every j) stays as vgroove_brdf_k_reference for the tests.
 #pragma once
 
-#include "analytic/kaleidoscope.h"
-#include "analytic/ndf.h"
+#include "vgroove/analytic/kaleidoscope.h"
+#include "vgroove/analytic/ndf.h"
 
 #include <functional>
 #include <vector>

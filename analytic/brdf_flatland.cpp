@@ -1,6 +1,6 @@
-#include "analytic/brdf_flatland.h"
+#include "vgroove/analytic/brdf_flatland.h"
 
-#include "analytic/kaleidoscope.h"
+#include "vgroove/analytic/kaleidoscope.h"
 
 #include <algorithm>
 #include <cassert>

@@ -88,7 +88,7 @@
 //   functions return 0, the exit set there has measure zero.
 #pragma once
 
-#include "analytic/ndf.h"
+#include "vgroove/analytic/ndf.h"
 
 #include <vector>
 

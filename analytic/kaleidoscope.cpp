@@ -1,4 +1,4 @@
-#include "analytic/kaleidoscope.h"
+#include "vgroove/analytic/kaleidoscope.h"
 
 #include <algorithm>
 #include <cmath>

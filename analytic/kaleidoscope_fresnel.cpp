@@ -1,6 +1,6 @@
-#include "analytic/kaleidoscope_fresnel.h"
+#include "vgroove/analytic/kaleidoscope_fresnel.h"
 
-#include "analytic/kaleidoscope_nonsymmetric.h"
+#include "vgroove/analytic/kaleidoscope_nonsymmetric.h"
 
 #include <cmath>
 

@@ -33,7 +33,7 @@
 // (first facet, n) bin keeps the same energy.
 #pragma once
 
-#include "analytic/kaleidoscope.h"
+#include "vgroove/analytic/kaleidoscope.h"
 
 namespace vgroove::analytic {
 

@@ -1,4 +1,4 @@
-#include "analytic/kaleidoscope_nonsymmetric.h"
+#include "vgroove/analytic/kaleidoscope_nonsymmetric.h"
 
 #include <algorithm>
 #include <cmath>

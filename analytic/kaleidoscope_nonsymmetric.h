@@ -20,7 +20,7 @@
 // E2): k_2 = P_1, k_b = P_{k_b - 1}, k_a = P_{k_b}.
 #pragma once
 
-#include "analytic/kaleidoscope.h"
+#include "vgroove/analytic/kaleidoscope.h"
 
 namespace vgroove::analytic {
 

@@ -1,4 +1,4 @@
-#include "analytic/ndf.h"
+#include "vgroove/analytic/ndf.h"
 
 #include <algorithm>
 #include <cassert>

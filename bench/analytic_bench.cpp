@@ -5,7 +5,7 @@
 // Every call here is on the lit path (the full evaluation, no early return): theta_i runs over
 // stratified midpoints of the range where the facet is lit, (-89 deg, min(89, theta_v/2) deg)
 // for the left facet and its mirror image for the right one.
-#include "analytic/kaleidoscope.h"
+#include "vgroove/analytic/kaleidoscope.h"
 
 #include <benchmark/benchmark.h>
 

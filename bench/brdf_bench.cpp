@@ -16,7 +16,7 @@
 // single pass visits only the solutions of Eq. (5) that Eq. (4) allows (~3 per pair at max_k 4,
 // ~4.4 at 16), so the cost no longer grows like max_k^2 (before: ~1 us at max_k 4, ~10-13 us at
 // 16). What remains per solution is sin/cos of theta_v / 2, one more sine for the width, D.
-#include "analytic/brdf_3d.h"
+#include "vgroove/analytic/brdf_3d.h"
 
 #include <benchmark/benchmark.h>
 

@@ -11,10 +11,10 @@
 // BM_effects/<variant>/<theta_v> reports bounces/s; BM_effects_overhead/<variant>/<theta_v> times
 // the variant and the bare tracer alternately on the same rays and reports their ratio
 // (time with the observer / time without), so drift of the machine affects both alike.
-#include "sim/beam.h"
-#include "sim/effects.h"
-#include "sim/groove.h"
-#include "sim/tracer.h"
+#include "vgroove/sim/beam.h"
+#include "vgroove/sim/effects.h"
+#include "vgroove/sim/groove.h"
+#include "vgroove/sim/tracer.h"
 
 #include <benchmark/benchmark.h>
 

@@ -6,8 +6,8 @@
 // 1.0, theta_i 0 and 60 deg, 10^4 grooves (the surface is built once, outside the timing). One
 // iteration traces one chunk of kRaysPerChunk rays with default bins (90; 90 x 72 in 3D). Rougher
 // surfaces have deeper grooves: bounces_per_ray says how much of the time is the reflection loop.
-#include "sim/microsurface.h"
-#include "sim/microsurface3d.h"
+#include "vgroove/sim/microsurface.h"
+#include "vgroove/sim/microsurface3d.h"
 
 #include <benchmark/benchmark.h>
 

@@ -3,8 +3,8 @@
 //
 // Wall time, not CPU time: the sweep runs on `threads` workers (validation/parallel.h), so the
 // speed-up from 1 to 2 threads is the ratio of the two rows' times.
-#include "validation/suite.h"
-#include "validation/suite_run.h"
+#include "vgroove/validation/suite.h"
+#include "vgroove/validation/suite_run.h"
 
 #include <benchmark/benchmark.h>
 

@@ -10,10 +10,10 @@
 // Three ways to trace the same rays, with the same results ray by ray: sim::trace per ray
 // (BM_trace_groove), sim::BeamTracer per ray (BM_trace_beam), and BeamTracer's batch trace through
 // sim::trace_beam (BM_trace_beam_batch: what the validation runs).
-#include "sim/beam.h"
-#include "sim/groove.h"
-#include "sim/tally.h"
-#include "sim/tracer.h"
+#include "vgroove/sim/beam.h"
+#include "vgroove/sim/groove.h"
+#include "vgroove/sim/tally.h"
+#include "vgroove/sim/tracer.h"
 
 #include <benchmark/benchmark.h>
 

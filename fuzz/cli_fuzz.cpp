@@ -1,7 +1,7 @@
 // libFuzzer target: command-line parsing and checking. The input is split at NUL and newline
 // bytes into arguments; the CLI runs in dry-run mode (every value checked, no work done). Any input
 // must end in an exit status: no crash, no hang, no uncaught exception.
-#include "validation/cli.h"
+#include "vgroove/app/cli.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -24,7 +24,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   args.push_back(cur);
   std::vector<const char*> argv;
   for (const auto& a : args) argv.push_back(a.c_str());
-  const int status = vgroove::validation::run_cli(static_cast<int>(argv.size()), argv.data(), {nullptr, true});
+  const int status = vgroove::app::run_cli(static_cast<int>(argv.size()), argv.data(), {nullptr, true});
   // 0, 1, 2 are the documented outcomes; 3 is an exception that escaped as an internal error.
   if (status < 0 || status > 2) __builtin_trap();
   return 0;

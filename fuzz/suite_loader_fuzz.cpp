@@ -1,7 +1,7 @@
 // libFuzzer target: the suite/scene JSON loader. Any input must give a Suite or a UserError:
 // no crash, no hang, no other exception.
-#include "validation/suite.h"
-#include "validation/user_error.h"
+#include "vgroove/validation/suite.h"
+#include "vgroove/support/user_error.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -10,12 +10,12 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   const nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded()) return 0;  // not JSON: read_json_file reports that before the loader runs
+  if (j.is_discarded()) return 0;  // not JSON: support::read_json_file reports that before the loader runs
   try {
     // A directory that does not exist: a set's member files fail to open, as they should.
     const auto set = vgroove::validation::parse_suite_set(j, "/nonexistent-fuzz-dir/fuzz.json");
     (void)set;
-  } catch (const vgroove::validation::UserError&) {
+  } catch (const vgroove::support::UserError&) {
   }
   return 0;
 }

@@ -1,4 +1,4 @@
-#include "optics/fresnel.h"
+#include "vgroove/optics/fresnel.h"
 
 #include <algorithm>
 #include <cassert>

@@ -1,4 +1,4 @@
-#include "sim/beam.h"
+#include "vgroove/sim/beam.h"
 
 namespace vgroove::sim {
 

@@ -5,9 +5,9 @@
 // perpendicular offset to x is affine), so a placement along x has the beam's own measure.
 #pragma once
 
-#include "sim/groove.h"
-#include "sim/rng.h"
-#include "sim/tracer.h"
+#include "vgroove/sim/groove.h"
+#include "vgroove/sim/rng.h"
+#include "vgroove/sim/tracer.h"
 
 #include <algorithm>
 

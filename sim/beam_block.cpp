@@ -7,7 +7,7 @@
 // selects, and the loop has no branch, so the compiler vectorizes it. This file is compiled with
 // -fno-trapping-math (sim/CMakeLists.txt), which lets the compiler compute both sides of a select;
 // it changes no value, only whether a floating-point exception flag may be raised.
-#include "sim/tracer.h"
+#include "vgroove/sim/tracer.h"
 
 #include <cmath>
 #include <cstdint>

@@ -15,8 +15,8 @@
 // Header-only; the reflectance functors call optics/, so a target using them links vgroove::optics.
 #pragma once
 
-#include "optics/fresnel.h"
-#include "sim/tracer.h"
+#include "vgroove/optics/fresnel.h"
+#include "vgroove/sim/tracer.h"
 
 #include <cmath>
 #include <type_traits>

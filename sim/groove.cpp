@@ -1,4 +1,4 @@
-#include "sim/groove.h"
+#include "vgroove/sim/groove.h"
 
 #include <algorithm>
 #include <cassert>

@@ -6,7 +6,7 @@
 // bounding circle of radius 1).
 #pragma once
 
-#include "sim/geometry.h"
+#include "vgroove/sim/geometry.h"
 
 namespace vgroove::sim {
 

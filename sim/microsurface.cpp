@@ -1,4 +1,4 @@
-#include "sim/microsurface.h"
+#include "vgroove/sim/microsurface.h"
 
 #include <algorithm>
 #include <cassert>

@@ -31,12 +31,12 @@
 // chunks over threads, merged in any order, gives bit-identical results.
 #pragma once
 
-#include "sim/beam.h"
-#include "sim/groove.h"
-#include "sim/ray_fates.h"
-#include "sim/rng.h"
-#include "sim/slope_sampling.h"
-#include "sim/tracer.h"
+#include "vgroove/sim/beam.h"
+#include "vgroove/sim/groove.h"
+#include "vgroove/sim/ray_fates.h"
+#include "vgroove/sim/rng.h"
+#include "vgroove/sim/slope_sampling.h"
+#include "vgroove/sim/tracer.h"
 
 #include <algorithm>
 #include <cstdint>

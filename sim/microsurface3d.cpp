@@ -1,4 +1,4 @@
-#include "sim/microsurface3d.h"
+#include "vgroove/sim/microsurface3d.h"
 
 #include <algorithm>
 #include <cassert>

@@ -49,7 +49,7 @@
 // the chunks over threads, merged in any order, gives bit-identical results.
 #pragma once
 
-#include "sim/microsurface.h"
+#include "vgroove/sim/microsurface.h"
 
 #include <Eigen/Core>
 

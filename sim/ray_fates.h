@@ -6,7 +6,7 @@
 // Integer counts, so any merge order gives the same totals.
 #pragma once
 
-#include "sim/tracer.h"
+#include "vgroove/sim/tracer.h"
 
 #include <algorithm>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "sim/slope_sampling.h"
+#include "vgroove/sim/slope_sampling.h"
 
 #include <algorithm>
 #include <cassert>

@@ -1,4 +1,4 @@
-#include "sim/tally.h"
+#include "vgroove/sim/tally.h"
 
 namespace vgroove::sim {
 

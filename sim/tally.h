@@ -6,8 +6,8 @@
 // merged bin keeps the first tally's reference direction.
 #pragma once
 
-#include "sim/ray_fates.h"
-#include "sim/tracer.h"
+#include "vgroove/sim/ray_fates.h"
+#include "vgroove/sim/tracer.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "sim/tracer.h"
+#include "vgroove/sim/tracer.h"
 
 namespace vgroove::sim {
 

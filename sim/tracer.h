@@ -6,7 +6,7 @@
 // leaving a facet can only meet the other facet or leave through the opening.
 #pragma once
 
-#include "sim/groove.h"
+#include "vgroove/sim/groove.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
-#include "validation/cost_curve.h"
+#include "vgroove/validation/cost_curve.h"
 
-#include "analytic/kaleidoscope.h"
-#include "sim/beam.h"
-#include "sim/groove.h"
-#include "sim/tracer.h"
+#include "vgroove/analytic/kaleidoscope.h"
+#include "vgroove/sim/beam.h"
+#include "vgroove/sim/groove.h"
+#include "vgroove/sim/tracer.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,6 +1,6 @@
-#include "validation/groove_case.h"
+#include "vgroove/validation/groove_case.h"
 
-#include "sim/tally.h"
+#include "vgroove/sim/tally.h"
 
 #include <algorithm>
 #include <cmath>

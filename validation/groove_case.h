@@ -8,7 +8,7 @@
 // is the larger of its facets'.
 #pragma once
 
-#include "validation/suite.h"
+#include "vgroove/validation/suite.h"
 
 #include <cstdint>
 

@@ -1,12 +1,12 @@
-#include "validation/microsurface_case.h"
+#include "vgroove/validation/microsurface_case.h"
 
-#include "analytic/bounce_percentiles.h"
-#include "analytic/brdf_3d.h"
-#include "analytic/brdf_flatland.h"
-#include "sim/microsurface.h"
-#include "sim/microsurface3d.h"
-#include "validation/json_reader.h"
-#include "validation/report.h"
+#include "vgroove/analytic/bounce_percentiles.h"
+#include "vgroove/analytic/brdf_3d.h"
+#include "vgroove/analytic/brdf_flatland.h"
+#include "vgroove/sim/microsurface.h"
+#include "vgroove/sim/microsurface3d.h"
+#include "vgroove/support/json_reader.h"
+#include "vgroove/validation/report.h"
 
 #include <algorithm>
 #include <chrono>
@@ -52,7 +52,7 @@ analytic::NdfKind parse_ndf(const std::string& s) {
 }
 
 // A non-empty list of strings, each one of `allowed`.
-std::vector<std::string> read_names(JsonObject& o, const std::string& key, const std::vector<std::string>& allowed) {
+std::vector<std::string> read_names(support::JsonObject& o, const std::string& key, const std::vector<std::string>& allowed) {
   const nlohmann::json& v = o.raw(key);
   if (!v.is_array() || v.empty()) o.fail(key, "= " + v.dump() + " must be a non-empty list");
   std::vector<std::string> out;
@@ -61,32 +61,32 @@ std::vector<std::string> read_names(JsonObject& o, const std::string& key, const
     std::string list;
     for (const auto& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";
     if (!v[n].is_string() || std::find(allowed.begin(), allowed.end(), v[n].get<std::string>()) == allowed.end())
-      throw UserError(o.file() + ": " + where + " = " + v[n].dump() + " is not one of " + list);
+      throw support::UserError(o.file() + ": " + where + " = " + v[n].dump() + " is not one of " + list);
     out.push_back(v[n].get<std::string>());
   }
   return out;
 }
 
 // A non-empty list of numbers in the range.
-std::vector<double> read_numbers(JsonObject& o, const std::string& key, double lo, bool lo_closed, double hi,
+std::vector<double> read_numbers(support::JsonObject& o, const std::string& key, double lo, bool lo_closed, double hi,
                                  bool hi_closed) {
   const nlohmann::json& v = o.raw(key);
   if (!v.is_array() || v.empty()) o.fail(key, "= " + v.dump() + " must be a non-empty list of numbers");
   std::vector<double> out;
   for (std::size_t n = 0; n < v.size(); ++n) {
     const std::string where = o.path(key) + "/" + std::to_string(n);
-    if (!v[n].is_number()) throw UserError(o.file() + ": " + where + " = " + v[n].dump() + " must be a number");
+    if (!v[n].is_number()) throw support::UserError(o.file() + ": " + where + " = " + v[n].dump() + " must be a number");
     const double x = v[n].get<double>();
     const bool ok = std::isfinite(x) && (lo_closed ? x >= lo : x > lo) && (hi_closed ? x <= hi : x < hi);
     if (!ok)
-      throw UserError(o.file() + ": " + where + " = " + number_text(x) + " is out of range " +
-                      interval_text(lo, lo_closed, hi, hi_closed));
+      throw support::UserError(o.file() + ": " + where + " = " + support::number_text(x) + " is out of range " +
+                      support::interval_text(lo, lo_closed, hi, hi_closed));
     out.push_back(x);
   }
   return out;
 }
 
-std::vector<analytic::NdfKind> read_ndfs(JsonObject& o) {
+std::vector<analytic::NdfKind> read_ndfs(support::JsonObject& o) {
   std::vector<analytic::NdfKind> out;
   for (const auto& s : read_names(o, "ndf", {"ggx", "beckmann", "phong"})) out.push_back(parse_ndf(s));
   return out;
@@ -319,7 +319,7 @@ ExpectedL1 expected_l1(const std::vector<double>& p, double rays, double grooves
 }
 
 BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
-  JsonObject root(j, file, "");
+  support::JsonObject root(j, file, "");
   BrdfSuite s;
   s.file = file;
   s.name = root.string("name");
@@ -340,9 +340,9 @@ BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
     root.fail("phi_bins", "= " + std::to_string(s.phi_bins) + " must be even (the plane of incidence runs through two bins)");
   s.max_k = static_cast<int>(root.integer_or("max_k", s.max_k, 1, 10000));
   {
-    JsonObject t = root.object("thresholds");
+    support::JsonObject t = root.object("thresholds");
     s.sigmas = t.number("sigmas", 0.0, false, 100.0, true);
-    JsonObject m = t.object("model_tolerance");
+    support::JsonObject m = t.object("model_tolerance");
     s.model_tolerance_flatland = m.number("flatland", 0.0, true, 2.0, true);
     s.model_tolerance_3d = m.number("3d", 0.0, true, 2.0, true);
     m.finish();
@@ -356,16 +356,16 @@ BrdfOutcome run_brdf_case(const BrdfSuite& suite, const BrdfCase& c, long rays) 
   return c.dim == SurfaceDim::flatland ? run_flatland(suite, c, rays) : run_3d(suite, c, rays);
 }
 
-BrdfRun run_brdf_suite(const BrdfSuite& suite, long rays, int threads, const ProgressFn& progress,
+BrdfRun run_brdf_suite(const BrdfSuite& suite, long rays, int threads, const support::ProgressFn& progress,
                        const std::atomic<bool>* cancel) {
   BrdfRun run;
-  run.threads = resolve_threads(threads);
+  run.threads = support::resolve_threads(threads);
   run.cases.resize(suite.cases());
   const long n_rays = rays > 0 ? rays : suite.rays;
   const auto t0 = Clock::now();
   // One case per work item: each case's rays run in order on one thread, so the results do not
   // depend on the thread count.
-  const bool complete = parallel_for(
+  const bool complete = support::parallel_for(
       suite.cases(), run.threads, [&](std::size_t c) { run.cases[c] = run_brdf_case(suite, suite.case_at(c), n_rays); },
       progress, cancel, 1);
   run.wall_s = seconds_since(t0);
@@ -502,7 +502,7 @@ int percentile_of_counts(const std::vector<std::int64_t>& by_k, double q) {
 }  // namespace
 
 Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file) {
-  JsonObject root(j, file, "");
+  support::JsonObject root(j, file, "");
   Table2Suite s;
   s.file = file;
   s.name = root.string("name");
@@ -514,7 +514,7 @@ Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file)
   s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
   s.grooves = static_cast<int>(root.integer("grooves", 1, 10'000'000));
   s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
-  JsonObject paper = root.object("paper");
+  support::JsonObject paper = root.object("paper");
   s.source = paper.string("source");
   const nlohmann::json& rows = paper.raw("max_bounces");
   const std::size_t per_row = s.ndfs.size() * s.alphas.size();
@@ -522,11 +522,11 @@ Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file)
     paper.fail("max_bounces", "must be a list of " + std::to_string(s.percentiles.size()) + " rows (one per percentile)");
   for (std::size_t r = 0; r < rows.size(); ++r) {
     if (!rows[r].is_array() || rows[r].size() != per_row)
-      throw UserError(file + ": " + paper.path("max_bounces") + "/" + std::to_string(r) + " must be a list of " +
+      throw support::UserError(file + ": " + paper.path("max_bounces") + "/" + std::to_string(r) + " must be a list of " +
                       std::to_string(per_row) + " integers (ndf outer, alpha inner)");
     for (std::size_t n = 0; n < per_row; ++n) {
       if (!rows[r][n].is_number_integer() || rows[r][n].get<long long>() < 1 || rows[r][n].get<long long>() > 1000000)
-        throw UserError(file + ": " + paper.path("max_bounces") + "/" + std::to_string(r) + "/" + std::to_string(n) +
+        throw support::UserError(file + ": " + paper.path("max_bounces") + "/" + std::to_string(r) + "/" + std::to_string(n) +
                         " = " + rows[r][n].dump() + " must be an integer in [1, 1000000]");
       s.paper.push_back(rows[r][n].get<int>());
     }
@@ -538,7 +538,7 @@ Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file)
 
 Table2Run run_table2_suite(const Table2Suite& s, long rays, int threads, const std::atomic<bool>* cancel) {
   Table2Run run;
-  run.threads = resolve_threads(threads);
+  run.threads = support::resolve_threads(threads);
   const auto t0 = Clock::now();
   const std::size_t na = s.alphas.size(), nn = s.ndfs.size(), nq = s.percentiles.size();
   auto at = [&](std::size_t q, std::size_t n, std::size_t a) { return (q * nn + n) * na + a; };
@@ -557,7 +557,7 @@ Table2Run run_table2_suite(const Table2Suite& s, long rays, int threads, const s
       }
   // The simulation column: procedural 3D surfaces lit at normal incidence, bounce counts traced.
   const long n_rays = rays > 0 ? rays : s.rays;
-  const bool complete = parallel_for(
+  const bool complete = support::parallel_for(
       nn * na, run.threads,
       [&](std::size_t item) {
         const std::size_t n = item / na, a = item % na;

@@ -19,8 +19,8 @@
 // The report shows the error next to the expected value and the threshold.
 #pragma once
 
-#include "analytic/ndf.h"
-#include "validation/parallel.h"
+#include "vgroove/analytic/ndf.h"
+#include "vgroove/support/parallel.h"
 
 #include <nlohmann/json.hpp>
 
@@ -107,7 +107,7 @@ struct BrdfRun {
 
 BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file);
 // rays > 0 overrides the suite's.
-BrdfRun run_brdf_suite(const BrdfSuite& suite, long rays, int threads, const ProgressFn& progress = {},
+BrdfRun run_brdf_suite(const BrdfSuite& suite, long rays, int threads, const support::ProgressFn& progress = {},
                        const std::atomic<bool>* cancel = nullptr);
 BrdfOutcome run_brdf_case(const BrdfSuite& suite, const BrdfCase& c, long rays);
 nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run);

@@ -1,6 +1,6 @@
-#include "validation/plot.h"
+#include "vgroove/validation/plot.h"
 
-#include "validation/user_error.h"
+#include "vgroove/support/user_error.h"
 
 #include <algorithm>
 #include <cmath>
@@ -32,7 +32,7 @@ std::pair<double, double> log_range(double lo, double hi) {
 
 std::string accuracy_svg(const nlohmann::json& report, const std::string& file) {
   if (!report.is_object() || !report.contains("runs") || !report["runs"].is_array() || report["runs"].empty())
-    throw UserError(file + ": not an accuracy report (no /runs): make one with `vgroove bench accuracy ... --out`");
+    throw support::UserError(file + ": not an accuracy report (no /runs): make one with `vgroove bench accuracy ... --out`");
   std::map<std::string, std::vector<Point>> lines;
   double tmin = INFINITY, tmax = 0, emin = INFINITY, emax = 0;
   for (std::size_t n = 0; n < report["runs"].size(); ++n) {
@@ -45,10 +45,10 @@ std::string accuracy_svg(const nlohmann::json& report, const std::string& file) 
       tmin = std::min(tmin, p.wall_s), tmax = std::max(tmax, p.wall_s);
       emin = std::min(emin, p.mean_l1), emax = std::max(emax, p.max_l1);
     } catch (const nlohmann::json::exception& e) {
-      throw UserError(file + ": /runs/" + std::to_string(n) + " is not an accuracy run: " + e.what());
+      throw support::UserError(file + ": /runs/" + std::to_string(n) + " is not an accuracy run: " + e.what());
     }
   }
-  if (lines.empty()) throw UserError(file + ": no run with positive wall time and error to plot");
+  if (lines.empty()) throw support::UserError(file + ": no run with positive wall time and error to plot");
   const auto [tx0, tx1] = log_range(tmin, tmax);
   const auto [ey0, ey1] = log_range(emin, emax);
   const double W = 720, H = 480, L = 80, R = 160, T = 48, B = 60;
@@ -185,7 +185,7 @@ bool is_brdf_report(const nlohmann::json& report) {
 
 std::vector<std::pair<std::string, std::string>> brdf_grid_svgs(const nlohmann::json& report, const std::string& file) {
   if (!is_brdf_report(report) || !report["cases"].is_array() || report["cases"].empty())
-    throw UserError(file + ": not a brdf suite report (no /cases): make one with `vgroove validate data/suites/fig11.json --out R`");
+    throw support::UserError(file + ": not a brdf suite report (no /cases): make one with `vgroove validate data/suites/fig11.json --out R`");
   // Group the cases by (ndf, dimension); within a group, columns by alpha, rows by theta_i.
   struct Panel {
     double alpha, theta_i;
@@ -201,10 +201,10 @@ std::vector<std::pair<std::string, std::string>> brdf_grid_svgs(const nlohmann::
       if (!groups.count(key)) order.push_back(key);
       groups[key].push_back({c.at("alpha").get<double>(), c.at("theta_i_deg").get<double>(), &c});
     } catch (const nlohmann::json::exception& e) {
-      throw UserError(file + ": /cases/" + std::to_string(n) + " is not a brdf case: " + e.what());
+      throw support::UserError(file + ": /cases/" + std::to_string(n) + " is not a brdf case: " + e.what());
     }
   }
-  if (groups.empty()) throw UserError(file + ": no case with a lobe on the plane of incidence to plot");
+  if (groups.empty()) throw support::UserError(file + ": no case with a lobe on the plane of incidence to plot");
   const std::string made_by = "vgroove " + report.value("version", std::string("?")) + ", git " +
                               report.value("git", std::string("?")) + ", seed " +
                               std::to_string(report.value("seed", 0ULL));

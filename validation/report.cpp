@@ -1,4 +1,4 @@
-#include "validation/report.h"
+#include "vgroove/validation/report.h"
 
 #include "vgroove_version.h"
 

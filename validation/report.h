@@ -5,7 +5,7 @@
 // thresholds and pass/fail.
 #pragma once
 
-#include "validation/suite_run.h"
+#include "vgroove/validation/suite_run.h"
 
 #include <nlohmann/json.hpp>
 

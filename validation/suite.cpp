@@ -1,6 +1,6 @@
-#include "validation/suite.h"
+#include "vgroove/validation/suite.h"
 
-#include "validation/json_reader.h"
+#include "vgroove/support/json_reader.h"
 
 #include <cmath>
 #include <filesystem>
@@ -15,28 +15,28 @@ constexpr long kMaxRays = 1'000'000'000;
 constexpr std::size_t kMaxValues = 1'000'000;
 
 // A list of degrees, or {"from", "to", "step"} (inclusive of "to" when the steps land on it).
-std::vector<double> read_degrees(JsonObject& o, const std::string& key, double lo, bool lo_closed,
+std::vector<double> read_degrees(support::JsonObject& o, const std::string& key, double lo, bool lo_closed,
                                  double hi, bool hi_closed) {
   const nlohmann::json& v = o.raw(key);
   std::vector<double> out;
   auto check = [&](double x, const std::string& where) {
     const bool ok = std::isfinite(x) && (lo_closed ? x >= lo : x > lo) && (hi_closed ? x <= hi : x < hi);
     if (!ok)
-      throw UserError(o.file() + ": " + where + " = " + number_text(x) + " is out of range " +
-                      interval_text(lo, lo_closed, hi, hi_closed));
+      throw support::UserError(o.file() + ": " + where + " = " + support::number_text(x) + " is out of range " +
+                      support::interval_text(lo, lo_closed, hi, hi_closed));
   };
   if (v.is_array()) {
     if (v.empty()) o.fail(key, "is an empty list");
     for (std::size_t n = 0; n < v.size(); ++n) {
       const std::string where = o.path(key) + "/" + std::to_string(n);
-      if (!v[n].is_number()) throw UserError(o.file() + ": " + where + " = " + v[n].dump() + " must be a number");
+      if (!v[n].is_number()) throw support::UserError(o.file() + ": " + where + " = " + v[n].dump() + " must be a number");
       check(v[n].get<double>(), where);
       out.push_back(v[n].get<double>());
     }
     return out;
   }
   if (!v.is_object()) o.fail(key, "= " + v.dump() + " must be a list of numbers or {\"from\", \"to\", \"step\"}");
-  JsonObject r(v, o.file(), o.path(key));
+  support::JsonObject r(v, o.file(), o.path(key));
   const double inf = std::numeric_limits<double>::infinity();
   const double from = r.number("from", -inf, false, inf, false);
   const double to = r.number("to", -inf, false, inf, false);
@@ -44,11 +44,11 @@ std::vector<double> read_degrees(JsonObject& o, const std::string& key, double l
   r.finish();
   check(from, r.path("from"));
   check(to, r.path("to"));
-  if (to < from) throw UserError(o.file() + ": " + r.path("to") + " = " + number_text(to) + " is below from = " + number_text(from));
+  if (to < from) throw support::UserError(o.file() + ": " + r.path("to") + " = " + support::number_text(to) + " is below from = " + support::number_text(from));
   // Count the steps once, so no rounding accumulates: from + n * step.
   const double span = (to - from) / step;
   if (span > static_cast<double>(kMaxValues))
-    throw UserError(o.file() + ": " + o.path(key) + " has more than " + std::to_string(kMaxValues) + " values");
+    throw support::UserError(o.file() + ": " + o.path(key) + " has more than " + std::to_string(kMaxValues) + " values");
   const auto n = static_cast<std::size_t>(std::floor(span + 1e-9)) + 1;
   for (std::size_t m = 0; m < n; ++m) out.push_back(std::min(to, from + static_cast<double>(m) * step));
   return out;
@@ -59,11 +59,11 @@ std::vector<double> read_degrees(JsonObject& o, const std::string& key, double l
 void check_aperture(double l, double r, const std::string& where) {
   const double v = 180.0 + l - r;
   if (v != 0.0 && v < kMinApertureDeg)
-    throw UserError(where + ": theta_l = " + number_text(l) + ", theta_r = " + number_text(r) + " give the aperture " +
-                    number_text(v) + " deg, out of range [" + number_text(kMinApertureDeg) + ", 180] (or exactly 0)");
+    throw support::UserError(where + ": theta_l = " + support::number_text(l) + ", theta_r = " + support::number_text(r) + " give the aperture " +
+                    support::number_text(v) + " deg, out of range [" + support::number_text(kMinApertureDeg) + ", 180] (or exactly 0)");
 }
 
-std::vector<GrooveParams> read_grooves(JsonObject& groove) {
+std::vector<GrooveParams> read_grooves(support::JsonObject& groove) {
   std::vector<GrooveParams> out;
   if (groove.one_of("type", {"symmetric", "nonsymmetric"}) == "symmetric") {
     for (double d : read_degrees(groove, "theta_v_deg", kMinApertureDeg, true, 180.0, true))
@@ -84,36 +84,36 @@ std::vector<GrooveParams> read_grooves(JsonObject& groove) {
 
 void check_theta_v(double deg, const std::string& what) {
   if (!(std::isfinite(deg) && deg >= kMinApertureDeg && deg <= 180.0))
-    throw UserError(what + " = " + number_text(deg) + " is out of range [" + number_text(kMinApertureDeg) +
+    throw support::UserError(what + " = " + support::number_text(deg) + " is out of range [" + support::number_text(kMinApertureDeg) +
                     ", 180] (below 1e-06 deg a groove needs over 1.8e8 reflections)");
 }
 
 void check_theta_i(double deg, const std::string& what) {
   if (!(std::isfinite(deg) && deg > -90.0 && deg < 90.0))
-    throw UserError(what + " = " + number_text(deg) + " is out of range (-90, 90)");
+    throw support::UserError(what + " = " + support::number_text(deg) + " is out of range (-90, 90)");
 }
 
 void check_theta_l(double deg, const std::string& what) {
   if (!(std::isfinite(deg) && deg >= -90.0 && deg <= 0.0))
-    throw UserError(what + " = " + number_text(deg) +
+    throw support::UserError(what + " = " + support::number_text(deg) +
                     " is out of range [-90, 0] (the left facet's normal leans right: theta_l <= 0)");
 }
 
 void check_theta_r(double deg, const std::string& what) {
   if (!(std::isfinite(deg) && deg >= 0.0 && deg <= 90.0))
-    throw UserError(what + " = " + number_text(deg) +
+    throw support::UserError(what + " = " + support::number_text(deg) +
                     " is out of range [0, 90] (the right facet's normal leans left: theta_r >= 0)");
 }
 
 Suite parse_suite(const nlohmann::json& j, const std::string& file) {
-  JsonObject root(j, file, "");
+  support::JsonObject root(j, file, "");
   Suite s;
   s.file = file;
   s.name = root.string("name");
   s.description = root.string_or("description", "");
   root.one_of("kind", {"table1"});
   if (root.has("groove") || root.has("theta_i_deg")) {
-    JsonObject groove = root.object("groove");
+    support::JsonObject groove = root.object("groove");
     s.grooves = read_grooves(groove);
     groove.finish();
     for (double d : read_degrees(root, "theta_i_deg", -90.0, false, 90.0, false)) s.theta_i.push_back(d * kDeg);
@@ -122,7 +122,7 @@ Suite parse_suite(const nlohmann::json& j, const std::string& file) {
     const nlohmann::json& list = root.raw("cases");
     if (!list.is_array()) root.fail("cases", "must be a list of {theta_v_deg | theta_l_deg, theta_r_deg; theta_i_deg}");
     for (std::size_t n = 0; n < list.size(); ++n) {
-      JsonObject c(list[n], file, root.path("cases") + "/" + std::to_string(n));
+      support::JsonObject c(list[n], file, root.path("cases") + "/" + std::to_string(n));
       SuiteCase sc;
       if (c.has("theta_v_deg")) {
         sc.groove = GrooveParams::make_symmetric(c.number("theta_v_deg", kMinApertureDeg, true, 180.0, true) * kDeg);
@@ -152,14 +152,14 @@ Suite parse_suite(const nlohmann::json& j, const std::string& file) {
                        ? analytic::Eq6Form::printed
                        : analytic::Eq6Form::corrected;
   {
-    JsonObject t = root.object("thresholds");
+    support::JsonObject t = root.object("thresholds");
     s.thresholds.max_l1 = t.number("max_l1", 0.0, true, 2.0, true);
     s.thresholds.mean_l1 = t.number("mean_l1", 0.0, true, 2.0, true);
     s.thresholds.max_theta_o_error_rad = t.number("max_theta_o_error_rad", 0.0, true, M_PI, true);
     t.finish();
   }
   if (root.has("paper")) {
-    JsonObject p = root.object("paper");
+    support::JsonObject p = root.object("paper");
     s.paper = PaperFigures{p.string("source"), p.number("max_l1", 0.0, true, 2.0, true),
                            p.number("mean_l1", 0.0, true, 2.0, true), "", ""};
     const std::string none;
@@ -172,13 +172,13 @@ Suite parse_suite(const nlohmann::json& j, const std::string& file) {
 }
 
 Suite load_suite(const std::string& file) {
-  const nlohmann::json j = read_json_file(file);
+  const nlohmann::json j = support::read_json_file(file);
   if (j.is_object() && j.contains("suites"))
-    throw UserError(file + ": is a set of suites (it has /suites); run it with `vgroove validate`");
+    throw support::UserError(file + ": is a set of suites (it has /suites); run it with `vgroove validate`");
   return parse_suite(j, file);
 }
 
-SuiteSet load_suite_set(const std::string& file) { return parse_suite_set(read_json_file(file), file); }
+SuiteSet load_suite_set(const std::string& file) { return parse_suite_set(support::read_json_file(file), file); }
 
 SuiteSet parse_suite_set(const nlohmann::json& j, const std::string& file) {
   SuiteSet set;
@@ -189,7 +189,7 @@ SuiteSet parse_suite_set(const nlohmann::json& j, const std::string& file) {
     set.description = set.suites.front().description;
     return set;
   }
-  JsonObject root(j, file, "");
+  support::JsonObject root(j, file, "");
   set.name = root.string("name");
   set.description = root.string_or("description", "");
   const nlohmann::json& list = root.raw("suites");
@@ -198,7 +198,7 @@ SuiteSet parse_suite_set(const nlohmann::json& j, const std::string& file) {
   const std::filesystem::path dir = std::filesystem::path(file).parent_path();
   for (std::size_t n = 0; n < list.size(); ++n) {
     if (!list[n].is_string())
-      throw UserError(file + ": /suites/" + std::to_string(n) + " = " + list[n].dump() + " must be a file name");
+      throw support::UserError(file + ": /suites/" + std::to_string(n) + " = " + list[n].dump() + " must be a file name");
     const std::string sub = (dir / list[n].get<std::string>()).string();
     set.suites.push_back(load_suite(sub));
   }

@@ -3,8 +3,8 @@
 // Degrees at this edge only: the spec's *_deg values become radians in Suite.
 #pragma once
 
-#include "analytic/kaleidoscope_nonsymmetric.h"
-#include "sim/beam.h"
+#include "vgroove/analytic/kaleidoscope_nonsymmetric.h"
+#include "vgroove/sim/beam.h"
 
 #include <nlohmann/json.hpp>
 

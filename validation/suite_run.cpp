@@ -1,17 +1,17 @@
-#include "validation/suite_run.h"
+#include "vgroove/validation/suite_run.h"
 
 #include <chrono>
 
 namespace vgroove::validation {
 
-SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads, const ProgressFn& progress,
+SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads, const support::ProgressFn& progress,
                    const std::atomic<bool>* cancel) {
   SuiteRun run;
   run.options = options;
-  run.threads = resolve_threads(threads);
+  run.threads = support::resolve_threads(threads);
   run.cases.resize(suite.cases());
   const auto t0 = std::chrono::steady_clock::now();
-  run.interrupted = !parallel_for(
+  run.interrupted = !support::parallel_for(
       run.cases.size(), run.threads,
       [&](std::size_t c) {
         const SuiteCase sc = suite.case_at(c);

@@ -1,9 +1,9 @@
 // vgroove validation: run every case of a suite and sum up against its thresholds.
 #pragma once
 
-#include "validation/groove_case.h"
-#include "validation/parallel.h"
-#include "validation/suite.h"
+#include "vgroove/validation/groove_case.h"
+#include "vgroove/support/parallel.h"
+#include "vgroove/validation/suite.h"
 
 #include <vector>
 
@@ -41,6 +41,6 @@ struct SuiteRun {
 
 // `cancel` (may be null) is polled between chunks of cases: set it from a signal handler to stop.
 SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads,
-                   const ProgressFn& progress = {}, const std::atomic<bool>* cancel = nullptr);
+                   const support::ProgressFn& progress = {}, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace vgroove::validation

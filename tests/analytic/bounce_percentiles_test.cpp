@@ -1,9 +1,9 @@
 // Table 2 of Lee et al. 2018 (maximum bounces at the 90/95/99th percentile of D): the rule in
 // analytic/bounce_percentiles.h reproduces all 27 printed values, and its closed-form quantiles
 // are the quantiles of analytic/ndf.h's D.
-#include "analytic/bounce_percentiles.h"
+#include "vgroove/analytic/bounce_percentiles.h"
 
-#include "analytic/kaleidoscope.h"
+#include "vgroove/analytic/kaleidoscope.h"
 #include "tests/stats.h"
 
 #include <gtest/gtest.h>

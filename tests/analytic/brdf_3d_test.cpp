@@ -1,7 +1,7 @@
 // Tests of the 3D V-groove BRDF (Lee et al. 2018, Eq. 13-17) and Cook-Torrance (Eq. 1-3).
-#include "analytic/brdf_3d.h"
+#include "vgroove/analytic/brdf_3d.h"
 
-#include "analytic/kaleidoscope.h"
+#include "vgroove/analytic/kaleidoscope.h"
 #include "tests/param_names.h"
 #include "tests/stats.h"
 

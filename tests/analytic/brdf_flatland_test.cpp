@@ -1,9 +1,9 @@
 // Tests of the flatland V-groove BRDF (analytic/brdf_flatland.h): the white furnace, reciprocity,
 // the flatland Eq. (25) (Cook-Torrance == the k = 1 term), pointwise against binned, hand values
 // and hard angles.
-#include "analytic/brdf_flatland.h"
+#include "vgroove/analytic/brdf_flatland.h"
 
-#include "analytic/ndf.h"
+#include "vgroove/analytic/ndf.h"
 #include "tests/stats.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // Tests of the nonsymmetric kaleidoscope (Lee et al. 2018, Eq. 7-9) on its own: the symmetric
 // special case, conservation, mirror symmetry and hand values.
-#include "analytic/kaleidoscope_nonsymmetric.h"
+#include "vgroove/analytic/kaleidoscope_nonsymmetric.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 //
 // Hand notation: half = theta_v / 2. For the left facet, f_a = sin(half - theta_i) (its projected
 // width), f(b) = -sin(half + theta_i), and the transition point f(k) = sin(k theta_v - half - theta_i).
-#include "analytic/kaleidoscope.h"
+#include "vgroove/analytic/kaleidoscope.h"
 
 #include "tests/param_names.h"
 

@@ -6,7 +6,7 @@
 //
 // Conventions (ndf.h): angles from the normal, counter-clockwise positive; D is normalized so that
 // int D cos = 1 over the hemisphere, D2 so that int D2 cos = 1 over (-pi/2, pi/2).
-#include "analytic/ndf.h"
+#include "vgroove/analytic/ndf.h"
 
 #include "tests/stats.h"
 

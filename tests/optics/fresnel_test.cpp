@@ -2,7 +2,7 @@
 // at chosen points (derivations in the comments) or is an identity of those equations; the
 // indices below are chosen values, not measured metals. Published constants (Johnson & Christy
 // 1972, Rakic 1995) are checked in metals_reference_test.cpp against data/reference/metals.json.
-#include "optics/fresnel.h"
+#include "vgroove/optics/fresnel.h"
 
 #include <gtest/gtest.h>
 

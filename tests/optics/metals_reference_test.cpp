@@ -7,7 +7,7 @@
 // significant digits). Here: fresnel_conductor reproduces R_normal, and the reflectances show the
 // known physics of those measured constants (gold and copper redder than blue, silver and
 // aluminium above 0.85 across the visible, R -> 1 at grazing incidence, R_p <= F <= R_s).
-#include "optics/fresnel.h"
+#include "vgroove/optics/fresnel.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,5 +1,5 @@
 // Tests of sim/beam.h and sim/groove.h: the opening, the rays aimed at each facet, placement.
-#include "sim/beam.h"
+#include "vgroove/sim/beam.h"
 
 #include <gtest/gtest.h>
 

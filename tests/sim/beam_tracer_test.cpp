@@ -6,8 +6,8 @@
 // The rays cover the hard corners: narrow grooves (the reflection table's end and the loop past
 // it), grazing beams (a beam more grazing than a facet, where both facets are tested), rays
 // exactly through the apex and the rims, rays outside the opening, and small bounce limits.
-#include "sim/beam.h"
-#include "sim/tracer.h"
+#include "vgroove/sim/beam.h"
+#include "vgroove/sim/tracer.h"
 
 #include <gtest/gtest.h>
 

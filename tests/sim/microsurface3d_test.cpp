@@ -12,7 +12,7 @@
 //
 // Conventions (sim/microsurface3d.h): n = (0, 0, 1), dir(theta, phi) = (sin theta cos phi,
 // sin theta sin phi, cos theta), light at i = dir(theta_i, pi), mirror direction at phi = 0.
-#include "sim/microsurface3d.h"
+#include "vgroove/sim/microsurface3d.h"
 
 #include "tests/stats.h"
 

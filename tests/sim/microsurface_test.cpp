@@ -10,8 +10,8 @@
 //
 // Conventions (sim/geometry.h): angles from the normal, counter-clockwise positive; a flat mirror
 // gives theta_o = -theta_i.
-#include "sim/microsurface.h"
-#include "sim/slope_sampling.h"
+#include "vgroove/sim/microsurface.h"
+#include "vgroove/sim/slope_sampling.h"
 
 #include "tests/stats.h"
 

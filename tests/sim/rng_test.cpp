@@ -1,5 +1,5 @@
 // Tests of sim/rng.h: streams keyed by (seed, a, b), reproducible and distinct; uniform() in [0, 1).
-#include "sim/rng.h"
+#include "vgroove/sim/rng.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Tests of sim/tally.h: buckets, bins, and merging (the parallel runs depend on merge being exact).
-#include "sim/beam.h"
-#include "sim/tally.h"
+#include "vgroove/sim/beam.h"
+#include "vgroove/sim/tally.h"
 
 #include <gtest/gtest.h>
 

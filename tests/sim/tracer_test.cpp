@@ -3,9 +3,9 @@
 //
 // Conventions (sim/geometry.h): angles from the normal, counter-clockwise positive; theta_i is
 // the direction towards the light, rays travel along -i; a flat mirror gives theta_o = -theta_i.
-#include "sim/beam.h"
-#include "sim/tally.h"
-#include "sim/tracer.h"
+#include "vgroove/sim/beam.h"
+#include "vgroove/sim/tally.h"
+#include "vgroove/sim/tracer.h"
 
 #include <gtest/gtest.h>
 

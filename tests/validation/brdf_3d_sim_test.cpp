@@ -18,8 +18,8 @@
 // Measured (seeds below): chi2/c over dof = 0.67-0.95 in the six cases (c = 2 overstates the
 // variance: the groove term is smaller than its bound), all p > 0.78. Power: evaluating the analytic
 // lobe at 1.03 alpha fails every case (k marginal chi2/c = 42-460 on 2-6 dof).
-#include "analytic/brdf_3d.h"
-#include "sim/microsurface3d.h"
+#include "vgroove/analytic/brdf_3d.h"
+#include "vgroove/sim/microsurface3d.h"
 
 #include "tests/stats.h"
 

@@ -18,8 +18,8 @@
 // and 0.64 over the 7 cases (the inflation 1 + N/G = 3 is an upper bound, so the test is
 // conservative: moving 5% of row 2 into row 1 is caught only at G = 1e6, N = 3e5, X^2 = 394 on
 // 331 dof, which costs ~2-4 s per case for Beckmann and Phong sampling; not run here).
-#include "analytic/brdf_flatland.h"
-#include "sim/microsurface.h"
+#include "vgroove/analytic/brdf_flatland.h"
+#include "vgroove/sim/microsurface.h"
 
 #include "tests/stats.h"
 

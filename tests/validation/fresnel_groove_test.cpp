@@ -21,14 +21,14 @@
 // after 168 bounces). For it the tolerance is propagated from cos_tolerance: 1e-12 plus, per bounce,
 // the largest change of ln F over cos +- cos_tolerance(j) (F is monotone in cos
 // there, so the ends bound it: checked below on a grid).
-#include "analytic/kaleidoscope.h"
-#include "analytic/kaleidoscope_fresnel.h"
-#include "analytic/kaleidoscope_nonsymmetric.h"
-#include "optics/fresnel.h"
-#include "sim/beam.h"
-#include "sim/effects.h"
-#include "sim/groove.h"
-#include "sim/tracer.h"
+#include "vgroove/analytic/kaleidoscope.h"
+#include "vgroove/analytic/kaleidoscope_fresnel.h"
+#include "vgroove/analytic/kaleidoscope_nonsymmetric.h"
+#include "vgroove/optics/fresnel.h"
+#include "vgroove/sim/beam.h"
+#include "vgroove/sim/effects.h"
+#include "vgroove/sim/groove.h"
+#include "vgroove/sim/tracer.h"
 
 #include <gtest/gtest.h>
 

@@ -9,9 +9,9 @@
 // We allow 4/N: the factor 2 covers a ray within rounding distance (~1e-15) of a boundary landing
 // on the other side (that can cost up to 2/N more per boundary, but needs a midpoint within 1e-15
 // of it: about N x 1e-15 likely).
-#include "validation/groove_case.h"
+#include "vgroove/validation/groove_case.h"
 
-#include "analytic/kaleidoscope.h"
+#include "vgroove/analytic/kaleidoscope.h"
 
 #include "tests/param_names.h"
 

@@ -1,14 +1,14 @@
 // The microsurface suites (Fig. 11, furnace, Table 2): strict specs, thresholds derived from the
 // sample count that accept a correct model and reject a slightly wrong one, and reports a plot
 // can be drawn from.
-#include "validation/microsurface_case.h"
+#include "vgroove/validation/microsurface_case.h"
 
-#include "analytic/brdf_flatland.h"
-#include "sim/microsurface.h"
-#include "sim/rng.h"
-#include "test_files.h"
-#include "validation/plot.h"
-#include "validation/user_error.h"
+#include "vgroove/analytic/brdf_flatland.h"
+#include "vgroove/sim/microsurface.h"
+#include "vgroove/sim/rng.h"
+#include "tests/test_files.h"
+#include "vgroove/validation/plot.h"
+#include "vgroove/support/user_error.h"
 
 #include <gtest/gtest.h>
 
@@ -23,8 +23,8 @@ using nlohmann::json;
 #define EXPECT_USER_ERROR(stmt, part)                                              \
   try {                                                                            \
     stmt;                                                                          \
-    ADD_FAILURE() << "no UserError";                                               \
-  } catch (const UserError& e) {                                                   \
+    ADD_FAILURE() << "no support::UserError";                                               \
+  } catch (const support::UserError& e) {                                                   \
     EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what(); \
   }
 

@@ -10,11 +10,11 @@
 //     G1 of Lee et al. 2018, Eq. (2).
 //
 // Conventions (sim/geometry.h, analytic/ndf.h): angles from the normal, counter-clockwise positive.
-#include "analytic/ndf.h"
-#include "sim/beam.h"
-#include "sim/microsurface.h"
-#include "sim/slope_sampling.h"
-#include "sim/tracer.h"
+#include "vgroove/analytic/ndf.h"
+#include "vgroove/sim/beam.h"
+#include "vgroove/sim/microsurface.h"
+#include "vgroove/sim/slope_sampling.h"
+#include "vgroove/sim/tracer.h"
 
 #include "tests/stats.h"
 

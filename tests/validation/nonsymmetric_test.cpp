@@ -1,10 +1,10 @@
 // Nonsymmetric grooves, traced against the model (Lee et al. 2018, Eq. 7-9) off the paper's grid:
 // random grooves and incident angles, grooves tilted so far that a facet faces away from the
 // light, apertures under 5 deg; and the Jacobian's angular factor (after Eq. 23) from the tracer.
-#include "analytic/kaleidoscope_nonsymmetric.h"
-#include "sim/beam.h"
-#include "sim/rng.h"
-#include "validation/groove_case.h"
+#include "vgroove/analytic/kaleidoscope_nonsymmetric.h"
+#include "vgroove/sim/beam.h"
+#include "vgroove/sim/rng.h"
+#include "vgroove/validation/groove_case.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The accuracy plot is drawn from the report alone: every run is a point, every placement two lines.
-#include "validation/plot.h"
-#include "validation/user_error.h"
+#include "vgroove/validation/plot.h"
+#include "vgroove/support/user_error.h"
 
 #include <gtest/gtest.h>
 
@@ -32,8 +32,8 @@ TEST(AccuracyPlot, OnePointPerRunAndTwoLinesPerPlacement) {
 TEST(AccuracyPlot, RefusesOtherJson) {
   try {
     accuracy_svg(nlohmann::json{{"cases", nlohmann::json::array()}}, "report.json");
-    FAIL() << "no UserError";
-  } catch (const UserError& e) {
+    FAIL() << "no support::UserError";
+  } catch (const support::UserError& e) {
     EXPECT_NE(std::string(e.what()).find("report.json: not an accuracy report"), std::string::npos) << e.what();
   }
 }

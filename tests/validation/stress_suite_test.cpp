@@ -1,7 +1,7 @@
 // The stress suite (data/suites/stress.json) as a test: apertures 0.01..180 deg, grazing light,
 // light parallel to a facet, Eq. 4's floor boundaries, facets at 0 and 90 deg, rays aimed exactly
 // at vertices. It must pass its thresholds, with every ray accounted for and no NaN anywhere.
-#include "validation/suite_run.h"
+#include "vgroove/validation/suite_run.h"
 
 #include <gtest/gtest.h>
 

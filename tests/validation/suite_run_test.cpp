@@ -1,6 +1,6 @@
 // Tests of validation/suite_run.h: results do not depend on the thread count, and the summary
 // is what its cases say.
-#include "validation/suite_run.h"
+#include "vgroove/validation/suite_run.h"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
 // Tests of validation/suite.h: the checked-in suite loads, and each spec error is a UserError
 // whose message names the file, the JSON path, the value and the allowed range.
-#include "validation/suite.h"
+#include "vgroove/validation/suite.h"
 
-#include "validation/user_error.h"
+#include "vgroove/support/user_error.h"
 
-#include "test_files.h"
+#include "tests/test_files.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -51,10 +51,10 @@ class SuiteSpec : public testing::Test {
   std::string error_of(const std::function<void()>& f) {
     try {
       f();
-    } catch (const UserError& e) {
+    } catch (const support::UserError& e) {
       return e.what();
     }
-    ADD_FAILURE() << "no UserError thrown";
+    ADD_FAILURE() << "no support::UserError thrown";
     return "";
   }
   std::string error_of(const json& spec) {
@@ -251,10 +251,10 @@ TEST(CheckAngles, CommandLineRangeMessages) {
   const auto msg = [](auto f) {
     try {
       f();
-    } catch (const UserError& e) {
+    } catch (const support::UserError& e) {
       return std::string(e.what());
     }
-    return std::string("no UserError");
+    return std::string("no support::UserError");
   };
   const std::string why = " (below 1e-06 deg a groove needs over 1.8e8 reflections)";
   EXPECT_EQ(msg([] { check_theta_v(195, "--theta-v-deg"); }), "--theta-v-deg = 195 is out of range [1e-06, 180]" + why);
@@ -265,7 +265,7 @@ TEST(CheckAngles, CommandLineRangeMessages) {
   EXPECT_EQ(msg([] { check_theta_i(-90, "--theta-i-deg"); }), "--theta-i-deg = -90 is out of range (-90, 90)");
   EXPECT_NO_THROW(check_theta_v(180, "x"));
   EXPECT_NO_THROW(check_theta_i(89.999, "x"));
-  EXPECT_THROW(check_theta_v(std::nan(""), "x"), UserError);
+  EXPECT_THROW(check_theta_v(std::nan(""), "x"), support::UserError);
 }
 
 }  // namespace

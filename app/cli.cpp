@@ -1,0 +1,147 @@
+#include "vgroove/app/cli.h"
+
+#include "vgroove/app/commands.h"
+#include "vgroove/validation/report.h"
+#include "vgroove/support/user_error.h"
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+namespace vgroove::app {
+
+namespace {
+// Comma-separated values in one option: --rays 1000,10000.
+template <class T>
+void add_list(CLI::App* app, const std::string& name, std::vector<T>& v, const std::string& help) {
+  app->add_option(name, v, help)->delimiter(',')->capture_default_str();
+}
+// --theta-v-deg for a symmetric groove, or --theta-l-deg with --theta-r-deg for a nonsymmetric one.
+void add_groove_options(CLI::App* app, GrooveArgs& g) {
+  auto* v = app->add_option("--theta-v-deg", g.theta_v_deg, "symmetric groove: aperture theta_v in degrees, (0, 180]")
+                ->capture_default_str();
+  auto* l = app->add_option("--theta-l-deg", g.theta_l_deg,
+                            "nonsymmetric groove: angle of the left facet's normal from n, [-90, 0] (Lee et al. "
+                            "2018, Fig. 5; counter-clockwise positive, so the left facet's normal leans right and "
+                            "theta_l <= 0)");
+  auto* r = app->add_option("--theta-r-deg", g.theta_r_deg,
+                            "nonsymmetric groove: angle of the right facet's normal, [0, 90]; aperture "
+                            "theta_v = 180 + theta_l - theta_r; a symmetric groove is theta_l = -theta_r");
+  l->needs(r);
+  r->needs(l);
+  app->callback([&g, v, l]() {
+    g.nonsymmetric = l->count() > 0;
+    g.theta_v_given = v->count() > 0;
+  });
+}
+
+}  // namespace
+
+int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
+  CLI::App app{
+      "vgroove: traces light exactly through 2D V-grooves and checks the kaleidoscopic model of\n"
+      "Lee et al. 2018 (\"Practical Multiple Scattering for Rough Surfaces\") against it.\n"
+      "Angles in degrees, measured from the surface normal, counter-clockwise positive\n"
+      "(theta_i > 0: light from the upper left). Exit status: 0 ok, 1 a threshold exceeded, 2 bad input."};
+  app.set_version_flag("--version", std::string("vgroove ") + validation::version_string() + " (git " + validation::git_revision() + ")");
+  app.require_subcommand(1);
+
+  TraceArgs ta;
+  auto* trace = app.add_subcommand("trace", "Trace a beam through one V-groove (symmetric or not) exactly; print the fraction "
+                                            "of the beam and the exit angle per (facet hit first, bounce count k).");
+  add_groove_options(trace, ta.groove);
+  trace->add_option("--theta-i-deg", ta.theta_i_deg, "incident angle theta_i in degrees, (-90, 90)")->capture_default_str();
+  trace->add_option("--rays", ta.rays, "rays across the groove's opening, >= 1")->capture_default_str();
+  trace->add_option("--sampling", ta.sampling, "ray placement: stratified (midpoints of equal strata) or random")
+      ->capture_default_str();
+  trace->add_option("--seed", ta.seed, "seed of the random placement")->capture_default_str();
+  trace->add_option("--max-bounces", ta.max_bounces, "bounce limit; rays past it are counted, not dropped")
+      ->capture_default_str();
+  trace->add_flag("--json", ta.json, "print JSON (the same shape as `analytic --json`)");
+
+  AnalyticArgs aa;
+  auto* an = app.add_subcommand("analytic", "Evaluate the kaleidoscopic model (Eq. 4-6 symmetric, Eq. 7-9 nonsymmetric) for one "
+                                            "V-groove; same output as trace.");
+  add_groove_options(an, aa.groove);
+  an->add_option("--theta-i-deg", aa.theta_i_deg, "incident angle theta_i in degrees, (-90, 90)")->capture_default_str();
+  an->add_option("--eq6-form", aa.eq6_form,
+                "symmetric grooves: corrected (see validation/ERRATA.md) or printed (as in the paper)")
+      ->capture_default_str();
+  an->add_flag("--json", aa.json, "print JSON (the same shape as `trace --json`)");
+
+  ValidateArgs va;
+  auto* val = app.add_subcommand("validate", "Run a suite (sim against analytic), print the table beside the paper's "
+                                             "figures, write the report JSON; exit 1 if a threshold is exceeded.");
+  val->add_option("suite", va.suite, "suite spec, e.g. data/suites/table1_symmetric.json")->required();
+  val->add_option("--out", va.out, "report JSON to write (refuses to overwrite without --force)");
+  val->add_option("--rays", va.rays, "rays per lit facet (default: the suite's)");
+  val->add_option("--threads", va.threads, "worker threads (default 0: all cores); results do not depend on it")
+      ->capture_default_str();
+  val->add_option("--sampling", va.sampling, "override the suite's placement: stratified or random");
+  val->add_option("--seed", va.seed, "override the suite's seed");
+  val->add_option("--eq6-form", va.eq6_form, "override the suite's form of Eq. 6: corrected or printed");
+  val->add_flag("--force", va.force, "overwrite an existing report");
+
+  auto* bench = app.add_subcommand("bench", "Benchmarks: what accuracy costs in time.");
+  bench->require_subcommand(1);
+  AccuracyArgs ac;
+  auto* acc = bench->add_subcommand("accuracy", "Run a suite at several ray counts and placements; report max/mean "
+                                                "L1 against rays and wall time.");
+  acc->add_option("suite", ac.suite, "suite spec")->required();
+  add_list(acc, "--rays", ac.rays, "rays per lit facet, comma-separated");
+  add_list(acc, "--sampling", ac.samplings, "placements, comma-separated: stratified, random");
+  acc->add_option("--threads", ac.threads, "worker threads (0: all cores)")->capture_default_str();
+  acc->add_option("--out", ac.out, "report JSON to write");
+  acc->add_flag("--force", ac.force, "overwrite an existing report");
+
+  ta.dry_run = aa.dry_run = va.dry_run = ac.dry_run = ctx.dry_run;
+  va.cancel = ac.cancel = ctx.cancel;
+  PlotArgs pa;
+  auto* plot = app.add_subcommand("plot", "Draw a report as SVG (from the JSON alone, nothing recomputed): the "
+                                          "accuracy-against-time report of `bench accuracy`.");
+  plot->add_option("report", pa.report, "report JSON, e.g. from `vgroove bench accuracy ... --out acc.json`")->required();
+  plot->add_option("--out", pa.out, "SVG to write (default: the report's name with .svg)");
+  plot->add_flag("--force", pa.force, "overwrite an existing file");
+  pa.dry_run = ctx.dry_run;
+  SimulateArgs sa;
+  auto* simu = app.add_subcommand("simulate", "Run a scene (data/scenes/*.json): trace every theta_i with the effects it "
+                                               "chooses (Fresnel, histograms, energy per k); print a table, write the "
+                                               "result JSON.");
+  simu->add_option("scene", sa.scene, "scene spec, e.g. data/scenes/gold_groove.json")->required();
+  simu->add_option("--out", sa.out, "result JSON to write (refuses to overwrite without --force)");
+  simu->add_option("--threads", sa.threads, "worker threads (default 0: all cores); results do not depend on it")
+      ->capture_default_str();
+  simu->add_flag("--force", sa.force, "overwrite an existing result");
+  sa.dry_run = ctx.dry_run;
+  sa.cancel = ctx.cancel;
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // One line, like every other input error.
+    std::cerr << "vgroove: error: " << e.what() << " (see vgroove --help)\n";
+    return 2;
+  }
+  try {
+    if (*trace) return cmd_trace(ta);
+    if (*an) return cmd_analytic(aa);
+    if (*val) return cmd_validate(va);
+    if (*acc) return cmd_bench_accuracy(ac);
+    if (*plot) return cmd_plot(pa);
+    if (*simu) return cmd_simulate(sa);
+  } catch (const support::UserError& e) {
+    std::cerr << "vgroove: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "vgroove: internal error: " << e.what() << "\n";
+    return 3;
+  }
+  return 0;
+}
+
+}  // namespace vgroove::app

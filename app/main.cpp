@@ -1,0 +1,21 @@
+// vgroove: check the kaleidoscopic V-groove model (Lee et al. 2018) against exact 2D tracing.
+// Parse, run, report: the command line is in cli.cpp, the work in commands.cpp.
+#include "vgroove/app/cli.h"
+
+#include <atomic>
+#include <csignal>
+
+namespace {
+// Set by the first Ctrl-C; long runs poll it between chunks and stop without writing a report.
+// A second Ctrl-C ends the process at once (the handler restores the default action).
+std::atomic<bool> interrupted{false};
+extern "C" void on_sigint(int) {
+  interrupted.store(true);
+  std::signal(SIGINT, SIG_DFL);
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::signal(SIGINT, on_sigint);
+  return vgroove::app::run_cli(argc, argv, {&interrupted, false});
+}

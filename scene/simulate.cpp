@@ -1,0 +1,430 @@
+#include "vgroove/scene/simulate.h"
+
+#include "vgroove/analytic/kaleidoscope_fresnel.h"
+#include "vgroove/optics/fresnel.h"
+#include "vgroove/sim/effects.h"
+#include "vgroove/sim/microsurface.h"
+#include "vgroove/sim/tracer.h"
+#include "vgroove/validation/groove_case.h"
+#include "vgroove/support/parallel.h"
+#include "vgroove/validation/report.h"
+#include "vgroove/support/user_error.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <type_traits>
+
+namespace vgroove::scene {
+
+using namespace validation;
+
+namespace {
+
+constexpr double kRad = M_PI / 180.0;
+
+// C reflectances along one path: the local cosine once per bounce, then C products (Eq. (11)).
+template <class Reflectance>
+struct ChannelsObserver {
+  std::array<Reflectance, kMaxChannels> reflectance{};
+  std::array<double, kMaxChannels> throughput{};
+  int channels = 0;
+
+  void reset() { std::fill_n(throughput.begin(), channels, 1.0); }
+  void on_bounce(sim::Side, const sim::Vec2& dir_in, const sim::Facet& f) {
+    const double c = std::abs(dir_in.dot(f.normal));
+    for (int i = 0; i < channels; ++i) throughput[static_cast<std::size_t>(i)] *= reflectance[static_cast<std::size_t>(i)](c);
+  }
+};
+
+sim::ConductorReflectance reflectance_of(const FresnelChannel& c, sim::ConductorReflectance*) {
+  return {c.eta, c.kappa};
+}
+sim::SchlickReflectance reflectance_of(const FresnelChannel& c, sim::SchlickReflectance*) { return {c.F0}; }
+
+// What every chunk shares: the scene and its grooves (one, or the microsurface's).
+struct Setup {
+  const Scene* scene = nullptr;
+  std::vector<sim::Groove> grooves;
+  int channels = 0;
+};
+
+template <class Observer>
+Observer make_observer(const Setup& s) {
+  if constexpr (std::is_same_v<Observer, sim::NoBounceObserver>) {
+    return {};
+  } else {
+    Observer obs;
+    obs.channels = s.channels;
+    using R = typename std::remove_reference_t<decltype(obs.reflectance[0])>;
+    for (int c = 0; c < s.channels; ++c)
+      obs.reflectance[static_cast<std::size_t>(c)] = reflectance_of(s.scene->channels[static_cast<std::size_t>(c)], static_cast<R*>(nullptr));
+    return obs;
+  }
+}
+
+ThetaTally empty_tally(const Scene& s) {
+  ThetaTally t;
+  const std::size_t C = s.channels.size();
+  t.energy.assign(C, 0.0);
+  const auto bins = static_cast<std::size_t>(s.record.theta_o_bins);
+  if (bins > 0) {
+    t.theta_o.assign(bins, 0);
+    t.theta_o_by_k.assign((static_cast<std::size_t>(s.record.histogram_max_k) + 2) * bins, 0);
+  }
+  return t;
+}
+
+// The rays of chunk `chunk` at theta_i: the hot loop, one instantiation per effect combination.
+template <class Observer, bool kHistograms, bool kEnergyPerK>
+ThetaTally run_chunk(const Setup& s, double theta_i, std::int64_t chunk) {
+  constexpr bool kEnergy = !std::is_same_v<Observer, sim::NoBounceObserver>;
+  static_assert(kEnergy || !kEnergyPerK, "energy per k needs a Fresnel observer");
+  const Scene& scene = *s.scene;
+  ThetaTally t = empty_tally(scene);
+  const sim::TraceOptions opt{scene.max_bounces};
+  const std::size_t C = static_cast<std::size_t>(s.channels);
+  const int bins = scene.record.theta_o_bins;
+  const int max_k = scene.record.histogram_max_k;
+  Observer obs = make_observer<Observer>(s);
+  sim::for_each_landing(s.grooves, theta_i, scene.light.sampling, scene.light.rays, scene.light.seed, chunk,
+                        [&](const sim::Groove& groove, const sim::Ray2& ray) {
+    if constexpr (kEnergy) obs.reset();
+    const sim::TraceResult r = sim::trace(groove, ray, opt, obs);
+    if (!t.count(r.how, r.bounces, r.exit_dir.y() > 0.0)) return;
+    const auto k = static_cast<std::size_t>(std::min(r.bounces, kMaxKRow + 1));
+    if (k >= t.by_k.size()) t.by_k.resize(k + 1, 0);
+    ++t.by_k[k];
+    if constexpr (kEnergy)
+      for (std::size_t c = 0; c < C; ++c) t.energy[c] += obs.throughput[c];
+    if constexpr (kEnergyPerK) {
+      if ((k + 1) * C > t.energy_by_k.size()) t.energy_by_k.resize((k + 1) * C, 0.0);
+      for (std::size_t c = 0; c < C; ++c) t.energy_by_k[k * C + c] += obs.throughput[c];
+    }
+    if constexpr (kHistograms) {
+      const double w = M_PI / bins;
+      // theta_o is inside (-pi/2, pi/2) here; the clamp only absorbs rounding of the division.
+      const int bin = std::clamp(static_cast<int>(std::floor((sim::angle_from_normal(r.exit_dir) + 0.5 * M_PI) / w)), 0,
+                                 bins - 1);
+      const int row = r.bounces > max_k ? max_k + 1 : r.bounces;
+      ++t.theta_o[static_cast<std::size_t>(bin)];
+      ++t.theta_o_by_k[static_cast<std::size_t>(row) * static_cast<std::size_t>(bins) + static_cast<std::size_t>(bin)];
+    }
+  });
+  return t;
+}
+
+using ChunkFn = ThetaTally (*)(const Setup&, double, std::int64_t);
+
+template <class Observer>
+ChunkFn pick_record(const SceneRecord& rec) {
+  const bool h = rec.theta_o_bins > 0;
+  if constexpr (std::is_same_v<Observer, sim::NoBounceObserver>) {
+    return h ? &run_chunk<Observer, true, false> : &run_chunk<Observer, false, false>;
+  } else {
+    if (rec.energy_per_k) return h ? &run_chunk<Observer, true, true> : &run_chunk<Observer, false, true>;
+    return h ? &run_chunk<Observer, true, false> : &run_chunk<Observer, false, false>;
+  }
+}
+
+// The loop for the scene's effects, chosen once per run.
+ChunkFn pick_chunk_fn(const Scene& s) {
+  switch (s.fresnel) {
+    case FresnelKind::none: return pick_record<sim::NoBounceObserver>(s.record);
+    case FresnelKind::conductor: return pick_record<ChannelsObserver<sim::ConductorReflectance>>(s.record);
+    case FresnelKind::schlick: return pick_record<ChannelsObserver<sim::SchlickReflectance>>(s.record);
+  }
+  return nullptr;
+}
+
+// Reflectance of channel c as a function of cos theta, for the model.
+double channel_F(const Scene& s, std::size_t c, double cos_theta) {
+  const FresnelChannel& ch = s.channels[c];
+  return s.fresnel == FresnelKind::conductor ? optics::fresnel_conductor(cos_theta, ch.eta, ch.kappa)
+                                             : optics::fresnel_schlick(cos_theta, ch.F0);
+}
+
+analytic::FacetSide to_analytic(sim::Side s) {
+  return s == sim::Side::left ? analytic::FacetSide::left : analytic::FacetSide::right;
+}
+
+std::string geometry_text(const Scene& s) {
+  if (s.geometry.kind == GeometryKind::groove) return groove_text(s.geometry.groove);
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "microsurface %s alpha %g, %d grooves (seed %llu)", sim::ndf_name(s.geometry.ndf),
+                s.geometry.alpha, s.geometry.grooves, static_cast<unsigned long long>(s.geometry.surface_seed));
+  return buf;
+}
+
+// The JSON key of row k: "k", or ">4096" for the shared last row.
+std::string k_key(std::size_t k) {
+  if (k <= static_cast<std::size_t>(kMaxKRow)) return std::to_string(k);
+  std::string key(">");
+  key += std::to_string(kMaxKRow);
+  return key;
+}
+
+}  // namespace
+
+void ThetaTally::merge(const ThetaTally& o) {
+  merge_fates(o);
+  if (o.by_k.size() > by_k.size()) by_k.resize(o.by_k.size(), 0);
+  for (std::size_t k = 0; k < o.by_k.size(); ++k) by_k[k] += o.by_k[k];
+  for (std::size_t c = 0; c < o.energy.size(); ++c) energy[c] += o.energy[c];
+  if (o.energy_by_k.size() > energy_by_k.size()) energy_by_k.resize(o.energy_by_k.size(), 0.0);
+  for (std::size_t i = 0; i < o.energy_by_k.size(); ++i) energy_by_k[i] += o.energy_by_k[i];
+  for (std::size_t i = 0; i < o.theta_o.size(); ++i) theta_o[i] += o.theta_o[i];
+  for (std::size_t i = 0; i < o.theta_o_by_k.size(); ++i) theta_o_by_k[i] += o.theta_o_by_k[i];
+}
+
+ModelFigures model_figures(const Scene& s, double theta_i) {
+  ModelFigures m;
+  if (s.geometry.kind != GeometryKind::groove) return m;
+  const GrooveParams& p = s.geometry.groove;
+  m.available = true;
+  m.energy.assign(s.channels.size(), 0.0);
+  // G is normalized by each facet's projected width f_a; the beam entering the opening is as wide
+  // as the lit facets' unshadowed parts together (as in `vgroove analytic`).
+  ModelShares shares[2];
+  double width = 0.0;
+  for (sim::Side side : {sim::Side::left, sim::Side::right}) {
+    ModelShares& sh = shares[static_cast<int>(side)];
+    sh = model_shares(p, theta_i, side, analytic::Eq6Form::corrected);
+    if (sh.lit) width += sh.f_a * (1.0 - sh.shadow);
+  }
+  for (sim::Side side : {sim::Side::left, sim::Side::right}) {
+    const ModelShares& sh = shares[static_cast<int>(side)];
+    if (!sh.lit) continue;
+    for (int z = 0; z < sh.shares; ++z) {
+      const analytic::BounceShare& b = sh.share[z];
+      const double w = b.G * sh.f_a / width;  // fraction of the entering beam with b.n reflections
+      if (w == 0.0) continue;
+      m.mean_k += w * b.n;
+      for (std::size_t c = 0; c < s.channels.size(); ++c) {
+        const auto F = [&](double cos_theta) { return channel_F(s, c, cos_theta); };
+        // Lee et al. 2018, Eq. (11) (Eq. (23)'s R for nonsymmetric grooves): the product of F at
+        // the local angles the kaleidoscope predicts.
+        const double e = p.symmetric ? analytic::fresnel_energy(theta_i, p.theta_v, b.n, to_analytic(side), F)
+                                     : analytic::fresnel_energy_nonsymmetric(theta_i, p.theta_l, p.theta_r, b.n,
+                                                                             to_analytic(side), F);
+        m.energy[c] += w * e;
+      }
+    }
+  }
+  return m;
+}
+
+SimulationResult simulate(const Scene& scene, int threads, const std::atomic<bool>* cancel) {
+  const auto start = std::chrono::steady_clock::now();
+  SimulationResult r;
+  r.theta_i = scene.light.theta_i;
+  r.threads = support::resolve_threads(threads);
+  Setup s;
+  s.scene = &scene;
+  s.channels = static_cast<int>(scene.channels.size());
+  if (scene.geometry.kind == GeometryKind::groove) {
+    s.grooves.push_back(make_groove(scene.geometry.groove));
+  } else {
+    sim::MicrosurfaceOptions mo;
+    mo.ndf = scene.geometry.ndf;
+    mo.alpha = scene.geometry.alpha;
+    mo.grooves = scene.geometry.grooves;
+    mo.seed = scene.geometry.surface_seed;
+    s.grooves = sim::make_microsurface(mo).grooves;
+  }
+  const ChunkFn fn = pick_chunk_fn(scene);
+  const std::size_t T = r.theta_i.size();
+  const auto chunks = static_cast<std::size_t>((scene.light.rays + sim::kRaysPerChunk - 1) / sim::kRaysPerChunk);
+  // Items are theta-major: merging each wave's slots in item order merges every theta_i's chunks
+  // in chunk order.
+  const std::size_t items = T * chunks, wave = static_cast<std::size_t>(std::max(8, 4 * r.threads));
+  r.tallies.assign(T, empty_tally(scene));
+  std::vector<ThetaTally> slots(wave);
+  for (std::size_t w0 = 0; w0 < items; w0 += wave) {
+    const std::size_t n = std::min(wave, items - w0);
+    const bool complete = support::parallel_for(
+        n, r.threads,
+        [&](std::size_t i) {
+          const std::size_t item = w0 + i;
+          slots[i] = fn(s, r.theta_i[item / chunks], static_cast<std::int64_t>(item % chunks));
+        },
+        {}, cancel, 1);
+    if (!complete) {
+      r.interrupted = true;
+      break;
+    }
+    for (std::size_t i = 0; i < n; ++i) r.tallies[(w0 + i) / chunks].merge(slots[i]);
+  }
+  for (std::size_t t = 0; t < T; ++t) {
+    r.rays += r.tallies[t].rays;
+    r.bounces += r.tallies[t].bounces;
+    r.model.push_back(model_figures(scene, r.theta_i[t]));
+  }
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+nlohmann::json result_json(const Scene& scene, const SimulationResult& r) {
+  using nlohmann::json;
+  json j = provenance();
+  j["scene"] = scene.name;
+  j["scene_file"] = scene.file;
+  if (!scene.note.empty()) j["note"] = scene.note;
+  j["seed"] = scene.light.seed;
+  j["threads"] = r.threads;
+  j["wall_s"] = r.wall_s;
+  j["rays"] = r.rays;
+  j["bounces"] = r.bounces;
+  // The inputs as read (degrees), so a result can be rerun and diffed without its scene file.
+  json geometry;
+  if (scene.geometry.kind == GeometryKind::groove) {
+    geometry = groove_json(scene.geometry.groove);
+    geometry["kind"] = "groove";
+  } else {
+    geometry = {{"kind", "microsurface"}, {"ndf", sim::ndf_name(scene.geometry.ndf)}, {"alpha", scene.geometry.alpha},
+                {"grooves", scene.geometry.grooves}, {"seed", scene.geometry.surface_seed}};
+  }
+  json theta_deg = json::array();
+  for (double t : scene.light.theta_i) theta_deg.push_back(output_deg(t));
+  json channels = json::array();
+  for (const FresnelChannel& c : scene.channels) {
+    json cj = {{"name", c.name}};
+    if (scene.fresnel == FresnelKind::schlick) {
+      cj["F0"] = c.F0;
+    } else {
+      if (c.lambda_nm > 0.0) cj["lambda_nm"] = c.lambda_nm;
+      cj["eta"] = c.eta, cj["kappa"] = c.kappa;
+    }
+    channels.push_back(cj);
+  }
+  json record = {{"counts_per_k", true}, {"energy_per_k", scene.record.energy_per_k}};
+  if (scene.record.theta_o_bins > 0)
+    record["theta_o_histograms"] = {{"bins", scene.record.theta_o_bins}, {"max_k", scene.record.histogram_max_k}};
+  j["inputs"] = {{"geometry", geometry},
+                 {"light",
+                  {{"theta_i_deg", theta_deg},
+                   {"rays", scene.light.rays},
+                   {"sampling", sim::sampling_name(scene.light.sampling)},
+                   {"seed", scene.light.seed}}},
+                 {"effects",
+                  {{"fresnel", {{"kind", fresnel_kind_name(scene.fresnel)}, {"channels", channels}}},
+                   {"record", record},
+                   {"max_bounces", scene.max_bounces}}}};
+  const std::size_t C = scene.channels.size();
+  json results = json::array();
+  for (std::size_t t = 0; t < r.tallies.size(); ++t) {
+    const ThetaTally& ta = r.tallies[t];
+    const double n = ta.rays > 0 ? static_cast<double>(ta.rays) : 1.0;
+    json row = {{"theta_i_deg", output_deg(r.theta_i[t])},
+                {"rays", ta.rays},
+                {"escaped", ta.escaped},
+                {"blocked", ta.blocked},
+                {"vertex_hit", ta.vertex_hits},
+                {"bounce_limit", ta.bounce_limit},
+                {"not_upward", ta.not_upward},
+                {"escaped_fraction", static_cast<double>(ta.escaped) / n},
+                {"mean_k", ta.mean_k()}};
+    json counts = json::object();  // sparse: only the k that occur
+    for (std::size_t k = 0; k < ta.by_k.size(); ++k)
+      if (ta.by_k[k] > 0) counts[k_key(k)] = ta.by_k[k];
+    row["counts_per_k"] = counts;
+    if (C > 0) {
+      json energy = json::object();
+      for (std::size_t c = 0; c < C; ++c) energy[scene.channels[c].name] = ta.energy[c] / n;
+      row["energy"] = energy;  // fraction of the incident rays' energy that leaves
+    }
+    if (scene.record.energy_per_k) {
+      json per = json::object();
+      for (std::size_t c = 0; c < C; ++c) {
+        json ks = json::object();
+        for (std::size_t k = 0; k * C + c < ta.energy_by_k.size(); ++k)
+          if (k < ta.by_k.size() && ta.by_k[k] > 0) ks[k_key(k)] = ta.energy_by_k[k * C + c] / n;
+        per[scene.channels[c].name] = ks;
+      }
+      row["energy_per_k"] = per;
+    }
+    if (r.model[t].available) {
+      json m = {{"mean_k", r.model[t].mean_k}};
+      if (C > 0) {
+        json energy = json::object();
+        for (std::size_t c = 0; c < C; ++c) energy[scene.channels[c].name] = r.model[t].energy[c];
+        m["energy"] = energy;
+      }
+      row["model"] = m;
+    }
+    if (scene.record.theta_o_bins > 0) {
+      const auto bins = static_cast<std::size_t>(scene.record.theta_o_bins);
+      const int max_k = scene.record.histogram_max_k;
+      json per_k = json::object();
+      for (int k = 0; k <= max_k + 1; ++k) {
+        const auto first = ta.theta_o_by_k.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(k) * bins);
+        std::vector<std::int64_t> h(first, first + static_cast<std::ptrdiff_t>(bins));
+        if (std::all_of(h.begin(), h.end(), [](std::int64_t v) { return v == 0; })) continue;
+        std::string key = k <= max_k ? std::string() : std::string(">");
+        key += std::to_string(k <= max_k ? k : max_k);  // the last row: k > max_k
+        per_k[key] = h;
+      }
+      row["theta_o_histograms"] = {{"bins", scene.record.theta_o_bins},
+                                   {"range_deg", {-90, 90}},
+                                   {"all", ta.theta_o},
+                                   {"per_k", per_k}};
+    }
+    results.push_back(row);
+  }
+  j["results"] = results;
+  return j;
+}
+
+void print_result_table(std::ostream& os, const Scene& scene, const SimulationResult& r) {
+  char buf[256];
+  std::string fresnel = fresnel_kind_name(scene.fresnel);
+  if (!scene.channels.empty()) fresnel += " over " + std::to_string(scene.channels.size()) + " channel(s)";
+  std::snprintf(buf, sizeof buf, "simulate %s: %s; fresnel %s; %lld rays per theta_i (%s, seed %llu)\n",
+                scene.name.c_str(), geometry_text(scene).c_str(), fresnel.c_str(),
+                static_cast<long long>(scene.light.rays), sim::sampling_name(scene.light.sampling),
+                static_cast<unsigned long long>(scene.light.seed));
+  os << buf;
+  const bool model = scene.geometry.kind == GeometryKind::groove;
+  os << "  theta_i       rays   escaped   mean k";
+  if (model) os << "  model k";
+  for (const FresnelChannel& c : scene.channels) {
+    std::snprintf(buf, sizeof buf, " %10s", ("E " + c.name).substr(0, 10).c_str());
+    os << buf;
+    if (model) {
+      std::snprintf(buf, sizeof buf, " %10s", ("model " + c.name).substr(0, 10).c_str());
+      os << buf;
+    }
+  }
+  os << "\n";
+  for (std::size_t t = 0; t < r.tallies.size(); ++t) {
+    const ThetaTally& ta = r.tallies[t];
+    const double n = ta.rays > 0 ? static_cast<double>(ta.rays) : 1.0;
+    std::snprintf(buf, sizeof buf, "  %7.6g %10lld %9.6f %8.4f", output_deg(r.theta_i[t]), static_cast<long long>(ta.rays),
+                  static_cast<double>(ta.escaped) / n, ta.mean_k());
+    os << buf;
+    if (model) {
+      std::snprintf(buf, sizeof buf, " %8.4f", r.model[t].mean_k);
+      os << buf;
+    }
+    for (std::size_t c = 0; c < scene.channels.size(); ++c) {
+      std::snprintf(buf, sizeof buf, " %10.6f", ta.energy[c] / n);
+      os << buf;
+      if (model) {
+        std::snprintf(buf, sizeof buf, " %10.6f", r.model[t].energy[c]);
+        os << buf;
+      }
+    }
+    os << "\n";
+  }
+  std::int64_t lost = 0;
+  for (const ThetaTally& ta : r.tallies) lost += ta.lost();
+  std::snprintf(buf, sizeof buf, "  %lld rays, %lld bounces, %lld lost (vertex hits, bounce limit, ...); %d threads, %.3f s\n",
+                static_cast<long long>(r.rays), static_cast<long long>(r.bounces), static_cast<long long>(lost),
+                r.threads, r.wall_s);
+  os << buf;
+}
+
+}  // namespace vgroove::scene
