@@ -9,9 +9,12 @@ namespace vgroove::analytic {
 
 const char* percentile_measure_name(PercentileMeasure m) {
   switch (m) {
-    case PercentileMeasure::projected_area: return "projected_area";
-    case PercentileMeasure::solid_angle: return "solid_angle";
-    case PercentileMeasure::flatland: return "flatland";
+    case PercentileMeasure::projected_area:
+      return "projected_area";
+    case PercentileMeasure::solid_angle:
+      return "solid_angle";
+    case PercentileMeasure::flatland:
+      return "flatland";
   }
   return "?";
 }
@@ -21,9 +24,12 @@ namespace {
 // The unnormalized density of theta in [0, pi/2) under each measure.
 double density(NdfKind ndf, double alpha, double theta, PercentileMeasure m) {
   switch (m) {
-    case PercentileMeasure::projected_area: return 2.0 * M_PI * D(ndf, theta, alpha) * std::cos(theta) * std::sin(theta);
-    case PercentileMeasure::solid_angle: return 2.0 * M_PI * D(ndf, theta, alpha) * std::sin(theta);
-    case PercentileMeasure::flatland: return 2.0 * D2(ndf, theta, alpha) * std::cos(theta);
+    case PercentileMeasure::projected_area:
+      return 2.0 * M_PI * D(ndf, theta, alpha) * std::cos(theta) * std::sin(theta);
+    case PercentileMeasure::solid_angle:
+      return 2.0 * M_PI * D(ndf, theta, alpha) * std::sin(theta);
+    case PercentileMeasure::flatland:
+      return 2.0 * D2(ndf, theta, alpha) * std::cos(theta);
   }
   return 0.0;
 }
@@ -66,9 +72,12 @@ double theta_m_quantile(NdfKind ndf, double alpha, double q, PercentileMeasure m
   assert(alpha > 0.0 && q > 0.0 && q < 1.0);
   if (m != PercentileMeasure::projected_area) return numeric_quantile(ndf, alpha, q, m);
   switch (ndf) {
-    case NdfKind::ggx: return std::atan(alpha * std::sqrt(q / (1.0 - q)));
-    case NdfKind::beckmann: return std::atan(alpha * std::sqrt(-std::log1p(-q)));
-    case NdfKind::phong: return std::acos(std::pow(1.0 - q, 1.0 / (phong_exponent(alpha) + 2.0)));
+    case NdfKind::ggx:
+      return std::atan(alpha * std::sqrt(q / (1.0 - q)));
+    case NdfKind::beckmann:
+      return std::atan(alpha * std::sqrt(-std::log1p(-q)));
+    case NdfKind::phong:
+      return std::acos(std::pow(1.0 - q, 1.0 / (phong_exponent(alpha) + 2.0)));
   }
   return 0.0;
 }

@@ -22,9 +22,9 @@ double dot(const Dir3& a, const Dir3& b) { return a.x * b.x + a.y * b.y + a.z * 
 // so that the evaluation below is reciprocal to the last bit (see beam_width).
 struct Plane {
   double t_i = 0.0, t_o = 0.0, t_h = 0.0;
-  double c = 1.0;        // sqrt(1 - (i.u)^2) = sqrt(1 - (o.u)^2): the length of i's projection
-  double sin_h = 0.0;    // sin(theta_h)
-  double cos_d = 1.0;    // i.h = o.h
+  double c = 1.0;      // sqrt(1 - (i.u)^2) = sqrt(1 - (o.u)^2): the length of i's projection
+  double sin_h = 0.0;  // sin(theta_h)
+  double cos_d = 1.0;  // i.h = o.h
   double sin_ti = 0.0, cos_ti = 1.0, sin_to = 0.0, cos_to = 1.0;
   double cos_half_sum = 1.0;   // cos((t_i + t_o)/2)
   double cos_half_diff = 1.0;  // cos((t_i - t_o)/2)
@@ -79,7 +79,7 @@ double fresnel_product(const FresnelFn& F, double t_i, double theta_m, FacetSide
 
 // The outcome of exactly k reflections of Eq. (6) for the rays aimed at `first`, or G = 0.
 struct KShare {
-  double G = 0.0;        // fraction of the facet's lit width f_a
+  double G = 0.0;  // fraction of the facet's lit width f_a
   double f_a = 0.0;
   double theta_o = 0.0;  // 2D exit angle
 };
@@ -163,10 +163,10 @@ bool outcome_possible(const Ends& e, double theta_v, int k) {
 // rounding of theta_v, ~ulp(k pi) / k, lost once where the ends nearly meet; measured < 1e-12
 // relative against long double, BeamWidthIsEq6.) Called only where outcome_possible holds.
 double beam_width(const Ends& e, double theta_v, double S, double C, int k) {
-  const double f_a = S * e.cos_a - C * e.sin_a;        // sin(theta_v/2 - a)
-  const double g_lo = S * e.cos_b + C * e.sin_b;       // sin(theta_v/2 + b)
-  const double f_b = -(S * e.cos_a + C * e.sin_a);     // -sin(theta_v/2 + a)
-  const double g_hi = -(S * e.cos_b - C * e.sin_b);    // -sin(theta_v/2 - b)
+  const double f_a = S * e.cos_a - C * e.sin_a;      // sin(theta_v/2 - a)
+  const double g_lo = S * e.cos_b + C * e.sin_b;     // sin(theta_v/2 + b)
+  const double f_b = -(S * e.cos_a + C * e.sin_a);   // -sin(theta_v/2 + a)
+  const double g_hi = -(S * e.cos_b - C * e.sin_b);  // -sin(theta_v/2 - b)
   const double lower = std::max(0.0, std::max(f_b, g_hi));
   const double half = 0.5 * theta_v;
   double w;
@@ -218,8 +218,8 @@ double D_cs(NdfKind ndf, double c, double s, double alpha) {
 }
 
 // The term of Eq. (16) of one solution theta_v of Eq. (5) (0 when its outcome is empty).
-double solution_term(const Plane& p, const Ends& e, FacetSide side, int k, double theta_v, double cos_i,
-                     double cos_o, NdfKind ndf, double alpha, const FresnelFn& F) {
+double solution_term(const Plane& p, const Ends& e, FacetSide side, int k, double theta_v, double cos_i, double cos_o,
+                     NdfKind ndf, double alpha, const FresnelFn& F) {
   if (!outcome_possible(e, theta_v, k)) return 0.0;
   const double half = 0.5 * theta_v;
   const double S = std::sin(half), C = std::cos(half);  // cos(theta_m), sin(theta_m)
@@ -574,14 +574,14 @@ int ct_branch(const Azimuth& az, FacetSide side, double theta_v) {
 
 struct Scratch {
   std::vector<double> T, X;
-  double band_total = 0.0;                          // flux deposited by the bands at this node
-  std::vector<std::pair<size_t, double>> tail;      // the tail's deposits at this node
+  double band_total = 0.0;                      // flux deposited by the bands at this node
+  std::vector<std::pair<size_t, double>> tail;  // the tail's deposits at this node
 };
 
 // Integrate one facet's k-reflection outcomes over theta_v in [x_lo, x_hi] with the weight
 // `weight` (the phi_a quadrature weight), depositing into the bins (and their mirror images).
-void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, double x_lo, double x_hi,
-                    double weight, Scratch& sc) {
+void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, double x_lo, double x_hi, double weight,
+                    Scratch& sc) {
   if (!(x_hi > x_lo)) return;
   const double tf = side == FacetSide::left ? az.tau : -az.tau;
   std::vector<double>& X = sc.X;
@@ -690,8 +690,7 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
 
 // The tail beyond the explicit bands: midpoint rule in the CDF.
 // The outcomes of more than k_cap reflections come from theta_v < span / k_cap (Eq. 4).
-void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_cap, int n, double weight,
-                    Scratch& sc) {
+void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_cap, int n, double weight, Scratch& sc) {
   const double tf = side == FacetSide::left ? az.tau : -az.tau;
   const double u0 = groove_cdf(r.ndf, r.alpha, 0.5 * (M_PI - (M_PI + 2.0 * tf) / k_cap));
   const double mass = 1.0 - u0;

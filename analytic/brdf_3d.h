@@ -134,16 +134,16 @@ struct Lobe3d {
   int theta_bins = 0;
   int phi_bins = 0;
   int max_k = 0;
-  std::vector<double> by_k;    // [row]
-  std::vector<double> hist;    // [t * phi_bins + p], all k
+  std::vector<double> by_k;  // [row]
+  std::vector<double> hist;  // [t * phi_bins + p], all k
   std::vector<double> hist_by_k;
   double albedo = 0.0;
 };
 
 struct Lobe3dOptions {
-  int phi_panels = 384; // panels over phi_a in [0, pi/2], shared among the pieces between cuts by length
-  int phi_order = 2;    // nodes per panel (the integrands have kinks: many low-order panels win)
-  int k_bands = 32;     // k beyond which a midpoint rule in the CDF replaces the exact bands
+  int phi_panels = 384;  // panels over phi_a in [0, pi/2], shared among the pieces between cuts by length
+  int phi_order = 2;     // nodes per panel (the integrands have kinks: many low-order panels win)
+  int k_bands = 32;      // k beyond which a midpoint rule in the CDF replaces the exact bands
   int tail_strata = 512;
   bool corner_cuts = true;  // cut the phi_a range where arcs pass through bin corners (kinks)
 };

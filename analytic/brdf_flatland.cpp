@@ -144,7 +144,11 @@ void add_left_resolved(const LobeContext& c, double theta_i, bool mirror, int n_
       if (!(b > a)) continue;
       // The sub-intervals of [a, b] on which n reflections land in one bin, n = k - 1 and k, each
       // handed to fn.
-      struct Sub { int n; double va, vb; long bin; };
+      struct Sub {
+        int n;
+        double va, vb;
+        long bin;
+      };
       auto for_each_sub = [&](auto&& fn) {
         for (int n = std::max(1, k - 1); n <= k; ++n) {  // k = 1: w_0 = f_a - f_k = 0 (f_k = f_a)
           // Eq. (5), unwrapped: y = (-1)^n (theta_i + pi - n theta_v), linear in theta_v.
@@ -172,8 +176,10 @@ void add_left_resolved(const LobeContext& c, double theta_i, bool mirror, int n_
       int count = 0;
       bool overflow = false;
       for_each_sub([&](const Sub& u) {
-        if (count == 2 * 64) overflow = true;
-        else subs[count++] = u;
+        if (count == 2 * 64)
+          overflow = true;
+        else
+          subs[count++] = u;
       });
       auto deposit = [&](const Sub& u, double flux) {
         if (u.bin >= c.bins) {
@@ -202,9 +208,10 @@ void add_left_resolved(const LobeContext& c, double theta_i, bool mirror, int n_
         continue;
       }
       auto one = [&](const Sub& u) {
-        deposit(u, integrate(gl, [&](double v) {
-          return D2(c.ndf, theta_s_left(v), c.alpha) * width_left(theta_i, v, u.n);
-        }, u.va, u.vb) * 0.5 * inv_cos);
+        deposit(u, integrate(
+                       gl, [&](double v) { return D2(c.ndf, theta_s_left(v), c.alpha) * width_left(theta_i, v, u.n); },
+                       u.va, u.vb) *
+                       0.5 * inv_cos);
       };
       if (!overflow) {
         for (int q = 0; q < count; ++q) one(subs[q]);
@@ -321,7 +328,10 @@ FlatlandLobe flatland_lobe(NdfKind ndf, double alpha, double theta_i, int bins, 
 FlatlandLobe flatland_lobe(NdfKind ndf, double alpha, double theta_i, int bins, int max_k,
                            const FlatlandLobeOptions& opt) {
   assert(bins > 0 && max_k >= 0 && alpha > 0.0 && std::abs(theta_i) < kHalfPi);
-  LobeContext c{ndf, alpha, bins, M_PI / bins,
+  LobeContext c{ndf,
+                alpha,
+                bins,
+                M_PI / bins,
                 make_gauss_legendre(opt.quadrature_order),
                 make_gauss_legendre(std::max(4, opt.quadrature_order / 2)),
                 make_gauss_legendre(std::max(3, opt.quadrature_order / 4)),
@@ -372,8 +382,8 @@ FlatlandLobe flatland_single_lobe(NdfKind ndf, double alpha, double theta_i, int
   std::vector<double> cuts;
   // Kinks of Eq. (2)-(3): G1(i) = 1 at cos(theta_i + h) = 0, G1(o) = 1 at cos(theta_o + h) = 0,
   // G1(i) = G1(o) at cos(theta_i) = cos(theta_o) (h = 0 or h = theta_i); the peak grading.
-  const double extra[] = {-theta_i + kHalfPi, -theta_i - kHalfPi, (theta_i + kHalfPi) / 3.0,
-                          (theta_i - kHalfPi) / 3.0, 0.0, theta_i};
+  const double extra[] = {
+      -theta_i + kHalfPi, -theta_i - kHalfPi, (theta_i + kHalfPi) / 3.0, (theta_i - kHalfPi) / 3.0, 0.0, theta_i};
   std::vector<double> pts(std::begin(extra), std::end(extra));
   for (double s = 1.0 / 64.0; s <= 64.0; s *= 2.0) {
     pts.push_back(std::atan(alpha * s));

@@ -29,9 +29,7 @@ double exit_angle(double theta_i, double theta_v, int n, FacetSide first) {
   return first == FacetSide::left ? exit_angle(theta_i, theta_v, n) : -exit_angle(-theta_i, theta_v, n);
 }
 
-double opening_width(double theta_i, double theta_v) {
-  return 2.0 * std::sin(0.5 * theta_v) * std::cos(theta_i);
-}
+double opening_width(double theta_i, double theta_v) { return 2.0 * std::sin(0.5 * theta_v) * std::cos(theta_i); }
 
 namespace {
 FacetPrediction left_first(double theta_i, double theta_v, Eq6Form form) {

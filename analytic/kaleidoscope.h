@@ -63,8 +63,7 @@ struct FacetPrediction {
 };
 
 // Eq. (6) for the rays aimed at `first`.
-FacetPrediction G_kaleidoscopic(double theta_i, double theta_v, FacetSide first,
-                                Eq6Form form = Eq6Form::corrected);
+FacetPrediction G_kaleidoscopic(double theta_i, double theta_v, FacetSide first, Eq6Form form = Eq6Form::corrected);
 
 // Width of the beam that enters the opening, in the same units as f: 2 sin(theta_v/2) cos(theta_i).
 double opening_width(double theta_i, double theta_v);

@@ -58,8 +58,7 @@ NonsymmetricPrediction left_first(double theta_i, double theta_l, double theta_r
       std::max(0.0, std::min(p.f_kb, p.f_ka) - fb) / fa,
   };
   const int n[4] = {1, p.k_b - 1, p.k_b, p.k_b + 1};
-  for (int z = 0; z < 4; ++z)
-    p.share[z] = {n[z], G[z], exit_angle_nonsymmetric(theta_i, theta_l, theta_r, n[z])};
+  for (int z = 0; z < 4; ++z) p.share[z] = {n[z], G[z], exit_angle_nonsymmetric(theta_i, theta_l, theta_r, n[z])};
   p.shadow = fb / fa;
   return p;
 }

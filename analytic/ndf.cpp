@@ -8,9 +8,12 @@ namespace vgroove::analytic {
 
 const char* ndf_name(NdfKind kind) {
   switch (kind) {
-    case NdfKind::beckmann: return "beckmann";
-    case NdfKind::ggx: return "ggx";
-    case NdfKind::phong: return "phong";
+    case NdfKind::beckmann:
+      return "beckmann";
+    case NdfKind::ggx:
+      return "ggx";
+    case NdfKind::phong:
+      return "phong";
   }
   return "?";
 }
@@ -57,9 +60,12 @@ double D_phong(double theta_m, double alpha) {
 
 double D(NdfKind kind, double theta_m, double alpha) {
   switch (kind) {
-    case NdfKind::beckmann: return D_beckmann(theta_m, alpha);
-    case NdfKind::ggx: return D_ggx(theta_m, alpha);
-    case NdfKind::phong: return D_phong(theta_m, alpha);
+    case NdfKind::beckmann:
+      return D_beckmann(theta_m, alpha);
+    case NdfKind::ggx:
+      return D_ggx(theta_m, alpha);
+    case NdfKind::phong:
+      return D_phong(theta_m, alpha);
   }
   return 0.0;
 }
@@ -96,9 +102,12 @@ double D2_phong(double theta_m, double alpha) {
 
 double D2(NdfKind kind, double theta_m, double alpha) {
   switch (kind) {
-    case NdfKind::beckmann: return D2_beckmann(theta_m, alpha);
-    case NdfKind::ggx: return D2_ggx(theta_m, alpha);
-    case NdfKind::phong: return D2_phong(theta_m, alpha);
+    case NdfKind::beckmann:
+      return D2_beckmann(theta_m, alpha);
+    case NdfKind::ggx:
+      return D2_ggx(theta_m, alpha);
+    case NdfKind::phong:
+      return D2_phong(theta_m, alpha);
   }
   return 0.0;
 }

@@ -1,8 +1,8 @@
 #include "vgroove/app/cli.h"
 
 #include "vgroove/app/commands.h"
-#include "vgroove/validation/report.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/report.h"
 
 #include <CLI/CLI.hpp>
 
@@ -43,14 +43,17 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
       "Lee et al. 2018 (\"Practical Multiple Scattering for Rough Surfaces\") against it.\n"
       "Angles in degrees, measured from the surface normal, counter-clockwise positive\n"
       "(theta_i > 0: light from the upper left). Exit status: 0 ok, 1 a threshold exceeded, 2 bad input."};
-  app.set_version_flag("--version", std::string("vgroove ") + validation::version_string() + " (git " + validation::git_revision() + ")");
+  app.set_version_flag("--version", std::string("vgroove ") + validation::version_string() + " (git " +
+                                        validation::git_revision() + ")");
   app.require_subcommand(1);
 
   TraceArgs ta;
-  auto* trace = app.add_subcommand("trace", "Trace a beam through one V-groove (symmetric or not) exactly; print the fraction "
-                                            "of the beam and the exit angle per (facet hit first, bounce count k).");
+  auto* trace = app.add_subcommand("trace",
+                                   "Trace a beam through one V-groove (symmetric or not) exactly; print the fraction "
+                                   "of the beam and the exit angle per (facet hit first, bounce count k).");
   add_groove_options(trace, ta.groove);
-  trace->add_option("--theta-i-deg", ta.theta_i_deg, "incident angle theta_i in degrees, (-90, 90)")->capture_default_str();
+  trace->add_option("--theta-i-deg", ta.theta_i_deg, "incident angle theta_i in degrees, (-90, 90)")
+      ->capture_default_str();
   trace->add_option("--rays", ta.rays, "rays across the groove's opening, >= 1")->capture_default_str();
   trace->add_option("--sampling", ta.sampling, "ray placement: stratified (midpoints of equal strata) or random")
       ->capture_default_str();
@@ -60,18 +63,21 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   trace->add_flag("--json", ta.json, "print JSON (the same shape as `analytic --json`)");
 
   AnalyticArgs aa;
-  auto* an = app.add_subcommand("analytic", "Evaluate the kaleidoscopic model (Eq. 4-6 symmetric, Eq. 7-9 nonsymmetric) for one "
-                                            "V-groove; same output as trace.");
+  auto* an = app.add_subcommand("analytic",
+                                "Evaluate the kaleidoscopic model (Eq. 4-6 symmetric, Eq. 7-9 nonsymmetric) for one "
+                                "V-groove; same output as trace.");
   add_groove_options(an, aa.groove);
-  an->add_option("--theta-i-deg", aa.theta_i_deg, "incident angle theta_i in degrees, (-90, 90)")->capture_default_str();
+  an->add_option("--theta-i-deg", aa.theta_i_deg, "incident angle theta_i in degrees, (-90, 90)")
+      ->capture_default_str();
   an->add_option("--eq6-form", aa.eq6_form,
-                "symmetric grooves: corrected (see validation/ERRATA.md) or printed (as in the paper)")
+                 "symmetric grooves: corrected (see validation/ERRATA.md) or printed (as in the paper)")
       ->capture_default_str();
   an->add_flag("--json", aa.json, "print JSON (the same shape as `trace --json`)");
 
   ValidateArgs va;
-  auto* val = app.add_subcommand("validate", "Run a suite (sim against analytic), print the table beside the paper's "
-                                             "figures, write the report JSON; exit 1 if a threshold is exceeded.");
+  auto* val = app.add_subcommand("validate",
+                                 "Run a suite (sim against analytic), print the table beside the paper's "
+                                 "figures, write the report JSON; exit 1 if a threshold is exceeded.");
   val->add_option("suite", va.suite, "suite spec, e.g. data/suites/table1_symmetric.json")->required();
   val->add_option("--out", va.out, "report JSON to write (refuses to overwrite without --force)");
   val->add_option("--rays", va.rays, "rays per lit facet (default: the suite's)");
@@ -85,8 +91,9 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   auto* bench = app.add_subcommand("bench", "Benchmarks: what accuracy costs in time.");
   bench->require_subcommand(1);
   AccuracyArgs ac;
-  auto* acc = bench->add_subcommand("accuracy", "Run a suite at several ray counts and placements; report max/mean "
-                                                "L1 against rays and wall time.");
+  auto* acc = bench->add_subcommand("accuracy",
+                                    "Run a suite at several ray counts and placements; report max/mean "
+                                    "L1 against rays and wall time.");
   acc->add_option("suite", ac.suite, "suite spec")->required();
   add_list(acc, "--rays", ac.rays, "rays per lit facet, comma-separated");
   add_list(acc, "--sampling", ac.samplings, "placements, comma-separated: stratified, random");
@@ -97,16 +104,19 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   ta.dry_run = aa.dry_run = va.dry_run = ac.dry_run = ctx.dry_run;
   va.cancel = ac.cancel = ctx.cancel;
   PlotArgs pa;
-  auto* plot = app.add_subcommand("plot", "Draw a report as SVG (from the JSON alone, nothing recomputed): the "
-                                          "accuracy-against-time report of `bench accuracy`.");
-  plot->add_option("report", pa.report, "report JSON, e.g. from `vgroove bench accuracy ... --out acc.json`")->required();
+  auto* plot = app.add_subcommand("plot",
+                                  "Draw a report as SVG (from the JSON alone, nothing recomputed): the "
+                                  "accuracy-against-time report of `bench accuracy`.");
+  plot->add_option("report", pa.report, "report JSON, e.g. from `vgroove bench accuracy ... --out acc.json`")
+      ->required();
   plot->add_option("--out", pa.out, "SVG to write (default: the report's name with .svg)");
   plot->add_flag("--force", pa.force, "overwrite an existing file");
   pa.dry_run = ctx.dry_run;
   SimulateArgs sa;
-  auto* simu = app.add_subcommand("simulate", "Run a scene (data/scenes/*.json): trace every theta_i with the effects it "
-                                               "chooses (Fresnel, histograms, energy per k); print a table, write the "
-                                               "result JSON.");
+  auto* simu = app.add_subcommand("simulate",
+                                  "Run a scene (data/scenes/*.json): trace every theta_i with the effects it "
+                                  "chooses (Fresnel, histograms, energy per k); print a table, write the "
+                                  "result JSON.");
   simu->add_option("scene", sa.scene, "scene spec, e.g. data/scenes/gold_groove.json")->required();
   simu->add_option("--out", sa.out, "result JSON to write (refuses to overwrite without --force)");
   simu->add_option("--threads", sa.threads, "worker threads (default 0: all cores); results do not depend on it")

@@ -7,7 +7,7 @@ namespace vgroove::app {
 
 struct CliContext {
   const std::atomic<bool>* cancel = nullptr;  // set to stop a long run (Ctrl-C)
-  bool dry_run = false;  // parse and check every value, then stop before any work (for fuzzing)
+  bool dry_run = false;                       // parse and check every value, then stop before any work (for fuzzing)
 };
 
 // Exit status: 0 ok, 1 a threshold exceeded, 2 bad input (one line on stderr), 3 internal error,

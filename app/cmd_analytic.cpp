@@ -1,13 +1,13 @@
 #include "vgroove/app/commands.h"
 
-#include "vgroove/app/bounce_rows.h"
-#include "vgroove/app/options.h"
-#include "vgroove/validation/groove_case.h"
-#include "vgroove/validation/report.h"
 #include <cstdio>
 #include <iostream>
 #include <map>
 #include <numbers>
+#include "vgroove/app/bounce_rows.h"
+#include "vgroove/app/options.h"
+#include "vgroove/validation/groove_case.h"
+#include "vgroove/validation/report.h"
 
 namespace vgroove::app {
 

@@ -1,5 +1,7 @@
 #include "vgroove/app/commands.h"
 
+#include <cstdio>
+#include <numbers>
 #include "vgroove/app/options.h"
 #include "vgroove/app/progress.h"
 #include "vgroove/support/atomic_file.h"
@@ -7,8 +9,6 @@
 #include "vgroove/validation/cost_curve.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/suite_run.h"
-#include <cstdio>
-#include <numbers>
 
 namespace vgroove::app {
 
@@ -23,7 +23,7 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
   const SuiteSet set = load_suite_set(a.suite);
   if (set.suites.size() != 1)
     throw support::UserError(a.suite + ": is a set of " + std::to_string(set.suites.size()) +
-                    " suites; `bench accuracy` takes one suite file (e.g. data/suites/table1_symmetric.json)");
+                             " suites; `bench accuracy` takes one suite file (e.g. data/suites/table1_symmetric.json)");
   const Suite& suite = set.suites.front();
   for (long r : a.rays) check_rays(r, "--rays");
   std::vector<sim::Sampling> samplings;
@@ -34,26 +34,32 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
   nlohmann::json runs = nlohmann::json::array();
   std::printf("accuracy against rays: suite %s (%zu cases), vgroove %s (git %s)\n", suite.name.c_str(), suite.cases(),
               version_string(), git_revision());
-  std::printf("  %-10s %10s %12s %12s %12s %10s %8s\n", "sampling", "rays/facet", "max L1", "mean L1", "rays",
-              "wall s", "pass");
+  std::printf("  %-10s %10s %12s %12s %12s %10s %8s\n", "sampling", "rays/facet", "max L1", "mean L1", "rays", "wall s",
+              "pass");
   int threads_used = 0;
   for (sim::Sampling smp : samplings)
     for (long rays : a.rays) {
       CaseOptions o = suite.options;
       o.rays = rays;
       o.sampling = smp;
-      const SuiteRun run = run_suite(
-          suite, o, a.threads, terminal_progress(std::string(sim::sampling_name(smp)) + " " + std::to_string(rays)),
-          a.cancel);
+      const SuiteRun run =
+          run_suite(suite, o, a.threads,
+                    terminal_progress(std::string(sim::sampling_name(smp)) + " " + std::to_string(rays)), a.cancel);
       if (run.interrupted) return interrupted_no_report();
       threads_used = run.threads;
       const Summary& s = run.summary;
-      std::printf("  %-10s %10ld %12.4g %12.4g %12lld %10.3f %8s\n", sim::sampling_name(smp), rays, s.max_l1,
-                  s.mean_l1, static_cast<long long>(s.rays), s.wall_s, s.pass() ? "yes" : "no");
+      std::printf("  %-10s %10ld %12.4g %12.4g %12lld %10.3f %8s\n", sim::sampling_name(smp), rays, s.max_l1, s.mean_l1,
+                  static_cast<long long>(s.rays), s.wall_s, s.pass() ? "yes" : "no");
       std::fflush(stdout);
-      runs.push_back({{"sampling", sim::sampling_name(smp)}, {"rays_per_facet", rays}, {"max_l1", s.max_l1},
-                      {"mean_l1", s.mean_l1}, {"max_theta_o_error_rad", s.max_theta_o_error}, {"rays", s.rays},
-                      {"bounces", s.bounces}, {"wall_s", s.wall_s}, {"bounces_per_s", s.bounces_per_s},
+      runs.push_back({{"sampling", sim::sampling_name(smp)},
+                      {"rays_per_facet", rays},
+                      {"max_l1", s.max_l1},
+                      {"mean_l1", s.mean_l1},
+                      {"max_theta_o_error_rad", s.max_theta_o_error},
+                      {"rays", s.rays},
+                      {"bounces", s.bounces},
+                      {"wall_s", s.wall_s},
+                      {"bounces_per_s", s.bounces_per_s},
                       {"pass", s.pass()}});
     }
   // Which placement reaches the suite's thresholds first, in wall time.
@@ -74,12 +80,15 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
   const std::vector<CostPoint> cost = cost_vs_theta_v(apertures, kTheta_i, 20000);
   nlohmann::json cost_json = nlohmann::json::array();
   std::printf("  cost against theta_v (one thread, theta_i = 30 deg, 20000 stratified rays):\n");
-  std::printf("  %10s %12s %14s %16s %13s\n", "theta_v", "bounces/ray", "tracer ns/ray", "model ns/eval", "tracer/model");
+  std::printf("  %10s %12s %14s %16s %13s\n", "theta_v", "bounces/ray", "tracer ns/ray", "model ns/eval",
+              "tracer/model");
   for (const CostPoint& c : cost) {
     std::printf("  %10.0f %12.2f %14.1f %16.1f %13.3f\n", output_deg(c.theta_v), c.bounces_per_ray, c.tracer_ns_per_ray,
                 c.model_ns_per_eval, c.tracer_ns_per_ray / c.model_ns_per_eval);
-    cost_json.push_back({{"theta_v_deg", output_deg(c.theta_v)}, {"bounces_per_ray", c.bounces_per_ray},
-                         {"tracer_ns_per_ray", c.tracer_ns_per_ray}, {"model_ns_per_eval", c.model_ns_per_eval}});
+    cost_json.push_back({{"theta_v_deg", output_deg(c.theta_v)},
+                         {"bounces_per_ray", c.bounces_per_ray},
+                         {"tracer_ns_per_ray", c.tracer_ns_per_ray},
+                         {"model_ns_per_eval", c.model_ns_per_eval}});
   }
   if (!a.out.empty()) {
     nlohmann::json j = provenance();

@@ -1,9 +1,9 @@
 #include "vgroove/app/commands.h"
 
+#include <cstdio>
 #include "vgroove/support/atomic_file.h"
 #include "vgroove/support/json_reader.h"
 #include "vgroove/validation/plot.h"
-#include <cstdio>
 
 namespace vgroove::app {
 
@@ -19,7 +19,8 @@ int cmd_plot(const PlotArgs& a) {
   }
   if (is_brdf_report(report)) {
     // The Fig. 11 grid: one SVG per (NDF, dimension), named after --out (or the report).
-    const std::string base = out.size() > 4 && out.compare(out.size() - 4, 4, ".svg") == 0 ? out.substr(0, out.size() - 4) : out;
+    const std::string base =
+        out.size() > 4 && out.compare(out.size() - 4, 4, ".svg") == 0 ? out.substr(0, out.size() - 4) : out;
     const auto svgs = brdf_grid_svgs(report, a.report);
     for (const auto& [suffix, svg] : svgs) support::check_writable_target(base + "-" + suffix + ".svg", a.force);
     if (a.dry_run) return 0;
@@ -31,7 +32,9 @@ int cmd_plot(const PlotArgs& a) {
   }
   const std::string svg = accuracy_svg(report, a.report);
   const std::string cost = cost_svg(report);
-  const std::string cost_out = (out.size() > 4 && out.compare(out.size() - 4, 4, ".svg") == 0 ? out.substr(0, out.size() - 4) : out) + "-cost.svg";
+  const std::string cost_out =
+      (out.size() > 4 && out.compare(out.size() - 4, 4, ".svg") == 0 ? out.substr(0, out.size() - 4) : out) +
+      "-cost.svg";
   support::check_writable_target(out, a.force);
   if (!cost.empty()) support::check_writable_target(cost_out, a.force);
   if (a.dry_run) return 0;

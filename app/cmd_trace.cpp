@@ -1,14 +1,14 @@
 #include "vgroove/app/commands.h"
 
+#include <cstdio>
+#include <iostream>
+#include <numbers>
 #include "vgroove/app/bounce_rows.h"
 #include "vgroove/app/options.h"
 #include "vgroove/sim/beam.h"
 #include "vgroove/sim/tally.h"
-#include "vgroove/validation/report.h"
 #include "vgroove/support/user_error.h"
-#include <cstdio>
-#include <iostream>
-#include <numbers>
+#include "vgroove/validation/report.h"
 
 namespace vgroove::app {
 
@@ -22,7 +22,8 @@ int cmd_trace(const TraceArgs& a) {
   const GrooveParams params = groove_from(a.groove);
   check_theta_i(a.theta_i_deg, "--theta-i-deg");
   check_rays(a.rays, "--rays");
-  if (a.max_bounces < 1) throw support::UserError("--max-bounces = " + std::to_string(a.max_bounces) + " is out of range [1, 2147483647]");
+  if (a.max_bounces < 1)
+    throw support::UserError("--max-bounces = " + std::to_string(a.max_bounces) + " is out of range [1, 2147483647]");
   const sim::Sampling sampling = parse_sampling(a.sampling, "--sampling");
   check_seed(a.seed, "--seed");
   if (a.dry_run) return 0;
@@ -47,19 +48,23 @@ int cmd_trace(const TraceArgs& a) {
     }
   nlohmann::json j = provenance();
   j["inputs"] = groove_json(params);
-  j["inputs"].update({{"theta_i_deg", a.theta_i_deg}, {"rays", a.rays}, {"sampling", a.sampling}, {"seed", a.seed},
+  j["inputs"].update({{"theta_i_deg", a.theta_i_deg},
+                      {"rays", a.rays},
+                      {"sampling", a.sampling},
+                      {"seed", a.seed},
                       {"max_bounces", a.max_bounces}});
   j["bounces"] = rows;
   j["rays"] = tally.rays;
-  j["buckets"] = {{"escaped", tally.escaped}, {"blocked", tally.blocked}, {"vertex_hit", tally.vertex_hits},
+  j["buckets"] = {{"escaped", tally.escaped},
+                  {"blocked", tally.blocked},
+                  {"vertex_hit", tally.vertex_hits},
                   {"bounce_limit", tally.bounce_limit}};
   j["max_exit_spread_rad"] = max_spread;
   if (a.json) {
     std::cout << j.dump(2) << "\n";
   } else {
     std::printf("trace: %s, theta_i %g deg, %ld rays (%s, seed %lld); fractions of the beam entering the opening\n",
-                groove_text(params).c_str(), a.theta_i_deg, a.rays, a.sampling.c_str(),
-                a.seed);
+                groove_text(params).c_str(), a.theta_i_deg, a.rays, a.sampling.c_str(), a.seed);
     print_rows(rows);
     std::printf("  escaped %lld, vertex hits %lld, bounce limit %lld; largest exit-angle spread in a bin %.3g rad\n",
                 static_cast<long long>(tally.escaped), static_cast<long long>(tally.vertex_hits),

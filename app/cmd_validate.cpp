@@ -1,5 +1,6 @@
 #include "vgroove/app/commands.h"
 
+#include <iostream>
 #include "vgroove/app/options.h"
 #include "vgroove/app/progress.h"
 #include "vgroove/support/atomic_file.h"
@@ -8,7 +9,6 @@
 #include "vgroove/validation/microsurface_case.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/suite_run.h"
-#include <iostream>
 
 namespace vgroove::app {
 
@@ -26,10 +26,10 @@ int validate_microsurface(const ValidateArgs& a, const nlohmann::json& j) {
   const std::string kind = j["kind"].get<std::string>();
   if (!a.sampling.empty())
     throw support::UserError("--sampling applies to single-groove suites; " + a.suite + " (kind " + kind +
-                    ") lands its rays at random points of the surface");
+                             ") lands its rays at random points of the surface");
   if (!a.eq6_form.empty())
     throw support::UserError("--eq6-form applies to single-groove suites; " + a.suite + " (kind " + kind +
-                    ") uses the corrected Eq. 6 throughout");
+                             ") uses the corrected Eq. 6 throughout");
   if (a.rays != kUnset) check_rays(a.rays, "--rays");
   if (a.seed != kUnsetSeed) check_seed(a.seed, "--seed");
   const long rays = a.rays != kUnset ? a.rays : 0;
@@ -68,10 +68,12 @@ int validate_microsurface(const ValidateArgs& a, const nlohmann::json& j) {
 
 int cmd_validate(const ValidateArgs& a) {
   check_threads(a.threads);
-  if (const nlohmann::json j = support::read_json_file(a.suite); is_microsurface_suite(j)) return validate_microsurface(a, j);
+  if (const nlohmann::json j = support::read_json_file(a.suite); is_microsurface_suite(j))
+    return validate_microsurface(a, j);
   const SuiteSet set = load_suite_set(a.suite);
   std::vector<CaseOptions> opts;
-  for (const Suite& suite : set.suites) opts.push_back(options_with_overrides(suite, a.rays, a.sampling, a.eq6_form, a.seed));
+  for (const Suite& suite : set.suites)
+    opts.push_back(options_with_overrides(suite, a.rays, a.sampling, a.eq6_form, a.seed));
   if (!a.out.empty()) support::check_writable_target(a.out, a.force);  // fail before the work, not after
   if (a.dry_run) return 0;
   std::vector<SuiteRun> runs;

@@ -47,10 +47,10 @@ struct ValidateArgs {
   bool dry_run = false;  // check the values, do no work
   std::string suite;
   std::string out;
-  long rays = kUnset;  // kUnset: the suite's
-  int threads = 0;   // 0: all cores
-  std::string sampling;  // empty: the suite's
-  std::string eq6_form;  // empty: the suite's
+  long rays = kUnset;           // kUnset: the suite's
+  int threads = 0;              // 0: all cores
+  std::string sampling;         // empty: the suite's
+  std::string eq6_form;         // empty: the suite's
   long long seed = kUnsetSeed;  // kUnsetSeed: the suite's
   bool force = false;
   const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: no report is written

@@ -16,12 +16,13 @@ constexpr double kRad = std::numbers::pi / 180.0;
 void check_seed(long long seed, const std::string& what) {
   if (seed < 0)
     throw support::UserError(what + " = " + std::to_string(seed) + " is out of range [0, " +
-                    std::to_string(std::numeric_limits<long long>::max()) + "]");
+                             std::to_string(std::numeric_limits<long long>::max()) + "]");
 }
 
 void check_rays(long rays, const std::string& what) {
   if (rays < 1 || rays > kMaxRays)
-    throw support::UserError(what + " = " + std::to_string(rays) + " is out of range [1, " + std::to_string(kMaxRays) + "]");
+    throw support::UserError(what + " = " + std::to_string(rays) + " is out of range [1, " + std::to_string(kMaxRays) +
+                             "]");
 }
 
 sim::Sampling parse_sampling(const std::string& s, const std::string& what) {
@@ -42,20 +43,22 @@ GrooveParams groove_from(const GrooveArgs& g) {
     return GrooveParams::make_symmetric(g.theta_v_deg * kRad);
   }
   if (g.theta_v_given)
-    throw support::UserError("--theta-v-deg cannot be combined with --theta-l-deg/--theta-r-deg (the aperture follows from them)");
+    throw support::UserError(
+        "--theta-v-deg cannot be combined with --theta-l-deg/--theta-r-deg (the aperture follows from them)");
   check_theta_l(g.theta_l_deg, "--theta-l-deg");
   check_theta_r(g.theta_r_deg, "--theta-r-deg");
   GrooveParams p = GrooveParams::make_nonsymmetric(g.theta_l_deg * kRad, g.theta_r_deg * kRad);
   const double v = 180.0 + g.theta_l_deg - g.theta_r_deg;
   if (p.degenerate() || v < kMinApertureDeg)
-    throw support::UserError("--theta-l-deg = " + support::number_text(g.theta_l_deg) + " with --theta-r-deg = " +
-                    support::number_text(g.theta_r_deg) + " gives the aperture theta_v = 180 + theta_l - theta_r = " +
-                    support::number_text(v) + ", out of range [" + support::number_text(kMinApertureDeg) + ", 180]");
+    throw support::UserError("--theta-l-deg = " + support::number_text(g.theta_l_deg) +
+                             " with --theta-r-deg = " + support::number_text(g.theta_r_deg) +
+                             " gives the aperture theta_v = 180 + theta_l - theta_r = " + support::number_text(v) +
+                             ", out of range [" + support::number_text(kMinApertureDeg) + ", 180]");
   return p;
 }
 
-CaseOptions options_with_overrides(const Suite& suite, long rays, const std::string& sampling,
-                                   const std::string& form, long long seed) {
+CaseOptions options_with_overrides(const Suite& suite, long rays, const std::string& sampling, const std::string& form,
+                                   long long seed) {
   CaseOptions o = suite.options;
   if (rays != kUnset) check_rays(rays, "--rays"), o.rays = rays;
   if (!sampling.empty()) o.sampling = parse_sampling(sampling, "--sampling");

@@ -2,12 +2,12 @@
 
 #include "vgroove/app/commands.h"
 
+#include <unistd.h>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <mutex>
-#include <unistd.h>
 
 namespace vgroove::app {
 

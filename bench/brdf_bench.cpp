@@ -60,7 +60,8 @@ void BM_vgroove_brdf(benchmark::State& state) {
   const int max_k = static_cast<int>(state.range(2));
   const Pairs& p = pairs();
   for (auto _ : state) {
-    for (int n = 0; n < kPairs; ++n) benchmark::DoNotOptimize(analytic::vgroove_brdf(p.i[n], p.o[n], ndf, alpha, max_k));
+    for (int n = 0; n < kPairs; ++n)
+      benchmark::DoNotOptimize(analytic::vgroove_brdf(p.i[n], p.o[n], ndf, alpha, max_k));
   }
   report_time_per_call(state);
 }

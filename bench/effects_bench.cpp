@@ -40,7 +40,9 @@ struct Setup {
   sim::Vec2 dir;
   sim::TraceOptions opt;
   explicit Setup(double theta_v_deg)
-      : g(sim::make_symmetric_groove(deg(theta_v_deg))), open(sim::opening(g)), dir(sim::beam_direction(deg(kThetaIDeg))) {}
+      : g(sim::make_symmetric_groove(deg(theta_v_deg))),
+        open(sim::opening(g)),
+        dir(sim::beam_direction(deg(kThetaIDeg))) {}
 };
 
 // Traces the kRays rays once, each with a fresh observer from make_obs(); returns the escaped
@@ -67,15 +69,23 @@ std::int64_t trace_all(const Setup& s, MakeObs&& make_obs, double& energy) {
 template <class Fn>
 void with_variant(int v, Fn&& f) {
   switch (v) {
-    case none: f([] { return sim::NoBounceObserver{}; }); break;
-    case unit: f([] { return sim::FresnelEnergyObserver<sim::UnitReflectance>{}; }); break;
+    case none:
+      f([] { return sim::NoBounceObserver{}; });
+      break;
+    case unit:
+      f([] { return sim::FresnelEnergyObserver<sim::UnitReflectance>{}; });
+      break;
     case unit_generic: {
       auto one = [](double) { return 1.0; };
       f([one] { return sim::FresnelEnergyObserver<decltype(one)>{one}; });
       break;
     }
-    case schlick: f([] { return sim::FresnelEnergyObserver{sim::SchlickReflectance{0.04}}; }); break;
-    case conductor: f([] { return sim::FresnelEnergyObserver{sim::ConductorReflectance{0.2, 3.0}}; }); break;
+    case schlick:
+      f([] { return sim::FresnelEnergyObserver{sim::SchlickReflectance{0.04}}; });
+      break;
+    case conductor:
+      f([] { return sim::FresnelEnergyObserver{sim::ConductorReflectance{0.2, 3.0}}; });
+      break;
   }
 }
 

@@ -1,7 +1,7 @@
 // libFuzzer target: the suite/scene JSON loader. Any input must give a Suite or a UserError:
 // no crash, no hang, no other exception.
-#include "vgroove/validation/suite.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/suite.h"
 
 #include <cstddef>
 #include <cstdint>

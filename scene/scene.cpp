@@ -44,9 +44,10 @@ SceneGeometry read_geometry(support::JsonObject& g) {
       const double r = g.number("theta_r_deg", 0.0, true, 90.0, true);
       const double v = 180.0 + l - r;
       if (!(v >= kMinApertureDeg))
-        throw support::UserError(g.file() + ": " + g.pointer() + ": theta_l_deg = " + support::number_text(l) + ", theta_r_deg = " +
-                        support::number_text(r) + " give the aperture 180 + theta_l - theta_r = " + support::number_text(v) +
-                        " deg, out of range [" + support::number_text(kMinApertureDeg) + ", 180]");
+        throw support::UserError(g.file() + ": " + g.pointer() + ": theta_l_deg = " + support::number_text(l) +
+                                 ", theta_r_deg = " + support::number_text(r) +
+                                 " give the aperture 180 + theta_l - theta_r = " + support::number_text(v) +
+                                 " deg, out of range [" + support::number_text(kMinApertureDeg) + ", 180]");
       s.groove = GrooveParams::make_nonsymmetric(l * kDeg, r * kDeg);
     }
   } else {
@@ -75,7 +76,7 @@ SceneLight read_light(support::JsonObject& l) {
   s.rays = l.integer("rays", 1, kMaxRays);
   const std::string stratified = "stratified";
   s.sampling = l.one_of("sampling", {"stratified", "random"}, &stratified) == "random" ? sim::Sampling::random
-                                                                                        : sim::Sampling::stratified;
+                                                                                       : sim::Sampling::stratified;
   s.seed = static_cast<std::uint64_t>(l.integer_or("seed", 1, 0, kMaxSeed));
   l.finish();
   return s;
@@ -109,7 +110,8 @@ std::vector<FresnelChannel> read_channels(support::JsonObject& f, FresnelKind ki
       if (ch.name.empty()) c.fail("name", "= \"\" must be a non-empty string");
     }
     if (!names.insert(ch.name).second)
-      throw support::UserError(c.file() + ": " + c.pointer() + " repeats the channel \"" + ch.name + "\" (names must be unique)");
+      throw support::UserError(c.file() + ": " + c.pointer() + " repeats the channel \"" + ch.name +
+                               "\" (names must be unique)");
     if (kind == FresnelKind::schlick) {
       ch.F0 = c.number("F0", 0.0, true, 1.0, true);
     } else {
@@ -126,9 +128,12 @@ std::vector<FresnelChannel> read_channels(support::JsonObject& f, FresnelKind ki
 
 const char* fresnel_kind_name(FresnelKind k) {
   switch (k) {
-    case FresnelKind::none: return "none";
-    case FresnelKind::conductor: return "conductor";
-    case FresnelKind::schlick: return "schlick";
+    case FresnelKind::none:
+      return "none";
+    case FresnelKind::conductor:
+      return "conductor";
+    case FresnelKind::schlick:
+      return "schlick";
   }
   return "?";
 }
@@ -153,7 +158,9 @@ Scene parse_scene(const nlohmann::json& j, const std::string& file) {
     {
       support::JsonObject f = e.object("fresnel");
       const std::string kind = f.one_of("kind", {"none", "conductor", "schlick"});
-      s.fresnel = kind == "none" ? FresnelKind::none : kind == "conductor" ? FresnelKind::conductor : FresnelKind::schlick;
+      s.fresnel = kind == "none"        ? FresnelKind::none
+                  : kind == "conductor" ? FresnelKind::conductor
+                                        : FresnelKind::schlick;
       if (s.fresnel != FresnelKind::none) s.channels = read_channels(f, s.fresnel);
       f.finish();
     }
@@ -167,13 +174,14 @@ Scene parse_scene(const nlohmann::json& j, const std::string& file) {
         const long long cells = static_cast<long long>(s.record.theta_o_bins) * (s.record.histogram_max_k + 2);
         if (cells > kMaxHistogramCells)
           throw support::UserError(h.file() + ": " + h.pointer() + ": bins x (max_k + 2) = " + std::to_string(cells) +
-                          " histogram cells, out of range [1, " + std::to_string(kMaxHistogramCells) + "]");
+                                   " histogram cells, out of range [1, " + std::to_string(kMaxHistogramCells) + "]");
         h.finish();
       }
       s.record.energy_per_k = r.boolean_or("energy_per_k", false);
       if (s.record.energy_per_k && s.fresnel == FresnelKind::none)
-        r.fail("energy_per_k", "= true needs a Fresnel effect (with /effects/fresnel/kind = \"none\" every path "
-                               "keeps all its energy: the energy per k is the count per k)");
+        r.fail("energy_per_k",
+               "= true needs a Fresnel effect (with /effects/fresnel/kind = \"none\" every path "
+               "keeps all its energy: the energy per k is the count per k)");
       r.finish();
     }
     s.max_bounces = static_cast<int>(e.integer_or("max_bounces", 100000, 1, 100'000'000));

@@ -63,7 +63,7 @@ const char* fresnel_kind_name(FresnelKind k);
 
 struct SceneGeometry {
   GeometryKind kind = GeometryKind::groove;
-  validation::GrooveParams groove;  // kind == groove (radians)
+  validation::GrooveParams groove;       // kind == groove (radians)
   sim::NdfKind ndf = sim::NdfKind::ggx;  // kind == microsurface
   double alpha = 0.5;
   int grooves = 10000;

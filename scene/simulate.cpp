@@ -5,10 +5,10 @@
 #include "vgroove/sim/effects.h"
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/tracer.h"
-#include "vgroove/validation/groove_case.h"
 #include "vgroove/support/parallel.h"
-#include "vgroove/validation/report.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/groove_case.h"
+#include "vgroove/validation/report.h"
 
 #include <algorithm>
 #include <array>
@@ -36,7 +36,8 @@ struct ChannelsObserver {
   void reset() { std::fill_n(throughput.begin(), channels, 1.0); }
   void on_bounce(sim::Side, const sim::Vec2& dir_in, const sim::Facet& f) {
     const double c = std::abs(dir_in.dot(f.normal));
-    for (int i = 0; i < channels; ++i) throughput[static_cast<std::size_t>(i)] *= reflectance[static_cast<std::size_t>(i)](c);
+    for (int i = 0; i < channels; ++i)
+      throughput[static_cast<std::size_t>(i)] *= reflectance[static_cast<std::size_t>(i)](c);
   }
 };
 
@@ -61,7 +62,8 @@ Observer make_observer(const Setup& s) {
     obs.channels = s.channels;
     using R = typename std::remove_reference_t<decltype(obs.reflectance[0])>;
     for (int c = 0; c < s.channels; ++c)
-      obs.reflectance[static_cast<std::size_t>(c)] = reflectance_of(s.scene->channels[static_cast<std::size_t>(c)], static_cast<R*>(nullptr));
+      obs.reflectance[static_cast<std::size_t>(c)] =
+          reflectance_of(s.scene->channels[static_cast<std::size_t>(c)], static_cast<R*>(nullptr));
     return obs;
   }
 }
@@ -92,28 +94,30 @@ ThetaTally run_chunk(const Setup& s, double theta_i, std::int64_t chunk) {
   Observer obs = make_observer<Observer>(s);
   sim::for_each_landing(s.grooves, theta_i, scene.light.sampling, scene.light.rays, scene.light.seed, chunk,
                         [&](const sim::Groove& groove, const sim::Ray2& ray) {
-    if constexpr (kEnergy) obs.reset();
-    const sim::TraceResult r = sim::trace(groove, ray, opt, obs);
-    if (!t.count(r.how, r.bounces, r.exit_dir.y() > 0.0)) return;
-    const auto k = static_cast<std::size_t>(std::min(r.bounces, kMaxKRow + 1));
-    if (k >= t.by_k.size()) t.by_k.resize(k + 1, 0);
-    ++t.by_k[k];
-    if constexpr (kEnergy)
-      for (std::size_t c = 0; c < C; ++c) t.energy[c] += obs.throughput[c];
-    if constexpr (kEnergyPerK) {
-      if ((k + 1) * C > t.energy_by_k.size()) t.energy_by_k.resize((k + 1) * C, 0.0);
-      for (std::size_t c = 0; c < C; ++c) t.energy_by_k[k * C + c] += obs.throughput[c];
-    }
-    if constexpr (kHistograms) {
-      const double w = M_PI / bins;
-      // theta_o is inside (-pi/2, pi/2) here; the clamp only absorbs rounding of the division.
-      const int bin = std::clamp(static_cast<int>(std::floor((sim::angle_from_normal(r.exit_dir) + 0.5 * M_PI) / w)), 0,
-                                 bins - 1);
-      const int row = r.bounces > max_k ? max_k + 1 : r.bounces;
-      ++t.theta_o[static_cast<std::size_t>(bin)];
-      ++t.theta_o_by_k[static_cast<std::size_t>(row) * static_cast<std::size_t>(bins) + static_cast<std::size_t>(bin)];
-    }
-  });
+                          if constexpr (kEnergy) obs.reset();
+                          const sim::TraceResult r = sim::trace(groove, ray, opt, obs);
+                          if (!t.count(r.how, r.bounces, r.exit_dir.y() > 0.0)) return;
+                          const auto k = static_cast<std::size_t>(std::min(r.bounces, kMaxKRow + 1));
+                          if (k >= t.by_k.size()) t.by_k.resize(k + 1, 0);
+                          ++t.by_k[k];
+                          if constexpr (kEnergy)
+                            for (std::size_t c = 0; c < C; ++c) t.energy[c] += obs.throughput[c];
+                          if constexpr (kEnergyPerK) {
+                            if ((k + 1) * C > t.energy_by_k.size()) t.energy_by_k.resize((k + 1) * C, 0.0);
+                            for (std::size_t c = 0; c < C; ++c) t.energy_by_k[k * C + c] += obs.throughput[c];
+                          }
+                          if constexpr (kHistograms) {
+                            const double w = M_PI / bins;
+                            // theta_o is inside (-pi/2, pi/2) here; the clamp only absorbs rounding of the division.
+                            const int bin = std::clamp(
+                                static_cast<int>(std::floor((sim::angle_from_normal(r.exit_dir) + 0.5 * M_PI) / w)), 0,
+                                bins - 1);
+                            const int row = r.bounces > max_k ? max_k + 1 : r.bounces;
+                            ++t.theta_o[static_cast<std::size_t>(bin)];
+                            ++t.theta_o_by_k[static_cast<std::size_t>(row) * static_cast<std::size_t>(bins) +
+                                             static_cast<std::size_t>(bin)];
+                          }
+                        });
   return t;
 }
 
@@ -133,9 +137,12 @@ ChunkFn pick_record(const SceneRecord& rec) {
 // The loop for the scene's effects, chosen once per run.
 ChunkFn pick_chunk_fn(const Scene& s) {
   switch (s.fresnel) {
-    case FresnelKind::none: return pick_record<sim::NoBounceObserver>(s.record);
-    case FresnelKind::conductor: return pick_record<ChannelsObserver<sim::ConductorReflectance>>(s.record);
-    case FresnelKind::schlick: return pick_record<ChannelsObserver<sim::SchlickReflectance>>(s.record);
+    case FresnelKind::none:
+      return pick_record<sim::NoBounceObserver>(s.record);
+    case FresnelKind::conductor:
+      return pick_record<ChannelsObserver<sim::ConductorReflectance>>(s.record);
+    case FresnelKind::schlick:
+      return pick_record<ChannelsObserver<sim::SchlickReflectance>>(s.record);
   }
   return nullptr;
 }
@@ -284,8 +291,11 @@ nlohmann::json result_json(const Scene& scene, const SimulationResult& r) {
     geometry = groove_json(scene.geometry.groove);
     geometry["kind"] = "groove";
   } else {
-    geometry = {{"kind", "microsurface"}, {"ndf", sim::ndf_name(scene.geometry.ndf)}, {"alpha", scene.geometry.alpha},
-                {"grooves", scene.geometry.grooves}, {"seed", scene.geometry.surface_seed}};
+    geometry = {{"kind", "microsurface"},
+                {"ndf", sim::ndf_name(scene.geometry.ndf)},
+                {"alpha", scene.geometry.alpha},
+                {"grooves", scene.geometry.grooves},
+                {"seed", scene.geometry.surface_seed}};
   }
   json theta_deg = json::array();
   for (double t : scene.light.theta_i) theta_deg.push_back(output_deg(t));
@@ -367,10 +377,8 @@ nlohmann::json result_json(const Scene& scene, const SimulationResult& r) {
         key += std::to_string(k <= max_k ? k : max_k);  // the last row: k > max_k
         per_k[key] = h;
       }
-      row["theta_o_histograms"] = {{"bins", scene.record.theta_o_bins},
-                                   {"range_deg", {-90, 90}},
-                                   {"all", ta.theta_o},
-                                   {"per_k", per_k}};
+      row["theta_o_histograms"] = {
+          {"bins", scene.record.theta_o_bins}, {"range_deg", {-90, 90}}, {"all", ta.theta_o}, {"per_k", per_k}};
     }
     results.push_back(row);
   }
@@ -402,8 +410,8 @@ void print_result_table(std::ostream& os, const Scene& scene, const SimulationRe
   for (std::size_t t = 0; t < r.tallies.size(); ++t) {
     const ThetaTally& ta = r.tallies[t];
     const double n = ta.rays > 0 ? static_cast<double>(ta.rays) : 1.0;
-    std::snprintf(buf, sizeof buf, "  %7.6g %10lld %9.6f %8.4f", output_deg(r.theta_i[t]), static_cast<long long>(ta.rays),
-                  static_cast<double>(ta.escaped) / n, ta.mean_k());
+    std::snprintf(buf, sizeof buf, "  %7.6g %10lld %9.6f %8.4f", output_deg(r.theta_i[t]),
+                  static_cast<long long>(ta.rays), static_cast<double>(ta.escaped) / n, ta.mean_k());
     os << buf;
     if (model) {
       std::snprintf(buf, sizeof buf, " %8.4f", r.model[t].mean_k);
@@ -421,7 +429,8 @@ void print_result_table(std::ostream& os, const Scene& scene, const SimulationRe
   }
   std::int64_t lost = 0;
   for (const ThetaTally& ta : r.tallies) lost += ta.lost();
-  std::snprintf(buf, sizeof buf, "  %lld rays, %lld bounces, %lld lost (vertex hits, bounce limit, ...); %d threads, %.3f s\n",
+  std::snprintf(buf, sizeof buf,
+                "  %lld rays, %lld bounces, %lld lost (vertex hits, bounce limit, ...); %d threads, %.3f s\n",
                 static_cast<long long>(r.rays), static_cast<long long>(r.bounces), static_cast<long long>(lost),
                 r.threads, r.wall_s);
   os << buf;

@@ -28,8 +28,8 @@
 // over 3 channels 1.1 s. So one observer carrying C reflectances is the cheaper choice.
 #pragma once
 
-#include "vgroove/sim/ray_fates.h"
 #include "vgroove/scene/scene.h"
+#include "vgroove/sim/ray_fates.h"
 
 #include <nlohmann/json.hpp>
 
@@ -90,6 +90,5 @@ ModelFigures model_figures(const Scene& scene, double theta_i);
 // The result JSON: provenance, the scene's inputs, and per theta_i what the scene asked for.
 nlohmann::json result_json(const Scene& scene, const SimulationResult& r);
 void print_result_table(std::ostream& os, const Scene& scene, const SimulationResult& r);
-
 
 }  // namespace vgroove::scene

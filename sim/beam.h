@@ -34,8 +34,8 @@ Interval aimed_at(const Groove& g, double theta_i, Side side);
 
 // Position of ray j of n in the interval.
 inline double sample_position(Sampling sampling, const Interval& iv, long j, long n, Rng& rng) {
-  const double u = sampling == Sampling::stratified ? (static_cast<double>(j) + 0.5) / static_cast<double>(n)
-                                                    : rng.uniform();
+  const double u =
+      sampling == Sampling::stratified ? (static_cast<double>(j) + 0.5) / static_cast<double>(n) : rng.uniform();
   return iv.lo + u * (iv.hi - iv.lo);
 }
 
@@ -62,8 +62,6 @@ void trace_beam(const BeamTracer& beam, Sampling sampling, const Interval& iv, l
 inline Vec2 beam_direction(double theta_i) { return -direction_at(theta_i); }
 
 // The ray of the beam travelling along dir that crosses the rim line at x.
-inline Ray2 beam_ray(const Groove& g, const Vec2& dir, double x) {
-  return Ray2{Vec2(x, g.rim_height), dir};
-}
+inline Ray2 beam_ray(const Groove& g, const Vec2& dir, double x) { return Ray2{Vec2(x, g.rim_height), dir}; }
 
 }  // namespace vgroove::sim

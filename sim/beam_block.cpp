@@ -49,13 +49,12 @@ inline void block_loop(const BeamConsts& c, const double* __restrict x_rim, int 
       s = sn / (right ? c.div[1] : c.div[0]);
     } else {
       const double tn_l = x * c.ey[0] - c.hex[0], tn_r = x * c.ey[1] - c.hex[1];
-      const std::int64_t miss_l =
-          away_l | (c.den[0] == 0.0) | (tn_l * c.den[0] < 0.0) | (std::abs(sn) > c.lim[0]);
-      const std::int64_t miss_r =
-          away_r | (c.den[1] == 0.0) | (tn_r * c.den[1] < 0.0) | (std::abs(sn) > c.lim[1]);
+      const std::int64_t miss_l = away_l | (c.den[0] == 0.0) | (tn_l * c.den[0] < 0.0) | (std::abs(sn) > c.lim[0]);
+      const std::int64_t miss_r = away_r | (c.den[1] == 0.0) | (tn_r * c.den[1] < 0.0) | (std::abs(sn) > c.lim[1]);
       const double s_l = sn / c.div[0], s_r = sn / c.div[1];
       // Both answer: the left one if its s >= 0 and it is nearer by t = tn / den (first_hit_both).
-      const std::int64_t left = (miss_l ^ 1) & (miss_r | ((s_l >= 0.0) & ((s_r < 0.0) | (tn_l / c.div[0] <= tn_r / c.div[1]))));
+      const std::int64_t left =
+          (miss_l ^ 1) & (miss_r | ((s_l >= 0.0) & ((s_r < 0.0) | (tn_l / c.div[0] <= tn_r / c.div[1]))));
       right = left ^ 1;
       found = (miss_l & miss_r) ^ 1;
       s = left ? s_l : s_r;
@@ -102,8 +101,10 @@ void BeamTracer::first_hits(const double* __restrict x_rim, int n, BlockHits& __
   // Denominators of opposite signs: the beam is within the aperture, and for every ray off the
   // line through the apex the sign of cross(p, d) excludes one facet. Otherwise it excludes
   // neither (or both) for every ray of the opening: both are tested.
-  if (den_[0] * den_[1] < 0.0) block_loop<false>(c, x_rim, n, h.f, h.s, h.path);
-  else block_loop<true>(c, x_rim, n, h.f, h.s, h.path);
+  if (den_[0] * den_[1] < 0.0)
+    block_loop<false>(c, x_rim, n, h.f, h.s, h.path);
+  else
+    block_loop<true>(c, x_rim, n, h.f, h.s, h.path);
 }
 
 }  // namespace vgroove::sim

@@ -31,9 +31,7 @@ inline Vec2 direction_at(double theta) { return Vec2(-std::sin(theta), std::cos(
 inline double angle_from_normal(const Vec2& v) { return std::atan2(-v.x(), v.y()); }
 
 // Signed angle from a to b via atan2(cross, dot): counter-clockwise positive.
-inline double angle_between(const Vec2& a, const Vec2& b) {
-  return std::atan2(cross(a, b), a.dot(b));
-}
+inline double angle_between(const Vec2& a, const Vec2& b) { return std::atan2(cross(a, b), a.dot(b)); }
 
 inline Vec2 rotate_ccw_90(const Vec2& v) { return Vec2(-v.y(), v.x()); }
 

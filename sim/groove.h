@@ -24,9 +24,7 @@ struct Facet {
   // cross(edge, other facet's edge): its sign says on which side the other facet lies.
   double turn_to_other;
   Vec2 rim() const { return length * edge; }
-  Vec2 reflect(const Vec2& d) const {
-    return Vec2(r_xx * d.x() + r_xy * d.y(), r_xy * d.x() + r_yy * d.y());
-  }
+  Vec2 reflect(const Vec2& d) const { return Vec2(r_xx * d.x() + r_xy * d.y(), r_xy * d.x() + r_yy * d.y()); }
 };
 
 struct Groove {

@@ -58,9 +58,7 @@ void MicrosurfaceTally::merge(const MicrosurfaceTally& o) {
   for (std::size_t i = 0; i < theta_o_by_k.size(); ++i) theta_o_by_k[i] += o.theta_o_by_k[i];
 }
 
-std::int64_t chunk_count(const MicrosurfaceTraceOptions& opt) {
-  return (opt.rays + kRaysPerChunk - 1) / kRaysPerChunk;
-}
+std::int64_t chunk_count(const MicrosurfaceTraceOptions& opt) { return (opt.rays + kRaysPerChunk - 1) / kRaysPerChunk; }
 
 MicrosurfaceTally trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOptions& opt,
                                            std::int64_t chunk) {

@@ -82,9 +82,9 @@ struct MicrosurfaceTraceOptions {
 struct MicrosurfaceTally : RayFates {
   int bins = 0;
   int max_k = 0;
-  std::vector<std::int64_t> by_k;         // [k], k = 0..max_k + 1 (the last: more than max_k)
-  std::vector<std::int64_t> theta_o;      // [bin], all escaped rays
-  std::vector<std::int64_t> theta_o_by_k; // [k * bins + bin], rows as in by_k
+  std::vector<std::int64_t> by_k;          // [k], k = 0..max_k + 1 (the last: more than max_k)
+  std::vector<std::int64_t> theta_o;       // [bin], all escaped rays
+  std::vector<std::int64_t> theta_o_by_k;  // [k * bins + bin], rows as in by_k
 
   MicrosurfaceTally() = default;
   MicrosurfaceTally(int bins_, int max_k_);

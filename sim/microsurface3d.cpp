@@ -32,12 +32,14 @@ double theta_m_cdf_3d(NdfKind kind, double alpha, double theta_m) {
   if (theta_m >= 0.5 * M_PI) return 1.0;
   const double c = std::cos(theta_m), s = std::sin(theta_m), a2 = alpha * alpha;
   switch (kind) {
-    case NdfKind::ggx: return s * s / (a2 * c * c + s * s);  // tan^2 / (a^2 + tan^2)
+    case NdfKind::ggx:
+      return s * s / (a2 * c * c + s * s);  // tan^2 / (a^2 + tan^2)
     case NdfKind::beckmann: {
       const double t = s / c;
       return -std::expm1(-t * t / a2);
     }
-    case NdfKind::phong: return -std::expm1((2.0 / a2) * std::log(c));  // 1 - cos^(p+2)
+    case NdfKind::phong:
+      return -std::expm1((2.0 / a2) * std::log(c));  // 1 - cos^(p+2)
   }
   return 0.0;
 }
@@ -45,8 +47,10 @@ double theta_m_cdf_3d(NdfKind kind, double alpha, double theta_m) {
 double sample_theta_m_3d(NdfKind kind, double alpha, double u) {
   assert(u > 0.0 && u < 1.0 && alpha > 0.0);
   switch (kind) {
-    case NdfKind::ggx: return std::atan(alpha * std::sqrt(u / (1.0 - u)));
-    case NdfKind::beckmann: return std::atan(alpha * std::sqrt(-std::log1p(-u)));
+    case NdfKind::ggx:
+      return std::atan(alpha * std::sqrt(u / (1.0 - u)));
+    case NdfKind::beckmann:
+      return std::atan(alpha * std::sqrt(-std::log1p(-u)));
     case NdfKind::phong: {
       // cos theta = (1 - u)^(a^2/2); 1 - cos theta = 2 sin^2(theta/2) keeps small angles exact.
       const double w = -std::expm1(0.5 * alpha * alpha * std::log1p(-u));
@@ -102,8 +106,7 @@ Trace3dResult trace_groove3d(const Groove& g, const GrooveFrame3d& frame, const 
     const Vec2& e = out.trace.exit_dir;
     // o = r (e_x a + e_y n) - (i.u) u.
     const double oa = r * e.x();
-    out.o = Vec3(oa * frame.cos_phi_a + iu * frame.sin_phi_a, oa * frame.sin_phi_a - iu * frame.cos_phi_a,
-                 r * e.y());
+    out.o = Vec3(oa * frame.cos_phi_a + iu * frame.sin_phi_a, oa * frame.sin_phi_a - iu * frame.cos_phi_a, r * e.y());
   }
   return out;
 }

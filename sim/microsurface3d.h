@@ -95,7 +95,7 @@ struct Microsurface3d {
 };
 
 inline constexpr std::uint64_t kGroove3dStream = 0x67726f6f76653364ULL;  // "groove3d"
-inline constexpr std::uint64_t kRay3dStream = 0x7261797333ULL;             // "rays3"
+inline constexpr std::uint64_t kRay3dStream = 0x7261797333ULL;           // "rays3"
 
 Microsurface3d make_microsurface3d(const Microsurface3dOptions& opt);
 // Appends one groove (for tests and hand-made surfaces).

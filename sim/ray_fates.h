@@ -28,10 +28,17 @@ struct RayFates {
   bool count(Termination how, int k, bool upward) {
     ++rays;
     switch (how) {
-      case Termination::blocked: ++blocked; return false;
-      case Termination::vertex_hit: ++vertex_hits; return false;
-      case Termination::bounce_limit: ++bounce_limit; return false;
-      case Termination::escaped: break;
+      case Termination::blocked:
+        ++blocked;
+        return false;
+      case Termination::vertex_hit:
+        ++vertex_hits;
+        return false;
+      case Termination::bounce_limit:
+        ++bounce_limit;
+        return false;
+      case Termination::escaped:
+        break;
     }
     if (!upward) {
       ++not_upward;

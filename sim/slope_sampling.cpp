@@ -8,9 +8,12 @@ namespace vgroove::sim {
 
 const char* ndf_name(NdfKind kind) {
   switch (kind) {
-    case NdfKind::beckmann: return "beckmann";
-    case NdfKind::ggx: return "ggx";
-    case NdfKind::phong: return "phong";
+    case NdfKind::beckmann:
+      return "beckmann";
+    case NdfKind::ggx:
+      return "ggx";
+    case NdfKind::phong:
+      return "phong";
   }
   return "?";
 }
@@ -62,14 +65,16 @@ double lower_tail(NdfKind kind, double alpha, double w) {
   if (!(w < kHalfPi)) return 0.0;
   const double c = std::cos(w), s = std::sin(w);
   switch (kind) {
-    case NdfKind::beckmann: return 0.5 * std::erfc(s / (c * alpha));
+    case NdfKind::beckmann:
+      return 0.5 * std::erfc(s / (c * alpha));
     case NdfKind::ggx: {
       // (1 - x/sqrt(1+x^2)) / 2 with x = tan w / alpha, without cancelling: x/sqrt(1+x^2) = s/q,
       // q = sqrt(alpha^2 c^2 + s^2), and (1 - s/q) = (q^2 - s^2) / (q (q + s)) = alpha^2 c^2 / (q (q + s)).
       const double q = std::sqrt(alpha * alpha * c * c + s * s);
       return 0.5 * alpha * alpha * c * c / (q * (q + s));
     }
-    case NdfKind::phong: return 0.5 * incomplete_beta(0.5 * phong_nu(alpha), 0.5, c * c, s * s);
+    case NdfKind::phong:
+      return 0.5 * incomplete_beta(0.5 * phong_nu(alpha), 0.5, c * c, s * s);
   }
   return 0.0;
 }
@@ -82,8 +87,8 @@ double incomplete_beta(double a, double b, double x, double one_minus_x) {
   if (!(one_minus_x > 0.0)) return 1.0;
   // I_x(a, b) = x^a (1-x)^b / (a B(a, b)) * cf(a, b, x), or by I_x(a, b) = 1 - I_{1-x}(b, a) on
   // the side where the fraction converges slowly (Abramowitz & Stegun 26.5.8, 26.5.2).
-  const double ln_front = std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) +
-                          b * std::log(one_minus_x);
+  const double ln_front =
+      std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log(one_minus_x);
   if (x < (a + 1.0) / (a + b + 2.0)) return std::exp(ln_front) * beta_continued_fraction(a, b, x) / a;
   return 1.0 - std::exp(ln_front) * beta_continued_fraction(b, a, one_minus_x) / b;
 }
@@ -96,7 +101,9 @@ double theta_m_pdf(NdfKind kind, double alpha, double theta_m) {
   const double s = std::tan(theta_m);
   double P = 0.0;
   switch (kind) {
-    case NdfKind::beckmann: P = std::exp(-(s * s) / (alpha * alpha)) / (alpha * std::sqrt(M_PI)); break;
+    case NdfKind::beckmann:
+      P = std::exp(-(s * s) / (alpha * alpha)) / (alpha * std::sqrt(M_PI));
+      break;
     case NdfKind::ggx: {
       const double r = 1.0 + (s * s) / (alpha * alpha);
       P = 1.0 / (2.0 * alpha * r * std::sqrt(r));

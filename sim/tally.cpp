@@ -38,7 +38,10 @@ int Tally::max_bounces() const {
   int m = 0;
   for (const auto& v : bins)
     for (int k = static_cast<int>(v.size()) - 1; k > m; --k)
-      if (v[k].count > 0) { m = k; break; }
+      if (v[k].count > 0) {
+        m = k;
+        break;
+      }
   return m;
 }
 

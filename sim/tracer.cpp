@@ -4,10 +4,14 @@ namespace vgroove::sim {
 
 const char* termination_name(Termination t) {
   switch (t) {
-    case Termination::escaped: return "escaped";
-    case Termination::blocked: return "blocked";
-    case Termination::vertex_hit: return "vertex_hit";
-    case Termination::bounce_limit: return "bounce_limit";
+    case Termination::escaped:
+      return "escaped";
+    case Termination::blocked:
+      return "blocked";
+    case Termination::vertex_hit:
+      return "vertex_hit";
+    case Termination::bounce_limit:
+      return "bounce_limit";
   }
   return "?";
 }
@@ -21,8 +25,10 @@ bool BeamTracer::first_hit_both(double x_rim, double sn, bool away_l, bool away_
   if (miss_l && miss_r) return false;
   if (!miss_l && !miss_r) {
     const double s_l = sn / den_[0], s_r = sn / den_[1];
-    if (s_l >= 0.0 && (s_r < 0.0 || tn_l / den_[0] <= tn_r / den_[1])) f = 0, s = s_l;
-    else f = 1, s = s_r;
+    if (s_l >= 0.0 && (s_r < 0.0 || tn_l / den_[0] <= tn_r / den_[1]))
+      f = 0, s = s_l;
+    else
+      f = 1, s = s_r;
   } else {
     f = miss_l ? 1 : 0;
     s = sn / den_[f];

@@ -36,7 +36,7 @@ struct TraceOptions {
 struct TraceResult {
   Vec2 exit_dir = Vec2::Zero();  // valid when how == escaped
   int bounces = 0;
-  Side first = Side::left;       // facet hit first; valid when bounces > 0
+  Side first = Side::left;  // facet hit first; valid when bounces > 0
   Termination how = Termination::escaped;
 };
 
@@ -82,7 +82,7 @@ enum class Step : unsigned char { next, escaped, vertex_hit, bounce_limit };
 // the loop below runs with both facets fixed in registers.
 template <class Observer>
 [[gnu::always_inline]] inline Step bounce(Side on, const Facet& f, const Facet& o, Vec2& d, double& s, int& bounces,
-                   int max_bounces, Observer& obs) {
+                                          int max_bounces, Observer& obs) {
   if (s == 0.0 || s == f.length) return Step::vertex_hit;  // exactly on the apex or a rim
   if (bounces == max_bounces) return Step::bounce_limit;
   obs.on_bounce(on, d, f);
@@ -143,7 +143,7 @@ inline void finish(TraceResult& r, Step st, int bounces, const Vec2& d) {
 // answer only at the apex up to rounding, and then the nearer one, by t, is taken).
 template <class Observer = NoBounceObserver>
 [[gnu::always_inline]] inline TraceResult trace(const Groove& g, const Ray2& ray, const TraceOptions& opt = {},
-                  Observer&& obs = Observer{}) {
+                                                Observer&& obs = Observer{}) {
   TraceResult r;
   // Where the ray crosses the rim line decides whether it enters this groove at all.
   const double x_rim = ray.origin.x();
@@ -181,8 +181,10 @@ template <class Observer = NoBounceObserver>
   } else {
     const detail::FacetHit hl = detail::hit_facet_from_rim_line(ray.origin, d, fl);
     const detail::FacetHit hr = detail::hit_facet_from_rim_line(ray.origin, d, fr);
-    if (hl.s >= 0.0 && (hr.s < 0.0 || hl.t_num / hl.t_den <= hr.t_num / hr.t_den)) on = Side::left, s = hl.s;
-    else on = Side::right, s = hr.s;
+    if (hl.s >= 0.0 && (hr.s < 0.0 || hl.t_num / hl.t_den <= hr.t_num / hr.t_den))
+      on = Side::left, s = hl.s;
+    else
+      on = Side::right, s = hr.s;
   }
   // s < 0 or NaN: entered the opening yet met no facet. Impossible for a closed groove, and
   // reported as a vertex hit (the only way is through a vertex by rounding) rather than dropped.
@@ -275,18 +277,18 @@ class BeamTracer {
   // on the other for odd k, leaving along d_out.
   struct Reflection {
     Vec2 d_out;
-    double abs_c;   // |cross(e_f, d_out)|
-    double limit;   // length_o |cross(e_o, d_out)|: past the other facet when s abs_c > limit
-    double ratio;   // cross(e_f, d_out) / cross(e_o, d_out): s on the other facet is s ratio
-    bool leaves;    // leaves whatever s: t <= 0, or the crossing on the far side of the apex
+    double abs_c;  // |cross(e_f, d_out)|
+    double limit;  // length_o |cross(e_o, d_out)|: past the other facet when s abs_c > limit
+    double ratio;  // cross(e_f, d_out) / cross(e_o, d_out): s on the other facet is s ratio
+    bool leaves;   // leaves whatever s: t <= 0, or the crossing on the far side of the apex
   };
   Groove g_;
   Vec2 dir_;
   TraceOptions opt_;
-  double h_dx_;            // rim_height dir.x, the position-free part of cross(p, dir)
-  double den_[2];          // cross(e_f, dir) per facet
-  double h_ex_[2];         // rim_height e_f.x, the position-free part of cross(p, e_f)
-  double limit_[2];        // length_f |den_f|
+  double h_dx_;                       // rim_height dir.x, the position-free part of cross(p, dir)
+  double den_[2];                     // cross(e_f, dir) per facet
+  double h_ex_[2];                    // rim_height e_f.x, the position-free part of cross(p, e_f)
+  double limit_[2];                   // length_f |den_f|
   std::vector<Reflection> table_[2];  // by first facet
 };
 
@@ -301,14 +303,16 @@ template <class Observer>
   TraceResult r;
   int f;
   double s;
-  if (away_r & !away_l) [[likely]] f = 0;
-  else if (away_l & !away_r) [[likely]] f = 1;
-  else f = -1;
+  if (away_r & !away_l) [[likely]]
+    f = 0;
+  else if (away_l & !away_r) [[likely]]
+    f = 1;
+  else
+    f = -1;
   if (f >= 0) [[likely]] {
     // One facet excluded by the numerator's sign (the beam within the groove's aperture).
     const double den = den_[f];
-    if (den == 0.0 || (x_rim * g_.facet[f].edge.y() - h_ex_[f]) * den < 0.0 || std::abs(sn) > limit_[f])
-        [[unlikely]] {
+    if (den == 0.0 || (x_rim * g_.facet[f].edge.y() - h_ex_[f]) * den < 0.0 || std::abs(sn) > limit_[f]) [[unlikely]] {
       r.how = Termination::vertex_hit;  // entered the opening yet met no facet (as sim::trace)
       return r;
     }
@@ -352,8 +356,8 @@ template <class Observer>
   }
   // Past the table: the bounce limit, or the reflection loop from here on.
   Vec2 d = n ? tab[n - 1].d_out : dir_;
-  const detail::Step st = detail::reflect_until_done(g_, (k & 1) ? other(first) : first, d, s, k,
-                                                     opt_.max_bounces, obs);
+  const detail::Step st =
+      detail::reflect_until_done(g_, (k & 1) ? other(first) : first, d, s, k, opt_.max_bounces, obs);
   detail::finish(r, st, k, d);
   return r;
 }

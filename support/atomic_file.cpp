@@ -2,12 +2,12 @@
 
 #include "vgroove/support/user_error.h"
 
+#include <unistd.h>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 namespace vgroove::support {
 

@@ -8,8 +8,8 @@ namespace vgroove::support {
 JsonObject::JsonObject(const nlohmann::json& j, std::string file, std::string pointer)
     : j_(j), file_(std::move(file)), pointer_(std::move(pointer)) {
   if (!j_.is_object())
-    throw UserError(file_ + ": " + (pointer_.empty() ? std::string("/") : pointer_) +
-                    " must be a JSON object, found " + j_.type_name());
+    throw UserError(file_ + ": " + (pointer_.empty() ? std::string("/") : pointer_) + " must be a JSON object, found " +
+                    j_.type_name());
 }
 
 bool JsonObject::has(const std::string& key) const {
@@ -58,8 +58,8 @@ double JsonObject::number(const std::string& key, double lo, bool lo_closed, dou
   return x;
 }
 
-double JsonObject::number_or(const std::string& key, double fallback, double lo, bool lo_closed,
-                             double hi, bool hi_closed) {
+double JsonObject::number_or(const std::string& key, double fallback, double lo, bool lo_closed, double hi,
+                             bool hi_closed) {
   return has(key) ? number(key, lo, lo_closed, hi, hi_closed) : fallback;
 }
 

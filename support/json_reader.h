@@ -31,8 +31,7 @@ class JsonObject {
   std::string one_of(const std::string& key, const std::vector<std::string>& allowed,
                      const std::string* fallback = nullptr);
   double number(const std::string& key, double lo, bool lo_closed, double hi, bool hi_closed);
-  double number_or(const std::string& key, double fallback, double lo, bool lo_closed, double hi,
-                   bool hi_closed);
+  double number_or(const std::string& key, double fallback, double lo, bool lo_closed, double hi, bool hi_closed);
   long long integer(const std::string& key, long long lo, long long hi);
   bool boolean_or(const std::string& key, bool fallback);
   long long integer_or(const std::string& key, long long fallback, long long lo, long long hi);

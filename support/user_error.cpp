@@ -12,8 +12,12 @@ std::string number_text(double v) {
 }
 
 std::string interval_text(double lo, bool lo_closed, double hi, bool hi_closed) {
-  return std::string(lo_closed ? "[" : "(") + number_text(lo) + ", " + number_text(hi) +
-         (hi_closed ? "]" : ")");
+  std::string s(1, lo_closed ? '[' : '(');
+  s += number_text(lo);
+  s += ", ";
+  s += number_text(hi);
+  s += hi_closed ? ']' : ')';
+  return s;
 }
 
 }  // namespace vgroove::support

@@ -4,10 +4,10 @@
 
 #include "tests/test_files.h"
 
+#include <sys/wait.h>
 #include <cstdio>
 #include <ostream>
 #include <string>
-#include <sys/wait.h>
 
 namespace vgroove::testing_files {
 

@@ -71,8 +71,11 @@ struct ChiSquare {
 // Goodness of fit of observed counts to expected counts over bins [edges[j], edges[j+1]];
 // adjacent bins are pooled until each cell expects at least 5 (a leftover joins the last cell).
 inline ChiSquare chi_square_gof(const std::vector<double>& edges, const std::vector<double>& expected,
-                         const std::vector<std::int64_t>& observed) {
-  struct Cell { double lo, hi, e; std::int64_t o; };
+                                const std::vector<std::int64_t>& observed) {
+  struct Cell {
+    double lo, hi, e;
+    std::int64_t o;
+  };
   std::vector<Cell> cells;
   Cell acc{edges[0], edges[0], 0.0, 0};
   for (std::size_t j = 0; j < expected.size(); ++j) {
@@ -85,8 +88,13 @@ inline ChiSquare chi_square_gof(const std::vector<double>& edges, const std::vec
     }
   }
   if (acc.e > 0.0 || acc.o > 0) {
-    if (cells.empty()) cells.push_back(acc);
-    else { cells.back().hi = acc.hi; cells.back().e += acc.e; cells.back().o += acc.o; }
+    if (cells.empty())
+      cells.push_back(acc);
+    else {
+      cells.back().hi = acc.hi;
+      cells.back().e += acc.e;
+      cells.back().o += acc.o;
+    }
   }
   ChiSquare r;
   std::ostringstream os;

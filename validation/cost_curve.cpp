@@ -45,7 +45,8 @@ std::vector<CostPoint> cost_vs_theta_v(const std::vector<double>& theta_v, doubl
       const double ti = theta_i + 1e-3 * static_cast<double>(r) / static_cast<double>(evals);
       for (analytic::FacetSide side : {analytic::FacetSide::left, analytic::FacetSide::right}) {
         const analytic::FacetPrediction f = analytic::G_kaleidoscopic(ti, v, side);
-        sink += f.fewer.G + f.more.G + analytic::exit_angle(ti, v, f.k, side) + analytic::exit_angle(ti, v, f.k - 1, side);
+        sink +=
+            f.fewer.G + f.more.G + analytic::exit_angle(ti, v, f.k, side) + analytic::exit_angle(ti, v, f.k - 1, side);
       }
     }
     p.model_ns_per_eval = ns_since(t0) / static_cast<double>(evals);

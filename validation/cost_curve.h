@@ -11,8 +11,8 @@
 namespace vgroove::validation {
 
 struct CostPoint {
-  double theta_v = 0.0;           // radians
-  double bounces_per_ray = 0.0;   // traced, averaged over the opening
+  double theta_v = 0.0;          // radians
+  double bounces_per_ray = 0.0;  // traced, averaged over the opening
   double tracer_ns_per_ray = 0.0;
   double model_ns_per_eval = 0.0;  // Eq. 4-6 for both facets: k, theta_o and G of each
 };

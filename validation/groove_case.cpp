@@ -112,9 +112,15 @@ FacetOutcome run_facet(const GrooveParams& params, const sim::Groove& g, double 
           ++out.probe_escaped;
           if (!r.exit_dir.allFinite()) out.non_finite = true;
           break;
-        case sim::Termination::vertex_hit: ++out.probe_vertex_hits; break;
-        case sim::Termination::blocked: ++out.probe_blocked; break;
-        case sim::Termination::bounce_limit: ++out.probe_bounce_limit; break;
+        case sim::Termination::vertex_hit:
+          ++out.probe_vertex_hits;
+          break;
+        case sim::Termination::blocked:
+          ++out.probe_blocked;
+          break;
+        case sim::Termination::bounce_limit:
+          ++out.probe_bounce_limit;
+          break;
       }
     }
   }

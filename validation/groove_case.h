@@ -21,9 +21,9 @@ struct FacetOutcome {
   std::int64_t bounces = 0;
   std::int64_t vertex_hits = 0;
   std::int64_t bounce_limit = 0;
-  std::int64_t wrong_first = 0;    // aimed at this facet, hit the other one first
-  int k = 0;                       // Eq. (4)
-  double theta_o_error = 0.0;      // largest |traced - Eq. (5)| over the rays (radians)
+  std::int64_t wrong_first = 0;  // aimed at this facet, hit the other one first
+  int k = 0;                     // Eq. (4)
+  double theta_o_error = 0.0;    // largest |traced - Eq. (5)| over the rays (radians)
   // Rays aimed exactly at the apex and the rims (CaseOptions::probe_vertices), kept out of l1.
   std::int64_t probe_rays = 0, probe_escaped = 0, probe_vertex_hits = 0, probe_blocked = 0, probe_bounce_limit = 0;
   bool non_finite = false;  // a NaN or infinity in any figure or exit direction
@@ -31,9 +31,9 @@ struct FacetOutcome {
 
 struct CaseOutcome {
   GrooveParams groove;
-  double theta_i = 0.0;                 // radians
-  FacetOutcome facet[2];                // [left, right]
-  double l1 = 0.0;                      // max over compared facets
+  double theta_i = 0.0;   // radians
+  FacetOutcome facet[2];  // [left, right]
+  double l1 = 0.0;        // max over compared facets
   std::int64_t rays = 0;
   std::int64_t bounces = 0;
   double theta_o_error = 0.0;

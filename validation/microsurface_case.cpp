@@ -27,9 +27,12 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 // analytic/ and sim/ each name the NDFs (they never include each other); the names match.
 sim::NdfKind to_sim(analytic::NdfKind k) {
   switch (k) {
-    case analytic::NdfKind::beckmann: return sim::NdfKind::beckmann;
-    case analytic::NdfKind::ggx: return sim::NdfKind::ggx;
-    case analytic::NdfKind::phong: return sim::NdfKind::phong;
+    case analytic::NdfKind::beckmann:
+      return sim::NdfKind::beckmann;
+    case analytic::NdfKind::ggx:
+      return sim::NdfKind::ggx;
+    case analytic::NdfKind::phong:
+      return sim::NdfKind::phong;
   }
   return sim::NdfKind::ggx;
 }
@@ -52,7 +55,8 @@ analytic::NdfKind parse_ndf(const std::string& s) {
 }
 
 // A non-empty list of strings, each one of `allowed`.
-std::vector<std::string> read_names(support::JsonObject& o, const std::string& key, const std::vector<std::string>& allowed) {
+std::vector<std::string> read_names(support::JsonObject& o, const std::string& key,
+                                    const std::vector<std::string>& allowed) {
   const nlohmann::json& v = o.raw(key);
   if (!v.is_array() || v.empty()) o.fail(key, "= " + v.dump() + " must be a non-empty list");
   std::vector<std::string> out;
@@ -75,12 +79,13 @@ std::vector<double> read_numbers(support::JsonObject& o, const std::string& key,
   std::vector<double> out;
   for (std::size_t n = 0; n < v.size(); ++n) {
     const std::string where = o.path(key) + "/" + std::to_string(n);
-    if (!v[n].is_number()) throw support::UserError(o.file() + ": " + where + " = " + v[n].dump() + " must be a number");
+    if (!v[n].is_number())
+      throw support::UserError(o.file() + ": " + where + " = " + v[n].dump() + " must be a number");
     const double x = v[n].get<double>();
     const bool ok = std::isfinite(x) && (lo_closed ? x >= lo : x > lo) && (hi_closed ? x <= hi : x < hi);
     if (!ok)
       throw support::UserError(o.file() + ": " + where + " = " + support::number_text(x) + " is out of range " +
-                      support::interval_text(lo, lo_closed, hi, hi_closed));
+                               support::interval_text(lo, lo_closed, hi, hi_closed));
     out.push_back(x);
   }
   return out;
@@ -166,8 +171,8 @@ void take_counts(BrdfOutcome& out, const Tally& t, const BrdfSuite& suite) {
   out.rays = t.rays, out.escaped = t.escaped, out.lost = t.lost(), out.bounces = t.bounces;
   out.max_k_seen = t.max_k_seen;
   out.in_flight = t.bounce_limit;
-  out.albedo_sim = static_cast<double>(t.escaped + (suite.kind == "furnace" ? t.bounce_limit : 0)) /
-                   static_cast<double>(t.rays);
+  out.albedo_sim =
+      static_cast<double>(t.escaped + (suite.kind == "furnace" ? t.bounce_limit : 0)) / static_cast<double>(t.rays);
 }
 
 BrdfOutcome run_flatland(const BrdfSuite& suite, const BrdfCase& c, long rays) {
@@ -175,8 +180,8 @@ BrdfOutcome run_flatland(const BrdfSuite& suite, const BrdfCase& c, long rays) {
   out.c = c;
   const int bins = suite.flatland_bins;
   const auto t0 = Clock::now();
-  const sim::Microsurface surface = sim::make_microsurface(
-      surface_options<sim::MicrosurfaceOptions>(c.ndf, c.alpha, suite.grooves, suite.seed));
+  const sim::Microsurface surface =
+      sim::make_microsurface(surface_options<sim::MicrosurfaceOptions>(c.ndf, c.alpha, suite.grooves, suite.seed));
   sim::MicrosurfaceTraceOptions to;
   to.theta_i = c.theta_i;
   to.rays = rays;
@@ -223,8 +228,8 @@ BrdfOutcome run_3d(const BrdfSuite& suite, const BrdfCase& c, long rays) {
   out.c = c;
   const int tb = suite.theta_bins, pb = suite.phi_bins, bins = tb * pb;
   const auto t0 = Clock::now();
-  const sim::Microsurface3d surface = sim::make_microsurface3d(
-      surface_options<sim::Microsurface3dOptions>(c.ndf, c.alpha, suite.grooves, suite.seed));
+  const sim::Microsurface3d surface =
+      sim::make_microsurface3d(surface_options<sim::Microsurface3dOptions>(c.ndf, c.alpha, suite.grooves, suite.seed));
   sim::Microsurface3dTraceOptions to;
   to.theta_i = c.theta_i;
   to.rays = rays;
@@ -337,7 +342,8 @@ BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
   s.theta_bins = static_cast<int>(root.integer_or("theta_bins", s.theta_bins, 1, 10000));
   s.phi_bins = static_cast<int>(root.integer_or("phi_bins", s.phi_bins, 2, 10000));
   if (s.phi_bins % 2 != 0)
-    root.fail("phi_bins", "= " + std::to_string(s.phi_bins) + " must be even (the plane of incidence runs through two bins)");
+    root.fail("phi_bins",
+              "= " + std::to_string(s.phi_bins) + " must be even (the plane of incidence runs through two bins)");
   s.max_k = static_cast<int>(root.integer_or("max_k", s.max_k, 1, 10000));
   {
     support::JsonObject t = root.object("thresholds");
@@ -391,7 +397,8 @@ nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run) {
   for (const BrdfOutcome& o : run.cases) {
     rays += o.rays, bounces += o.bounces;
     passed += o.pass;
-    if (suite.kind != "furnace") worst_ratio = std::max({worst_ratio, o.l1 / o.l1_threshold, o.l1_k / o.l1_k_threshold});
+    if (suite.kind != "furnace")
+      worst_ratio = std::max({worst_ratio, o.l1 / o.l1_threshold, o.l1_k / o.l1_k_threshold});
     worst_albedo = std::max(worst_albedo, std::abs(o.albedo_sim - o.albedo_model));
     worst_single = std::min(worst_single, o.albedo_single);
     nlohmann::json c = {{"ndf", analytic::ndf_name(o.c.ndf)},
@@ -467,7 +474,8 @@ void print_brdf_table(std::ostream& os, const BrdfSuite& suite, const BrdfRun& r
     if (suite.kind == "furnace")
       std::snprintf(line, sizeof line, "  %-8s %-8s %5.2f %7.2f %12.9f %12.9f %12.6f %10.3f %5s\n",
                     surface_dim_name(o.c.dim), analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta_i),
-                    o.albedo_sim, o.albedo_model, o.albedo_single, o.sim_wall_s + o.model_wall_s, o.pass ? "yes" : "NO");
+                    o.albedo_sim, o.albedo_model, o.albedo_single, o.sim_wall_s + o.model_wall_s,
+                    o.pass ? "yes" : "NO");
     else
       std::snprintf(line, sizeof line, "  %-8s %-8s %5.2f %7.2f %9.5f %9.5f %9.5f %9.5f %10.7f %9.5f %8.3f %5s\n",
                     surface_dim_name(o.c.dim), analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta_i), o.l1,
@@ -485,7 +493,7 @@ void print_brdf_table(std::ostream& os, const BrdfSuite& suite, const BrdfRun& r
 
 namespace {
 constexpr analytic::PercentileMeasure kOtherMeasures[] = {analytic::PercentileMeasure::solid_angle,
-                                                           analytic::PercentileMeasure::flatland};
+                                                          analytic::PercentileMeasure::flatland};
 
 // The q-th percentile of the traced bounce counts: the smallest k with at least the fraction q of
 // the escaped rays at k bounces or fewer.
@@ -519,15 +527,16 @@ Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file)
   const nlohmann::json& rows = paper.raw("max_bounces");
   const std::size_t per_row = s.ndfs.size() * s.alphas.size();
   if (!rows.is_array() || rows.size() != s.percentiles.size())
-    paper.fail("max_bounces", "must be a list of " + std::to_string(s.percentiles.size()) + " rows (one per percentile)");
+    paper.fail("max_bounces",
+               "must be a list of " + std::to_string(s.percentiles.size()) + " rows (one per percentile)");
   for (std::size_t r = 0; r < rows.size(); ++r) {
     if (!rows[r].is_array() || rows[r].size() != per_row)
-      throw support::UserError(file + ": " + paper.path("max_bounces") + "/" + std::to_string(r) + " must be a list of " +
-                      std::to_string(per_row) + " integers (ndf outer, alpha inner)");
+      throw support::UserError(file + ": " + paper.path("max_bounces") + "/" + std::to_string(r) +
+                               " must be a list of " + std::to_string(per_row) + " integers (ndf outer, alpha inner)");
     for (std::size_t n = 0; n < per_row; ++n) {
       if (!rows[r][n].is_number_integer() || rows[r][n].get<long long>() < 1 || rows[r][n].get<long long>() > 1000000)
-        throw support::UserError(file + ": " + paper.path("max_bounces") + "/" + std::to_string(r) + "/" + std::to_string(n) +
-                        " = " + rows[r][n].dump() + " must be an integer in [1, 1000000]");
+        throw support::UserError(file + ": " + paper.path("max_bounces") + "/" + std::to_string(r) + "/" +
+                                 std::to_string(n) + " = " + rows[r][n].dump() + " must be an integer in [1, 1000000]");
       s.paper.push_back(rows[r][n].get<int>());
     }
   }
@@ -549,7 +558,7 @@ Table2Run run_table2_suite(const Table2Suite& s, long rays, int threads, const s
     for (std::size_t n = 0; n < nn; ++n)
       for (std::size_t a = 0; a < na; ++a) {
         run.ours[at(q, n, a)] = analytic::max_bounces_at_percentile(s.ndfs[n], s.alphas[a], s.percentiles[q],
-                                                                     analytic::PercentileMeasure::projected_area);
+                                                                    analytic::PercentileMeasure::projected_area);
         for (std::size_t m = 0; m < std::size(kOtherMeasures); ++m)
           run.alternatives[m][at(q, n, a)] =
               analytic::max_bounces_at_percentile(s.ndfs[n], s.alphas[a], s.percentiles[q], kOtherMeasures[m]);
@@ -591,9 +600,11 @@ nlohmann::json table2_report_json(const Table2Suite& s, const Table2Run& run) {
   j["wall_s"] = run.wall_s;
   j["source"] = s.source;
   j["assumptions"] = {
-      {"percentile_measure", "projected area: D(s) cos(theta_s) ds, the fraction of the macrosurface under facets "
-                             "flatter than theta_m (the paper's sampling pdf |s.n| D(s), Sec. 6)"},
-      {"incident_angle", "normal incidence: N = Eq. (4) at theta_i = 0, floor(pi / theta_v) + 1, theta_v = pi - 2 theta_m"},
+      {"percentile_measure",
+       "projected area: D(s) cos(theta_s) ds, the fraction of the macrosurface under facets "
+       "flatter than theta_m (the paper's sampling pdf |s.n| D(s), Sec. 6)"},
+      {"incident_angle",
+       "normal incidence: N = Eq. (4) at theta_i = 0, floor(pi / theta_v) + 1, theta_v = pi - 2 theta_m"},
       {"phong_exponent", "alpha_p = 2 / alpha^2 - 2 (Walter et al. 2007)"}};
   nlohmann::json rows = nlohmann::json::array();
   const std::size_t na = s.alphas.size(), nn = s.ndfs.size();
@@ -614,16 +625,16 @@ nlohmann::json table2_report_json(const Table2Suite& s, const Table2Run& run) {
                         {"traced_percentile_k", run.traced[i]}});
       }
   j["entries"] = rows;
-  j["summary"] = {{"entries", run.ours.size()}, {"agree", run.agree}, {"rays_per_surface", s.rays},
-                  {"grooves", s.grooves}};
+  j["summary"] = {
+      {"entries", run.ours.size()}, {"agree", run.agree}, {"rays_per_surface", s.rays}, {"grooves", s.grooves}};
   j["pass"] = run.pass;
   return j;
 }
 
 void print_table2(std::ostream& os, const Table2Suite& s, const Table2Run& run) {
   char line[256];
-  std::snprintf(line, sizeof line, "%s: maximum bounces at percentiles of D (%s), vgroove %s (git %s)\n", s.name.c_str(),
-                s.source.c_str(), version_string(), git_revision());
+  std::snprintf(line, sizeof line, "%s: maximum bounces at percentiles of D (%s), vgroove %s (git %s)\n",
+                s.name.c_str(), s.source.c_str(), version_string(), git_revision());
   os << line;
   os << "  cell: paper / ours (projected-area percentile, Eq. 4 at theta_i = 0) / traced percentile of k\n";
   std::string head = "  perc.  ";

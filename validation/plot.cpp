@@ -32,7 +32,8 @@ std::pair<double, double> log_range(double lo, double hi) {
 
 std::string accuracy_svg(const nlohmann::json& report, const std::string& file) {
   if (!report.is_object() || !report.contains("runs") || !report["runs"].is_array() || report["runs"].empty())
-    throw support::UserError(file + ": not an accuracy report (no /runs): make one with `vgroove bench accuracy ... --out`");
+    throw support::UserError(file +
+                             ": not an accuracy report (no /runs): make one with `vgroove bench accuracy ... --out`");
   std::map<std::string, std::vector<Point>> lines;
   double tmin = INFINITY, tmax = 0, emin = INFINITY, emax = 0;
   for (std::size_t n = 0; n < report["runs"].size(); ++n) {
@@ -54,13 +55,14 @@ std::string accuracy_svg(const nlohmann::json& report, const std::string& file) 
   const double W = 720, H = 480, L = 80, R = 160, T = 48, B = 60;
   auto X = [&](double t) { return L + (std::log10(t) - tx0) / std::max(1.0, tx1 - tx0) * (W - L - R); };
   auto Y = [&](double e) { return H - B - (std::log10(e) - ey0) / std::max(1.0, ey1 - ey0) * (H - T - B); };
-  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"720\" height=\"480\" font-family=\"sans-serif\" font-size=\"12\">\n";
+  std::string svg =
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"720\" height=\"480\" font-family=\"sans-serif\" "
+      "font-size=\"12\">\n";
   svg += "<rect width=\"720\" height=\"480\" fill=\"white\"/>\n";
   const std::string title = "L1 error against wall time: " + report.value("suite", std::string("?"));
-  const std::string made_by = "vgroove " + report.value("version", std::string("?")) + ", git " +
-                              report.value("git", std::string("?")) + ", " +
-                              std::to_string(report.value("threads", 0)) + " threads, seed " +
-                              std::to_string(report.value("seed", 0ULL));
+  const std::string made_by =
+      "vgroove " + report.value("version", std::string("?")) + ", git " + report.value("git", std::string("?")) + ", " +
+      std::to_string(report.value("threads", 0)) + " threads, seed " + std::to_string(report.value("seed", 0ULL));
   svg += "<text x=\"" + fmt("%.0f", L) + "\" y=\"20\" font-size=\"14\">" + title + "</text>\n";
   svg += "<text x=\"" + fmt("%.0f", L) + "\" y=\"34\" font-size=\"10\" fill=\"#555\">" + made_by + "</text>\n";
   // Axes with a grid line per decade.
@@ -90,19 +92,20 @@ std::string accuracy_svg(const nlohmann::json& report, const std::string& file) 
     for (int which = 0; which < 2; ++which) {
       std::string path;
       for (const Point& p : pts)
-        path += (path.empty() ? "M" : " L") + fmt("%.1f", X(p.wall_s)) + "," + fmt("%.1f", Y(which ? p.mean_l1 : p.max_l1));
+        path +=
+            (path.empty() ? "M" : " L") + fmt("%.1f", X(p.wall_s)) + "," + fmt("%.1f", Y(which ? p.mean_l1 : p.max_l1));
       svg += "<path d=\"" + path + "\" fill=\"none\" stroke=\"" + color + "\" stroke-width=\"2\"" +
              (which ? " stroke-dasharray=\"6 4\"" : "") + "/>\n";
       for (const Point& p : pts) {
         const double x = X(p.wall_s), y = Y(which ? p.mean_l1 : p.max_l1);
         svg += "<circle cx=\"" + fmt("%.1f", x) + "\" cy=\"" + fmt("%.1f", y) + "\" r=\"3\" fill=\"" + color + "\"/>\n";
         if (!which)
-          svg += "<text x=\"" + fmt("%.1f", x + 5) + "\" y=\"" + fmt("%.1f", y - 5) + "\" font-size=\"10\">N=" +
-                 std::to_string(p.rays) + "</text>\n";
+          svg += "<text x=\"" + fmt("%.1f", x + 5) + "\" y=\"" + fmt("%.1f", y - 5) +
+                 "\" font-size=\"10\">N=" + std::to_string(p.rays) + "</text>\n";
       }
       const double ly = T + 20 + 18 * legend++;
-      svg += "<line x1=\"" + fmt("%.1f", W - R + 10) + "\" y1=\"" + fmt("%.1f", ly) + "\" x2=\"" + fmt("%.1f", W - R + 34) +
-             "\" y2=\"" + fmt("%.1f", ly) + "\" stroke=\"" + color + "\" stroke-width=\"2\"" +
+      svg += "<line x1=\"" + fmt("%.1f", W - R + 10) + "\" y1=\"" + fmt("%.1f", ly) + "\" x2=\"" +
+             fmt("%.1f", W - R + 34) + "\" y2=\"" + fmt("%.1f", ly) + "\" stroke=\"" + color + "\" stroke-width=\"2\"" +
              (which ? " stroke-dasharray=\"6 4\"" : "") + "/>\n";
       svg += "<text x=\"" + fmt("%.1f", W - R + 40) + "\" y=\"" + fmt("%.1f", ly + 4) + "\">" + sampling +
              (which ? " mean" : " max") + "</text>\n";
@@ -123,7 +126,8 @@ std::string cost_svg(const nlohmann::json& report) {
   for (const auto& p : report["cost_vs_theta_v"]["points"])
     if (p.is_object() && p.value("theta_v_deg", 0.0) > 0 && p.value("tracer_ns_per_ray", 0.0) > 0 &&
         p.value("model_ns_per_eval", 0.0) > 0)
-      c.push_back({p["theta_v_deg"].get<double>(), p["tracer_ns_per_ray"].get<double>(), p["model_ns_per_eval"].get<double>()});
+      c.push_back(
+          {p["theta_v_deg"].get<double>(), p["tracer_ns_per_ray"].get<double>(), p["model_ns_per_eval"].get<double>()});
   if (c.empty()) return {};
   double vmin = INFINITY, vmax = 0, nmin = INFINITY, nmax = 0;
   for (const auto& q : c) {
@@ -135,12 +139,16 @@ std::string cost_svg(const nlohmann::json& report) {
   const double W = 720, H = 420, L = 80, R = 190, T = 48, B = 60;
   auto X = [&](double v) { return L + (std::log10(v) - vx0) / std::max(1.0, vx1 - vx0) * (W - L - R); };
   auto Y = [&](double n) { return H - B - (std::log10(n) - ny0) / std::max(1.0, ny1 - ny0) * (H - T - B); };
-  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"720\" height=\"420\" font-family=\"sans-serif\" font-size=\"12\">\n";
+  std::string svg =
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"720\" height=\"420\" font-family=\"sans-serif\" "
+      "font-size=\"12\">\n";
   svg += "<rect width=\"720\" height=\"420\" fill=\"white\"/>\n";
-  svg += "<text x=\"80\" y=\"20\" font-size=\"14\">Cost against aperture: one traced ray vs one model evaluation</text>\n";
+  svg +=
+      "<text x=\"80\" y=\"20\" font-size=\"14\">Cost against aperture: one traced ray vs one model evaluation</text>\n";
   svg += "<text x=\"80\" y=\"34\" font-size=\"10\" fill=\"#555\">vgroove " + report.value("version", std::string("?")) +
-         ", git " + report.value("git", std::string("?")) + "; one thread, theta_i = " +
-         fmt("%.0f", report["cost_vs_theta_v"].value("theta_i_deg", 0.0)) + " deg</text>\n";
+         ", git " + report.value("git", std::string("?")) +
+         "; one thread, theta_i = " + fmt("%.0f", report["cost_vs_theta_v"].value("theta_i_deg", 0.0)) +
+         " deg</text>\n";
   for (double d = vx0; d <= vx1; d += 1) {
     const double x = X(std::pow(10.0, d));
     svg += "<line x1=\"" + fmt("%.1f", x) + "\" y1=\"" + fmt("%.1f", T) + "\" x2=\"" + fmt("%.1f", x) + "\" y2=\"" +
@@ -170,8 +178,9 @@ std::string cost_svg(const nlohmann::json& report) {
       svg += "<circle cx=\"" + fmt("%.1f", X(q.v)) + "\" cy=\"" + fmt("%.1f", Y(which ? q.model : q.tracer)) +
              "\" r=\"3\" fill=\"" + color[which] + "\"/>\n";
     const double ly = T + 20 + 18 * which;
-    svg += "<line x1=\"" + fmt("%.1f", W - R + 10) + "\" y1=\"" + fmt("%.1f", ly) + "\" x2=\"" + fmt("%.1f", W - R + 34) +
-           "\" y2=\"" + fmt("%.1f", ly) + "\" stroke=\"" + color[which] + "\" stroke-width=\"2\"/>\n";
+    svg += "<line x1=\"" + fmt("%.1f", W - R + 10) + "\" y1=\"" + fmt("%.1f", ly) + "\" x2=\"" +
+           fmt("%.1f", W - R + 34) + "\" y2=\"" + fmt("%.1f", ly) + "\" stroke=\"" + color[which] +
+           "\" stroke-width=\"2\"/>\n";
     svg += "<text x=\"" + fmt("%.1f", W - R + 40) + "\" y=\"" + fmt("%.1f", ly + 4) + "\" font-size=\"10\">" +
            label[which] + "</text>\n";
   }
@@ -185,7 +194,9 @@ bool is_brdf_report(const nlohmann::json& report) {
 
 std::vector<std::pair<std::string, std::string>> brdf_grid_svgs(const nlohmann::json& report, const std::string& file) {
   if (!is_brdf_report(report) || !report["cases"].is_array() || report["cases"].empty())
-    throw support::UserError(file + ": not a brdf suite report (no /cases): make one with `vgroove validate data/suites/fig11.json --out R`");
+    throw support::UserError(
+        file +
+        ": not a brdf suite report (no /cases): make one with `vgroove validate data/suites/fig11.json --out R`");
   // Group the cases by (ndf, dimension); within a group, columns by alpha, rows by theta_i.
   struct Panel {
     double alpha, theta_i;
@@ -225,13 +236,16 @@ std::vector<std::pair<std::string, std::string>> brdf_grid_svgs(const nlohmann::
                       fmt("%.0f", H) + "\" font-family=\"sans-serif\" font-size=\"10\">\n";
     svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
     svg += "<text x=\"" + fmt("%.0f", M) + "\" y=\"18\" font-size=\"14\">" + report.value("suite", std::string("?")) +
-           ": " + key + " (bars: traced; red: analytic, bin-integrated; dashed: k = 1..4; black dotted: Cook-Torrance)</text>\n";
+           ": " + key +
+           " (bars: traced; red: analytic, bin-integrated; dashed: k = 1..4; black dotted: Cook-Torrance)</text>\n";
     svg += "<text x=\"" + fmt("%.0f", M) + "\" y=\"32\" fill=\"#555\">" + made_by +
            "; x: theta_o on the plane of incidence, -90..90 deg (negative: mirror side); y: " +
            panels.front().c->at("plane").value("unit", std::string("density")) + "</text>\n";
     for (const auto& p : panels) {
-      const std::size_t col = static_cast<std::size_t>(std::find(alphas.begin(), alphas.end(), p.alpha) - alphas.begin());
-      const std::size_t row = static_cast<std::size_t>(std::find(thetas.begin(), thetas.end(), p.theta_i) - thetas.begin());
+      const std::size_t col =
+          static_cast<std::size_t>(std::find(alphas.begin(), alphas.end(), p.alpha) - alphas.begin());
+      const std::size_t row =
+          static_cast<std::size_t>(std::find(thetas.begin(), thetas.end(), p.theta_i) - thetas.begin());
       const double x0 = M + PW * col + 8, y0 = TOP + PH * row + 8, w = PW - 16, h = PH - 28;
       const auto& pl = p.c->at("plane");
       const auto th = pl.at("theta_deg").get<std::vector<double>>();
@@ -252,19 +266,21 @@ std::vector<std::pair<std::string, std::string>> brdf_grid_svgs(const nlohmann::
                  fmt("%.2f", bw) + "\" height=\"" + fmt("%.2f", y0 + h - Y(sim[n])) + "\" fill=\"#8fd18f\"/>\n";
       auto line = [&](const std::vector<double>& v, const std::string& style) {
         std::string d;
-        for (std::size_t n = 0; n < th.size(); ++n) d += (d.empty() ? "M" : " L") + fmt("%.1f", X(th[n])) + "," + fmt("%.1f", Y(v[n]));
+        for (std::size_t n = 0; n < th.size(); ++n)
+          d += (d.empty() ? "M" : " L") + fmt("%.1f", X(th[n])) + "," + fmt("%.1f", Y(v[n]));
         svg += "<path d=\"" + d + "\" fill=\"none\" " + style + "/>\n";
       };
       if (pl.contains("model_by_k")) {
         const auto& mk = pl.at("model_by_k");
         for (std::size_t k = 0; k < mk.size() && k < 4; ++k)
-          line(mk[k].get<std::vector<double>>(), std::string("stroke=\"") + k_colors[k] + "\" stroke-width=\"1\" stroke-dasharray=\"4 2\"");
+          line(mk[k].get<std::vector<double>>(),
+               std::string("stroke=\"") + k_colors[k] + "\" stroke-width=\"1\" stroke-dasharray=\"4 2\"");
       }
       line(ct, "stroke=\"black\" stroke-width=\"1\" stroke-dasharray=\"1 2\"");
       line(model, "stroke=\"#d62728\" stroke-width=\"1.5\"");
       const bool pass = p.c->value("pass", false);
-      svg += "<text x=\"" + fmt("%.1f", x0 + 4) + "\" y=\"" + fmt("%.1f", y0 + 12) + "\">alpha " + fmt("%.2g", p.alpha) +
-             ", theta_i " + fmt("%.0f", p.theta_i) + "</text>\n";
+      svg += "<text x=\"" + fmt("%.1f", x0 + 4) + "\" y=\"" + fmt("%.1f", y0 + 12) + "\">alpha " +
+             fmt("%.2g", p.alpha) + ", theta_i " + fmt("%.0f", p.theta_i) + "</text>\n";
       svg += "<text x=\"" + fmt("%.1f", x0 + 4) + "\" y=\"" + fmt("%.1f", y0 + h + 14) + "\" fill=\"" +
              (pass ? "#555" : "#d62728") + "\">L1 " + fmt("%.4f", p.c->value("l1", 0.0)) + " (thr " +
              fmt("%.4f", p.c->value("l1_threshold", 0.0)) + "), " + fmt("%.2g", p.c->value("rays", 0.0)) + " rays, " +

@@ -24,13 +24,13 @@ double output_deg(double rad) { return std::round(rad * (180.0 / M_PI) * 1e9) / 
 const char* version_string() { return VGROOVE_VERSION; }
 const char* git_revision() { return VGROOVE_GIT; }
 
-nlohmann::json provenance() {
-  return {{"tool", "vgroove"}, {"version", VGROOVE_VERSION}, {"git", VGROOVE_GIT}};
-}
+nlohmann::json provenance() { return {{"tool", "vgroove"}, {"version", VGROOVE_VERSION}, {"git", VGROOVE_GIT}}; }
 
 nlohmann::json groove_json(const GrooveParams& g) {
   if (g.symmetric) return {{"theta_v_deg", output_deg(g.theta_v)}};
-  return {{"theta_l_deg", output_deg(g.theta_l)}, {"theta_r_deg", output_deg(g.theta_r)}, {"theta_v_deg", output_deg(g.theta_v)}};
+  return {{"theta_l_deg", output_deg(g.theta_l)},
+          {"theta_r_deg", output_deg(g.theta_r)},
+          {"theta_v_deg", output_deg(g.theta_v)}};
 }
 
 std::string groove_text(const GrooveParams& g) {
@@ -38,8 +38,8 @@ std::string groove_text(const GrooveParams& g) {
   if (g.symmetric)
     std::snprintf(buf, sizeof buf, "theta_v %.9g deg", output_deg(g.theta_v));
   else
-    std::snprintf(buf, sizeof buf, "theta_l %.9g, theta_r %.9g deg (theta_v %.9g)", output_deg(g.theta_l), output_deg(g.theta_r),
-                  output_deg(g.theta_v));
+    std::snprintf(buf, sizeof buf, "theta_l %.9g, theta_r %.9g deg (theta_v %.9g)", output_deg(g.theta_l),
+                  output_deg(g.theta_r), output_deg(g.theta_v));
   return buf;
 }
 
@@ -78,8 +78,12 @@ nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
         jc[name] = nullptr;  // the light does not reach this facet
         continue;
       }
-      jc[name] = {{"l1", fo.l1}, {"k", fo.k}, {"rays", fo.rays}, {"vertex_hits", fo.vertex_hits},
-                  {"bounce_limit", fo.bounce_limit}, {"wrong_first_facet", fo.wrong_first}};
+      jc[name] = {{"l1", fo.l1},
+                  {"k", fo.k},
+                  {"rays", fo.rays},
+                  {"vertex_hits", fo.vertex_hits},
+                  {"bounce_limit", fo.bounce_limit},
+                  {"wrong_first_facet", fo.wrong_first}};
     }
     cases.push_back(std::move(jc));
   }
@@ -117,8 +121,7 @@ nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
   j["thresholds"] = {{"max_l1", suite.thresholds.max_l1},
                      {"mean_l1", suite.thresholds.mean_l1},
                      {"max_theta_o_error_rad", suite.thresholds.max_theta_o_error_rad}};
-  if (suite.paper)
-  {
+  if (suite.paper) {
     j["paper"] = {{"source", suite.paper->source}, {"max_l1", suite.paper->max_l1}, {"mean_l1", suite.paper->mean_l1}};
     if (!suite.paper->placement.empty()) {
       j["paper"]["consistent_with_placement"] = suite.paper->placement;
@@ -132,10 +135,10 @@ nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
 void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run) {
   const Summary& s = run.summary;
   os << "vgroove " << VGROOVE_VERSION << " (git " << VGROOVE_GIT << ")  suite " << suite.name << ": " << s.cases
-     << " cases" << (s.degenerate_cases ? " (+" + std::to_string(s.degenerate_cases) + " degenerate, not compared)" : "")
-     << ", " << run.options.rays << " rays per lit facet, " << sim::sampling_name(run.options.sampling)
-     << ", seed " << run.options.seed << ", Eq. 6 " << form_name(run.options.form) << ", " << run.threads
-     << " threads\n";
+     << " cases"
+     << (s.degenerate_cases ? " (+" + std::to_string(s.degenerate_cases) + " degenerate, not compared)" : "") << ", "
+     << run.options.rays << " rays per lit facet, " << sim::sampling_name(run.options.sampling) << ", seed "
+     << run.options.seed << ", Eq. 6 " << form_name(run.options.form) << ", " << run.threads << " threads\n";
   os << "                      max L1      mean L1     max |theta_o err|\n";
   if (suite.paper)
     os << "  paper              " << fmt("%10.4g", suite.paper->max_l1) << "  " << fmt("%10.4g", suite.paper->mean_l1)
@@ -148,8 +151,8 @@ void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run) {
   os << "  " << (s.pass_max_l1 ? "ok   " : "FAIL ") << "          " << (s.pass_mean_l1 ? "  ok  " : "  FAIL")
      << "      " << (s.pass_theta_o ? "   ok" : " FAIL") << "\n";
   if (suite.paper && !suite.paper->placement.empty())
-    os << "  the paper's figures are consistent with " << suite.paper->placement << " ray placement: "
-       << suite.paper->placement_evidence << "\n";
+    os << "  the paper's figures are consistent with " << suite.paper->placement
+       << " ray placement: " << suite.paper->placement_evidence << "\n";
   const CaseOutcome& w = run.cases[s.worst_case];
   os << "  worst case: " << groove_text(w.groove) << ", theta_i " << output_deg(w.theta_i) << " deg (L1 "
      << fmt("%.4g", w.l1) << ")\n";
@@ -207,8 +210,8 @@ void print_set_table(std::ostream& os, const SuiteSet& set, const std::vector<Su
     os << "  ";
     char buf[256];
     std::snprintf(buf, sizeof buf, "%-22s %12.4g %12.4g %14.4g %13.4g %7zu %8.3f\n", su.name.c_str(),
-                  su.paper ? su.paper->max_l1 : NAN, s.max_l1, su.paper ? su.paper->mean_l1 : NAN, s.mean_l1,
-                  s.cases, s.wall_s);
+                  su.paper ? su.paper->max_l1 : NAN, s.max_l1, su.paper ? su.paper->mean_l1 : NAN, s.mean_l1, s.cases,
+                  s.wall_s);
     os << buf;
   }
   os << (pass ? "PASS" : "FAIL") << "\n";

@@ -15,21 +15,22 @@ constexpr long kMaxRays = 1'000'000'000;
 constexpr std::size_t kMaxValues = 1'000'000;
 
 // A list of degrees, or {"from", "to", "step"} (inclusive of "to" when the steps land on it).
-std::vector<double> read_degrees(support::JsonObject& o, const std::string& key, double lo, bool lo_closed,
-                                 double hi, bool hi_closed) {
+std::vector<double> read_degrees(support::JsonObject& o, const std::string& key, double lo, bool lo_closed, double hi,
+                                 bool hi_closed) {
   const nlohmann::json& v = o.raw(key);
   std::vector<double> out;
   auto check = [&](double x, const std::string& where) {
     const bool ok = std::isfinite(x) && (lo_closed ? x >= lo : x > lo) && (hi_closed ? x <= hi : x < hi);
     if (!ok)
       throw support::UserError(o.file() + ": " + where + " = " + support::number_text(x) + " is out of range " +
-                      support::interval_text(lo, lo_closed, hi, hi_closed));
+                               support::interval_text(lo, lo_closed, hi, hi_closed));
   };
   if (v.is_array()) {
     if (v.empty()) o.fail(key, "is an empty list");
     for (std::size_t n = 0; n < v.size(); ++n) {
       const std::string where = o.path(key) + "/" + std::to_string(n);
-      if (!v[n].is_number()) throw support::UserError(o.file() + ": " + where + " = " + v[n].dump() + " must be a number");
+      if (!v[n].is_number())
+        throw support::UserError(o.file() + ": " + where + " = " + v[n].dump() + " must be a number");
       check(v[n].get<double>(), where);
       out.push_back(v[n].get<double>());
     }
@@ -44,11 +45,14 @@ std::vector<double> read_degrees(support::JsonObject& o, const std::string& key,
   r.finish();
   check(from, r.path("from"));
   check(to, r.path("to"));
-  if (to < from) throw support::UserError(o.file() + ": " + r.path("to") + " = " + support::number_text(to) + " is below from = " + support::number_text(from));
+  if (to < from)
+    throw support::UserError(o.file() + ": " + r.path("to") + " = " + support::number_text(to) +
+                             " is below from = " + support::number_text(from));
   // Count the steps once, so no rounding accumulates: from + n * step.
   const double span = (to - from) / step;
   if (span > static_cast<double>(kMaxValues))
-    throw support::UserError(o.file() + ": " + o.path(key) + " has more than " + std::to_string(kMaxValues) + " values");
+    throw support::UserError(o.file() + ": " + o.path(key) + " has more than " + std::to_string(kMaxValues) +
+                             " values");
   const auto n = static_cast<std::size_t>(std::floor(span + 1e-9)) + 1;
   for (std::size_t m = 0; m < n; ++m) out.push_back(std::min(to, from + static_cast<double>(m) * step));
   return out;
@@ -59,8 +63,9 @@ std::vector<double> read_degrees(support::JsonObject& o, const std::string& key,
 void check_aperture(double l, double r, const std::string& where) {
   const double v = 180.0 + l - r;
   if (v != 0.0 && v < kMinApertureDeg)
-    throw support::UserError(where + ": theta_l = " + support::number_text(l) + ", theta_r = " + support::number_text(r) + " give the aperture " +
-                    support::number_text(v) + " deg, out of range [" + support::number_text(kMinApertureDeg) + ", 180] (or exactly 0)");
+    throw support::UserError(where + ": theta_l = " + support::number_text(l) + ", theta_r = " +
+                             support::number_text(r) + " give the aperture " + support::number_text(v) +
+                             " deg, out of range [" + support::number_text(kMinApertureDeg) + ", 180] (or exactly 0)");
 }
 
 std::vector<GrooveParams> read_grooves(support::JsonObject& groove) {
@@ -84,8 +89,9 @@ std::vector<GrooveParams> read_grooves(support::JsonObject& groove) {
 
 void check_theta_v(double deg, const std::string& what) {
   if (!(std::isfinite(deg) && deg >= kMinApertureDeg && deg <= 180.0))
-    throw support::UserError(what + " = " + support::number_text(deg) + " is out of range [" + support::number_text(kMinApertureDeg) +
-                    ", 180] (below 1e-06 deg a groove needs over 1.8e8 reflections)");
+    throw support::UserError(what + " = " + support::number_text(deg) + " is out of range [" +
+                             support::number_text(kMinApertureDeg) +
+                             ", 180] (below 1e-06 deg a groove needs over 1.8e8 reflections)");
 }
 
 void check_theta_i(double deg, const std::string& what) {
@@ -96,13 +102,13 @@ void check_theta_i(double deg, const std::string& what) {
 void check_theta_l(double deg, const std::string& what) {
   if (!(std::isfinite(deg) && deg >= -90.0 && deg <= 0.0))
     throw support::UserError(what + " = " + support::number_text(deg) +
-                    " is out of range [-90, 0] (the left facet's normal leans right: theta_l <= 0)");
+                             " is out of range [-90, 0] (the left facet's normal leans right: theta_l <= 0)");
 }
 
 void check_theta_r(double deg, const std::string& what) {
   if (!(std::isfinite(deg) && deg >= 0.0 && deg <= 90.0))
     throw support::UserError(what + " = " + support::number_text(deg) +
-                    " is out of range [0, 90] (the right facet's normal leans left: theta_r >= 0)");
+                             " is out of range [0, 90] (the right facet's normal leans left: theta_r >= 0)");
 }
 
 Suite parse_suite(const nlohmann::json& j, const std::string& file) {
@@ -198,7 +204,8 @@ SuiteSet parse_suite_set(const nlohmann::json& j, const std::string& file) {
   const std::filesystem::path dir = std::filesystem::path(file).parent_path();
   for (std::size_t n = 0; n < list.size(); ++n) {
     if (!list[n].is_string())
-      throw support::UserError(file + ": /suites/" + std::to_string(n) + " = " + list[n].dump() + " must be a file name");
+      throw support::UserError(file + ": /suites/" + std::to_string(n) + " = " + list[n].dump() +
+                               " must be a file name");
     const std::string sub = (dir / list[n].get<std::string>()).string();
     set.suites.push_back(load_suite(sub));
   }

@@ -1,8 +1,8 @@
 // vgroove validation: run every case of a suite and sum up against its thresholds.
 #pragma once
 
-#include "vgroove/validation/groove_case.h"
 #include "vgroove/support/parallel.h"
+#include "vgroove/validation/groove_case.h"
 #include "vgroove/validation/suite.h"
 
 #include <vector>

@@ -3,8 +3,8 @@
 // are the quantiles of analytic/ndf.h's D.
 #include "vgroove/analytic/bounce_percentiles.h"
 
-#include "vgroove/analytic/kaleidoscope.h"
 #include "tests/stats.h"
+#include "vgroove/analytic/kaleidoscope.h"
 
 #include <gtest/gtest.h>
 
@@ -17,7 +17,8 @@ constexpr NdfKind kNdfs[] = {NdfKind::beckmann, NdfKind::phong, NdfKind::ggx};
 constexpr double kAlphas[] = {0.5, 0.7, 1.0};
 constexpr double kPercentiles[] = {0.90, 0.95, 0.99};
 // Lee et al. 2018, Table 2, rows 90/95/99 %, columns Beckmann, Phong, GGX x alpha 0.5, 0.7, 1.0.
-constexpr int kTable2[3][9] = {{2, 3, 3, 2, 3, 5, 3, 4, 5}, {2, 3, 3, 3, 4, 7, 4, 5, 7}, {3, 3, 4, 3, 5, 16, 8, 12, 16}};
+constexpr int kTable2[3][9] = {
+    {2, 3, 3, 2, 3, 5, 3, 4, 5}, {2, 3, 3, 3, 4, 7, 4, 5, 7}, {3, 3, 4, 3, 5, 16, 8, 12, 16}};
 
 TEST(Table2, ProjectedAreaPercentileAtNormalIncidenceReproducesAll27) {
   for (int r = 0; r < 3; ++r)
@@ -63,7 +64,8 @@ TEST(Table2, OtherMeasuresDisagreeSomewhere) {
 // Quantiles grow with q and with alpha (rougher surfaces, steeper facets).
 TEST(Table2, QuantilesAreMonotone) {
   for (NdfKind ndf : kNdfs)
-    for (PercentileMeasure m : {PercentileMeasure::projected_area, PercentileMeasure::solid_angle, PercentileMeasure::flatland}) {
+    for (PercentileMeasure m :
+         {PercentileMeasure::projected_area, PercentileMeasure::solid_angle, PercentileMeasure::flatland}) {
       EXPECT_LT(theta_m_quantile(ndf, 0.5, 0.9, m), theta_m_quantile(ndf, 0.5, 0.99, m));
       EXPECT_LT(theta_m_quantile(ndf, 0.5, 0.9, m), theta_m_quantile(ndf, 0.7, 0.9, m));
       EXPECT_GT(theta_m_quantile(ndf, 0.5, 0.9, m), 0.0);

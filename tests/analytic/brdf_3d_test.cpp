@@ -1,9 +1,9 @@
 // Tests of the 3D V-groove BRDF (Lee et al. 2018, Eq. 13-17) and Cook-Torrance (Eq. 1-3).
 #include "vgroove/analytic/brdf_3d.h"
 
-#include "vgroove/analytic/kaleidoscope.h"
 #include "tests/param_names.h"
 #include "tests/stats.h"
+#include "vgroove/analytic/kaleidoscope.h"
 
 #include <gtest/gtest.h>
 
@@ -168,16 +168,19 @@ TEST(Brdf3d, SinglePassEqualsPerKEvaluation) {
         if (n % 2 == 1) {
           // o from a groove that sends i out after k reflections.
           const int k = 1 + static_cast<int>(16 * U(g));
-          o = groove_exit(i, 0.5 * M_PI * U(g), M_PI * U(g), U(g) < 0.5 ? va::FacetSide::left : va::FacetSide::right, k);
+          o = groove_exit(i, 0.5 * M_PI * U(g), M_PI * U(g), U(g) < 0.5 ? va::FacetSide::left : va::FacetSide::right,
+                          k);
           if (!(o.z > 0.0)) continue;
         }
         for (int k = 1; k <= 16; ++k) {
-          const double a = va::vgroove_brdf_k(i, o, k, ndf, alpha), b = va::vgroove_brdf_k_reference(i, o, k, ndf, alpha);
+          const double a = va::vgroove_brdf_k(i, o, k, ndf, alpha),
+                       b = va::vgroove_brdf_k_reference(i, o, k, ndf, alpha);
           if (k >= 6 && a > 0.0) ++high_k;
           ASSERT_NEAR(a, b, 1e-12 * std::max(a, b)) << va::ndf_name(ndf) << " alpha " << alpha << " k " << k;
         }
         for (int max_k : {1, 4, 16, 64}) {
-          const double a = va::vgroove_brdf(i, o, ndf, alpha, max_k), b = va::vgroove_brdf_reference(i, o, ndf, alpha, max_k);
+          const double a = va::vgroove_brdf(i, o, ndf, alpha, max_k),
+                       b = va::vgroove_brdf_reference(i, o, ndf, alpha, max_k);
           ASSERT_NEAR(a, b, 1e-12 * std::max(a, b)) << va::ndf_name(ndf) << " alpha " << alpha << " max_k " << max_k;
         }
       }
@@ -218,7 +221,8 @@ TEST(Brdf3d, WhiteFurnaceLobeAlbedoIsOne) {
         // Cook-Torrance loses energy: strictly once the grooves are rough enough to mask.
         EXPECT_LE(C.albedo, 1.0 + 1e-12);
         if (alpha >= 0.3 && ti <= 80.0) {  // at 89.9 deg the rough grooves mask < 1e-4
-          EXPECT_LT(C.albedo, 1.0 - 1e-4) << va::ndf_name(ndf) << " alpha " << alpha << " theta_i " << ti << " CT " << C.albedo;
+          EXPECT_LT(C.albedo, 1.0 - 1e-4)
+              << va::ndf_name(ndf) << " alpha " << alpha << " theta_i " << ti << " CT " << C.albedo;
         }
         EXPECT_NEAR(C.albedo, L.by_k[1], 1e-12);
       }
@@ -254,7 +258,8 @@ TEST(Brdf3d, Eq16IntegratesToThePushForwardMassPerK) {
         }
         const va::Lobe3d L = va::vgroove_lobe_3d(ndf, alpha, ti * kDeg, 2, 2, max_k, {16, 2, 32, 256});
         for (int k = 1; k <= max_k; ++k)
-          EXPECT_NEAR(mass[k], L.by_k[k], 5e-4) << va::ndf_name(ndf) << " alpha " << alpha << " ti " << ti << " k " << k;
+          EXPECT_NEAR(mass[k], L.by_k[k], 5e-4)
+              << va::ndf_name(ndf) << " alpha " << alpha << " ti " << ti << " k " << k;
       }
     }
   }

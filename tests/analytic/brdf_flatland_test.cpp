@@ -3,8 +3,8 @@
 // and hard angles.
 #include "vgroove/analytic/brdf_flatland.h"
 
-#include "vgroove/analytic/ndf.h"
 #include "tests/stats.h"
+#include "vgroove/analytic/ndf.h"
 
 #include <gtest/gtest.h>
 
@@ -89,8 +89,8 @@ TEST(FlatlandBrdf, Reciprocity) {
     if (x > 0.0) ++nonzero;
     for (int k = 1; k <= 8; ++k) {
       const double xk = flatland_brdf_k(ndf, alpha, ti, to, k), yk = flatland_brdf_k(ndf, alpha, to, ti, k);
-      const double tol = 1e-12 * std::max(xk, yk) + rounding_scale(ndf, alpha, ti, to, k) +
-                         rounding_scale(ndf, alpha, to, ti, k);
+      const double tol =
+          1e-12 * std::max(xk, yk) + rounding_scale(ndf, alpha, ti, to, k) + rounding_scale(ndf, alpha, to, ti, k);
       EXPECT_LE(std::abs(xk - yk), tol) << ndf_name(ndf) << " alpha=" << alpha << " k=" << k << " ti=" << ti
                                         << " to=" << to;
     }

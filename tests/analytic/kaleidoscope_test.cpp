@@ -45,8 +45,8 @@ const char* name(FacetSide s) { return s == FacetSide::left ? "left" : "right"; 
 // ---------------------------------------------------------------------------------------------
 TEST(BounceCount, HandPoints) {
   // Eq. (4): k = floor((pi + 2 theta_i) / theta_v) + 1, the larger of the two counts.
-  EXPECT_EQ(bounce_count(0.0, deg(90)), 3);   // pi / (pi/2) = 2 exactly: counts 2 and 3
-  EXPECT_EQ(bounce_count(0.0, deg(60)), 4);   // pi / (pi/3) = 3 exactly: counts 3 and 4
+  EXPECT_EQ(bounce_count(0.0, deg(90)), 3);       // pi / (pi/2) = 2 exactly: counts 2 and 3
+  EXPECT_EQ(bounce_count(0.0, deg(60)), 4);       // pi / (pi/3) = 3 exactly: counts 3 and 4
   EXPECT_EQ(bounce_count(deg(30), deg(90)), 3);   // 240 / 90 = 2.67
   EXPECT_EQ(bounce_count(deg(-30), deg(90)), 2);  // 120 / 90 = 1.33
   EXPECT_EQ(bounce_count(deg(10), deg(60)), 4);   // 200 / 60 = 3.33
@@ -255,8 +255,7 @@ TEST_P(EqFourBoundary, FractionsPerBounceCountAreContinuous) {
 
 INSTANTIATE_TEST_SUITE_P(Integers, EqFourBoundary,
                          testing::Values(AnglePair{60, 0}, AnglePair{36, 0}, AnglePair{40, 10}, AnglePair{40, -10},
-                                         AnglePair{90, 0}, AnglePair{50, -15}, AnglePair{72, -18},
-                                         AnglePair{0.1, 0}),
+                                         AnglePair{90, 0}, AnglePair{50, -15}, AnglePair{72, -18}, AnglePair{0.1, 0}),
                          pair_name);
 
 TEST(EqFourBoundary, HandValuesAtSixtyDegrees) {

@@ -76,8 +76,7 @@ TEST_P(NdfNormalization, ProjectedLengthIsOne2D) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Grid, NdfNormalization,
-                         testing::Combine(testing::ValuesIn(kKinds), testing::ValuesIn(kAlphas)),
-                         kind_alpha_name);
+                         testing::Combine(testing::ValuesIn(kKinds), testing::ValuesIn(kAlphas)), kind_alpha_name);
 
 TEST(NdfNormalization, QuadratureIsExactOnAKnownIntegral) {
   // The quadrature on its own, on the singular case the Phong test meets:
@@ -183,10 +182,10 @@ TEST(PhongBeckmann, L1DistanceShrinksAsAlphaSquared) {
   // 2 int_0^2 (u - u^2/2) e^-u du = 2 [(1 - 3 e^-2) - (2 - 10 e^-2)/2] = 4 e^-2.
   const double c = 4.0 * std::exp(-2.0);  // 0.5413
   for (double a : {0.1, 0.05, 0.02}) {
-    const double l1 = 2.0 * M_PI *
-                      tanh_sinh([&](double t) {
-                        return std::abs(D_phong(t, a) - D_beckmann(t, a)) * std::cos(t) * std::sin(t);
-                      }, 0.0, 0.5 * M_PI, 1.0 / 256.0);
+    const double l1 =
+        2.0 * M_PI *
+        tanh_sinh([&](double t) { return std::abs(D_phong(t, a) - D_beckmann(t, a)) * std::cos(t) * std::sin(t); }, 0.0,
+                  0.5 * M_PI, 1.0 / 256.0);
     // The O(a^4) remainder: within 10% of the leading term for a <= 0.1.
     EXPECT_NEAR(l1 / (a * a), c, 0.1 * c) << "alpha=" << a << " L1=" << l1;
   }

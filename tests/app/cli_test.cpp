@@ -6,11 +6,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/wait.h>
 #include <cstdio>
 #include <map>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 #include <tuple>
 #include <utility>
 
@@ -20,8 +20,8 @@ namespace {
 using nlohmann::json;
 using testing_files::CliRun;
 using testing_files::read_text;
-using testing_files::vgroove;
 using testing_files::TempDir;
+using testing_files::vgroove;
 using testing_files::write_text;
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
@@ -201,7 +201,7 @@ Rows rows_of(const CliRun& r) {
   const json j = json::parse(r.out);
   for (const json& row : j.at("bounces"))
     rows[{row.at("first_facet").get<std::string>(), row.at("k").get<int>()}] = {row.at("fraction").get<double>(),
-                                                                               row.at("theta_o_deg").get<double>()};
+                                                                                row.at("theta_o_deg").get<double>()};
   return rows;
 }
 
@@ -217,8 +217,8 @@ TEST_P(TraceVsAnalytic, SameRowsFractionsAndExitAngles) {
   ASSERT_EQ(t.status, 0) << t;
   ASSERT_EQ(a.status, 0) << a;
   const Rows tr = rows_of(t), an = rows_of(a);
-  const auto where = "theta_v=" + std::to_string(v) + " theta_i=" + std::to_string(i) + "\ntrace:\n" + t.out +
-                     "\nanalytic:\n" + a.out;
+  const auto where =
+      "theta_v=" + std::to_string(v) + " theta_i=" + std::to_string(i) + "\ntrace:\n" + t.out + "\nanalytic:\n" + a.out;
   ASSERT_EQ(tr.size(), an.size()) << where;
   // The opening holds at most two boundaries between rows of the model (the apex's crossing, and
   // one transition point): each moves the stratified fractions by at most 1/N in all: 2/N.

@@ -2,8 +2,8 @@
 // through the same entry points, without libFuzzer: each must end in a result or a UserError
 // (loader), or in exit status 0, 1 or 2 (command line), never in a crash or another exception.
 #include "vgroove/app/cli.h"
-#include "vgroove/validation/suite.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/suite.h"
 
 #include <gtest/gtest.h>
 

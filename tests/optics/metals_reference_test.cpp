@@ -120,8 +120,7 @@ TEST(MetalsReference, GoldAndCopperReflectRedMoreThanBlue) {
     const Metal& m = metal(sym);
     const Sample& blue = nearest(m, 450.0);
     const Sample& red = nearest(m, 650.0);
-    EXPECT_GT(fresnel_conductor(1.0, red.eta, red.kappa), fresnel_conductor(1.0, blue.eta, blue.kappa))
-        << m.name;
+    EXPECT_GT(fresnel_conductor(1.0, red.eta, red.kappa), fresnel_conductor(1.0, blue.eta, blue.kappa)) << m.name;
   }
 }
 

@@ -6,19 +6,19 @@
 #include "tests/cli_run.h"
 #include "tests/test_files.h"
 
-#include "vgroove/sim/microsurface.h"
 #include "vgroove/scene/scene.h"
 #include "vgroove/scene/simulate.h"
+#include "vgroove/sim/microsurface.h"
 #include "vgroove/support/user_error.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/wait.h>
 #include <cmath>
 #include <complex>
 #include <cstdio>
 #include <string>
-#include <sys/wait.h>
 
 namespace vgroove::scene {
 namespace {
@@ -110,7 +110,8 @@ TEST(SceneSpec, WrongType) {
   EXPECT_EQ(error_of(j), "s.json: /light/rays = 1.5 must be an integer");
   j = base_scene();
   j["light"]["theta_i_deg"] = 30;
-  EXPECT_EQ(error_of(j), "s.json: /light/theta_i_deg = 30 must be a list of incident angles in degrees, each in (-90, 90)");
+  EXPECT_EQ(error_of(j),
+            "s.json: /light/theta_i_deg = 30 must be a list of incident angles in degrees, each in (-90, 90)");
   j["light"]["theta_i_deg"] = json::parse(R"([0, "45"])");
   EXPECT_EQ(error_of(j), "s.json: /light/theta_i_deg/1 = \"45\" must be a number");
   j = base_scene();
@@ -161,8 +162,9 @@ TEST(SceneSpec, OutOfRange) {
   // A nonsymmetric groove whose facets meet with no opening.
   j = base_scene();
   j["geometry"] = json::parse(R"({"kind": "groove", "theta_l_deg": -90, "theta_r_deg": 90})");
-  EXPECT_EQ(error_of(j), "s.json: /geometry: theta_l_deg = -90, theta_r_deg = 90 give the aperture 180 + theta_l - "
-                         "theta_r = 0 deg, out of range [1e-06, 180]");
+  EXPECT_EQ(error_of(j),
+            "s.json: /geometry: theta_l_deg = -90, theta_r_deg = 90 give the aperture 180 + theta_l - "
+            "theta_r = 0 deg, out of range [1e-06, 180]");
 }
 
 TEST(SceneSpec, NotOneOfTheChoices) {
@@ -171,7 +173,8 @@ TEST(SceneSpec, NotOneOfTheChoices) {
   EXPECT_EQ(error_of(j), "s.json: /light/sampling = \"sobol\" is not one of \"stratified\", \"random\"");
   j = base_scene();
   j["effects"]["fresnel"]["kind"] = "dielectric";
-  EXPECT_EQ(error_of(j), "s.json: /effects/fresnel/kind = \"dielectric\" is not one of \"none\", \"conductor\", \"schlick\"");
+  EXPECT_EQ(error_of(j),
+            "s.json: /effects/fresnel/kind = \"dielectric\" is not one of \"none\", \"conductor\", \"schlick\"");
   j = base_scene();
   j["geometry"]["kind"] = "sphere";
   EXPECT_EQ(error_of(j), "s.json: /geometry/kind = \"sphere\" is not one of \"groove\", \"microsurface\"");
@@ -189,8 +192,9 @@ TEST(SceneSpec, MissingRequiredKey) {
   EXPECT_EQ(error_of(j), "s.json: /geometry/theta_l_deg is missing (required)");
   j = base_scene();
   j["effects"]["fresnel"].erase("channels");
-  EXPECT_EQ(error_of(j),
-            "s.json: /effects/fresnel/channels is missing (required: a conductor needs \"channels\" or \"wavelengths\")");
+  EXPECT_EQ(
+      error_of(j),
+      "s.json: /effects/fresnel/channels is missing (required: a conductor needs \"channels\" or \"wavelengths\")");
   j = base_scene();
   j["effects"].erase("fresnel");
   EXPECT_EQ(error_of(j), "s.json: /effects/fresnel is missing (required)");
@@ -204,31 +208,36 @@ TEST(SceneSpec, EmptyList) {
             "(-90, 90))");
   j = base_scene();
   j["effects"]["fresnel"]["channels"] = json::array();
-  EXPECT_EQ(error_of(j),
-            "s.json: /effects/fresnel/channels is an empty list (it needs at least one of {\"name\", \"eta\", \"kappa\"})");
+  EXPECT_EQ(
+      error_of(j),
+      "s.json: /effects/fresnel/channels is an empty list (it needs at least one of {\"name\", \"eta\", \"kappa\"})");
 }
 
 TEST(SceneSpec, InconsistentCombinations) {
   json j = base_scene();
   j["geometry"]["theta_l_deg"] = -30;
-  EXPECT_EQ(error_of(j), "s.json: /geometry/theta_v_deg cannot be combined with theta_l_deg/theta_r_deg (the aperture "
-                         "follows from them)");
+  EXPECT_EQ(error_of(j),
+            "s.json: /geometry/theta_v_deg cannot be combined with theta_l_deg/theta_r_deg (the aperture "
+            "follows from them)");
   j = base_scene();
   j["effects"]["fresnel"]["wavelengths"] = json::parse(R"([{"lambda_nm": 500, "eta": 1, "kappa": 1}])");
-  EXPECT_EQ(error_of(j), "s.json: /effects/fresnel/wavelengths cannot be combined with channels (give one list: named "
-                         "channels or wavelengths)");
+  EXPECT_EQ(error_of(j),
+            "s.json: /effects/fresnel/wavelengths cannot be combined with channels (give one list: named "
+            "channels or wavelengths)");
   j = base_scene();
   j["effects"]["fresnel"]["channels"].push_back({{"name", "r"}, {"eta", 1.0}, {"kappa", 1.0}});
   EXPECT_EQ(error_of(j), "s.json: /effects/fresnel/channels/1 repeats the channel \"r\" (names must be unique)");
   j = base_scene();
   j["effects"]["fresnel"] = {{"kind", "none"}};
   j["effects"]["record"] = {{"energy_per_k", true}};
-  EXPECT_EQ(error_of(j), "s.json: /effects/record/energy_per_k = true needs a Fresnel effect (with "
-                         "/effects/fresnel/kind = \"none\" every path keeps all its energy: the energy per k is the "
-                         "count per k)");
+  EXPECT_EQ(error_of(j),
+            "s.json: /effects/record/energy_per_k = true needs a Fresnel effect (with "
+            "/effects/fresnel/kind = \"none\" every path keeps all its energy: the energy per k is the "
+            "count per k)");
   j = base_scene();
   json many = json::array();
-  for (int c = 0; c <= kMaxChannels; ++c) many.push_back({{"name", "c" + std::to_string(c)}, {"eta", 1.0}, {"kappa", 1.0}});
+  for (int c = 0; c <= kMaxChannels; ++c)
+    many.push_back({{"name", "c" + std::to_string(c)}, {"eta", 1.0}, {"kappa", 1.0}});
   j["effects"]["fresnel"]["channels"] = many;
   EXPECT_EQ(error_of(j), "s.json: /effects/fresnel/channels has 65 items, more than the 64 allowed");
 }
@@ -241,7 +250,8 @@ Scene groove_scene(const std::string& geometry, const std::string& fresnel, long
   j["geometry"] = json::parse(geometry);
   j["effects"]["fresnel"] = json::parse(fresnel);
   j["effects"]["record"] = {{"energy_per_k", true}, {"theta_o_histograms", {{"bins", 36}, {"max_k", 4}}}};
-  j["light"] = {{"theta_i_deg", {-75, -40, -10, 0, 5, 30, 55, 80}}, {"rays", rays}, {"sampling", sampling}, {"seed", 7}};
+  j["light"] = {
+      {"theta_i_deg", {-75, -40, -10, 0, 5, 30, 55, 80}}, {"rays", rays}, {"sampling", sampling}, {"seed", 7}};
   return parse_scene(j, "test");
 }
 
@@ -390,7 +400,8 @@ TEST(Simulate, RightAngledGrooveAtNormalIncidence) {
 // (the energy sums included) but for the run's wall time and thread count.
 TEST(Simulate, BitIdenticalForAnyThreadCount) {
   json j = base_scene();
-  j["geometry"] = json::parse(R"({"kind": "microsurface", "ndf": "beckmann", "alpha": 0.7, "grooves": 500, "seed": 3})");
+  j["geometry"] =
+      json::parse(R"({"kind": "microsurface", "ndf": "beckmann", "alpha": 0.7, "grooves": 500, "seed": 3})");
   j["light"] = {{"theta_i_deg", {-50, 0, 20, 70}}, {"rays", 2 * sim::kRaysPerChunk + 1000}, {"sampling", "random"}};
   j["effects"]["record"] = {{"energy_per_k", true}, {"theta_o_histograms", {{"bins", 30}}}};
   const Scene s = parse_scene(j, "test");
@@ -405,7 +416,8 @@ TEST(Simulate, MicrosurfaceCountsMatchTraceMicrosurface) {
   json j = base_scene();
   j["geometry"] = json::parse(R"({"kind": "microsurface", "ndf": "ggx", "alpha": 0.9, "grooves": 300, "seed": 5})");
   j["light"] = {{"theta_i_deg", {35}}, {"rays", 20000}, {"sampling", "random"}, {"seed", 11}};
-  j["effects"] = json::parse(R"({"fresnel": {"kind": "none"}, "record": {"theta_o_histograms": {"bins": 45, "max_k": 16}}})");
+  j["effects"] =
+      json::parse(R"({"fresnel": {"kind": "none"}, "record": {"theta_o_histograms": {"bins": 45, "max_k": 16}}})");
   const Scene s = parse_scene(j, "test");
   const SimulationResult r = simulate(s, 2);
   sim::MicrosurfaceOptions mo;
@@ -455,8 +467,9 @@ TEST(Simulate, DeepPathsShareTheLastRow) {
 TEST(SceneSpec, HistogramSizeIsBounded) {
   json j = base_scene();
   j["effects"]["record"] = {{"theta_o_histograms", {{"bins", 100000}, {"max_k", 16}}}};
-  EXPECT_EQ(error_of(j), "s.json: /effects/record/theta_o_histograms: bins x (max_k + 2) = 1800000 histogram cells, "
-                         "out of range [1, 1000000]");
+  EXPECT_EQ(error_of(j),
+            "s.json: /effects/record/theta_o_histograms: bins x (max_k + 2) = 1800000 histogram cells, "
+            "out of range [1, 1000000]");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -493,7 +506,8 @@ TEST(SimulateCli, WritesTheResultAndRefusesToOverwrite) {
   const CliRun r = vgroove("simulate '" + scene + "' --out '" + out + "' --threads 2");
   ASSERT_EQ(r.status, 0) << r.err;
   const json res = json::parse(read_text(out));
-  for (const char* key : {"tool", "version", "git", "scene", "scene_file", "seed", "threads", "wall_s", "rays", "bounces"})
+  for (const char* key :
+       {"tool", "version", "git", "scene", "scene_file", "seed", "threads", "wall_s", "rays", "bounces"})
     EXPECT_TRUE(res.contains(key)) << key;
   EXPECT_EQ(res["rays"], 400);
   EXPECT_EQ(res["results"].size(), 2u);
@@ -520,7 +534,8 @@ namespace {
 // data/reference/metals.json (Johnson & Christy 1972; Rakic 1995), whose R_normal column was
 // computed independently of the code (6 significant digits).
 TEST(SceneMetals, PublishedConstantsThroughANormalIncidenceGroove) {
-  const json ref = json::parse(testing_files::read_text(std::string(VGROOVE_SOURCE_DIR) + "/data/reference/metals.json"));
+  const json ref =
+      json::parse(testing_files::read_text(std::string(VGROOVE_SOURCE_DIR) + "/data/reference/metals.json"));
   json scene = {{"scene", "metals"},
                 {"geometry", {{"kind", "groove"}, {"theta_v_deg", 60}}},
                 {"light", {{"theta_i_deg", {60}}, {"rays", 1000}, {"sampling", "stratified"}, {"seed", 1}}},

@@ -40,7 +40,8 @@ struct Recorder {
 std::vector<double> positions(const Groove& g, const Vec2& dir, long n) {
   const double lo = g.rim_x(Side::left), hi = g.rim_x(Side::right), w = hi - lo;
   std::vector<double> x;
-  for (long j = 0; j < n; ++j) x.push_back(lo - 0.05 * w + 1.1 * w * (static_cast<double>(j) + 0.5) / static_cast<double>(n));
+  for (long j = 0; j < n; ++j)
+    x.push_back(lo - 0.05 * w + 1.1 * w * (static_cast<double>(j) + 0.5) / static_cast<double>(n));
   const double apex_x = g.rim_height * dir.x() / dir.y();  // (x, h) + t dir passes through (0, 0)
   for (double v : {lo, hi, apex_x, 0.0}) {
     x.push_back(v);
@@ -123,7 +124,8 @@ TEST(BeamTracer, SymmetricGroovesMatchTraceBitForBit) {
   long compared = 0;
   for (double theta_v : {0.05, 0.5, 1.0, 5.0, 30.0, 60.0, 90.0, 120.0, 150.0, 179.0, 180.0}) {
     const Groove g = make_symmetric_groove(deg(theta_v));
-    for (double ti : kThetaIDeg) expect_identical(g, deg(ti), TraceOptions{}.max_bounces, theta_v < 1.0 ? 101 : 997, compared);
+    for (double ti : kThetaIDeg)
+      expect_identical(g, deg(ti), TraceOptions{}.max_bounces, theta_v < 1.0 ? 101 : 997, compared);
     if (HasFatalFailure()) return;
   }
   EXPECT_GT(compared, 100000);

@@ -95,7 +95,8 @@ TEST_P(Sampling3d, GroovesFollowThePdf) {
   }
   const ChiSquare c = chi_square_gof(edges, expected, observed);
   EXPECT_GE(c.p, level) << ndf_name(kind) << " alpha=" << alpha << ": chi2=" << c.stat << " dof=" << c.dof
-                        << " p=" << c.p << "\n" << c.table;
+                        << " p=" << c.p << "\n"
+                        << c.table;
 
   constexpr int phi_bins = 36;
   std::vector<double> phi_edges(phi_bins + 1), phi_expected(phi_bins, static_cast<double>(n) / phi_bins);
@@ -171,15 +172,14 @@ TEST(Microsurface3dLift, ReducesToTheTwoDimensionalTracer) {
         const Trace3dResult r3 = trace_groove3d(g, m.frames[0], i, f);
         const double x = g.rim_x(Side::left) + f * (g.rim_x(Side::right) - g.rim_x(Side::left));
         const TraceResult r2 = trace(g, beam_ray(g, dir, x));
-        const std::string where = "theta_m=" + std::to_string(theta_m_deg) + " theta_i=" +
-                                  std::to_string(theta_i_deg) + " f=" + std::to_string(f);
+        const std::string where = "theta_m=" + std::to_string(theta_m_deg) + " theta_i=" + std::to_string(theta_i_deg) +
+                                  " f=" + std::to_string(f);
         ASSERT_EQ(r3.trace.how, r2.how) << where;
         if (r2.how != Termination::escaped) continue;
         ++compared;
         EXPECT_EQ(r3.trace.bounces, r2.bounces) << where;
         EXPECT_EQ(r3.o.y(), 0.0) << where;
-        EXPECT_NEAR(std::atan2(-r3.o.x(), r3.o.z()), angle_from_normal(r2.exit_dir), 1e-15 * (8 + r2.bounces))
-            << where;
+        EXPECT_NEAR(std::atan2(-r3.o.x(), r3.o.z()), angle_from_normal(r2.exit_dir), 1e-15 * (8 + r2.bounces)) << where;
       }
     }
   }
@@ -235,8 +235,8 @@ void expect_accounted(const Microsurface3dTally& t, std::int64_t rays, const std
 // hits have probability zero; the bounce limit of 1e5 is far above the ~pi/theta_v bound of these
 // grooves except for apertures under ~3e-5 rad, probability ~1e-9 per groove) are counted: none.
 TEST(Microsurface3d, AlbedoIsOneAndEveryRayIsAccounted) {
-  for (const auto& [kind, alpha] : {std::pair{NdfKind::ggx, 1.0}, std::pair{NdfKind::beckmann, 0.5},
-                                    std::pair{NdfKind::phong, 0.5}}) {
+  for (const auto& [kind, alpha] :
+       {std::pair{NdfKind::ggx, 1.0}, std::pair{NdfKind::beckmann, 0.5}, std::pair{NdfKind::phong, 0.5}}) {
     const Microsurface3d m = make_microsurface3d({kind, alpha, 10000, 11});
     for (double theta_i_deg : {0.0, 60.0}) {
       Microsurface3dTraceOptions opt;
@@ -244,8 +244,8 @@ TEST(Microsurface3d, AlbedoIsOneAndEveryRayIsAccounted) {
       opt.rays = 40000;
       opt.seed = 3;
       const Microsurface3dTally t = trace_microsurface3d(m, opt);
-      const std::string where = std::string(ndf_name(kind)) + " alpha=" + std::to_string(alpha) +
-                                " theta_i=" + std::to_string(theta_i_deg);
+      const std::string where =
+          std::string(ndf_name(kind)) + " alpha=" + std::to_string(alpha) + " theta_i=" + std::to_string(theta_i_deg);
       expect_accounted(t, opt.rays, where);
       EXPECT_EQ(t.lost(), 0) << where << ": blocked " << t.blocked << " vertex " << t.vertex_hits << " limit "
                              << t.bounce_limit << " not upward " << t.not_upward;
@@ -313,8 +313,7 @@ TEST(Microsurface3d, NormalIncidenceLobeIsSymmetric) {
     return pv;
   };
   pair_test([&](int p) { return p + np / 2; }, 0, np / 2, 1.0, "phi -> phi + pi");
-  pair_test([&](int p) { return np - p; }, 1, np / 2, 1.0 + static_cast<double>(opt.rays) / grooves,
-            "phi -> -phi");
+  pair_test([&](int p) { return np - p; }, 1, np / 2, 1.0 + static_cast<double>(opt.rays) / grooves, "phi -> -phi");
 }
 
 // Chunks traced in any order and merged give bit-identical tallies (integer counts).

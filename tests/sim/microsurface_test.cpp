@@ -46,11 +46,18 @@ ChiSquare chi_square_two_sample(const std::vector<std::int64_t>& a, const std::v
   for (std::size_t j = 0; j < a.size(); ++j) {
     acc.first += static_cast<double>(a[j]);
     acc.second += static_cast<double>(b[j]);
-    if (acc.first + acc.second >= 10.0) { cells.push_back(acc); acc = {0.0, 0.0}; }
+    if (acc.first + acc.second >= 10.0) {
+      cells.push_back(acc);
+      acc = {0.0, 0.0};
+    }
   }
   if (acc.first + acc.second > 0.0) {
-    if (cells.empty()) cells.push_back(acc);
-    else { cells.back().first += acc.first; cells.back().second += acc.second; }
+    if (cells.empty())
+      cells.push_back(acc);
+    else {
+      cells.back().first += acc.first;
+      cells.back().second += acc.second;
+    }
   }
   ChiSquare r;
   std::ostringstream os;
@@ -197,7 +204,8 @@ TEST_P(SlopeSampling, SamplesFollowThePdf) {
   }
   const ChiSquare c = chi_square_gof(edges, expected, observed);
   EXPECT_GE(c.p, level) << ndf_name(kind) << " alpha=" << alpha << ": chi2=" << c.stat << " dof=" << c.dof
-                        << " p=" << c.p << "\n" << c.table;
+                        << " p=" << c.p << "\n"
+                        << c.table;
 }
 
 INSTANTIATE_TEST_SUITE_P(Grid, SlopeSampling, testing::Combine(testing::ValuesIn(kKinds), testing::ValuesIn(kAlphas)),
@@ -249,8 +257,8 @@ TEST(Microsurface, GroovesCoverTheLengthAsTheNdfSays) {
     for (double x : {0.2, 0.7, 1.5, 3.0}) {
       const double t = std::atan(0.5 * x);
       const double p = theta_m_cdf(kind, 0.5, t) - theta_m_cdf(kind, 0.5, -t);
-      const double frac = static_cast<double>(std::count_if(m.theta_m.begin(), m.theta_m.end(),
-                                                             [&](double v) { return v < t; })) / g;
+      const double frac =
+          static_cast<double>(std::count_if(m.theta_m.begin(), m.theta_m.end(), [&](double v) { return v < t; })) / g;
       EXPECT_NEAR(frac, p, 5.0 * std::sqrt(p * (1.0 - p) / g)) << ndf_name(kind) << " t=" << t;
     }
     for (std::size_t j = 0; j < m.grooves.size(); ++j) {
@@ -306,7 +314,8 @@ TEST(Microsurface, BounceLimitIsCountedNotDropped) {
   EXPECT_GT(deep, 0);
   EXPECT_EQ(cut.bounce_limit, deep);
   EXPECT_NEAR(cut.albedo(), 1.0 - static_cast<double>(deep) / o.rays, 1e-15);
-  for (int k = 0; k <= 2; ++k) EXPECT_EQ(cut.by_k[static_cast<std::size_t>(k)], full.by_k[static_cast<std::size_t>(k)]) << "k=" << k;
+  for (int k = 0; k <= 2; ++k)
+    EXPECT_EQ(cut.by_k[static_cast<std::size_t>(k)], full.by_k[static_cast<std::size_t>(k)]) << "k=" << k;
   EXPECT_EQ(cut.max_k_seen, 2);
 }
 
@@ -330,10 +339,12 @@ TEST(Microsurface, MirrorSymmetry) {
       std::vector<std::int64_t> b_rev(b.theta_o.rbegin(), b.theta_o.rend());
       const ChiSquare h = chi_square_two_sample(a.theta_o, b_rev);
       EXPECT_GE(h.p, level) << where(kind, 0.5, deg(ti)) << ": theta_o chi2=" << h.stat << " dof=" << h.dof
-                            << " p=" << h.p << "\n" << h.table;
+                            << " p=" << h.p << "\n"
+                            << h.table;
       const ChiSquare k = chi_square_two_sample(a.by_k, b.by_k);
-      EXPECT_GE(k.p, level) << where(kind, 0.5, deg(ti)) << ": k chi2=" << k.stat << " dof=" << k.dof
-                            << " p=" << k.p << "\n" << k.table;
+      EXPECT_GE(k.p, level) << where(kind, 0.5, deg(ti)) << ": k chi2=" << k.stat << " dof=" << k.dof << " p=" << k.p
+                            << "\n"
+                            << k.table;
       // The test has power: the unreversed histogram differs (the lobe sits at -theta_i).
       EXPECT_LT(chi_square_two_sample(a.theta_o, b.theta_o).p, 1e-10) << where(kind, 0.5, deg(ti));
     }
@@ -358,9 +369,9 @@ TEST(Microsurface, SmoothSurfaceReflectsOnceAroundTheMirrorDirection) {
       const std::string w = where(kind, 0.01, o.theta_i);
       expect_accounted(t, rays, w);
       const double t_star = (0.5 * M_PI - o.theta_i) / 3.0;
-      const double q = static_cast<double>(std::count_if(m.theta_m.begin(), m.theta_m.end(),
-                                                         [&](double v) { return v > t_star; })) /
-                       static_cast<double>(m.theta_m.size());
+      const double q =
+          static_cast<double>(std::count_if(m.theta_m.begin(), m.theta_m.end(), [&](double v) { return v > t_star; })) /
+          static_cast<double>(m.theta_m.size());
       const double single = static_cast<double>(t.by_k[1]) / rays;
       EXPECT_GE(single, 1.0 - q - 5.0 * std::sqrt(q * (1.0 - q) / rays)) << w << " q=" << q;
       EXPECT_GT(single, 0.98) << w;

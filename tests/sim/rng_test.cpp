@@ -17,9 +17,7 @@ std::vector<std::uint64_t> draws(Rng rng, int n) {
   return v;
 }
 
-TEST(Rng, SameKeyGivesTheSameStream) {
-  EXPECT_EQ(draws(Rng(2018, 5, 1), 1000), draws(Rng(2018, 5, 1), 1000));
-}
+TEST(Rng, SameKeyGivesTheSameStream) { EXPECT_EQ(draws(Rng(2018, 5, 1), 1000), draws(Rng(2018, 5, 1), 1000)); }
 
 TEST(Rng, EachKeyComponentChangesTheStream) {
   const auto base = draws(Rng(2018, 5, 1), 64);

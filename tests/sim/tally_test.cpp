@@ -1,6 +1,6 @@
 // Tests of sim/tally.h: buckets, bins, and merging (the parallel runs depend on merge being exact).
-#include "vgroove/sim/beam.h"
 #include "vgroove/sim/tally.h"
+#include "vgroove/sim/beam.h"
 
 #include <gtest/gtest.h>
 
@@ -88,8 +88,8 @@ TEST(Tally, MergeOfPartsEqualsTheTallyOfAllRays) {
   for (const TraceResult& r : rays) all.add(r);
   ASSERT_GT(all.blocked, 0);
   ASSERT_GT(all.escaped, 0);
-  for (std::size_t split : {std::size_t{0}, std::size_t{1}, std::size_t{17}, std::size_t{250}, rays.size() - 1,
-                            rays.size()}) {
+  for (std::size_t split :
+       {std::size_t{0}, std::size_t{1}, std::size_t{17}, std::size_t{250}, rays.size() - 1, rays.size()}) {
     Tally a, b;
     for (std::size_t j = 0; j < rays.size(); ++j) (j < split ? a : b).add(rays[j]);
     Tally merged = a;

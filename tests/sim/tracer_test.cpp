@@ -3,9 +3,9 @@
 //
 // Conventions (sim/geometry.h): angles from the normal, counter-clockwise positive; theta_i is
 // the direction towards the light, rays travel along -i; a flat mirror gives theta_o = -theta_i.
+#include "vgroove/sim/tracer.h"
 #include "vgroove/sim/beam.h"
 #include "vgroove/sim/tally.h"
-#include "vgroove/sim/tracer.h"
 
 #include <gtest/gtest.h>
 
@@ -135,8 +135,8 @@ TEST(TracerHandCases, RightAngleGrooveAt30DegreesBouncesOnceForTan30OfTheBeam) {
   EXPECT_NEAR(static_cast<double>(t.count(Side::left, 2) + t.count(Side::right, 2)) / n, 1.0 - std::tan(deg(30)),
               1.0 / n);
   // The left facet receives sin(45 - 30 deg) of the 2 sin45 cos30 wide beam (its projected width).
-  EXPECT_NEAR(static_cast<double>(t.count(Side::left, 2)) / n, std::sin(deg(15)) / (2 * std::sin(deg(45)) * std::cos(theta_i)),
-              1.0 / n);
+  EXPECT_NEAR(static_cast<double>(t.count(Side::left, 2)) / n,
+              std::sin(deg(15)) / (2 * std::sin(deg(45)) * std::cos(theta_i)), 1.0 / n);
   EXPECT_NEAR(t.bins[1][1].theta_o(), deg(60), 1e-12);
   EXPECT_NEAR(t.bins[0][2].theta_o(), deg(30), 1e-12);
   EXPECT_NEAR(t.bins[1][2].theta_o(), deg(30), 1e-12);
@@ -243,11 +243,10 @@ TEST_P(TracerGrid, EscapedRaysStayWithinTheBounceBoundAndLeaveUpwards) {
   EXPECT_EQ(t.bounce_limit, 0) << where;
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Grid, TracerGrid,
-    testing::Combine(testing::Values(0.1, 0.5, 1.0, 5.0, 37.0, 60.0, 90.0, 179.0, 180.0),
-                     testing::Values(-89.9, -60.0, -18.5, 0.0, 1.0, 30.0, 75.0, 89.9)),
-    pair_name);
+INSTANTIATE_TEST_SUITE_P(Grid, TracerGrid,
+                         testing::Combine(testing::Values(0.1, 0.5, 1.0, 5.0, 37.0, 60.0, 90.0, 179.0, 180.0),
+                                          testing::Values(-89.9, -60.0, -18.5, 0.0, 1.0, 30.0, 75.0, 89.9)),
+                         pair_name);
 
 // ---------------------------------------------------------------------------------------------
 // Hard cases.

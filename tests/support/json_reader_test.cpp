@@ -68,7 +68,8 @@ TEST(JsonObject, OpenAndClosedBoundsAreRespected) {
   JsonObject o(j, "s.json", "");
   EXPECT_CONTAINS(user_error_of([&] { o.number("lo", 0.0, false, 180.0, true); }), "(0, 180]");
   EXPECT_EQ(o.number("hi", 0.0, false, 180.0, true), 180.0);
-  EXPECT_CONTAINS(user_error_of([&] { o.number("neg", -90.0, false, 90.0, false); }), "/neg = -90 is out of range (-90, 90)");
+  EXPECT_CONTAINS(user_error_of([&] { o.number("neg", -90.0, false, 90.0, false); }),
+                  "/neg = -90 is out of range (-90, 90)");
   EXPECT_EQ(o.number("lo", 0.0, true, 1.0, true), 0.0);
 }
 
@@ -84,14 +85,17 @@ TEST(JsonObject, WrongTypesAreNamed) {
 TEST(JsonObject, IntegerRangeIncludesHugeUnsignedValues) {
   const json j = json::parse(R"({"big": 18446744073709551615, "neg": -1})");
   JsonObject o(j, "s.json", "");
-  EXPECT_CONTAINS(user_error_of([&] { o.integer("big", 1, 1000); }), "/big = 18446744073709551615 is out of range [1, 1000]");
+  EXPECT_CONTAINS(user_error_of([&] { o.integer("big", 1, 1000); }),
+                  "/big = 18446744073709551615 is out of range [1, 1000]");
   EXPECT_CONTAINS(user_error_of([&] { o.integer("neg", 1, 1000); }), "/neg = -1 is out of range [1, 1000]");
 }
 
 TEST(JsonObject, OneOfListsTheAllowedValues) {
   const json j = json::parse(R"({"sampling": "stratifed"})");
   JsonObject o(j, "s.json", "");
-  EXPECT_CONTAINS(user_error_of([&] { o.one_of("sampling", {"stratified", "random"}); }),
+  EXPECT_CONTAINS(user_error_of([&] {
+                    o.one_of("sampling", {"stratified", "random"});
+                  }),
                   "s.json: /sampling = \"stratifed\" is not one of \"stratified\", \"random\"");
 }
 

@@ -53,8 +53,9 @@ void PrintTo(const Case& c, std::ostream* os) {
 
 std::string case_name(const testing::TestParamInfo<Case>& info) {
   const Case& c = info.param;
-  return std::string(sim::ndf_name(c.sim_ndf)) + "_alpha" + std::to_string(static_cast<int>(std::round(c.alpha * 100))) +
-         "_theta" + std::to_string(static_cast<int>(c.theta_i_deg));
+  return std::string(sim::ndf_name(c.sim_ndf)) + "_alpha" +
+         std::to_string(static_cast<int>(std::round(c.alpha * 100))) + "_theta" +
+         std::to_string(static_cast<int>(c.theta_i_deg));
 }
 
 const Case kCases[] = {
@@ -90,7 +91,8 @@ TEST_P(Brdf3dSim, HistogramMatchesTheTracer) {
   opt.max_k = kMaxK;
   const sim::Microsurface3dTally t = sim::trace_microsurface3d(surface, opt);
   ASSERT_EQ(t.lost(), 0) << "vertex " << t.vertex_hits << " limit " << t.bounce_limit;
-  const analytic::Lobe3d lobe = analytic::vgroove_lobe_3d(c.ndf, c.alpha, theta_i, kThetaBins, kPhiBins, kMaxK, kLobeOptions);
+  const analytic::Lobe3d lobe =
+      analytic::vgroove_lobe_3d(c.ndf, c.alpha, theta_i, kThetaBins, kPhiBins, kMaxK, kLobeOptions);
   ASSERT_EQ(lobe.hist_by_k.size(), t.hist_by_k.size());
   const double n = static_cast<double>(t.rays);
   const double inflation = 1.0 + (n - 1.0) / kGrooves;
@@ -98,7 +100,12 @@ TEST_P(Brdf3dSim, HistogramMatchesTheTracer) {
   // Full histogram, rows k = 1..max_k + 1 (row 0 is empty on both sides).
   std::vector<double> expected, edges{0.0};
   std::vector<std::int64_t> observed;
-  struct Worst { double z; int row, b, p; double e; std::int64_t o; };
+  struct Worst {
+    double z;
+    int row, b, p;
+    double e;
+    std::int64_t o;
+  };
   std::vector<Worst> worst;
   for (int row = 1; row <= kMaxK + 1; ++row)
     for (int b = 0; b < kThetaBins; ++b)
@@ -108,8 +115,9 @@ TEST_P(Brdf3dSim, HistogramMatchesTheTracer) {
         expected.push_back(e);
         observed.push_back(t.hist_by_k[idx]);
         edges.push_back(static_cast<double>(edges.size()));
-        if (e > 0.0) worst.push_back({(static_cast<double>(t.hist_by_k[idx]) - e) / std::sqrt(e * inflation), row, b, p, e,
-                                      t.hist_by_k[idx]});
+        if (e > 0.0)
+          worst.push_back(
+              {(static_cast<double>(t.hist_by_k[idx]) - e) / std::sqrt(e * inflation), row, b, p, e, t.hist_by_k[idx]});
       }
   ChiSquare full = chi_square_gof(edges, expected, observed);
   full.stat /= inflation;
@@ -135,7 +143,8 @@ TEST_P(Brdf3dSim, HistogramMatchesTheTracer) {
         << lobe.hist[static_cast<std::size_t>(b) * kPhiBins + kPhiBins / 2] << "\n";
 
   EXPECT_GE(full.p, kLevel) << "full histogram: chi2/c=" << full.stat << " dof=" << full.dof << " c=" << inflation
-                            << "\n" << msg.str();
+                            << "\n"
+                            << msg.str();
 
   // The k marginal (rows 1..max_k + 1): the same statistic on 7 cells.
   std::vector<double> ek, edges_k{0.0};

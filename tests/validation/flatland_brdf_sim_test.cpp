@@ -87,9 +87,12 @@ Fit compare(const analytic::FlatlandLobe& lobe, const sim::MicrosurfaceTally& t)
     }
     // A leftover joins the row's last cell; a row with no cell of 5 expected is one cell if it
     // expects anything, and must then be empty-ish (its count enters with its expectation).
-    if (have_last) flush(last_e + e, last_o + o, r, kBins - 1);
-    else if (e > 0.0) flush(e, o, r, kBins - 1);
-    else EXPECT_EQ(o, 0) << "row " << r << " expects nothing";
+    if (have_last)
+      flush(last_e + e, last_o + o, r, kBins - 1);
+    else if (e > 0.0)
+      flush(e, o, r, kBins - 1);
+    else
+      EXPECT_EQ(o, 0) << "row " << r << " expects nothing";
   }
   f.dof = cells - 1;
   f.p = test_stats::gamma_q(0.5 * f.dof, 0.5 * f.stat);
@@ -135,21 +138,21 @@ TEST_P(FlatlandBrdfSim, LobePerKMatchesTheTracer) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Cases, FlatlandBrdfSim,
-    ::testing::Values(Case{sim::NdfKind::ggx, analytic::NdfKind::ggx, 0.3, 0.0},
-                      Case{sim::NdfKind::ggx, analytic::NdfKind::ggx, 0.7, 40.0},
-                      Case{sim::NdfKind::ggx, analytic::NdfKind::ggx, 1.0, -70.0},
-                      Case{sim::NdfKind::beckmann, analytic::NdfKind::beckmann, 0.5, 20.0},
-                      Case{sim::NdfKind::beckmann, analytic::NdfKind::beckmann, 1.0, 60.0},
-                      Case{sim::NdfKind::phong, analytic::NdfKind::phong, 0.5, 0.0},
-                      Case{sim::NdfKind::phong, analytic::NdfKind::phong, 0.8, -50.0}),
-    [](const ::testing::TestParamInfo<Case>& p) {
-      std::ostringstream os;
-      os << analytic::ndf_name(p.param.ndf) << "_a" << static_cast<int>(p.param.alpha * 100) << "_ti"
-         << (p.param.theta_i_deg < 0 ? "m" : "") << static_cast<int>(std::abs(p.param.theta_i_deg));
-      return os.str();
-    });
+INSTANTIATE_TEST_SUITE_P(Cases, FlatlandBrdfSim,
+                         ::testing::Values(Case{sim::NdfKind::ggx, analytic::NdfKind::ggx, 0.3, 0.0},
+                                           Case{sim::NdfKind::ggx, analytic::NdfKind::ggx, 0.7, 40.0},
+                                           Case{sim::NdfKind::ggx, analytic::NdfKind::ggx, 1.0, -70.0},
+                                           Case{sim::NdfKind::beckmann, analytic::NdfKind::beckmann, 0.5, 20.0},
+                                           Case{sim::NdfKind::beckmann, analytic::NdfKind::beckmann, 1.0, 60.0},
+                                           Case{sim::NdfKind::phong, analytic::NdfKind::phong, 0.5, 0.0},
+                                           Case{sim::NdfKind::phong, analytic::NdfKind::phong, 0.8, -50.0}),
+                         [](const ::testing::TestParamInfo<Case>& p) {
+                           std::ostringstream os;
+                           os << analytic::ndf_name(p.param.ndf) << "_a" << static_cast<int>(p.param.alpha * 100)
+                              << "_ti" << (p.param.theta_i_deg < 0 ? "m" : "")
+                              << static_cast<int>(std::abs(p.param.theta_i_deg));
+                           return os.str();
+                         });
 
 }  // namespace
 }  // namespace vgroove

@@ -92,8 +92,8 @@ Outcome run(const sim::Groove& g, double theta_i, const Reflectance& F, const Mo
       o.max_excess = rel / tol;
       std::ostringstream os;
       os.precision(17);
-      os << "ray " << j << ": first=" << sim::side_name(r.first) << " n=" << r.bounces
-         << " traced=" << obs.throughput << " model=" << expected << " rel=" << rel << " tol=" << tol;
+      os << "ray " << j << ": first=" << sim::side_name(r.first) << " n=" << r.bounces << " traced=" << obs.throughput
+         << " model=" << expected << " rel=" << rel << " tol=" << tol;
       o.worst = os.str();
     }
   }
@@ -132,9 +132,9 @@ struct Named {
   bool corner = false;  // a critical angle: the propagated tolerance, not 1e-12
 };
 const std::vector<Named> kReflectances = {
-    {"conductor_0.2+3i", Named::conductor, 0.2, 3.0},    // chosen values, a bright metal-like mirror
-    {"conductor_1.5+0.5i", Named::conductor, 1.5, 0.5},  // a dark absorber: F ~ 0.1 near normal
-    {"dielectric_1.5", Named::dielectric, 1.5, 0.0},     // glass-like, F = 0.04 at normal incidence
+    {"conductor_0.2+3i", Named::conductor, 0.2, 3.0},             // chosen values, a bright metal-like mirror
+    {"conductor_1.5+0.5i", Named::conductor, 1.5, 0.5},           // a dark absorber: F ~ 0.1 near normal
+    {"dielectric_1.5", Named::dielectric, 1.5, 0.0},              // glass-like, F = 0.04 at normal incidence
     {"dielectric_1/1.5", Named::dielectric, 1 / 1.5, 0.0, true},  // from inside: total reflection past 41.8 deg
     {"schlick_0.04", Named::schlick, 0.04, 0.0},
 };
@@ -146,9 +146,15 @@ void PrintTo(const Named& n, std::ostream* os) { *os << n.name; }
 template <class Fn>
 void with_reflectance(const Named& n, Fn&& f) {
   switch (n.kind) {
-    case Named::conductor: f(sim::ConductorReflectance{n.a, n.b}); break;
-    case Named::dielectric: f(sim::DielectricReflectance{n.a}); break;
-    case Named::schlick: f(sim::SchlickReflectance{n.a}); break;
+    case Named::conductor:
+      f(sim::ConductorReflectance{n.a, n.b});
+      break;
+    case Named::dielectric:
+      f(sim::DielectricReflectance{n.a});
+      break;
+    case Named::schlick:
+      f(sim::SchlickReflectance{n.a});
+      break;
   }
 }
 
@@ -195,8 +201,9 @@ TEST(FresnelGroove, SixtyDegreeGrooveAtNormalIncidenceHitsTheSecondFacetHeadOn) 
   const sim::ConductorReflectance F{0.2, 3.0};
   const double E = F(0.5) * F(1.0) * F(0.5);
   EXPECT_NEAR(analytic::fresnel_energy(0.0, 60 * kDeg, 3, analytic::FacetSide::right, F), E, 1e-15);
-  const Outcome o = run(sim::make_symmetric_groove(60 * kDeg), 0.0, F,
-                        [&](int n, analytic::FacetSide s) { return analytic::fresnel_energy(0.0, 60 * kDeg, n, s, F); });
+  const Outcome o = run(sim::make_symmetric_groove(60 * kDeg), 0.0, F, [&](int n, analytic::FacetSide s) {
+    return analytic::fresnel_energy(0.0, 60 * kDeg, n, s, F);
+  });
   expect_matches(o, "theta_v=60 theta_i=0");
   for (const auto& [key, bin] : o.per_bin) {
     EXPECT_EQ(key.second, 3);
@@ -207,8 +214,8 @@ TEST(FresnelGroove, SixtyDegreeGrooveAtNormalIncidenceHitsTheSecondFacetHeadOn) 
 TEST(FresnelGroove, UnitReflectanceKeepsEveryRayAtOne) {
   const sim::UnitReflectance F;
   for (double theta_v_deg : {1.0, 30.0, 150.0}) {
-    const Outcome o = run(sim::make_symmetric_groove(theta_v_deg * kDeg), 20 * kDeg, F,
-                          [](int, analytic::FacetSide) { return 1.0; });
+    const Outcome o =
+        run(sim::make_symmetric_groove(theta_v_deg * kDeg), 20 * kDeg, F, [](int, analytic::FacetSide) { return 1.0; });
     expect_matches(o, "theta_v=" + std::to_string(theta_v_deg));
     for (const auto& [key, bin] : o.per_bin) EXPECT_EQ(bin.first, static_cast<double>(bin.second));
   }
@@ -218,7 +225,8 @@ TEST(FresnelGroove, FlatGrooveIsOneMirrorReflection) {
   // theta_v = 180 deg: one reflection at the incidence angle itself, cos = |sin(90 - theta_i)|.
   for (double theta_i_deg : {-80.0, -30.0, 0.0, 45.0, 89.0})
     EXPECT_NEAR(analytic::local_cos_theta(theta_i_deg * kDeg, M_PI, 1, analytic::FacetSide::left),
-                std::cos(theta_i_deg * kDeg), 1e-15) << "theta_i=" << theta_i_deg;
+                std::cos(theta_i_deg * kDeg), 1e-15)
+        << "theta_i=" << theta_i_deg;
 }
 
 // ---- Grids: every traced ray against the model ------------------------------------------------
@@ -354,9 +362,8 @@ TEST_P(FresnelGrooveNonsymmetric, EveryRayKeepsTheModelsEnergy) {
           const double theta_l = theta_l_deg * kDeg, theta_r = theta_r_deg * kDeg, theta_i = theta_i_deg * kDeg;
           const auto tolerance = [&](int n, analytic::FacetSide s) {
             if (!GetParam().corner) return kRelTol;
-            return propagated_tolerance(F, n, [&](int j) {
-              return analytic::local_cos_theta_nonsymmetric(theta_i, theta_l, theta_r, j, s);
-            });
+            return propagated_tolerance(
+                F, n, [&](int j) { return analytic::local_cos_theta_nonsymmetric(theta_i, theta_l, theta_r, j, s); });
           };
           const Outcome o = run(
               sim::make_nonsymmetric_groove(theta_l, theta_r), theta_i, F,

@@ -100,7 +100,8 @@ TEST_P(OffSweepGrid, RandomTraceMatchesTheModelWithinBinomialBounds) {
   CaseOptions opt = stratified();
   opt.sampling = sim::Sampling::random;
   opt.seed = 20240611;
-  const std::uint64_t stream = static_cast<std::uint64_t>(std::get<0>(GetParam()) * 1000 + std::get<1>(GetParam()) + 1e5);
+  const std::uint64_t stream =
+      static_cast<std::uint64_t>(std::get<0>(GetParam()) * 1000 + std::get<1>(GetParam()) + 1e5);
   const CaseOutcome c = run_case(sym(theta_v()), theta_i(), opt, stream);
   expect_clean(c, kRays);
   const double n = static_cast<double>(kRays), L = std::log(2.0 / 1e-9);

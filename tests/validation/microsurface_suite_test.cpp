@@ -3,12 +3,12 @@
 // can be drawn from.
 #include "vgroove/validation/microsurface_case.h"
 
+#include "tests/test_files.h"
 #include "vgroove/analytic/brdf_flatland.h"
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/rng.h"
-#include "tests/test_files.h"
-#include "vgroove/validation/plot.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/plot.h"
 
 #include <gtest/gtest.h>
 
@@ -20,11 +20,11 @@ namespace {
 
 using nlohmann::json;
 
-#define EXPECT_USER_ERROR(stmt, part)                                              \
-  try {                                                                            \
-    stmt;                                                                          \
-    ADD_FAILURE() << "no support::UserError";                                               \
-  } catch (const support::UserError& e) {                                                   \
+#define EXPECT_USER_ERROR(stmt, part)                                           \
+  try {                                                                         \
+    stmt;                                                                       \
+    ADD_FAILURE() << "no support::UserError";                                   \
+  } catch (const support::UserError& e) {                                       \
     EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what(); \
   }
 
@@ -62,7 +62,8 @@ TEST(MicrosurfaceSuite, BadSpecsNameTheFieldAndRange) {
   EXPECT_USER_ERROR(parse_brdf_suite(j, "f.json"), "f.json: /alpha/1 = 0 is out of range (0, 2]");
   j = fig11_spec();
   j["ndf"] = {"ggx", "trowbridge"};
-  EXPECT_USER_ERROR(parse_brdf_suite(j, "f.json"), "f.json: /ndf/1 = \"trowbridge\" is not one of \"ggx\", \"beckmann\", \"phong\"");
+  EXPECT_USER_ERROR(parse_brdf_suite(j, "f.json"),
+                    "f.json: /ndf/1 = \"trowbridge\" is not one of \"ggx\", \"beckmann\", \"phong\"");
   j = fig11_spec();
   j["theta_i_deg"] = {0, 90};
   EXPECT_USER_ERROR(parse_brdf_suite(j, "f.json"), "f.json: /theta_i_deg/1 = 90 is out of range [0, 90)");
@@ -132,10 +133,12 @@ TEST(MicrosurfaceSuite, FlatlandThresholdHasPowerAgainstSmallErrors) {
   to.max_k = s.max_k;
   const sim::MicrosurfaceTally t = sim::trace_microsurface(sim::make_microsurface(mo), to);
   auto l1_against = [&](double alpha, double theta_i) {
-    const analytic::FlatlandLobe lobe = analytic::flatland_lobe(analytic::NdfKind::ggx, alpha, theta_i, s.flatland_bins, s.max_k);
+    const analytic::FlatlandLobe lobe =
+        analytic::flatland_lobe(analytic::NdfKind::ggx, alpha, theta_i, s.flatland_bins, s.max_k);
     double l1 = 0.0;
     for (int b = 0; b < s.flatland_bins; ++b)
-      l1 += std::abs(static_cast<double>(t.theta_o[static_cast<std::size_t>(b)]) / rays - lobe.theta_o[static_cast<std::size_t>(b)]);
+      l1 += std::abs(static_cast<double>(t.theta_o[static_cast<std::size_t>(b)]) / rays -
+                     lobe.theta_o[static_cast<std::size_t>(b)]);
     return l1;
   };
   EXPECT_NEAR(l1_against(0.5, c.theta_i), ok.l1, 1e-12);
@@ -151,7 +154,8 @@ TEST(MicrosurfaceSuite, ThreeDCasePassesWithCoarseBins) {
   s.theta_bins = 9;
   s.phi_bins = 8;
   s.max_k = 6;
-  const BrdfOutcome o = run_brdf_case(s, {analytic::NdfKind::beckmann, 0.7, 30.0 * M_PI / 180.0, SurfaceDim::three_d}, 100000);
+  const BrdfOutcome o =
+      run_brdf_case(s, {analytic::NdfKind::beckmann, 0.7, 30.0 * M_PI / 180.0, SurfaceDim::three_d}, 100000);
   EXPECT_TRUE(o.pass) << "L1 " << o.l1 << " / " << o.l1_threshold << ", by k " << o.l1_k << " / " << o.l1_k_threshold
                       << ", albedo " << o.albedo_sim << " vs " << o.albedo_model;
   EXPECT_FALSE(o.non_finite);
@@ -187,7 +191,8 @@ TEST(MicrosurfaceSuite, ReportCarriesProvenanceAndPlotsOnePanelPerCase) {
 
 TEST(MicrosurfaceSuite, Table2AllEntriesAgree) {
   const Table2Suite s = parse_table2_suite(
-      json::parse(testing_files::read_text(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/table2.json")), "table2.json");
+      json::parse(testing_files::read_text(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/table2.json")),
+      "table2.json");
   const Table2Run run = run_table2_suite(s, 5000, 2);
   EXPECT_EQ(run.agree, 27);
   EXPECT_TRUE(run.pass);

@@ -34,9 +34,12 @@ double deg(double d) { return d * M_PI / 180.0; }
 
 analytic::NdfKind to_analytic(sim::NdfKind k) {
   switch (k) {
-    case sim::NdfKind::beckmann: return analytic::NdfKind::beckmann;
-    case sim::NdfKind::ggx: return analytic::NdfKind::ggx;
-    case sim::NdfKind::phong: return analytic::NdfKind::phong;
+    case sim::NdfKind::beckmann:
+      return analytic::NdfKind::beckmann;
+    case sim::NdfKind::ggx:
+      return analytic::NdfKind::ggx;
+    case sim::NdfKind::phong:
+      return analytic::NdfKind::phong;
   }
   return analytic::NdfKind::beckmann;
 }
@@ -97,7 +100,8 @@ TEST(NdfCross, SamplesFollowAnalyticD2Cos) {
       }
       const ChiSquare c = chi_square_gof(edges, expected, observed);
       EXPECT_GE(c.p, level) << sim::ndf_name(k) << " alpha=" << alpha << ": chi2=" << c.stat << " dof=" << c.dof
-                            << " p=" << c.p << "\n" << c.table;
+                            << " p=" << c.p << "\n"
+                            << c.table;
     }
 }
 
@@ -137,7 +141,8 @@ TEST(NdfCross, MicrosurfaceSingleBouncesAtNormalIncidenceFollowD2Cos) {
       observed.push_back(g - total);
       const ChiSquare c = chi_square_gof(edges, expected, observed);
       EXPECT_GE(c.p, level) << sim::ndf_name(k) << " alpha=" << alpha << ": chi2=" << c.stat << " dof=" << c.dof
-                            << " p=" << c.p << "\n" << c.table;
+                            << " p=" << c.p << "\n"
+                            << c.table;
     }
 }
 

@@ -29,8 +29,9 @@ double stratified_bound(long rays) { return 4.0 / static_cast<double>(rays) + 1e
 
 void expect_agrees(const GrooveParams& g, double theta_i, long rays) {
   const CaseOutcome c = run_case(g, theta_i, stratified(rays), 0);
-  const std::string where = "theta_l=" + std::to_string(g.theta_l / kDeg) + " theta_r=" +
-                            std::to_string(g.theta_r / kDeg) + " theta_i=" + std::to_string(theta_i / kDeg);
+  const std::string where = "theta_l=" + std::to_string(g.theta_l / kDeg) +
+                            " theta_r=" + std::to_string(g.theta_r / kDeg) +
+                            " theta_i=" + std::to_string(theta_i / kDeg);
   ASSERT_TRUE(c.facet[0].compared || c.facet[1].compared) << where;
   EXPECT_LE(c.l1, stratified_bound(rays)) << where;
   EXPECT_LE(c.theta_o_error, 1e-9) << where;
@@ -87,9 +88,8 @@ TEST(NonsymmetricTrace, SymmetricGroovesThroughBothModels) {
   for (double v : {3.0, 37.0, 90.0, 151.0})
     for (double ti : {-75.0, -10.0, 0.0, 33.0}) {
       const CaseOutcome a = run_case(GrooveParams::make_symmetric(v * kDeg), ti * kDeg, stratified(1000), 0);
-      const CaseOutcome b =
-          run_case(GrooveParams::make_nonsymmetric(-(90.0 - 0.5 * v) * kDeg, (90.0 - 0.5 * v) * kDeg), ti * kDeg,
-                   stratified(1000), 0);
+      const CaseOutcome b = run_case(GrooveParams::make_nonsymmetric(-(90.0 - 0.5 * v) * kDeg, (90.0 - 0.5 * v) * kDeg),
+                                     ti * kDeg, stratified(1000), 0);
       EXPECT_LE(a.l1, stratified_bound(1000)) << "theta_v=" << v << " theta_i=" << ti;
       EXPECT_LE(b.l1, stratified_bound(1000)) << "theta_v=" << v << " theta_i=" << ti;
       EXPECT_NEAR(a.l1, b.l1, 2.0 / 1000) << "theta_v=" << v << " theta_i=" << ti;

@@ -17,7 +17,11 @@ std::size_t count(const std::string& s, const std::string& what) {
 
 TEST(AccuracyPlot, OnePointPerRunAndTwoLinesPerPlacement) {
   const nlohmann::json report = {
-      {"suite", "s"}, {"version", "0"}, {"git", "g"}, {"threads", 2}, {"seed", 1},
+      {"suite", "s"},
+      {"version", "0"},
+      {"git", "g"},
+      {"threads", 2},
+      {"seed", 1},
       {"runs",
        {{{"sampling", "stratified"}, {"rays_per_facet", 1000}, {"wall_s", 0.1}, {"max_l1", 2e-3}, {"mean_l1", 4e-4}},
         {{"sampling", "stratified"}, {"rays_per_facet", 10000}, {"wall_s", 1.0}, {"max_l1", 2e-4}, {"mean_l1", 4e-5}},

@@ -259,7 +259,8 @@ TEST(CheckAngles, CommandLineRangeMessages) {
   const std::string why = " (below 1e-06 deg a groove needs over 1.8e8 reflections)";
   EXPECT_EQ(msg([] { check_theta_v(195, "--theta-v-deg"); }), "--theta-v-deg = 195 is out of range [1e-06, 180]" + why);
   EXPECT_EQ(msg([] { check_theta_v(0, "--theta-v-deg"); }), "--theta-v-deg = 0 is out of range [1e-06, 180]" + why);
-  EXPECT_EQ(msg([] { check_theta_v(1e-8, "--theta-v-deg"); }), "--theta-v-deg = 1e-08 is out of range [1e-06, 180]" + why);
+  EXPECT_EQ(msg([] { check_theta_v(1e-8, "--theta-v-deg"); }),
+            "--theta-v-deg = 1e-08 is out of range [1e-06, 180]" + why);
   EXPECT_NO_THROW(check_theta_v(1e-6, "x"));
   EXPECT_EQ(msg([] { check_theta_i(90, "--theta-i-deg"); }), "--theta-i-deg = 90 is out of range (-90, 90)");
   EXPECT_EQ(msg([] { check_theta_i(-90, "--theta-i-deg"); }), "--theta-i-deg = -90 is out of range (-90, 90)");
