@@ -1,9 +1,11 @@
 #include "vgroove/analytic/bounce_percentiles.h"
 
 #include "vgroove/analytic/kaleidoscope.h"
+#include "vgroove/analytic/quadrature.h"
 
 #include <cassert>
 #include <cmath>
+#include <numbers>
 
 namespace vgroove::analytic {
 
@@ -25,9 +27,9 @@ namespace {
 double density(NdfKind ndf, double alpha, double theta, PercentileMeasure m) {
   switch (m) {
     case PercentileMeasure::projected_area:
-      return 2.0 * M_PI * D(ndf, theta, alpha) * std::cos(theta) * std::sin(theta);
+      return 2.0 * std::numbers::pi * D(ndf, theta, alpha) * std::cos(theta) * std::sin(theta);
     case PercentileMeasure::solid_angle:
-      return 2.0 * M_PI * D(ndf, theta, alpha) * std::sin(theta);
+      return 2.0 * std::numbers::pi * D(ndf, theta, alpha) * std::sin(theta);
     case PercentileMeasure::flatland:
       return 2.0 * D2(ndf, theta, alpha) * std::cos(theta);
   }
@@ -39,16 +41,13 @@ double density(NdfKind ndf, double alpha, double theta, PercentileMeasure m) {
 // D sin may grow like 1/cos^4 only for GGX's solid-angle measure near pi/2: integrable, and
 // resolved by the panels to far below the percentile's sensitivity here).
 double integral(NdfKind ndf, double alpha, double theta, PercentileMeasure m) {
-  static constexpr double x[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
-                                  0.9061798459386640};
-  static constexpr double w[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665, 0.2369268850561891,
-                                  0.2369268850561891};
+  static const GaussLegendre rule = gauss_legendre(5);
   constexpr int panels = 400;
   const double h = theta / panels;
   double s = 0.0;
   for (int p = 0; p < panels; ++p) {
     const double c = (p + 0.5) * h;
-    for (int n = 0; n < 5; ++n) s += w[n] * density(ndf, alpha, c + 0.5 * h * x[n], m);
+    for (std::size_t n = 0; n < rule.size(); ++n) s += rule.w[n] * density(ndf, alpha, c + 0.5 * h * rule.x[n], m);
   }
   return 0.5 * h * s;
 }
@@ -56,7 +55,7 @@ double integral(NdfKind ndf, double alpha, double theta, PercentileMeasure m) {
 double numeric_quantile(NdfKind ndf, double alpha, double q, PercentileMeasure m) {
   // The solid-angle density of GGX grows like 1/cos^2 towards pi/2 (D ~ 1/(cos^4 tan^4)); its
   // total is still finite. Normalize by the integral up to just below pi/2.
-  const double top = 0.5 * M_PI * (1.0 - 1e-9);
+  const double top = 0.5 * std::numbers::pi * (1.0 - 1e-9);
   const double total = integral(ndf, alpha, top, m);
   double lo = 0.0, hi = top;
   for (int it = 0; it < 60; ++it) {
@@ -84,7 +83,7 @@ double theta_m_quantile(NdfKind ndf, double alpha, double q, PercentileMeasure m
 
 int max_bounces_at_percentile(NdfKind ndf, double alpha, double q, PercentileMeasure m) {
   const double theta_m = theta_m_quantile(ndf, alpha, q, m);
-  return bounce_count(0.0, M_PI - 2.0 * theta_m);  // Lee et al. 2018, Eq. (4) at theta_i = 0
+  return bounce_count(0.0, std::numbers::pi - 2.0 * theta_m);  // Lee et al. 2018, Eq. (4) at theta_i = 0
 }
 
 }  // namespace vgroove::analytic

@@ -1,16 +1,18 @@
 #include "vgroove/analytic/brdf_flatland.h"
 
 #include "vgroove/analytic/kaleidoscope.h"
+#include "vgroove/analytic/quadrature.h"
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <numbers>
 
 namespace vgroove::analytic {
 
 namespace {
 
-constexpr double kHalfPi = 0.5 * M_PI;
+constexpr double kHalfPi = 0.5 * std::numbers::pi;
 
 // Left facet of the groove of aperture theta_v: theta_s = -(pi - theta_v)/2.
 double theta_s_left(double theta_v) { return 0.5 * theta_v - kHalfPi; }
@@ -31,57 +33,18 @@ double width_left(double theta_i, double theta_v, int n) {
 double left_term(NdfKind ndf, double alpha, double theta_i, double theta_o, int k) {
   const double sign = (k % 2 == 0) ? 1.0 : -1.0;
   // Eq. (5) inverted: k theta_v = theta_i + pi - (-1)^k theta_o + 2 pi m, theta_v in (0, pi].
-  const double base = theta_i + M_PI - sign * theta_o;
-  const int m_lo = static_cast<int>(std::ceil(-base / (2.0 * M_PI)));
+  const double base = theta_i + std::numbers::pi - sign * theta_o;
+  const int m_lo = static_cast<int>(std::ceil(-base / (2.0 * std::numbers::pi)));
   double sum = 0.0;
   for (int m = m_lo;; ++m) {
-    const double theta_v = (base + 2.0 * M_PI * m) / k;
+    const double theta_v = (base + 2.0 * std::numbers::pi * m) / k;
     if (!(theta_v > 0.0)) continue;
-    if (theta_v > M_PI) break;
+    if (theta_v > std::numbers::pi) break;
     const double w = width_left(theta_i, theta_v, k);
     // |d theta_s / d theta_o| = 1 / (2k): the flatland Eq. (13).
     if (w > 0.0) sum += D2(ndf, theta_s_left(theta_v), alpha) * w / (2.0 * k);
   }
   return sum;
-}
-
-// ---- Gauss-Legendre ----------------------------------------------------------------------------
-
-struct GaussLegendre {
-  std::vector<double> x, w;  // on [-1, 1]
-};
-
-GaussLegendre make_gauss_legendre(int n) {
-  GaussLegendre g;
-  g.x.resize(static_cast<std::size_t>(n));
-  g.w.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    double x = std::cos(M_PI * (i + 0.75) / (n + 0.5));  // Newton from the Chebyshev-like guess
-    double dp = 1.0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0, p1 = x;
-      for (int j = 2; j <= n; ++j) {
-        const double p2 = ((2.0 * j - 1.0) * x * p1 - (j - 1.0) * p0) / j;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (x * p1 - p0) / (x * x - 1.0);
-      const double dx = p1 / dp;
-      x -= dx;
-      if (std::abs(dx) < 1e-16) break;
-    }
-    g.x[static_cast<std::size_t>(i)] = x;
-    g.w[static_cast<std::size_t>(i)] = 2.0 / ((1.0 - x * x) * dp * dp);
-  }
-  return g;
-}
-
-template <class F>
-double integrate(const GaussLegendre& g, F&& f, double a, double b) {
-  const double c = 0.5 * (a + b), d = 0.5 * (b - a);
-  double s = 0.0;
-  for (std::size_t i = 0; i < g.x.size(); ++i) s += g.w[i] * f(c + d * g.x[i]);
-  return d * s;
 }
 
 // ---- The binned lobe ---------------------------------------------------------------------------
@@ -113,13 +76,13 @@ const GaussLegendre& order_for(const LobeContext& c, int k) {
 // Flux of the left facets at incidence theta_i (the right facets: mirror = true, called with
 // -theta_i; the bin is then flipped) for the k-pieces k = 1..n_res + 1, into the bins.
 void add_left_resolved(const LobeContext& c, double theta_i, bool mirror, int n_res, Accumulator& acc) {
-  const double lit_lo = std::max(0.0, 2.0 * theta_i);  // f_a = sin(theta_v/2 - theta_i) > 0
-  const double cpk = M_PI + 2.0 * theta_i;             // Eq. (4): k changes at theta_v = cpk / m
+  const double lit_lo = std::max(0.0, 2.0 * theta_i);   // f_a = sin(theta_v/2 - theta_i) > 0
+  const double cpk = std::numbers::pi + 2.0 * theta_i;  // Eq. (4): k changes at theta_v = cpk / m
   const double inv_cos = 1.0 / std::cos(theta_i);
   std::vector<double> cuts;
   for (int k = 1; k <= n_res + 1; ++k) {
     // Eq. (4): k on (cpk / k, cpk / (k - 1)].
-    const double hi = std::min(M_PI, k == 1 ? M_PI : cpk / (k - 1));
+    const double hi = std::min(std::numbers::pi, k == 1 ? std::numbers::pi : cpk / (k - 1));
     const double lo = std::max(lit_lo, cpk / k);
     if (hi <= lit_lo) break;
     if (!(hi > lo)) continue;
@@ -130,12 +93,12 @@ void add_left_resolved(const LobeContext& c, double theta_i, bool mirror, int n_
     cut(-2.0 * theta_i);  // f_b = max(0, -sin(theta_v/2 + theta_i)) switches
     // f(k) = sin((k - 1/2) theta_v - theta_i) = 0 (the clamp at 0), and f(k) = f(b) (kth = 2 pi j).
     const double kh = k - 0.5;
-    for (int j = static_cast<int>(std::ceil((kh * lo - theta_i) / M_PI));
-         j <= static_cast<int>(std::floor((kh * hi - theta_i) / M_PI)); ++j)
-      cut((theta_i + j * M_PI) / kh);
-    for (int j = static_cast<int>(std::ceil(k * lo / (2.0 * M_PI)));
-         j <= static_cast<int>(std::floor(k * hi / (2.0 * M_PI))); ++j)
-      cut(2.0 * M_PI * j / k);
+    for (int j = static_cast<int>(std::ceil((kh * lo - theta_i) / std::numbers::pi));
+         j <= static_cast<int>(std::floor((kh * hi - theta_i) / std::numbers::pi)); ++j)
+      cut((theta_i + j * std::numbers::pi) / kh);
+    for (int j = static_cast<int>(std::ceil(k * lo / (2.0 * std::numbers::pi)));
+         j <= static_cast<int>(std::floor(k * hi / (2.0 * std::numbers::pi))); ++j)
+      cut(2.0 * std::numbers::pi * j / k);
     for (double v : c.peak_points) cut(v);
     std::sort(cuts.begin(), cuts.end());
     const GaussLegendre& gl = order_for(c, k);
@@ -153,8 +116,8 @@ void add_left_resolved(const LobeContext& c, double theta_i, bool mirror, int n_
         for (int n = std::max(1, k - 1); n <= k; ++n) {  // k = 1: w_0 = f_a - f_k = 0 (f_k = f_a)
           // Eq. (5), unwrapped: y = (-1)^n (theta_i + pi - n theta_v), linear in theta_v.
           const double sgn = (n % 2 == 0) ? 1.0 : -1.0;
-          auto y_of = [&](double v) { return sgn * (theta_i + M_PI - n * v); };
-          auto v_of = [&](double y) { return (theta_i + M_PI - sgn * y) / n; };
+          auto y_of = [&](double v) { return sgn * (theta_i + std::numbers::pi - n * v); };
+          auto v_of = [&](double y) { return (theta_i + std::numbers::pi - sgn * y) / n; };
           const double ya = std::min(y_of(a), y_of(b)), yb = std::max(y_of(a), y_of(b));
           // Bin edges -pi/2 + j w on the whole circle (2 bins of them per turn).
           const long j0 = static_cast<long>(std::floor((ya + kHalfPi) / c.bin_w));
@@ -195,7 +158,7 @@ void add_left_resolved(const LobeContext& c, double theta_i, bool mirror, int n_
         const double h = 0.5 * (b - a), m = 0.5 * (a + b);
         double s0 = 0.0, s1 = 0.0;
         for (std::size_t q = 0; q < gl.x.size(); ++q) {
-          const double v = m + h * gl.x[q];
+          const double v = m - h * gl.x[q];  // nodes from the right end (the rule is symmetric)
           const FacetPrediction pr = G_kaleidoscopic(theta_i, v, FacetSide::left);
           if (!pr.lit) continue;
           const double d = gl.w[q] * D2(c.ndf, theta_s_left(v), c.alpha);
@@ -208,7 +171,7 @@ void add_left_resolved(const LobeContext& c, double theta_i, bool mirror, int n_
         continue;
       }
       auto one = [&](const Sub& u) {
-        deposit(u, integrate(
+        deposit(u, integrate_mirrored(
                        gl, [&](double v) { return D2(c.ndf, theta_s_left(v), c.alpha) * width_left(theta_i, v, u.n); },
                        u.va, u.vb) *
                        0.5 * inv_cos);
@@ -255,12 +218,12 @@ double left_flux_below(const LobeContext& c, double theta_i, double upper) {
   for (double v = 0.5 * upper; v > start; v *= 0.5) cuts.push_back(v);
   std::sort(cuts.begin(), cuts.end());
   for (std::size_t p = 0; p + 1 < cuts.size(); ++p)
-    if (cuts[p + 1] > cuts[p]) s += integrate(c.gl_mid, f, cuts[p], cuts[p + 1]);
+    if (cuts[p + 1] > cuts[p]) s += integrate_mirrored(c.gl_mid, f, cuts[p], cuts[p + 1]);
   return s * 0.5 * inv_cos;
 }
 
 int bin_of(double theta, int bins, bool lower_side) {
-  const double u = (theta + kHalfPi) / (M_PI / bins);
+  const double u = (theta + kHalfPi) / (std::numbers::pi / bins);
   int j = static_cast<int>(std::floor(u));
   if (lower_side && j == u) --j;  // exactly on an edge: the bin below it
   return std::clamp(j, 0, bins - 1);
@@ -291,7 +254,7 @@ std::vector<double> peak_points(double alpha) {
   std::vector<double> pts;
   // theta_s = +-atan(alpha s): geometric grading around the peak of D2 (its poles and its width
   // scale with alpha), so Gauss-Legendre converges on every piece however small alpha is.
-  for (double s = 1.0 / 64.0; s <= 64.0; s *= 2.0) pts.push_back(M_PI - 2.0 * std::atan(alpha * s));
+  for (double s = 1.0 / 64.0; s <= 64.0; s *= 2.0) pts.push_back(std::numbers::pi - 2.0 * std::atan(alpha * s));
   return pts;
 }
 
@@ -331,16 +294,16 @@ FlatlandLobe flatland_lobe(NdfKind ndf, double alpha, double theta_i, int bins, 
   LobeContext c{ndf,
                 alpha,
                 bins,
-                M_PI / bins,
-                make_gauss_legendre(opt.quadrature_order),
-                make_gauss_legendre(std::max(4, opt.quadrature_order / 2)),
-                make_gauss_legendre(std::max(3, opt.quadrature_order / 4)),
+                std::numbers::pi / bins,
+                gauss_legendre(opt.quadrature_order),
+                gauss_legendre(std::max(4, opt.quadrature_order / 2)),
+                gauss_legendre(std::max(3, opt.quadrature_order / 4)),
                 peak_points(alpha)};
   // Grooves with k >= n + 2 (theta_v <= (pi + 2 theta)/(n + 1)) only make n + 1 or more
   // reflections; raise n until their flux is negligible.
   auto tail_flux = [&](int n) {
-    return left_flux_below(c, theta_i, std::min(M_PI, (M_PI + 2.0 * theta_i) / (n + 1))) +
-           left_flux_below(c, -theta_i, std::min(M_PI, (M_PI - 2.0 * theta_i) / (n + 1)));
+    return left_flux_below(c, theta_i, std::min(std::numbers::pi, (std::numbers::pi + 2.0 * theta_i) / (n + 1))) +
+           left_flux_below(c, -theta_i, std::min(std::numbers::pi, (std::numbers::pi - 2.0 * theta_i) / (n + 1)));
   };
   int n_res = max_k + 1;
   double tail = tail_flux(n_res);
@@ -368,8 +331,8 @@ FlatlandLobe flatland_lobe(NdfKind ndf, double alpha, double theta_i, int bins, 
 FlatlandLobe flatland_single_lobe(NdfKind ndf, double alpha, double theta_i, int bins) {
   assert(bins > 0 && alpha > 0.0 && std::abs(theta_i) < kHalfPi);
   FlatlandLobe lobe = make_layout(bins, 1);
-  const GaussLegendre gl = make_gauss_legendre(16);
-  const double w = M_PI / bins;
+  const GaussLegendre gl = gauss_legendre(16);
+  const double w = std::numbers::pi / bins;
   // Over theta_h: theta_o = 2 theta_h - theta_i covers (-pi/2, pi/2) for theta_h in
   // ((theta_i - pi/2)/2, (theta_i + pi/2)/2). The flux density per d theta_h is
   // rho_CT2 cos(theta_o) d theta_o = D2(h) cos(theta_d) G d theta_h / cos(theta_i) (step e).
@@ -396,7 +359,7 @@ FlatlandLobe flatland_single_lobe(NdfKind ndf, double alpha, double theta_i, int
       if (v > lo && v < hi) cuts.push_back(v);
     std::sort(cuts.begin(), cuts.end());
     double s = 0.0;
-    for (std::size_t p = 0; p + 1 < cuts.size(); ++p) s += integrate(gl, f, cuts[p], cuts[p + 1]);
+    for (std::size_t p = 0; p + 1 < cuts.size(); ++p) s += integrate_mirrored(gl, f, cuts[p], cuts[p + 1]);
     lobe.theta_o_by_k[static_cast<std::size_t>(bins) + b] = s;
   }
   lobe.n_resolved = 1;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace vgroove::analytic {
 
@@ -16,13 +17,13 @@ int saturate_to_int(double k) {
 
 int bounce_count(double theta_i, double theta_v) {
   // Lee et al. 2018, Eq. (4): k = floor((pi + 2 theta_i) / (pi - 2|theta_s|)) + 1.
-  return saturate_to_int(std::floor((M_PI + 2.0 * theta_i) / theta_v) + 1.0);
+  return saturate_to_int(std::floor((std::numbers::pi + 2.0 * theta_i) / theta_v) + 1.0);
 }
 
 double exit_angle(double theta_i, double theta_v, int n) {
   // Lee et al. 2018, Eq. (5).
   const double sign = (n % 2 == 0) ? 1.0 : -1.0;
-  return std::remainder(sign * (theta_i + M_PI - n * theta_v), 2.0 * M_PI);
+  return std::remainder(sign * (theta_i + std::numbers::pi - n * theta_v), 2.0 * std::numbers::pi);
 }
 
 double exit_angle(double theta_i, double theta_v, int n, FacetSide first) {

@@ -21,9 +21,12 @@
 // validation/ERRATA.md, E1). Both are available, so a suite can report the printed form's error.
 #pragma once
 
+#include "vgroove/common/side.h"
+
 namespace vgroove::analytic {
 
-enum class FacetSide { left, right };
+// The facet hit first (common/side.h).
+using FacetSide = vgroove::Side;
 
 // Which form of Eq. (6) to evaluate.
 enum class Eq6Form {

@@ -2,22 +2,25 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace vgroove::analytic {
 
-double aperture(double theta_l, double theta_r) { return M_PI + theta_l - theta_r; }
+double aperture(double theta_l, double theta_r) { return std::numbers::pi + theta_l - theta_r; }
 
 int bounce_count_kb(double theta_i, double theta_l, double theta_r) {
   // Lee et al. 2018, Eq. (7).
   const double theta_v = aperture(theta_l, theta_r);
-  return saturate_to_int(2.0 * std::floor((M_PI + 2.0 * theta_i - (theta_l + theta_r)) / (2.0 * theta_v) + 0.5));
+  return saturate_to_int(2.0 *
+                         std::floor((std::numbers::pi + 2.0 * theta_i - (theta_l + theta_r)) / (2.0 * theta_v) + 0.5));
 }
 
 double exit_angle_nonsymmetric(double theta_i, double theta_l, double theta_r, int k) {
   // Lee et al. 2018, Eq. (8).
   const double mean = 0.5 * (theta_l + theta_r);
   const double sign = (k % 2 == 0) ? 1.0 : -1.0;
-  return std::remainder(sign * (theta_i - mean + M_PI - k * aperture(theta_l, theta_r)) + mean, 2.0 * M_PI);
+  return std::remainder(sign * (theta_i - mean + std::numbers::pi - k * aperture(theta_l, theta_r)) + mean,
+                        2.0 * std::numbers::pi);
 }
 
 double exit_angle_nonsymmetric(double theta_i, double theta_l, double theta_r, int k, FacetSide first) {
@@ -34,7 +37,7 @@ NonsymmetricPrediction left_first(double theta_i, double theta_l, double theta_r
   // A facet at 0 deg has no height, so the other has no length; both at 0 is the flat mirror.
   const double h_l = std::sin(-theta_l), h_r = std::sin(theta_r), h_max = std::max(h_l, h_r);
   const double len_l = h_max > 0.0 ? h_r / h_max : 1.0, len_r = h_max > 0.0 ? h_l / h_max : 1.0;
-  const double phi_a = theta_l + 0.5 * M_PI;  // angle of the left rim a from n
+  const double phi_a = theta_l + 0.5 * std::numbers::pi;  // angle of the left rim a from n
   // f of fan vertex P_j (the circle alternates with j), and of the right rim b = P_{-1}.
   auto f_vertex = [&](int j) {
     const double len = (j % 2 == 0) ? len_l : len_r;

@@ -3,20 +3,9 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <numbers>
 
 namespace vgroove::analytic {
-
-const char* ndf_name(NdfKind kind) {
-  switch (kind) {
-    case NdfKind::beckmann:
-      return "beckmann";
-    case NdfKind::ggx:
-      return "ggx";
-    case NdfKind::phong:
-      return "phong";
-  }
-  return "?";
-}
 
 double phong_exponent(double alpha) {
   assert(alpha > 0.0);
@@ -26,7 +15,7 @@ double phong_exponent(double alpha) {
 
 namespace {
 // |theta_m| >= pi/2: a facet facing sideways or down is no facet of a height field (chi+).
-bool outside(double theta_m) { return !(std::abs(theta_m) < 0.5 * M_PI); }
+bool outside(double theta_m) { return !(std::abs(theta_m) < 0.5 * std::numbers::pi); }
 }  // namespace
 
 double D_beckmann(double theta_m, double alpha) {
@@ -36,7 +25,7 @@ double D_beckmann(double theta_m, double alpha) {
   //   D(m) = exp(-tan^2 theta_m / alpha^2) / (pi alpha^2 cos^4 theta_m).
   const double c = std::cos(theta_m), t = std::tan(theta_m);
   const double c2 = c * c;
-  return std::exp(-(t * t) / (alpha * alpha)) / (M_PI * alpha * alpha * c2 * c2);
+  return std::exp(-(t * t) / (alpha * alpha)) / (std::numbers::pi * alpha * alpha * c2 * c2);
 }
 
 double D_ggx(double theta_m, double alpha) {
@@ -47,7 +36,7 @@ double D_ggx(double theta_m, double alpha) {
   // the second form finite up to theta_m = pi/2.
   const double c = std::cos(theta_m), s = std::sin(theta_m);
   const double q = alpha * alpha * c * c + s * s;
-  return alpha * alpha / (M_PI * q * q);
+  return alpha * alpha / (std::numbers::pi * q * q);
 }
 
 double D_phong(double theta_m, double alpha) {
@@ -55,7 +44,7 @@ double D_phong(double theta_m, double alpha) {
   // Walter et al. 2007, Sec. 5: D(m) = (alpha_p + 2) / (2 pi) cos^alpha_p theta_m;
   // normalized: 2 pi int_0^{pi/2} cos^(p+1) sin = 2 pi / (p + 2).
   const double p = phong_exponent(alpha);
-  return (p + 2.0) / (2.0 * M_PI) * std::pow(std::cos(theta_m), p);
+  return (p + 2.0) / (2.0 * std::numbers::pi) * std::pow(std::cos(theta_m), p);
 }
 
 double D(NdfKind kind, double theta_m, double alpha) {
@@ -76,7 +65,7 @@ double D2_beckmann(double theta_m, double alpha) {
   // P(s) = exp(-s^2/alpha^2) / (sqrt(pi) alpha), the marginal of Beckmann's slopes (ndf.h), and
   // D2 = P(tan theta) / cos^3 theta.
   const double c = std::cos(theta_m), t = std::tan(theta_m);
-  return std::exp(-(t * t) / (alpha * alpha)) / (std::sqrt(M_PI) * alpha * c * c * c);
+  return std::exp(-(t * t) / (alpha * alpha)) / (std::sqrt(std::numbers::pi) * alpha * c * c * c);
 }
 
 double D2_ggx(double theta_m, double alpha) {
@@ -96,7 +85,7 @@ double D2_phong(double theta_m, double alpha) {
   // int_{-pi/2}^{pi/2} cos^(p+1) = sqrt(pi) Gamma((p+2)/2) / Gamma((p+3)/2) = 1/K.
   // Through lgamma: both Gammas overflow for alpha below about 0.08 (p/2 > 171).
   const double p = phong_exponent(alpha);
-  const double K = std::exp(std::lgamma(0.5 * (p + 3.0)) - std::lgamma(0.5 * (p + 2.0))) / std::sqrt(M_PI);
+  const double K = std::exp(std::lgamma(0.5 * (p + 3.0)) - std::lgamma(0.5 * (p + 2.0))) / std::sqrt(std::numbers::pi);
   return K * std::pow(std::cos(theta_m), p);
 }
 
@@ -130,7 +119,7 @@ double Lambda_beckmann(double theta_o, double alpha) {
   const double a = 1.0 / (alpha * t);
   // Heitz 2014, Sec. 3.2: Lambda = (erf(a) - 1)/2 + exp(-a^2) / (2 a sqrt(pi)); erf(a) - 1 is
   // written -erfc(a), which keeps its digits when a is large (Lambda ~ e^-a^2 / a^3 there).
-  return -0.5 * std::erfc(a) + std::exp(-a * a) / (2.0 * a * std::sqrt(M_PI));
+  return -0.5 * std::erfc(a) + std::exp(-a * a) / (2.0 * a * std::sqrt(std::numbers::pi));
 }
 
 double Lambda_ggx(double theta_o, double alpha) {

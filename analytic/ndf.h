@@ -60,10 +60,12 @@
 //   D2_phong    = K cos^p(theta)    (the 2D Phong lobe is again a power of the cosine).
 #pragma once
 
+#include "vgroove/common/ndf_kind.h"
+
 namespace vgroove::analytic {
 
-enum class NdfKind : unsigned char { beckmann, ggx, phong };
-const char* ndf_name(NdfKind kind);
+using vgroove::ndf_name;
+using vgroove::NdfKind;
 
 // Walter et al. 2007, Sec. 5: the Phong exponent alpha_p = 2 / alpha^2 - 2 whose lobe matches
 // Beckmann's of width alpha near theta_m = 0 (both D(0) = 1 / (pi alpha^2)). It is negative for

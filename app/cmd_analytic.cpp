@@ -1,4 +1,5 @@
 #include "vgroove/app/commands.h"
+#include "vgroove/common/angles.h"
 
 #include <cstdio>
 #include <iostream>
@@ -13,16 +14,12 @@ namespace vgroove::app {
 
 using namespace validation;
 
-namespace {
-constexpr double kRad = std::numbers::pi / 180.0;
-}  // namespace
-
 int cmd_analytic(const AnalyticArgs& a) {
   const GrooveParams params = groove_from(a.groove);
   check_theta_i(a.theta_i_deg, "--theta-i-deg");
   const analytic::Eq6Form form = parse_form(a.eq6_form, "--eq6-form");
   if (a.dry_run) return 0;
-  const double theta_i = a.theta_i_deg * kRad;
+  const double theta_i = a.theta_i_deg * kRadPerDeg;
   nlohmann::json rows = nlohmann::json::array();
   nlohmann::json facets = nlohmann::json::object();
   // G is normalized by each facet's projected width f_a; the beam entering the opening is as wide

@@ -1,4 +1,5 @@
 #include "vgroove/app/commands.h"
+#include "vgroove/common/angles.h"
 
 #include <cstdio>
 #include <numbers>
@@ -13,10 +14,6 @@
 namespace vgroove::app {
 
 using namespace validation;
-
-namespace {
-constexpr double kRad = std::numbers::pi / 180.0;
-}  // namespace
 
 int cmd_bench_accuracy(const AccuracyArgs& a) {
   check_threads(a.threads);
@@ -73,10 +70,10 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
   std::printf("  reaches the thresholds (max L1 <= %g, mean L1 <= %g) soonest: %s\n", suite.thresholds.max_l1,
               suite.thresholds.mean_l1, fastest.c_str());
   // The tracer's cost grows like pi / theta_v; the model's does not (one thread, theta_i = 30 deg).
-  const double kTheta_i = 30.0 * kRad;
+  const double kTheta_i = 30.0 * kRadPerDeg;
   const std::vector<double> apertures_deg = {1, 2, 5, 10, 20, 45, 90, 135, 180};
   std::vector<double> apertures;
-  for (double d : apertures_deg) apertures.push_back(d * kRad);
+  for (double d : apertures_deg) apertures.push_back(d * kRadPerDeg);
   const std::vector<CostPoint> cost = cost_vs_theta_v(apertures, kTheta_i, 20000);
   nlohmann::json cost_json = nlohmann::json::array();
   std::printf("  cost against theta_v (one thread, theta_i = 30 deg, 20000 stratified rays):\n");

@@ -1,4 +1,5 @@
 #include "vgroove/app/commands.h"
+#include "vgroove/common/angles.h"
 
 #include <cstdio>
 #include <iostream>
@@ -14,10 +15,6 @@ namespace vgroove::app {
 
 using namespace validation;
 
-namespace {
-constexpr double kRad = std::numbers::pi / 180.0;
-}  // namespace
-
 int cmd_trace(const TraceArgs& a) {
   const GrooveParams params = groove_from(a.groove);
   check_theta_i(a.theta_i_deg, "--theta-i-deg");
@@ -27,7 +24,7 @@ int cmd_trace(const TraceArgs& a) {
   const sim::Sampling sampling = parse_sampling(a.sampling, "--sampling");
   check_seed(a.seed, "--seed");
   if (a.dry_run) return 0;
-  const double theta_i = a.theta_i_deg * kRad;
+  const double theta_i = a.theta_i_deg * kRadPerDeg;
   const sim::Groove g = make_groove(params);
   const sim::Interval open = sim::opening(g);
   const sim::Vec2 dir = sim::beam_direction(theta_i);

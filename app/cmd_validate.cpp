@@ -6,9 +6,10 @@
 #include "vgroove/support/atomic_file.h"
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/user_error.h"
-#include "vgroove/validation/microsurface_case.h"
+#include "vgroove/validation/brdf_suite.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/suite_run.h"
+#include "vgroove/validation/table2_suite.h"
 
 namespace vgroove::app {
 

@@ -1,4 +1,5 @@
 #include "vgroove/app/options.h"
+#include "vgroove/common/angles.h"
 
 #include "vgroove/support/user_error.h"
 
@@ -8,10 +9,6 @@
 namespace vgroove::app {
 
 using namespace validation;
-
-namespace {
-constexpr double kRad = std::numbers::pi / 180.0;
-}  // namespace
 
 void check_seed(long long seed, const std::string& what) {
   if (seed < 0)
@@ -40,14 +37,14 @@ analytic::Eq6Form parse_form(const std::string& s, const std::string& what) {
 GrooveParams groove_from(const GrooveArgs& g) {
   if (!g.nonsymmetric) {
     check_theta_v(g.theta_v_deg, "--theta-v-deg");
-    return GrooveParams::make_symmetric(g.theta_v_deg * kRad);
+    return GrooveParams::make_symmetric(g.theta_v_deg * kRadPerDeg);
   }
   if (g.theta_v_given)
     throw support::UserError(
         "--theta-v-deg cannot be combined with --theta-l-deg/--theta-r-deg (the aperture follows from them)");
   check_theta_l(g.theta_l_deg, "--theta-l-deg");
   check_theta_r(g.theta_r_deg, "--theta-r-deg");
-  GrooveParams p = GrooveParams::make_nonsymmetric(g.theta_l_deg * kRad, g.theta_r_deg * kRad);
+  GrooveParams p = GrooveParams::make_nonsymmetric(g.theta_l_deg * kRadPerDeg, g.theta_r_deg * kRadPerDeg);
   const double v = 180.0 + g.theta_l_deg - g.theta_r_deg;
   if (p.degenerate() || v < kMinApertureDeg)
     throw support::UserError("--theta-l-deg = " + support::number_text(g.theta_l_deg) +

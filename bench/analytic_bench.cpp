@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 namespace {
@@ -19,7 +20,7 @@ using namespace vgroove;
 
 constexpr int kAngles = 256;  // theta_i values per iteration
 
-double deg(double d) { return d * M_PI / 180.0; }
+double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 // theta_i values lighting `first` for aperture theta_v.
 std::vector<double> lit_theta_i(double theta_v, analytic::FacetSide first) {

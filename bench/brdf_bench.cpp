@@ -21,6 +21,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -37,8 +38,8 @@ struct Pairs {
     std::uniform_real_distribution<double> U(0.0, 1.0);
     for (int n = 0; n < kPairs; ++n) {
       // cos theta = sqrt(u): cosine-weighted directions.
-      i.push_back(analytic::dir3(std::acos(std::sqrt(U(g))), 2.0 * M_PI * U(g)));
-      o.push_back(analytic::dir3(std::acos(std::sqrt(U(g))), 2.0 * M_PI * U(g)));
+      i.push_back(analytic::dir3(std::acos(std::sqrt(U(g))), 2.0 * std::numbers::pi * U(g)));
+      o.push_back(analytic::dir3(std::acos(std::sqrt(U(g))), 2.0 * std::numbers::pi * U(g)));
     }
   }
 };

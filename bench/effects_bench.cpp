@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <type_traits>
 
 namespace {
@@ -30,7 +31,7 @@ using namespace vgroove;
 constexpr double kThetaIDeg = 20.0;
 constexpr long kRays = 1000;
 
-double deg(double d) { return d * M_PI / 180.0; }
+double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 enum Variant : int { none, unit, unit_generic, schlick, conductor };
 

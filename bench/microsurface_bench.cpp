@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 
 namespace {
 
@@ -20,7 +21,7 @@ using namespace vgroove;
 
 constexpr int kGrooves = 10000;
 
-double deg(double d) { return d * M_PI / 180.0; }
+double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 void report(benchmark::State& state, std::int64_t rays, std::int64_t bounces) {
   state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);

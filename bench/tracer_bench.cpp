@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 
 namespace {
 
@@ -27,7 +28,7 @@ using namespace vgroove;
 constexpr double kThetaIDeg = 20.0;
 constexpr long kRays = 1000;  // per iteration: the suite's rays per lit facet
 
-double deg(double d) { return d * M_PI / 180.0; }
+double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 struct TracerSetup {
   sim::Groove g;

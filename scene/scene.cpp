@@ -1,4 +1,5 @@
 #include "vgroove/scene/scene.h"
+#include "vgroove/common/angles.h"
 
 #include "vgroove/support/json_reader.h"
 
@@ -12,7 +13,6 @@ using namespace validation;
 
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
 constexpr long long kMaxRays = 1'000'000'000;
 constexpr long long kMaxSeed = std::numeric_limits<long long>::max();
 
@@ -38,7 +38,7 @@ SceneGeometry read_geometry(support::JsonObject& g) {
     if (g.has("theta_v_deg")) {
       if (g.has("theta_l_deg") || g.has("theta_r_deg"))
         g.fail("theta_v_deg", "cannot be combined with theta_l_deg/theta_r_deg (the aperture follows from them)");
-      s.groove = GrooveParams::make_symmetric(g.number("theta_v_deg", kMinApertureDeg, true, 180.0, true) * kDeg);
+      s.groove = GrooveParams::make_symmetric(g.number("theta_v_deg", kMinApertureDeg, true, 180.0, true) * kRadPerDeg);
     } else {
       const double l = g.number("theta_l_deg", -90.0, true, 0.0, true);
       const double r = g.number("theta_r_deg", 0.0, true, 90.0, true);
@@ -48,12 +48,12 @@ SceneGeometry read_geometry(support::JsonObject& g) {
                                  ", theta_r_deg = " + support::number_text(r) +
                                  " give the aperture 180 + theta_l - theta_r = " + support::number_text(v) +
                                  " deg, out of range [" + support::number_text(kMinApertureDeg) + ", 180]");
-      s.groove = GrooveParams::make_nonsymmetric(l * kDeg, r * kDeg);
+      s.groove = GrooveParams::make_nonsymmetric(l * kRadPerDeg, r * kRadPerDeg);
     }
   } else {
     s.kind = GeometryKind::microsurface;
     const std::string ndf = g.one_of("ndf", {"ggx", "beckmann", "phong"});
-    s.ndf = ndf == "ggx" ? sim::NdfKind::ggx : ndf == "beckmann" ? sim::NdfKind::beckmann : sim::NdfKind::phong;
+    s.ndf = *ndf_from_name(ndf);
     s.alpha = g.number("alpha", 0.01, true, 2.0, true);
     s.grooves = static_cast<int>(g.integer("grooves", 1, 10'000'000));
     s.surface_seed = static_cast<std::uint64_t>(g.integer_or("seed", 0, 0, kMaxSeed));
@@ -71,7 +71,7 @@ SceneLight read_light(support::JsonObject& l) {
     const double d = v.get<double>();
     if (!(std::isfinite(d) && d > -90.0 && d < 90.0))
       throw support::UserError(at(l, "theta_i_deg", n) + " = " + v.dump() + " is out of range (-90, 90)");
-    s.theta_i.push_back(d * kDeg);
+    s.theta_i.push_back(d * kRadPerDeg);
   }
   s.rays = l.integer("rays", 1, kMaxRays);
   const std::string stratified = "stratified";

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <numbers>
 #include <type_traits>
 
 namespace vgroove::scene {
@@ -23,8 +24,6 @@ namespace vgroove::scene {
 using namespace validation;
 
 namespace {
-
-constexpr double kRad = M_PI / 180.0;
 
 // C reflectances along one path: the local cosine once per bounce, then C products (Eq. (11)).
 template <class Reflectance>
@@ -92,32 +91,33 @@ ThetaTally run_chunk(const Setup& s, double theta_i, std::int64_t chunk) {
   const int bins = scene.record.theta_o_bins;
   const int max_k = scene.record.histogram_max_k;
   Observer obs = make_observer<Observer>(s);
-  sim::for_each_landing(s.grooves, theta_i, scene.light.sampling, scene.light.rays, scene.light.seed, chunk,
-                        [&](const sim::Groove& groove, const sim::Ray2& ray) {
-                          if constexpr (kEnergy) obs.reset();
-                          const sim::TraceResult r = sim::trace(groove, ray, opt, obs);
-                          if (!t.count(r.how, r.bounces, r.exit_dir.y() > 0.0)) return;
-                          const auto k = static_cast<std::size_t>(std::min(r.bounces, kMaxKRow + 1));
-                          if (k >= t.by_k.size()) t.by_k.resize(k + 1, 0);
-                          ++t.by_k[k];
-                          if constexpr (kEnergy)
-                            for (std::size_t c = 0; c < C; ++c) t.energy[c] += obs.throughput[c];
-                          if constexpr (kEnergyPerK) {
-                            if ((k + 1) * C > t.energy_by_k.size()) t.energy_by_k.resize((k + 1) * C, 0.0);
-                            for (std::size_t c = 0; c < C; ++c) t.energy_by_k[k * C + c] += obs.throughput[c];
-                          }
-                          if constexpr (kHistograms) {
-                            const double w = M_PI / bins;
-                            // theta_o is inside (-pi/2, pi/2) here; the clamp only absorbs rounding of the division.
-                            const int bin = std::clamp(
-                                static_cast<int>(std::floor((sim::angle_from_normal(r.exit_dir) + 0.5 * M_PI) / w)), 0,
-                                bins - 1);
-                            const int row = r.bounces > max_k ? max_k + 1 : r.bounces;
-                            ++t.theta_o[static_cast<std::size_t>(bin)];
-                            ++t.theta_o_by_k[static_cast<std::size_t>(row) * static_cast<std::size_t>(bins) +
-                                             static_cast<std::size_t>(bin)];
-                          }
-                        });
+  sim::for_each_landing(
+      s.grooves, theta_i, scene.light.sampling, scene.light.rays, scene.light.seed, chunk,
+      [&](const sim::Groove& groove, const sim::Ray2& ray) {
+        if constexpr (kEnergy) obs.reset();
+        const sim::TraceResult r = sim::trace(groove, ray, opt, obs);
+        if (!t.count(r.how, r.bounces, r.exit_dir.y() > 0.0)) return;
+        const auto k = static_cast<std::size_t>(std::min(r.bounces, kMaxKRow + 1));
+        if (k >= t.by_k.size()) t.by_k.resize(k + 1, 0);
+        ++t.by_k[k];
+        if constexpr (kEnergy)
+          for (std::size_t c = 0; c < C; ++c) t.energy[c] += obs.throughput[c];
+        if constexpr (kEnergyPerK) {
+          if ((k + 1) * C > t.energy_by_k.size()) t.energy_by_k.resize((k + 1) * C, 0.0);
+          for (std::size_t c = 0; c < C; ++c) t.energy_by_k[k * C + c] += obs.throughput[c];
+        }
+        if constexpr (kHistograms) {
+          const double w = std::numbers::pi / bins;
+          // theta_o is inside (-pi/2, pi/2) here; the clamp only absorbs rounding of the division.
+          const int bin = std::clamp(
+              static_cast<int>(std::floor((sim::angle_from_normal(r.exit_dir) + 0.5 * std::numbers::pi) / w)), 0,
+              bins - 1);
+          const int row = r.bounces > max_k ? max_k + 1 : r.bounces;
+          ++t.theta_o[static_cast<std::size_t>(bin)];
+          ++t.theta_o_by_k[static_cast<std::size_t>(row) * static_cast<std::size_t>(bins) +
+                           static_cast<std::size_t>(bin)];
+        }
+      });
   return t;
 }
 
@@ -152,10 +152,6 @@ double channel_F(const Scene& s, std::size_t c, double cos_theta) {
   const FresnelChannel& ch = s.channels[c];
   return s.fresnel == FresnelKind::conductor ? optics::fresnel_conductor(cos_theta, ch.eta, ch.kappa)
                                              : optics::fresnel_schlick(cos_theta, ch.F0);
-}
-
-analytic::FacetSide to_analytic(sim::Side s) {
-  return s == sim::Side::left ? analytic::FacetSide::left : analytic::FacetSide::right;
 }
 
 std::string geometry_text(const Scene& s) {
@@ -214,9 +210,9 @@ ModelFigures model_figures(const Scene& s, double theta_i) {
         const auto F = [&](double cos_theta) { return channel_F(s, c, cos_theta); };
         // Lee et al. 2018, Eq. (11) (Eq. (23)'s R for nonsymmetric grooves): the product of F at
         // the local angles the kaleidoscope predicts.
-        const double e = p.symmetric ? analytic::fresnel_energy(theta_i, p.theta_v, b.n, to_analytic(side), F)
-                                     : analytic::fresnel_energy_nonsymmetric(theta_i, p.theta_l, p.theta_r, b.n,
-                                                                             to_analytic(side), F);
+        const double e = p.symmetric
+                             ? analytic::fresnel_energy(theta_i, p.theta_v, b.n, side, F)
+                             : analytic::fresnel_energy_nonsymmetric(theta_i, p.theta_l, p.theta_r, b.n, side, F);
         m.energy[c] += w * e;
       }
     }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <numbers>
 
 namespace vgroove::sim {
 
@@ -18,7 +19,7 @@ void finish_groove(Groove& g) {
 }
 
 Groove make_symmetric_groove(double theta_v) {
-  assert(theta_v > 0.0 && theta_v <= M_PI);
+  assert(theta_v > 0.0 && theta_v <= std::numbers::pi);
   const double half = 0.5 * theta_v;
   Groove g;
   // The left edge is at angle +half from n, the right edge at -half (counter-clockwise positive).
@@ -35,12 +36,12 @@ Groove make_symmetric_groove(double theta_v) {
 }
 
 Groove make_nonsymmetric_groove(double theta_l, double theta_r) {
-  assert(theta_l <= 0.0 && theta_l >= -0.5 * M_PI && theta_r >= 0.0 && theta_r <= 0.5 * M_PI);
-  assert(M_PI + theta_l - theta_r > 0.0);
+  assert(theta_l <= 0.0 && theta_l >= -0.5 * std::numbers::pi && theta_r >= 0.0 && theta_r <= 0.5 * std::numbers::pi);
+  assert(std::numbers::pi + theta_l - theta_r > 0.0);
   Groove g;
   // Edges perpendicular to the normals, pointing up from the apex.
-  g.facet[0].edge = direction_at(theta_l + 0.5 * M_PI);
-  g.facet[1].edge = direction_at(theta_r - 0.5 * M_PI);
+  g.facet[0].edge = direction_at(theta_l + 0.5 * std::numbers::pi);
+  g.facet[1].edge = direction_at(theta_r - 0.5 * std::numbers::pi);
   g.facet[0].normal = direction_at(theta_l);
   g.facet[1].normal = direction_at(theta_r);
   // Equal rim heights: length * edge.y equal for both facets.
@@ -51,7 +52,7 @@ Groove make_nonsymmetric_groove(double theta_l, double theta_r) {
   g.facet[0].length = h_max > 0.0 ? h_r / h_max : 1.0;
   g.facet[1].length = h_max > 0.0 ? h_l / h_max : 1.0;
   g.rim_height = g.facet[0].length * h_l;
-  g.theta_v = M_PI + theta_l - theta_r;
+  g.theta_v = std::numbers::pi + theta_l - theta_r;
   finish_groove(g);
   return g;
 }

@@ -6,13 +6,14 @@
 // bounding circle of radius 1).
 #pragma once
 
+#include "vgroove/common/side.h"
 #include "vgroove/sim/geometry.h"
 
 namespace vgroove::sim {
 
-enum class Side : unsigned char { left = 0, right = 1 };
-inline Side other(Side s) { return s == Side::left ? Side::right : Side::left; }
-inline const char* side_name(Side s) { return s == Side::left ? "left" : "right"; }
+using vgroove::other;
+using vgroove::Side;
+using vgroove::side_name;
 
 struct Facet {
   Vec2 edge;      // unit vector from the apex towards the rim

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <numbers>
 
 namespace vgroove::sim {
 
@@ -15,13 +16,13 @@ Microsurface make_microsurface(const MicrosurfaceOptions& opt) {
   // The steepest facet that still leaves an opening: a slope that rounds to +-pi/2 would close the
   // groove (aperture 0); the next angle down gives an aperture of ~4e-16 rad, whose rays end in
   // the bounce-limit bucket instead of being lost to an invalid groove.
-  const double steepest = std::nextafter(0.5 * M_PI, 0.0);
+  const double steepest = std::nextafter(0.5 * std::numbers::pi, 0.0);
   for (int j = 0; j < opt.grooves; ++j) {
     Rng rng(opt.seed, kGrooveStream, static_cast<std::uint64_t>(j));
     const double t = std::min(steepest, std::abs(sample_theta_m(opt.ndf, opt.alpha, uniform_open(rng))));
     m.theta_m.push_back(t);
     // make_symmetric_groove's left facet normal is at -(pi - theta_v)/2 = -t, the right one at +t.
-    m.grooves.push_back(make_symmetric_groove(M_PI - 2.0 * t));
+    m.grooves.push_back(make_symmetric_groove(std::numbers::pi - 2.0 * t));
   }
   return m;
 }
@@ -36,7 +37,7 @@ MicrosurfaceTally::MicrosurfaceTally(int bins_, int max_k_)
 }
 
 int MicrosurfaceTally::bin_of(double theta) const {
-  const int j = static_cast<int>(std::floor((theta + 0.5 * M_PI) / bin_width()));
+  const int j = static_cast<int>(std::floor((theta + 0.5 * std::numbers::pi) / bin_width()));
   // theta is inside (-pi/2, pi/2) here; the clamp only absorbs rounding of the division there.
   return std::clamp(j, 0, bins - 1);
 }
@@ -62,7 +63,7 @@ std::int64_t chunk_count(const MicrosurfaceTraceOptions& opt) { return (opt.rays
 
 MicrosurfaceTally trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOptions& opt,
                                            std::int64_t chunk) {
-  assert(std::abs(opt.theta_i) < 0.5 * M_PI && opt.rays >= 0);
+  assert(std::abs(opt.theta_i) < 0.5 * std::numbers::pi && opt.rays >= 0);
   MicrosurfaceTally tally(opt.theta_o_bins, opt.max_k);
   for_each_landing(surface.grooves, opt.theta_i, opt.sampling, opt.rays, opt.seed, chunk,
                    [&](const Groove& groove, const Ray2& ray) { tally.add(trace(groove, ray, opt.trace)); });

@@ -40,6 +40,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <numbers>
 #include <vector>
 
 namespace vgroove::sim {
@@ -89,8 +90,8 @@ struct MicrosurfaceTally : RayFates {
   MicrosurfaceTally() = default;
   MicrosurfaceTally(int bins_, int max_k_);
 
-  double bin_width() const { return M_PI / bins; }
-  double bin_lo(int j) const { return -0.5 * M_PI + j * bin_width(); }
+  double bin_width() const { return std::numbers::pi / bins; }
+  double bin_lo(int j) const { return -0.5 * std::numbers::pi + j * bin_width(); }
   double bin_center(int j) const { return bin_lo(j) + 0.5 * bin_width(); }
   int bin_of(double theta) const;
   int row_of(int k) const { return k > max_k ? max_k + 1 : k; }

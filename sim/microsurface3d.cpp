@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <numbers>
 
 namespace vgroove::sim {
 
 double theta_m_pdf_3d(NdfKind kind, double alpha, double theta_m) {
-  if (!(theta_m >= 0.0 && theta_m < 0.5 * M_PI)) return 0.0;
+  if (!(theta_m >= 0.0 && theta_m < 0.5 * std::numbers::pi)) return 0.0;
   const double c = std::cos(theta_m), s = std::sin(theta_m), a2 = alpha * alpha;
   switch (kind) {
     case NdfKind::ggx: {
@@ -29,7 +30,7 @@ double theta_m_pdf_3d(NdfKind kind, double alpha, double theta_m) {
 
 double theta_m_cdf_3d(NdfKind kind, double alpha, double theta_m) {
   if (!(theta_m > 0.0)) return 0.0;
-  if (theta_m >= 0.5 * M_PI) return 1.0;
+  if (theta_m >= 0.5 * std::numbers::pi) return 1.0;
   const double c = std::cos(theta_m), s = std::sin(theta_m), a2 = alpha * alpha;
   switch (kind) {
     case NdfKind::ggx:
@@ -63,13 +64,13 @@ double sample_theta_m_3d(NdfKind kind, double alpha, double u) {
 void add_groove3d(Microsurface3d& m, double theta_m, double phi_a) {
   // The steepest facet that still leaves an opening (as in make_microsurface): an angle that
   // rounds to pi/2 would close the groove.
-  const double t = std::min(std::nextafter(0.5 * M_PI, 0.0), theta_m);
+  const double t = std::min(std::nextafter(0.5 * std::numbers::pi, 0.0), theta_m);
   m.theta_m.push_back(t);
   m.phi_a.push_back(phi_a);
   m.frames.push_back(GrooveFrame3d{std::cos(phi_a), std::sin(phi_a)});
   // make_symmetric_groove's facet normals are at -t (left, leaning towards +a) and +t: the 2D
   // images of s = dir(t, phi_a) and s' = dir(t, phi_a + pi).
-  m.grooves.push_back(make_symmetric_groove(M_PI - 2.0 * t));
+  m.grooves.push_back(make_symmetric_groove(std::numbers::pi - 2.0 * t));
 }
 
 Microsurface3d make_microsurface3d(const Microsurface3dOptions& opt) {
@@ -84,7 +85,7 @@ Microsurface3d make_microsurface3d(const Microsurface3dOptions& opt) {
   for (int j = 0; j < opt.grooves; ++j) {
     Rng rng(opt.seed, kGroove3dStream, static_cast<std::uint64_t>(j));
     const double t = sample_theta_m_3d(opt.ndf, opt.alpha, uniform_open(rng));
-    const double phi = M_PI * uniform_open(rng);
+    const double phi = std::numbers::pi * uniform_open(rng);
     add_groove3d(m, t, phi);
   }
   return m;
@@ -162,7 +163,7 @@ std::int64_t chunk_count(const Microsurface3dTraceOptions& opt) {
 
 Microsurface3dTally trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt,
                                                std::int64_t chunk) {
-  assert(opt.theta_i >= 0.0 && opt.theta_i < 0.5 * M_PI && opt.rays >= 0);
+  assert(opt.theta_i >= 0.0 && opt.theta_i < 0.5 * std::numbers::pi && opt.rays >= 0);
   Microsurface3dTally tally(opt.theta_bins, opt.phi_bins, opt.max_k);
   const std::int64_t begin = chunk * kRaysPerChunk;
   const std::int64_t end = std::min(opt.rays, begin + kRaysPerChunk);

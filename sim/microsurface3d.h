@@ -55,6 +55,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <vector>
 
 namespace vgroove::sim {
@@ -120,7 +121,7 @@ struct Microsurface3dTraceOptions {
   TraceOptions trace;
 };
 
-// Histogram layout shared with analytic::Lobe3d (analytic/brdf_3d.h): theta_o in [0, pi/2) in
+// Histogram layout shared with analytic::Lobe3d (analytic/lobe_3d.h): theta_o in [0, pi/2) in
 // theta_bins equal bins; phi_o in phi_bins equal bins centred on phi = 0, phi_bins even; the light
 // at polar angle theta_i and azimuth pi; rows k = 0..max_k (+1 for k > max_k);
 // index [(row * theta_bins + t) * phi_bins + p].
@@ -138,8 +139,8 @@ struct Microsurface3dTally : RayFates {
   Microsurface3dTally() = default;
   Microsurface3dTally(int theta_bins_, int phi_bins_, int max_k_);
 
-  double theta_width() const { return 0.5 * M_PI / theta_bins; }
-  double phi_width() const { return 2.0 * M_PI / phi_bins; }
+  double theta_width() const { return 0.5 * std::numbers::pi / theta_bins; }
+  double phi_width() const { return 2.0 * std::numbers::pi / phi_bins; }
   int theta_bin_of(double theta_o) const;
   int phi_bin_of(double phi_o) const;  // phi_o in [-pi, pi]
   int row_of(int k) const { return k > max_k ? max_k + 1 : k; }

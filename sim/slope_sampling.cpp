@@ -3,24 +3,13 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <numbers>
 
 namespace vgroove::sim {
 
-const char* ndf_name(NdfKind kind) {
-  switch (kind) {
-    case NdfKind::beckmann:
-      return "beckmann";
-    case NdfKind::ggx:
-      return "ggx";
-    case NdfKind::phong:
-      return "phong";
-  }
-  return "?";
-}
-
 namespace {
 
-constexpr double kHalfPi = 0.5 * M_PI;
+constexpr double kHalfPi = 0.5 * std::numbers::pi;
 
 // Degrees of freedom of Phong's slope law: nu = alpha_p + 2 with Walter et al.'s
 // alpha_p = 2/alpha^2 - 2 (slope_sampling.h).
@@ -102,7 +91,7 @@ double theta_m_pdf(NdfKind kind, double alpha, double theta_m) {
   double P = 0.0;
   switch (kind) {
     case NdfKind::beckmann:
-      P = std::exp(-(s * s) / (alpha * alpha)) / (alpha * std::sqrt(M_PI));
+      P = std::exp(-(s * s) / (alpha * alpha)) / (alpha * std::sqrt(std::numbers::pi));
       break;
     case NdfKind::ggx: {
       const double r = 1.0 + (s * s) / (alpha * alpha);
@@ -112,7 +101,8 @@ double theta_m_pdf(NdfKind kind, double alpha, double theta_m) {
     case NdfKind::phong: {
       const double nu = phong_nu(alpha);
       // Gamma through lgamma: Gamma(nu/2) overflows for alpha below about 0.08.
-      const double front = std::exp(std::lgamma(0.5 * (nu + 1.0)) - std::lgamma(0.5 * nu)) / std::sqrt(M_PI);
+      const double front =
+          std::exp(std::lgamma(0.5 * (nu + 1.0)) - std::lgamma(0.5 * nu)) / std::sqrt(std::numbers::pi);
       P = front * std::exp(-0.5 * (nu + 1.0) * std::log1p(s * s));
       break;
     }

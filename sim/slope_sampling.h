@@ -28,10 +28,12 @@
 //             beta function at nu / (nu + t^2) = 1 / (1 + s^2) = cos^2 theta).
 #pragma once
 
+#include "vgroove/common/ndf_kind.h"
+
 namespace vgroove::sim {
 
-enum class NdfKind : unsigned char { beckmann, ggx, phong };
-const char* ndf_name(NdfKind kind);
+using vgroove::ndf_name;
+using vgroove::NdfKind;
 
 // Density of theta_m in (-pi/2, pi/2) in the projected-length measure; zero outside. alpha > 0.
 double theta_m_pdf(NdfKind kind, double alpha, double theta_m);

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <vector>
 
 namespace vgroove::sim {
@@ -25,7 +26,7 @@ struct BounceBin {
   bool reversed = false;
   double theta_o() const { return angle_from_normal(exit_dir); }
   // Largest angle between two exit directions of the bin, bounded from above (radians).
-  double spread() const { return reversed ? M_PI : std::asin(std::min(1.0, spread_sin)); }
+  double spread() const { return reversed ? std::numbers::pi : std::asin(std::min(1.0, spread_sin)); }
 };
 
 // The fates of the rays (sim::RayFates: every ray in one bucket; a single groove's escaped rays

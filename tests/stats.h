@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,9 +21,9 @@ inline double tanh_sinh(F&& f, double a, double b, double h = 1.0 / 64.0) {
   double sum = 0.0;
   for (int k = -static_cast<int>(4.5 / h); k <= static_cast<int>(4.5 / h); ++k) {
     const double t = k * h;
-    const double s = 0.5 * M_PI * std::sinh(t);
+    const double s = 0.5 * std::numbers::pi * std::sinh(t);
     const double ch = std::cosh(s);
-    const double w = 0.5 * M_PI * std::cosh(t) / (ch * ch);
+    const double w = 0.5 * std::numbers::pi * std::cosh(t) / (ch * ch);
     if (!(w > 0.0)) continue;
     const double delta = d * 2.0 / (std::exp(2.0 * std::abs(s)) + 1.0);
     sum += w * f(k < 0 ? a + delta : (k > 0 ? b - delta : c));
@@ -113,9 +114,10 @@ inline ChiSquare chi_square_gof(const std::vector<double>& edges, const std::vec
 // of a distribution of roughness alpha (the outer edges exactly +-pi/2).
 inline std::vector<double> slope_bin_edges(double alpha, int bins) {
   std::vector<double> edges(bins + 1);
-  for (int j = 0; j <= bins; ++j) edges[j] = std::atan(alpha * std::tan(-0.5 * M_PI + j * M_PI / bins));
-  edges.front() = -0.5 * M_PI;
-  edges.back() = 0.5 * M_PI;
+  for (int j = 0; j <= bins; ++j)
+    edges[j] = std::atan(alpha * std::tan(-0.5 * std::numbers::pi + j * std::numbers::pi / bins));
+  edges.front() = -0.5 * std::numbers::pi;
+  edges.back() = 0.5 * std::numbers::pi;
   return edges;
 }
 

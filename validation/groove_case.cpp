@@ -13,10 +13,6 @@ namespace {
 // to place rays in (positions round at 1e-16): it is treated as not lit, by model and tracer alike.
 constexpr double kMinProjectedWidth = 1e-12;
 
-analytic::FacetSide to_analytic(sim::Side s) {
-  return s == sim::Side::left ? analytic::FacetSide::left : analytic::FacetSide::right;
-}
-
 }  // namespace
 
 sim::Groove make_groove(const GrooveParams& p) {
@@ -26,11 +22,11 @@ sim::Groove make_groove(const GrooveParams& p) {
 ModelShares model_shares(const GrooveParams& p, double theta_i, sim::Side side, analytic::Eq6Form form) {
   ModelShares m;
   if (p.symmetric) {
-    const auto pred = analytic::G_kaleidoscopic(theta_i, p.theta_v, to_analytic(side), form);
+    const auto pred = analytic::G_kaleidoscopic(theta_i, p.theta_v, side, form);
     m.lit = pred.lit, m.k = pred.k, m.f_a = pred.f_a, m.shadow = pred.shadow;
     m.share[0] = pred.fewer, m.share[1] = pred.more, m.shares = 2;
   } else {
-    const auto pred = analytic::G_nonsymmetric(theta_i, p.theta_l, p.theta_r, to_analytic(side));
+    const auto pred = analytic::G_nonsymmetric(theta_i, p.theta_l, p.theta_r, side);
     m.lit = pred.lit, m.k = pred.k_b, m.f_a = pred.f_a, m.shadow = pred.shadow;
     for (int z = 0; z < 4; ++z) m.share[z] = pred.share[z];
     m.shares = 4;
@@ -39,8 +35,8 @@ ModelShares model_shares(const GrooveParams& p, double theta_i, sim::Side side, 
 }
 
 double model_exit_angle(const GrooveParams& p, double theta_i, int n, sim::Side side) {
-  return p.symmetric ? analytic::exit_angle(theta_i, p.theta_v, n, to_analytic(side))
-                     : analytic::exit_angle_nonsymmetric(theta_i, p.theta_l, p.theta_r, n, to_analytic(side));
+  return p.symmetric ? analytic::exit_angle(theta_i, p.theta_v, n, side)
+                     : analytic::exit_angle_nonsymmetric(theta_i, p.theta_l, p.theta_r, n, side);
 }
 
 namespace {

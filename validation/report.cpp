@@ -1,4 +1,5 @@
 #include "vgroove/validation/report.h"
+#include "vgroove/common/angles.h"
 
 #include "vgroove_version.h"
 
@@ -19,7 +20,7 @@ std::string fmt(const char* f, double v) {
 }
 }  // namespace
 
-double output_deg(double rad) { return std::round(rad * (180.0 / M_PI) * 1e9) / 1e9 + 0.0; }
+double output_deg(double rad) { return std::round(rad * kDegPerRad * 1e9) / 1e9 + 0.0; }
 
 const char* version_string() { return VGROOVE_VERSION; }
 const char* git_revision() { return VGROOVE_GIT; }

@@ -1,16 +1,17 @@
 #include "vgroove/validation/suite.h"
+#include "vgroove/common/angles.h"
 
 #include "vgroove/support/json_reader.h"
 
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <numbers>
 
 namespace vgroove::validation {
 
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
 constexpr long kMaxRays = 1'000'000'000;
 constexpr std::size_t kMaxValues = 1'000'000;
 
@@ -72,14 +73,14 @@ std::vector<GrooveParams> read_grooves(support::JsonObject& groove) {
   std::vector<GrooveParams> out;
   if (groove.one_of("type", {"symmetric", "nonsymmetric"}) == "symmetric") {
     for (double d : read_degrees(groove, "theta_v_deg", kMinApertureDeg, true, 180.0, true))
-      out.push_back(GrooveParams::make_symmetric(d * kDeg));
+      out.push_back(GrooveParams::make_symmetric(d * kRadPerDeg));
   } else {
     const auto ls = read_degrees(groove, "theta_l_deg", -90.0, true, 0.0, true);
     const auto rs = read_degrees(groove, "theta_r_deg", 0.0, true, 90.0, true);
     for (double l : ls)
       for (double r : rs) {
         check_aperture(l, r, groove.file() + ": " + groove.pointer());
-        out.push_back(GrooveParams::make_nonsymmetric(l * kDeg, r * kDeg));
+        out.push_back(GrooveParams::make_nonsymmetric(l * kRadPerDeg, r * kRadPerDeg));
       }
   }
   return out;
@@ -122,7 +123,7 @@ Suite parse_suite(const nlohmann::json& j, const std::string& file) {
     support::JsonObject groove = root.object("groove");
     s.grooves = read_grooves(groove);
     groove.finish();
-    for (double d : read_degrees(root, "theta_i_deg", -90.0, false, 90.0, false)) s.theta_i.push_back(d * kDeg);
+    for (double d : read_degrees(root, "theta_i_deg", -90.0, false, 90.0, false)) s.theta_i.push_back(d * kRadPerDeg);
   }
   if (root.has("cases")) {
     const nlohmann::json& list = root.raw("cases");
@@ -131,14 +132,15 @@ Suite parse_suite(const nlohmann::json& j, const std::string& file) {
       support::JsonObject c(list[n], file, root.path("cases") + "/" + std::to_string(n));
       SuiteCase sc;
       if (c.has("theta_v_deg")) {
-        sc.groove = GrooveParams::make_symmetric(c.number("theta_v_deg", kMinApertureDeg, true, 180.0, true) * kDeg);
+        sc.groove =
+            GrooveParams::make_symmetric(c.number("theta_v_deg", kMinApertureDeg, true, 180.0, true) * kRadPerDeg);
       } else {
         const double l = c.number("theta_l_deg", -90.0, true, 0.0, true);
         const double r = c.number("theta_r_deg", 0.0, true, 90.0, true);
         check_aperture(l, r, file + ": " + c.pointer());
-        sc.groove = GrooveParams::make_nonsymmetric(l * kDeg, r * kDeg);
+        sc.groove = GrooveParams::make_nonsymmetric(l * kRadPerDeg, r * kRadPerDeg);
       }
-      sc.theta_i = c.number("theta_i_deg", -90.0, false, 90.0, false) * kDeg;
+      sc.theta_i = c.number("theta_i_deg", -90.0, false, 90.0, false) * kRadPerDeg;
       c.string_or("note", "");
       c.finish();
       s.listed.push_back(sc);
@@ -161,7 +163,7 @@ Suite parse_suite(const nlohmann::json& j, const std::string& file) {
     support::JsonObject t = root.object("thresholds");
     s.thresholds.max_l1 = t.number("max_l1", 0.0, true, 2.0, true);
     s.thresholds.mean_l1 = t.number("mean_l1", 0.0, true, 2.0, true);
-    s.thresholds.max_theta_o_error_rad = t.number("max_theta_o_error_rad", 0.0, true, M_PI, true);
+    s.thresholds.max_theta_o_error_rad = t.number("max_theta_o_error_rad", 0.0, true, std::numbers::pi, true);
     t.finish();
   }
   if (root.has("paper")) {

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -56,7 +57,7 @@ struct GrooveParams {
   bool degenerate() const { return !(theta_v > 0.0); }
   static GrooveParams make_symmetric(double theta_v) { return {true, theta_v, 0.0, 0.0}; }
   static GrooveParams make_nonsymmetric(double theta_l, double theta_r) {
-    return {false, M_PI + theta_l - theta_r, theta_l, theta_r};
+    return {false, std::numbers::pi + theta_l - theta_r, theta_l, theta_r};
   }
 };
 

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 namespace vgroove::analytic {
 namespace {
@@ -34,7 +35,7 @@ TEST(Table2, ProjectedAreaPercentileAtNormalIncidenceReproducesAll27) {
 TEST(Table2, GgxAlphaOneHandValue) {
   const double t = theta_m_quantile(NdfKind::ggx, 1.0, 0.99, PercentileMeasure::projected_area);
   EXPECT_NEAR(std::tan(t), std::sqrt(99.0), 1e-12);
-  EXPECT_EQ(bounce_count(0.0, M_PI - 2.0 * t), 16);
+  EXPECT_EQ(bounce_count(0.0, std::numbers::pi - 2.0 * t), 16);
 }
 
 // The closed forms invert the projected-area CDF of ndf.h's D: int_0^theta_q 2 pi D cos sin = q.
@@ -44,7 +45,7 @@ TEST(Table2, ClosedFormQuantilesInvertTheNdf) {
       for (double q : {0.1, 0.5, 0.9, 0.99}) {
         const double t = theta_m_quantile(ndf, alpha, q, PercentileMeasure::projected_area);
         const double mass = vgroove::test_stats::tanh_sinh(
-            [&](double x) { return 2.0 * M_PI * D(ndf, x, alpha) * std::cos(x) * std::sin(x); }, 0.0, t);
+            [&](double x) { return 2.0 * std::numbers::pi * D(ndf, x, alpha) * std::cos(x) * std::sin(x); }, 0.0, t);
         EXPECT_NEAR(mass, q, 1e-10) << ndf_name(ndf) << " alpha " << alpha << " q " << q;
       }
 }
@@ -69,7 +70,7 @@ TEST(Table2, QuantilesAreMonotone) {
       EXPECT_LT(theta_m_quantile(ndf, 0.5, 0.9, m), theta_m_quantile(ndf, 0.5, 0.99, m));
       EXPECT_LT(theta_m_quantile(ndf, 0.5, 0.9, m), theta_m_quantile(ndf, 0.7, 0.9, m));
       EXPECT_GT(theta_m_quantile(ndf, 0.5, 0.9, m), 0.0);
-      EXPECT_LT(theta_m_quantile(ndf, 0.5, 0.99, m), 0.5 * M_PI);
+      EXPECT_LT(theta_m_quantile(ndf, 0.5, 0.99, m), 0.5 * std::numbers::pi);
     }
 }
 

@@ -1,5 +1,7 @@
 // Tests of the 3D V-groove BRDF (Lee et al. 2018, Eq. 13-17) and Cook-Torrance (Eq. 1-3).
 #include "vgroove/analytic/brdf_3d.h"
+#include "vgroove/analytic/lobe_3d.h"
+#include "vgroove/common/angles.h"
 
 #include "tests/param_names.h"
 #include "tests/stats.h"
@@ -9,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -16,12 +19,11 @@ namespace va = vgroove::analytic;
 
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
 constexpr va::NdfKind kNdfs[] = {va::NdfKind::ggx, va::NdfKind::beckmann, va::NdfKind::phong};
 
 va::Dir3 random_dir(std::mt19937_64& g) {
   std::uniform_real_distribution<double> U(0.0, 1.0);
-  return va::dir3(std::acos(U(g)), 2.0 * M_PI * U(g));
+  return va::dir3(std::acos(U(g)), 2.0 * std::numbers::pi * U(g));
 }
 
 // The exact microsurface map, written from the model's definition (not from brdf_3d.cpp): the
@@ -30,7 +32,7 @@ va::Dir3 groove_exit(const va::Dir3& i, double theta_m, double phi_a, va::FacetS
   const double ax = std::cos(phi_a), ay = std::sin(phi_a);
   const double ia = i.x * ax + i.y * ay, iu = -i.x * ay + i.y * ax;
   const double t_i = std::atan2(-ia, i.z), c = std::sqrt(1.0 - iu * iu);
-  const double t_o = va::exit_angle(t_i, M_PI - 2.0 * theta_m, n, side);
+  const double t_o = va::exit_angle(t_i, std::numbers::pi - 2.0 * theta_m, n, side);
   const double ex = -std::sin(t_o), ey = std::cos(t_o);
   // o = c (e_x a + e_y n) - (i.u) u, u = (-ay, ax, 0).
   return {c * ex * ax + iu * ay, c * ex * ay - iu * ax, c * ey};
@@ -50,8 +52,8 @@ TEST(Brdf3d, Eq13JacobianMatchesTheExactGrooveMap) {
   std::uniform_real_distribution<double> U(0.0, 1.0);
   int checked = 0;
   for (int trial = 0; trial < 400; ++trial) {
-    const va::Dir3 i = va::dir3(0.5 * M_PI * 0.98 * U(g), M_PI);
-    const double theta_m = 0.5 * M_PI * 0.95 * U(g), phi_a = M_PI * U(g);
+    const va::Dir3 i = va::dir3(0.5 * std::numbers::pi * 0.98 * U(g), std::numbers::pi);
+    const double theta_m = 0.5 * std::numbers::pi * 0.95 * U(g), phi_a = std::numbers::pi * U(g);
     const va::FacetSide side = U(g) < 0.5 ? va::FacetSide::left : va::FacetSide::right;
     const int k = 1 + static_cast<int>(6 * U(g));
     const va::Dir3 o = groove_exit(i, theta_m, phi_a, side, k);
@@ -121,8 +123,8 @@ TEST(Brdf3d, BeamWidthIsEq6) {
   const L pi_l = 3.141592653589793238462643383279502884L;
   int positive = 0;
   for (int n = 0; n < 50000; ++n) {
-    const double t_i = (U(g) - 0.5) * M_PI * 0.999;
-    const double theta_v0 = U(g) < 0.5 ? M_PI * U(g) : 0.2 * M_PI * U(g);
+    const double t_i = (U(g) - 0.5) * std::numbers::pi * 0.999;
+    const double theta_v0 = U(g) < 0.5 ? std::numbers::pi * U(g) : 0.2 * std::numbers::pi * U(g);
     const va::FacetSide side = U(g) < 0.5 ? va::FacetSide::left : va::FacetSide::right;
     const va::FacetPrediction p0 = va::G_kaleidoscopic(t_i, theta_v0, side);
     const int k = U(g) < 0.5 ? p0.k : p0.k - 1;  // the two outcomes Eq. (6) can have
@@ -131,9 +133,9 @@ TEST(Brdf3d, BeamWidthIsEq6) {
     const double t_o = va::exit_angle(t_i, theta_v0, k, side);
     const double m = side == va::FacetSide::left ? 1.0 : -1.0, sgn = k % 2 == 0 ? 1.0 : -1.0;
     const double a = m * t_i, b = sgn * m * t_o;
-    const int j = static_cast<int>(std::lround((k * theta_v0 - (a - b) - M_PI) / (2.0 * M_PI)));
-    const double theta_v = (a - b + (2.0 * j + 1.0) * M_PI) / k;
-    if (!(theta_v > 0.0 && theta_v <= M_PI)) continue;
+    const int j = static_cast<int>(std::lround((k * theta_v0 - (a - b) - std::numbers::pi) / (2.0 * std::numbers::pi)));
+    const double theta_v = (a - b + (2.0 * j + 1.0) * std::numbers::pi) / k;
+    if (!(theta_v > 0.0 && theta_v <= std::numbers::pi)) continue;
     const double w = va::beam_width_k(t_i, t_o, theta_v, k, side);
     const va::FacetPrediction p = va::G_kaleidoscopic(t_i, theta_v, side);
     double ref_d = 0.0;
@@ -168,8 +170,8 @@ TEST(Brdf3d, SinglePassEqualsPerKEvaluation) {
         if (n % 2 == 1) {
           // o from a groove that sends i out after k reflections.
           const int k = 1 + static_cast<int>(16 * U(g));
-          o = groove_exit(i, 0.5 * M_PI * U(g), M_PI * U(g), U(g) < 0.5 ? va::FacetSide::left : va::FacetSide::right,
-                          k);
+          o = groove_exit(i, 0.5 * std::numbers::pi * U(g), std::numbers::pi * U(g),
+                          U(g) < 0.5 ? va::FacetSide::left : va::FacetSide::right, k);
           if (!(o.z > 0.0)) continue;
         }
         for (int k = 1; k <= 16; ++k) {
@@ -215,9 +217,9 @@ TEST(Brdf3d, WhiteFurnaceLobeAlbedoIsOne) {
   for (va::NdfKind ndf : kNdfs) {
     for (double alpha : {0.01, 0.3, 0.5, 0.7, 1.0, 2.0}) {
       for (double ti : {0.0, 20.0, 40.0, 60.0, 80.0, 89.9}) {
-        const va::Lobe3d L = va::vgroove_lobe_3d(ndf, alpha, ti * kDeg, 2, 2, 16, opt);
+        const va::Lobe3d L = va::vgroove_lobe_3d(ndf, alpha, ti * vgroove::kRadPerDeg, 2, 2, 16, opt);
         EXPECT_NEAR(L.albedo, 1.0, 1e-7) << va::ndf_name(ndf) << " alpha " << alpha << " theta_i " << ti;
-        const va::Lobe3d C = va::cook_torrance_lobe_3d(ndf, alpha, ti * kDeg, 2, 2, opt);
+        const va::Lobe3d C = va::cook_torrance_lobe_3d(ndf, alpha, ti * vgroove::kRadPerDeg, 2, 2, opt);
         // Cook-Torrance loses energy: strictly once the grooves are rough enough to mask.
         EXPECT_LE(C.albedo, 1.0 + 1e-12);
         if (alpha >= 0.3 && ti <= 80.0) {  // at 89.9 deg the rough grooves mask < 1e-4
@@ -242,9 +244,9 @@ TEST(Brdf3d, Eq16IntegratesToThePushForwardMassPerK) {
   for (va::NdfKind ndf : kNdfs) {
     for (double alpha : {0.3, 1.0}) {
       for (double ti : {0.0, 60.0}) {
-        const va::Dir3 i = va::dir3(ti * kDeg, M_PI);
+        const va::Dir3 i = va::dir3(ti * vgroove::kRadPerDeg, std::numbers::pi);
         std::vector<double> mass(max_k + 1, 0.0);
-        const double dt = 0.5 * M_PI / n, dp = 2.0 * M_PI / (4 * n);
+        const double dt = 0.5 * std::numbers::pi / n, dp = 2.0 * std::numbers::pi / (4 * n);
         for (int a = 0; a < n; ++a) {
           const double th = (a + 0.5) * dt;
           for (int b = 0; b < 4 * n; ++b) {
@@ -256,7 +258,7 @@ TEST(Brdf3d, Eq16IntegratesToThePushForwardMassPerK) {
               mass[k] += va::vgroove_brdf_k(i, o, k, ndf, alpha) * o.z * 4.0 * ih * std::sin(th) * dt * dp;
           }
         }
-        const va::Lobe3d L = va::vgroove_lobe_3d(ndf, alpha, ti * kDeg, 2, 2, max_k, {16, 2, 32, 256});
+        const va::Lobe3d L = va::vgroove_lobe_3d(ndf, alpha, ti * vgroove::kRadPerDeg, 2, 2, max_k, {16, 2, 32, 256});
         for (int k = 1; k <= max_k; ++k)
           EXPECT_NEAR(mass[k], L.by_k[k], 5e-4)
               << va::ndf_name(ndf) << " alpha " << alpha << " ti " << ti << " k " << k;
@@ -273,10 +275,10 @@ TEST(Brdf3d, Eq16IntegratesToThePushForwardMassPerK) {
 // 2.8e-7 / 1.8e-7 there). Tolerance 1e-7: four times the worst measured.
 TEST(Brdf3d, LobeBinsAgreeWithEq16Quadrature) {
   const int tb = 45, pb = 36, max_k = 3;
-  const double ti = 30.0 * kDeg;
+  const double ti = 30.0 * vgroove::kRadPerDeg;
   const va::Lobe3d L = va::vgroove_lobe_3d(va::NdfKind::ggx, 0.5, ti, tb, pb, max_k);
-  const va::Dir3 i = va::dir3(ti, M_PI);
-  const double dth = 0.5 * M_PI / tb, dph = 2.0 * M_PI / pb;
+  const va::Dir3 i = va::dir3(ti, std::numbers::pi);
+  const double dth = 0.5 * std::numbers::pi / tb, dph = 2.0 * std::numbers::pi / pb;
   auto bin_integral = [&](int t, int p, int k) {
     double t0 = t * dth, t1 = (t + 1) * dth, p0 = (p - 0.5) * dph, p1 = (p + 0.5) * dph;
     std::vector<double> tc{t0, t1}, pc{p0, p1};
@@ -312,8 +314,8 @@ TEST(Brdf3d, HardCasesAreFiniteOrTheDocumentedLimit) {
   for (va::NdfKind ndf : kNdfs) {
     for (double alpha : {0.01, 0.1, 1.0, 2.0}) {
       for (double ti : {0.0, 45.0, 89.9}) {
-        const va::Dir3 i = va::dir3(ti * kDeg, M_PI);
-        const va::Dir3 mirror = va::dir3(ti * kDeg, 0.0);
+        const va::Dir3 i = va::dir3(ti * vgroove::kRadPerDeg, std::numbers::pi);
+        const va::Dir3 mirror = va::dir3(ti * vgroove::kRadPerDeg, 0.0);
         // Mirror direction (theta_h = 0): k = 1 is Cook-Torrance with G = 1, k >= 2 diverges.
         const double r1 = va::vgroove_brdf_k(i, mirror, 1, ndf, alpha);
         EXPECT_TRUE(std::isfinite(r1));
@@ -321,14 +323,14 @@ TEST(Brdf3d, HardCasesAreFiniteOrTheDocumentedLimit) {
         EXPECT_FALSE(std::isnan(va::vgroove_brdf(i, mirror, ndf, alpha, 16)));
         // Next to the mirror direction: finite, growing like 1/sin(theta_h).
         for (double d : {1e-3, 1e-6, 1e-9}) {
-          const double v = va::vgroove_brdf(i, va::dir3(ti * kDeg + d, 1e-3), ndf, alpha, 16);
+          const double v = va::vgroove_brdf(i, va::dir3(ti * vgroove::kRadPerDeg + d, 1e-3), ndf, alpha, 16);
           EXPECT_TRUE(std::isfinite(v) && v >= 0.0) << d;
         }
         // Grazing o, o along n, o at the horizon.
         for (double to : {0.0, 89.9, 90.0}) {
-          for (double po : {0.0, 1.0, M_PI}) {
-            const double v = va::vgroove_brdf(i, va::dir3(to * kDeg, po), ndf, alpha, 16);
-            const double c = va::cook_torrance(i, va::dir3(to * kDeg, po), ndf, alpha);
+          for (double po : {0.0, 1.0, std::numbers::pi}) {
+            const double v = va::vgroove_brdf(i, va::dir3(to * vgroove::kRadPerDeg, po), ndf, alpha, 16);
+            const double c = va::cook_torrance(i, va::dir3(to * vgroove::kRadPerDeg, po), ndf, alpha);
             EXPECT_FALSE(std::isnan(v));
             EXPECT_FALSE(std::isnan(c));
             if (to == 90.0) {
@@ -349,18 +351,20 @@ TEST(Brdf3d, HardCasesAreFiniteOrTheDocumentedLimit) {
 TEST(Brdf3d, InThePlaneOfIncidenceReducesToTheFlatlandCase) {
   for (double ti : {10.0, 50.0}) {
     for (double to : {-70.0, -20.0, 5.0, 35.0, 80.0}) {
-      const double t_i = ti * kDeg, t_o = to * kDeg;  // 2D angles, x-axis toward phi = pi
-      const va::Dir3 i = va::dir3(t_i, M_PI);
-      const va::Dir3 o = t_o >= 0 ? va::dir3(t_o, M_PI) : va::dir3(-t_o, 0.0);
+      const double t_i = ti * vgroove::kRadPerDeg, t_o = to * vgroove::kRadPerDeg;  // 2D angles, x-axis toward phi = pi
+      const va::Dir3 i = va::dir3(t_i, std::numbers::pi);
+      const va::Dir3 o = t_o >= 0 ? va::dir3(t_o, std::numbers::pi) : va::dir3(-t_o, 0.0);
       for (int k = 1; k <= 4; ++k) {
         double expect = 0.0;
         const double th = 0.5 * (t_i + t_o);
         for (va::FacetSide side : {va::FacetSide::left, va::FacetSide::right}) {
           // Scan theta_v for sign changes of the wrapped exit-angle error, then bisect.
           const int n = 20000;
-          auto err = [&](double v) { return std::remainder(va::exit_angle(t_i, v, k, side) - t_o, 2 * M_PI); };
+          auto err = [&](double v) {
+            return std::remainder(va::exit_angle(t_i, v, k, side) - t_o, 2 * std::numbers::pi);
+          };
           for (int s = 0; s < n; ++s) {
-            double a = M_PI * (s + 0.5) / (n + 1), b = M_PI * (s + 1.5) / (n + 1);
+            double a = std::numbers::pi * (s + 0.5) / (n + 1), b = std::numbers::pi * (s + 1.5) / (n + 1);
             if (err(a) * err(b) > 0 || std::abs(err(a) - err(b)) > 1.0) continue;
             for (int it = 0; it < 80; ++it) {
               const double m = 0.5 * (a + b);
@@ -369,7 +373,7 @@ TEST(Brdf3d, InThePlaneOfIncidenceReducesToTheFlatlandCase) {
             const double v = 0.5 * (a + b);
             const va::FacetPrediction p = va::G_kaleidoscopic(t_i, v, side);
             const double G = p.fewer.n == k ? p.fewer.G : (p.more.n == k ? p.more.G : 0.0);
-            const double tm = 0.5 * (M_PI - v);
+            const double tm = 0.5 * (std::numbers::pi - v);
             expect += std::sin(tm) * va::D(va::NdfKind::ggx, tm, 0.5) * G * p.f_a /
                       (4.0 * k * std::abs(std::sin(th)) * std::cos(0.5 * (t_i - t_o)) * std::cos(t_i) * std::cos(t_o));
           }

@@ -2,6 +2,7 @@
 // the flatland Eq. (25) (Cook-Torrance == the k = 1 term), pointwise against binned, hand values
 // and hard angles.
 #include "vgroove/analytic/brdf_flatland.h"
+#include "vgroove/common/angles.h"
 
 #include "tests/stats.h"
 #include "vgroove/analytic/ndf.h"
@@ -10,12 +11,12 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <random>
 
 namespace vgroove::analytic {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
 constexpr NdfKind kNdfs[] = {NdfKind::beckmann, NdfKind::ggx, NdfKind::phong};
 
 // White furnace: F = 1 and every groove's peaks on one line, so every ray that enters leaves
@@ -28,7 +29,7 @@ TEST(FlatlandLobe, WhiteFurnace) {
   for (NdfKind ndf : kNdfs)
     for (double alpha : {0.01, 0.1, 0.3, 0.5, 0.7, 1.0, 2.0})
       for (double deg : {0.0, 20.0, 40.0, 60.0, 80.0, 89.9}) {
-        const FlatlandLobe lobe = flatland_lobe(ndf, alpha, deg * kDeg, 90, 16);
+        const FlatlandLobe lobe = flatland_lobe(ndf, alpha, deg * kRadPerDeg, 90, 16);
         EXPECT_NEAR(lobe.albedo, 1.0, 1e-9) << ndf_name(ndf) << " alpha=" << alpha << " theta_i=" << deg;
         EXPECT_EQ(lobe.by_k[0], 0.0);  // peaks on a line: every ray meets a facet
         EXPECT_LT(lobe.below, 1e-15) << ndf_name(ndf) << " alpha=" << alpha << " theta_i=" << deg;
@@ -46,14 +47,14 @@ TEST(FlatlandSingleLobe, AlbedoBelowOneAndNormalIncidenceByHand) {
   for (NdfKind ndf : kNdfs)
     for (double alpha : {0.3, 0.5, 1.0, 2.0}) {
       for (double deg : {0.0, 40.0, 80.0}) {
-        const FlatlandLobe s = flatland_single_lobe(ndf, alpha, deg * kDeg, 90);
+        const FlatlandLobe s = flatland_single_lobe(ndf, alpha, deg * kRadPerDeg, 90);
         EXPECT_LT(s.albedo, 1.0) << ndf_name(ndf) << " alpha=" << alpha << " theta_i=" << deg;
         EXPECT_GT(s.albedo, 0.0);
       }
       auto f = [&](double h) {
         return D2(ndf, h, alpha) * std::cos(h) * std::min(1.0, std::max(0.0, 2.0 * std::cos(2.0 * h)));
       };
-      const double a30 = M_PI / 6.0, a45 = M_PI / 4.0;
+      const double a30 = std::numbers::pi / 6.0, a45 = std::numbers::pi / 4.0;
       const double by_hand = 2.0 * (test_stats::tanh_sinh(f, 0.0, a30) + test_stats::tanh_sinh(f, a30, a45));
       const FlatlandLobe s0 = flatland_single_lobe(ndf, alpha, 0.0, 90);
       EXPECT_NEAR(s0.albedo, by_hand, 1e-10) << ndf_name(ndf) << " alpha=" << alpha;
@@ -69,8 +70,8 @@ double rounding_scale(NdfKind ndf, double alpha, double ti, double to, int k) {
   for (double sgn_side : {1.0, -1.0})
     for (int m = -k - 2; m <= k + 2; ++m) {
       const double a = sgn_side * ti, b = sgn_side * to;
-      const double theta_v = (a + M_PI - (k % 2 == 0 ? 1.0 : -1.0) * b + 2.0 * M_PI * m) / k;
-      if (theta_v > 0.0 && theta_v <= M_PI) s += D2(ndf, 0.5 * theta_v - 0.5 * M_PI, alpha);
+      const double theta_v = (a + std::numbers::pi - (k % 2 == 0 ? 1.0 : -1.0) * b + 2.0 * std::numbers::pi * m) / k;
+      if (theta_v > 0.0 && theta_v <= std::numbers::pi) s += D2(ndf, 0.5 * theta_v - 0.5 * std::numbers::pi, alpha);
     }
   return 16.0 * std::numeric_limits<double>::epsilon() * s / (2.0 * k * std::cos(ti) * std::cos(to));
 }
@@ -115,8 +116,8 @@ TEST(FlatlandBrdf, CookTorranceIsTheSingleBounceTerm) {
   for (NdfKind ndf : kNdfs)
     for (double alpha : {0.1, 0.5, 1.0})
       for (double deg : {0.0, 35.0, -70.0}) {
-        const FlatlandLobe s = flatland_single_lobe(ndf, alpha, deg * kDeg, 90);
-        const FlatlandLobe m = flatland_lobe(ndf, alpha, deg * kDeg, 90, 4);
+        const FlatlandLobe s = flatland_single_lobe(ndf, alpha, deg * kRadPerDeg, 90);
+        const FlatlandLobe m = flatland_lobe(ndf, alpha, deg * kRadPerDeg, 90, 4);
         for (int b = 0; b < 90; ++b)
           EXPECT_NEAR(s.theta_o_by_k[90 + b], m.theta_o_by_k[90 + b], 1e-12)
               << ndf_name(ndf) << " alpha=" << alpha << " theta_i=" << deg << " bin=" << b;
@@ -133,14 +134,14 @@ TEST(FlatlandBrdf, CookTorranceIsTheSingleBounceTerm) {
 TEST(FlatlandLobe, PointwiseAgreesWithBinned) {
   constexpr int bins = 30, N = 1600;
   for (double deg : {0.0, 30.0, -65.0}) {
-    const double ti = deg * kDeg;
+    const double ti = deg * kRadPerDeg;
     const FlatlandLobe lobe = flatland_lobe(NdfKind::ggx, 0.5, ti, bins, 8);
-    const double w = M_PI / bins;
+    const double w = std::numbers::pi / bins;
     for (int k = 1; k <= 3; ++k)
       for (int b = 0; b < bins; ++b) {
         double s = 0.0;
         for (int j = 0; j < N; ++j) {
-          const double to = -0.5 * M_PI + b * w + (j + 0.5) * w / N;
+          const double to = -0.5 * std::numbers::pi + b * w + (j + 0.5) * w / N;
           s += flatland_brdf_k(NdfKind::ggx, 0.5, ti, to, k) * std::cos(to);
         }
         s *= w / N;
@@ -157,8 +158,8 @@ TEST(FlatlandLobe, QuadratureConverged) {
       for (double deg : {50.0, -89.9}) {
         FlatlandLobeOptions hi;
         hi.quadrature_order = 32;
-        const FlatlandLobe a = flatland_lobe(ndf, alpha, deg * kDeg, 90, 16);
-        const FlatlandLobe b = flatland_lobe(ndf, alpha, deg * kDeg, 90, 16, hi);
+        const FlatlandLobe a = flatland_lobe(ndf, alpha, deg * kRadPerDeg, 90, 16);
+        const FlatlandLobe b = flatland_lobe(ndf, alpha, deg * kRadPerDeg, 90, 16, hi);
         for (std::size_t j = 0; j < a.theta_o_by_k.size(); ++j)
           ASSERT_NEAR(a.theta_o_by_k[j], b.theta_o_by_k[j], 1e-12)
               << ndf_name(ndf) << " alpha=" << alpha << " theta_i=" << deg << " cell=" << j;
@@ -173,8 +174,8 @@ TEST(FlatlandLobe, TailLimitAgreesWithResolvedBins) {
     for (double deg : {0.0, 30.0, -60.0}) {
       FlatlandLobeOptions lo;
       lo.resolve_cap = 64;
-      const FlatlandLobe a = flatland_lobe(ndf, 1.5, deg * kDeg, 90, 16, lo);
-      const FlatlandLobe b = flatland_lobe(ndf, 1.5, deg * kDeg, 90, 16);
+      const FlatlandLobe a = flatland_lobe(ndf, 1.5, deg * kRadPerDeg, 90, 16, lo);
+      const FlatlandLobe b = flatland_lobe(ndf, 1.5, deg * kRadPerDeg, 90, 16);
       ASSERT_EQ(a.n_resolved, 64);
       ASSERT_GT(a.tail, 1e-5);
       for (std::size_t j = 0; j < a.theta_o_by_k.size(); ++j)
@@ -191,7 +192,7 @@ TEST(FlatlandLobe, HandValues) {
   // of theta_o = 2 theta_h - theta_i at alpha = 1e-3) is exp(-72); GGX's tail is algebraic (~alpha).
   {
     for (double deg : {1.0, 25.0, -61.0}) {  // -theta_i 1 deg from the edges of its 2 deg bin
-      const FlatlandLobe lobe = flatland_lobe(NdfKind::beckmann, 1e-3, deg * kDeg, 90, 4);
+      const FlatlandLobe lobe = flatland_lobe(NdfKind::beckmann, 1e-3, deg * kRadPerDeg, 90, 4);
       const int mirror = static_cast<int>(std::floor((-deg + 90.0) / 2.0));
       EXPECT_NEAR(lobe.theta_o_by_k[90 + static_cast<std::size_t>(mirror)], 1.0, 1e-9) << "theta_i=" << deg;
     }
@@ -209,18 +210,18 @@ TEST(FlatlandLobe, HandValues) {
   // example): rho2(0, theta_o; 2) is fed only by theta_s = +-45 deg, so rho2(0, 0; 2) =
   // 2 D2(45 deg) w / (2 * 2) with w = f_a - f_k = sin 45 deg (all of the facet's rays).
   for (NdfKind ndf : kNdfs) {
-    const double expected = 2.0 * D2(ndf, M_PI / 4.0, 0.5) * std::sin(M_PI / 4.0) / 4.0;
+    const double expected = 2.0 * D2(ndf, std::numbers::pi / 4.0, 0.5) * std::sin(std::numbers::pi / 4.0) / 4.0;
     EXPECT_NEAR(flatland_brdf_k(ndf, 0.5, 0.0, 0.0, 2), expected, 1e-14) << ndf_name(ndf);
   }
 }
 
 // Hard cases: grazing incidence and exit, the mirror direction, the hemisphere's edge.
 TEST(FlatlandBrdf, HardAnglesAreFinite) {
-  const double edge = 0.5 * M_PI;
+  const double edge = 0.5 * std::numbers::pi;
   for (NdfKind ndf : kNdfs)
     for (double alpha : {0.01, 0.1, 1.0, 2.0})
-      for (double ti : {-89.9 * kDeg, -1e-9, 0.0, 60.0 * kDeg, 89.9 * kDeg})
-        for (double to : {-ti, ti, -edge, edge, std::nextafter(edge, 0.0), 0.0, 89.99 * kDeg}) {
+      for (double ti : {-89.9 * kRadPerDeg, -1e-9, 0.0, 60.0 * kRadPerDeg, 89.9 * kRadPerDeg})
+        for (double to : {-ti, ti, -edge, edge, std::nextafter(edge, 0.0), 0.0, 89.99 * kRadPerDeg}) {
           const double v = flatland_brdf(ndf, alpha, ti, to, 16);
           const double s = flatland_brdf_single(ndf, alpha, ti, to);
           EXPECT_TRUE(std::isfinite(v) && v >= 0.0) << ndf_name(ndf) << " a=" << alpha << " " << ti << " " << to;

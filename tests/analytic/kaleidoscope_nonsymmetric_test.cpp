@@ -1,16 +1,16 @@
 // Tests of the nonsymmetric kaleidoscope (Lee et al. 2018, Eq. 7-9) on its own: the symmetric
 // special case, conservation, mirror symmetry and hand values.
 #include "vgroove/analytic/kaleidoscope_nonsymmetric.h"
+#include "vgroove/common/angles.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <map>
+#include <numbers>
 
 namespace vgroove::analytic {
 namespace {
-
-constexpr double kDeg = M_PI / 180.0;
 
 // Shares summed per bounce count (Eq. 9's zones may share a count when k_b = 2).
 std::map<int, double> by_count(const NonsymmetricPrediction& p) {
@@ -30,9 +30,9 @@ TEST(KaleidoscopeNonsymmetric, SymmetricGroovesReduceToEq4To6) {
   for (double theta_s_deg : {2.5, 10.0, 30.0, 44.0, 45.0, 60.0, 77.0, 87.5})
     for (double theta_i_deg = -89.0; theta_i_deg <= 89.0; theta_i_deg += 3.7)
       for (FacetSide side : {FacetSide::left, FacetSide::right}) {
-        const double ts = theta_s_deg * kDeg, ti = theta_i_deg * kDeg;
+        const double ts = theta_s_deg * kRadPerDeg, ti = theta_i_deg * kRadPerDeg;
         const NonsymmetricPrediction ns = G_nonsymmetric(ti, -ts, ts, side);
-        const FacetPrediction sy = G_kaleidoscopic(ti, M_PI - 2.0 * ts, side);
+        const FacetPrediction sy = G_kaleidoscopic(ti, std::numbers::pi - 2.0 * ts, side);
         ASSERT_EQ(ns.lit, sy.lit) << "theta_s=" << theta_s_deg << " theta_i=" << theta_i_deg;
         if (!ns.lit) continue;
         EXPECT_NEAR(ns.shadow, sy.shadow, 1e-12) << "theta_s=" << theta_s_deg << " theta_i=" << theta_i_deg;
@@ -44,7 +44,8 @@ TEST(KaleidoscopeNonsymmetric, SymmetricGroovesReduceToEq4To6) {
           EXPECT_NEAR(g, a.count(n) ? a.at(n) : 0.0, 1e-12)
               << "n=" << n << " theta_s=" << theta_s_deg << " theta_i=" << theta_i_deg;
         for (int n = 1; n < 6; ++n)
-          EXPECT_NEAR(exit_angle_nonsymmetric(ti, -ts, ts, n, side), exit_angle(ti, M_PI - 2.0 * ts, n, side), 1e-12)
+          EXPECT_NEAR(exit_angle_nonsymmetric(ti, -ts, ts, n, side),
+                      exit_angle(ti, std::numbers::pi - 2.0 * ts, n, side), 1e-12)
               << "n=" << n << " theta_s=" << theta_s_deg << " theta_i=" << theta_i_deg;
       }
 }
@@ -54,8 +55,8 @@ TEST(KaleidoscopeNonsymmetric, SharesAreFractionsThatSumToOne) {
     for (double r = 1.0; r <= 90.0; r += 6.1)
       for (double ti = -89.5; ti < 90.0; ti += 4.9)
         for (FacetSide side : {FacetSide::left, FacetSide::right}) {
-          if (aperture(l * kDeg, r * kDeg) <= 0.0) continue;
-          const NonsymmetricPrediction p = G_nonsymmetric(ti * kDeg, l * kDeg, r * kDeg, side);
+          if (aperture(l * kRadPerDeg, r * kRadPerDeg) <= 0.0) continue;
+          const NonsymmetricPrediction p = G_nonsymmetric(ti * kRadPerDeg, l * kRadPerDeg, r * kRadPerDeg, side);
           if (!p.lit) continue;
           double sum = p.shadow;
           for (const BounceShare& s : p.share) {
@@ -73,8 +74,8 @@ TEST(KaleidoscopeNonsymmetric, MirrorImageSwapsTheFacets) {
   for (double l : {-80.0, -45.0, -12.0})
     for (double r : {7.0, 33.0, 71.0})
       for (double ti : {-70.0, -20.0, 0.0, 15.0, 64.0}) {
-        const auto a = G_nonsymmetric(ti * kDeg, l * kDeg, r * kDeg, FacetSide::left);
-        const auto b = G_nonsymmetric(-ti * kDeg, -r * kDeg, -l * kDeg, FacetSide::right);
+        const auto a = G_nonsymmetric(ti * kRadPerDeg, l * kRadPerDeg, r * kRadPerDeg, FacetSide::left);
+        const auto b = G_nonsymmetric(-ti * kRadPerDeg, -r * kRadPerDeg, -l * kRadPerDeg, FacetSide::right);
         ASSERT_EQ(a.lit, b.lit);
         if (!a.lit) continue;
         for (int z = 0; z < 4; ++z) {
@@ -89,11 +90,11 @@ TEST(KaleidoscopeNonsymmetric, RightAngleCornerHandValues) {
   // theta_l = -30, theta_r = 60: a right-angle corner (theta_v = 90) tilted by 15 deg. Light from
   // theta_i = 20 deg: one reflection on the left facet mirrors it about that facet's normal,
   // theta_o = 2 theta_l - theta_i = -80 deg; two reflections in a right angle retroreflect: 20 deg.
-  EXPECT_NEAR(aperture(-30 * kDeg, 60 * kDeg), 90 * kDeg, 1e-15);
-  EXPECT_NEAR(exit_angle_nonsymmetric(20 * kDeg, -30 * kDeg, 60 * kDeg, 1), -80 * kDeg, 1e-12);
-  EXPECT_NEAR(exit_angle_nonsymmetric(20 * kDeg, -30 * kDeg, 60 * kDeg, 2), 20 * kDeg, 1e-12);
+  EXPECT_NEAR(aperture(-30 * kRadPerDeg, 60 * kRadPerDeg), 90 * kRadPerDeg, 1e-15);
+  EXPECT_NEAR(exit_angle_nonsymmetric(20 * kRadPerDeg, -30 * kRadPerDeg, 60 * kRadPerDeg, 1), -80 * kRadPerDeg, 1e-12);
+  EXPECT_NEAR(exit_angle_nonsymmetric(20 * kRadPerDeg, -30 * kRadPerDeg, 60 * kRadPerDeg, 2), 20 * kRadPerDeg, 1e-12);
   // Eq. (7): (pi + 40 - 30 deg) / 180 deg + 0.5 = 1.555..., k_b = 2.
-  EXPECT_EQ(bounce_count_kb(20 * kDeg, -30 * kDeg, 60 * kDeg), 2);
+  EXPECT_EQ(bounce_count_kb(20 * kRadPerDeg, -30 * kRadPerDeg, 60 * kRadPerDeg), 2);
 }
 
 TEST(KaleidoscopeNonsymmetric, JacobianAngularFactorIsTheDerivativeOfEq8) {

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -19,7 +20,7 @@
 namespace vgroove::analytic {
 namespace {
 
-double deg(double d) { return d * M_PI / 180.0; }
+double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 // The model's fraction of the rays aimed at a facet, per reflection count n (the fewer and more
 // shares merged when they name the same n, zero shares dropped); the shadow under n = -1.
@@ -89,16 +90,18 @@ TEST(ExitAngle, HandPoints) {
   EXPECT_NEAR(exit_angle(deg(30), deg(90), 1, FacetSide::right), deg(60), 1e-15);
   EXPECT_NEAR(exit_angle(deg(30), deg(90), 2, FacetSide::right), deg(30), 1e-15);
   // n = 0 would be the light itself turned back: theta_i + pi wraps to theta_i - pi.
-  EXPECT_NEAR(exit_angle(deg(30), deg(90), 0), deg(30) - M_PI, 1e-15);
+  EXPECT_NEAR(exit_angle(deg(30), deg(90), 0), deg(30) - std::numbers::pi, 1e-15);
 }
 
 TEST(ExitAngle, IsWrappedIntoMinusPiPi) {
   for (int n = 0; n < 50; ++n)
     for (double i : {-89.0, -10.0, 0.0, 33.0, 89.0}) {
       const double o = exit_angle(deg(i), deg(7.3), n);
-      EXPECT_GE(o, -M_PI) << "n=" << n << " theta_i=" << i;
-      EXPECT_LE(o, M_PI) << "n=" << n << " theta_i=" << i;
-      EXPECT_NEAR(std::remainder(o - (n % 2 ? -1 : 1) * (deg(i) + M_PI - n * deg(7.3)), 2 * M_PI), 0.0, 1e-12)
+      EXPECT_GE(o, -std::numbers::pi) << "n=" << n << " theta_i=" << i;
+      EXPECT_LE(o, std::numbers::pi) << "n=" << n << " theta_i=" << i;
+      EXPECT_NEAR(
+          std::remainder(o - (n % 2 ? -1 : 1) * (deg(i) + std::numbers::pi - n * deg(7.3)), 2 * std::numbers::pi), 0.0,
+          1e-12)
           << "n=" << n << " theta_i=" << i;
     }
 }
@@ -189,9 +192,9 @@ TEST_P(ModelGrid, RightFacetIsTheMirrorImageOfTheLeft) {
   EXPECT_EQ(r.more.G, l.more.G) << "theta_v=" << v << " theta_i=" << i;
   EXPECT_EQ(r.shadow, l.shadow) << "theta_v=" << v << " theta_i=" << i;
   // Exit angles mirror too (up to the wrap at +-pi).
-  EXPECT_NEAR(std::remainder(r.fewer.theta_o + l.fewer.theta_o, 2 * M_PI), 0.0, 1e-12)
+  EXPECT_NEAR(std::remainder(r.fewer.theta_o + l.fewer.theta_o, 2 * std::numbers::pi), 0.0, 1e-12)
       << "theta_v=" << v << " theta_i=" << i;
-  EXPECT_NEAR(std::remainder(r.more.theta_o + l.more.theta_o, 2 * M_PI), 0.0, 1e-12)
+  EXPECT_NEAR(std::remainder(r.more.theta_o + l.more.theta_o, 2 * std::numbers::pi), 0.0, 1e-12)
       << "theta_v=" << v << " theta_i=" << i;
 }
 

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -22,20 +23,21 @@
 namespace vgroove::analytic {
 namespace {
 
-double deg(double d) { return d * M_PI / 180.0; }
+double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 using vgroove::test_stats::tanh_sinh;
 
 // 3D: 2 pi int_0^{pi/2} D cos sin dtheta.
 double integral_3d(NdfKind kind, double alpha) {
-  return 2.0 * M_PI *
-         tanh_sinh([&](double t) { return D(kind, t, alpha) * std::cos(t) * std::sin(t); }, 0.0, 0.5 * M_PI);
+  return 2.0 * std::numbers::pi *
+         tanh_sinh([&](double t) { return D(kind, t, alpha) * std::cos(t) * std::sin(t); }, 0.0,
+                   0.5 * std::numbers::pi);
 }
 
 // 2D: int_{-pi/2}^{pi/2} D2 cos dtheta, split at the peak.
 double integral_2d(NdfKind kind, double alpha) {
   auto f = [&](double t) { return D2(kind, t, alpha) * std::cos(t); };
-  return tanh_sinh(f, -0.5 * M_PI, 0.0) + tanh_sinh(f, 0.0, 0.5 * M_PI);
+  return tanh_sinh(f, -0.5 * std::numbers::pi, 0.0) + tanh_sinh(f, 0.0, 0.5 * std::numbers::pi);
 }
 
 const NdfKind kKinds[] = {NdfKind::beckmann, NdfKind::ggx, NdfKind::phong};
@@ -54,7 +56,7 @@ std::string kind_alpha_name(const testing::TestParamInfo<KindAlpha>& info) {
 // Normalization. The quadrature is exact to ~1e-13 for these smooth integrands. Phong with
 // alpha > 1 (alpha_p < -1) has an integrable singularity cos^(alpha_p + 1) at pi/2 (3D: D cos sin)
 // and at +-pi/2 (2D: D2 cos); there
-// theta cannot come closer to pi/2 than the rounding of M_PI/2, eps = 6.1e-17, where cos(theta)
+// theta cannot come closer to pi/2 than the rounding of std::numbers::pi/2, eps = 6.1e-17, where cos(theta)
 // stops shrinking, so the last sliver int_0^eps x^-1/2 dx = 2 sqrt(eps) = 1.6e-8 per end is
 // misjudged: the tolerance for those cases is 4e-8 (alpha = 2: alpha_p + 1 = -0.5).
 double normalization_tolerance(NdfKind kind, double alpha) {
@@ -83,10 +85,12 @@ TEST(NdfNormalization, QuadratureIsExactOnAKnownIntegral) {
   // int_0^{pi/2} cos^-1/2 = B(1/2, 1/4) / 2 = Gamma(1/2) Gamma(1/4) / (2 Gamma(3/4)).
   const double exact = 0.5 * std::exp(std::lgamma(0.5) + std::lgamma(0.25) - std::lgamma(0.75));
   // The singular end costs up to 2 sqrt(6.1e-17) = 1.6e-8 (see below).
-  EXPECT_NEAR(tanh_sinh([](double t) { return 1.0 / std::sqrt(std::cos(t)); }, 0.0, 0.5 * M_PI), exact, 2e-8);
+  EXPECT_NEAR(tanh_sinh([](double t) { return 1.0 / std::sqrt(std::cos(t)); }, 0.0, 0.5 * std::numbers::pi), exact,
+              2e-8);
   // The same integral written in the distance to the singular end, which the nodes carry exactly.
-  EXPECT_NEAR(tanh_sinh([](double x) { return 1.0 / std::sqrt(std::sin(x)); }, 0.0, 0.5 * M_PI), exact, 1e-13);
-  EXPECT_NEAR(tanh_sinh([](double t) { return std::cos(t); }, 0.0, 0.5 * M_PI), 1.0, 1e-14);
+  EXPECT_NEAR(tanh_sinh([](double x) { return 1.0 / std::sqrt(std::sin(x)); }, 0.0, 0.5 * std::numbers::pi), exact,
+              1e-13);
+  EXPECT_NEAR(tanh_sinh([](double t) { return std::cos(t); }, 0.0, 0.5 * std::numbers::pi), 1.0, 1e-14);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -96,18 +100,18 @@ TEST(NdfHandValues, PeakOfEach3DNdfIsOneOverPiAlphaSquared) {
   // p + 2 = 2/a^2 -- the reason for Walter et al.'s exponent map.
   for (double a : kAlphas)
     for (NdfKind k : kKinds)
-      EXPECT_NEAR(D(k, 0.0, a), 1.0 / (M_PI * a * a), 1e-14 / (a * a)) << ndf_name(k) << " alpha=" << a;
+      EXPECT_NEAR(D(k, 0.0, a), 1.0 / (std::numbers::pi * a * a), 1e-14 / (a * a)) << ndf_name(k) << " alpha=" << a;
 }
 
 TEST(NdfHandValues, PeakOf2DNdfs) {
   for (double a : kAlphas) {
-    EXPECT_NEAR(D2_beckmann(0.0, a), 1.0 / (std::sqrt(M_PI) * a), 1e-14 / a) << "alpha=" << a;
+    EXPECT_NEAR(D2_beckmann(0.0, a), 1.0 / (std::sqrt(std::numbers::pi) * a), 1e-14 / a) << "alpha=" << a;
     EXPECT_NEAR(D2_ggx(0.0, a), 1.0 / (2.0 * a), 1e-14 / a) << "alpha=" << a;
   }
   // Phong with alpha_p = 0, 1, 2 (alpha = 1, sqrt(2/3), sqrt(1/2)): D2 = K cos^p with
   // K = 1 / int cos^(p+1) = 1/2, 2/pi, 3/4.
   EXPECT_NEAR(D2_phong(0.3, 1.0), 0.5, 1e-15);
-  EXPECT_NEAR(D2_phong(0.3, std::sqrt(2.0 / 3.0)), 2.0 / M_PI * std::cos(0.3), 1e-14);
+  EXPECT_NEAR(D2_phong(0.3, std::sqrt(2.0 / 3.0)), 2.0 / std::numbers::pi * std::cos(0.3), 1e-14);
   EXPECT_NEAR(D2_phong(0.3, std::sqrt(0.5)), 0.75 * std::cos(0.3) * std::cos(0.3), 1e-14);
 }
 
@@ -116,23 +120,25 @@ TEST(NdfHandValues, AtSlopeEqualToAlpha) {
   for (double a : {0.1, 0.5, 1.0, 2.0}) {
     const double t = std::atan(a), q = 1.0 + a * a;
     // Beckmann: e^-1 / (pi a^2 cos^4); GGX: a^2 / (pi cos^4 (2 a^2)^2) = q^2 / (4 pi a^2).
-    EXPECT_NEAR(D_beckmann(t, a), std::exp(-1.0) * q * q / (M_PI * a * a), 1e-13 * q * q / (a * a)) << "alpha=" << a;
-    EXPECT_NEAR(D_ggx(t, a), q * q / (4.0 * M_PI * a * a), 1e-13 * q * q / (a * a)) << "alpha=" << a;
+    EXPECT_NEAR(D_beckmann(t, a), std::exp(-1.0) * q * q / (std::numbers::pi * a * a), 1e-13 * q * q / (a * a))
+        << "alpha=" << a;
+    EXPECT_NEAR(D_ggx(t, a), q * q / (4.0 * std::numbers::pi * a * a), 1e-13 * q * q / (a * a)) << "alpha=" << a;
     // 2D: P(a) / cos^3 with P = e^-1/(sqrt(pi) a) and P = 2^-3/2 / (2 a).
-    EXPECT_NEAR(D2_beckmann(t, a), std::exp(-1.0) * std::pow(q, 1.5) / (std::sqrt(M_PI) * a), 1e-13 * q * q / a)
+    EXPECT_NEAR(D2_beckmann(t, a), std::exp(-1.0) * std::pow(q, 1.5) / (std::sqrt(std::numbers::pi) * a),
+                1e-13 * q * q / a)
         << "alpha=" << a;
     EXPECT_NEAR(D2_ggx(t, a), std::pow(q, 1.5) / (2.0 * a * std::pow(2.0, 1.5)), 1e-13 * q * q / a) << "alpha=" << a;
   }
   // Phong, alpha_p = 2 at 60 deg: (4 / 2 pi) cos^2 = 1 / (2 pi).
-  EXPECT_NEAR(D_phong(deg(60), std::sqrt(0.5)), 1.0 / (2.0 * M_PI), 1e-14);
+  EXPECT_NEAR(D_phong(deg(60), std::sqrt(0.5)), 1.0 / (2.0 * std::numbers::pi), 1e-14);
 }
 
 TEST(NdfHandValues, PhongEqualsGgxAtAlphaOne) {
   // alpha = 1: alpha_p = 0, so Phong is uniform, D = 1/pi and D2 = 1/2; GGX at alpha = 1 is
   // 1/(pi (cos^2 + sin^2)^2) = 1/pi and 1/(2 (cos^2 + sin^2)^(3/2)) = 1/2.
   for (double t = -1.5; t <= 1.5; t += 0.25) {
-    EXPECT_NEAR(D_phong(t, 1.0), 1.0 / M_PI, 1e-15) << "theta=" << t;
-    EXPECT_NEAR(D_ggx(t, 1.0), 1.0 / M_PI, 1e-15) << "theta=" << t;
+    EXPECT_NEAR(D_phong(t, 1.0), 1.0 / std::numbers::pi, 1e-15) << "theta=" << t;
+    EXPECT_NEAR(D_ggx(t, 1.0), 1.0 / std::numbers::pi, 1e-15) << "theta=" << t;
     EXPECT_NEAR(D2_phong(t, 1.0), 0.5, 1e-15) << "theta=" << t;
     EXPECT_NEAR(D2_ggx(t, 1.0), 0.5, 1e-15) << "theta=" << t;
   }
@@ -147,7 +153,7 @@ TEST(NdfHandValues, EvenAndZeroBelowTheHorizon) {
         // Zero only by underflow (Beckmann at alpha = 0.05, theta = 1.2: exp(-2600)).
         EXPECT_GE(D2(k, t, a), 0.0) << ndf_name(k) << " alpha=" << a << " theta=" << t;
       }
-      for (double t : {0.5 * M_PI + 1e-9, 2.0, -2.0, M_PI}) {
+      for (double t : {0.5 * std::numbers::pi + 1e-9, 2.0, -2.0, std::numbers::pi}) {
         EXPECT_EQ(D(k, t, a), 0.0) << ndf_name(k) << " alpha=" << a << " theta=" << t;
         EXPECT_EQ(D2(k, t, a), 0.0) << ndf_name(k) << " alpha=" << a << " theta=" << t;
       }
@@ -183,9 +189,9 @@ TEST(PhongBeckmann, L1DistanceShrinksAsAlphaSquared) {
   const double c = 4.0 * std::exp(-2.0);  // 0.5413
   for (double a : {0.1, 0.05, 0.02}) {
     const double l1 =
-        2.0 * M_PI *
+        2.0 * std::numbers::pi *
         tanh_sinh([&](double t) { return std::abs(D_phong(t, a) - D_beckmann(t, a)) * std::cos(t) * std::sin(t); }, 0.0,
-                  0.5 * M_PI, 1.0 / 256.0);
+                  0.5 * std::numbers::pi, 1.0 / 256.0);
     // The O(a^4) remainder: within 10% of the leading term for a <= 0.1.
     EXPECT_NEAR(l1 / (a * a), c, 0.1 * c) << "alpha=" << a << " L1=" << l1;
   }
@@ -223,7 +229,8 @@ TEST(SmithLambda, HandValues) {
   // a = 1/(alpha tan theta_o) = 1.
   const double a = 0.5, t = std::atan(1.0 / a);
   EXPECT_NEAR(Lambda_ggx(t, a), 0.5 * (std::sqrt(2.0) - 1.0), 1e-15);
-  EXPECT_NEAR(Lambda_beckmann(t, a), 0.5 * (std::erf(1.0) - 1.0) + std::exp(-1.0) / (2.0 * std::sqrt(M_PI)), 1e-15);
+  EXPECT_NEAR(Lambda_beckmann(t, a), 0.5 * (std::erf(1.0) - 1.0) + std::exp(-1.0) / (2.0 * std::sqrt(std::numbers::pi)),
+              1e-15);
   EXPECT_EQ(Lambda_ggx(0.0, a), 0.0);
   EXPECT_EQ(Lambda_beckmann(0.0, a), 0.0);
   EXPECT_EQ(G1_smith_ggx(0.0, a), 1.0);
@@ -239,7 +246,8 @@ TEST(SmithLambda, HandValues) {
 // with Heitz's closed-form Lambda. The integrand has a kink where o.m = 0, at theta_m =
 // theta_o -+ pi/2: integrate only where o.m > 0, split at 0 (the peak).
 double projected_area_2d(NdfKind kind, double alpha, double to, double g1) {
-  const double lo = std::max(-0.5 * M_PI, to - 0.5 * M_PI), hi = std::min(0.5 * M_PI, to + 0.5 * M_PI);
+  const double lo = std::max(-0.5 * std::numbers::pi, to - 0.5 * std::numbers::pi),
+               hi = std::min(0.5 * std::numbers::pi, to + 0.5 * std::numbers::pi);
   auto f = [&](double tm) { return g1 * std::cos(to - tm) * D2(kind, tm, alpha); };
   return tanh_sinh(f, lo, 0.0) + tanh_sinh(f, 0.0, hi);
 }
@@ -268,11 +276,11 @@ TEST(SmithG1, ProjectedAreaIsConservedIn3D) {
         const double g1 = kind == NdfKind::beckmann ? G1_smith_beckmann(to, a) : G1_smith_ggx(to, a);
         auto over_phi = [&](double tm) {
           const double cc = std::cos(to) * std::cos(tm), ss = std::sin(to) * std::sin(tm);
-          const double phi_max = cc >= ss ? M_PI : std::acos(-cc / ss);
+          const double phi_max = cc >= ss ? std::numbers::pi : std::acos(-cc / ss);
           return 2.0 * (cc * phi_max + ss * std::sin(phi_max)) * D(kind, tm, a) * std::sin(tm);
         };
-        const double kink = 0.5 * M_PI - to;
-        const double area = g1 * (tanh_sinh(over_phi, 0.0, kink) + tanh_sinh(over_phi, kink, 0.5 * M_PI));
+        const double kink = 0.5 * std::numbers::pi - to;
+        const double area = g1 * (tanh_sinh(over_phi, 0.0, kink) + tanh_sinh(over_phi, kink, 0.5 * std::numbers::pi));
         EXPECT_NEAR(area, std::cos(to), 1e-11) << ndf_name(kind) << " alpha=" << a << " theta_o=" << to_deg << " deg";
       }
 }

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <cstdio>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -251,7 +252,7 @@ TEST(Cli, TraceAt90And30ByHand) {
   const Rows rows = rows_of(t);
   const auto it = rows.find({"right", 1});
   ASSERT_NE(it, rows.end()) << t;
-  EXPECT_NEAR(it->second.first, std::tan(M_PI / 6), 1e-4) << t;
+  EXPECT_NEAR(it->second.first, std::tan(std::numbers::pi / 6), 1e-4) << t;
   EXPECT_EQ(it->second.second, 60.0) << t;
 }
 

@@ -3,6 +3,7 @@
 // indices below are chosen values, not measured metals. Published constants (Johnson & Christy
 // 1972, Rakic 1995) are checked in metals_reference_test.cpp against data/reference/metals.json.
 #include "vgroove/optics/fresnel.h"
+#include "vgroove/common/angles.h"
 
 #include <gtest/gtest.h>
 
@@ -12,14 +13,12 @@
 namespace vgroove::optics {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
-
 const std::vector<double> kEtas = {0.05, 0.2, 0.5, 0.9, 1.2, 1.5, 2.4, 4.0, 10.0};
 const std::vector<double> kKappas = {0.0, 0.01, 0.5, 1.0, 3.0, 10.0};
 
 std::vector<double> cos_grid() {  // 0 (grazing) to 1 (normal), denser near grazing
   std::vector<double> v;
-  for (int a = 0; a <= 900; ++a) v.push_back(std::cos(a * 0.1 * kDeg));
+  for (int a = 0; a <= 900; ++a) v.push_back(std::cos(a * 0.1 * kRadPerDeg));
   v.push_back(0.0);
   v.push_back(1e-9);
   return v;
@@ -103,7 +102,7 @@ TEST(Fresnel, BrewsterAngleZeroesThePPolarization) {
     EXPECT_LT(fresnel_conductor_polarized(cos_b, eta, 0.0).p, 1e-30) << "eta=" << eta;
     // A minimum: R_p grows on both sides of it.
     for (double da : {-1.0, 1.0}) {
-      const double c = std::cos(std::acos(cos_b) + da * kDeg);
+      const double c = std::cos(std::acos(cos_b) + da * kRadPerDeg);
       EXPECT_GT(fresnel_dielectric_polarized(c, eta).p, 1e-6) << "eta=" << eta << " da=" << da;
     }
   }
@@ -117,8 +116,8 @@ TEST(Fresnel, ReflectanceIsTheSameFromBothSidesOfAnInterface) {
   // same fraction, polarization by polarization.
   for (double eta : {1.2, 1.5, 2.4, 4.0})
     for (double a = 0.0; a < 89.95; a += 0.5) {
-      const double ci = std::cos(a * kDeg);
-      const double sin_t = std::sin(a * kDeg) / eta;
+      const double ci = std::cos(a * kRadPerDeg);
+      const double sin_t = std::sin(a * kRadPerDeg) / eta;
       const double ct = std::sqrt(1 - sin_t * sin_t);
       const PolarizedReflectance in = fresnel_dielectric_polarized(ci, eta);
       const PolarizedReflectance out = fresnel_dielectric_polarized(ct, 1 / eta);
@@ -253,7 +252,7 @@ TEST(Fresnel, SchlickErrorForGlass) {
   }
   EXPECT_GT(max_abs, 0.0356);
   EXPECT_LT(max_abs, 0.0358);
-  EXPECT_NEAR(std::acos(at) / kDeg, 85.0, 0.1);
+  EXPECT_NEAR(std::acos(at) / kRadPerDeg, 85.0, 0.1);
   EXPECT_GT(max_rel, 0.23);
   EXPECT_LT(max_rel, 0.235);
 }

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -152,7 +153,7 @@ TEST(MetalsReference, GrazingIncidenceReflectanceTendsToOne) {
 }
 
 TEST(MetalsReference, UnpolarizedAt45DegreesLiesBetweenPAndS) {
-  const double c45 = std::cos(M_PI / 4.0);
+  const double c45 = std::cos(std::numbers::pi / 4.0);
   for (const Metal& m : metals())
     for (const Sample& s : m.samples) {
       const PolarizedReflectance pr = fresnel_conductor_polarized(c45, s.eta, s.kappa);

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <numbers>
 #include <string>
 
 namespace vgroove::scene {
@@ -52,9 +53,9 @@ TEST(SceneSpec, BaseSceneParses) {
   const Scene s = parse_scene(base_scene(), "s.json");
   EXPECT_EQ(s.name, "t");
   EXPECT_EQ(s.geometry.kind, GeometryKind::groove);
-  EXPECT_DOUBLE_EQ(s.geometry.groove.theta_v, M_PI / 2);
+  EXPECT_DOUBLE_EQ(s.geometry.groove.theta_v, std::numbers::pi / 2);
   ASSERT_EQ(s.light.theta_i.size(), 2u);
-  EXPECT_DOUBLE_EQ(s.light.theta_i[1], M_PI / 6);
+  EXPECT_DOUBLE_EQ(s.light.theta_i[1], std::numbers::pi / 6);
   EXPECT_EQ(s.light.rays, 100);
   EXPECT_EQ(s.light.sampling, sim::Sampling::stratified);  // the defaults
   EXPECT_EQ(s.light.seed, 1u);
@@ -296,7 +297,7 @@ TEST(Simulate, ConductorGrooveEnergyMatchesTheModelStratified) {
         EXPECT_NEAR(ta.mean_k(), r.model[t].mean_k, D * static_cast<double>(ta.by_k.size() - 1) / kN) << geometry;
         for (std::size_t c = 0; c < s.channels.size(); ++c)
           EXPECT_NEAR(ta.energy[c] / static_cast<double>(ta.rays), r.model[t].energy[c], tol)
-              << geometry << " " << fresnel << " theta_i=" << r.theta_i[t] * 180 / M_PI << " channel " << c;
+              << geometry << " " << fresnel << " theta_i=" << r.theta_i[t] * 180 / std::numbers::pi << " channel " << c;
       }
     }
 }
@@ -314,7 +315,7 @@ TEST(Simulate, ConductorGrooveEnergyMatchesTheModelRandom) {
       for (std::size_t t = 0; t < r.tallies.size(); ++t)
         for (std::size_t c = 0; c < s.channels.size(); ++c)
           EXPECT_NEAR(r.tallies[t].energy[c] / static_cast<double>(r.tallies[t].rays), r.model[t].energy[c], tol)
-              << geometry << " " << fresnel << " theta_i=" << r.theta_i[t] * 180 / M_PI << " channel " << c;
+              << geometry << " " << fresnel << " theta_i=" << r.theta_i[t] * 180 / std::numbers::pi << " channel " << c;
     }
 }
 
@@ -423,7 +424,7 @@ TEST(Simulate, MicrosurfaceCountsMatchTraceMicrosurface) {
   sim::MicrosurfaceOptions mo;
   mo.ndf = sim::NdfKind::ggx, mo.alpha = 0.9, mo.grooves = 300, mo.seed = 5;
   sim::MicrosurfaceTraceOptions to;
-  to.theta_i = 35 * M_PI / 180, to.rays = 20000, to.sampling = sim::Sampling::random, to.seed = 11;
+  to.theta_i = 35 * std::numbers::pi / 180, to.rays = 20000, to.sampling = sim::Sampling::random, to.seed = 11;
   to.theta_o_bins = 45, to.max_k = 16;
   const sim::MicrosurfaceTally ref = sim::trace_microsurface(sim::make_microsurface(mo), to);
   const ThetaTally& t = r.tallies.at(0);

@@ -6,13 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <tuple>
 #include <vector>
 
 namespace vgroove::sim {
 namespace {
 
-double deg(double d) { return d * M_PI / 180.0; }
+double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 TEST(Groove, SymmetricGrooveHasUnitFacetsAndInwardNormals) {
   for (double v : {0.1, 30.0, 90.0, 179.0, 180.0}) {

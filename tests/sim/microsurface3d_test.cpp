@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -30,7 +31,7 @@ namespace {
 
 using namespace vgroove::test_stats;  // tanh_sinh, gamma_q, ChiSquare, chi_square_gof
 
-double deg(double d) { return d * M_PI / 180.0; }
+double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 const NdfKind kKinds[] = {NdfKind::beckmann, NdfKind::ggx, NdfKind::phong};
 const double kAlphas[] = {0.2, 0.6, 1.0};
@@ -44,7 +45,7 @@ std::string kind_alpha_name(const testing::TestParamInfo<std::tuple<NdfKind, dou
 
 TEST_P(Sampling3d, PdfIsNormalized) {
   const auto [kind, alpha] = GetParam();
-  const double total = tanh_sinh([&](double t) { return theta_m_pdf_3d(kind, alpha, t); }, 0.0, 0.5 * M_PI);
+  const double total = tanh_sinh([&](double t) { return theta_m_pdf_3d(kind, alpha, t); }, 0.0, 0.5 * std::numbers::pi);
   EXPECT_NEAR(total, 1.0, 1e-10) << ndf_name(kind) << " alpha=" << alpha;
 }
 
@@ -56,7 +57,7 @@ TEST_P(Sampling3d, CdfIsTheIntegralOfThePdf) {
     EXPECT_NEAR(theta_m_cdf_3d(kind, alpha, t), q, 1e-11) << ndf_name(kind) << " alpha=" << alpha << " t=" << t_deg;
   }
   EXPECT_EQ(theta_m_cdf_3d(kind, alpha, 0.0), 0.0);
-  EXPECT_EQ(theta_m_cdf_3d(kind, alpha, 0.5 * M_PI), 1.0);
+  EXPECT_EQ(theta_m_cdf_3d(kind, alpha, 0.5 * std::numbers::pi), 1.0);
 }
 
 TEST_P(Sampling3d, SampleInvertsTheCdf) {
@@ -65,7 +66,7 @@ TEST_P(Sampling3d, SampleInvertsTheCdf) {
   for (double u : {1e-12, 1e-6, 0.01, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99, 0.999999}) {
     const double t = sample_theta_m_3d(kind, alpha, u);
     EXPECT_GT(t, prev) << ndf_name(kind) << " alpha=" << alpha << " u=" << u;
-    EXPECT_LT(t, 0.5 * M_PI);
+    EXPECT_LT(t, 0.5 * std::numbers::pi);
     // The cdf's condition number near u -> 1 is |d log(1-u)/d theta| * dtheta: relative in 1 - u.
     EXPECT_NEAR(theta_m_cdf_3d(kind, alpha, t), u, 1e-13 * u + 1e-11 * (1.0 - u) + 1e-15)
         << ndf_name(kind) << " alpha=" << alpha << " u=" << u;
@@ -82,14 +83,14 @@ TEST_P(Sampling3d, GroovesFollowThePdf) {
   constexpr double level = 1e-3 / 18.0;
   const Microsurface3d m = make_microsurface3d({kind, alpha, n, 20180611});
   std::vector<double> edges(bins + 1);
-  for (int j = 0; j <= bins; ++j) edges[j] = std::atan(alpha * std::tan(j * 0.5 * M_PI / bins));
-  edges.back() = 0.5 * M_PI;
+  for (int j = 0; j <= bins; ++j) edges[j] = std::atan(alpha * std::tan(j * 0.5 * std::numbers::pi / bins));
+  edges.back() = 0.5 * std::numbers::pi;
   std::vector<double> expected(bins);
   for (int j = 0; j < bins; ++j)
     expected[j] = n * tanh_sinh([&](double t) { return theta_m_pdf_3d(kind, alpha, t); }, edges[j], edges[j + 1]);
   std::vector<std::int64_t> observed(bins, 0);
   for (double t : m.theta_m) {
-    ASSERT_TRUE(t >= 0.0 && t < 0.5 * M_PI) << t;
+    ASSERT_TRUE(t >= 0.0 && t < 0.5 * std::numbers::pi) << t;
     const auto it = std::upper_bound(edges.begin(), edges.end(), t);
     ++observed[static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(it - edges.begin() - 1, 0, bins - 1))];
   }
@@ -100,11 +101,11 @@ TEST_P(Sampling3d, GroovesFollowThePdf) {
 
   constexpr int phi_bins = 36;
   std::vector<double> phi_edges(phi_bins + 1), phi_expected(phi_bins, static_cast<double>(n) / phi_bins);
-  for (int j = 0; j <= phi_bins; ++j) phi_edges[j] = j * M_PI / phi_bins;
+  for (int j = 0; j <= phi_bins; ++j) phi_edges[j] = j * std::numbers::pi / phi_bins;
   std::vector<std::int64_t> phi_observed(phi_bins, 0);
   for (double p : m.phi_a) {
-    ASSERT_TRUE(p >= 0.0 && p < M_PI) << p;
-    ++phi_observed[static_cast<std::size_t>(std::min(phi_bins - 1, static_cast<int>(p / M_PI * phi_bins)))];
+    ASSERT_TRUE(p >= 0.0 && p < std::numbers::pi) << p;
+    ++phi_observed[static_cast<std::size_t>(std::min(phi_bins - 1, static_cast<int>(p / std::numbers::pi * phi_bins)))];
   }
   const ChiSquare cp = chi_square_gof(phi_edges, phi_expected, phi_observed);
   EXPECT_GE(cp.p, level) << "phi_a: chi2=" << cp.stat << " dof=" << cp.dof << "\n" << cp.table;
@@ -127,9 +128,9 @@ TEST(Microsurface3dLift, MatchesThreeDimensionalReflections) {
   int checked = 0, multi = 0;
   for (int n = 0; n < 20000; ++n) {
     Microsurface3d m;
-    const double theta_m = 0.5 * M_PI * uniform_open(rng), phi_a = M_PI * uniform_open(rng);
+    const double theta_m = 0.5 * std::numbers::pi * uniform_open(rng), phi_a = std::numbers::pi * uniform_open(rng);
     add_groove3d(m, theta_m, phi_a);
-    const Vec3 i = direction3(deg(85.0) * rng.uniform(), 2.0 * M_PI * rng.uniform());
+    const Vec3 i = direction3(deg(85.0) * rng.uniform(), 2.0 * std::numbers::pi * rng.uniform());
     const double f = uniform_open(rng);
     const Trace3dResult r = trace_groove3d(m.grooves[0], m.frames[0], i, f);
     if (r.trace.how != Termination::escaped) continue;
@@ -143,7 +144,7 @@ TEST(Microsurface3dLift, MatchesThreeDimensionalReflections) {
     EXPECT_NEAR(r.o.norm(), 1.0, tol) << where;
     EXPECT_NEAR(r.o.dot(u), -i.dot(u), tol) << where;
     EXPECT_NEAR((i + r.o).dot(u), 0.0, tol) << where;
-    const Vec3 s[2] = {direction3(m.theta_m[0], phi_a), direction3(m.theta_m[0], phi_a + M_PI)};
+    const Vec3 s[2] = {direction3(m.theta_m[0], phi_a), direction3(m.theta_m[0], phi_a + std::numbers::pi)};
     Vec3 d = -i;
     int side = static_cast<int>(r.trace.first);
     for (int k = 0; k < r.trace.bounces; ++k, side = 1 - side) d = reflect3(d, s[side]);
@@ -196,12 +197,12 @@ TEST(Microsurface3dTally, BinEdges) {
   EXPECT_EQ(t.phi_bin_of(0.5 * d * (1.0 - 1e-12)), 0);
   EXPECT_EQ(t.phi_bin_of(0.5 * d * (1.0 + 1e-12)), 1);
   EXPECT_EQ(t.phi_bin_of(-0.5 * d * (1.0 + 1e-12)), 71);
-  EXPECT_EQ(t.phi_bin_of(M_PI), 36);
-  EXPECT_EQ(t.phi_bin_of(-M_PI), 36);
-  EXPECT_EQ(t.phi_bin_of(std::nextafter(-M_PI, 0.0)), 36);
+  EXPECT_EQ(t.phi_bin_of(std::numbers::pi), 36);
+  EXPECT_EQ(t.phi_bin_of(-std::numbers::pi), 36);
+  EXPECT_EQ(t.phi_bin_of(std::nextafter(-std::numbers::pi, 0.0)), 36);
   EXPECT_EQ(t.theta_bin_of(0.0), 0);
   EXPECT_EQ(t.theta_bin_of(deg(30.5)), 30);
-  EXPECT_EQ(t.theta_bin_of(std::nextafter(0.5 * M_PI, 0.0)), 89);
+  EXPECT_EQ(t.theta_bin_of(std::nextafter(0.5 * std::numbers::pi, 0.0)), 89);
   EXPECT_EQ(t.index(1, 2, 3), static_cast<std::size_t>((1 * 90 + 2) * 72 + 3));
 }
 

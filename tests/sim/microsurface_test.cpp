@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -28,7 +29,7 @@
 namespace vgroove::sim {
 namespace {
 
-double deg(double d) { return d * M_PI / 180.0; }
+double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 // ---------------------------------------------------------------------------------------------
 // Numerical helpers (independent of the code under test).
@@ -106,7 +107,7 @@ TEST(IncompleteBeta, ClosedForms) {
     EXPECT_NEAR(incomplete_beta(3.0, 1.0, x, y), x * x * x, 1e-15) << "x=" << x;
     EXPECT_NEAR(incomplete_beta(1.0, 2.5, x, y), 1.0 - std::pow(y, 2.5), 1e-14) << "x=" << x;
     // I_x(1/2, 1/2) = (2/pi) asin(sqrt(x)) (the arcsine law).
-    EXPECT_NEAR(incomplete_beta(0.5, 0.5, x, y), 2.0 / M_PI * std::asin(std::sqrt(x)), 1e-14) << "x=" << x;
+    EXPECT_NEAR(incomplete_beta(0.5, 0.5, x, y), 2.0 / std::numbers::pi * std::asin(std::sqrt(x)), 1e-14) << "x=" << x;
     // Symmetry I_x(a, b) = 1 - I_{1-x}(b, a), with large a (Phong at small alpha).
     EXPECT_NEAR(incomplete_beta(400.0, 0.5, x, y) + incomplete_beta(0.5, 400.0, y, x), 1.0, 1e-13) << "x=" << x;
   }
@@ -117,7 +118,7 @@ TEST(IncompleteBeta, ClosedForms) {
 // ---------------------------------------------------------------------------------------------
 // Tolerance of quadratures of the pdf: ~1e-12 for smooth integrands; Phong with alpha > 1 has an
 // integrable singularity cos^(2/alpha^2 - 1) at +-pi/2, where theta stops approaching pi/2 at the
-// rounding of M_PI/2 (6.1e-17): up to 2 sqrt(6.1e-17) = 1.6e-8 per end (ndf_test.cpp).
+// rounding of std::numbers::pi/2 (6.1e-17): up to 2 sqrt(6.1e-17) = 1.6e-8 per end (ndf_test.cpp).
 double quad_tol(NdfKind kind, double alpha) { return kind == NdfKind::phong && alpha > 1.0 ? 4e-8 : 1e-11; }
 
 class SlopeSampling : public testing::TestWithParam<KindAlpha> {};
@@ -125,7 +126,8 @@ class SlopeSampling : public testing::TestWithParam<KindAlpha> {};
 TEST_P(SlopeSampling, PdfIsNormalized) {
   const auto [kind, alpha] = GetParam();
   auto f = [&](double t) { return theta_m_pdf(kind, alpha, t); };
-  EXPECT_NEAR(tanh_sinh(f, -0.5 * M_PI, 0.0) + tanh_sinh(f, 0.0, 0.5 * M_PI), 1.0, quad_tol(kind, alpha))
+  EXPECT_NEAR(tanh_sinh(f, -0.5 * std::numbers::pi, 0.0) + tanh_sinh(f, 0.0, 0.5 * std::numbers::pi), 1.0,
+              quad_tol(kind, alpha))
       << ndf_name(kind) << " alpha=" << alpha;
 }
 
@@ -135,14 +137,14 @@ TEST_P(SlopeSampling, CdfIsTheIntegralOfThePdf) {
   for (double x : {0.01, 0.3, 1.0, 2.5, 8.0}) {
     const double t = std::atan(x * alpha);  // x in units of the slope scale alpha
     // The lower tail from -pi/2, and the central part from 0 (cdf(0) = 1/2 by symmetry).
-    EXPECT_NEAR(theta_m_cdf(kind, alpha, -t), tanh_sinh(f, -0.5 * M_PI, -t), quad_tol(kind, alpha))
+    EXPECT_NEAR(theta_m_cdf(kind, alpha, -t), tanh_sinh(f, -0.5 * std::numbers::pi, -t), quad_tol(kind, alpha))
         << ndf_name(kind) << " alpha=" << alpha << " theta=" << -t;
     EXPECT_NEAR(theta_m_cdf(kind, alpha, t) - 0.5, tanh_sinh(f, 0.0, t), 1e-11)
         << ndf_name(kind) << " alpha=" << alpha << " theta=" << t;
   }
   EXPECT_EQ(theta_m_cdf(kind, alpha, 0.0), 0.5);
-  EXPECT_EQ(theta_m_cdf(kind, alpha, -0.5 * M_PI), 0.0);
-  EXPECT_EQ(theta_m_cdf(kind, alpha, 0.5 * M_PI), 1.0);
+  EXPECT_EQ(theta_m_cdf(kind, alpha, -0.5 * std::numbers::pi), 0.0);
+  EXPECT_EQ(theta_m_cdf(kind, alpha, 0.5 * std::numbers::pi), 1.0);
 }
 
 TEST_P(SlopeSampling, SampleInvertsTheCdf) {
@@ -165,15 +167,15 @@ TEST_P(SlopeSampling, SampleInvertsTheCdf) {
       EXPECT_NEAR(theta_m_cdf(kind, alpha, t), u, 1e-12 * tail + 1e-16)
           << ndf_name(kind) << " alpha=" << alpha << " u=" << u << " theta=" << t;
     }
-    EXPECT_GE(t, -0.5 * M_PI);
-    EXPECT_LE(t, 0.5 * M_PI);
+    EXPECT_GE(t, -0.5 * std::numbers::pi);
+    EXPECT_LE(t, 0.5 * std::numbers::pi);
   }
   EXPECT_EQ(sample_theta_m(kind, alpha, 0.5), 0.0) << ndf_name(kind) << " alpha=" << alpha;
 }
 
 TEST_P(SlopeSampling, SymmetricAndMonotone) {
   const auto [kind, alpha] = GetParam();
-  double prev = -0.5 * M_PI;
+  double prev = -0.5 * std::numbers::pi;
   for (int j = 1; j < 1000; ++j) {
     const double u = j / 1000.0;
     const double t = sample_theta_m(kind, alpha, u);
@@ -243,7 +245,7 @@ void expect_accounted(const MicrosurfaceTally& t, std::int64_t rays, const std::
 
 std::string where(NdfKind kind, double alpha, double theta_i) {
   std::ostringstream os;
-  os << ndf_name(kind) << " alpha=" << alpha << " theta_i=" << theta_i * 180.0 / M_PI << " deg";
+  os << ndf_name(kind) << " alpha=" << alpha << " theta_i=" << theta_i * 180.0 / std::numbers::pi << " deg";
   return os.str();
 }
 
@@ -263,9 +265,9 @@ TEST(Microsurface, GroovesCoverTheLengthAsTheNdfSays) {
     }
     for (std::size_t j = 0; j < m.grooves.size(); ++j) {
       ASSERT_GE(m.theta_m[j], 0.0);
-      ASSERT_LT(m.theta_m[j], 0.5 * M_PI);
+      ASSERT_LT(m.theta_m[j], 0.5 * std::numbers::pi);
       ASSERT_GT(m.grooves[j].theta_v, 0.0) << "groove " << j;
-      ASSERT_NEAR(m.grooves[j].theta_v, M_PI - 2.0 * m.theta_m[j], 1e-15) << "groove " << j;
+      ASSERT_NEAR(m.grooves[j].theta_v, std::numbers::pi - 2.0 * m.theta_m[j], 1e-15) << "groove " << j;
     }
   }
 }
@@ -368,7 +370,7 @@ TEST(Microsurface, SmoothSurfaceReflectsOnceAroundTheMirrorDirection) {
       const MicrosurfaceTally t = trace_microsurface(m, o);
       const std::string w = where(kind, 0.01, o.theta_i);
       expect_accounted(t, rays, w);
-      const double t_star = (0.5 * M_PI - o.theta_i) / 3.0;
+      const double t_star = (0.5 * std::numbers::pi - o.theta_i) / 3.0;
       const double q =
           static_cast<double>(std::count_if(m.theta_m.begin(), m.theta_m.end(), [&](double v) { return v > t_star; })) /
           static_cast<double>(m.theta_m.size());

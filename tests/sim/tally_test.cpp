@@ -5,12 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 namespace vgroove::sim {
 namespace {
 
-double deg(double d) { return d * M_PI / 180.0; }
+double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 TraceResult escaped(Side first, int k, double theta_o) {
   TraceResult r;
@@ -79,7 +80,7 @@ TEST(Tally, SpreadBoundsTheAnglesWithinABin) {
   t.add(escaped(Side::left, 3, 0.2 - 3e-6));
   EXPECT_NEAR(t.bins[0][3].spread(), 3e-6, 1e-12);
   t.add(escaped(Side::left, 3, 0.2 + 2.0));  // more than 90 deg away: the bound becomes pi
-  EXPECT_EQ(t.bins[0][3].spread(), M_PI);
+  EXPECT_EQ(t.bins[0][3].spread(), std::numbers::pi);
 }
 
 TEST(Tally, MergeOfPartsEqualsTheTallyOfAllRays) {

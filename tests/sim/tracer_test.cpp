@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -18,13 +19,13 @@
 namespace vgroove::sim {
 namespace {
 
-double deg(double d) { return d * M_PI / 180.0; }
+double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 // Upper bound on the reflections of any ray in a wedge of aperture theta_v: unfolded, the ray is
 // a straight line, which subtends an angle pi from the apex and so crosses at most ceil(pi/theta_v)
 // of the mirror lines spaced theta_v apart. The 1e-9 keeps pi/theta_v = 2.0000000000000004 (a
 // 90 deg groove from degrees) at 2.
-int bounce_bound(double theta_v) { return static_cast<int>(std::ceil(M_PI / theta_v - 1e-9)); }
+int bounce_bound(double theta_v) { return static_cast<int>(std::ceil(std::numbers::pi / theta_v - 1e-9)); }
 
 // The N stratified rays of a beam from theta_i over the interval, traced one by one.
 std::vector<TraceResult> trace_rays(const Groove& g, double theta_i, const Interval& iv, long n,
@@ -61,7 +62,8 @@ void expect_conserved(const Tally& t, long n, const std::string& where) {
 std::string params(double theta_v, double theta_i) {
   std::ostringstream os;
   os.precision(17);
-  os << "theta_v=" << theta_v * 180.0 / M_PI << " deg, theta_i=" << theta_i * 180.0 / M_PI << " deg";
+  os << "theta_v=" << theta_v * 180.0 / std::numbers::pi << " deg, theta_i=" << theta_i * 180.0 / std::numbers::pi
+     << " deg";
   return os.str();
 }
 
@@ -148,7 +150,7 @@ class FlatGroove : public testing::TestWithParam<double> {};
 
 TEST_P(FlatGroove, EveryRayBouncesOnceAndLeavesAsFromAMirror) {
   const double theta_i = deg(GetParam());
-  const Groove g = make_symmetric_groove(M_PI);
+  const Groove g = make_symmetric_groove(std::numbers::pi);
   const auto rays = trace_rays(g, theta_i, opening(g), kHandRays);
   for (long j = 0; j < kHandRays; ++j) {
     const TraceResult& r = rays[j];

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
 #include <string>
 
 namespace vgroove::support {
@@ -139,7 +140,7 @@ TEST(NumberText, ShortestRoundTrip) {
   EXPECT_EQ(number_text(195.0), "195");
   EXPECT_EQ(number_text(0.1), "0.1");
   EXPECT_EQ(number_text(-89.9), "-89.9");
-  EXPECT_EQ(std::stod(number_text(M_PI)), M_PI);
+  EXPECT_EQ(std::stod(number_text(std::numbers::pi)), std::numbers::pi);
   EXPECT_EQ(interval_text(0, false, 180, true), "(0, 180]");
   EXPECT_EQ(interval_text(-90, false, 90, false), "(-90, 90)");
   EXPECT_EQ(interval_text(1, true, 2.5, true), "[1, 2.5]");

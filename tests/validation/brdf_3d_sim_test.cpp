@@ -19,6 +19,7 @@
 // variance: the groove term is smaller than its bound), all p > 0.78. Power: evaluating the analytic
 // lobe at 1.03 alpha fails every case (k marginal chi2/c = 42-460 on 2-6 dof).
 #include "vgroove/analytic/brdf_3d.h"
+#include "vgroove/analytic/lobe_3d.h"
 #include "vgroove/sim/microsurface3d.h"
 
 #include "tests/stats.h"
@@ -28,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -38,7 +40,7 @@ namespace {
 
 using namespace vgroove::test_stats;
 
-double deg(double d) { return d * M_PI / 180.0; }
+double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 struct Case {
   sim::NdfKind sim_ndf;

@@ -27,6 +27,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -111,7 +112,7 @@ TEST_P(FlatlandBrdfSim, LobePerKMatchesTheTracer) {
   mo.seed = 2018;
   const sim::Microsurface surface = sim::make_microsurface(mo);
   sim::MicrosurfaceTraceOptions to;
-  to.theta_i = c.theta_i_deg * M_PI / 180.0;
+  to.theta_i = c.theta_i_deg * std::numbers::pi / 180.0;
   to.rays = kRays;
   to.seed = 11;
   to.theta_o_bins = kBins;

@@ -24,6 +24,7 @@
 #include "vgroove/analytic/kaleidoscope.h"
 #include "vgroove/analytic/kaleidoscope_fresnel.h"
 #include "vgroove/analytic/kaleidoscope_nonsymmetric.h"
+#include "vgroove/common/angles.h"
 #include "vgroove/optics/fresnel.h"
 #include "vgroove/sim/beam.h"
 #include "vgroove/sim/effects.h"
@@ -35,6 +36,7 @@
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -43,7 +45,6 @@
 namespace vgroove {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
 constexpr double kRelTol = 1e-12;
 double cos_tolerance(int j) { return 1e-14 + (j - 1) * 4.4e-16; }
 constexpr long kRays = 400;  // stratified across the opening
@@ -177,10 +178,10 @@ TEST(FresnelGroove, NinetyDegreeGrooveAtNormalIncidenceBouncesTwiceAtFortyFive) 
   const sim::DielectricReflectance F{1.5};
   for (int j = 1; j <= 2; ++j)
     for (auto side : {analytic::FacetSide::left, analytic::FacetSide::right})
-      EXPECT_NEAR(analytic::local_cos_theta(0.0, 90 * kDeg, j, side), std::sqrt(0.5), 1e-15) << "j=" << j;
-  EXPECT_NEAR(analytic::fresnel_energy(0.0, 90 * kDeg, 2, analytic::FacetSide::left, F), F45 * F45, 1e-16);
-  const Outcome o = run(sim::make_symmetric_groove(90 * kDeg), 0.0, F, [&](int n, analytic::FacetSide) {
-    return analytic::fresnel_energy(0.0, 90 * kDeg, n, analytic::FacetSide::left, F);
+      EXPECT_NEAR(analytic::local_cos_theta(0.0, 90 * kRadPerDeg, j, side), std::sqrt(0.5), 1e-15) << "j=" << j;
+  EXPECT_NEAR(analytic::fresnel_energy(0.0, 90 * kRadPerDeg, 2, analytic::FacetSide::left, F), F45 * F45, 1e-16);
+  const Outcome o = run(sim::make_symmetric_groove(90 * kRadPerDeg), 0.0, F, [&](int n, analytic::FacetSide) {
+    return analytic::fresnel_energy(0.0, 90 * kRadPerDeg, n, analytic::FacetSide::left, F);
   });
   expect_matches(o, "theta_v=90 theta_i=0");
   ASSERT_EQ(o.per_bin.size(), 2u);  // every ray: 2 bounces, from either facet
@@ -197,12 +198,13 @@ TEST(FresnelGroove, SixtyDegreeGrooveAtNormalIncidenceHitsTheSecondFacetHeadOn) 
   // |sin(30)|, |sin(90)|, |sin(150)| = 1/2, 1, 1/2.
   const double expect_cos[3] = {0.5, 1.0, 0.5};
   for (int j = 1; j <= 3; ++j)
-    EXPECT_NEAR(analytic::local_cos_theta(0.0, 60 * kDeg, j, analytic::FacetSide::left), expect_cos[j - 1], 1e-15);
+    EXPECT_NEAR(analytic::local_cos_theta(0.0, 60 * kRadPerDeg, j, analytic::FacetSide::left), expect_cos[j - 1],
+                1e-15);
   const sim::ConductorReflectance F{0.2, 3.0};
   const double E = F(0.5) * F(1.0) * F(0.5);
-  EXPECT_NEAR(analytic::fresnel_energy(0.0, 60 * kDeg, 3, analytic::FacetSide::right, F), E, 1e-15);
-  const Outcome o = run(sim::make_symmetric_groove(60 * kDeg), 0.0, F, [&](int n, analytic::FacetSide s) {
-    return analytic::fresnel_energy(0.0, 60 * kDeg, n, s, F);
+  EXPECT_NEAR(analytic::fresnel_energy(0.0, 60 * kRadPerDeg, 3, analytic::FacetSide::right, F), E, 1e-15);
+  const Outcome o = run(sim::make_symmetric_groove(60 * kRadPerDeg), 0.0, F, [&](int n, analytic::FacetSide s) {
+    return analytic::fresnel_energy(0.0, 60 * kRadPerDeg, n, s, F);
   });
   expect_matches(o, "theta_v=60 theta_i=0");
   for (const auto& [key, bin] : o.per_bin) {
@@ -214,8 +216,8 @@ TEST(FresnelGroove, SixtyDegreeGrooveAtNormalIncidenceHitsTheSecondFacetHeadOn) 
 TEST(FresnelGroove, UnitReflectanceKeepsEveryRayAtOne) {
   const sim::UnitReflectance F;
   for (double theta_v_deg : {1.0, 30.0, 150.0}) {
-    const Outcome o =
-        run(sim::make_symmetric_groove(theta_v_deg * kDeg), 20 * kDeg, F, [](int, analytic::FacetSide) { return 1.0; });
+    const Outcome o = run(sim::make_symmetric_groove(theta_v_deg * kRadPerDeg), 20 * kRadPerDeg, F,
+                          [](int, analytic::FacetSide) { return 1.0; });
     expect_matches(o, "theta_v=" + std::to_string(theta_v_deg));
     for (const auto& [key, bin] : o.per_bin) EXPECT_EQ(bin.first, static_cast<double>(bin.second));
   }
@@ -224,8 +226,8 @@ TEST(FresnelGroove, UnitReflectanceKeepsEveryRayAtOne) {
 TEST(FresnelGroove, FlatGrooveIsOneMirrorReflection) {
   // theta_v = 180 deg: one reflection at the incidence angle itself, cos = |sin(90 - theta_i)|.
   for (double theta_i_deg : {-80.0, -30.0, 0.0, 45.0, 89.0})
-    EXPECT_NEAR(analytic::local_cos_theta(theta_i_deg * kDeg, M_PI, 1, analytic::FacetSide::left),
-                std::cos(theta_i_deg * kDeg), 1e-15)
+    EXPECT_NEAR(analytic::local_cos_theta(theta_i_deg * kRadPerDeg, std::numbers::pi, 1, analytic::FacetSide::left),
+                std::cos(theta_i_deg * kRadPerDeg), 1e-15)
         << "theta_i=" << theta_i_deg;
 }
 
@@ -280,7 +282,7 @@ void expect_cosines(const sim::Groove& g, double theta_i, const CosModel& model,
 TEST(FresnelGroove, TracedLocalAnglesAreTheClosedFormSymmetric) {
   for (double theta_v_deg : {0.1, 1.0, 3.0, 10.0, 17.0, 30.0, 45.0, 60.0, 72.0, 90.0, 120.0, 150.0, 176.0, 180.0})
     for (double theta_i_deg = -88.5; theta_i_deg < 89.0; theta_i_deg += 3.5) {
-      const double theta_v = theta_v_deg * kDeg, theta_i = theta_i_deg * kDeg;
+      const double theta_v = theta_v_deg * kRadPerDeg, theta_i = theta_i_deg * kRadPerDeg;
       expect_cosines(
           sim::make_symmetric_groove(theta_v), theta_i,
           [&](int j, analytic::FacetSide s) { return analytic::local_cos_theta(theta_i, theta_v, j, s); },
@@ -293,7 +295,8 @@ TEST(FresnelGroove, TracedLocalAnglesAreTheClosedFormNonsymmetric) {
     for (double theta_r_deg : {0.0, 2.0, 15.0, 45.0, 70.0, 89.5})
       for (double theta_i_deg = -87.0; theta_i_deg < 89.0; theta_i_deg += 6.0) {
         if (theta_l_deg == 0.0 && theta_r_deg == 0.0) continue;  // flat: covered by theta_v = 180 above
-        const double theta_l = theta_l_deg * kDeg, theta_r = theta_r_deg * kDeg, theta_i = theta_i_deg * kDeg;
+        const double theta_l = theta_l_deg * kRadPerDeg, theta_r = theta_r_deg * kRadPerDeg,
+                     theta_i = theta_i_deg * kRadPerDeg;
         expect_cosines(
             sim::make_nonsymmetric_groove(theta_l, theta_r), theta_i,
             [&](int j, analytic::FacetSide s) {
@@ -323,7 +326,7 @@ TEST_P(FresnelGrooveSymmetric, EveryRayKeepsTheModelsEnergy) {
   with_reflectance(GetParam(), [&](const auto& F) {
     for (double theta_v_deg : {1.0, 3.0, 10.0, 17.0, 30.0, 45.0, 60.0, 72.0, 90.0, 120.0, 150.0, 176.0, 180.0})
       for (double theta_i_deg = -88.5; theta_i_deg < 89.0; theta_i_deg += 7.5) {
-        const double theta_v = theta_v_deg * kDeg, theta_i = theta_i_deg * kDeg;
+        const double theta_v = theta_v_deg * kRadPerDeg, theta_i = theta_i_deg * kRadPerDeg;
         const auto tolerance = [&](int n, analytic::FacetSide s) {
           if (!GetParam().corner) return kRelTol;
           return propagated_tolerance(F, n, [&](int j) { return analytic::local_cos_theta(theta_i, theta_v, j, s); });
@@ -359,7 +362,8 @@ TEST_P(FresnelGrooveNonsymmetric, EveryRayKeepsTheModelsEnergy) {
     for (double theta_l_deg : {-88.0, -60.0, -45.0, -20.0, -3.0})
       for (double theta_r_deg : {2.0, 15.0, 45.0, 70.0, 89.0})
         for (double theta_i_deg = -87.0; theta_i_deg < 89.0; theta_i_deg += 12.0) {
-          const double theta_l = theta_l_deg * kDeg, theta_r = theta_r_deg * kDeg, theta_i = theta_i_deg * kDeg;
+          const double theta_l = theta_l_deg * kRadPerDeg, theta_r = theta_r_deg * kRadPerDeg,
+                       theta_i = theta_i_deg * kRadPerDeg;
           const auto tolerance = [&](int n, analytic::FacetSide s) {
             if (!GetParam().corner) return kRelTol;
             return propagated_tolerance(
@@ -389,9 +393,10 @@ TEST(FresnelGroove, SymmetricAndNonsymmetricFormsAgree) {
     for (double theta_i_deg : {-60.0, 0.0, 25.0})
       for (int j = 1; j <= 8; ++j)
         for (auto side : {analytic::FacetSide::left, analytic::FacetSide::right}) {
-          const double tv = theta_v_deg * kDeg, ti = theta_i_deg * kDeg;
+          const double tv = theta_v_deg * kRadPerDeg, ti = theta_i_deg * kRadPerDeg;
           EXPECT_NEAR(analytic::local_cos_theta(ti, tv, j, side),
-                      analytic::local_cos_theta_nonsymmetric(ti, 0.5 * tv - 0.5 * M_PI, 0.5 * M_PI - 0.5 * tv, j, side),
+                      analytic::local_cos_theta_nonsymmetric(ti, 0.5 * tv - 0.5 * std::numbers::pi,
+                                                             0.5 * std::numbers::pi - 0.5 * tv, j, side),
                       1e-14)
               << "theta_v=" << theta_v_deg << " theta_i=" << theta_i_deg << " j=" << j;
         }

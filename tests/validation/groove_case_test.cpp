@@ -18,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -25,7 +26,7 @@
 namespace vgroove::validation {
 namespace {
 
-double deg(double d) { return d * M_PI / 180.0; }
+double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 constexpr long kRays = 2000;
 
@@ -41,8 +42,8 @@ CaseOptions stratified(long rays = kRays) {
 std::string describe(const CaseOutcome& c) {
   std::ostringstream os;
   os.precision(10);
-  os << "theta_v=" << c.groove.theta_v * 180 / M_PI << " theta_i=" << c.theta_i * 180 / M_PI << " l1=" << c.l1
-     << " theta_o_error=" << c.theta_o_error;
+  os << "theta_v=" << c.groove.theta_v * 180 / std::numbers::pi << " theta_i=" << c.theta_i * 180 / std::numbers::pi
+     << " l1=" << c.l1 << " theta_o_error=" << c.theta_o_error;
   for (int f = 0; f < 2; ++f) {
     const FacetOutcome& o = c.facet[f];
     os << (f == 0 ? "\n  left: " : "\n  right: ");

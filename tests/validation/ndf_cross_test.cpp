@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -30,7 +31,7 @@
 namespace vgroove {
 namespace {
 
-double deg(double d) { return d * M_PI / 180.0; }
+double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 analytic::NdfKind to_analytic(sim::NdfKind k) {
   switch (k) {
@@ -69,12 +70,12 @@ TEST(NdfCross, SimPdfIsAnalyticD2TimesCos) {
 
 TEST(NdfCross, SimCdfIsTheIntegralOfAnalyticD2Cos) {
   // Tolerance: 1e-11 for the quadrature, 4e-8 where Phong (alpha > 1) is singular at -pi/2 (the
-  // rounding of M_PI/2 hides the last 2 sqrt(6.1e-17) = 1.6e-8 of the integral; ndf_test.cpp).
+  // rounding of std::numbers::pi/2 hides the last 2 sqrt(6.1e-17) = 1.6e-8 of the integral; ndf_test.cpp).
   for (sim::NdfKind k : kKinds)
     for (double alpha : {0.05, 0.3, 1.0, 2.0})
       for (double x : {-6.0, -2.0, -0.5, 0.0, 0.4, 1.5, 4.0}) {
         const double t = std::atan(x * alpha);
-        const double q = tanh_sinh([&](double v) { return d2_cos(k, alpha, v); }, -0.5 * M_PI, t);
+        const double q = tanh_sinh([&](double v) { return d2_cos(k, alpha, v); }, -0.5 * std::numbers::pi, t);
         const double tol = k == sim::NdfKind::phong && alpha > 1.0 ? 4e-8 : 1e-11;
         EXPECT_NEAR(sim::theta_m_cdf(k, alpha, t), q, tol) << sim::ndf_name(k) << " alpha=" << alpha << " theta=" << t;
       }
@@ -160,7 +161,7 @@ TEST(NdfCross, TracedLitFractionOfAFacetIsVCavityG1) {
       const double theta_i = deg(ti);
       const sim::Vec2 dir = sim::beam_direction(theta_i);
       for (sim::Side side : {sim::Side::left, sim::Side::right}) {
-        const double theta_n = (side == sim::Side::left ? -0.5 : 0.5) * (M_PI - deg(tv));
+        const double theta_n = (side == sim::Side::left ? -0.5 : 0.5) * (std::numbers::pi - deg(tv));
         // Light along the facet (theta_i = +-theta_v/2 on this grid): no projected width, and Eq. (2)
         // jumps there between 0 (H) and 1 (the limit from the lit side), with cos(pi/2) rounding
         // to 6e-17 choosing the side. No area to weigh: skipped.

@@ -2,6 +2,7 @@
 // random grooves and incident angles, grooves tilted so far that a facet faces away from the
 // light, apertures under 5 deg; and the Jacobian's angular factor (after Eq. 23) from the tracer.
 #include "vgroove/analytic/kaleidoscope_nonsymmetric.h"
+#include "vgroove/common/angles.h"
 #include "vgroove/sim/beam.h"
 #include "vgroove/sim/rng.h"
 #include "vgroove/validation/groove_case.h"
@@ -12,8 +13,6 @@
 
 namespace vgroove::validation {
 namespace {
-
-constexpr double kDeg = M_PI / 180.0;
 
 CaseOptions stratified(long rays) {
   CaseOptions o;
@@ -29,9 +28,9 @@ double stratified_bound(long rays) { return 4.0 / static_cast<double>(rays) + 1e
 
 void expect_agrees(const GrooveParams& g, double theta_i, long rays) {
   const CaseOutcome c = run_case(g, theta_i, stratified(rays), 0);
-  const std::string where = "theta_l=" + std::to_string(g.theta_l / kDeg) +
-                            " theta_r=" + std::to_string(g.theta_r / kDeg) +
-                            " theta_i=" + std::to_string(theta_i / kDeg);
+  const std::string where = "theta_l=" + std::to_string(g.theta_l / kRadPerDeg) +
+                            " theta_r=" + std::to_string(g.theta_r / kRadPerDeg) +
+                            " theta_i=" + std::to_string(theta_i / kRadPerDeg);
   ASSERT_TRUE(c.facet[0].compared || c.facet[1].compared) << where;
   EXPECT_LE(c.l1, stratified_bound(rays)) << where;
   EXPECT_LE(c.theta_o_error, 1e-9) << where;
@@ -46,11 +45,11 @@ TEST(NonsymmetricTrace, RandomGroovesOffTheGrid) {
   sim::Rng rng(20181106, 3, 0);
   int compared = 0;
   for (int n = 0; n < 300; ++n) {
-    const double l = -(0.5 + 89.5 * rng.uniform()) * kDeg;
-    const double r = (0.5 + 89.5 * rng.uniform()) * kDeg;
-    const double ti = (-89.5 + 179.0 * rng.uniform()) * kDeg;
+    const double l = -(0.5 + 89.5 * rng.uniform()) * kRadPerDeg;
+    const double r = (0.5 + 89.5 * rng.uniform()) * kRadPerDeg;
+    const double ti = (-89.5 + 179.0 * rng.uniform()) * kRadPerDeg;
     const GrooveParams g = GrooveParams::make_nonsymmetric(l, r);
-    if (g.degenerate() || g.theta_v < 0.5 * kDeg) continue;
+    if (g.degenerate() || g.theta_v < 0.5 * kRadPerDeg) continue;
     expect_agrees(g, ti, 1000);
     ++compared;
   }
@@ -60,14 +59,14 @@ TEST(NonsymmetricTrace, RandomGroovesOffTheGrid) {
 TEST(NonsymmetricTrace, FacetFacingAwayFromTheLight) {
   // theta_l = -85: the left facet is nearly vertical, its normal points almost along +x. Light from
   // theta_i = 40 deg meets it from behind (i . s_l = cos(125 deg) < 0): only the right facet is lit.
-  const GrooveParams g = GrooveParams::make_nonsymmetric(-85 * kDeg, 10 * kDeg);
-  const CaseOutcome c = run_case(g, 40 * kDeg, stratified(2000), 0);
+  const GrooveParams g = GrooveParams::make_nonsymmetric(-85 * kRadPerDeg, 10 * kRadPerDeg);
+  const CaseOutcome c = run_case(g, 40 * kRadPerDeg, stratified(2000), 0);
   EXPECT_FALSE(c.facet[0].compared);
   EXPECT_TRUE(c.facet[1].compared);
-  expect_agrees(g, 40 * kDeg, 2000);
+  expect_agrees(g, 40 * kRadPerDeg, 2000);
   for (double ti : {-89.0, -60.0, 60.0, 89.0})
     for (auto [l, r] : {std::pair{-89.0, 5.0}, std::pair{-3.0, 80.0}, std::pair{-70.0, 70.0}})
-      expect_agrees(GrooveParams::make_nonsymmetric(l * kDeg, r * kDeg), ti * kDeg, 2000);
+      expect_agrees(GrooveParams::make_nonsymmetric(l * kRadPerDeg, r * kRadPerDeg), ti * kRadPerDeg, 2000);
 }
 
 TEST(NonsymmetricTrace, AperturesUnderFiveDegrees) {
@@ -77,7 +76,7 @@ TEST(NonsymmetricTrace, AperturesUnderFiveDegrees) {
         // theta_l + theta_r = 2 tilt, pi + theta_l - theta_r = v.
         const double l = tilt - 90.0 + 0.5 * v, r = tilt + 90.0 - 0.5 * v;
         if (l >= 0.0 || l < -90.0 || r <= 0.0 || r > 90.0) continue;
-        expect_agrees(GrooveParams::make_nonsymmetric(l * kDeg, r * kDeg), ti * kDeg, 1000);
+        expect_agrees(GrooveParams::make_nonsymmetric(l * kRadPerDeg, r * kRadPerDeg), ti * kRadPerDeg, 1000);
       }
 }
 
@@ -87,9 +86,11 @@ TEST(NonsymmetricTrace, SymmetricGroovesThroughBothModels) {
   // both models agree with it.
   for (double v : {3.0, 37.0, 90.0, 151.0})
     for (double ti : {-75.0, -10.0, 0.0, 33.0}) {
-      const CaseOutcome a = run_case(GrooveParams::make_symmetric(v * kDeg), ti * kDeg, stratified(1000), 0);
-      const CaseOutcome b = run_case(GrooveParams::make_nonsymmetric(-(90.0 - 0.5 * v) * kDeg, (90.0 - 0.5 * v) * kDeg),
-                                     ti * kDeg, stratified(1000), 0);
+      const CaseOutcome a =
+          run_case(GrooveParams::make_symmetric(v * kRadPerDeg), ti * kRadPerDeg, stratified(1000), 0);
+      const CaseOutcome b =
+          run_case(GrooveParams::make_nonsymmetric(-(90.0 - 0.5 * v) * kRadPerDeg, (90.0 - 0.5 * v) * kRadPerDeg),
+                   ti * kRadPerDeg, stratified(1000), 0);
       EXPECT_LE(a.l1, stratified_bound(1000)) << "theta_v=" << v << " theta_i=" << ti;
       EXPECT_LE(b.l1, stratified_bound(1000)) << "theta_v=" << v << " theta_i=" << ti;
       EXPECT_NEAR(a.l1, b.l1, 2.0 / 1000) << "theta_v=" << v << " theta_i=" << ti;
@@ -101,12 +102,12 @@ TEST(NonsymmetricTrace, JacobianAngularFactorFromTheTracer) {
   // fraction of the left facet's beam; where it makes the same k reflections, the change of its
   // half-vector angle theta_h = (theta_i + theta_o)/2 per unit theta_l is the printed factor
   // 0.5 |0.5 - (-1)^k (k + 0.5)| (its inverse is |d theta_l / d theta_h| in |ds_l/do|).
-  const double r = 40 * kDeg, h = 1e-7;
+  const double r = 40 * kRadPerDeg, h = 1e-7;
   int checked = 0;
   for (double l_deg : {-15.0, -35.0, -60.0, -80.0})
     for (double ti_deg : {-50.0, -10.0, 20.0})
       for (double u : {0.1, 0.35, 0.6, 0.85}) {
-        const double l = l_deg * kDeg, ti = ti_deg * kDeg;
+        const double l = l_deg * kRadPerDeg, ti = ti_deg * kRadPerDeg;
         double theta_o[2];
         int k[2];
         for (int s = 0; s < 2; ++s) {

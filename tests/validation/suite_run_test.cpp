@@ -6,11 +6,12 @@
 
 #include <cmath>
 #include <cstring>
+#include <numbers>
 
 namespace vgroove::validation {
 namespace {
 
-double deg(double d) { return d * M_PI / 180.0; }
+double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 // 5 x 11 = 55 cases: more than three chunks of 16, so 2 and 8 threads really share the work.
 Suite small_suite() {

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <functional>
+#include <numbers>
 #include <string>
 
 namespace vgroove::validation {
@@ -22,7 +23,7 @@ using testing_files::write_text;
 
 #define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << "in: " << (text)
 
-double deg(double d) { return d * M_PI / 180.0; }
+double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 // A small valid suite; each error test breaks one thing in it.
 json valid_spec() {

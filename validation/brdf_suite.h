@@ -1,5 +1,5 @@
-// vgroove validation: suites of procedural microsurfaces — the BRDF against the light traced in
-// a rough surface (Lee et al. 2018, Fig. 11), the white furnace (Fig. 12), and Table 2.
+// vgroove validation: the suites of kind "brdf" (Lee et al. 2018, Fig. 11: the BRDF against the
+// light traced in procedural rough surfaces) and "furnace" (Fig. 12: the albedo with F = 1).
 //
 // A "brdf" or "furnace" suite is the grid ndf x alpha x theta_i x dimension. Each case builds a
 // procedural surface of G grooves from the NDF (sim/microsurface.h in flatland,
@@ -21,6 +21,7 @@
 
 #include "vgroove/analytic/ndf.h"
 #include "vgroove/support/parallel.h"
+#include "vgroove/validation/histogram_metrics.h"
 
 #include <nlohmann/json.hpp>
 
@@ -64,13 +65,6 @@ struct BrdfSuite {
   BrdfCase case_at(std::size_t c) const;
 };
 
-// Expected L1 error of a histogram of N rays over G grooves against its exact bin probabilities p
-// (see the header comment): mean and standard deviation.
-struct ExpectedL1 {
-  double mean = 0.0, sd = 0.0;
-};
-ExpectedL1 expected_l1(const std::vector<double>& p, double rays, double grooves);
-
 struct BrdfOutcome {
   BrdfCase c;
   std::int64_t rays = 0, escaped = 0, lost = 0, bounces = 0;
@@ -112,33 +106,5 @@ BrdfRun run_brdf_suite(const BrdfSuite& suite, long rays, int threads, const sup
 BrdfOutcome run_brdf_case(const BrdfSuite& suite, const BrdfCase& c, long rays);
 nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run);
 void print_brdf_table(std::ostream& os, const BrdfSuite& suite, const BrdfRun& run);
-
-// Table 2: the paper's maximum bounce counts at percentiles of D, recomputed (analytic/
-// bounce_percentiles.h) under each reading of "percentile", and the bounce counts traced on
-// procedural 3D surfaces at normal incidence beside them.
-struct Table2Suite {
-  std::string file, name, description, source;
-  std::vector<analytic::NdfKind> ndfs;
-  std::vector<double> alphas;
-  std::vector<double> percentiles;  // fractions in (0, 1)
-  std::vector<int> paper;           // [row (percentile)][ndf][alpha], row-major
-  long rays = 200000;
-  int grooves = 100000;
-  std::uint64_t seed = 1;
-};
-struct Table2Run {
-  std::vector<int> ours;                       // the reading that reproduces the table
-  std::vector<std::vector<int>> alternatives;  // per other reading, same layout
-  std::vector<int> traced;                     // percentile of the traced bounce counts
-  int agree = 0;
-  int threads = 1;
-  double wall_s = 0.0;
-  bool interrupted = false;
-  bool pass = false;  // all entries agree
-};
-Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file);
-Table2Run run_table2_suite(const Table2Suite& suite, long rays, int threads, const std::atomic<bool>* cancel = nullptr);
-nlohmann::json table2_report_json(const Table2Suite& suite, const Table2Run& run);
-void print_table2(std::ostream& os, const Table2Suite& suite, const Table2Run& run);
 
 }  // namespace vgroove::validation

@@ -1,133 +1,38 @@
-#include "vgroove/validation/microsurface_case.h"
+#include "vgroove/validation/brdf_suite.h"
 
-#include "vgroove/analytic/bounce_percentiles.h"
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/analytic/brdf_flatland.h"
+#include "vgroove/analytic/lobe_3d.h"
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/microsurface3d.h"
+#include "vgroove/common/angles.h"
 #include "vgroove/support/json_reader.h"
 #include "vgroove/validation/report.h"
+#include "vgroove/validation/spec_lists.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 
 namespace vgroove::validation {
 
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
-constexpr long kMaxRays = 1'000'000'000;
-
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// analytic/ and sim/ each name the NDFs (they never include each other); the names match.
-sim::NdfKind to_sim(analytic::NdfKind k) {
-  switch (k) {
-    case analytic::NdfKind::beckmann:
-      return sim::NdfKind::beckmann;
-    case analytic::NdfKind::ggx:
-      return sim::NdfKind::ggx;
-    case analytic::NdfKind::phong:
-      return sim::NdfKind::phong;
-  }
-  return sim::NdfKind::ggx;
-}
 
 // The procedural surface of one (NDF, alpha): flatland or 3D options have the same fields.
 template <class Options>
 Options surface_options(analytic::NdfKind ndf, double alpha, int grooves, std::uint64_t seed) {
   Options o;
-  o.ndf = to_sim(ndf);
+  o.ndf = ndf;
   o.alpha = alpha;
   o.grooves = grooves;
   o.seed = seed;
   return o;
-}
-
-analytic::NdfKind parse_ndf(const std::string& s) {
-  if (s == "beckmann") return analytic::NdfKind::beckmann;
-  if (s == "phong") return analytic::NdfKind::phong;
-  return analytic::NdfKind::ggx;
-}
-
-// A non-empty list of strings, each one of `allowed`.
-std::vector<std::string> read_names(support::JsonObject& o, const std::string& key,
-                                    const std::vector<std::string>& allowed) {
-  const nlohmann::json& v = o.raw(key);
-  if (!v.is_array() || v.empty()) o.fail(key, "= " + v.dump() + " must be a non-empty list");
-  std::vector<std::string> out;
-  for (std::size_t n = 0; n < v.size(); ++n) {
-    const std::string where = o.path(key) + "/" + std::to_string(n);
-    std::string list;
-    for (const auto& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";
-    if (!v[n].is_string() || std::find(allowed.begin(), allowed.end(), v[n].get<std::string>()) == allowed.end())
-      throw support::UserError(o.file() + ": " + where + " = " + v[n].dump() + " is not one of " + list);
-    out.push_back(v[n].get<std::string>());
-  }
-  return out;
-}
-
-// A non-empty list of numbers in the range.
-std::vector<double> read_numbers(support::JsonObject& o, const std::string& key, double lo, bool lo_closed, double hi,
-                                 bool hi_closed) {
-  const nlohmann::json& v = o.raw(key);
-  if (!v.is_array() || v.empty()) o.fail(key, "= " + v.dump() + " must be a non-empty list of numbers");
-  std::vector<double> out;
-  for (std::size_t n = 0; n < v.size(); ++n) {
-    const std::string where = o.path(key) + "/" + std::to_string(n);
-    if (!v[n].is_number())
-      throw support::UserError(o.file() + ": " + where + " = " + v[n].dump() + " must be a number");
-    const double x = v[n].get<double>();
-    const bool ok = std::isfinite(x) && (lo_closed ? x >= lo : x > lo) && (hi_closed ? x <= hi : x < hi);
-    if (!ok)
-      throw support::UserError(o.file() + ": " + where + " = " + support::number_text(x) + " is out of range " +
-                               support::interval_text(lo, lo_closed, hi, hi_closed));
-    out.push_back(x);
-  }
-  return out;
-}
-
-std::vector<analytic::NdfKind> read_ndfs(support::JsonObject& o) {
-  std::vector<analytic::NdfKind> out;
-  for (const auto& s : read_names(o, "ndf", {"ggx", "beckmann", "phong"})) out.push_back(parse_ndf(s));
-  return out;
-}
-
-// The roughest surface a suite may ask for: the issue's hard cases reach alpha = 2.
-constexpr double kMaxAlpha = 2.0;
-
-double sum(const std::vector<double>& v) {
-  double s = 0.0;
-  for (double x : v) s += x;
-  return s;
-}
-
-bool all_finite(const std::vector<double>& v) {
-  return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
-}
-
-double l1(const std::vector<double>& a, const std::vector<double>& b) {
-  double s = 0.0;
-  for (std::size_t n = 0; n < a.size(); ++n) s += std::abs(a[n] - b[n]);
-  return s;
-}
-
-std::vector<double> normalized(std::vector<double> v) {
-  const double s = sum(v);
-  if (s > 0.0)
-    for (double& x : v) x /= s;
-  return v;
-}
-
-template <class Int>
-std::vector<double> fractions(const std::vector<Int>& counts, double total) {
-  std::vector<double> out(counts.size());
-  for (std::size_t n = 0; n < counts.size(); ++n) out[n] = total > 0.0 ? static_cast<double>(counts[n]) / total : 0.0;
-  return out;
 }
 
 // The comparison shared by both dimensions, from the per-(row, bin) fractions of the incident flux.
@@ -204,9 +109,9 @@ BrdfOutcome run_flatland(const BrdfSuite& suite, const BrdfCase& c, long rays) {
   out.by_k_model = lobe.by_k;
   compare(out, suite, fractions(t.theta_o_by_k, N), lobe.theta_o_by_k, bins, suite.model_tolerance_flatland);
 
-  const double width = M_PI / bins;
+  const double width = std::numbers::pi / bins;
   for (int b = 0; b < bins; ++b) {
-    out.plane_theta_deg.push_back(output_deg(-0.5 * M_PI + (b + 0.5) * width));
+    out.plane_theta_deg.push_back(output_deg(-0.5 * std::numbers::pi + (b + 0.5) * width));
     out.plane_sim.push_back(static_cast<double>(t.theta_o[static_cast<std::size_t>(b)]) / N / width);
     out.plane_model.push_back(lobe.theta_o[static_cast<std::size_t>(b)] / width);
     out.plane_single.push_back(single.theta_o[static_cast<std::size_t>(b)] / width);
@@ -254,7 +159,7 @@ BrdfOutcome run_3d(const BrdfSuite& suite, const BrdfCase& c, long rays) {
 
   // The plane of incidence: phi bin pb/2 (towards the light, signed angle +theta) and phi bin 0
   // (the mirror side, -theta), as fractions per steradian of each bin.
-  const double dt = 0.5 * M_PI / tb, dp = 2.0 * M_PI / pb;
+  const double dt = 0.5 * std::numbers::pi / tb, dp = 2.0 * std::numbers::pi / pb;
   auto solid_angle = [&](int t_) { return dp * (std::cos(t_ * dt) - std::cos((t_ + 1) * dt)); };
   auto push = [&](int t_, int p_) {
     const std::size_t n = static_cast<std::size_t>(t_) * pb + p_;
@@ -312,17 +217,6 @@ BrdfCase BrdfSuite::case_at(std::size_t c) const {
   return out;
 }
 
-ExpectedL1 expected_l1(const std::vector<double>& p, double rays, double grooves) {
-  const double inv = 1.0 / rays + (grooves > 0.0 ? 1.0 / grooves : 0.0);
-  double mean = 0.0, var = 0.0;
-  for (double q : p) {
-    const double v = std::max(0.0, q * (1.0 - q)) * inv;
-    mean += std::sqrt(2.0 * v / M_PI);
-    var += (1.0 - 2.0 / M_PI) * v;
-  }
-  return {mean, std::sqrt(var)};
-}
-
 BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
   support::JsonObject root(j, file, "");
   BrdfSuite s;
@@ -332,7 +226,7 @@ BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
   s.kind = root.one_of("kind", {"brdf", "furnace"});
   s.ndfs = read_ndfs(root);
   s.alphas = read_numbers(root, "alpha", 0.0, false, kMaxAlpha, true);
-  for (double d : read_numbers(root, "theta_i_deg", 0.0, true, 90.0, false)) s.theta_i.push_back(d * kDeg);
+  for (double d : read_numbers(root, "theta_i_deg", 0.0, true, 90.0, false)) s.theta_i.push_back(d * kRadPerDeg);
   for (const auto& d : read_names(root, "dimensions", {"flatland", "3d"}))
     s.dims.push_back(d == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d);
   s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
@@ -486,178 +380,6 @@ void print_brdf_table(std::ostream& os, const BrdfSuite& suite, const BrdfRun& r
   std::size_t passed = 0;
   for (const auto& o : run.cases) passed += o.pass;
   std::snprintf(line, sizeof line, "  %zu/%zu cases pass; wall %.2f s\n", passed, run.cases.size(), run.wall_s);
-  os << line;
-}
-
-// ---- Table 2 ----
-
-namespace {
-constexpr analytic::PercentileMeasure kOtherMeasures[] = {analytic::PercentileMeasure::solid_angle,
-                                                          analytic::PercentileMeasure::flatland};
-
-// The q-th percentile of the traced bounce counts: the smallest k with at least the fraction q of
-// the escaped rays at k bounces or fewer.
-int percentile_of_counts(const std::vector<std::int64_t>& by_k, double q) {
-  std::int64_t total = 0;
-  for (auto c : by_k) total += c;
-  std::int64_t run = 0;
-  for (std::size_t k = 0; k < by_k.size(); ++k) {
-    run += by_k[k];
-    if (static_cast<double>(run) >= q * static_cast<double>(total)) return static_cast<int>(k);
-  }
-  return static_cast<int>(by_k.size()) - 1;
-}
-}  // namespace
-
-Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file) {
-  support::JsonObject root(j, file, "");
-  Table2Suite s;
-  s.file = file;
-  s.name = root.string("name");
-  s.description = root.string_or("description", "");
-  root.one_of("kind", {"table2"});
-  s.ndfs = read_ndfs(root);
-  s.alphas = read_numbers(root, "alpha", 0.0, false, kMaxAlpha, true);
-  for (double p : read_numbers(root, "percentiles", 0.0, false, 100.0, false)) s.percentiles.push_back(p / 100.0);
-  s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
-  s.grooves = static_cast<int>(root.integer("grooves", 1, 10'000'000));
-  s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
-  support::JsonObject paper = root.object("paper");
-  s.source = paper.string("source");
-  const nlohmann::json& rows = paper.raw("max_bounces");
-  const std::size_t per_row = s.ndfs.size() * s.alphas.size();
-  if (!rows.is_array() || rows.size() != s.percentiles.size())
-    paper.fail("max_bounces",
-               "must be a list of " + std::to_string(s.percentiles.size()) + " rows (one per percentile)");
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    if (!rows[r].is_array() || rows[r].size() != per_row)
-      throw support::UserError(file + ": " + paper.path("max_bounces") + "/" + std::to_string(r) +
-                               " must be a list of " + std::to_string(per_row) + " integers (ndf outer, alpha inner)");
-    for (std::size_t n = 0; n < per_row; ++n) {
-      if (!rows[r][n].is_number_integer() || rows[r][n].get<long long>() < 1 || rows[r][n].get<long long>() > 1000000)
-        throw support::UserError(file + ": " + paper.path("max_bounces") + "/" + std::to_string(r) + "/" +
-                                 std::to_string(n) + " = " + rows[r][n].dump() + " must be an integer in [1, 1000000]");
-      s.paper.push_back(rows[r][n].get<int>());
-    }
-  }
-  paper.finish();
-  root.finish();
-  return s;
-}
-
-Table2Run run_table2_suite(const Table2Suite& s, long rays, int threads, const std::atomic<bool>* cancel) {
-  Table2Run run;
-  run.threads = support::resolve_threads(threads);
-  const auto t0 = Clock::now();
-  const std::size_t na = s.alphas.size(), nn = s.ndfs.size(), nq = s.percentiles.size();
-  auto at = [&](std::size_t q, std::size_t n, std::size_t a) { return (q * nn + n) * na + a; };
-  run.ours.resize(nq * nn * na);
-  run.alternatives.assign(std::size(kOtherMeasures), std::vector<int>(nq * nn * na));
-  run.traced.resize(nq * nn * na);
-  for (std::size_t q = 0; q < nq; ++q)
-    for (std::size_t n = 0; n < nn; ++n)
-      for (std::size_t a = 0; a < na; ++a) {
-        run.ours[at(q, n, a)] = analytic::max_bounces_at_percentile(s.ndfs[n], s.alphas[a], s.percentiles[q],
-                                                                    analytic::PercentileMeasure::projected_area);
-        for (std::size_t m = 0; m < std::size(kOtherMeasures); ++m)
-          run.alternatives[m][at(q, n, a)] =
-              analytic::max_bounces_at_percentile(s.ndfs[n], s.alphas[a], s.percentiles[q], kOtherMeasures[m]);
-        run.agree += run.ours[at(q, n, a)] == s.paper[at(q, n, a)];
-      }
-  // The simulation column: procedural 3D surfaces lit at normal incidence, bounce counts traced.
-  const long n_rays = rays > 0 ? rays : s.rays;
-  const bool complete = support::parallel_for(
-      nn * na, run.threads,
-      [&](std::size_t item) {
-        const std::size_t n = item / na, a = item % na;
-        const sim::Microsurface3d surface = sim::make_microsurface3d(
-            surface_options<sim::Microsurface3dOptions>(s.ndfs[n], s.alphas[a], s.grooves, s.seed));
-        sim::Microsurface3dTraceOptions to;
-        to.theta_i = 0.0;
-        to.rays = n_rays;
-        to.seed = s.seed;
-        to.theta_bins = 1;
-        to.phi_bins = 2;
-        to.max_k = 1000;
-        const sim::Microsurface3dTally t = sim::trace_microsurface3d(surface, to);
-        for (std::size_t q = 0; q < nq; ++q) run.traced[at(q, n, a)] = percentile_of_counts(t.by_k, s.percentiles[q]);
-      },
-      {}, cancel, 1);
-  run.interrupted = !complete;
-  run.wall_s = seconds_since(t0);
-  run.pass = complete && run.agree == static_cast<int>(run.ours.size());
-  return run;
-}
-
-nlohmann::json table2_report_json(const Table2Suite& s, const Table2Run& run) {
-  nlohmann::json j = provenance();
-  j["suite"] = s.name;
-  j["suite_file"] = s.file;
-  j["kind"] = "table2";
-  j["description"] = s.description;
-  j["seed"] = s.seed;
-  j["threads"] = run.threads;
-  j["wall_s"] = run.wall_s;
-  j["source"] = s.source;
-  j["assumptions"] = {
-      {"percentile_measure",
-       "projected area: D(s) cos(theta_s) ds, the fraction of the macrosurface under facets "
-       "flatter than theta_m (the paper's sampling pdf |s.n| D(s), Sec. 6)"},
-      {"incident_angle",
-       "normal incidence: N = Eq. (4) at theta_i = 0, floor(pi / theta_v) + 1, theta_v = pi - 2 theta_m"},
-      {"phong_exponent", "alpha_p = 2 / alpha^2 - 2 (Walter et al. 2007)"}};
-  nlohmann::json rows = nlohmann::json::array();
-  const std::size_t na = s.alphas.size(), nn = s.ndfs.size();
-  for (std::size_t q = 0; q < s.percentiles.size(); ++q)
-    for (std::size_t n = 0; n < nn; ++n)
-      for (std::size_t a = 0; a < na; ++a) {
-        const std::size_t i = (q * nn + n) * na + a;
-        nlohmann::json alt;
-        for (std::size_t m = 0; m < std::size(kOtherMeasures); ++m)
-          alt[analytic::percentile_measure_name(kOtherMeasures[m])] = run.alternatives[m][i];
-        rows.push_back({{"percentile", 100.0 * s.percentiles[q]},
-                        {"ndf", analytic::ndf_name(s.ndfs[n])},
-                        {"alpha", s.alphas[a]},
-                        {"paper", s.paper[i]},
-                        {"ours", run.ours[i]},
-                        {"agree", run.ours[i] == s.paper[i]},
-                        {"other_readings", alt},
-                        {"traced_percentile_k", run.traced[i]}});
-      }
-  j["entries"] = rows;
-  j["summary"] = {
-      {"entries", run.ours.size()}, {"agree", run.agree}, {"rays_per_surface", s.rays}, {"grooves", s.grooves}};
-  j["pass"] = run.pass;
-  return j;
-}
-
-void print_table2(std::ostream& os, const Table2Suite& s, const Table2Run& run) {
-  char line[256];
-  std::snprintf(line, sizeof line, "%s: maximum bounces at percentiles of D (%s), vgroove %s (git %s)\n",
-                s.name.c_str(), s.source.c_str(), version_string(), git_revision());
-  os << line;
-  os << "  cell: paper / ours (projected-area percentile, Eq. 4 at theta_i = 0) / traced percentile of k\n";
-  std::string head = "  perc.  ";
-  for (auto n : s.ndfs)
-    for (double a : s.alphas) {
-      std::snprintf(line, sizeof line, " %8.8s %-4.2g", analytic::ndf_name(n), a);
-      head += line;
-    }
-  os << head << "\n";
-  const std::size_t na = s.alphas.size(), nn = s.ndfs.size();
-  for (std::size_t q = 0; q < s.percentiles.size(); ++q) {
-    std::snprintf(line, sizeof line, "  %4.0f%%  ", 100.0 * s.percentiles[q]);
-    std::string row = line;
-    for (std::size_t n = 0; n < nn; ++n)
-      for (std::size_t a = 0; a < na; ++a) {
-        const std::size_t i = (q * nn + n) * na + a;
-        std::snprintf(line, sizeof line, " %4d/%-3d/%-4d", s.paper[i], run.ours[i], run.traced[i]);
-        row += line;
-      }
-    os << row << "\n";
-  }
-  std::snprintf(line, sizeof line, "  %d/%zu entries agree with the paper; %ld rays per traced surface; wall %.2f s\n",
-                run.agree, run.ours.size(), s.rays, run.wall_s);
   os << line;
 }
 

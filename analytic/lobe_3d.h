@@ -1,0 +1,64 @@
+// vgroove analytic: the 3D multiple-scattering BRDF of symmetric V-grooves (brdf_3d.h) and
+// Cook-Torrance integrated over bins of exit direction: the lobes the suites compare with the
+// light traced in procedural surfaces.
+//
+// Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces".
+// ACM TOG 37(6), 2018. Sec. 5.1 (Eq. 10-17), Sec. 7.1 (Fig. 11).
+#pragma once
+
+#include "vgroove/analytic/brdf_3d.h"
+
+#include <vector>
+
+namespace vgroove::analytic {
+
+// The fraction of the incident flux leaving into each (theta_o, phi_o) bin, per k. Layout shared
+// with sim::Microsurface3dTally: theta_o in [0, pi/2) in theta_bins equal bins; phi_o in
+// phi_bins equal bins centred on phi = 0 (bin 0 covers [-d/2, d/2), d = 2 pi / phi_bins),
+// phi_bins even, so that the plane of incidence runs through the centres of bins 0 and
+// phi_bins / 2. The light is at i = dir3(theta_i, pi) (its mirror direction at phi = 0).
+// Rows k = 0..max_k, row max_k + 1 holds every k > max_k; index [(row * theta_bins + t) * phi_bins + p].
+//
+// vgroove_lobe_3d is the push-forward of the groove distribution (method (b) of the tests): for
+// each groove azimuth (Gauss-Legendre in phi_a, mirror symmetry phi_a -> pi - phi_a), each facet
+// and each k, the arc of exits swept by theta_m is cut where it crosses a bin edge or where
+// Eq. (4)/(6) change form, and each piece is integrated exactly in smoothness by Gauss-Legendre
+// in w = sqrt(CDF(theta_m)) (theta_m above the median). by_k and albedo are exact to rounding
+// (albedo - 1 < 3e-14 for F = 1); hist is limited by the phi_a quadrature. Its per-bin integrands
+// have square-root points (theta edges tangent to an arc) and kinks where an arc passes through a
+// bin corner (at phi_a = the azimuth of i + corner): the phi_a range is cut at both (brdf_3d.cpp,
+// run_lobe). Without the corner cuts the kinks left ~|slope jump| h^2 each: up to 1.6e-5 per bin
+// at 384 panels, worst in the back-scattering plane, and the 384 -> 768 change was <= 1e-5.
+// With them, at 30 x 24 bins and max_k 16 (GGX 0.5 at 30 deg, GGX 0.3 at 60, 0.7 at 75, Beckmann
+// 1.0 at 10): per bin within 1.4e-7..9.6e-7 of 6144 panels, the 384 -> 768 change <= 2.7e-7
+// (GGX 0.5 at 30 deg); against Eq. (16) integrated over single bins, < 3.1e-9 at and beside the
+// specular peak and 2.5e-8 in the back-scattering bin (45 x 36 bins). Beyond k = k_bands the lobe
+// deposits by a midpoint rule in the CDF, scaled to the tail's exact total. Cost at 30 x 24 bins,
+// max_k 16: 0.3-0.9 s per case (2 loaded cores; 0.25-0.75 s without the corner cuts); 45 x 36: ~1 s.
+struct Lobe3d {
+  int theta_bins = 0;
+  int phi_bins = 0;
+  int max_k = 0;
+  std::vector<double> by_k;  // [row]
+  std::vector<double> hist;  // [t * phi_bins + p], all k
+  std::vector<double> hist_by_k;
+  double albedo = 0.0;
+};
+
+struct Lobe3dOptions {
+  int phi_panels = 384;  // panels over phi_a in [0, pi/2], shared among the pieces between cuts by length
+  int phi_order = 2;     // nodes per panel (the integrands have kinks: many low-order panels win)
+  int k_bands = 32;      // k beyond which a midpoint rule in the CDF replaces the exact bands
+  int tail_strata = 512;
+  bool corner_cuts = true;  // cut the phi_a range where arcs pass through bin corners (kinks)
+};
+
+Lobe3d vgroove_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins, int max_k);
+Lobe3d vgroove_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins, int max_k,
+                       const Lobe3dOptions& opt);
+// Single scattering with the V-cavity G (Eq. 1-3), k = 1 only: albedo < 1.
+Lobe3d cook_torrance_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins);
+Lobe3d cook_torrance_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins,
+                             const Lobe3dOptions& opt);
+
+}  // namespace vgroove::analytic
