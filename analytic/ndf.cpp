@@ -131,6 +131,11 @@ double Lambda_ggx(double theta_o, double alpha) {
   return x / (2.0 * (1.0 + std::sqrt(1.0 + x)));
 }
 
+double Lambda(NdfKind kind, double theta_o, double alpha) {
+  assert(kind == NdfKind::beckmann || kind == NdfKind::ggx);
+  return kind == NdfKind::ggx ? Lambda_ggx(theta_o, alpha) : Lambda_beckmann(theta_o, alpha);
+}
+
 double G1_smith_beckmann(double theta_o, double alpha) {
   // Heitz 2014, Eq. (10).
   return 1.0 / (1.0 + Lambda_beckmann(theta_o, alpha));

@@ -100,6 +100,9 @@ double G1_vcavity_inplane(double theta_o, double theta_h);
 // (it is not shape invariant: Heitz 2014, Sec. 3.2) and is left out.
 double Lambda_beckmann(double theta_o, double alpha);
 double Lambda_ggx(double theta_o, double alpha);
+// Either of the two by kind (beckmann or ggx). They depend on |tan theta_o| only, so the same
+// value serves the direction reversed (theta_o + pi).
+double Lambda(NdfKind kind, double theta_o, double alpha);
 
 // Heitz 2014, Eq. (10): Smith's G1(o, m) = chi+(o.m) / (1 + Lambda(o)). These return the value
 // for a normal m facing o (o.m > 0); the caller applies chi+(o.m), which needs m.

@@ -20,11 +20,6 @@ double ratio(double num, double den) { return den > 0.0 ? num / den : kNaN; }
 
 }  // namespace
 
-double smith_lambda(analytic::NdfKind ndf, double theta, double alpha) {
-  assert(ndf == analytic::NdfKind::beckmann || ndf == analytic::NdfKind::ggx);
-  return ndf == analytic::NdfKind::ggx ? analytic::Lambda_ggx(theta, alpha) : analytic::Lambda_beckmann(theta, alpha);
-}
-
 MaskingMeasure measure_masking(const sim::Polyline& p, const MaskingCase& c, const sim::VisibilityTally& from_o,
                                const sim::VisibilityTally& from_i) {
   const int nb = c.bins;
@@ -36,7 +31,8 @@ MaskingMeasure measure_masking(const sim::Polyline& p, const MaskingCase& c, con
   const double N = static_cast<double>(from_o.rays);
   const double beam_o = p.period * std::cos(c.theta_o), beam_i = p.period * std::cos(c.theta_i);
   const sim::Vec2 o = sim::direction_at(c.theta_o), i = sim::direction_at(c.theta_i);
-  const double lambda_o = smith_lambda(c.ndf, c.theta_o, c.alpha), lambda_i = smith_lambda(c.ndf, c.theta_i, c.alpha);
+  const double lambda_o = analytic::Lambda(c.ndf, c.theta_o, c.alpha),
+               lambda_i = analytic::Lambda(c.ndf, c.theta_i, c.alpha);
   m.g1_smith = 1.0 / (1.0 + lambda_o);
   m.g2_smith_separable = m.g1_smith / (1.0 + lambda_i);
   m.g2_smith_correlated = 1.0 / (1.0 + lambda_o + lambda_i);

@@ -69,7 +69,4 @@ struct MaskingMeasure {
 MaskingMeasure measure_masking(const sim::Polyline& p, const MaskingCase& c, const sim::VisibilityTally& from_o,
                                const sim::VisibilityTally& from_i);
 
-// Smith's Lambda of the case's NDF at theta (Beckmann or GGX).
-double smith_lambda(analytic::NdfKind ndf, double theta, double alpha);
-
 }  // namespace vgroove::validation
