@@ -193,6 +193,24 @@ TEST(Cli, ValidateExitsOneWhenAThresholdIsExceeded) {
   EXPECT_EQ(r.status, 1) << r;
 }
 
+TEST(Cli, ValidateRunsAProfilesSuite) {
+  TempDir dir;
+  const std::string f = dir.file("profiles.json"), out = dir.file("r.json");
+  write_text(f, R"({"name": "cli_profiles", "kind": "profiles", "ndf": ["ggx"], "alpha": [0.5], "theta_deg": [60],
+                    "surfaces": ["random", "vgroove"], "realizations": 2, "segments": 2048, "rays": 5000,
+                    "walk_paths": 5000, "thresholds": {"p_min": 1e-3, "sigmas": 5}})");
+  const CliRun r = vgroove("validate " + quoted(f) + " --out " + quoted(out) + " --threads 2");
+  EXPECT_EQ(r.status, 0) << r;
+  const json j = json::parse(read_text(out));
+  EXPECT_EQ(j.at("kind"), "profiles");
+  EXPECT_EQ(j.at("cases").size(), 1u);
+  EXPECT_EQ(j.at("cases").at(0).at("surfaces").size(), 2u);
+  expect_user_error(vgroove("validate " + quoted(f) + " --sampling random"), "--sampling", "single-groove");
+  write_text(f, R"({"name": "x", "kind": "profiles", "ndf": ["phong"], "alpha": [0.5], "theta_deg": [60],
+                    "surfaces": ["random"], "rays": 10, "walk_paths": 10, "thresholds": {"p_min": 1e-3, "sigmas": 5}})");
+  expect_user_error(vgroove("validate " + quoted(f)), f + ": /ndf/0", "\"beckmann\", \"ggx\"");
+}
+
 // ---------------------------------------------------------------------------------------------
 // trace --json and analytic --json: the same rows, (first facet, k) -> (fraction, theta_o_deg).
 using Rows = std::map<std::pair<std::string, int>, std::pair<double, double>>;
