@@ -83,8 +83,9 @@ ModelDistance model_distance(const BinStat& traced, const std::vector<double>& m
 
 // L1 of the traced lobe's mean from a model, per row and in total, against the L1 the noise
 // alone gives: per bin the traced mean's variance, se^2 from the realizations' spread but at least
-// the rays' own multinomial p (1 - p) / rays (a spread of a few realizations can fall below it by
-// chance), plus model_var (the model's own).
+// the rays' own multinomial p (1 - p) / rays with p the larger of the traced and the model value
+// (a spread of a few realizations can fall below it by chance, and an empty traced bin has no
+// spread at all), plus model_var (the model's own).
 LobeDistance lobe_distance(const BinStat& traced, const std::vector<double>& model,
                            const std::vector<double>& model_var, int rows, int bins, double sigmas, double rays) {
   LobeDistance d;
@@ -94,7 +95,7 @@ LobeDistance lobe_distance(const BinStat& traced, const std::vector<double>& mod
     for (int b = 0; b < bins; ++b) {
       const std::size_t n = static_cast<std::size_t>(r) * static_cast<std::size_t>(bins) + static_cast<std::size_t>(b);
       const double se = std::isfinite(traced.se[n]) ? traced.se[n] : 0.0;
-      const double p = std::clamp(traced.mean[n], 0.0, 1.0);
+      const double p = std::clamp(std::max(traced.mean[n], model[n]), 0.0, 1.0);
       const double v = std::max(se * se, p * (1.0 - p) / rays) + model_var[n];
       l1_r += std::abs(traced.mean[n] - model[n]);
       mean_r += std::sqrt(2.0 * v / std::numbers::pi);
