@@ -11,10 +11,13 @@
 #include "vgroove/validation/spec_lists.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <numeric>
+#include <queue>
 
 namespace vgroove::validation {
 
@@ -30,44 +33,131 @@ void check_range(bool ok, const std::string& what, double v, const std::string& 
   if (!ok) throw support::UserError(what + " = " + support::number_text(v) + " is out of range " + range);
 }
 
-// The user's model integrated over the 3D bins: sum over nodes of f cos(theta) sin(theta) dtheta dphi.
-std::vector<double> model_bins_3d(const BrdfFn& f, const analytic::Dir3& wi, int tb, int pb,
-                                  const analytic::GaussLegendre& g) {
-  std::vector<double> out(static_cast<std::size_t>(tb) * pb, 0.0);
-  const double dt = 0.5 * kPi / tb, dp = 2.0 * kPi / pb;
-  for (int t = 0; t < tb; ++t)
-    for (int p = 0; p < pb; ++p) {
-      const double t0 = t * dt, p0 = p * dp - 0.5 * dp;
-      double s = 0.0;
-      for (std::size_t a = 0; a < g.size(); ++a) {
-        const double theta = t0 + 0.5 * dt * (1.0 + g.x[a]);
-        double row = 0.0;
-        for (std::size_t b = 0; b < g.size(); ++b) {
-          const double phi = p0 + 0.5 * dp * (1.0 + g.x[b]);
-          row += g.w[b] * f(wi, analytic::dir3(theta, phi));
-        }
-        s += g.w[a] * row * std::cos(theta) * std::sin(theta);
-      }
-      out[static_cast<std::size_t>(t) * pb + p] = s * 0.25 * dt * dp;
-    }
-  return out;
-}
+// The user's model integrated over the bins, globally adaptive: every bin starts as one cell; a
+// cell's value is the Gauss-Legendre rule on its four quarters (two halves in flatland) and its
+// error estimate the difference from the rule on the whole cell. The cell with the largest
+// estimate is split until the estimates sum to at most `tolerance` or `max_evals` evaluations
+// are spent. A model's discontinuities (the support of a bounce order ending) and integrable
+// peaks (1/sin(theta_h) at the mirror direction) are resolved where they are, not everywhere.
+struct Cell {
+  std::size_t bin;
+  double t0, t1, p0, p1;       // theta and phi ranges (flatland: the signed angle, p unused)
+  std::array<double, 4> part;  // the rule on each quarter (half)
+  double value, err;
+  bool operator<(const Cell& o) const { return err < o.err; }
+};
 
-// Flatland: bins over (-pi/2, pi/2) of the signed 2D angle; the direction at signed angle theta
-// is (-sin theta, 0, cos theta), i.e. azimuth pi for theta > 0 and 0 for theta < 0.
-std::vector<double> model_bins_flatland(const BrdfFn& f, const analytic::Dir3& wi, int bins,
-                                        const analytic::GaussLegendre& g) {
-  std::vector<double> out(static_cast<std::size_t>(bins), 0.0);
-  const double w = kPi / bins;
-  for (int b = 0; b < bins; ++b) {
-    const double lo = -0.5 * kPi + b * w;
+class BinIntegrator {
+ public:
+  BinIntegrator(const BrdfFn& f, const analytic::Dir3& wi, bool flat, const analytic::GaussLegendre& g)
+      : f_(f), wi_(wi), flat_(flat), g_(g) {}
+
+  // The rule on [t0, t1] x [p0, p1]: f(wi, wo) cos(theta) sin(theta) (3D) or f cos(theta) (flatland).
+  double rule(double t0, double t1, double p0, double p1) {
+    const double ht = 0.5 * (t1 - t0), hp = 0.5 * (p1 - p0);
     double s = 0.0;
-    for (std::size_t a = 0; a < g.size(); ++a) {
-      const double theta = lo + 0.5 * w * (1.0 + g.x[a]);
-      s += g.w[a] * f(wi, analytic::Dir3{-std::sin(theta), 0.0, std::cos(theta)}) * std::cos(theta);
+    for (std::size_t a = 0; a < g_.size(); ++a) {
+      const double theta = t0 + ht * (1.0 + g_.x[a]);
+      if (flat_) {
+        s += g_.w[a] * f_(wi_, analytic::Dir3{-std::sin(theta), 0.0, std::cos(theta)}) * std::cos(theta);
+        ++evals;
+        continue;
+      }
+      double row = 0.0;
+      for (std::size_t b = 0; b < g_.size(); ++b) {
+        row += g_.w[b] * f_(wi_, analytic::dir3(theta, p0 + hp * (1.0 + g_.x[b])));
+        ++evals;
+      }
+      s += g_.w[a] * row * std::cos(theta) * std::sin(theta);
     }
-    out[static_cast<std::size_t>(b)] = 0.5 * w * s;
+    return flat_ ? s * ht : s * ht * hp;
   }
+
+  Cell make(std::size_t bin, double t0, double t1, double p0, double p1, double coarse) {
+    Cell c{bin, t0, t1, p0, p1, {}, 0.0, 0.0};
+    const double tm = 0.5 * (t0 + t1), pm = 0.5 * (p0 + p1);
+    if (flat_) {
+      c.part = {rule(t0, tm, p0, p1), rule(tm, t1, p0, p1), 0.0, 0.0};
+    } else {
+      c.part = {rule(t0, tm, p0, pm), rule(tm, t1, p0, pm), rule(t0, tm, pm, p1), rule(tm, t1, pm, p1)};
+    }
+    c.value = c.part[0] + c.part[1] + c.part[2] + c.part[3];
+    c.err = std::abs(c.value - coarse);
+    if (!std::isfinite(c.err)) c.err = std::numeric_limits<double>::max();  // refine what is not finite
+    return c;
+  }
+
+  void split(const Cell& c, std::vector<Cell>& out) {
+    const double tm = 0.5 * (c.t0 + c.t1), pm = 0.5 * (c.p0 + c.p1);
+    if (flat_) {
+      out.push_back(make(c.bin, c.t0, tm, c.p0, c.p1, c.part[0]));
+      out.push_back(make(c.bin, tm, c.t1, c.p0, c.p1, c.part[1]));
+      return;
+    }
+    out.push_back(make(c.bin, c.t0, tm, c.p0, pm, c.part[0]));
+    out.push_back(make(c.bin, tm, c.t1, c.p0, pm, c.part[1]));
+    out.push_back(make(c.bin, c.t0, tm, pm, c.p1, c.part[2]));
+    out.push_back(make(c.bin, tm, c.t1, pm, c.p1, c.part[3]));
+  }
+
+  std::int64_t evals = 0;
+
+ private:
+  const BrdfFn& f_;
+  analytic::Dir3 wi_;
+  bool flat_;
+  const analytic::GaussLegendre& g_;
+};
+
+struct ModelBins {
+  std::vector<double> flux;  // per bin
+  double error = 0.0;        // the estimates summed over the final cells
+  std::int64_t evals = 0;
+};
+
+ModelBins model_bins(const BrdfFn& f, const analytic::Dir3& wi, const CheckBrdfOptions& o,
+                     const analytic::GaussLegendre& g, const std::atomic<bool>* cancel) {
+  const bool flat = o.dim == SurfaceDim::flatland;
+  BinIntegrator in(f, wi, flat, g);
+  std::priority_queue<Cell> cells;
+  double err = 0.0;
+  if (flat) {
+    const double w = kPi / o.flatland_bins;
+    for (int b = 0; b < o.flatland_bins; ++b) {
+      const double t0 = -0.5 * kPi + b * w, t1 = t0 + w;
+      cells.push(in.make(static_cast<std::size_t>(b), t0, t1, 0.0, 0.0, in.rule(t0, t1, 0.0, 0.0)));
+    }
+  } else {
+    const double dt = 0.5 * kPi / o.theta_bins, dp = 2.0 * kPi / o.phi_bins;
+    for (int t = 0; t < o.theta_bins; ++t)
+      for (int p = 0; p < o.phi_bins; ++p) {
+        const double t0 = t * dt, t1 = t0 + dt, p0 = p * dp - 0.5 * dp, p1 = p0 + dp;
+        cells.push(in.make(static_cast<std::size_t>(t) * o.phi_bins + p, t0, t1, p0, p1, in.rule(t0, t1, p0, p1)));
+      }
+  }
+  std::vector<Cell> children;
+  double total = 0.0;  // the running sum of the estimates (summed afresh at the end)
+  for (auto q = cells; !q.empty(); q.pop()) total += q.top().err;
+  while (total > o.model_tolerance && in.evals < o.max_model_evals) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) break;
+    const Cell c = cells.top();
+    cells.pop();
+    total -= c.err;
+    children.clear();
+    in.split(c, children);
+    for (Cell& ch : children) total += ch.err, cells.push(std::move(ch));
+  }
+  const std::size_t bins = flat ? static_cast<std::size_t>(o.flatland_bins)
+                                : static_cast<std::size_t>(o.theta_bins) * static_cast<std::size_t>(o.phi_bins);
+  ModelBins out;
+  out.flux.assign(bins, 0.0);
+  while (!cells.empty()) {
+    out.flux[cells.top().bin] += cells.top().value;
+    err += cells.top().err;
+    cells.pop();
+  }
+  out.error = err;
+  out.evals = in.evals;
   return out;
 }
 
@@ -101,13 +191,12 @@ void check_options(const CheckBrdfOptions& o) {
   check_range(o.rays >= 1 && o.rays <= kMaxRays, "rays", static_cast<double>(o.rays), "[1, 1000000000]");
   check_range(o.grooves >= 1 && o.grooves <= 10'000'000, "grooves", o.grooves, "[1, 10000000]");
   check_range(o.theta_bins >= 1 && o.theta_bins <= 1000, "theta_bins", o.theta_bins, "[1, 1000]");
-  check_range(o.phi_bins >= 2 && o.phi_bins <= 1000 && o.phi_bins % 2 == 0, "phi_bins", o.phi_bins,
-              "[2, 1000], even");
+  check_range(o.phi_bins >= 2 && o.phi_bins <= 1000 && o.phi_bins % 2 == 0, "phi_bins", o.phi_bins, "[2, 1000], even");
   check_range(o.flatland_bins >= 1 && o.flatland_bins <= 100'000, "flatland_bins", o.flatland_bins, "[1, 100000]");
   check_range(o.sigmas > 0.0 && o.sigmas <= 100.0, "sigmas", o.sigmas, "(0, 100]");
   check_range(o.model_tolerance >= 0.0 && o.model_tolerance <= 1.0, "model_tolerance", o.model_tolerance, "[0, 1]");
-  check_range(o.quadrature_order >= 1 && o.quadrature_order <= 64, "quadrature_order", o.quadrature_order,
-              "[1, 64]");
+  check_range(o.quadrature_order >= 1 && o.quadrature_order <= 64, "quadrature_order", o.quadrature_order, "[1, 64]");
+  check_range(o.max_model_evals >= 1, "max_model_evals", static_cast<double>(o.max_model_evals), "[1, 2^63)");
   check_range(o.threads >= 0 && o.threads <= 1024, "threads", o.threads, "[0, 1024]");
 }
 
@@ -164,7 +253,7 @@ CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt) {
   std::vector<std::vector<std::int64_t>> chunk_hist(cases * static_cast<std::size_t>(chunks));
   std::vector<std::int64_t> chunk_rays(chunk_hist.size(), 0);
   std::vector<double> chunk_s(chunk_hist.size(), 0.0), model_s(cases, 0.0);
-  std::vector<std::vector<double>> model(cases);
+  std::vector<ModelBins> model(cases);
   const analytic::GaussLegendre rule = analytic::gauss_legendre(opt.quadrature_order);
   const std::size_t items = chunk_hist.size() + cases;
   const bool complete = support::parallel_for(
@@ -175,8 +264,7 @@ CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt) {
           const std::size_t c = item - chunk_hist.size();
           const double theta_i = deg_to_rad(opt.theta_i_deg[c]);
           const analytic::Dir3 wi = analytic::dir3(theta_i, kPi);
-          model[c] = flat ? model_bins_flatland(f, wi, bins, rule)
-                          : model_bins_3d(f, wi, opt.theta_bins, opt.phi_bins, rule);
+          model[c] = model_bins(f, wi, opt, rule, opt.cancel);
           model_s[c] = seconds_since(ti);
           return;
         }
@@ -216,7 +304,11 @@ CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt) {
     }
     const double N = static_cast<double>(rays);
     const std::vector<double> sim = fractions(hist, N);
-    CheckBrdfCase out = compare_lobes(sim, model[c], N, opt.grooves, opt.sigmas, opt.model_tolerance);
+    const std::vector<double>& m = model[c].flux;
+    // The model's side is known to within its integration error: it widens each threshold.
+    CheckBrdfCase out = compare_lobes(sim, m, N, opt.grooves, opt.sigmas, opt.model_tolerance + model[c].error);
+    out.model_error = model[c].error;
+    out.model_evals = model[c].evals;
     out.theta_i_deg = opt.theta_i_deg[c];
     out.rays = rays;
     out.sim_wall_s = sim_s;
@@ -225,12 +317,10 @@ CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt) {
     std::iota(order.begin(), order.end(), 0);
     const std::size_t shown = std::min<std::size_t>(kWorstBins, order.size());
     std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(shown), order.end(),
-                      [&](std::size_t a, std::size_t b) {
-                        return std::abs(sim[a] - model[c][a]) > std::abs(sim[b] - model[c][b]);
-                      });
+                      [&](std::size_t a, std::size_t b) { return std::abs(sim[a] - m[a]) > std::abs(sim[b] - m[b]); });
     for (std::size_t n = 0; n < shown; ++n) {
       WorstBin w = bin_centre(opt, order[n]);
-      w.sim = sim[order[n]], w.model = model[c][order[n]];
+      w.sim = sim[order[n]], w.model = m[order[n]];
       out.worst.push_back(w);
     }
     res.pass = res.pass && out.pass;
@@ -257,7 +347,8 @@ nlohmann::json CheckBrdfResult::to_json() const {
                  {"flatland_bins", options.flatland_bins},
                  {"sigmas", options.sigmas},
                  {"model_tolerance", options.model_tolerance},
-                 {"quadrature_order", options.quadrature_order}};
+                 {"quadrature_order", options.quadrature_order},
+                 {"max_model_evals", options.max_model_evals}};
   nlohmann::json cs = nlohmann::json::array();
   for (const CheckBrdfCase& c : cases) {
     nlohmann::json worst = nlohmann::json::array();
@@ -276,6 +367,8 @@ nlohmann::json CheckBrdfResult::to_json() const {
                   {"l1_flux_threshold", c.l1_flux_threshold},
                   {"worst_bins", worst},
                   {"sim_wall_s", c.sim_wall_s},
+                  {"model_integration_error", c.model_error},
+                  {"model_evaluations", c.model_evals},
                   {"model_wall_s", c.model_wall_s},
                   {"non_finite", c.non_finite},
                   {"pass", c.pass}});
