@@ -87,6 +87,24 @@ struct SimulateArgs {
 };
 int cmd_simulate(const SimulateArgs& a);
 
+// `vgroove brdf`: the BRDF at one pair of directions, or at every pair of a JSON file.
+struct BrdfArgs {
+  bool dry_run = false;
+  std::string model = "vgroove";
+  std::string ndf = "ggx";
+  double alpha = 0.5;
+  std::string dim = "3d";
+  double theta_i_deg = 0.0, phi_i_deg = 0.0;
+  double theta_o_deg = 0.0, phi_o_deg = 180.0;
+  bool theta_o_given = false;
+  int max_k = 1'000'000;
+  bool per_k = false;
+  int per_k_max = 16;
+  std::string directions;  // JSON file of direction pairs
+  bool json = false;
+};
+int cmd_brdf(const BrdfArgs& a);
+
 // Exit status of a run stopped by Ctrl-C (128 + SIGINT, as a shell reports it).
 inline constexpr int kExitInterrupted = 130;
 

@@ -19,10 +19,11 @@ int main() {
 
   // One evaluation: light 30 deg from the normal, looking back 40 deg on the other side.
   const va::Dir3 wi = va::dir3(30 * deg, std::numbers::pi), wo = va::dir3(40 * deg, 0.0);
-  std::printf("GGX alpha %.1f, theta_i 30, theta_o 40, phi_o 0 deg: vgroove %.6f /sr (k = 1: %.6f), "
-              "Cook-Torrance %.6f /sr\n",
-              alpha, va::vgroove_brdf(wi, wo, ndf, alpha, 1'000'000), va::vgroove_brdf_k(wi, wo, 1, ndf, alpha),
-              va::cook_torrance(wi, wo, ndf, alpha));
+  std::printf(
+      "GGX alpha %.1f, theta_i 30, theta_o 40, phi_o 0 deg: vgroove %.6f /sr (k = 1: %.6f), "
+      "Cook-Torrance %.6f /sr\n",
+      alpha, va::vgroove_brdf(wi, wo, ndf, alpha, 1'000'000), va::vgroove_brdf_k(wi, wo, 1, ndf, alpha),
+      va::cook_torrance(wi, wo, ndf, alpha));
 
   vv::CheckBrdfOptions opt;
   opt.ndf = ndf;
@@ -33,8 +34,8 @@ int main() {
 
   const vv::CheckBrdfResult ours = vv::check_brdf(
       [&](const va::Dir3& i, const va::Dir3& o) { return va::vgroove_brdf(i, o, ndf, alpha, 1'000'000); }, opt);
-  const vv::CheckBrdfResult ct = vv::check_brdf(
-      [&](const va::Dir3& i, const va::Dir3& o) { return va::cook_torrance(i, o, ndf, alpha); }, opt);
+  const vv::CheckBrdfResult ct =
+      vv::check_brdf([&](const va::Dir3& i, const va::Dir3& o) { return va::cook_torrance(i, o, ndf, alpha); }, opt);
   for (const auto* r : {&ours, &ct}) {
     std::printf("%s:\n", r == &ours ? "vgroove multiple scattering" : "Cook-Torrance (V-cavity G)");
     for (const auto& c : r->cases)

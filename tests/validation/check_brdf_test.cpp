@@ -49,11 +49,10 @@ TEST(CheckBrdf, VgrooveModelPasses3d) {
 
 TEST(CheckBrdf, CookTorranceFailsAtHighRoughness) {
   const CheckBrdfOptions o = small_3d(1.0);
-  const CheckBrdfResult r = check_brdf(
-      [&](const analytic::Dir3& wi, const analytic::Dir3& wo) {
-        return analytic::cook_torrance(wi, wo, o.ndf, o.alpha);
-      },
-      o);
+  const CheckBrdfResult r =
+      check_brdf([&](const analytic::Dir3& wi,
+                     const analytic::Dir3& wo) { return analytic::cook_torrance(wi, wo, o.ndf, o.alpha); },
+                 o);
   EXPECT_FALSE(r.pass);
   // The furnace's figure: Cook-Torrance with the V-cavity G keeps 0.375 of the light at normal
   // incidence on GGX alpha = 1 (3D); the traced surface keeps all of it.
