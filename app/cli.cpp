@@ -86,6 +86,9 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   val->add_option("--sampling", va.sampling, "override the suite's placement: stratified or random");
   val->add_option("--seed", va.seed, "override the suite's seed");
   val->add_option("--eq6-form", va.eq6_form, "override the suite's form of Eq. 6: corrected or printed");
+  val->add_option("--model-table", va.model_table,
+                  "\"brdf\" suites: hold this table of a foreign model's bin-integrated lobes (layout from "
+                  "`vgroove bins SUITE`) against the simulation instead of vgroove's model");
   val->add_flag("--force", va.force, "overwrite an existing report");
 
   auto* bench = app.add_subcommand("bench", "Benchmarks: what accuracy costs in time.");
@@ -124,6 +127,14 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   simu->add_flag("--force", sa.force, "overwrite an existing result");
   sa.dry_run = ctx.dry_run;
   sa.cancel = ctx.cancel;
+  BinsArgs bi;
+  auto* bins = app.add_subcommand("bins",
+                                  "Write a \"brdf\" suite's bin layout (cases, bin edges, frame) as JSON: fill in a "
+                                  "model's flux per bin and run `vgroove validate SUITE --model-table FILE`.");
+  bins->add_option("suite", bi.suite, "suite spec of kind \"brdf\", e.g. data/suites/fig11.json")->required();
+  bins->add_option("--out", bi.out, "layout JSON to write (default: stdout)");
+  bins->add_flag("--force", bi.force, "overwrite an existing file");
+  bi.dry_run = ctx.dry_run;
   BrdfArgs ba;
   auto* brdf = app.add_subcommand(
       "brdf",
@@ -174,6 +185,7 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
     if (*plot) return cmd_plot(pa);
     if (*simu) return cmd_simulate(sa);
     if (*brdf) return cmd_brdf(ba);
+    if (*bins) return cmd_bins(bi);
   } catch (const support::UserError& e) {
     std::cerr << "vgroove: error: " << e.what() << "\n";
     return 2;

@@ -48,8 +48,9 @@ std::vector<Pair> read_pairs(const std::string& file, bool flat) {
   const nlohmann::json& list = root.raw("directions");
   root.finish();
   if (!list.is_array() || list.empty() || list.size() > kMaxPairs)
-    throw support::UserError(file + ": /directions must be a list of 1 to 10000000 objects {\"theta_i_deg\", "
-                                    "\"theta_o_deg\"[, \"phi_i_deg\", \"phi_o_deg\"]}");
+    throw support::UserError(file +
+                             ": /directions must be a list of 1 to 10000000 objects {\"theta_i_deg\", "
+                             "\"theta_o_deg\"[, \"phi_i_deg\", \"phi_o_deg\"]}");
   std::vector<Pair> out;
   out.reserve(list.size());
   for (std::size_t n = 0; n < list.size(); ++n) {
@@ -83,7 +84,8 @@ int cmd_brdf(const BrdfArgs& a) {
     throw support::UserError("--dim = \"" + a.dim + "\" is not one of \"3d\", \"flatland\"");
   const bool flat = a.dim == "flatland";
   check_angle(a.alpha, 0, false, 2, true, "--alpha");
-  if (a.max_k < 1) throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, 2147483647]");
+  if (a.max_k < 1)
+    throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, 2147483647]");
   if (a.per_k_max < 1 || a.per_k_max > 1000)
     throw support::UserError("--per-k-max = " + std::to_string(a.per_k_max) + " is out of range [1, 1000]");
   if (flat && a.max_k > 4096)
@@ -117,13 +119,12 @@ int cmd_brdf(const BrdfArgs& a) {
   if (a.json) {
     nlohmann::json j = validation::provenance();
     j["kind"] = "brdf";
-    j["inputs"] = {{"model", a.model}, {"ndf", a.ndf},     {"alpha", a.alpha},
+    j["inputs"] = {{"model", a.model},   {"ndf", a.ndf},       {"alpha", a.alpha},
                    {"dimension", a.dim}, {"max_k", opt.max_k}, {"per_k", opt.per_k}};
     j["unit"] = unit;
     for (std::size_t n = 0; n < pairs.size(); ++n) {
-      nlohmann::json e = {{"theta_i_deg", pairs[n].theta_i_deg},
-                          {"theta_o_deg", pairs[n].theta_o_deg},
-                          {"value", values[n].value}};
+      nlohmann::json e = {
+          {"theta_i_deg", pairs[n].theta_i_deg}, {"theta_o_deg", pairs[n].theta_o_deg}, {"value", values[n].value}};
       if (!flat) e["phi_i_deg"] = pairs[n].phi_i_deg, e["phi_o_deg"] = pairs[n].phi_o_deg;
       if (opt.per_k > 0) e["by_k"] = values[n].by_k;
       points.push_back(std::move(e));

@@ -52,6 +52,7 @@ struct ValidateArgs {
   std::string sampling;         // empty: the suite's
   std::string eq6_form;         // empty: the suite's
   long long seed = kUnsetSeed;  // kUnsetSeed: the suite's
+  std::string model_table;      // a foreign model's bin-integrated lobes ("brdf" suites)
   bool force = false;
   const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: no report is written
 };
@@ -86,6 +87,15 @@ struct SimulateArgs {
   const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: no result is written
 };
 int cmd_simulate(const SimulateArgs& a);
+
+// `vgroove bins`: a "brdf" suite's bin layout, for a foreign model's table.
+struct BinsArgs {
+  bool dry_run = false;
+  std::string suite;
+  std::string out;  // empty: stdout
+  bool force = false;
+};
+int cmd_bins(const BinsArgs& a);
 
 // `vgroove brdf`: the BRDF at one pair of directions, or at every pair of a JSON file.
 struct BrdfArgs {

@@ -2,13 +2,12 @@
 
 #include "vgroove/analytic/quadrature.h"
 #include "vgroove/common/angles.h"
-#include "vgroove/sim/microsurface.h"
-#include "vgroove/sim/microsurface3d.h"
 #include "vgroove/support/parallel.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/histogram_metrics.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
+#include "vgroove/validation/traced_lobe.h"
 
 #include <algorithm>
 #include <array>
@@ -161,27 +160,6 @@ ModelBins model_bins(const BrdfFn& f, const analytic::Dir3& wi, const CheckBrdfO
   return out;
 }
 
-// The centre of bin n for the worst-bin list, in degrees.
-WorstBin bin_centre(const CheckBrdfOptions& o, std::size_t n) {
-  WorstBin w;
-  if (o.dim == SurfaceDim::flatland) {
-    w.theta_o_deg = output_deg(-0.5 * kPi + (static_cast<double>(n) + 0.5) * kPi / o.flatland_bins);
-    return w;
-  }
-  const std::size_t t = n / static_cast<std::size_t>(o.phi_bins), p = n % static_cast<std::size_t>(o.phi_bins);
-  w.theta_o_deg = output_deg((static_cast<double>(t) + 0.5) * 0.5 * kPi / o.theta_bins);
-  double phi = static_cast<double>(p) * 2.0 * kPi / o.phi_bins;
-  if (phi > kPi) phi -= 2.0 * kPi;
-  w.phi_o_deg = output_deg(phi);
-  return w;
-}
-
-// One case's traced flux fractions per bin: chunk tallies merged in chunk order.
-struct CaseTally {
-  std::vector<std::int64_t> hist;
-  std::int64_t rays = 0;
-};
-
 }  // namespace
 
 void check_options(const CheckBrdfOptions& o) {
@@ -231,102 +209,78 @@ CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt) {
   res.options = opt;
   res.threads = support::resolve_threads(opt.threads);
   const auto t0 = Clock::now();
-  const bool flat = opt.dim == SurfaceDim::flatland;
   const std::size_t cases = opt.theta_i_deg.size();
-  const int bins = flat ? opt.flatland_bins : opt.theta_bins * opt.phi_bins;
+  std::vector<double> theta_i;
+  for (double d : opt.theta_i_deg) theta_i.push_back(deg_to_rad(d));
 
-  // The surface: the same for every theta_i (Fig. 11's surfaces: seed, grooves, NDF, alpha).
-  sim::Microsurface flat_surface;
-  sim::Microsurface3d surface3d;
-  if (flat) {
-    sim::MicrosurfaceOptions so;
-    so.ndf = opt.ndf, so.alpha = opt.alpha, so.grooves = opt.grooves, so.seed = opt.seed;
-    flat_surface = sim::make_microsurface(so);
-  } else {
-    sim::Microsurface3dOptions so;
-    so.ndf = opt.ndf, so.alpha = opt.alpha, so.grooves = opt.grooves, so.seed = opt.seed;
-    surface3d = sim::make_microsurface3d(so);
-  }
-  // Work items: (case, chunk) of the trace, then one per case for the model's bins. Each writes
-  // its own slot; tallies merge in chunk order, so nothing depends on the thread count.
-  const std::int64_t chunks = (static_cast<std::int64_t>(opt.rays) + sim::kRaysPerChunk - 1) / sim::kRaysPerChunk;
-  std::vector<std::vector<std::int64_t>> chunk_hist(cases * static_cast<std::size_t>(chunks));
-  std::vector<std::int64_t> chunk_rays(chunk_hist.size(), 0);
-  std::vector<double> chunk_s(chunk_hist.size(), 0.0), model_s(cases, 0.0);
+  // The model's bins, one work item per incidence, then the traced lobes.
   std::vector<ModelBins> model(cases);
+  std::vector<double> model_s(cases, 0.0);
   const analytic::GaussLegendre rule = analytic::gauss_legendre(opt.quadrature_order);
-  const std::size_t items = chunk_hist.size() + cases;
-  const bool complete = support::parallel_for(
-      items, res.threads,
-      [&](std::size_t item) {
+  const bool integrated = support::parallel_for(
+      cases, res.threads,
+      [&](std::size_t c) {
         const auto ti = Clock::now();
-        if (item >= chunk_hist.size()) {
-          const std::size_t c = item - chunk_hist.size();
-          const double theta_i = deg_to_rad(opt.theta_i_deg[c]);
-          const analytic::Dir3 wi = analytic::dir3(theta_i, kPi);
-          model[c] = model_bins(f, wi, opt, rule, opt.cancel);
-          model_s[c] = seconds_since(ti);
-          return;
-        }
-        const std::size_t c = item / static_cast<std::size_t>(chunks);
-        const std::int64_t chunk = static_cast<std::int64_t>(item % static_cast<std::size_t>(chunks));
-        const double theta_i = deg_to_rad(opt.theta_i_deg[c]);
-        if (flat) {
-          sim::MicrosurfaceTraceOptions to;
-          to.theta_i = theta_i, to.rays = opt.rays, to.seed = opt.seed, to.theta_o_bins = bins, to.max_k = 0;
-          const sim::MicrosurfaceTally t = sim::trace_microsurface_chunk(flat_surface, to, chunk);
-          chunk_hist[item] = t.theta_o, chunk_rays[item] = t.rays;
-        } else {
-          sim::Microsurface3dTraceOptions to;
-          to.theta_i = theta_i, to.rays = opt.rays, to.seed = opt.seed;
-          to.theta_bins = opt.theta_bins, to.phi_bins = opt.phi_bins, to.max_k = 0;
-          const sim::Microsurface3dTally t = sim::trace_microsurface3d_chunk(surface3d, to, chunk);
-          chunk_hist[item] = t.hist, chunk_rays[item] = t.rays;
-        }
-        chunk_s[item] = seconds_since(ti);
+        model[c] = model_bins(f, analytic::dir3(theta_i[c], kPi), opt, rule, opt.cancel);
+        model_s[c] = seconds_since(ti);
       },
       {}, opt.cancel, 1);
+  LobeSetup setup;
+  setup.ndf = opt.ndf, setup.alpha = opt.alpha, setup.dim = opt.dim, setup.rays = opt.rays;
+  setup.grooves = opt.grooves, setup.seed = opt.seed;
+  setup.theta_bins = opt.theta_bins, setup.phi_bins = opt.phi_bins, setup.flatland_bins = opt.flatland_bins;
+  const std::vector<TracedLobe> traced =
+      integrated ? trace_lobes(setup, theta_i, res.threads, opt.cancel) : std::vector<TracedLobe>{};
   res.wall_s = seconds_since(t0);
-  if (!complete) {
+  if (traced.size() != cases || (opt.cancel && opt.cancel->load())) {
     res.interrupted = true;
     return res;
   }
   res.pass = true;
   for (std::size_t c = 0; c < cases; ++c) {
-    std::vector<std::int64_t> hist(static_cast<std::size_t>(bins), 0);
-    std::int64_t rays = 0;
-    double sim_s = 0.0;  // thread time, summed over the case's chunks
-    for (std::int64_t k = 0; k < chunks; ++k) {
-      const std::size_t item = c * static_cast<std::size_t>(chunks) + static_cast<std::size_t>(k);
-      for (std::size_t n = 0; n < hist.size(); ++n) hist[n] += chunk_hist[item][n];
-      rays += chunk_rays[item];
-      sim_s += chunk_s[item];
-    }
-    const double N = static_cast<double>(rays);
-    const std::vector<double> sim = fractions(hist, N);
+    const std::vector<double>& sim = traced[c].flux;
     const std::vector<double>& m = model[c].flux;
+    const double N = static_cast<double>(traced[c].rays);
     // The model's side is known to within its integration error: it widens each threshold.
     CheckBrdfCase out = compare_lobes(sim, m, N, opt.grooves, opt.sigmas, opt.model_tolerance + model[c].error);
     out.model_error = model[c].error;
     out.model_evals = model[c].evals;
     out.theta_i_deg = opt.theta_i_deg[c];
-    out.rays = rays;
-    out.sim_wall_s = sim_s;
+    out.rays = traced[c].rays;
+    out.sim_wall_s = traced[c].thread_s;
     out.model_wall_s = model_s[c];
-    std::vector<std::size_t> order(sim.size());
-    std::iota(order.begin(), order.end(), 0);
-    const std::size_t shown = std::min<std::size_t>(kWorstBins, order.size());
-    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(shown), order.end(),
-                      [&](std::size_t a, std::size_t b) { return std::abs(sim[a] - m[a]) > std::abs(sim[b] - m[b]); });
-    for (std::size_t n = 0; n < shown; ++n) {
-      WorstBin w = bin_centre(opt, order[n]);
-      w.sim = sim[order[n]], w.model = m[order[n]];
-      out.worst.push_back(w);
-    }
+    out.worst = worst_bins(sim, m, opt.dim, opt.theta_bins, opt.phi_bins, opt.flatland_bins);
     res.pass = res.pass && out.pass;
     res.cases.push_back(std::move(out));
   }
   return res;
+}
+
+std::vector<WorstBin> worst_bins(const std::vector<double>& sim, const std::vector<double>& model, SurfaceDim dim,
+                                 int theta_bins, int phi_bins, int flatland_bins) {
+  std::vector<std::size_t> order(sim.size());
+  std::iota(order.begin(), order.end(), 0);
+  const std::size_t shown = std::min<std::size_t>(kWorstBins, order.size());
+  std::partial_sort(
+      order.begin(), order.begin() + static_cast<std::ptrdiff_t>(shown), order.end(),
+      [&](std::size_t a, std::size_t b) { return std::abs(sim[a] - model[a]) > std::abs(sim[b] - model[b]); });
+  std::vector<WorstBin> out;
+  for (std::size_t n = 0; n < shown; ++n) {
+    WorstBin w;
+    const std::size_t i = order[n];
+    if (dim == SurfaceDim::flatland) {
+      w.theta_o_deg = output_deg(-0.5 * kPi + (static_cast<double>(i) + 0.5) * kPi / flatland_bins);
+    } else {
+      const std::size_t t = i / static_cast<std::size_t>(phi_bins), p = i % static_cast<std::size_t>(phi_bins);
+      w.theta_o_deg = output_deg((static_cast<double>(t) + 0.5) * 0.5 * kPi / theta_bins);
+      double phi = static_cast<double>(p) * 2.0 * kPi / phi_bins;
+      if (phi > kPi) phi -= 2.0 * kPi;
+      w.phi_o_deg = output_deg(phi);
+    }
+    w.sim = sim[i], w.model = model[i];
+    out.push_back(w);
+  }
+  return out;
 }
 
 nlohmann::json CheckBrdfResult::to_json() const {

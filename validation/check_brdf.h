@@ -105,5 +105,8 @@ CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt);
 // `vgroove validate --model-table`): sim and model over the same bins, N rays over G grooves.
 CheckBrdfCase compare_lobes(const std::vector<double>& sim, const std::vector<double>& model, double rays,
                             double grooves, double sigmas, double model_tolerance);
+// The five bins where |sim - model| is largest, largest first, with their centres.
+std::vector<WorstBin> worst_bins(const std::vector<double>& sim, const std::vector<double>& model, SurfaceDim dim,
+                                 int theta_bins, int phi_bins, int flatland_bins);
 
 }  // namespace vgroove::validation

@@ -54,8 +54,9 @@ TEST(CmdBrdf, TextPrintsEveryDigit) {
 // The orders resolved one by one add up to the total when nothing lies beyond them (a smooth
 // surface far from grazing keeps its light within a few bounces).
 TEST(CmdBrdf, PerKSumsToTheTotal) {
-  const auto r = vgroove("brdf --json --per-k --per-k-max 64 --max-k 64 --alpha 0.4 --theta-i-deg 10 "
-                         "--theta-o-deg 35 --phi-o-deg 150");
+  const auto r = vgroove(
+      "brdf --json --per-k --per-k-max 64 --max-k 64 --alpha 0.4 --theta-i-deg 10 "
+      "--theta-o-deg 35 --phi-o-deg 150");
   ASSERT_EQ(r.status, 0) << r;
   const json p = json::parse(r.out)["points"][0];
   double s = 0.0;
