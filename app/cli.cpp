@@ -70,7 +70,7 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   an->add_option("--theta-i-deg", aa.theta_i_deg, "incident angle theta_i in degrees, (-90, 90)")
       ->capture_default_str();
   an->add_option("--eq6-form", aa.eq6_form,
-                 "symmetric grooves: corrected (see validation/ERRATA.md) or printed (as in the paper)")
+                 "symmetric grooves: corrected (see docs/ERRATA.md) or printed (as in the paper)")
       ->capture_default_str();
   an->add_flag("--json", aa.json, "print JSON (the same shape as `trace --json`)");
 

@@ -58,8 +58,9 @@ nlohmann::json bin_layout_json(const BrdfSuite& s) {
                 {{"count", s.theta_bins * s.phi_bins},
                  {"theta_o_deg_edges", edges_deg(0.0, 0.5 * pi, s.theta_bins)},
                  {"phi_o_deg_edges", phi_edges},
-                 {"order", "index = theta_bin * phi_bins + phi_bin; phi bin p covers [p - 1/2, p + 1/2) x 360/phi_bins "
-                           "deg, modulo 360"}}}};
+                 {"order",
+                  "index = theta_bin * phi_bins + phi_bin; phi bin p covers [p - 1/2, p + 1/2) x 360/phi_bins "
+                  "deg, modulo 360"}}}};
   nlohmann::json cases = nlohmann::json::array();
   for (std::size_t c = 0; c < s.cases(); ++c) {
     const BrdfCase k = s.case_at(c);

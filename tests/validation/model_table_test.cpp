@@ -75,22 +75,28 @@ TEST(ModelTable, BadTablesAreRefused) {
   const json good = table_of(suite(), false);
   json t = good;
   t["cases"][1]["flux"].erase(0);
-  EXPECT_EQ(refusal(t), "t.json: /cases/1/flux must be a list of 45 numbers (the layout's bins for flatland), found 44 values");
+  EXPECT_EQ(refusal(t),
+            "t.json: /cases/1/flux must be a list of 45 numbers (the layout's bins for flatland), found 44 values");
   t = good;
   t["cases"][2]["flux"][7] = -0.5;
-  EXPECT_EQ(refusal(t), "t.json: /cases/2/flux/7 = -0.5 must be a finite number >= 0 (a fraction of the incident flux)");
+  EXPECT_EQ(refusal(t),
+            "t.json: /cases/2/flux/7 = -0.5 must be a finite number >= 0 (a fraction of the incident flux)");
   t = good;
   t["cases"][2]["flux"][7] = nullptr;
-  EXPECT_EQ(refusal(t), "t.json: /cases/2/flux/7 = null must be a finite number >= 0 (a fraction of the incident flux)");
+  EXPECT_EQ(refusal(t),
+            "t.json: /cases/2/flux/7 = null must be a finite number >= 0 (a fraction of the incident flux)");
   t = good;
   t["cases"][2]["flux"][7] = "NaN";
-  EXPECT_EQ(refusal(t), "t.json: /cases/2/flux/7 = \"NaN\" must be a finite number >= 0 (a fraction of the incident flux)");
+  EXPECT_EQ(refusal(t),
+            "t.json: /cases/2/flux/7 = \"NaN\" must be a finite number >= 0 (a fraction of the incident flux)");
   t = good;
   t["cases"].erase(3);
   EXPECT_EQ(refusal(t), "t.json: /cases has no entry for case 3 (4 cases expected, see `vgroove bins mini.json`)");
   t = good;
   t["cases"][0]["case"] = 1;
-  EXPECT_EQ(refusal(t).rfind("t.json: /cases/0/case = 1 is ndf ggx, alpha 0.7, theta_i_deg 50, dimension flatland", 0), 0u) << refusal(t);
+  EXPECT_EQ(refusal(t).rfind("t.json: /cases/0/case = 1 is ndf ggx, alpha 0.7, theta_i_deg 50, dimension flatland", 0),
+            0u)
+      << refusal(t);
   t = good;
   t["suite"] = "fig11";
   EXPECT_EQ(refusal(t), "t.json: /suite = \"fig11\" names another suite; this table must be made for \"mini\"");
@@ -107,7 +113,8 @@ TEST(ModelTable, CliRefusesABadTableWithoutAReport) {
   t["suite"] = "mini";
   t["cases"][0]["flux"][0] = -1;
   write_text(table, t.dump());
-  const auto r = testing_files::vgroove("validate '" + suite_file + "' --model-table '" + table + "' --out '" + out + "'");
+  const auto r =
+      testing_files::vgroove("validate '" + suite_file + "' --model-table '" + table + "' --out '" + out + "'");
   EXPECT_EQ(r.status, 2) << r;
   EXPECT_NE(r.err.find("/cases/0/flux/0 = -1 must be a finite number >= 0"), std::string::npos) << r;
   EXPECT_FALSE(std::filesystem::exists(out));
