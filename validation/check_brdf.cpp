@@ -31,21 +31,36 @@ void check_range(bool ok, const std::string& what, double v, const std::string& 
 }
 
 // The user's model integrated over the 3D bins: sum over nodes of f cos(theta) sin(theta) dtheta dphi.
-std::vector<double> model_bins_3d(const BrdfFn& f, const analytic::Dir3& wi, int tb, int pb,
+// The nodes' values come from one batch call, then are summed in node order.
+std::vector<double> model_bins_3d(const BrdfBatchFn& f, const analytic::Dir3& wi, int tb, int pb,
                                   const analytic::GaussLegendre& g) {
   std::vector<double> out(static_cast<std::size_t>(tb) * pb, 0.0);
   const double dt = 0.5 * kPi / tb, dp = 2.0 * kPi / pb;
+  const std::size_t m = g.size(), nodes = out.size() * m * m;
+  std::vector<double> wis(3 * nodes), wos(3 * nodes), vals(nodes);
+  std::size_t j = 0;
   for (int t = 0; t < tb; ++t)
     for (int p = 0; p < pb; ++p) {
       const double t0 = t * dt, p0 = p * dp - 0.5 * dp;
+      for (std::size_t a = 0; a < m; ++a) {
+        const double theta = t0 + 0.5 * dt * (1.0 + g.x[a]);
+        for (std::size_t b = 0; b < m; ++b, ++j) {
+          const analytic::Dir3 wo = analytic::dir3(theta, p0 + 0.5 * dp * (1.0 + g.x[b]));
+          wis[3 * j] = wi.x, wis[3 * j + 1] = wi.y, wis[3 * j + 2] = wi.z;
+          wos[3 * j] = wo.x, wos[3 * j + 1] = wo.y, wos[3 * j + 2] = wo.z;
+        }
+      }
+    }
+  f(wis.data(), wos.data(), nodes, vals.data());
+  j = 0;
+  for (int t = 0; t < tb; ++t)
+    for (int p = 0; p < pb; ++p) {
+      const double t0 = t * dt;
       double s = 0.0;
-      for (std::size_t a = 0; a < g.size(); ++a) {
+      for (std::size_t a = 0; a < m; ++a) {
         const double theta = t0 + 0.5 * dt * (1.0 + g.x[a]);
         double row = 0.0;
-        for (std::size_t b = 0; b < g.size(); ++b) {
-          const double phi = p0 + 0.5 * dp * (1.0 + g.x[b]);
-          row += g.w[b] * f(wi, analytic::dir3(theta, phi));
-        }
+        for (std::size_t b = 0; b < m; ++b, ++j) row += g.w[b] * vals[j];
         s += g.w[a] * row * std::cos(theta) * std::sin(theta);
       }
       out[static_cast<std::size_t>(t) * pb + p] = s * 0.25 * dt * dp;
@@ -55,16 +70,24 @@ std::vector<double> model_bins_3d(const BrdfFn& f, const analytic::Dir3& wi, int
 
 // Flatland: bins over (-pi/2, pi/2) of the signed 2D angle; the direction at signed angle theta
 // is (-sin theta, 0, cos theta), i.e. azimuth pi for theta > 0 and 0 for theta < 0.
-std::vector<double> model_bins_flatland(const BrdfFn& f, const analytic::Dir3& wi, int bins,
+std::vector<double> model_bins_flatland(const BrdfBatchFn& f, const analytic::Dir3& wi, int bins,
                                         const analytic::GaussLegendre& g) {
   std::vector<double> out(static_cast<std::size_t>(bins), 0.0);
   const double w = kPi / bins;
+  const std::size_t m = g.size(), nodes = out.size() * m;
+  std::vector<double> wis(3 * nodes), wos(3 * nodes), vals(nodes);
+  for (std::size_t j = 0; j < nodes; ++j) {
+    const double theta = -0.5 * kPi + static_cast<double>(j / m) * w + 0.5 * w * (1.0 + g.x[j % m]);
+    wis[3 * j] = wi.x, wis[3 * j + 1] = wi.y, wis[3 * j + 2] = wi.z;
+    wos[3 * j] = -std::sin(theta), wos[3 * j + 1] = 0.0, wos[3 * j + 2] = std::cos(theta);
+  }
+  f(wis.data(), wos.data(), nodes, vals.data());
   for (int b = 0; b < bins; ++b) {
     const double lo = -0.5 * kPi + b * w;
     double s = 0.0;
-    for (std::size_t a = 0; a < g.size(); ++a) {
+    for (std::size_t a = 0; a < m; ++a) {
       const double theta = lo + 0.5 * w * (1.0 + g.x[a]);
-      s += g.w[a] * f(wi, analytic::Dir3{-std::sin(theta), 0.0, std::cos(theta)}) * std::cos(theta);
+      s += g.w[a] * vals[static_cast<std::size_t>(b) * m + a] * std::cos(theta);
     }
     out[static_cast<std::size_t>(b)] = 0.5 * w * s;
   }
@@ -137,6 +160,15 @@ CheckBrdfCase compare_lobes(const std::vector<double>& sim, const std::vector<do
 }
 
 CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt) {
+  return check_brdf(
+      BrdfBatchFn([&f](const double* wi, const double* wo, std::size_t n, double* out) {
+        for (std::size_t j = 0; j < n; ++j)
+          out[j] = f({wi[3 * j], wi[3 * j + 1], wi[3 * j + 2]}, {wo[3 * j], wo[3 * j + 1], wo[3 * j + 2]});
+      }),
+      opt);
+}
+
+CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt) {
   check_options(opt);
   CheckBrdfResult res;
   res.options = opt;
