@@ -78,7 +78,7 @@ bool trace_beam_rays(const GrooveParams& groove, double theta_i, long rays, sim:
   double x[sim::BeamTracer::kBlock];
   sim::TraceResult traced[sim::BeamTracer::kBlock];
   for (long j0 = 0; j0 < rays; j0 += sim::BeamTracer::kBlock) {
-    if (cancel && (j0 & 0xffff) == 0 && cancel->load(std::memory_order_relaxed)) return false;
+    if (cancel && cancel->load(std::memory_order_relaxed)) return false;
     const int m = static_cast<int>(std::min<long>(sim::BeamTracer::kBlock, rays - j0));
     sim::sample_positions(sampling, open, j0, m, rays, rng, x);
     beam.trace(x, m, traced);

@@ -49,7 +49,7 @@ nlohmann::json analytic_json(const GrooveParams& groove, double theta_i_deg, ana
 // The beam's rays: `rays` rays across the opening (sim::sample_position's placement, random
 // positions from Rng(seed, 0, 0)), traced with sim::BeamTracer (sim::trace's results bit for bit),
 // handed to fn(j0, m, x, results) a block of m rays at a time, in order. Returns false when
-// *cancel was set (checked between blocks), true when every ray was traced.
+// *cancel was set (checked between blocks of sim::BeamTracer::kBlock rays), true when every ray was traced.
 using RayBlockFn = std::function<void(long j0, int m, const double* x, const sim::TraceResult* results)>;
 bool trace_beam_rays(const GrooveParams& groove, double theta_i, long rays, sim::Sampling sampling,
                      std::uint64_t seed, int max_bounces, const RayBlockFn& fn,

@@ -241,19 +241,24 @@ def single_groove_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
             vmax = max([float(l1.max())] + marks) or 1.0
             norm = Normalize(0.0, vmax)
             vs, is_ = np.unique(v), np.unique(i)
+            over = l1 > thr
             if len(vs) * len(is_) <= 4 * len(l1) and len(vs) > 1 and len(is_) > 1:
                 # A grid: each cell the largest L1 of its cases (nonsymmetric grooves share theta_v).
                 grid = np.full((len(vs), len(is_)), np.nan)
                 vi, ii = np.searchsorted(vs, v), np.searchsorted(is_, i)
                 np.fmax.at(grid, (vi, ii), l1)
-                ve, ie = _edges(vs), _edges(is_)
-                mesh = ax.pcolormesh(ie, ve, np.ma.masked_invalid(grid), cmap="viridis", norm=norm, shading="flat")
+                mesh = ax.pcolormesh(_edges(is_), _edges(vs), np.ma.masked_invalid(grid), cmap="viridis", norm=norm,
+                                     shading="flat")
+                if over.any():
+                    # The cells above the threshold, outlined.
+                    ax.contour(is_, vs, np.nan_to_num(grid, nan=0.0) > thr, levels=[0.5], colors="red",
+                               linewidths=0.8)
             else:
-                mesh = ax.scatter(i, v, c=l1, cmap="viridis", norm=norm, s=12)
-            over = l1 > thr
+                mesh = ax.scatter(i, v, c=l1, cmap="viridis", norm=norm, s=12,
+                                  edgecolors=np.where(over, "red", "none"), linewidths=0.8)
             if over.any():
-                ax.scatter(i[over], v[over], marker="x", color="red", s=30, label=f"L1 > threshold ({over.sum()})")
-                ax.legend(loc="upper right", fontsize=8)
+                ax.plot([], [], color="red", lw=1, label=f"L1 > threshold: {int(over.sum())} of {len(l1)} cases")
+                ax.legend(loc="upper right", fontsize=7)
             cb = fig.colorbar(mesh, ax=ax)
             cb.set_label("L1 error of the model (fraction of the rays)")
             cb.ax.axhline(thr, color="red", lw=2)
@@ -646,6 +651,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     except ReportError as e:
         print(f"vgroove: error: {e}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print("\nvgroove: interrupted; no plot written", file=sys.stderr)
+        return 130
     return 0
 
 
