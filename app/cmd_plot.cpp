@@ -63,7 +63,8 @@ int cmd_plot(const PlotArgs& a) {
                              "or VGROOVE_PYTHON naming an interpreter that has matplotlib");
   int status = 0;
   while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) throw support::UserError(std::string("plot: waiting for the plot script: ") + std::strerror(errno));
+    if (errno != EINTR)
+      throw support::UserError(std::string("plot: waiting for the plot script: ") + std::strerror(errno));
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : 3;
 }

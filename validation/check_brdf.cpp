@@ -124,13 +124,11 @@ void check_options(const CheckBrdfOptions& o) {
   check_range(o.rays >= 1 && o.rays <= kMaxRays, "rays", static_cast<double>(o.rays), "[1, 1000000000]");
   check_range(o.grooves >= 1 && o.grooves <= 10'000'000, "grooves", o.grooves, "[1, 10000000]");
   check_range(o.theta_bins >= 1 && o.theta_bins <= 1000, "theta_bins", o.theta_bins, "[1, 1000]");
-  check_range(o.phi_bins >= 2 && o.phi_bins <= 1000 && o.phi_bins % 2 == 0, "phi_bins", o.phi_bins,
-              "[2, 1000], even");
+  check_range(o.phi_bins >= 2 && o.phi_bins <= 1000 && o.phi_bins % 2 == 0, "phi_bins", o.phi_bins, "[2, 1000], even");
   check_range(o.flatland_bins >= 1 && o.flatland_bins <= 100'000, "flatland_bins", o.flatland_bins, "[1, 100000]");
   check_range(o.sigmas > 0.0 && o.sigmas <= 100.0, "sigmas", o.sigmas, "(0, 100]");
   check_range(o.model_tolerance >= 0.0 && o.model_tolerance <= 1.0, "model_tolerance", o.model_tolerance, "[0, 1]");
-  check_range(o.quadrature_order >= 1 && o.quadrature_order <= 64, "quadrature_order", o.quadrature_order,
-              "[1, 64]");
+  check_range(o.quadrature_order >= 1 && o.quadrature_order <= 64, "quadrature_order", o.quadrature_order, "[1, 64]");
   check_range(o.threads >= 0 && o.threads <= 1024, "threads", o.threads, "[0, 1024]");
 }
 
@@ -207,8 +205,8 @@ CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt) {
           const std::size_t c = item - chunk_hist.size();
           const double theta_i = deg_to_rad(opt.theta_i_deg[c]);
           const analytic::Dir3 wi = analytic::dir3(theta_i, kPi);
-          model[c] = flat ? model_bins_flatland(f, wi, bins, rule)
-                          : model_bins_3d(f, wi, opt.theta_bins, opt.phi_bins, rule);
+          model[c] =
+              flat ? model_bins_flatland(f, wi, bins, rule) : model_bins_3d(f, wi, opt.theta_bins, opt.phi_bins, rule);
           model_s[c] = seconds_since(ti);
           return;
         }
@@ -256,10 +254,9 @@ CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt) {
     std::vector<std::size_t> order(sim.size());
     std::iota(order.begin(), order.end(), 0);
     const std::size_t shown = std::min<std::size_t>(kWorstBins, order.size());
-    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(shown), order.end(),
-                      [&](std::size_t a, std::size_t b) {
-                        return std::abs(sim[a] - model[c][a]) > std::abs(sim[b] - model[c][b]);
-                      });
+    std::partial_sort(
+        order.begin(), order.begin() + static_cast<std::ptrdiff_t>(shown), order.end(),
+        [&](std::size_t a, std::size_t b) { return std::abs(sim[a] - model[c][a]) > std::abs(sim[b] - model[c][b]); });
     for (std::size_t n = 0; n < shown; ++n) {
       WorstBin w = bin_centre(opt, order[n]);
       w.sim = sim[order[n]], w.model = model[c][order[n]];

@@ -54,19 +54,19 @@ using BrdfBatchFn = std::function<void(const double* wi, const double* wo, std::
 struct CheckBrdfOptions {
   std::string name = "check_brdf";  // names the report
   NdfKind ndf = NdfKind::ggx;
-  double alpha = 0.5;                                   // (0, 2]
+  double alpha = 0.5;                                     // (0, 2]
   std::vector<double> theta_i_deg = {0, 20, 40, 60, 80};  // each in [0, 90)
   SurfaceDim dim = SurfaceDim::three_d;
-  long rays = 1'000'000;    // per theta_i, [1, 1e9]
-  int grooves = 250'000;    // grooves of the traced surface, [1, 1e7]
-  std::uint64_t seed = 1;   // surface and rays
-  int theta_bins = 30;      // 3D: theta_o bins over [0, 90) deg
-  int phi_bins = 24;        // 3D: phi_o bins, even
-  int flatland_bins = 90;   // flatland: theta_o bins over (-90, 90) deg
-  double sigmas = 5.0;      // standard deviations allowed beyond the expected error
-  double model_tolerance = 1e-4;  // the bin integration's allowance (added to each threshold)
-  int quadrature_order = 4;       // Gauss-Legendre nodes per bin and axis
-  int threads = 0;                // 0: all cores; the results do not depend on it
+  long rays = 1'000'000;                      // per theta_i, [1, 1e9]
+  int grooves = 250'000;                      // grooves of the traced surface, [1, 1e7]
+  std::uint64_t seed = 1;                     // surface and rays
+  int theta_bins = 30;                        // 3D: theta_o bins over [0, 90) deg
+  int phi_bins = 24;                          // 3D: phi_o bins, even
+  int flatland_bins = 90;                     // flatland: theta_o bins over (-90, 90) deg
+  double sigmas = 5.0;                        // standard deviations allowed beyond the expected error
+  double model_tolerance = 1e-4;              // the bin integration's allowance (added to each threshold)
+  int quadrature_order = 4;                   // Gauss-Legendre nodes per bin and axis
+  int threads = 0;                            // 0: all cores; the results do not depend on it
   const std::atomic<bool>* cancel = nullptr;  // set to stop: the result says interrupted
 };
 

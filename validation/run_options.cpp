@@ -64,9 +64,9 @@ GrooveParams groove_from_degrees(std::optional<double> theta_v_deg, std::optiona
   const double v = 180.0 + l - r;
   if (p.degenerate() || v < kMinApertureDeg)
     throw support::UserError(names.theta_l + " = " + support::number_text(l) + " with " + names.theta_r + " = " +
-                             support::number_text(r) + " gives the aperture theta_v = 180 + theta_l - theta_r = " +
-                             support::number_text(v) + ", out of range [" + support::number_text(kMinApertureDeg) +
-                             ", 180]");
+                             support::number_text(r) +
+                             " gives the aperture theta_v = 180 + theta_l - theta_r = " + support::number_text(v) +
+                             ", out of range [" + support::number_text(kMinApertureDeg) + ", 180]");
   return p;
 }
 

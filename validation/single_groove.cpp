@@ -69,8 +69,8 @@ nlohmann::json analytic_json(const GrooveParams& groove, double theta_i_deg, ana
   return j;
 }
 
-bool trace_beam_rays(const GrooveParams& groove, double theta_i, long rays, sim::Sampling sampling,
-                     std::uint64_t seed, int max_bounces, const RayBlockFn& fn, const std::atomic<bool>* cancel) {
+bool trace_beam_rays(const GrooveParams& groove, double theta_i, long rays, sim::Sampling sampling, std::uint64_t seed,
+                     int max_bounces, const RayBlockFn& fn, const std::atomic<bool>* cancel) {
   const sim::Groove g = make_groove(groove);
   const sim::Interval open = sim::opening(g);
   const sim::BeamTracer beam(g, sim::beam_direction(theta_i), sim::TraceOptions{max_bounces});
@@ -95,7 +95,8 @@ std::vector<BounceRow> tally_rows(const sim::Tally& tally, long rays, double* ma
     for (std::size_t k = 0; k < bins.size(); ++k) {
       const sim::BounceBin& b = bins[k];
       if (b.count == 0) continue;
-      rows.push_back({side, static_cast<int>(k), static_cast<double>(b.count) / static_cast<double>(rays), b.theta_o()});
+      rows.push_back(
+          {side, static_cast<int>(k), static_cast<double>(b.count) / static_cast<double>(rays), b.theta_o()});
       spread = std::max(spread, b.spread());
     }
   }

@@ -51,9 +51,8 @@ nlohmann::json analytic_json(const GrooveParams& groove, double theta_i_deg, ana
 // handed to fn(j0, m, x, results) a block of m rays at a time, in order. Returns false when
 // *cancel was set (checked between blocks of sim::BeamTracer::kBlock rays), true when every ray was traced.
 using RayBlockFn = std::function<void(long j0, int m, const double* x, const sim::TraceResult* results)>;
-bool trace_beam_rays(const GrooveParams& groove, double theta_i, long rays, sim::Sampling sampling,
-                     std::uint64_t seed, int max_bounces, const RayBlockFn& fn,
-                     const std::atomic<bool>* cancel = nullptr);
+bool trace_beam_rays(const GrooveParams& groove, double theta_i, long rays, sim::Sampling sampling, std::uint64_t seed,
+                     int max_bounces, const RayBlockFn& fn, const std::atomic<bool>* cancel = nullptr);
 
 // The rows of a tally of `rays` rays (bins with rays), and the largest exit-angle spread in a bin.
 std::vector<BounceRow> tally_rows(const sim::Tally& tally, long rays, double* max_spread);

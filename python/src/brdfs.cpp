@@ -116,8 +116,8 @@ py::array_t<double> brdf(const std::string& model_name, const std::string& ndf_n
   const double *pi = wi.data(), *pw = wo.data();
   run_interruptible(
       [&](std::atomic<bool>& cancel) {
-        evaluate(model, ndf, alpha, dim, per_k && model == Model::vgroove, static_cast<int>(max_k), pi, pw, n, po, threads,
-                 cancel);
+        evaluate(model, ndf, alpha, dim, per_k && model == Model::vgroove, static_cast<int>(max_k), pi, pw, n, po,
+                 threads, cancel);
         return 0;
       },
       n < 2048);
@@ -227,9 +227,9 @@ py::object check_brdf(const py::object& f, long long max_k, const std::string& n
 void bind_brdfs(py::module_& m) {
   m.def("brdf", &brdf, py::arg("model"), py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("wo"),
         py::arg("per_k"), py::arg("max_k"), py::arg("dim"), py::arg("threads"));
-  m.def("check_brdf", &check_brdf, py::arg("f"), py::arg("max_k"), py::arg("name"), py::arg("ndf"),
-        py::arg("alpha"), py::arg("theta_i_deg"), py::arg("rays"), py::arg("dim"), py::arg("grooves"),
-        py::arg("seed"), py::arg("theta_bins"), py::arg("phi_bins"), py::arg("flatland_bins"), py::arg("sigmas"),
+  m.def("check_brdf", &check_brdf, py::arg("f"), py::arg("max_k"), py::arg("name"), py::arg("ndf"), py::arg("alpha"),
+        py::arg("theta_i_deg"), py::arg("rays"), py::arg("dim"), py::arg("grooves"), py::arg("seed"),
+        py::arg("theta_bins"), py::arg("phi_bins"), py::arg("flatland_bins"), py::arg("sigmas"),
         py::arg("model_tolerance"), py::arg("quadrature_order"), py::arg("threads"));
 }
 

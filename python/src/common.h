@@ -42,11 +42,11 @@ long long to_count(const py::handle& v, const std::string& what, long long lo, l
 // alpha in (0, 2].
 void check_alpha(double alpha);
 
-// Runs work(cancel) (cancel: a std::atomic<bool>&, which the work may set too) on a worker thread with the GIL released while this thread polls Python's
-// signal handlers every 50 ms: a KeyboardInterrupt (Ctrl-C) or any other exception a handler
-// raises sets `cancel`, which the libraries check between chunks of work, and is raised here once
-// the work has stopped. Exceptions thrown by the work are rethrown here (support::UserError
-// becomes ValueError). Work that is known to be short runs inline (still without the GIL).
+// Runs work(cancel) (cancel: a std::atomic<bool>&, which the work may set too) on a worker thread with the GIL released
+// while this thread polls Python's signal handlers every 50 ms: a KeyboardInterrupt (Ctrl-C) or any other exception a
+// handler raises sets `cancel`, which the libraries check between chunks of work, and is raised here once the work has
+// stopped. Exceptions thrown by the work are rethrown here (support::UserError becomes ValueError). Work that is known
+// to be short runs inline (still without the GIL).
 template <class Work>
 auto run_interruptible(Work&& work, bool short_work = false) {
   using R = decltype(work(std::declval<std::atomic<bool>&>()));

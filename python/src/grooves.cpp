@@ -106,8 +106,8 @@ GrooveParams groove_of(std::optional<double> v, std::optional<double> l, std::op
   return validation::groove_from_degrees(v, l, r, names());
 }
 
-py::object analytic_json(double theta_i_deg, std::optional<double> v, std::optional<double> l,
-                         std::optional<double> r, const std::string& eq6_form) {
+py::object analytic_json(double theta_i_deg, std::optional<double> v, std::optional<double> l, std::optional<double> r,
+                         const std::string& eq6_form) {
   const GrooveParams g = groove_of(v, l, r);
   validation::check_theta_i(theta_i_deg, names().theta_i);
   const analytic::Eq6Form form = validation::parse_form(eq6_form, names().eq6_form);
@@ -166,10 +166,10 @@ py::dict trace(double theta_i_deg, const py::object& rays_obj, std::optional<dou
   return d;
 }
 
-py::object groove_case(double theta_i_deg, std::optional<double> v, std::optional<double> l,
-                       std::optional<double> r, const py::object& rays_obj, const std::string& sampling_name,
-                       const py::object& seed_obj, const py::object& max_bounces_obj, const std::string& eq6_form,
-                       bool probe_vertices, const py::object& stream_obj) {
+py::object groove_case(double theta_i_deg, std::optional<double> v, std::optional<double> l, std::optional<double> r,
+                       const py::object& rays_obj, const std::string& sampling_name, const py::object& seed_obj,
+                       const py::object& max_bounces_obj, const std::string& eq6_form, bool probe_vertices,
+                       const py::object& stream_obj) {
   const GrooveParams g = groove_of(v, l, r);
   validation::check_theta_i(theta_i_deg, names().theta_i);
   validation::CaseOptions o;

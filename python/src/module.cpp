@@ -55,8 +55,8 @@ long long to_count(const py::handle& v, const std::string& what, long long lo, l
   const py::int_ n = py::reinterpret_borrow<py::int_>(v);
   const bool in_range = n >= py::int_(lo) && n <= py::int_(hi);
   if (!in_range)
-    throw support::UserError(what + " = " + py::repr(n).cast<std::string>() + " is out of range [" + std::to_string(lo) +
-                             ", " + std::to_string(hi) + "]");
+    throw support::UserError(what + " = " + py::repr(n).cast<std::string>() + " is out of range [" +
+                             std::to_string(lo) + ", " + std::to_string(hi) + "]");
   return n.cast<long long>();
 }
 

@@ -22,8 +22,8 @@ py::object validate(const std::string& path, const py::object& rays, int threads
   o.sampling = std::move(sampling);
   o.eq6_form = std::move(eq6_form);
   if (!seed.is_none()) o.seed = to_seed(seed, "seed");
-  const validation::ValidationPlan plan = run_interruptible(
-      [&](std::atomic<bool>&) { return validation::plan_validation(o); }, true);
+  const validation::ValidationPlan plan =
+      run_interruptible([&](std::atomic<bool>&) { return validation::plan_validation(o); }, true);
   const validation::ValidationResult res =
       run_interruptible([&](std::atomic<bool>& cancel) { return validation::run_validation(plan, {}, &cancel); });
   if (verbose) py::print(res.table, py::arg("end") = "");

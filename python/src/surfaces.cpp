@@ -84,8 +84,8 @@ Tally trace_chunks(std::int64_t chunks, int threads, Tally total, const Chunk& c
 }
 
 py::dict trace_microsurface(const Surface& s, double theta_i_deg, const py::object& rays_obj,
-                            const py::object& seed_obj, const std::string& sampling, int flatland_bins,
-                            int theta_bins, int phi_bins, int max_k, const py::object& max_bounces, int threads) {
+                            const py::object& seed_obj, const std::string& sampling, int flatland_bins, int theta_bins,
+                            int phi_bins, int max_k, const py::object& max_bounces, int threads) {
   const long long rays = to_count(rays_obj, "rays", 1, validation::kMaxRays);
   const long long seed = seed_obj.is_none() ? s.seed : to_seed(seed_obj, "seed");
   const int mb = static_cast<int>(to_count(max_bounces, "max_bounces", 1, 2147483647));
@@ -196,18 +196,17 @@ void bind_surfaces(py::module_& m) {
       .def_readonly("alpha", &Surface::alpha)
       .def_readonly("grooves", &Surface::grooves)
       .def_readonly("seed", &Surface::seed)
-      .def_property_readonly("theta_m_deg",
-                             [](const Surface& s) {
-                               return degrees_of(s.dim == SurfaceDim::flatland ? s.flat.theta_m : s.three.theta_m);
-                             })
+      .def_property_readonly(
+          "theta_m_deg",
+          [](const Surface& s) { return degrees_of(s.dim == SurfaceDim::flatland ? s.flat.theta_m : s.three.theta_m); })
       .def_property_readonly("phi_a_deg",
                              [](const Surface& s) -> py::object {
                                if (s.dim == SurfaceDim::flatland) return py::none();
                                return degrees_of(s.three.phi_a);
                              })
       .def("__repr__", [](const Surface& s) {
-        return "vgroove.Microsurface(ndf=\"" + std::string(ndf_name(s.ndf)) + "\", alpha=" +
-               support::number_text(s.alpha) + ", grooves=" + std::to_string(s.grooves) +
+        return "vgroove.Microsurface(ndf=\"" + std::string(ndf_name(s.ndf)) +
+               "\", alpha=" + support::number_text(s.alpha) + ", grooves=" + std::to_string(s.grooves) +
                ", seed=" + std::to_string(s.seed) + ", dim=\"" + validation::surface_dim_name(s.dim) + "\")";
       });
   m.def("microsurface", &microsurface, py::arg("ndf"), py::arg("alpha"), py::arg("grooves"), py::arg("seed"),

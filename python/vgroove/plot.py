@@ -362,7 +362,7 @@ def furnace_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
         keys = sorted(rows)
         cols = min(3, len(keys))
         nrows = (len(keys) + cols - 1) // cols
-        fig = _figure(4.6 * cols + 0.5, 3.6 * nrows + 1.0)
+        fig = _figure(max(4.6 * cols + 0.5, 10.0), 3.6 * nrows + 1.0)
         axes = fig.subplots(nrows, cols, squeeze=False)
         for ax in axes.flat[len(keys):]:
             ax.set_visible(False)
@@ -381,8 +381,8 @@ def furnace_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
             ax.set_ylabel("albedo (fraction of the incident flux)")
             ax.set_ylim(0, 1.05)
             ax.legend(fontsize=6, loc="lower right")
-        _suptitle(fig, f"{name}: white furnace (F = 1): solid Cook-Torrance (the energy it loses), "
-                       f"dashed the model, dots traced", _title_bits(report))
+        _suptitle(fig, f"{name}: white furnace (F = 1), albedo per alpha",
+                  f"solid: Cook-Torrance (the energy it loses); dashed: the model; dots: traced. {_title_bits(report)}")
         return fig
 
     return [("", draw)]

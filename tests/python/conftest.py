@@ -53,7 +53,8 @@ def cli_error(*args):
 
 
 def write_json(path, obj):
-    path.write_text(json.dumps(obj))
+    with open(path, "w") as f:
+        f.write(json.dumps(obj))
     return str(path)
 
 
@@ -88,30 +89,56 @@ TINY_TABLE1 = {
 }
 
 
+TINY_NONSYMMETRIC = {
+    "name": "tiny_nonsymmetric", "kind": "table1",
+    "groove": {"type": "nonsymmetric", "theta_l_deg": {"from": -90, "to": -10, "step": 40},
+               "theta_r_deg": {"from": 10, "to": 90, "step": 40}},
+    "theta_i_deg": {"from": -75, "to": 75, "step": 25}, "rays": 200, "sampling": "stratified", "seed": 2018,
+    "thresholds": {"max_l1": 0.004, "mean_l1": 0.0005, "max_theta_o_error_rad": 1e-9},
+}
+TINY_SET = {"name": "tiny_set", "description": "both columns of a small Table 1",
+            "suites": ["tiny_table1.json", "tiny_nonsymmetric.json"]}
+
+
+def make_suites(d):
+    """Writes the small suites into directory d; returns their paths by kind."""
+    write_json(os.path.join(d, "tiny_nonsymmetric.json"), TINY_NONSYMMETRIC)
+    return {
+        "brdf": write_json(os.path.join(d, "tiny_brdf.json"), TINY_BRDF),
+        "furnace": write_json(os.path.join(d, "tiny_furnace.json"), TINY_FURNACE),
+        "table2": write_json(os.path.join(d, "tiny_table2.json"), TINY_TABLE2),
+        "table1": write_json(os.path.join(d, "tiny_table1.json"), TINY_TABLE1),
+        "table1_set": write_json(os.path.join(d, "tiny_set.json"), TINY_SET),
+    }
+
+
+def make_reports(d, suites):
+    """The command line's reports for the small suites (and a `bench accuracy` report), written
+    with --out into directory d; returns their paths by kind."""
+    out = {}
+    for kind in ("brdf", "furnace", "table2", "table1", "table1_set"):
+        out[kind] = os.path.join(d, f"{kind}.json")
+        cli("validate", suites[kind], "--out", out[kind], "--threads", 2, "--force")
+    out["accuracy"] = os.path.join(d, "accuracy.json")
+    cli("bench", "accuracy", suites["table1"], "--rays", "100,300", "--out", out["accuracy"], "--threads", 2,
+        "--force")
+    return out
+
+
+# ctest makes the suites and reports once (python.reports, tests/python/make_reports.py) into
+# VGROOVE_TEST_REPORTS; a pytest run of its own makes them in a temporary directory.
+SHARED = os.environ.get("VGROOVE_TEST_REPORTS")
+
+
 @pytest.fixture(scope="session")
 def suites(tmp_path_factory):
-    d = tmp_path_factory.mktemp("suites")
-    return {
-        "brdf": write_json(d / "tiny_brdf.json", TINY_BRDF),
-        "furnace": write_json(d / "tiny_furnace.json", TINY_FURNACE),
-        "table2": write_json(d / "tiny_table2.json", TINY_TABLE2),
-        "table1": write_json(d / "tiny_table1.json", TINY_TABLE1),
-        "table1_set": os.path.join(SOURCE, "data", "suites", "table1.json"),
-    }
+    if SHARED and os.path.exists(os.path.join(SHARED, "done")):
+        return make_suites(SHARED)  # the same content: rewriting it is harmless
+    return make_suites(str(tmp_path_factory.mktemp("suites")))
 
 
 @pytest.fixture(scope="session")
 def reports(suites, tmp_path_factory):
-    """The command line's reports for the small suites (and Table 1 at 100 rays per facet, and a
-    `bench accuracy` report), written with --out."""
-    d = tmp_path_factory.mktemp("reports")
-    out = {}
-    for kind in ("brdf", "furnace", "table2", "table1"):
-        path = str(d / f"{kind}.json")
-        cli("validate", suites[kind], "--out", path, "--threads", 2)
-        out[kind] = path
-    out["table1_set"] = str(d / "table1_set.json")
-    cli("validate", suites["table1_set"], "--rays", 100, "--out", out["table1_set"], "--threads", 2)
-    out["accuracy"] = str(d / "accuracy.json")
-    cli("bench", "accuracy", suites["table1"], "--rays", "100,300", "--out", out["accuracy"], "--threads", 2)
-    return out
+    if SHARED and os.path.exists(os.path.join(SHARED, "done")):
+        return {k: os.path.join(SHARED, f"{k}.json") for k in list(suites) + ["accuracy"]}
+    return make_reports(str(tmp_path_factory.mktemp("reports")), suites)
