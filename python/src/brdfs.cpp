@@ -110,8 +110,8 @@ py::array_t<double> brdf(const std::string& model_name, const std::string& ndf_n
   if (per_k && static_cast<double>(n) * k_out > 1e9)
     throw support::UserError("per_k with max_k = " + std::to_string(max_k) + " over " + std::to_string(n) +
                              " directions needs more than 10^9 values");
-  py::array_t<double> out = per_k ? py::array_t<double>({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(k_out)})
-                                  : py::array_t<double>(static_cast<py::ssize_t>(n));
+  py::array_t<double> out = per_k ? new_array<double>({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(k_out)})
+                                  : new_array<double>({static_cast<py::ssize_t>(n)});
   double* po = out.mutable_data();
   const double *pi = wi.data(), *pw = wo.data();
   run_interruptible(

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -21,6 +22,7 @@
 #include <string>
 #include <thread>
 #include <utility>
+#include <vector>
 
 namespace vgroove::python {
 
@@ -91,6 +93,19 @@ auto run_interruptible(Work&& work, bool short_work = false) {
   if (signalled) throw py::error_already_set();
   if (error) std::rethrow_exception(error);
   return std::move(*result);
+}
+
+// A new NumPy array of the given shape over memory allocated here (uninitialized, freed with the
+// array). numpy.empty would madvise large arrays into transparent huge pages, which on a busy
+// host can cost more kernel time than the work that fills them; plain allocations cost what the
+// same outputs cost a C++ caller (bench/bindings_baseline_bench.cpp).
+template <class T>
+py::array_t<T> new_array(std::vector<py::ssize_t> shape) {
+  std::size_t n = 1;
+  for (py::ssize_t d : shape) n *= static_cast<std::size_t>(d);
+  T* data = new T[std::max<std::size_t>(n, 1)];
+  py::capsule owner(data, [](void* p) { delete[] static_cast<T*>(p); });
+  return py::array_t<T>(shape, data, owner);
 }
 
 // A NumPy array of the given shape holding a copy of `data`.

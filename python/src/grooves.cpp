@@ -42,27 +42,31 @@ py::dict kaleidoscope(DoubleArray theta_i_deg, std::optional<DoubleArray> theta_
   const double* v = theta_v_deg ? theta_v_deg->data() : nullptr;
   const double* l = nonsym ? theta_l_deg->data() : nullptr;
   const double* r = nonsym ? theta_r_deg->data() : nullptr;
-  // Checked before any work, with the element's index in the message.
+  // Checked before any work; a bad element is named with its index (the names are built only then).
   std::vector<GrooveParams> grooves(n);
   for (std::size_t j = 0; j < n; ++j) {
-    if (nonsym) {
+    try {
+      grooves[j] = nonsym ? validation::groove_from_degrees(std::nullopt, l[j], r[j], names())
+                          : validation::groove_from_degrees(v[j], std::nullopt, std::nullopt, names());
+      validation::check_theta_i(ti[j], names().theta_i);
+    } catch (const support::UserError&) {
       OptionNames nm = names();
-      nm.theta_l = indexed(nm.theta_l, j, n), nm.theta_r = indexed(nm.theta_r, j, n);
-      grooves[j] = validation::groove_from_degrees(std::nullopt, l[j], r[j], nm);
-    } else {
-      OptionNames nm = names();
-      nm.theta_v = indexed(nm.theta_v, j, n);
-      grooves[j] = validation::groove_from_degrees(v[j], std::nullopt, std::nullopt, nm);
+      nm.theta_v = indexed(nm.theta_v, j, n), nm.theta_l = indexed(nm.theta_l, j, n);
+      nm.theta_r = indexed(nm.theta_r, j, n);
+      if (nonsym)
+        validation::groove_from_degrees(std::nullopt, l[j], r[j], nm);
+      else
+        validation::groove_from_degrees(v[j], std::nullopt, std::nullopt, nm);
+      validation::check_theta_i(ti[j], indexed(names().theta_i, j, n));
+      throw;
     }
-    validation::check_theta_i(ti[j], indexed("theta_i_deg", j, n));
   }
   const auto sn = static_cast<py::ssize_t>(n);
-  py::array_t<bool> lit({sn, py::ssize_t{2}});
-  py::array_t<int> k({sn, py::ssize_t{2}});
-  py::array_t<double> f_a({sn, py::ssize_t{2}}), shadow({sn, py::ssize_t{2}});
-  py::array_t<int> zn({sn, py::ssize_t{2}, py::ssize_t{4}});
-  py::array_t<double> G({sn, py::ssize_t{2}, py::ssize_t{4}}), frac({sn, py::ssize_t{2}, py::ssize_t{4}}),
-      theta_o({sn, py::ssize_t{2}, py::ssize_t{4}});
+  auto lit = new_array<bool>({sn, 2});
+  auto k = new_array<int>({sn, 2});
+  auto f_a = new_array<double>({sn, 2}), shadow = new_array<double>({sn, 2});
+  auto zn = new_array<int>({sn, 2, 4});
+  auto G = new_array<double>({sn, 2, 4}), frac = new_array<double>({sn, 2, 4}), theta_o = new_array<double>({sn, 2, 4});
   bool* plit = lit.mutable_data();
   int* pk = k.mutable_data();
   int* pn = zn.mutable_data();
@@ -129,9 +133,9 @@ py::dict trace(double theta_i_deg, const py::object& rays_obj, std::optional<dou
   const long long seed = to_seed(seed_obj, "seed");
   const int max_bounces = check_max_bounces(max_bounces_obj);
   const auto n = static_cast<py::ssize_t>(rays);
-  py::array_t<double> x(n), theta_o(n), exit_dir({n, py::ssize_t{2}});
-  py::array_t<std::int8_t> first(n), fate(n);
-  py::array_t<std::int32_t> k(n);
+  auto x = new_array<double>({n}), theta_o = new_array<double>({n}), exit_dir = new_array<double>({n, 2});
+  auto first = new_array<std::int8_t>({n}), fate = new_array<std::int8_t>({n});
+  auto k = new_array<std::int32_t>({n});
   double *px = x.mutable_data(), *pto = theta_o.mutable_data(), *pd = exit_dir.mutable_data();
   std::int8_t *pf = first.mutable_data(), *pfate = fate.mutable_data();
   std::int32_t* pk = k.mutable_data();
