@@ -3,22 +3,28 @@
 #include <iostream>
 #include "vgroove/app/progress.h"
 #include "vgroove/support/atomic_file.h"
+#include "vgroove/support/json_reader.h"
+#include "vgroove/support/user_error.h"
+#include "vgroove/validation/model_table.h"
 #include "vgroove/validation/validate.h"
 
 namespace vgroove::app {
 
+using namespace validation;
+
 int cmd_validate(const ValidateArgs& a) {
-  validation::ValidateOptions o;
+  ValidateOptions o;
   o.suite = a.suite;
   if (a.rays != kUnset) o.rays = a.rays;
   o.threads = a.threads;
   if (!a.sampling.empty()) o.sampling = a.sampling;
   if (!a.eq6_form.empty()) o.eq6_form = a.eq6_form;
   if (a.seed != kUnsetSeed) o.seed = a.seed;
-  const validation::ValidationPlan plan = validation::plan_validation(o);
+  if (!a.model_table.empty()) o.model_table = a.model_table;
+  const ValidationPlan plan = plan_validation(o);
   if (!a.out.empty()) support::check_writable_target(a.out, a.force);  // fail before the work, not after
   if (a.dry_run) return 0;
-  const validation::ValidationResult res = validation::run_validation(plan, terminal_progress, a.cancel);
+  const ValidationResult res = run_validation(plan, terminal_progress, a.cancel);
   if (res.interrupted) return interrupted_no_report();
   std::cout << res.table;
   if (!a.out.empty()) {
@@ -26,6 +32,23 @@ int cmd_validate(const ValidateArgs& a) {
     std::cout << "report: " << a.out << "\n";
   }
   return res.pass ? 0 : 1;
+}
+
+int cmd_bins(const BinsArgs& a) {
+  const nlohmann::json j = support::read_json_file(a.suite);
+  if (!j.is_object() || !j.contains("kind") || j["kind"] != "brdf")
+    throw support::UserError(a.suite + ": `vgroove bins` takes a suite of kind \"brdf\" (e.g. data/suites/fig11.json)");
+  const BrdfSuite suite = parse_brdf_suite(j, a.suite);
+  if (!a.out.empty()) support::check_writable_target(a.out, a.force);
+  if (a.dry_run) return 0;
+  const std::string text = bin_layout_json(suite).dump(1) + "\n";
+  if (a.out.empty()) {
+    std::cout << text;
+    return 0;
+  }
+  support::write_file_atomically(a.out, text, a.force);
+  std::cout << "layout: " << a.out << " (" << suite.cases() << " cases)\n";
+  return 0;
 }
 
 }  // namespace vgroove::app

@@ -6,7 +6,7 @@ set -euo pipefail
 # python3-matplotlib (run; matplotlib brings PIL), python3-pytest (tests); all for Debian's
 # /usr/bin/python3.
 packages=(g++ cmake ninja-build git libeigen3-dev libcli11-dev nlohmann-json3-dev
-          libgtest-dev libgmock-dev libbenchmark-dev
+          libgtest-dev libgmock-dev libbenchmark-dev python3-jsonschema
           pybind11-dev python3-dev python3-numpy python3-matplotlib python3-pytest "$@")
 missing=()
 for p in "${packages[@]}"; do

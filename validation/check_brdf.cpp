@@ -2,19 +2,21 @@
 
 #include "vgroove/analytic/quadrature.h"
 #include "vgroove/common/angles.h"
-#include "vgroove/sim/microsurface.h"
-#include "vgroove/sim/microsurface3d.h"
 #include "vgroove/support/parallel.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/histogram_metrics.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
+#include "vgroove/validation/traced_lobe.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <numeric>
+#include <queue>
 
 namespace vgroove::validation {
 
@@ -30,90 +32,144 @@ void check_range(bool ok, const std::string& what, double v, const std::string& 
   if (!ok) throw support::UserError(what + " = " + support::number_text(v) + " is out of range " + range);
 }
 
-// The user's model integrated over the 3D bins: sum over nodes of f cos(theta) sin(theta) dtheta dphi.
-// The nodes' values come from one batch call, then are summed in node order.
-std::vector<double> model_bins_3d(const BrdfBatchFn& f, const analytic::Dir3& wi, int tb, int pb,
-                                  const analytic::GaussLegendre& g) {
-  std::vector<double> out(static_cast<std::size_t>(tb) * pb, 0.0);
-  const double dt = 0.5 * kPi / tb, dp = 2.0 * kPi / pb;
-  const std::size_t m = g.size(), nodes = out.size() * m * m;
-  std::vector<double> wis(3 * nodes), wos(3 * nodes), vals(nodes);
-  std::size_t j = 0;
-  for (int t = 0; t < tb; ++t)
-    for (int p = 0; p < pb; ++p) {
-      const double t0 = t * dt, p0 = p * dp - 0.5 * dp;
-      for (std::size_t a = 0; a < m; ++a) {
-        const double theta = t0 + 0.5 * dt * (1.0 + g.x[a]);
-        for (std::size_t b = 0; b < m; ++b, ++j) {
-          const analytic::Dir3 wo = analytic::dir3(theta, p0 + 0.5 * dp * (1.0 + g.x[b]));
-          wis[3 * j] = wi.x, wis[3 * j + 1] = wi.y, wis[3 * j + 2] = wi.z;
-          wos[3 * j] = wo.x, wos[3 * j + 1] = wo.y, wos[3 * j + 2] = wo.z;
-        }
-      }
-    }
-  f(wis.data(), wos.data(), nodes, vals.data());
-  j = 0;
-  for (int t = 0; t < tb; ++t)
-    for (int p = 0; p < pb; ++p) {
-      const double t0 = t * dt;
-      double s = 0.0;
-      for (std::size_t a = 0; a < m; ++a) {
-        const double theta = t0 + 0.5 * dt * (1.0 + g.x[a]);
-        double row = 0.0;
-        for (std::size_t b = 0; b < m; ++b, ++j) row += g.w[b] * vals[j];
-        s += g.w[a] * row * std::cos(theta) * std::sin(theta);
-      }
-      out[static_cast<std::size_t>(t) * pb + p] = s * 0.25 * dt * dp;
-    }
-  return out;
-}
-
-// Flatland: bins over (-pi/2, pi/2) of the signed 2D angle; the direction at signed angle theta
-// is (-sin theta, 0, cos theta), i.e. azimuth pi for theta > 0 and 0 for theta < 0.
-std::vector<double> model_bins_flatland(const BrdfBatchFn& f, const analytic::Dir3& wi, int bins,
-                                        const analytic::GaussLegendre& g) {
-  std::vector<double> out(static_cast<std::size_t>(bins), 0.0);
-  const double w = kPi / bins;
-  const std::size_t m = g.size(), nodes = out.size() * m;
-  std::vector<double> wis(3 * nodes), wos(3 * nodes), vals(nodes);
-  for (std::size_t j = 0; j < nodes; ++j) {
-    const double theta = -0.5 * kPi + static_cast<double>(j / m) * w + 0.5 * w * (1.0 + g.x[j % m]);
-    wis[3 * j] = wi.x, wis[3 * j + 1] = wi.y, wis[3 * j + 2] = wi.z;
-    wos[3 * j] = -std::sin(theta), wos[3 * j + 1] = 0.0, wos[3 * j + 2] = std::cos(theta);
-  }
-  f(wis.data(), wos.data(), nodes, vals.data());
-  for (int b = 0; b < bins; ++b) {
-    const double lo = -0.5 * kPi + b * w;
-    double s = 0.0;
-    for (std::size_t a = 0; a < m; ++a) {
-      const double theta = lo + 0.5 * w * (1.0 + g.x[a]);
-      s += g.w[a] * vals[static_cast<std::size_t>(b) * m + a] * std::cos(theta);
-    }
-    out[static_cast<std::size_t>(b)] = 0.5 * w * s;
-  }
-  return out;
-}
-
-// The centre of bin n for the worst-bin list, in degrees.
-WorstBin bin_centre(const CheckBrdfOptions& o, std::size_t n) {
-  WorstBin w;
-  if (o.dim == SurfaceDim::flatland) {
-    w.theta_o_deg = output_deg(-0.5 * kPi + (static_cast<double>(n) + 0.5) * kPi / o.flatland_bins);
-    return w;
-  }
-  const std::size_t t = n / static_cast<std::size_t>(o.phi_bins), p = n % static_cast<std::size_t>(o.phi_bins);
-  w.theta_o_deg = output_deg((static_cast<double>(t) + 0.5) * 0.5 * kPi / o.theta_bins);
-  double phi = static_cast<double>(p) * 2.0 * kPi / o.phi_bins;
-  if (phi > kPi) phi -= 2.0 * kPi;
-  w.phi_o_deg = output_deg(phi);
-  return w;
-}
-
-// One case's traced flux fractions per bin: chunk tallies merged in chunk order.
-struct CaseTally {
-  std::vector<std::int64_t> hist;
-  std::int64_t rays = 0;
+// The user's model integrated over the bins, globally adaptive: every bin starts as one cell; a
+// cell's value is the Gauss-Legendre rule on its four quarters (two halves in flatland) and its
+// error estimate the difference from the rule on the whole cell. The cell with the largest
+// estimate is split until the estimates sum to at most `tolerance` or `max_evals` evaluations
+// are spent. A model's discontinuities (the support of a bounce order ending) and integrable
+// peaks (1/sin(theta_h) at the mirror direction) are resolved where they are, not everywhere.
+struct Cell {
+  std::size_t bin;
+  double t0, t1, p0, p1;       // theta and phi ranges (flatland: the signed angle, p unused)
+  std::array<double, 4> part;  // the rule on each quarter (half)
+  double value, err;
+  bool operator<(const Cell& o) const { return err < o.err; }
 };
+
+class BinIntegrator {
+ public:
+  BinIntegrator(const BrdfBatchFn& f, const analytic::Dir3& wi, bool flat, const analytic::GaussLegendre& g)
+      : f_(f), wi_(wi), flat_(flat), g_(g) {}
+
+  // The rule on [t0, t1] x [p0, p1]: f(wi, wo) cos(theta) sin(theta) (3D) or f cos(theta) (flatland).
+  // The nodes' values come from one batch call, then are summed in node order.
+  double rule(double t0, double t1, double p0, double p1) {
+    const double ht = 0.5 * (t1 - t0), hp = 0.5 * (p1 - p0);
+    const std::size_t m = g_.size(), nodes = flat_ ? m : m * m;
+    wis_.resize(3 * nodes), wos_.resize(3 * nodes), vals_.resize(nodes);
+    for (std::size_t a = 0, j = 0; a < m; ++a) {
+      const double theta = t0 + ht * (1.0 + g_.x[a]);
+      for (std::size_t b = 0; b < (flat_ ? 1 : m); ++b, ++j) {
+        const analytic::Dir3 wo = flat_ ? analytic::Dir3{-std::sin(theta), 0.0, std::cos(theta)}
+                                        : analytic::dir3(theta, p0 + hp * (1.0 + g_.x[b]));
+        wis_[3 * j] = wi_.x, wis_[3 * j + 1] = wi_.y, wis_[3 * j + 2] = wi_.z;
+        wos_[3 * j] = wo.x, wos_[3 * j + 1] = wo.y, wos_[3 * j + 2] = wo.z;
+      }
+    }
+    f_(wis_.data(), wos_.data(), nodes, vals_.data());
+    evals += static_cast<std::int64_t>(nodes);
+    double s = 0.0;
+    for (std::size_t a = 0, j = 0; a < m; ++a) {
+      const double theta = t0 + ht * (1.0 + g_.x[a]);
+      if (flat_) {
+        s += g_.w[a] * vals_[j++] * std::cos(theta);
+        continue;
+      }
+      double row = 0.0;
+      for (std::size_t b = 0; b < m; ++b) row += g_.w[b] * vals_[j++];
+      s += g_.w[a] * row * std::cos(theta) * std::sin(theta);
+    }
+    return flat_ ? s * ht : s * ht * hp;
+  }
+
+  Cell make(std::size_t bin, double t0, double t1, double p0, double p1, double coarse) {
+    Cell c{bin, t0, t1, p0, p1, {}, 0.0, 0.0};
+    const double tm = 0.5 * (t0 + t1), pm = 0.5 * (p0 + p1);
+    if (flat_) {
+      c.part = {rule(t0, tm, p0, p1), rule(tm, t1, p0, p1), 0.0, 0.0};
+    } else {
+      c.part = {rule(t0, tm, p0, pm), rule(tm, t1, p0, pm), rule(t0, tm, pm, p1), rule(tm, t1, pm, p1)};
+    }
+    c.value = c.part[0] + c.part[1] + c.part[2] + c.part[3];
+    c.err = std::abs(c.value - coarse);
+    if (!std::isfinite(c.err)) c.err = std::numeric_limits<double>::max();  // refine what is not finite
+    return c;
+  }
+
+  void split(const Cell& c, std::vector<Cell>& out) {
+    const double tm = 0.5 * (c.t0 + c.t1), pm = 0.5 * (c.p0 + c.p1);
+    if (flat_) {
+      out.push_back(make(c.bin, c.t0, tm, c.p0, c.p1, c.part[0]));
+      out.push_back(make(c.bin, tm, c.t1, c.p0, c.p1, c.part[1]));
+      return;
+    }
+    out.push_back(make(c.bin, c.t0, tm, c.p0, pm, c.part[0]));
+    out.push_back(make(c.bin, tm, c.t1, c.p0, pm, c.part[1]));
+    out.push_back(make(c.bin, c.t0, tm, pm, c.p1, c.part[2]));
+    out.push_back(make(c.bin, tm, c.t1, pm, c.p1, c.part[3]));
+  }
+
+  std::int64_t evals = 0;
+
+ private:
+  const BrdfBatchFn& f_;
+  analytic::Dir3 wi_;
+  bool flat_;
+  const analytic::GaussLegendre& g_;
+  std::vector<double> wis_, wos_, vals_;
+};
+
+struct ModelBins {
+  std::vector<double> flux;  // per bin
+  double error = 0.0;        // the estimates summed over the final cells
+  std::int64_t evals = 0;
+};
+
+ModelBins model_bins(const BrdfBatchFn& f, const analytic::Dir3& wi, const CheckBrdfOptions& o,
+                     const analytic::GaussLegendre& g, const std::atomic<bool>* cancel) {
+  const bool flat = o.dim == SurfaceDim::flatland;
+  BinIntegrator in(f, wi, flat, g);
+  std::priority_queue<Cell> cells;
+  double err = 0.0;
+  if (flat) {
+    const double w = kPi / o.flatland_bins;
+    for (int b = 0; b < o.flatland_bins; ++b) {
+      const double t0 = -0.5 * kPi + b * w, t1 = t0 + w;
+      cells.push(in.make(static_cast<std::size_t>(b), t0, t1, 0.0, 0.0, in.rule(t0, t1, 0.0, 0.0)));
+    }
+  } else {
+    const double dt = 0.5 * kPi / o.theta_bins, dp = 2.0 * kPi / o.phi_bins;
+    for (int t = 0; t < o.theta_bins; ++t)
+      for (int p = 0; p < o.phi_bins; ++p) {
+        const double t0 = t * dt, t1 = t0 + dt, p0 = p * dp - 0.5 * dp, p1 = p0 + dp;
+        cells.push(in.make(static_cast<std::size_t>(t) * o.phi_bins + p, t0, t1, p0, p1, in.rule(t0, t1, p0, p1)));
+      }
+  }
+  std::vector<Cell> children;
+  double total = 0.0;  // the running sum of the estimates (summed afresh at the end)
+  for (auto q = cells; !q.empty(); q.pop()) total += q.top().err;
+  while (total > o.model_tolerance && in.evals < o.max_model_evals) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) break;
+    const Cell c = cells.top();
+    cells.pop();
+    total -= c.err;
+    children.clear();
+    in.split(c, children);
+    for (Cell& ch : children) total += ch.err, cells.push(std::move(ch));
+  }
+  const std::size_t bins = flat ? static_cast<std::size_t>(o.flatland_bins)
+                                : static_cast<std::size_t>(o.theta_bins) * static_cast<std::size_t>(o.phi_bins);
+  ModelBins out;
+  out.flux.assign(bins, 0.0);
+  while (!cells.empty()) {
+    out.flux[cells.top().bin] += cells.top().value;
+    err += cells.top().err;
+    cells.pop();
+  }
+  out.error = err;
+  out.evals = in.evals;
+  return out;
+}
 
 }  // namespace
 
@@ -129,6 +185,7 @@ void check_options(const CheckBrdfOptions& o) {
   check_range(o.sigmas > 0.0 && o.sigmas <= 100.0, "sigmas", o.sigmas, "(0, 100]");
   check_range(o.model_tolerance >= 0.0 && o.model_tolerance <= 1.0, "model_tolerance", o.model_tolerance, "[0, 1]");
   check_range(o.quadrature_order >= 1 && o.quadrature_order <= 64, "quadrature_order", o.quadrature_order, "[1, 64]");
+  check_range(o.max_model_evals >= 1, "max_model_evals", static_cast<double>(o.max_model_evals), "[1, 2^63)");
   check_range(o.threads >= 0 && o.threads <= 1024, "threads", o.threads, "[0, 1024]");
 }
 
@@ -172,100 +229,78 @@ CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt) {
   res.options = opt;
   res.threads = support::resolve_threads(opt.threads);
   const auto t0 = Clock::now();
-  const bool flat = opt.dim == SurfaceDim::flatland;
   const std::size_t cases = opt.theta_i_deg.size();
-  const int bins = flat ? opt.flatland_bins : opt.theta_bins * opt.phi_bins;
+  std::vector<double> theta_i;
+  for (double d : opt.theta_i_deg) theta_i.push_back(deg_to_rad(d));
 
-  // The surface: the same for every theta_i (Fig. 11's surfaces: seed, grooves, NDF, alpha).
-  sim::Microsurface flat_surface;
-  sim::Microsurface3d surface3d;
-  if (flat) {
-    sim::MicrosurfaceOptions so;
-    so.ndf = opt.ndf, so.alpha = opt.alpha, so.grooves = opt.grooves, so.seed = opt.seed;
-    flat_surface = sim::make_microsurface(so);
-  } else {
-    sim::Microsurface3dOptions so;
-    so.ndf = opt.ndf, so.alpha = opt.alpha, so.grooves = opt.grooves, so.seed = opt.seed;
-    surface3d = sim::make_microsurface3d(so);
-  }
-  // Work items: (case, chunk) of the trace, then one per case for the model's bins. Each writes
-  // its own slot; tallies merge in chunk order, so nothing depends on the thread count.
-  const std::int64_t chunks = (static_cast<std::int64_t>(opt.rays) + sim::kRaysPerChunk - 1) / sim::kRaysPerChunk;
-  std::vector<std::vector<std::int64_t>> chunk_hist(cases * static_cast<std::size_t>(chunks));
-  std::vector<std::int64_t> chunk_rays(chunk_hist.size(), 0);
-  std::vector<double> chunk_s(chunk_hist.size(), 0.0), model_s(cases, 0.0);
-  std::vector<std::vector<double>> model(cases);
+  // The model's bins, one work item per incidence, then the traced lobes.
+  std::vector<ModelBins> model(cases);
+  std::vector<double> model_s(cases, 0.0);
   const analytic::GaussLegendre rule = analytic::gauss_legendre(opt.quadrature_order);
-  const std::size_t items = chunk_hist.size() + cases;
-  const bool complete = support::parallel_for(
-      items, res.threads,
-      [&](std::size_t item) {
+  const bool integrated = support::parallel_for(
+      cases, res.threads,
+      [&](std::size_t c) {
         const auto ti = Clock::now();
-        if (item >= chunk_hist.size()) {
-          const std::size_t c = item - chunk_hist.size();
-          const double theta_i = deg_to_rad(opt.theta_i_deg[c]);
-          const analytic::Dir3 wi = analytic::dir3(theta_i, kPi);
-          model[c] =
-              flat ? model_bins_flatland(f, wi, bins, rule) : model_bins_3d(f, wi, opt.theta_bins, opt.phi_bins, rule);
-          model_s[c] = seconds_since(ti);
-          return;
-        }
-        const std::size_t c = item / static_cast<std::size_t>(chunks);
-        const std::int64_t chunk = static_cast<std::int64_t>(item % static_cast<std::size_t>(chunks));
-        const double theta_i = deg_to_rad(opt.theta_i_deg[c]);
-        if (flat) {
-          sim::MicrosurfaceTraceOptions to;
-          to.theta_i = theta_i, to.rays = opt.rays, to.seed = opt.seed, to.theta_o_bins = bins, to.max_k = 0;
-          const sim::MicrosurfaceTally t = sim::trace_microsurface_chunk(flat_surface, to, chunk);
-          chunk_hist[item] = t.theta_o, chunk_rays[item] = t.rays;
-        } else {
-          sim::Microsurface3dTraceOptions to;
-          to.theta_i = theta_i, to.rays = opt.rays, to.seed = opt.seed;
-          to.theta_bins = opt.theta_bins, to.phi_bins = opt.phi_bins, to.max_k = 0;
-          const sim::Microsurface3dTally t = sim::trace_microsurface3d_chunk(surface3d, to, chunk);
-          chunk_hist[item] = t.hist, chunk_rays[item] = t.rays;
-        }
-        chunk_s[item] = seconds_since(ti);
+        model[c] = model_bins(f, analytic::dir3(theta_i[c], kPi), opt, rule, opt.cancel);
+        model_s[c] = seconds_since(ti);
       },
       {}, opt.cancel, 1);
+  LobeSetup setup;
+  setup.ndf = opt.ndf, setup.alpha = opt.alpha, setup.dim = opt.dim, setup.rays = opt.rays;
+  setup.grooves = opt.grooves, setup.seed = opt.seed;
+  setup.theta_bins = opt.theta_bins, setup.phi_bins = opt.phi_bins, setup.flatland_bins = opt.flatland_bins;
+  const std::vector<TracedLobe> traced =
+      integrated ? trace_lobes(setup, theta_i, res.threads, opt.cancel) : std::vector<TracedLobe>{};
   res.wall_s = seconds_since(t0);
-  if (!complete) {
+  if (traced.size() != cases || (opt.cancel && opt.cancel->load())) {
     res.interrupted = true;
     return res;
   }
   res.pass = true;
   for (std::size_t c = 0; c < cases; ++c) {
-    std::vector<std::int64_t> hist(static_cast<std::size_t>(bins), 0);
-    std::int64_t rays = 0;
-    double sim_s = 0.0;  // thread time, summed over the case's chunks
-    for (std::int64_t k = 0; k < chunks; ++k) {
-      const std::size_t item = c * static_cast<std::size_t>(chunks) + static_cast<std::size_t>(k);
-      for (std::size_t n = 0; n < hist.size(); ++n) hist[n] += chunk_hist[item][n];
-      rays += chunk_rays[item];
-      sim_s += chunk_s[item];
-    }
-    const double N = static_cast<double>(rays);
-    const std::vector<double> sim = fractions(hist, N);
-    CheckBrdfCase out = compare_lobes(sim, model[c], N, opt.grooves, opt.sigmas, opt.model_tolerance);
+    const std::vector<double>& sim = traced[c].flux;
+    const std::vector<double>& m = model[c].flux;
+    const double N = static_cast<double>(traced[c].rays);
+    // The model's side is known to within its integration error: it widens each threshold.
+    CheckBrdfCase out = compare_lobes(sim, m, N, opt.grooves, opt.sigmas, opt.model_tolerance + model[c].error);
+    out.model_error = model[c].error;
+    out.model_evals = model[c].evals;
     out.theta_i_deg = opt.theta_i_deg[c];
-    out.rays = rays;
-    out.sim_wall_s = sim_s;
+    out.rays = traced[c].rays;
+    out.sim_wall_s = traced[c].thread_s;
     out.model_wall_s = model_s[c];
-    std::vector<std::size_t> order(sim.size());
-    std::iota(order.begin(), order.end(), 0);
-    const std::size_t shown = std::min<std::size_t>(kWorstBins, order.size());
-    std::partial_sort(
-        order.begin(), order.begin() + static_cast<std::ptrdiff_t>(shown), order.end(),
-        [&](std::size_t a, std::size_t b) { return std::abs(sim[a] - model[c][a]) > std::abs(sim[b] - model[c][b]); });
-    for (std::size_t n = 0; n < shown; ++n) {
-      WorstBin w = bin_centre(opt, order[n]);
-      w.sim = sim[order[n]], w.model = model[c][order[n]];
-      out.worst.push_back(w);
-    }
+    out.worst = worst_bins(sim, m, opt.dim, opt.theta_bins, opt.phi_bins, opt.flatland_bins);
     res.pass = res.pass && out.pass;
     res.cases.push_back(std::move(out));
   }
   return res;
+}
+
+std::vector<WorstBin> worst_bins(const std::vector<double>& sim, const std::vector<double>& model, SurfaceDim dim,
+                                 int theta_bins, int phi_bins, int flatland_bins) {
+  std::vector<std::size_t> order(sim.size());
+  std::iota(order.begin(), order.end(), 0);
+  const std::size_t shown = std::min<std::size_t>(kWorstBins, order.size());
+  std::partial_sort(
+      order.begin(), order.begin() + static_cast<std::ptrdiff_t>(shown), order.end(),
+      [&](std::size_t a, std::size_t b) { return std::abs(sim[a] - model[a]) > std::abs(sim[b] - model[b]); });
+  std::vector<WorstBin> out;
+  for (std::size_t n = 0; n < shown; ++n) {
+    WorstBin w;
+    const std::size_t i = order[n];
+    if (dim == SurfaceDim::flatland) {
+      w.theta_o_deg = output_deg(-0.5 * kPi + (static_cast<double>(i) + 0.5) * kPi / flatland_bins);
+    } else {
+      const std::size_t t = i / static_cast<std::size_t>(phi_bins), p = i % static_cast<std::size_t>(phi_bins);
+      w.theta_o_deg = output_deg((static_cast<double>(t) + 0.5) * 0.5 * kPi / theta_bins);
+      double phi = static_cast<double>(p) * 2.0 * kPi / phi_bins;
+      if (phi > kPi) phi -= 2.0 * kPi;
+      w.phi_o_deg = output_deg(phi);
+    }
+    w.sim = sim[i], w.model = model[i];
+    out.push_back(w);
+  }
+  return out;
 }
 
 nlohmann::json CheckBrdfResult::to_json() const {
@@ -286,7 +321,8 @@ nlohmann::json CheckBrdfResult::to_json() const {
                  {"flatland_bins", options.flatland_bins},
                  {"sigmas", options.sigmas},
                  {"model_tolerance", options.model_tolerance},
-                 {"quadrature_order", options.quadrature_order}};
+                 {"quadrature_order", options.quadrature_order},
+                 {"max_model_evals", options.max_model_evals}};
   nlohmann::json cs = nlohmann::json::array();
   for (const CheckBrdfCase& c : cases) {
     nlohmann::json worst = nlohmann::json::array();
@@ -305,6 +341,8 @@ nlohmann::json CheckBrdfResult::to_json() const {
                   {"l1_flux_threshold", c.l1_flux_threshold},
                   {"worst_bins", worst},
                   {"sim_wall_s", c.sim_wall_s},
+                  {"model_integration_error", c.model_error},
+                  {"model_evaluations", c.model_evals},
                   {"model_wall_s", c.model_wall_s},
                   {"non_finite", c.non_finite},
                   {"pass", c.pass}});

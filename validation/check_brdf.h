@@ -13,13 +13,14 @@
 // suite), traces `rays` rays exactly, and bins the exit directions as that suite does (3D: theta_o
 // in [0, pi/2) in theta_bins equal bins times phi_o in phi_bins bins centred on the mirror
 // direction's azimuth; flatland: theta_o in (-pi/2, pi/2) in flatland_bins bins). The user's BRDF
-// is integrated over the same bins, f(wi, wo) cos(theta_o) d omega_o, by a Gauss-Legendre rule of
-// quadrature_order^2 nodes per bin (quadrature_order per bin in flatland): the fraction of the
-// incident flux the model sends into each bin. The two are compared as the Fig. 11 suite compares
-// vgroove's own model (validation/histogram_metrics.h): the L1 distance of the normalized lobes
-// (the shape) and of the flux fractions (shape and energy), each against the error expected of a
-// correct model at this sample count plus `sigmas` standard deviations plus `model_tolerance`,
-// and the albedo against its binomial error. A case passes when all three hold.
+// is integrated over the same bins, f(wi, wo) cos(theta_o) d omega_o, by globally adaptive
+// Gauss-Legendre cubature (quadrature_order^2 nodes per cell, cells split where the error
+// estimate is largest, until the estimates sum to model_tolerance or max_model_evals is spent):
+// the fraction of the incident flux the model sends into each bin, and a bound on its error. The two are compared as
+// the Fig. 11 suite compares vgroove's own model (validation/histogram_metrics.h): the L1 distance of the normalized
+// lobes (the shape) and of the flux fractions (shape and energy), each against the error expected of a correct model at
+// this sample count plus `sigmas` standard deviations plus `model_tolerance` and the integration's error estimate, and
+// the albedo against its binomial error. A case passes when all three hold.
 //
 // Frame and units: n = (0, 0, 1); wi = dir3(theta_i, pi) points to the light, wo away from the
 // surface, both unit vectors; f in 1/sr (3D). In flatland the directions lie in the plane y = 0
@@ -46,9 +47,9 @@ namespace vgroove::validation {
 // The BRDF under test: f(wi, wo), both unit vectors pointing away from the surface (see above).
 using BrdfFn = std::function<double(const analytic::Dir3& wi, const analytic::Dir3& wo)>;
 // The same, n directions at a time (for callers that evaluate arrays, such as the Python module):
-// out[j] = f(wi_j, wo_j) with wi_j = (wi[3j], wi[3j + 1], wi[3j + 2]), likewise wo_j. It is called
-// once per incident angle with every quadrature node of that angle's bins, from one of the worker
-// threads (several calls may run at once unless opt.threads is 1).
+// out[j] = f(wi_j, wo_j) with wi_j = (wi[3j], wi[3j + 1], wi[3j + 2]), likewise wo_j. Called with
+// the nodes of one Gauss-Legendre rule at a time (quadrature_order^2 directions in 3D), from the
+// worker threads (several calls may run at once unless opt.threads is 1).
 using BrdfBatchFn = std::function<void(const double* wi, const double* wo, std::size_t n, double* out)>;
 
 struct CheckBrdfOptions {
@@ -64,8 +65,9 @@ struct CheckBrdfOptions {
   int phi_bins = 24;                          // 3D: phi_o bins, even
   int flatland_bins = 90;                     // flatland: theta_o bins over (-90, 90) deg
   double sigmas = 5.0;                        // standard deviations allowed beyond the expected error
-  double model_tolerance = 1e-4;              // the bin integration's allowance (added to each threshold)
-  int quadrature_order = 4;                   // Gauss-Legendre nodes per bin and axis
+  double model_tolerance = 1e-4;              // the bin integration's target error (summed over bins)
+  int quadrature_order = 4;                   // Gauss-Legendre nodes per cell and axis
+  std::int64_t max_model_evals = 4'000'000;   // per theta_i: the integration stops there
   int threads = 0;                            // 0: all cores; the results do not depend on it
   const std::atomic<bool>* cancel = nullptr;  // set to stop: the result says interrupted
 };
@@ -83,6 +85,8 @@ struct CheckBrdfCase {
   double l1 = 0.0, l1_expected = 0.0, l1_threshold = 0.0;                 // normalized lobes
   double l1_flux = 0.0, l1_flux_expected = 0.0, l1_flux_threshold = 0.0;  // flux fractions
   std::vector<WorstBin> worst;  // the five largest |sim - model|, largest first
+  double model_error = 0.0;     // the integration's error estimate, added to every threshold
+  std::int64_t model_evals = 0;
   double sim_wall_s = 0.0, model_wall_s = 0.0;
   bool non_finite = false;  // the model returned NaN, infinity or a negative value somewhere
   bool pass = false;
@@ -102,12 +106,15 @@ struct CheckBrdfResult {
 // Throws support::UserError naming the option when an option is out of range.
 void check_options(const CheckBrdfOptions& opt);
 CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt);
-// The same check with the model evaluated in batches: the same nodes, sums and report.
+// The same check with the model evaluated a rule's nodes at a time: the same nodes, sums and report.
 CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt);
 
 // The comparison itself, for a model given as flux fractions per bin (the model-table route of
 // `vgroove validate --model-table`): sim and model over the same bins, N rays over G grooves.
 CheckBrdfCase compare_lobes(const std::vector<double>& sim, const std::vector<double>& model, double rays,
                             double grooves, double sigmas, double model_tolerance);
+// The five bins where |sim - model| is largest, largest first, with their centres.
+std::vector<WorstBin> worst_bins(const std::vector<double>& sim, const std::vector<double>& model, SurfaceDim dim,
+                                 int theta_bins, int phi_bins, int flatland_bins);
 
 }  // namespace vgroove::validation

@@ -11,6 +11,7 @@ namespace vgroove::validation {
 OptionNames OptionNames::keywords() {
   OptionNames n;
   n.rays = "rays", n.threads = "threads", n.sampling = "sampling", n.eq6_form = "eq6_form", n.seed = "seed";
+  n.model_table = "model_table";
   n.theta_v = "theta_v_deg", n.theta_l = "theta_l_deg", n.theta_r = "theta_r_deg", n.theta_i = "theta_i_deg";
   return n;
 }

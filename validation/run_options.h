@@ -23,6 +23,7 @@ analytic::Eq6Form parse_form(const std::string& s, const std::string& what);
 // The names of the values above and of a groove's angles in messages.
 struct OptionNames {
   std::string rays = "--rays", threads = "--threads", sampling = "--sampling", eq6_form = "--eq6-form", seed = "--seed";
+  std::string model_table = "--model-table";
   std::string theta_v = "--theta-v-deg", theta_l = "--theta-l-deg", theta_r = "--theta-r-deg",
               theta_i = "--theta-i-deg";
   static OptionNames flags() { return {}; }  // the command line's

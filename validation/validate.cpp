@@ -41,6 +41,15 @@ ValidationPlan plan_validation(const ValidateOptions& a) {
       plan.kind = ValidationPlan::Kind::table2;
       plan.table2 = parse_table2_suite(j, a.suite);
       if (a.seed) plan.table2.seed = static_cast<std::uint64_t>(*a.seed);
+    } else if (a.model_table) {
+      plan.kind = ValidationPlan::Kind::model_table;
+      plan.brdf = parse_brdf_suite(j, a.suite);
+      if (a.seed) plan.brdf.seed = static_cast<std::uint64_t>(*a.seed);
+      if (plan.brdf.kind != "brdf")
+        throw support::UserError(a.names.model_table + " applies to suites of kind \"brdf\"; " + a.suite +
+                                 " is of kind " + kind);
+      plan.table = std::make_shared<const ModelTable>(
+          parse_model_table(support::read_json_file(*a.model_table), *a.model_table, plan.brdf));
     } else {
       plan.kind = ValidationPlan::Kind::brdf;
       plan.brdf = parse_brdf_suite(j, a.suite);
@@ -48,6 +57,10 @@ ValidationPlan plan_validation(const ValidateOptions& a) {
     }
     return plan;
   }
+  if (a.model_table)
+    throw support::UserError(a.names.model_table +
+                             " applies to suites of kind \"brdf\" (e.g. data/suites/fig11.json); " + a.suite +
+                             " is a single-groove suite");
   plan.set = load_suite_set(a.suite);
   for (const Suite& suite : plan.set.suites)
     plan.opts.push_back(options_with_overrides(suite, a.rays, a.sampling, a.eq6_form, a.seed, a.names));
@@ -64,6 +77,14 @@ ValidationResult run_validation(const ValidationPlan& plan, const ProgressFactor
       if (run.interrupted) return res.interrupted = true, res;
       print_table2(table, plan.table2, run);
       res.report = table2_report_json(plan.table2, run);
+      res.pass = run.pass;
+      break;
+    }
+    case ValidationPlan::Kind::model_table: {
+      const ModelTableRun run = run_model_table(plan.brdf, *plan.table, plan.rays, plan.threads, cancel);
+      if (run.interrupted) return res.interrupted = true, res;
+      print_model_table(table, plan.brdf, *plan.table, run);
+      res.report = model_table_report_json(plan.brdf, *plan.table, run);
       res.pass = run.pass;
       break;
     }

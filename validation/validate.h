@@ -10,6 +10,7 @@
 
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/brdf_suite.h"
+#include "vgroove/validation/model_table.h"
 #include "vgroove/validation/run_options.h"
 #include "vgroove/validation/suite.h"
 #include "vgroove/validation/table2_suite.h"
@@ -18,6 +19,7 @@
 
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,16 +33,18 @@ struct ValidateOptions {
   std::optional<std::string> sampling;  // single grooves only: "stratified" or "random"
   std::optional<std::string> eq6_form;  // single grooves only: "corrected" or "printed"
   std::optional<long long> seed;
+  std::optional<std::string> model_table;  // "brdf" suites: a foreign model's lobes (validation/model_table.h)
   OptionNames names;  // how messages name the options above
 };
 
 // A suite file read and checked, with the overrides applied.
 struct ValidationPlan {
-  enum class Kind { single_grooves, brdf, table2 } kind = Kind::single_grooves;
+  enum class Kind { single_grooves, brdf, table2, model_table } kind = Kind::single_grooves;
   SuiteSet set;                   // single grooves
   std::vector<CaseOptions> opts;  // per suite of the set
   BrdfSuite brdf;                 // "brdf" and "furnace"
   Table2Suite table2;
+  std::shared_ptr<const ModelTable> table;  // Kind::model_table (with brdf)
   long rays = 0;  // rough surfaces: the override, 0 for the suite's
   int threads = 0;
 };

@@ -13,7 +13,8 @@ namespace vgroove::python {
 namespace {
 
 py::object validate(const std::string& path, const py::object& rays, int threads, std::optional<std::string> sampling,
-                    std::optional<std::string> eq6_form, const py::object& seed, bool verbose) {
+                    std::optional<std::string> eq6_form, const py::object& seed,
+                    std::optional<std::string> model_table, bool verbose) {
   validation::ValidateOptions o;
   o.names = validation::OptionNames::keywords();
   o.suite = path;
@@ -22,6 +23,7 @@ py::object validate(const std::string& path, const py::object& rays, int threads
   o.sampling = std::move(sampling);
   o.eq6_form = std::move(eq6_form);
   if (!seed.is_none()) o.seed = to_seed(seed, "seed");
+  o.model_table = std::move(model_table);
   const validation::ValidationPlan plan =
       run_interruptible([&](std::atomic<bool>&) { return validation::plan_validation(o); }, true);
   const validation::ValidationResult res =
@@ -34,7 +36,7 @@ py::object validate(const std::string& path, const py::object& rays, int threads
 
 void bind_suites(py::module_& m) {
   m.def("validate", &validate, py::arg("path"), py::arg("rays"), py::arg("threads"), py::arg("sampling"),
-        py::arg("eq6_form"), py::arg("seed"), py::arg("verbose"));
+        py::arg("eq6_form"), py::arg("seed"), py::arg("model_table"), py::arg("verbose"));
 }
 
 }  // namespace vgroove::python

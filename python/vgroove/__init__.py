@@ -228,10 +228,13 @@ def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], np.ndarray], str], nd
 
 
 def validate(path: str, *, rays: Optional[int] = None, threads: int = 0, sampling: Optional[str] = None,
-             eq6_form: Optional[str] = None, seed: Optional[int] = None, verbose: bool = False) -> dict:
+             eq6_form: Optional[str] = None, seed: Optional[int] = None, model_table: Optional[str] = None,
+             verbose: bool = False) -> dict:
     """Runs a suite file as ``vgroove validate PATH [--rays ...]`` does and returns its report (the
     JSON ``--out`` writes, as a dict; "pass" says whether every threshold held). Overrides: rays
     (per lit facet, or per case for rough surfaces), threads (0: all cores; the figures do not
-    depend on it), sampling and eq6_form (single-groove suites), seed. ``verbose`` prints the
-    command line's table."""
-    return _vgroove.validate(str(path), rays, threads, sampling, eq6_form, seed, verbose)
+    depend on it), sampling and eq6_form (single-groove suites), seed, model_table (a foreign
+    model's bin-integrated lobes for a "brdf" suite: ``vgroove validate --model-table``).
+    ``verbose`` prints the command line's table."""
+    return _vgroove.validate(str(path), rays, threads, sampling, eq6_form, seed,
+                             None if model_table is None else str(model_table), verbose)
