@@ -107,13 +107,18 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   ta.dry_run = aa.dry_run = va.dry_run = ac.dry_run = ctx.dry_run;
   va.cancel = ac.cancel = ctx.cancel;
   PlotArgs pa;
-  auto* plot = app.add_subcommand("plot",
-                                  "Draw a report as SVG (from the JSON alone, nothing recomputed): the "
-                                  "accuracy-against-time report of `bench accuracy`.");
-  plot->add_option("report", pa.report, "report JSON, e.g. from `vgroove bench accuracy ... --out acc.json`")
+  auto* plot = app.add_subcommand(
+      "plot",
+      "Draw a report with matplotlib (from the JSON alone, nothing recomputed): Table 1 heatmaps, the Fig. 11 "
+      "grids, the furnace, Table 2, accuracy against time and cost, check_brdf. Runs python/vgroove/plot.py "
+      "with Debian's python3 (VGROOVE_PYTHON names another); writes every figure or none.");
+  plot->add_option("report", pa.report, "report JSON (vgroove validate --out, vgroove bench accuracy --out)")
       ->required();
-  plot->add_option("--out", pa.out, "SVG to write (default: the report's name with .svg)");
-  plot->add_flag("--force", pa.force, "overwrite an existing file");
+  plot->add_option("--out", pa.out,
+                   "image to write, or its base name (default: the report's name without .json); figures after "
+                   "the first get a suffix (-ggx-3d, -cost)");
+  plot->add_option("--format", pa.format, "png (default), svg or pdf");
+  plot->add_flag("--force", pa.force, "overwrite existing images");
   pa.dry_run = ctx.dry_run;
   SimulateArgs sa;
   auto* simu = app.add_subcommand("simulate",

@@ -16,7 +16,7 @@ namespace vgroove::app {
 using namespace validation;
 
 int cmd_bench_accuracy(const AccuracyArgs& a) {
-  check_threads(a.threads);
+  check_threads(a.threads, "--threads");
   const SuiteSet set = load_suite_set(a.suite);
   if (set.suites.size() != 1)
     throw support::UserError(a.suite + ": is a set of " + std::to_string(set.suites.size()) +

@@ -11,7 +11,7 @@ namespace vgroove::app {
 using namespace scene;
 
 int cmd_simulate(const SimulateArgs& a) {
-  check_threads(a.threads);
+  check_threads(a.threads, "--threads");
   const Scene scene = load_scene(a.scene);
   if (!a.out.empty()) support::check_writable_target(a.out, a.force);  // fail before the work, not after
   if (a.dry_run) return 0;

@@ -71,9 +71,10 @@ struct AccuracyArgs {
 int cmd_bench_accuracy(const AccuracyArgs& a);
 
 struct PlotArgs {
-  bool dry_run = false;
+  bool dry_run = false;  // check the report, draw nothing
   std::string report;
-  std::string out;  // default: the report's name with .svg
+  std::string out;     // default: the report's name without .json; a suffix per figure
+  std::string format;  // png (default), svg or pdf
   bool force = false;
 };
 int cmd_plot(const PlotArgs& a);

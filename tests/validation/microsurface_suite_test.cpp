@@ -9,7 +9,6 @@
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/rng.h"
 #include "vgroove/support/user_error.h"
-#include "vgroove/validation/plot.h"
 
 #include <gtest/gtest.h>
 
@@ -165,7 +164,7 @@ TEST(MicrosurfaceSuite, ThreeDCasePassesWithCoarseBins) {
   EXPECT_EQ(o.plane_theta_deg.size(), 2u * 9u);
 }
 
-TEST(MicrosurfaceSuite, ReportCarriesProvenanceAndPlotsOnePanelPerCase) {
+TEST(MicrosurfaceSuite, ReportCarriesProvenanceAndAPlanePerCase) {
   BrdfSuite s = parse_brdf_suite(fig11_spec(), "fig11.json");
   s.ndfs = {analytic::NdfKind::ggx};
   s.alphas = {0.5};
@@ -179,12 +178,7 @@ TEST(MicrosurfaceSuite, ReportCarriesProvenanceAndPlotsOnePanelPerCase) {
     EXPECT_TRUE(r.contains(key)) << key;
   EXPECT_EQ(r["cases"][0]["plane"]["sim"].size(), 90u);
   EXPECT_EQ(r["cases"][0]["rays"].get<long>(), 20000);
-  const auto svgs = brdf_grid_svgs(r, "r.json");
-  ASSERT_EQ(svgs.size(), 1u);
-  EXPECT_EQ(svgs[0].first, "ggx-flatland");
-  std::size_t panels = 0;
-  for (std::size_t at = 0; (at = svgs[0].second.find("alpha 0.5, theta_i", at)) != std::string::npos; ++at) ++panels;
-  EXPECT_EQ(panels, 2u);
+  EXPECT_EQ(r["cases"][1]["plane"]["model"].size(), 90u);
   // Results do not depend on the thread count (one case per work item, its own streams).
   const BrdfRun one = run_brdf_suite(s, 20000, 1);
   EXPECT_EQ(one.cases[1].l1, run.cases[1].l1);
