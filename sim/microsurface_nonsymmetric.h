@@ -64,8 +64,8 @@ enum class Partner : unsigned char {
 
 struct NonsymmetricSurfaceOptions {
   NdfKind ndf = NdfKind::beckmann;
-  double alpha_x = 0.5;  // flatland and isotropic surfaces: alpha_x == alpha_y
-  double alpha_y = 0.5;  // Phong: isotropic only; independent Phong partners need alpha < sqrt(2)
+  double alpha_x = 0.5;       // flatland and isotropic surfaces: alpha_x == alpha_y
+  double alpha_y = 0.5;       // Phong: isotropic only; independent Phong partners need alpha < sqrt(2)
   double axes_azimuth = 0.0;  // 3D: azimuth of the alpha_x axis in the tally's frame
   Partner partner = Partner::independent;
   int grooves = 10000;
@@ -90,7 +90,7 @@ struct NonsymmetricMicrosurface3d {
   std::vector<Groove> grooves;
 };
 
-inline constexpr std::uint64_t kNonsymGrooveStream = 0x6e736772ULL;      // "nsgr"
+inline constexpr std::uint64_t kNonsymGrooveStream = 0x6e736772ULL;        // "nsgr"
 inline constexpr std::uint64_t kNonsymGroove3dStream = 0x6e7367723364ULL;  // "nsgr3d"
 inline constexpr std::uint64_t kNonsymRay3dStream = 0x6e737233ULL;         // "nsr3"
 

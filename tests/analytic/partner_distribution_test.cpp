@@ -38,7 +38,8 @@ double quad_N2(NdfKind ndf, double alpha) {
 
 using KindAlpha = std::tuple<NdfKind, double>;
 std::string kind_alpha_name(const testing::TestParamInfo<KindAlpha>& info) {
-  return std::string(ndf_name(std::get<0>(info.param))) + "_a" + vgroove::test_names::name_text(std::get<1>(info.param));
+  return std::string(ndf_name(std::get<0>(info.param))) + "_a" +
+         vgroove::test_names::name_text(std::get<1>(info.param));
 }
 class PartnerLaw : public testing::TestWithParam<KindAlpha> {};
 

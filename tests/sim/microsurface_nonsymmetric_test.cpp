@@ -60,7 +60,8 @@ Under facet_under_point(double theta_l, double theta_r, double u) {
 
 using KindAlpha = std::tuple<NdfKind, double>;
 std::string kind_alpha_name(const testing::TestParamInfo<KindAlpha>& info) {
-  return std::string(ndf_name(std::get<0>(info.param))) + "_a" + vgroove::test_names::name_text(std::get<1>(info.param));
+  return std::string(ndf_name(std::get<0>(info.param))) + "_a" +
+         vgroove::test_names::name_text(std::get<1>(info.param));
 }
 class NonsymmetricPopulation : public testing::TestWithParam<KindAlpha> {};
 
@@ -82,7 +83,8 @@ TEST_P(NonsymmetricPopulation, FacetFollowsTheNdfAndItsPartnerEq20Independently)
     const auto s = static_cast<std::size_t>(j);
     const Under f = facet_under_point(flat.theta_l[s], flat.theta_r[s], uniform_open(rng));
     // Flatland: the NDF's law of |theta_m| is 2 F(t) - 1 (F the signed law's distribution function).
-    const double u_facet = 2.0 * theta_m_cdf(kind, alpha, f.tilt) - 1.0, u_partner = theta_r_cdf(kind, alpha, f.partner);
+    const double u_facet = 2.0 * theta_m_cdf(kind, alpha, f.tilt) - 1.0,
+                 u_partner = theta_r_cdf(kind, alpha, f.partner);
     ++c2[static_cast<std::size_t>(cell(u_facet, cells) * cells + cell(u_partner, cells))];
     ++left2[f.left ? 0 : 1];
     const Under g = facet_under_point(three.theta_l[s], three.theta_r[s], uniform_open(rng));
@@ -112,7 +114,8 @@ TEST(NonsymmetricPopulation, APartnerFromTheNdfIsRejected) {
   NonsymmetricMicrosurface3d m;
   for (int j = 0; j < n; ++j) {
     Rng rng(1, 2, static_cast<std::uint64_t>(j));
-    const double a = sample_theta_m_3d(kind, alpha, uniform_open(rng)), b = sample_theta_m_3d(kind, alpha, uniform_open(rng));
+    const double a = sample_theta_m_3d(kind, alpha, uniform_open(rng)),
+                 b = sample_theta_m_3d(kind, alpha, uniform_open(rng));
     add_nonsymmetric_groove3d(m, -a, b, 0.0);
   }
   std::vector<std::int64_t> c3(cells * cells, 0);

@@ -44,7 +44,8 @@ constexpr double kHalfPi = 0.5 * std::numbers::pi;
 
 using KindAlpha = std::tuple<NdfKind, double>;
 std::string kind_alpha_name(const testing::TestParamInfo<KindAlpha>& info) {
-  return std::string(ndf_name(std::get<0>(info.param))) + "_a" + vgroove::test_names::name_text(std::get<1>(info.param));
+  return std::string(ndf_name(std::get<0>(info.param))) + "_a" +
+         vgroove::test_names::name_text(std::get<1>(info.param));
 }
 
 // Edges of `bins` cells of equal probability under the distribution function F on [0, pi/2].
@@ -101,8 +102,7 @@ TEST_P(PartnerSampling, FlatlandInverseInvertsTheDistributionFunction) {
     const double t = sample_theta_r(kind, alpha, u);
     // The rounding of t (a few ulps) times the density, plus that of u.
     const double tol = 1e-14 + 4.0 * std::numeric_limits<double>::epsilon() * t * theta_r_pdf(kind, alpha, t);
-    EXPECT_NEAR(theta_r_cdf(kind, alpha, t), u, tol)
-        << ndf_name(kind) << " alpha=" << alpha << " u=" << u;
+    EXPECT_NEAR(theta_r_cdf(kind, alpha, t), u, tol) << ndf_name(kind) << " alpha=" << alpha << " u=" << u;
   }
 }
 
@@ -158,8 +158,7 @@ enum class Dim { flatland, three_d };
 // from independent pairs: first facet of projected width 1, tilt from q; second facet tilt from
 // `second`, width tan a / tan b. Flatland returns signed normal angles (first facet: -a, second:
 // +b); 3D returns tilts (the azimuth is uniform for both by construction).
-std::vector<double> facets_under_uniform_points(Dim dim, NdfKind kind, double alpha, int grooves, int n,
-                                                bool naive) {
+std::vector<double> facets_under_uniform_points(Dim dim, NdfKind kind, double alpha, int grooves, int n, bool naive) {
   std::vector<double> a(static_cast<std::size_t>(grooves)), b(a.size()), cum(a.size());
   double total = 0.0;
   for (int j = 0; j < grooves; ++j) {
