@@ -7,6 +7,7 @@
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/brdf_suite.h"
+#include "vgroove/validation/nonsymmetric_suite.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/suite_run.h"
 #include "vgroove/validation/table2_suite.h"
@@ -16,11 +17,11 @@ namespace vgroove::app {
 using namespace validation;
 
 namespace {
-// Suites of procedural microsurfaces: "kind" brdf (Fig. 11), furnace, table2.
+// Suites of procedural microsurfaces: "kind" brdf (Fig. 11), furnace, table2, nonsymmetric_brdf.
 bool is_microsurface_suite(const nlohmann::json& j) {
   if (!j.is_object() || !j.contains("kind") || !j["kind"].is_string()) return false;
   const std::string k = j["kind"].get<std::string>();
-  return k == "brdf" || k == "furnace" || k == "table2";
+  return k == "brdf" || k == "furnace" || k == "table2" || k == "nonsymmetric_brdf";
 }
 
 int validate_microsurface(const ValidateArgs& a, const nlohmann::json& j) {
@@ -48,6 +49,16 @@ int validate_microsurface(const ValidateArgs& a, const nlohmann::json& j) {
     if (run.interrupted) return interrupted_no_report();
     print_table2(std::cout, suite, run);
     report = table2_report_json(suite, run).dump(1) + "\n";
+    pass = run.pass;
+  } else if (kind == "nonsymmetric_brdf") {
+    const NonsymmetricSuite suite = with_seed(parse_nonsymmetric_suite(j, a.suite));
+    if (!a.out.empty()) support::check_writable_target(a.out, a.force);
+    if (a.dry_run) return 0;
+    const NonsymmetricRun run =
+        run_nonsymmetric_suite(suite, rays, a.threads, terminal_progress("validate " + suite.name), a.cancel);
+    if (run.interrupted) return interrupted_no_report();
+    print_nonsymmetric_table(std::cout, suite, run);
+    report = nonsymmetric_report_json(suite, run).dump(1) + "\n";
     pass = run.pass;
   } else {
     const BrdfSuite suite = with_seed(parse_brdf_suite(j, a.suite));
