@@ -87,7 +87,8 @@ TEST(NonsymmetricBrdf, Eq23JacobianMatchesTheExactGrooveMap) {
     const va::Dir3 pa = d(h, 0), ma = d(-h, 0), pp = d(0, h), mp = d(0, -h);
     const double ax[3] = {(pa.x - ma.x) / (2 * h), (pa.y - ma.y) / (2 * h), (pa.z - ma.z) / (2 * h)};
     const double ap[3] = {(pp.x - mp.x) / (2 * h), (pp.y - mp.y) / (2 * h), (pp.z - mp.z) / (2 * h)};
-    const double cx = ax[1] * ap[2] - ax[2] * ap[1], cy = ax[2] * ap[0] - ax[0] * ap[2], cz = ax[0] * ap[1] - ax[1] * ap[0];
+    const double cx = ax[1] * ap[2] - ax[2] * ap[1], cy = ax[2] * ap[0] - ax[0] * ap[2],
+                 cz = ax[0] * ap[1] - ax[1] * ap[0];
     const double swept = std::sqrt(cx * cx + cy * cy + cz * cz);
     va::Dir3 hv{i.x + o.x, i.y + o.y, i.z + o.z};
     const double len = std::sqrt(hv.x * hv.x + hv.y * hv.y + hv.z * hv.z);
@@ -195,7 +196,8 @@ TEST(NonsymmetricBrdf, ReciprocalPerK) {
       for (int k = 1; k <= 4; ++k) {
         const double a = va::nonsymmetric_brdf_k(i, o, k, m), b = va::nonsymmetric_brdf_k(o, i, k, m);
         if (a > 1e-200 || b > 1e-200) worst = std::max(worst, rel(a, b));
-        const double c = va::flatland_nonsymmetric_brdf_k(ti, to, k, m), d = va::flatland_nonsymmetric_brdf_k(to, ti, k, m);
+        const double c = va::flatland_nonsymmetric_brdf_k(ti, to, k, m),
+                     d = va::flatland_nonsymmetric_brdf_k(to, ti, k, m);
         if (c > 1e-200 || d > 1e-200) worst_flat = std::max(worst_flat, rel(c, d));
       }
     }
@@ -238,6 +240,14 @@ TEST(NonsymmetricBrdf, HardCasesAreFiniteOrTheDocumentedLimit) {
       }
     }
   }
+  // Anisotropic, alpha_x / alpha_y = 100, along, across and between the axes.
+  va::NonsymmetricModel an;
+  an.roughness = va::Roughness{va::NdfKind::ggx, 0.01, 1.0};
+  for (double phi : {0.0, 0.3, 0.5 * kPi})
+    for (double to_deg : {10.0, 60.0, 89.9}) {
+      const double v = va::nonsymmetric_brdf(va::dir3(0.7, kPi), va::dir3(to_deg * kPi / 180.0, phi), 6, an);
+      EXPECT_TRUE(std::isfinite(v) && v >= 0.0) << "phi=" << phi << " " << v;
+    }
   // Below the horizon: 0.
   EXPECT_EQ(va::vgroove_nonsymmetric_brdf_k(va::dir3(0.3, 0.0), va::dir3(1.7, 1.0), 2, va::NdfKind::ggx, 0.5), 0.0);
   // Phong beyond its partner law's range is refused.

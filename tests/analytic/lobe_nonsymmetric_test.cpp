@@ -121,4 +121,23 @@ TEST(NonsymmetricLobe, AnisotropicConsistency) {
   }
 }
 
+// Hard cases: alpha_x / alpha_y = 100 (the azimuths' density peaks over ~0.01 rad) and grazing
+// light: finite bins, albedo 1.
+TEST(NonsymmetricLobe, HardCasesStayFinite) {
+  va::NonsymmetricModel m = model(va::NdfKind::beckmann, 0.01);
+  m.roughness.alpha_y = 1.0;
+  va::NonsymmetricLobeOptions o;
+  o.phi_panels = 16;
+  for (double ti : {0.3, 1.56}) {
+    const va::Lobe3d a = va::nonsymmetric_lobe_3d(m, ti, 0.5 * kPi, 6, 4, 8, o);
+    for (double v : a.hist_by_k) EXPECT_TRUE(std::isfinite(v) && v >= 0.0);
+    EXPECT_NEAR(a.albedo, 1.0, 2e-3) << "ti=" << ti;
+  }
+  for (double alpha : {0.01, 2.0}) {
+    const va::FlatlandLobe f = va::flatland_nonsymmetric_lobe(model(va::NdfKind::ggx, alpha), 1.5706, 30, 8);
+    for (double v : f.theta_o_by_k) EXPECT_TRUE(std::isfinite(v) && v >= 0.0);
+    EXPECT_NEAR(f.albedo, 1.0, 1e-3) << "alpha=" << alpha;
+  }
+}
+
 }  // namespace

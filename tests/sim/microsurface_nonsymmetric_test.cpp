@@ -209,6 +209,30 @@ TEST(NonsymmetricMicrosurface, EveryRayLeavesAndIsCounted) {
   }
 }
 
+// Grooves with a facet near 0 deg (flat: the other facet has almost no length) or near 90 deg
+// (vertical), and grazing light: every ray is counted, every exit upward and finite.
+TEST(NonsymmetricMicrosurface, NearlyFlatAndNearlyVerticalFacets) {
+  NonsymmetricMicrosurface3d m;
+  const double h = 0.5 * std::numbers::pi;
+  add_nonsymmetric_groove3d(m, -1e-9, 0.7, 0.1);
+  add_nonsymmetric_groove3d(m, -0.7, 1e-9, 1.3);
+  add_nonsymmetric_groove3d(m, -(h - 1e-9), 0.3, 2.0);
+  add_nonsymmetric_groove3d(m, -0.3, h - 1e-9, 4.0);
+  add_nonsymmetric_groove3d(m, -(h - 1e-3), h - 1e-3, 5.0);
+  for (double theta_i : {0.0, 0.8, 1.5706}) {
+    Microsurface3dTraceOptions t3;
+    t3.theta_i = theta_i;
+    t3.rays = 20000;
+    t3.theta_bins = 9;
+    t3.phi_bins = 8;
+    const Microsurface3dTally t = trace_nonsymmetric_microsurface3d(m, t3);
+    EXPECT_EQ(t.rays, t3.rays);
+    EXPECT_EQ(t.escaped + t.lost(), t.rays);
+    EXPECT_EQ(t.not_upward, 0) << "theta_i=" << theta_i;
+    EXPECT_EQ(t.bounce_limit, 0) << "theta_i=" << theta_i;
+  }
+}
+
 // Chunks merged in any order give the same tallies (integer counts): the thread count cannot matter.
 TEST(NonsymmetricMicrosurface, ChunkOrderDoesNotMatter) {
   NonsymmetricSurfaceOptions opt;
