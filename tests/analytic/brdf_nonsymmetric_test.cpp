@@ -182,6 +182,28 @@ TEST(NonsymmetricBrdf, SingleReflectionIsCookTorrance) {
   }
 }
 
+// Fresnel: a constant reflectance R scales the k-bounce term by R^k (every path makes k
+// reflections); Schlick's is applied per bounce at the 3D cosine and stays within [R0^k, 1] x F = 1.
+TEST(NonsymmetricBrdf, FresnelIsAppliedPerReflection) {
+  std::mt19937_64 g(23);
+  const va::FresnelFn constant = [](double) { return 0.8; };
+  const va::FresnelFn schlick = [](double c) { return 0.5 + 0.5 * std::pow(1.0 - c, 5.0); };
+  int nonzero = 0;
+  for (int n = 0; n < 30; ++n) {
+    const va::Dir3 i = random_dir(g), o = random_dir(g);
+    for (int k = 1; k <= 4; ++k) {
+      const double one = va::vgroove_nonsymmetric_brdf_k(i, o, k, va::NdfKind::ggx, 0.6);
+      const double f = va::vgroove_nonsymmetric_brdf_k(i, o, k, va::NdfKind::ggx, 0.6, constant);
+      EXPECT_NEAR(f, std::pow(0.8, k) * one, 1e-7 * one + 1e-300) << "n=" << n << " k=" << k;
+      const double s = va::vgroove_nonsymmetric_brdf_k(i, o, k, va::NdfKind::ggx, 0.6, schlick);
+      EXPECT_GE(s, std::pow(0.5, k) * one * (1.0 - 1e-7));
+      EXPECT_LE(s, one * (1.0 + 1e-7));
+      nonzero += one > 0.0;
+    }
+  }
+  EXPECT_GT(nonzero, 40);
+}
+
 // Reciprocity, pointwise on random pairs, per k, 3D and flatland (the value is reported).
 TEST(NonsymmetricBrdf, ReciprocalPerK) {
   std::mt19937_64 g(19);
