@@ -116,8 +116,10 @@ std::vector<Family> families(double t_i, double t_o, int k) {
       continue;
     }
     // Aperture pi + theta_l - B > 0: pi + C + (beta - 1) B > 0.
-    if (beta < 1.0) hi = std::min(hi, (kPi + f.C) / (1.0 - beta));
-    else if (!(kPi + f.C > 0.0)) continue;
+    if (beta < 1.0)
+      hi = std::min(hi, (kPi + f.C) / (1.0 - beta));
+    else if (!(kPi + f.C > 0.0))
+      continue;
     if (!(hi > lo)) continue;
     f.lo = lo;
     f.hi = hi;
@@ -290,8 +292,7 @@ double nonsymmetric_brdf(const Dir3& i, const Dir3& o, int max_k, const Nonsymme
 double vgroove_nonsymmetric_brdf_k(const Dir3& i, const Dir3& o, int k, NdfKind ndf, double alpha) {
   return brdf_k_3d(i, o, k, isotropic_model(ndf, alpha), FresnelFn{});
 }
-double vgroove_nonsymmetric_brdf_k(const Dir3& i, const Dir3& o, int k, NdfKind ndf, double alpha,
-                                   const FresnelFn& F) {
+double vgroove_nonsymmetric_brdf_k(const Dir3& i, const Dir3& o, int k, NdfKind ndf, double alpha, const FresnelFn& F) {
   return brdf_k_3d(i, o, k, isotropic_model(ndf, alpha), F);
 }
 double vgroove_nonsymmetric_brdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, int max_k) {

@@ -92,8 +92,7 @@ double vgroove_nonsymmetric_brdf(const Dir3& i, const Dir3& o, NdfKind ndf, doub
                                  const FresnelFn& F);
 // The general forms: anisotropic roughness, the partner law.
 double nonsymmetric_brdf_k(const Dir3& i, const Dir3& o, int k, const NonsymmetricModel& m, const FresnelFn& F = {});
-double nonsymmetric_brdf(const Dir3& i, const Dir3& o, int max_k, const NonsymmetricModel& m,
-                         const FresnelFn& F = {});
+double nonsymmetric_brdf(const Dir3& i, const Dir3& o, int max_k, const NonsymmetricModel& m, const FresnelFn& F = {});
 
 // Flatland, F = 1: rho2(theta_i, theta_o; k) and the sum over k (roughness.alpha_x; isotropic).
 double flatland_nonsymmetric_brdf_k(double theta_i, double theta_o, int k, const NonsymmetricModel& m);

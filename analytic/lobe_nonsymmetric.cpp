@@ -327,8 +327,7 @@ void integrate_section(const Projection& proj, double t_i, const Laws& laws, dou
     integrate_first_facet(mirrored, -t_i, q, tilt, 0.0, 1.0, weight, opt, acc);
     return;
   }
-  const GaussLegendre& gl =
-      gauss_legendre_cached(opt.order);
+  const GaussLegendre& gl = gauss_legendre_cached(opt.order);
   const double dv = 1.0 / opt.partner_panels;
   for (int j = 0; j < opt.partner_panels; ++j) {
     for (std::size_t g = 0; g < gl.size(); ++g) {
