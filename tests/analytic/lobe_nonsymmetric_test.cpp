@@ -70,7 +70,9 @@ TEST(NonsymmetricLobe, WhiteFurnace) {
         EXPECT_NEAR(f.albedo, 1.0, 1e-4) << va::ndf_name(ndf) << " alpha=" << alpha << " ti=" << ti;
         EXPECT_LT(f.below, 1e-6);
       }
-      const va::Lobe3d g = va::nonsymmetric_lobe_3d(model(ndf, alpha), 1.0, 0.0, 15, 12, 16);
+      va::NonsymmetricLobeOptions coarse;
+      coarse.phi_panels = 16;
+      const va::Lobe3d g = va::nonsymmetric_lobe_3d(model(ndf, alpha), 1.0, 0.0, 9, 8, 16, coarse);
       EXPECT_NEAR(g.albedo, 1.0, 2e-4) << va::ndf_name(ndf) << " alpha=" << alpha;
     }
   }
@@ -107,15 +109,18 @@ TEST(NonsymmetricLobe, AnisotropicConsistency) {
   va::NonsymmetricModel iso = model(va::NdfKind::ggx, 0.4);
   va::NonsymmetricModel same = iso;
   same.roughness.alpha_y = 0.4;
-  const va::Lobe3d a = va::nonsymmetric_lobe_3d(iso, 0.6, 0.0, 15, 12, 8);
-  const va::Lobe3d b = va::nonsymmetric_lobe_3d(same, 0.6, 1.0, 15, 12, 8);  // any axes: isotropic
+  va::NonsymmetricLobeOptions o;
+  o.phi_panels = 16;
+  o.partner_panels = 6;
+  const va::Lobe3d a = va::nonsymmetric_lobe_3d(iso, 0.6, 0.0, 9, 8, 8, o);
+  const va::Lobe3d b = va::nonsymmetric_lobe_3d(same, 0.6, 1.0, 9, 8, 8, o);  // any axes: isotropic
   EXPECT_LT(l1(a.hist_by_k, b.hist_by_k), 1e-12);
   va::NonsymmetricModel an = iso;
   an.roughness.alpha_x = 0.1;
   an.roughness.alpha_y = 0.7;
   for (double axes : {0.0, 0.5 * kPi}) {
-    const va::Lobe3d c = va::nonsymmetric_lobe_3d(an, 0.6, axes, 15, 12, 8);
-    const va::Lobe3d d = va::nonsymmetric_lobe_3d(an, 0.6, axes + 1e-9, 15, 12, 8);
+    const va::Lobe3d c = va::nonsymmetric_lobe_3d(an, 0.6, axes, 9, 8, 8, o);
+    const va::Lobe3d d = va::nonsymmetric_lobe_3d(an, 0.6, axes + 1e-9, 9, 8, 8, o);
     EXPECT_NEAR(c.albedo, 1.0, 2e-4) << "axes " << axes;
     EXPECT_LT(l1(c.hist_by_k, d.hist_by_k), 2e-3) << "axes " << axes;
   }
