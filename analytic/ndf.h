@@ -4,7 +4,7 @@
 // Papers (cited below by first author and year):
 //   Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces".
 //     ACM TOG 37(6), 2018. Sec. 3, Eq. (2); Sec. 5.1, Eq. (10) (D weighted by projected area);
-//     App. C builds P(theta_r) on these D (not implemented here).
+//     App. C builds P(theta_r) on these D (analytic/partner_distribution.h).
 //   Heitz. "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs".
 //     JCGT 3(2), 2014. Eq. (5) (projected-area constraint), Eq. (10) (Smith G1), Sec. 3.2
 //     (Beckmann and GGX D and Lambda), Eq. (24) (V-cavity G1), App. A (Lambda from the slopes).

@@ -10,11 +10,12 @@
 namespace vgroove::validation {
 
 namespace {
-// Suites of procedural surfaces: "kind" brdf (Fig. 11), furnace, table2, profiles.
+// Suites of procedural surfaces: "kind" brdf (Fig. 11), furnace, table2, profiles,
+// nonsymmetric_brdf.
 bool is_microsurface_suite(const nlohmann::json& j) {
   if (!j.is_object() || !j.contains("kind") || !j["kind"].is_string()) return false;
   const std::string k = j["kind"].get<std::string>();
-  return k == "brdf" || k == "furnace" || k == "table2" || k == "profiles";
+  return k == "brdf" || k == "furnace" || k == "table2" || k == "profiles" || k == "nonsymmetric_brdf";
 }
 
 support::ProgressFn progress_for(const ProgressFactory& f, const std::string& name) {
@@ -40,7 +41,11 @@ ValidationPlan plan_validation(const ValidateOptions& a) {
     if (a.model_table && kind != "brdf")
       throw support::UserError(a.names.model_table + " applies to suites of kind \"brdf\"; " + a.suite +
                                " is of kind " + kind);
-    if (kind == "profiles") {
+    if (kind == "nonsymmetric_brdf") {
+      plan.kind = ValidationPlan::Kind::nonsymmetric;
+      plan.nonsymmetric = parse_nonsymmetric_suite(j, a.suite);
+      if (a.seed) plan.nonsymmetric.seed = static_cast<std::uint64_t>(*a.seed);
+    } else if (kind == "profiles") {
       plan.kind = ValidationPlan::Kind::profiles;
       plan.profiles = parse_profiles_suite(j, a.suite);
       if (a.seed) plan.profiles.seed = static_cast<std::uint64_t>(*a.seed);
@@ -93,6 +98,15 @@ ValidationResult run_validation(const ValidationPlan& plan, const ProgressFactor
       if (run.interrupted) return res.interrupted = true, res;
       print_profiles_table(table, plan.profiles, run);
       res.report = profiles_report_json(plan.profiles, run);
+      res.pass = run.pass;
+      break;
+    }
+    case ValidationPlan::Kind::nonsymmetric: {
+      const NonsymmetricRun run = run_nonsymmetric_suite(plan.nonsymmetric, plan.rays, plan.threads,
+                                                         progress_for(progress, plan.nonsymmetric.name), cancel);
+      if (run.interrupted) return res.interrupted = true, res;
+      print_nonsymmetric_table(table, plan.nonsymmetric, run);
+      res.report = nonsymmetric_report_json(plan.nonsymmetric, run);
       res.pass = run.pass;
       break;
     }

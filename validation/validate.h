@@ -1,7 +1,7 @@
 // vgroove validation: `validate` as one library call, shared by the command line and the Python
 // module: read a suite file of any kind (single grooves: Table 1, stress; rough surfaces: "brdf"
-// (Fig. 11), "furnace", "table2"), apply the overrides, run it, and return the report JSON and the
-// table the command line prints.
+// (Fig. 11), "furnace", "table2", "profiles", "nonsymmetric_brdf"), apply the overrides, run it, and return the report
+// JSON and the table the command line prints.
 //
 // Two steps, so that a caller can check everything (and its output target) before the work:
 // plan_validation reads and checks (support::UserError naming the file, JSON path or option),
@@ -11,6 +11,7 @@
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/brdf_suite.h"
 #include "vgroove/validation/model_table.h"
+#include "vgroove/validation/nonsymmetric_suite.h"
 #include "vgroove/validation/profiles_suite.h"
 #include "vgroove/validation/run_options.h"
 #include "vgroove/validation/suite.h"
@@ -35,19 +36,20 @@ struct ValidateOptions {
   std::optional<std::string> eq6_form;  // single grooves only: "corrected" or "printed"
   std::optional<long long> seed;
   std::optional<std::string> model_table;  // "brdf" suites: a foreign model's lobes (validation/model_table.h)
-  OptionNames names;  // how messages name the options above
+  OptionNames names;                       // how messages name the options above
 };
 
 // A suite file read and checked, with the overrides applied.
 struct ValidationPlan {
-  enum class Kind { single_grooves, brdf, table2, model_table, profiles } kind = Kind::single_grooves;
+  enum class Kind { single_grooves, brdf, table2, model_table, profiles, nonsymmetric } kind = Kind::single_grooves;
   SuiteSet set;                   // single grooves
   std::vector<CaseOptions> opts;  // per suite of the set
   BrdfSuite brdf;                 // "brdf" and "furnace"
   Table2Suite table2;
   ProfilesSuite profiles;
+  NonsymmetricSuite nonsymmetric;
   std::shared_ptr<const ModelTable> table;  // Kind::model_table (with brdf)
-  long rays = 0;  // rough surfaces: the override, 0 for the suite's
+  long rays = 0;                            // rough surfaces: the override, 0 for the suite's
   int threads = 0;
 };
 

@@ -13,8 +13,8 @@ namespace vgroove::python {
 namespace {
 
 py::object validate(const std::string& path, const py::object& rays, int threads, std::optional<std::string> sampling,
-                    std::optional<std::string> eq6_form, const py::object& seed,
-                    std::optional<std::string> model_table, bool verbose) {
+                    std::optional<std::string> eq6_form, const py::object& seed, std::optional<std::string> model_table,
+                    bool verbose) {
   validation::ValidateOptions o;
   o.names = validation::OptionNames::keywords();
   o.suite = path;
