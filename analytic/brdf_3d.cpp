@@ -55,25 +55,6 @@ bool groove_frame(const Dir3& i, const Dir3& o, GrooveFrame& p) {
 
 namespace {
 
-// Fresnel along the 2D path: prod_j F(c |d_j . s_j|), the first facet `first`.
-double fresnel_product(const FresnelFn& F, double t_i, double theta_m, FacetSide first, int k, double c) {
-  if (!F) return 1.0;
-  double dx = std::sin(t_i), dy = -std::cos(t_i);  // travel direction (into the groove)
-  const double sm = std::sin(theta_m), cm = std::cos(theta_m);
-  bool left = first == FacetSide::left;
-  double prod = 1.0;
-  for (int j = 0; j < k; ++j) {
-    // Left facet normal at 2D angle -theta_m: (sin, cos); right at +theta_m: (-sin, cos).
-    const double nx = left ? sm : -sm, ny = cm;
-    const double dn = dx * nx + dy * ny;
-    prod *= F(c * std::abs(dn));
-    dx -= 2.0 * dn * nx;
-    dy -= 2.0 * dn * ny;
-    left = !left;
-  }
-  return prod;
-}
-
 // The term of Eq. (16) of one solution of Eq. (5).
 double solution_term(const GrooveFrame& p, const Solution& q, double cos_i, double cos_o, NdfKind ndf, double alpha,
                      const FresnelFn& F) {
@@ -83,7 +64,7 @@ double solution_term(const GrooveFrame& p, const Solution& q, double cos_i, doub
   // divide two rounding errors next to the mirror direction.
   const double ratio = q.k == 1 ? 1.0 : q.C / (q.k * p.sin_h);
   // Lee et al. 2018, Eq. (16) with the Jacobian of Eq. (13).
-  return ratio * fresnel_product(F, p.x.t_i, theta_m, q.first, q.k, p.c) * i_dot_s * D_cs(ndf, q.S, q.C, alpha) /
+  return ratio * fresnel_along_path(F, p.x.t_i, theta_m, q.first, q.k, p.c) * i_dot_s * D_cs(ndf, q.S, q.C, alpha) /
          (4.0 * p.cos_d * (cos_i * cos_o));
 }
 
@@ -126,6 +107,24 @@ double brdf_range(const Dir3& i, const Dir3& o, int k_lo, int k_hi, NdfKind ndf,
 }
 
 }  // namespace
+
+double fresnel_along_path(const FresnelFn& F, double t_i, double theta_m, FacetSide first, int k, double c) {
+  if (!F) return 1.0;
+  double dx = std::sin(t_i), dy = -std::cos(t_i);  // travel direction (into the groove)
+  const double sm = std::sin(theta_m), cm = std::cos(theta_m);
+  bool left = first == FacetSide::left;
+  double prod = 1.0;
+  for (int j = 0; j < k; ++j) {
+    // Left facet normal at 2D angle -theta_m: (sin, cos); right at +theta_m: (-sin, cos).
+    const double nx = left ? sm : -sm, ny = cm;
+    const double dn = dx * nx + dy * ny;
+    prod *= F(c * std::abs(dn));
+    dx -= 2.0 * dn * nx;
+    dy -= 2.0 * dn * ny;
+    left = !left;
+  }
+  return prod;
+}
 
 double beam_width_k(double t_i, double t_o, double theta_v, int k, FacetSide first) {
   const Ends e = ends_of(cross_section(t_i, t_o), first, k);

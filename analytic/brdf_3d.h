@@ -115,6 +115,9 @@ double vgroove_brdf_reference(const Dir3& i, const Dir3& o, NdfKind ndf, double 
 // at t_i aimed at `first` and leaving at t_o, where theta_v solves Eq. (5) for (t_i, t_o, k)
 // (the form used by Eq. 16; derivation and numerics in brdf_3d.cpp). Exposed for the tests.
 double beam_width_k(double t_i, double t_o, double theta_v, int k, FacetSide first);
+// Fresnel along a path of the cross-section: prod_j F(c |d_j . s_j|) over its k reflections, the
+// first on `first` (Eq. 11 with the 3D cosines c times the 2D ones); 1 when F is empty.
+double fresnel_along_path(const FresnelFn& F, double t_i, double theta_m, FacetSide first, int k, double c);
 // Eq. (1)-(3): Cook-Torrance with the V-cavity G (Eq. 2), F = 1.
 double cook_torrance(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha);
 double cook_torrance(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, const FresnelFn& F);
