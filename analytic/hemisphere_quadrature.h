@@ -23,10 +23,10 @@
 namespace vgroove::analytic {
 
 struct HemisphereOptions {
-  double tol = 1e-8;     // absolute, on the whole integral
-  double scale = 0.1;    // the lobe's angular width (e.g. alpha): where the grading is centred
+  double tol = 1e-8;             // absolute, on the whole integral
+  double scale = 0.1;            // the lobe's angular width (e.g. alpha): where the grading is centred
   bool mirror_symmetric = true;  // f(o) = f(o mirrored about the plane of p and n): half the work
-  int max_pieces = 400;  // per one-dimensional integral
+  int max_pieces = 400;          // per one-dimensional integral
 };
 
 // The pole's frame: p, e1 in the plane (p, n) pointing away from n, e2 = horizontal.
@@ -64,8 +64,8 @@ AdaptiveResult integrate_hemisphere(const Dir3& pole, F&& f, const HemisphereOpt
       if (t < t_max) cuts.push_back(t);
     }
     std::sort(cuts.begin(), cuts.end());
-    const AdaptiveResult r = integrate_adaptive(
-        [&](double tp) { return f(polar_dir(frame, tp, pp)) * std::sin(tp); }, cuts, inner);
+    const AdaptiveResult r =
+        integrate_adaptive([&](double tp) { return f(polar_dir(frame, tp, pp)) * std::sin(tp); }, cuts, inner);
     evaluations += r.evaluations;
     converged = converged && r.converged;
     return r.value;

@@ -167,8 +167,7 @@ VgrooveSample3d sample_vgroove_3d(const Dir3& i, const std::array<double, 4>& u,
 
 // ---- The failure probability, over the facets -----------------------------------------------------
 
-double sampler_failure_probability_3d(const Dir3& i, NdfKind ndf, double alpha, const SamplerOptions& opt,
-                                      double tol) {
+double sampler_failure_probability_3d(const Dir3& i, NdfKind ndf, double alpha, const SamplerOptions& opt, double tol) {
   if (!(i.z > 0.0)) return 1.0;
   const double phi_i = std::atan2(i.y, i.x);
   const bool printed = opt.strategy == FacetStrategy::printed;
@@ -222,7 +221,14 @@ double sampler_failure_probability_3d(const Dir3& i, NdfKind ndf, double alpha, 
   inner.abs_tol = tol / (8.0 * std::numbers::pi);
   auto along = [&](double psi) {
     auto f = [&](double v) { return integrand(v, psi); };
-    double r = integrate_adaptive(f, std::vector<double>(cuts.begin() + 1, cuts.end()), inner).value;
+    // The facet's lit edge (f_a = 0 at theta_v = 2 t_i) and the other rim's shadow edge (f_b = 0 at
+    // theta_v = -2 t_i) at this azimuth: the printed strategy's failure jumps there.
+    std::vector<double> at(cuts.begin() + 1, cuts.end());
+    const FacetGroove g = groove_of(i, dir3(0.25 * std::numbers::pi, phi_i + psi));
+    for (double v : {2.0 * g.t_i, -2.0 * g.t_i})
+      if (v > at.front() && v < at.back()) at.push_back(v);
+    std::sort(at.begin(), at.end());
+    double r = integrate_adaptive(f, at, inner).value;
     // Below v0 (about 1e-12 of the tail's range) the integrand is a power law of theta_v (D of a
     // nearly vertical facet: Phong ~ theta_v^(p+1), GGX ~ theta_v, Beckmann 0): extrapolated.
     const double i1 = f(v0), i2 = f(0.5 * v0);

@@ -55,10 +55,10 @@ struct SamplerOptions {
 };
 
 struct VgrooveSample3d {
-  Dir3 o;              // the exit direction (the mirror direction of i on a zero-weight return)
-  int k = 0;           // reflections of the sampled path; 0 on a zero-weight return
-  double pdf = 0.0;    // density of o per steradian, every path with k <= max_k
-  double weight = 0.0; // rho(i, o) cos(theta_o) / pdf, Fresnel included
+  Dir3 o;               // the exit direction (the mirror direction of i on a zero-weight return)
+  int k = 0;            // reflections of the sampled path; 0 on a zero-weight return
+  double pdf = 0.0;     // density of o per steradian, every path with k <= max_k
+  double weight = 0.0;  // rho(i, o) cos(theta_o) / pdf, Fresnel included
 };
 
 // The routine of the header: u = (u0, u1, u2, u3) in [0, 1)^4.

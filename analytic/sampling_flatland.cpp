@@ -81,7 +81,7 @@ PdfAndBrdf2 vgroove_pdf_and_brdf_flatland(double theta_i, double theta_o, NdfKin
   for_each_path(theta_i, theta_o, 1, opt.max_k, [&](const Solution& q, double theta_s) {
     const double D2v = D2_cs(ndf, q.S, q.C, alpha);
     const double J = 1.0 / (2.0 * q.k);  // |d theta_s / d theta_o|, brdf_flatland.h step (c)
-    r.rho_cos += D2v * q.W * J / ci;    // brdf_flatland.h step (d) times cos(theta_o)
+    r.rho_cos += D2v * q.W * J / ci;     // brdf_flatland.h step (d) times cos(theta_o)
     r.pdf += strategy_term(theta_i, q, theta_s, D2v, ndf, alpha, opt.strategy) * J;
   });
   return r;
@@ -109,8 +109,8 @@ double printed_p_flatland(double theta_i, double theta_o, NdfKind ndf, double al
   return p;
 }
 
-VgrooveSampleFlatland sample_vgroove_flatland(double theta_i, const std::array<double, 4>& u, NdfKind ndf,
-                                              double alpha, const SamplerOptions& opt) {
+VgrooveSampleFlatland sample_vgroove_flatland(double theta_i, const std::array<double, 4>& u, NdfKind ndf, double alpha,
+                                              const SamplerOptions& opt) {
   const VgrooveSampleFlatland none{-theta_i, 0, 0.0, 0.0};
   if (!(std::abs(theta_i) < kHalfPi)) return none;
   const double theta_s = sample_facet2(theta_i, u, ndf, alpha, opt.strategy);
@@ -176,8 +176,6 @@ double sampler_failure_probability_flatland(double theta_i, NdfKind ndf, double 
 }
 
 double sample_cosine_flatland(double u) { return std::asin(2.0 * u - 1.0); }
-double cosine_flatland_pdf(double theta_o) {
-  return std::abs(theta_o) < kHalfPi ? 0.5 * std::cos(theta_o) : 0.0;
-}
+double cosine_flatland_pdf(double theta_o) { return std::abs(theta_o) < kHalfPi ? 0.5 * std::cos(theta_o) : 0.0; }
 
 }  // namespace vgroove::analytic

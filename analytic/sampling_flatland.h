@@ -34,8 +34,8 @@ struct VgrooveSampleFlatland {
   double weight = 0.0;
 };
 
-VgrooveSampleFlatland sample_vgroove_flatland(double theta_i, const std::array<double, 4>& u, NdfKind ndf,
-                                              double alpha, const SamplerOptions& opt);
+VgrooveSampleFlatland sample_vgroove_flatland(double theta_i, const std::array<double, 4>& u, NdfKind ndf, double alpha,
+                                              const SamplerOptions& opt);
 
 // pdf(theta_o) and rho2(theta_i, theta_o) cos(theta_o) (k <= max_k, F = 1) in one pass over the
 // paths; the rho2 part is flatland_brdf's sum (brdf_flatland.h) visited in a single pass.

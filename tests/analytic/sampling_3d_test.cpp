@@ -87,8 +87,8 @@ TEST(Sampling3d, SampledPathIsAmongThePdfsPaths) {
   std::uniform_real_distribution<double> U(0.0, 1.0);
   for (FacetStrategy st : kStrategies)
     for (int trial = 0; trial < 1500; ++trial) {
-      const NdfKind ndf = st == FacetStrategy::smith_vndf || st == FacetStrategy::bounded_vndf ? NdfKind::ggx
-                                                                                              : kNdfs[trial % 3];
+      const NdfKind ndf =
+          st == FacetStrategy::smith_vndf || st == FacetStrategy::bounded_vndf ? NdfKind::ggx : kNdfs[trial % 3];
       const double alpha = 0.05 + 1.5 * U(g);
       const Dir3 i = dir3(0.5 * std::numbers::pi * U(g), 2.0 * std::numbers::pi * U(g));
       const SamplerOptions opt{st, 64};
@@ -142,7 +142,8 @@ TEST(Sampling3d, PrintedPIsNotADensity) {
     ho.tol = 1e-4;
     ho.scale = alpha;
     const double printed =
-        integrate_hemisphere(Dir3{-i.x, -i.y, i.z}, [&](const Dir3& o) { return printed_p_3d(i, o, ndf, alpha, 64); }, ho)
+        integrate_hemisphere(
+            Dir3{-i.x, -i.y, i.z}, [&](const Dir3& o) { return printed_p_3d(i, o, ndf, alpha, 64); }, ho)
             .value;
     const double mass = 1.0 - sampler_failure_probability_3d(i, ndf, alpha, SamplerOptions{FacetStrategy::printed, 64});
     EXPECT_GT(printed / mass, 2.5) << "theta_i=" << deg;  // 3.19 at normal incidence, 2.89 at 45 deg
@@ -162,7 +163,8 @@ TEST(Sampling3d, MeanWeightIsTheAlbedo) {
   ho.scale = alpha;
   const FresnelFn F{schlick};
   const double albedo =
-      integrate_hemisphere(Dir3{-i.x, -i.y, i.z}, [&](const Dir3& o) { return vgroove_brdf(i, o, ndf, alpha, 64, F) * o.z; }, ho)
+      integrate_hemisphere(
+          Dir3{-i.x, -i.y, i.z}, [&](const Dir3& o) { return vgroove_brdf(i, o, ndf, alpha, 64, F) * o.z; }, ho)
           .value;
   for (FacetStrategy st : kStrategies) {
     std::mt19937_64 g(21);
@@ -193,8 +195,8 @@ TEST(Sampling3d, HardCases) {
           for (int corner = 0; corner < 16 + 64; ++corner) {
             std::array<double, 4> u;
             for (int d = 0; d < 4; ++d)  // the 16 corners, then corners mixed with random values
-              u[d] = corner < 16 ? ((corner >> d) & 1 ? top : 0.0)
-                                 : ((corner >> d) & 1 ? (U(g) < 0.5 ? top : 0.0) : U(g));
+              u[d] =
+                  corner < 16 ? ((corner >> d) & 1 ? top : 0.0) : ((corner >> d) & 1 ? (U(g) < 0.5 ? top : 0.0) : U(g));
             const Dir3 i = dir3(deg * kRadPerDeg, 0.3);
             const VgrooveSample3d s = sample_vgroove_3d(i, u, ndf, alpha, SamplerOptions{st, 256}, FresnelFn{schlick});
             ASSERT_TRUE(std::isfinite(s.o.x) && std::isfinite(s.o.y) && std::isfinite(s.o.z))

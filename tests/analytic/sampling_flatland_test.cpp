@@ -87,11 +87,12 @@ void check_normalization(NdfKind ndf, double alpha, double deg) {
     const double ti = deg * kRadPerDeg;
     const SamplerOptions opt{st, 64};
     const double integral =
-        integrate_half_circle(ti, [&](double to) { return vgroove_pdf_flatland(ti, to, ndf, alpha, opt); }, alpha, 1e-10)
+        integrate_half_circle(
+            ti, [&](double to) { return vgroove_pdf_flatland(ti, to, ndf, alpha, opt); }, alpha, 1e-10)
             .value;
     const double fail = sampler_failure_probability_flatland(ti, ndf, alpha, opt);
-    EXPECT_NEAR(integral + fail, 1.0, 1e-9) << strategy_name(st) << " " << ndf_name(ndf) << " alpha=" << alpha
-                                            << " theta_i=" << deg << " fail " << fail;
+    EXPECT_NEAR(integral + fail, 1.0, 1e-9)
+        << strategy_name(st) << " " << ndf_name(ndf) << " alpha=" << alpha << " theta_i=" << deg << " fail " << fail;
   }
 }
 
@@ -115,11 +116,11 @@ TEST(SamplingFlatland, PrintedPIsNotADensity) {
     for (double deg : {0.0, 45.0}) {
       const double ti = deg * kRadPerDeg;
       const double printed =
-          integrate_half_circle(ti, [&](double to) { return printed_p_flatland(ti, to, NdfKind::ggx, alpha, 64); },
-                                alpha, 1e-9)
+          integrate_half_circle(
+              ti, [&](double to) { return printed_p_flatland(ti, to, NdfKind::ggx, alpha, 64); }, alpha, 1e-9)
               .value;
-      const double mass =
-          1.0 - sampler_failure_probability_flatland(ti, NdfKind::ggx, alpha, SamplerOptions{FacetStrategy::printed, 64});
+      const double mass = 1.0 - sampler_failure_probability_flatland(ti, NdfKind::ggx, alpha,
+                                                                     SamplerOptions{FacetStrategy::printed, 64});
       EXPECT_GT(printed / mass, 1.9) << "alpha=" << alpha << " theta_i=" << deg;
     }
 }
@@ -128,10 +129,10 @@ TEST(SamplingFlatland, MeanWeightIsTheAlbedo) {
   const NdfKind ndf = NdfKind::beckmann;
   const double alpha = 0.8, ti = 40.0 * kRadPerDeg;
   const SamplerOptions base{FacetStrategy::vndf, 64};
-  const double albedo = integrate_half_circle(
-                            ti, [&](double to) { return vgroove_pdf_and_brdf_flatland(ti, to, ndf, alpha, base).rho_cos; },
-                            alpha, 1e-11)
-                            .value;
+  const double albedo =
+      integrate_half_circle(
+          ti, [&](double to) { return vgroove_pdf_and_brdf_flatland(ti, to, ndf, alpha, base).rho_cos; }, alpha, 1e-11)
+          .value;
   for (FacetStrategy st : {FacetStrategy::printed, FacetStrategy::vndf}) {
     std::mt19937_64 g(61);
     const long n = 40000;
@@ -160,7 +161,8 @@ TEST(SamplingFlatland, HardCases) {
           for (int corner = 0; corner < 16; ++corner) {
             std::array<double, 4> u;
             for (int d = 0; d < 4; ++d) u[d] = (corner >> d) & 1 ? top : 0.0;
-            const VgrooveSampleFlatland s = sample_vgroove_flatland(deg * kRadPerDeg, u, ndf, alpha, SamplerOptions{st});
+            const VgrooveSampleFlatland s =
+                sample_vgroove_flatland(deg * kRadPerDeg, u, ndf, alpha, SamplerOptions{st});
             ASSERT_TRUE(std::isfinite(s.theta_o) && std::abs(s.theta_o) < 0.5 * std::numbers::pi);
             ASSERT_FALSE(std::isnan(s.pdf) || std::isnan(s.weight));
             if (s.k == 0) {

@@ -39,7 +39,9 @@ void check_normalization(NdfKind ndf, double alpha, double deg) {
   if (ndf != NdfKind::ggx) return;
   EXPECT_NEAR(over_normals(alpha, [&](const Dir3& m) { return ggx_vndf_pdf(alpha, i, m); }), 1.0, 1e-8)
       << "alpha=" << alpha << " theta_i=" << deg;
-  EXPECT_NEAR(over_normals(alpha, [&](const Dir3& m) { return ggx_bounded_vndf_pdf(alpha, i, m); }, 1e-7), 1.0, 1e-5)
+  EXPECT_NEAR(over_normals(
+                  alpha, [&](const Dir3& m) { return ggx_bounded_vndf_pdf(alpha, i, m); }, 1e-7),
+              1.0, 1e-5)
       << "alpha=" << alpha << " theta_i=" << deg;
 }
 
