@@ -136,16 +136,47 @@ double sampler_failure_probability_flatland(double theta_i, NdfKind ndf, double 
   if (!(std::abs(theta_i) < kHalfPi)) return 1.0;
   const bool printed = opt.strategy == FacetStrategy::printed;
   // q(theta_s) P(no direction | theta_s), over theta_s = -(pi - v)/2 (left) and +(pi - v)/2 (right).
+  // q is written with cos(theta_s) = sin(v/2) and the facet's projected width f_a = <i.s> from
+  // Eq. (6), not from theta_s: near vertical facets (v -> 0) theta_s = pi/2 - v/2 no longer
+  // resolves v, and D2 ~ cos^p (Phong, p < 0) would carry the rounding into the tail's integral.
+  const double ci = std::cos(theta_i);
+  const double g1 = opt.strategy == FacetStrategy::smith_vndf ? G1_smith_ggx(theta_i, alpha) : 1.0;
   auto integrand = [&](double theta_v, FacetSide side) {
-    const double t = 0.5 * (std::numbers::pi - theta_v);
-    const double theta_s = side == FacetSide::left ? -t : t;
-    const double q = facet_pdf2(theta_i, theta_s, ndf, alpha, opt.strategy);
-    if (!(q > 0.0)) return 0.0;
+    const double S = std::sin(0.5 * theta_v), C = std::cos(0.5 * theta_v);  // cos, sin of theta_s
+    const double D2v = D2_cs(ndf, S, C, alpha);
     const FacetPrediction p = G_kaleidoscopic(theta_i, theta_v, side);
-    if (!p.lit) return q * 0.5;  // d theta_s = d theta_v / 2
+    if (!p.lit) return printed ? D2v * S * 0.5 : 0.0;  // d theta_s = d theta_v / 2
+    double q = 0.0;
+    switch (opt.strategy) {
+      case FacetStrategy::printed:
+        q = D2v * S;  // D2 cos(theta_s)
+        break;
+      case FacetStrategy::vndf: {
+        // D2 <i.s> G1 / cos(theta_i), <i.s> G1 = f_a - f_b written as the product 2 sin(v/2) cos(t)
+        // when f_b > 0: near grazing light both are close to 1 and their difference ~ v cos(t).
+        const double t = side == FacetSide::left ? theta_i : -theta_i;
+        q = D2v * (p.f_b > 0.0 ? 2.0 * S * std::cos(t) : p.f_a) / ci;
+        break;
+      }
+      case FacetStrategy::smith_vndf:
+      case FacetStrategy::bounded_vndf:
+        q = g1 * p.f_a * D2v / ci;  // G1(theta_i) <i.s> D2 / cos(theta_i)
+        break;
+    }
+    // The share of the drawn outcomes beyond max_k. All of them when even the fewer reflections
+    // exceed max_k (set exactly: for narrow grooves near grazing light f_a, f_k, f_b are all close to
+    // 1 and their differences ~ v cos(t) lose their digits, down to 0); near Eq. (4)'s boundary
+    // K = max_k + 1 only the k-reflection outcome.
     const double w_fewer = p.f_a - p.f_k, w_more = p.f_k - p.f_b;
-    const double lost = (p.fewer.n > opt.max_k ? w_fewer : 0.0) + (p.more.n > opt.max_k ? w_more : 0.0);
-    return q * 0.5 * (printed ? (p.f_b + lost) / p.f_a : lost / (w_fewer + w_more));
+    const bool all_lost = p.fewer.n > opt.max_k, more_lost = p.more.n > opt.max_k;
+    double fail = 1.0;
+    if (!all_lost) {
+      if (printed)
+        fail = (p.f_b + (more_lost ? w_more : 0.0)) / p.f_a;
+      else
+        fail = more_lost && w_fewer + w_more > 0.0 ? w_more / (w_fewer + w_more) : 0.0;
+    }
+    return q * 0.5 * fail;
   };
   const double v_max = printed ? std::numbers::pi : std::min(std::numbers::pi, 2.0 * std::numbers::pi / opt.max_k);
   const double v_tail = std::min(v_max, 2.0 * std::numbers::pi / opt.max_k);
@@ -155,7 +186,13 @@ double sampler_failure_probability_flatland(double theta_i, NdfKind ndf, double 
     const double v = std::numbers::pi - 2.0 * std::atan(alpha * s);
     if (v < v_max) cuts.push_back(v);
   }
-  for (double v : {2.0 * std::abs(theta_i)})  // f_b switches sign (one facet's rim shadows)
+  // f_b switches sign (one facet's rim shadows); the paths beyond max_k start (Eq. 4's K = max_k + 1
+  // and max_k + 2 at theta_v = (pi + 2 t) / K, t = +-theta_i for the two facets): the failure
+  // jumps or kinks there.
+  for (double v :
+       {2.0 * std::abs(theta_i), (std::numbers::pi + 2.0 * theta_i) / opt.max_k,
+        (std::numbers::pi + 2.0 * theta_i) / (opt.max_k + 1.0), (std::numbers::pi - 2.0 * theta_i) / opt.max_k,
+        (std::numbers::pi - 2.0 * theta_i) / (opt.max_k + 1.0)})
     if (v < v_max) cuts.push_back(v);
   std::sort(cuts.begin(), cuts.end());
   cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());

@@ -7,7 +7,9 @@
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/brdf_suite.h"
+#include "vgroove/validation/furnace_suite.h"
 #include "vgroove/validation/report.h"
+#include "vgroove/validation/sampling_suite.h"
 #include "vgroove/validation/suite_run.h"
 #include "vgroove/validation/table2_suite.h"
 
@@ -16,11 +18,11 @@ namespace vgroove::app {
 using namespace validation;
 
 namespace {
-// Suites of procedural microsurfaces: "kind" brdf (Fig. 11), furnace, table2.
+// Suites of rough surfaces: "kind" brdf (Fig. 11), furnace, table2, sampling.
 bool is_microsurface_suite(const nlohmann::json& j) {
   if (!j.is_object() || !j.contains("kind") || !j["kind"].is_string()) return false;
   const std::string k = j["kind"].get<std::string>();
-  return k == "brdf" || k == "furnace" || k == "table2";
+  return k == "brdf" || k == "furnace" || k == "table2" || k == "sampling";
 }
 
 int validate_microsurface(const ValidateArgs& a, const nlohmann::json& j) {
@@ -40,7 +42,34 @@ int validate_microsurface(const ValidateArgs& a, const nlohmann::json& j) {
   };
   std::string report;
   bool pass = false;
-  if (kind == "table2") {
+  if (kind == "sampling") {
+    if (a.rays != kUnset)
+      throw support::UserError("--rays applies to suites that trace rays; " + a.suite +
+                               " (kind sampling) sets its samples in the file");
+    const SamplingSuite suite = parse_sampling_suite(j, a.suite);
+    if (a.seed != kUnsetSeed)
+      throw support::UserError("--seed: " + a.suite + " (kind sampling) sets its seed in the file");
+    if (!a.out.empty()) support::check_writable_target(a.out, a.force);
+    if (a.dry_run) return 0;
+    const SamplingRun run = run_sampling_suite(suite, a.threads, terminal_progress("validate " + suite.name), a.cancel);
+    if (run.interrupted) return interrupted_no_report();
+    print_sampling_table(std::cout, suite, run);
+    report = sampling_report_json(suite, run).dump(1) + "\n";
+    pass = run.pass;
+  } else if (kind == "furnace") {
+    if (a.rays != kUnset)
+      throw support::UserError("--rays applies to suites that trace rays; " + a.suite +
+                               " (kind furnace) sets its samples and sanity rays in the file");
+    const FurnaceSuite suite = with_seed(parse_furnace_suite(j, a.suite));
+    if (!a.out.empty()) support::check_writable_target(a.out, a.force);
+    if (a.dry_run) return 0;
+    const FurnaceRun run =
+        run_furnace_suite(suite, 0, a.threads, terminal_progress("validate " + suite.name), a.cancel);
+    if (run.interrupted) return interrupted_no_report();
+    print_furnace_table(std::cout, suite, run);
+    report = furnace_report_json(suite, run).dump(1) + "\n";
+    pass = run.pass;
+  } else if (kind == "table2") {
     const Table2Suite suite = with_seed(parse_table2_suite(j, a.suite));
     if (!a.out.empty()) support::check_writable_target(a.out, a.force);
     if (a.dry_run) return 0;

@@ -44,8 +44,8 @@ double sidak_level(double level, int tests) {
   return -std::expm1(std::log1p(-level) / std::max(1, tests));
 }
 
-ChiSquareResult chi_square_test(const std::vector<double>& observed, const std::vector<double>& expected,
-                                double level, int tests, double min_expected) {
+ChiSquareResult chi_square_test(const std::vector<double>& observed, const std::vector<double>& expected, double level,
+                                int tests, double min_expected) {
   ChiSquareResult r;
   r.level = sidak_level(level, tests);
   std::vector<std::size_t> order(expected.size());

@@ -37,7 +37,7 @@ struct ChiSquareResult {
 };
 
 // The test of the header; observed and expected of equal length (counts, not fractions).
-ChiSquareResult chi_square_test(const std::vector<double>& observed, const std::vector<double>& expected,
-                                double level, int tests, double min_expected = 5.0);
+ChiSquareResult chi_square_test(const std::vector<double>& observed, const std::vector<double>& expected, double level,
+                                int tests, double min_expected = 5.0);
 
 }  // namespace vgroove::validation

@@ -22,12 +22,22 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 std::array<double, 4> uniforms(sim::Rng& rng) { return {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()}; }
 
-// Cell integrals: relative 1e-4 and absolute 0.05 / N. A relative error e in every cell adds
+struct Moments {
+  double sum = 0.0, sum2 = 0.0;
+  void add(double w) { sum += w, sum2 += w * w; }
+  void into(Chi2Outcome& out, long n) const {
+    const double N = static_cast<double>(n);
+    out.weight_mean = sum / N;
+    out.weight_variance = N > 1.0 ? std::max(0.0, sum2 / N - out.weight_mean * out.weight_mean) * N / (N - 1.0) : 0.0;
+  }
+};
+
+// Cell integrals: relative kCellRelTol = 1e-4 and absolute 0.05 / N. A relative error e in every cell adds
 // about N e^2 to the statistic (0.01 at N = 10^6), an absolute one d about (N d)^2 / 5 per pooled
 // cell: far below the statistic's spread sqrt(2 dof).
 analytic::AdaptiveOptions cell_options(long samples) {
   analytic::AdaptiveOptions o;
-  o.rel_tol = 1e-4;
+  o.rel_tol = kCellRelTol;
   o.abs_tol = 0.05 / static_cast<double>(samples);
   o.max_pieces = 400;
   return o;
@@ -46,8 +56,10 @@ void sample_3d(Chi2Outcome& out) {
   const analytic::SamplerOptions opt{s.strategy, s.max_k};
   const auto t0 = Clock::now();
   sim::Rng rng(s.seed, 0x5a3d, 0);
+  Moments w;
   for (long n = 0; n < s.samples; ++n) {
     const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(i, uniforms(rng), s.ndf, s.alpha, opt);
+    w.add(x.weight);
     if (x.k == 0) {
       t.observed_none += 1.0;
       continue;
@@ -59,6 +71,7 @@ void sample_3d(Chi2Outcome& out) {
     t.observed[static_cast<std::size_t>(r * t.cols + c)] += 1.0;
   }
   out.sample_s = seconds_since(t0);
+  w.into(out, s.samples);
 }
 
 // The expected counts: the density integrated over each cell.
@@ -104,7 +117,9 @@ void expect_3d(Chi2Outcome& out, const HeldDensity* held) {
       auto row = [&](double ct) {
         const double st = std::sqrt(std::max(0.0, 1.0 - ct * ct));
         return analytic::integrate_adaptive(
-                   [&](double phi) { return pdf(analytic::Dir3{st * std::cos(phi), st * std::sin(phi), ct}); },
+                   [&](double phi) {
+                     return pdf(analytic::Dir3{st * std::cos(phi), st * std::sin(phi), ct});
+                   },
                    phi_cuts, inner)
             .value;
       };
@@ -132,18 +147,21 @@ void sample_flatland(Chi2Outcome& out) {
   const analytic::SamplerOptions opt{s.strategy, s.max_k};
   const auto t0 = Clock::now();
   sim::Rng rng(s.seed, 0x5a3d, 1);
+  Moments w;
   for (long n = 0; n < s.samples; ++n) {
     const analytic::VgrooveSampleFlatland x =
         analytic::sample_vgroove_flatland(s.theta_i, uniforms(rng), s.ndf, s.alpha, opt);
+    w.add(x.weight);
     if (x.k == 0) {
       t.observed_none += 1.0;
       continue;
     }
-    const int c = std::clamp(static_cast<int>((x.theta_o + 0.5 * std::numbers::pi) / std::numbers::pi * t.cols), 0,
-                             t.cols - 1);
+    const int c =
+        std::clamp(static_cast<int>((x.theta_o + 0.5 * std::numbers::pi) / std::numbers::pi * t.cols), 0, t.cols - 1);
     t.observed[static_cast<std::size_t>(c)] += 1.0;
   }
   out.sample_s = seconds_since(t0);
+  w.into(out, s.samples);
 }
 
 void expect_flatland(Chi2Outcome& out, const HeldDensity* held) {
@@ -185,7 +203,12 @@ void expect_and_test(Chi2Outcome& out, const HeldDensity* held) {
   observed.push_back(t.observed_none);
   expected.push_back(std::max(0.0, t.expected_none));
   out.test = chi_square_test(observed, expected, spec.level, spec.tests);
-  out.pass = !out.test.reject && std::abs(out.normalization_error) <= 2.0 * out.quadrature_error + 1e-6;
+  // The cells' integrals are asked for to kCellRelTol relative, so their sum to kCellRelTol. (Their
+  // error estimates |K15 - G7| are not bounds where the density jumps, which the printed and the
+  // bounded densities do along curves that cross the cells: estimates of 1.5e-5 were seen beside
+  // errors of 4.6e-5.) The failure probability's quadrature adds 1e-9.
+  out.normalization_tolerance = std::max(kCellRelTol, 2.0 * out.quadrature_error) + 1e-9;
+  out.pass = !out.test.reject && std::abs(out.normalization_error) <= out.normalization_tolerance;
 }
 
 }  // namespace
@@ -237,6 +260,11 @@ nlohmann::json chi2_json(const Chi2Outcome& o) {
                       {"quadrature_error", o.quadrature_error},
                       {"failure_probability", o.failure_probability},
                       {"normalization_error", o.normalization_error},
+                      {"normalization_tolerance", o.normalization_tolerance},
+                      {"weight_mean", o.weight_mean},
+                      {"weight_variance", o.weight_variance},
+                      {"weight_standard_error", std::sqrt(o.weight_variance / static_cast<double>(s.samples))},
+                      {"ns_per_sample", 1e9 * o.sample_s / static_cast<double>(s.samples)},
                       {"sample_s", o.sample_s},
                       {"integrate_s", o.integrate_s},
                       {"pass", o.pass}};
@@ -282,8 +310,7 @@ VarianceOutcome run_variance(const VarianceSpec& spec) {
     st.standard_error = std::sqrt(st.variance / N);
     st.no_direction = static_cast<double>(none) / N;
     st.ns_per_sample = 1e9 * secs / N;
-    st.efficiency =
-        st.variance > 0.0 ? 1.0 / (st.variance * secs / N) : std::numeric_limits<double>::infinity();
+    st.efficiency = st.variance > 0.0 ? 1.0 / (st.variance * secs / N) : std::numeric_limits<double>::infinity();
     out.rows.push_back(st);
   };
   for (analytic::FacetStrategy s : {analytic::FacetStrategy::printed, analytic::FacetStrategy::vndf,
@@ -315,14 +342,16 @@ VarianceOutcome run_variance(const VarianceSpec& spec) {
       const double to = analytic::sample_cosine_flatland(u[0]);
       const double pdf = analytic::cosine_flatland_pdf(to);
       const analytic::SamplerOptions opt{analytic::FacetStrategy::vndf, spec.max_k};
-      const double rho_cos = analytic::vgroove_pdf_and_brdf_flatland(spec.theta_i, to, spec.ndf, spec.alpha, opt).rho_cos;
+      const double rho_cos =
+          analytic::vgroove_pdf_and_brdf_flatland(spec.theta_i, to, spec.ndf, spec.alpha, opt).rho_cos;
       return std::pair<double, bool>{pdf > 0.0 ? rho_cos / pdf : 0.0, pdf > 0.0};
     });
-  const auto lowest = std::min_element(out.rows.begin(), out.rows.end(),
-                                       [](const StrategyStats& a, const StrategyStats& b) { return a.variance < b.variance; });
-  const auto best = std::max_element(out.rows.begin(), out.rows.end(), [](const StrategyStats& a, const StrategyStats& b) {
-    return a.efficiency < b.efficiency;
-  });
+  const auto lowest =
+      std::min_element(out.rows.begin(), out.rows.end(),
+                       [](const StrategyStats& a, const StrategyStats& b) { return a.variance < b.variance; });
+  const auto best =
+      std::max_element(out.rows.begin(), out.rows.end(),
+                       [](const StrategyStats& a, const StrategyStats& b) { return a.efficiency < b.efficiency; });
   out.lowest_variance = lowest->strategy;
   out.most_efficient = best->strategy;
   return out;
@@ -339,16 +368,17 @@ nlohmann::json variance_json(const VarianceOutcome& o) {
     rows.push_back(std::move(r));
   }
   const VarianceSpec& s = o.spec;
-  return {{"dimension", surface_dim_name(s.dim)},
-          {"ndf", analytic::ndf_name(s.ndf)},
-          {"alpha", s.alpha},
-          {"theta_i_deg", output_deg(s.theta_i)},
-          {"max_k", s.max_k},
-          {"samples", s.samples},
-          {"fresnel", s.schlick_f0 < 1.0 ? "schlick F0 = " + std::to_string(s.schlick_f0) : std::string("none (F = 1)")},
-          {"strategies", rows},
-          {"lowest_variance", o.lowest_variance},
-          {"most_efficient", o.most_efficient}};
+  return {
+      {"dimension", surface_dim_name(s.dim)},
+      {"ndf", analytic::ndf_name(s.ndf)},
+      {"alpha", s.alpha},
+      {"theta_i_deg", output_deg(s.theta_i)},
+      {"max_k", s.max_k},
+      {"samples", s.samples},
+      {"fresnel", s.schlick_f0 < 1.0 ? "schlick F0 = " + std::to_string(s.schlick_f0) : std::string("none (F = 1)")},
+      {"strategies", rows},
+      {"lowest_variance", o.lowest_variance},
+      {"most_efficient", o.most_efficient}};
 }
 
 }  // namespace vgroove::validation

@@ -13,9 +13,9 @@
 // whole renormalized), the Jacobian of Eq. (13) off by (k + 1)/k for k >= 2, and the printed
 // p(o) = |s.n| D(s) G (normalized to the routine's mass, so that only its shape is tested) must be
 // rejected: those tests assert rejection.
+#include "vgroove/analytic/hemisphere_quadrature.h"
 #include "vgroove/analytic/sampling_3d.h"
 #include "vgroove/analytic/sampling_flatland.h"
-#include "vgroove/analytic/hemisphere_quadrature.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/validation/sampling_check.h"
 
@@ -38,8 +38,8 @@ std::string describe(const Chi2Outcome& o) {
   os << surface_dim_name(s.dim) << " " << analytic::ndf_name(s.ndf) << " alpha=" << s.alpha
      << " theta_i=" << s.theta_i / kRadPerDeg << " " << analytic::strategy_name(s.strategy) << ": stat "
      << o.test.statistic << " dof " << o.test.dof << " p " << o.test.p_value << " level " << o.test.level
-     << " | pdf integral " << o.pdf_integral << " + failure " << o.failure_probability << " - 1 = "
-     << o.normalization_error << " (quadrature error " << o.quadrature_error << ")";
+     << " | pdf integral " << o.pdf_integral << " + failure " << o.failure_probability
+     << " - 1 = " << o.normalization_error << " (quadrature error " << o.quadrature_error << ")";
   if (!o.pass) os << "\n" << chi2_json(o)["table"].dump();  // the table, for a failure
   return os.str();
 }
@@ -67,12 +67,12 @@ TEST(SamplingChi2, ThreeD) {
     double alpha, deg;
     FacetStrategy st;
   };
-  for (const Case& c : {Case{NdfKind::ggx, 0.5, 30.0, FacetStrategy::printed}, Case{NdfKind::ggx, 0.5, 30.0, FacetStrategy::vndf},
-                        Case{NdfKind::ggx, 0.5, 30.0, FacetStrategy::smith_vndf},
-                        Case{NdfKind::ggx, 1.5, 60.0, FacetStrategy::bounded_vndf},
-                        Case{NdfKind::beckmann, 0.3, 75.0, FacetStrategy::vndf},
-                        Case{NdfKind::phong, 1.0, 0.0, FacetStrategy::printed},
-                        Case{NdfKind::beckmann, 0.1, 85.0, FacetStrategy::printed}}) {
+  for (const Case& c :
+       {Case{NdfKind::ggx, 0.5, 30.0, FacetStrategy::printed}, Case{NdfKind::ggx, 0.5, 30.0, FacetStrategy::vndf},
+        Case{NdfKind::ggx, 0.5, 30.0, FacetStrategy::smith_vndf},
+        Case{NdfKind::ggx, 1.5, 60.0, FacetStrategy::bounded_vndf},
+        Case{NdfKind::beckmann, 0.3, 75.0, FacetStrategy::vndf}, Case{NdfKind::phong, 1.0, 0.0, FacetStrategy::printed},
+        Case{NdfKind::beckmann, 0.1, 85.0, FacetStrategy::printed}}) {
     const Chi2Outcome o = run_chi2(spec(SurfaceDim::three_d, c.ndf, c.alpha, c.deg, c.st, 100000, kDefaultFamily));
     EXPECT_TRUE(o.pass) << describe(o);
   }
@@ -84,12 +84,12 @@ TEST(SamplingChi2, Flatland) {
     double alpha, deg;
     FacetStrategy st;
   };
-  for (const Case& c : {Case{NdfKind::ggx, 0.5, 30.0, FacetStrategy::printed}, Case{NdfKind::ggx, 0.5, 30.0, FacetStrategy::vndf},
-                        Case{NdfKind::ggx, 1.0, 60.0, FacetStrategy::smith_vndf},
-                        Case{NdfKind::phong, 1.5, 85.0, FacetStrategy::vndf},
-                        Case{NdfKind::beckmann, 0.1, 0.0, FacetStrategy::printed},
-                        Case{NdfKind::phong, 0.3, 75.0, FacetStrategy::printed},
-                        Case{NdfKind::beckmann, 0.7, 45.0, FacetStrategy::vndf}}) {
+  for (const Case& c :
+       {Case{NdfKind::ggx, 0.5, 30.0, FacetStrategy::printed}, Case{NdfKind::ggx, 0.5, 30.0, FacetStrategy::vndf},
+        Case{NdfKind::ggx, 1.0, 60.0, FacetStrategy::smith_vndf}, Case{NdfKind::phong, 1.5, 85.0, FacetStrategy::vndf},
+        Case{NdfKind::beckmann, 0.1, 0.0, FacetStrategy::printed},
+        Case{NdfKind::phong, 0.3, 75.0, FacetStrategy::printed},
+        Case{NdfKind::beckmann, 0.7, 45.0, FacetStrategy::vndf}}) {
     const Chi2Outcome o = run_chi2(spec(SurfaceDim::flatland, c.ndf, c.alpha, c.deg, c.st, 200000, kDefaultFamily));
     EXPECT_TRUE(o.pass) << describe(o);
   }
@@ -169,7 +169,9 @@ HeldDensity raised_flatland(const Chi2Outcome& base, double eps, bool k2) {
   };
   const Raised r{eps, analytic::integrate_half_circle(s.theta_i, part, s.alpha, 1e-10).value, base.failure_probability};
   HeldDensity h;
-  h.pdf2 = [=](double o) { return r.scale() * (analytic::vgroove_pdf_flatland(s.theta_i, o, s.ndf, s.alpha, opt) + r.eps * part(o)); };
+  h.pdf2 = [=](double o) {
+    return r.scale() * (analytic::vgroove_pdf_flatland(s.theta_i, o, s.ndf, s.alpha, opt) + r.eps * part(o));
+  };
   h.none = r.none;
   return h;
 }
@@ -214,10 +216,11 @@ TEST(SamplingChi2Power, RejectsThePrintedP) {
   analytic::HemisphereOptions ho;
   ho.tol = 1e-5;
   ho.scale = s.alpha;
-  const double total = analytic::integrate_hemisphere(
-                           analytic::Dir3{-i.x, -i.y, i.z},
-                           [&](const analytic::Dir3& o) { return analytic::printed_p_3d(i, o, s.ndf, s.alpha, s.max_k); }, ho)
-                           .value;
+  const double total =
+      analytic::integrate_hemisphere(
+          analytic::Dir3{-i.x, -i.y, i.z},
+          [&](const analytic::Dir3& o) { return analytic::printed_p_3d(i, o, s.ndf, s.alpha, s.max_k); }, ho)
+          .value;
   HeldDensity printed;
   printed.none = right.failure_probability;
   printed.pdf3 = [&](const analytic::Dir3& o) {
