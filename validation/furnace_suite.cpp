@@ -58,7 +58,8 @@ void run_3d(const FurnaceSuite& s, FurnaceOutcome& out, const BrdfUnderTest& brd
   ho.tol = s.tolerance_3d;
   ho.scale = c.alpha;
   const analytic::Dir3 mirror{-i.x, -i.y, i.z};
-  const analytic::AdaptiveResult a = analytic::integrate_hemisphere(mirror, [&](const analytic::Dir3& o) { return rho(o) * o.z; }, ho);
+  const analytic::AdaptiveResult a = analytic::integrate_hemisphere(
+      mirror, [&](const analytic::Dir3& o) { return rho(o) * o.z; }, ho);
   const analytic::AdaptiveResult ct = analytic::integrate_hemisphere(
       mirror, [&](const analytic::Dir3& o) { return analytic::cook_torrance(i, o, c.ndf, c.alpha) * o.z; }, ho);
   out.albedo_quadrature = a.value;
@@ -247,9 +248,8 @@ FurnaceOutcome run_furnace_case(const FurnaceSuite& suite, const BrdfCase& c, co
   // within 10/n of 1: smooth surfaces) the sample can miss them all, so the standard error is then
   // at least the bound of a [0, 1] weight, sqrt(a (1 - a) / n).
   const double a = std::clamp(out.cook_torrance_quadrature, 0.0, 1.0);
-  const double se_ct =
-      n * (1.0 - a) < 10.0 ? std::max(out.cook_torrance_standard_error, std::sqrt(a * (1.0 - a) / n))
-                           : out.cook_torrance_standard_error;
+  const double se_ct = n * (1.0 - a) < 10.0 ? std::max(out.cook_torrance_standard_error, std::sqrt(a * (1.0 - a) / n))
+                                            : out.cook_torrance_standard_error;
   out.cook_torrance_ok =
       std::abs(out.cook_torrance_estimate - out.cook_torrance_quadrature) <= suite.sigmas * se_ct + 1e-12 + tol;
   // The sanity line: at most one ray lost (a vertex hit is measure zero, but possible).
@@ -297,8 +297,9 @@ nlohmann::json furnace_report_json(const FurnaceSuite& suite, const FurnaceRun& 
        "albedo_estimate + flux_beyond_max_k - 1 within sigmas standard errors"},
       {"cook_torrance_quadrature / _estimate",
        "Eq. (1)-(3) with the V-cavity G by the same two routes; 1 - albedo is what single scattering loses"},
-      {"albedo_sim", "sanity line: rays traced on a procedural surface that leave (or are still inside at the "
-                     "bounce limit) over rays; 1 by the surface's construction, it tests the tracer's bookkeeping"}};
+      {"albedo_sim",
+       "sanity line: rays traced on a procedural surface that leave (or are still inside at the "
+       "bounce limit) over rays; 1 by the surface's construction, it tests the tracer's bookkeeping"}};
   nlohmann::json cases = nlohmann::json::array();
   double worst_energy = 0.0, worst_estimate_sigmas = 0.0, lowest_ct = 1.0;
   std::size_t passed = 0;
@@ -361,7 +362,8 @@ void print_furnace_table(std::ostream& os, const FurnaceSuite& suite, const Furn
                 "sim", "pass");
   os << line;
   for (const FurnaceOutcome& o : run.cases) {
-    std::snprintf(line, sizeof line, "  %-8s %-8s %5.2f %7.2f %12.9f %10.3e %10.1e %12.9f %10.1e %10.6f %10.6f %7.5f %5s\n",
+    std::snprintf(line, sizeof line,
+                  "  %-8s %-8s %5.2f %7.2f %12.9f %10.3e %10.1e %12.9f %10.1e %10.6f %10.6f %7.5f %5s\n",
                   surface_dim_name(o.c.dim), analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta_i),
                   o.albedo_quadrature, o.flux_beyond_max_k, o.albedo_quadrature + o.flux_beyond_max_k - 1.0,
                   o.albedo_estimate, o.albedo_estimate + o.flux_beyond_max_k - 1.0, o.cook_torrance_quadrature,

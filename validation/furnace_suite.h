@@ -52,7 +52,7 @@ struct FurnaceSuite {
   int max_k = 256;
   long samples = 20000;  // the estimator's
   analytic::FacetStrategy strategy = analytic::FacetStrategy::vndf;
-  long rays = 20000;     // the simulated sanity line
+  long rays = 20000;  // the simulated sanity line
   int grooves = 20000;
   std::uint64_t seed = 1;
   double sigmas = 5.0;

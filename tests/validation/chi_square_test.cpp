@@ -14,7 +14,8 @@ namespace {
 
 TEST(ChiSquare, SurvivalFunctionAtTabulatedPoints) {
   // Q(1, x) = exp(-x): two degrees of freedom.
-  for (double x : {0.1, 1.0, 5.0, 30.0}) EXPECT_NEAR(chi_square_sf(2.0 * x, 2), std::exp(-x), 1e-14 * std::exp(-x) + 1e-300);
+  for (double x : {0.1, 1.0, 5.0, 30.0})
+    EXPECT_NEAR(chi_square_sf(2.0 * x, 2), std::exp(-x), 1e-14 * std::exp(-x) + 1e-300);
   // The 5 % and 1 % critical values of standard tables.
   EXPECT_NEAR(chi_square_sf(3.841458820694124, 1), 0.05, 1e-12);
   EXPECT_NEAR(chi_square_sf(6.634896601021214, 1), 0.01, 1e-12);

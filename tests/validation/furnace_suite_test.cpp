@@ -33,7 +33,8 @@ FurnaceSuite small_suite() {
 
 // Eq. (16) with |ds/do| multiplied by (k + 1)/k for k >= 2 (the error a wrong Eq. 13 would make):
 // the term brdf_3d.cpp sums, written out here with the one change.
-double broken_brdf_3d(const analytic::Dir3& i, const analytic::Dir3& o, analytic::NdfKind ndf, double alpha, int max_k) {
+double broken_brdf_3d(const analytic::Dir3& i, const analytic::Dir3& o, analytic::NdfKind ndf, double alpha,
+                      int max_k) {
   analytic::GrooveFrame f;
   if (!(i.z > 0.0 && o.z > 0.0) || !analytic::groove_frame(i, o, f)) return 0.0;
   double sum = 0.0;
@@ -91,9 +92,9 @@ TEST(FurnaceSuite, BadSpecsNameTheField) {
 TEST(FurnaceSuite, Eq17PassesBothRoutes) {
   const FurnaceSuite s = small_suite();
   for (SurfaceDim dim : {SurfaceDim::flatland, SurfaceDim::three_d})
-    for (const auto& [ndf, alpha, deg] : {std::tuple{analytic::NdfKind::ggx, 0.7, 30.0},
-                                          std::tuple{analytic::NdfKind::phong, 1.5, 60.0},
-                                          std::tuple{analytic::NdfKind::beckmann, 0.1, 80.0}}) {
+    for (const auto& [ndf, alpha, deg] :
+         {std::tuple{analytic::NdfKind::ggx, 0.7, 30.0}, std::tuple{analytic::NdfKind::phong, 1.5, 60.0},
+          std::tuple{analytic::NdfKind::beckmann, 0.1, 80.0}}) {
       const FurnaceOutcome o = run_furnace_case(s, BrdfCase{ndf, alpha, deg * kRadPerDeg, dim});
       EXPECT_TRUE(o.pass) << surface_dim_name(dim) << " " << analytic::ndf_name(ndf) << " alpha=" << alpha
                           << " theta_i=" << deg << ": energy " << o.albedo_quadrature + o.flux_beyond_max_k - 1.0
@@ -111,7 +112,9 @@ TEST(FurnaceSuite, BrokenJacobianFailsBothRoutes) {
   const analytic::NdfKind ndf = analytic::NdfKind::ggx;
   const double alpha = 0.7, ti = 30.0 * kRadPerDeg;
   BrdfUnderTest broken;
-  broken.rho3 = [&](const analytic::Dir3& i, const analytic::Dir3& o) { return broken_brdf_3d(i, o, ndf, alpha, s.max_k); };
+  broken.rho3 = [&](const analytic::Dir3& i, const analytic::Dir3& o) {
+    return broken_brdf_3d(i, o, ndf, alpha, s.max_k);
+  };
   broken.rho2 = [&](double a, double b) { return broken_brdf_flatland(a, b, ndf, alpha, s.max_k); };
   for (SurfaceDim dim : {SurfaceDim::flatland, SurfaceDim::three_d}) {
     const FurnaceOutcome o = run_furnace_case(s, BrdfCase{ndf, alpha, ti, dim}, broken);
