@@ -59,6 +59,25 @@ double D(NdfKind kind, double theta_m, double alpha) {
   return 0.0;
 }
 
+double D_cs(NdfKind kind, double c, double s, double alpha) {
+  // The formulas of D_beckmann, D_ggx and D_phong.
+  switch (kind) {
+    case NdfKind::ggx: {
+      const double q = alpha * alpha * c * c + s * s;
+      return alpha * alpha / (std::numbers::pi * q * q);
+    }
+    case NdfKind::beckmann: {
+      const double t = s / c, c2 = c * c;
+      return std::exp(-(t * t) / (alpha * alpha)) / (std::numbers::pi * alpha * alpha * c2 * c2);
+    }
+    case NdfKind::phong: {
+      const double p = phong_exponent(alpha);
+      return (p + 2.0) / (2.0 * std::numbers::pi) * std::pow(c, p);
+    }
+  }
+  return 0.0;
+}
+
 double D2_beckmann(double theta_m, double alpha) {
   assert(alpha > 0.0);
   if (outside(theta_m)) return 0.0;
@@ -97,6 +116,28 @@ double D2(NdfKind kind, double theta_m, double alpha) {
       return D2_ggx(theta_m, alpha);
     case NdfKind::phong:
       return D2_phong(theta_m, alpha);
+  }
+  return 0.0;
+}
+
+double D2_cs(NdfKind kind, double c, double s, double alpha) {
+  // The formulas of D2_beckmann, D2_ggx and D2_phong.
+  if (!(c > 0.0)) return 0.0;
+  switch (kind) {
+    case NdfKind::ggx: {
+      const double q = alpha * alpha * c * c + s * s;
+      return alpha * alpha / (2.0 * q * std::sqrt(q));
+    }
+    case NdfKind::beckmann: {
+      const double t = s / c;
+      return std::exp(-(t * t) / (alpha * alpha)) / (std::sqrt(std::numbers::pi) * alpha * c * c * c);
+    }
+    case NdfKind::phong: {
+      const double p = phong_exponent(alpha);
+      const double K =
+          std::exp(std::lgamma(0.5 * (p + 3.0)) - std::lgamma(0.5 * (p + 2.0))) / std::sqrt(std::numbers::pi);
+      return K * std::pow(c, p);
+    }
   }
   return 0.0;
 }

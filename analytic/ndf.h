@@ -78,12 +78,17 @@ double D_beckmann(double theta_m, double alpha);  // exp(-tan^2/a^2) / (pi a^2 c
 double D_ggx(double theta_m, double alpha);       // a^2 / (pi cos^4 (a^2 + tan^2)^2)
 double D_phong(double theta_m, double alpha);     // (p+2)/(2 pi) cos^p, p = phong_exponent(a)
 double D(NdfKind kind, double theta_m, double alpha);
+// The same from cos(theta_m) and sin(theta_m), theta_m in [0, pi/2) (no chi+ test): saves the
+// transcendental calls where the caller has both (the BRDF's and the samplers' sums).
+double D_cs(NdfKind kind, double cos_m, double sin_m, double alpha);
 
 // Flatland NDFs, D2(theta_m; alpha) over (-pi/2, pi/2), zero outside (see the header comment).
 double D2_beckmann(double theta_m, double alpha);
 double D2_ggx(double theta_m, double alpha);
 double D2_phong(double theta_m, double alpha);
 double D2(NdfKind kind, double theta_m, double alpha);
+// The same from cos(theta_m) >= 0 and sin(theta_m).
+double D2_cs(NdfKind kind, double cos_m, double sin_m, double alpha);
 
 // Lee et al. 2018, Eq. (2) (Heitz 2014, Eq. (24)): the V-cavity masking
 //   G1(o, h) = H(o.h / o.n) min(1, 2 |h.n| |o.n| / |o.h|),

@@ -89,6 +89,24 @@ struct SimulateArgs {
 };
 int cmd_simulate(const SimulateArgs& a);
 
+// Importance sampling of the symmetric V-groove BRDF: n directions, their chi-square against the
+// sampler's pdf and the weights' statistics.
+struct SampleArgs {
+  bool dry_run = false;  // check the values, do no work
+  std::string ndf = "ggx";
+  double alpha = 0.5;
+  double theta_i_deg = 30.0;
+  long n = 100000;
+  std::string strategy = "vndf";
+  std::string dim = "3d";
+  int max_k = 256;
+  long long seed = 1;
+  int cos_bins = 8, phi_bins = 16, theta_bins = 36;
+  std::string out;
+  bool force = false;
+};
+int cmd_sample(const SampleArgs& a);
+
 // `vgroove bins`: a "brdf" suite's bin layout, for a foreign model's table.
 struct BinsArgs {
   bool dry_run = false;

@@ -60,7 +60,7 @@ struct MaskingMeasure {
   // The lit fraction of the profile's length from i (traced with its standard deviation).
   double lit_traced = 0.0, lit_traced_sd = 0.0, lit_vcavity = 0.0, lit_smith = 0.0;
   // Traced counts against V-cavity's expected counts.
-  ChiSquareResult g1_chi2, g2_chi2;
+  OrderedChiSquare g1_chi2, g2_chi2;
   std::int64_t rays = 0, lost = 0;  // lost: first hits at a vertex or on a back face (view o)
 };
 

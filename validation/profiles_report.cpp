@@ -30,7 +30,7 @@ nlohmann::json lobe_distance_json(const LobeDistance& d) {
           {"max_z_by_k", d.max_z}, {"within_noise", d.within_noise}};
 }
 
-nlohmann::json chi_json(const ChiSquareResult& c) { return {{"stat", c.stat}, {"dof", c.dof}, {"p", c.p}}; }
+nlohmann::json chi_json(const OrderedChiSquare& c) { return {{"stat", c.stat}, {"dof", c.dof}, {"p", c.p}}; }
 
 std::vector<double> edges_deg(int bins) {
   std::vector<double> e;

@@ -114,9 +114,9 @@ LobeDistance lobe_distance(const BinStat& traced, const std::vector<double>& mod
   return d;
 }
 
-ChiSquareResult combine(const std::vector<ChiSquareResult>& parts) {
-  ChiSquareResult c;
-  for (const ChiSquareResult& p : parts) c.stat += p.stat, c.dof += p.dof;
+OrderedChiSquare combine(const std::vector<OrderedChiSquare>& parts) {
+  OrderedChiSquare c;
+  for (const OrderedChiSquare& p : parts) c.stat += p.stat, c.dof += p.dof;
   c.p = c.dof > 0 ? gamma_q(0.5 * c.dof, 0.5 * c.stat) : 1.0;
   return c;
 }
@@ -153,7 +153,7 @@ SurfaceOutcome run_surface(const ProfilesSuite& suite, std::size_t case_index, c
   const std::uint64_t surface_key = surface == ProfileSurface::random ? 0 : 1;
   std::vector<std::vector<double>> g1w, g1t, g1v, g2w, g2t, g2v, lobes;
   std::vector<double> identities, vc_averages, lit_t, lit_s, lit_v, ident_err;
-  std::vector<ChiSquareResult> chi1, chi2;
+  std::vector<OrderedChiSquare> chi1, chi2;
   double lit_num = 0.0, lit_var = 0.0;
   std::vector<std::int64_t> pooled(static_cast<std::size_t>(rows * bins), 0), by_k(static_cast<std::size_t>(rows), 0);
   std::int64_t lobe_rays = 0, escaped = 0;

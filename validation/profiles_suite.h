@@ -112,7 +112,7 @@ struct SurfaceOutcome {
   ModelDistance g1_d_smith, g1_d_vcavity, g2_d_separable, g2_d_correlated, g2_d_vcavity;
   double lit_traced = 0.0, lit_se = 0.0, lit_smith = 0.0, lit_vcavity = 0.0;
   // Against V-cavity, over all realizations (the verdict on V-groove profiles).
-  ChiSquareResult g1_chi2, g2_chi2;
+  OrderedChiSquare g1_chi2, g2_chi2;
   double lit_z_vcavity = 0.0;
   // The per-k lobe: joint (k row, bin) fractions of the incident flux, mean and se.
   BinStat lobe;

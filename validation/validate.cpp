@@ -10,12 +10,13 @@
 namespace vgroove::validation {
 
 namespace {
-// Suites of procedural surfaces: "kind" brdf (Fig. 11), furnace, table2, profiles,
+// Suites of rough surfaces: "kind" brdf (Fig. 11), furnace, sampling, table2, profiles,
 // nonsymmetric_brdf.
 bool is_microsurface_suite(const nlohmann::json& j) {
   if (!j.is_object() || !j.contains("kind") || !j["kind"].is_string()) return false;
   const std::string k = j["kind"].get<std::string>();
-  return k == "brdf" || k == "furnace" || k == "table2" || k == "profiles" || k == "nonsymmetric_brdf";
+  return k == "brdf" || k == "furnace" || k == "table2" || k == "profiles" || k == "nonsymmetric_brdf" ||
+         k == "sampling";
 }
 
 support::ProgressFn progress_for(const ProgressFactory& f, const std::string& name) {
@@ -41,7 +42,22 @@ ValidationPlan plan_validation(const ValidateOptions& a) {
     if (a.model_table && kind != "brdf")
       throw support::UserError(a.names.model_table + " applies to suites of kind \"brdf\"; " + a.suite +
                                " is of kind " + kind);
-    if (kind == "nonsymmetric_brdf") {
+    if (kind == "sampling") {
+      if (a.rays)
+        throw support::UserError(a.names.rays + " applies to suites that trace rays; " + a.suite +
+                                 " (kind sampling) sets its samples in the file");
+      if (a.seed)
+        throw support::UserError(a.names.seed + ": " + a.suite + " (kind sampling) sets its seed in the file");
+      plan.kind = ValidationPlan::Kind::sampling;
+      plan.sampling = parse_sampling_suite(j, a.suite);
+    } else if (kind == "furnace") {
+      if (a.rays)
+        throw support::UserError(a.names.rays + " applies to suites that trace rays; " + a.suite +
+                                 " (kind furnace) sets its samples and sanity rays in the file");
+      plan.kind = ValidationPlan::Kind::furnace;
+      plan.furnace = parse_furnace_suite(j, a.suite);
+      if (a.seed) plan.furnace.seed = static_cast<std::uint64_t>(*a.seed);
+    } else if (kind == "nonsymmetric_brdf") {
       plan.kind = ValidationPlan::Kind::nonsymmetric;
       plan.nonsymmetric = parse_nonsymmetric_suite(j, a.suite);
       if (a.seed) plan.nonsymmetric.seed = static_cast<std::uint64_t>(*a.seed);
@@ -98,6 +114,24 @@ ValidationResult run_validation(const ValidationPlan& plan, const ProgressFactor
       if (run.interrupted) return res.interrupted = true, res;
       print_profiles_table(table, plan.profiles, run);
       res.report = profiles_report_json(plan.profiles, run);
+      res.pass = run.pass;
+      break;
+    }
+    case ValidationPlan::Kind::sampling: {
+      const SamplingRun run =
+          run_sampling_suite(plan.sampling, plan.threads, progress_for(progress, plan.sampling.name), cancel);
+      if (run.interrupted) return res.interrupted = true, res;
+      print_sampling_table(table, plan.sampling, run);
+      res.report = sampling_report_json(plan.sampling, run);
+      res.pass = run.pass;
+      break;
+    }
+    case ValidationPlan::Kind::furnace: {
+      const FurnaceRun run =
+          run_furnace_suite(plan.furnace, 0, plan.threads, progress_for(progress, plan.furnace.name), cancel);
+      if (run.interrupted) return res.interrupted = true, res;
+      print_furnace_table(table, plan.furnace, run);
+      res.report = furnace_report_json(plan.furnace, run);
       res.pass = run.pass;
       break;
     }

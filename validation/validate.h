@@ -1,7 +1,7 @@
 // vgroove validation: `validate` as one library call, shared by the command line and the Python
 // module: read a suite file of any kind (single grooves: Table 1, stress; rough surfaces: "brdf"
-// (Fig. 11), "furnace", "table2", "profiles", "nonsymmetric_brdf"), apply the overrides, run it, and return the report
-// JSON and the table the command line prints.
+// (Fig. 11), "furnace", "sampling", "table2", "profiles", "nonsymmetric_brdf"), apply the overrides, run it, and return
+// the report JSON and the table the command line prints.
 //
 // Two steps, so that a caller can check everything (and its output target) before the work:
 // plan_validation reads and checks (support::UserError naming the file, JSON path or option),
@@ -10,10 +10,12 @@
 
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/brdf_suite.h"
+#include "vgroove/validation/furnace_suite.h"
 #include "vgroove/validation/model_table.h"
 #include "vgroove/validation/nonsymmetric_suite.h"
 #include "vgroove/validation/profiles_suite.h"
 #include "vgroove/validation/run_options.h"
+#include "vgroove/validation/sampling_suite.h"
 #include "vgroove/validation/suite.h"
 #include "vgroove/validation/table2_suite.h"
 
@@ -41,10 +43,21 @@ struct ValidateOptions {
 
 // A suite file read and checked, with the overrides applied.
 struct ValidationPlan {
-  enum class Kind { single_grooves, brdf, table2, model_table, profiles, nonsymmetric } kind = Kind::single_grooves;
+  enum class Kind {
+    single_grooves,
+    brdf,
+    table2,
+    model_table,
+    profiles,
+    nonsymmetric,
+    furnace,
+    sampling
+  } kind = Kind::single_grooves;
   SuiteSet set;                   // single grooves
   std::vector<CaseOptions> opts;  // per suite of the set
-  BrdfSuite brdf;                 // "brdf" and "furnace"
+  BrdfSuite brdf;
+  FurnaceSuite furnace;
+  SamplingSuite sampling;
   Table2Suite table2;
   ProfilesSuite profiles;
   NonsymmetricSuite nonsymmetric;

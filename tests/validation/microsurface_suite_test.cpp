@@ -1,7 +1,8 @@
-// The microsurface suites (Fig. 11, furnace, Table 2): strict specs, thresholds derived from the
+// The microsurface suites (Fig. 11, Table 2; the furnace's file parses): strict specs, thresholds derived from the
 // sample count that accept a correct model and reject a slightly wrong one, and reports a plot
 // can be drawn from.
 #include "vgroove/validation/brdf_suite.h"
+#include "vgroove/validation/furnace_suite.h"
 #include "vgroove/validation/table2_suite.h"
 
 #include "tests/test_files.h"
@@ -44,9 +45,9 @@ TEST(MicrosurfaceSuite, ShippedSuitesParse) {
   EXPECT_EQ(last.ndf, analytic::NdfKind::phong);
   EXPECT_DOUBLE_EQ(last.alpha, 1.0);
   EXPECT_NEAR(last.theta_i, 80.0 * std::numbers::pi / 180.0, 1e-15);
-  const BrdfSuite furnace =
-      parse_brdf_suite(json::parse(testing_files::read_text(dir + "furnace.json")), "furnace.json");
-  EXPECT_EQ(furnace.kind, "furnace");
+  const FurnaceSuite furnace =
+      parse_furnace_suite(json::parse(testing_files::read_text(dir + "furnace.json")), "furnace.json");
+  EXPECT_EQ(furnace.cases(), 3u * 8u * 5u * 2u);
   const Table2Suite t2 = parse_table2_suite(json::parse(testing_files::read_text(dir + "table2.json")), "table2.json");
   EXPECT_EQ(t2.paper.size(), 27u);
 }
