@@ -28,7 +28,7 @@ int cmd_sample(const SampleArgs& a) {
   if (!ndf) throw support::UserError("--ndf = \"" + a.ndf + "\" is not one of \"ggx\", \"beckmann\", \"phong\"");
   if (!(a.alpha > 0.0 && a.alpha <= validation::kMaxAlpha)) out_of_range("--alpha", a.alpha, "(0, 2]");
   if (!(a.theta_i_deg >= 0.0 && a.theta_i_deg < 90.0)) out_of_range("--theta-i-deg", a.theta_i_deg, "[0, 90)");
-  if (a.n < 1 || a.n > kMaxRays) out_of_range("--n", static_cast<double>(a.n), "[1, 1000000000]");
+  if (a.n < 1 || a.n > validation::kMaxRays) out_of_range("--n", static_cast<double>(a.n), "[1, 1000000000]");
   if (a.dim != "3d" && a.dim != "flatland")
     throw support::UserError("--dim = \"" + a.dim + "\" is not one of \"3d\", \"flatland\"");
   const bool flatland = a.dim == "flatland";
