@@ -25,8 +25,8 @@ void write_partial(const std::string& out, const nlohmann::json& part, bool forc
   support::write_file_atomically(out, part.dump() + "\n", force);
   const nlohmann::json& h = part["partial"];
   std::cout << "partial report: " << out << " (shard " << h["shard"]["index"] << "/" << h["shard"]["count"] << ", "
-            << h["items"].size() << " of " << h["job"]["items"] << " work items, " << part["units"].size()
-            << " units, " << h["wall_s"].get<double>() << " s); merge the parts with `vgroove merge PART... --out R.json`\n";
+            << h["items"].size() << " of " << h["job"]["items"] << " work items, " << part["units"].size() << " units, "
+            << h["wall_s"].get<double>() << " s); merge the parts with `vgroove merge PART... --out R.json`\n";
 }
 
 std::vector<std::string> energy_npy_files(const EnergyGrid& g, const std::string& out, bool npy) {
@@ -64,7 +64,8 @@ int cmd_energy(const EnergyArgs& a) {
     g.ndfs.push_back(*k);
   }
   for (const std::string& d : a.dims) {
-    if (d != "flatland" && d != "3d") throw support::UserError("--dim = \"" + d + "\" is not one of \"flatland\", \"3d\"");
+    if (d != "flatland" && d != "3d")
+      throw support::UserError("--dim = \"" + d + "\" is not one of \"flatland\", \"3d\"");
     g.dims.push_back(d == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d);
   }
   auto points = [](int n, const std::string& flag) {
@@ -88,7 +89,8 @@ int cmd_energy(const EnergyArgs& a) {
   }
   if (a.dry_run) return 0;
   if (shard) {
-    const auto part = run_job_part(energy_job(g), *shard, a.threads, terminal_progress("energy " + shard->text()), a.cancel);
+    const auto part =
+        run_job_part(energy_job(g), *shard, a.threads, terminal_progress("energy " + shard->text()), a.cancel);
     if (!part) return interrupted_no_report();
     write_partial(a.out, *part, a.force);
     return 0;

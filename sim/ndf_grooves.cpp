@@ -36,8 +36,8 @@ BounceCounts trace_ndf_grooves_chunk(const NdfGrooveOptions& opt, std::int64_t c
       const double t = std::min(steepest, sample_theta_m_3d(opt.ndf, opt.alpha, uniform_open(rng)));
       const double phi = std::numbers::pi * uniform_open(rng);
       const Groove g = make_symmetric_groove(std::numbers::pi - 2.0 * t);
-      const Trace3dResult r = trace_groove3d(g, GrooveFrame3d{std::cos(phi), std::sin(phi)}, i, uniform_open(rng),
-                                             opt.trace);
+      const Trace3dResult r =
+          trace_groove3d(g, GrooveFrame3d{std::cos(phi), std::sin(phi)}, i, uniform_open(rng), opt.trace);
       tally(r.trace, r.o.z() > 0.0);
     }
   } else {

@@ -6,7 +6,6 @@
 #include <cassert>
 #include <charconv>
 #include <numeric>
-#include <queue>
 
 namespace vgroove::support {
 
@@ -43,20 +42,15 @@ Shard parse_shard(const std::string& text, const std::string& what) {
 
 std::vector<int> assign_items(const std::vector<WorkItem>& items, int parts) {
   assert(parts >= 1);
-  std::vector<std::size_t> order(items.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return items[a].cost > items[b].cost; });
-  // (load, part): the least loaded part on top, the lower part first among equals.
-  using Load = std::pair<std::int64_t, int>;
-  std::priority_queue<Load, std::vector<Load>, std::greater<Load>> loads;
-  for (int p = 0; p < parts; ++p) loads.push({0, p});
+  double total = 0.0;
+  for (const WorkItem& it : items) total += static_cast<double>(std::max<std::int64_t>(it.cost, 1));
   std::vector<int> owner(items.size(), 0);
-  for (std::size_t i : order) {
-    const Load l = loads.top();
-    loads.pop();
-    owner[i] = l.second;
-    loads.push({l.first + std::max<std::int64_t>(items[i].cost, 1), l.second});
+  double before = 0.0;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const double c = static_cast<double>(std::max<std::int64_t>(items[i].cost, 1));
+    // The part whose share of the total holds the item's middle.
+    owner[i] = std::min(parts - 1, static_cast<int>((before + 0.5 * c) / total * parts));
+    before += c;
   }
   return owner;
 }

@@ -48,9 +48,11 @@ inline constexpr int kMaxShards = 100000;
 // "I/N" from the command line; a UserError naming `what` (e.g. "--shard") otherwise.
 Shard parse_shard(const std::string& text, const std::string& what);
 
-// The part (0-based) that runs each item when the job is cut into `parts` parts: the costliest
-// item first, each to the part with the least work so far (ties: the lower item index first, the
-// lower part). A function of (items, parts) only.
+// The part (0-based) that runs each item when the job is cut into `parts` parts: the items in
+// order, cut where the running cost crosses a multiple of total / parts (an item goes to the part
+// that holds the middle of its cost). Consecutive items stay together, so a part touches few units
+// (and builds few surfaces); each part's estimated cost is within one item of total / parts. A
+// function of (items, parts) only.
 std::vector<int> assign_items(const std::vector<WorkItem>& items, int parts);
 // The items of part `part` (0-based), in item order.
 std::vector<std::size_t> items_of_part(const std::vector<WorkItem>& items, int parts, int part);

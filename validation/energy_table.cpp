@@ -113,8 +113,7 @@ sim::NdfGrooveOptions EnergyWork::options(std::size_t cell) const {
   return o;
 }
 
-EnergyWork::Tally EnergyWork::run_chunks(const Context&, std::size_t cell, std::int64_t begin,
-                                         std::int64_t end) const {
+EnergyWork::Tally EnergyWork::run_chunks(const Context&, std::size_t cell, std::int64_t begin, std::int64_t end) const {
   const sim::NdfGrooveOptions o = options(cell);
   Tally t(grid.max_k);
   for (std::int64_t c = begin; c < end; ++c) t.merge(sim::trace_ndf_grooves_chunk(o, c));
@@ -122,24 +121,22 @@ EnergyWork::Tally EnergyWork::run_chunks(const Context&, std::size_t cell, std::
 }
 
 nlohmann::json EnergyWork::tally_json(const Tally& t) {
-  return {{"rays", t.rays},         {"escaped", t.escaped},       {"blocked", t.blocked},
-          {"vertex_hits", t.vertex_hits}, {"bounce_limit", t.bounce_limit}, {"not_upward", t.not_upward},
-          {"bounces", t.bounces},   {"max_k_seen", t.max_k_seen}, {"max_k", t.max_k},
-          {"by_k", t.by_k}};
+  nlohmann::json j = fates_json(t);
+  j["max_k"] = t.max_k, j["by_k"] = t.by_k;
+  return j;
 }
 
 EnergyWork::Tally EnergyWork::tally_from_json(const nlohmann::json& j) {
   Tally t(j.at("max_k").get<int>());
-  t.rays = j.at("rays"), t.escaped = j.at("escaped"), t.blocked = j.at("blocked");
-  t.vertex_hits = j.at("vertex_hits"), t.bounce_limit = j.at("bounce_limit"), t.not_upward = j.at("not_upward");
-  t.bounces = j.at("bounces"), t.max_k_seen = j.at("max_k_seen");
+  fates_from_json(t, j);
   t.by_k = j.at("by_k").get<std::vector<std::int64_t>>();
-  if (t.by_k.size() != static_cast<std::size_t>(t.max_k) + 2) throw nlohmann::json::other_error::create(501, "by_k", &j);
+  if (t.by_k.size() != static_cast<std::size_t>(t.max_k) + 2) throw support::UserError("by_k has the wrong length");
   return t;
 }
 
 nlohmann::json EnergyWork::fixed_json(const Fixed& f) {
-  return {{"by_k", exact_json(f.by_k)}, {"albedo", exact_json(f.albedo)}, {"cook_torrance", exact_json(f.cook_torrance)}};
+  return {
+      {"by_k", exact_json(f.by_k)}, {"albedo", exact_json(f.albedo)}, {"cook_torrance", exact_json(f.cook_torrance)}};
 }
 
 EnergyWork::Fixed EnergyWork::fixed_from_json(const nlohmann::json& j) {
@@ -154,8 +151,13 @@ nlohmann::json energy_grid_json(const EnergyGrid& g) {
   nlohmann::json ndfs = nlohmann::json::array(), dims = nlohmann::json::array();
   for (auto n : g.ndfs) ndfs.push_back(ndf_name(n));
   for (auto d : g.dims) dims.push_back(surface_dim_name(d));
-  return {{"ndf", ndfs},     {"dimensions", dims}, {"alpha", exact_json(g.alphas)}, {"mu", exact_json(g.mus)},
-          {"rays", g.rays},  {"seed", g.seed},     {"max_k", g.max_k}};
+  return {{"ndf", ndfs},
+          {"dimensions", dims},
+          {"alpha", exact_json(g.alphas)},
+          {"mu", exact_json(g.mus)},
+          {"rays", g.rays},
+          {"seed", g.seed},
+          {"max_k", g.max_k}};
 }
 
 EnergyGrid energy_grid_from_json(const nlohmann::json& j, const std::string& where) {
@@ -192,7 +194,10 @@ Job<EnergyWork> energy_job(const EnergyGrid& g) {
     units[c].has_fixed = true;
     units[c].fixed_cost = model_cost_ns(cell);
   }
-  nlohmann::json d = {{"command", "energy"}, {"kind", "energy"}, {"input_file", ""}, {"input", energy_grid_json(g)},
+  nlohmann::json d = {{"command", "energy"},
+                      {"kind", "energy"},
+                      {"input_file", ""},
+                      {"input", energy_grid_json(g)},
                       {"options", nlohmann::json::object()}};
   return make_job(std::move(w), std::move(units), std::move(d));
 }
@@ -313,15 +318,18 @@ nlohmann::json energy_table_json(const EnergyTable& t, const std::vector<std::st
   for (double m : g.mus) theta.push_back(output_deg(std::acos(m)));
   j["grid"]["theta_i_deg"] = theta;
   j["definitions"] = {
-      {"E_k", "fraction of the incident light leaving after exactly k reflections (F = 1): the directional albedo "
-              "of bounce order k"},
-      {"sim", "exact tracing, every ray in a V-groove of its own drawn from the NDF (the infinite surface); "
-              "standard error sqrt(E (1 - E) / N)"},
+      {"E_k",
+       "fraction of the incident light leaving after exactly k reflections (F = 1): the directional albedo "
+       "of bounce order k"},
+      {"sim",
+       "exact tracing, every ray in a V-groove of its own drawn from the NDF (the infinite surface); "
+       "standard error sqrt(E (1 - E) / N)"},
       {"model", "Lee et al. 2018 (3D: Eq. 16-17; flatland: the flatland lobe) integrated by quadrature"},
       {"cook_torrance", "albedo of Cook-Torrance with the V-cavity G (Eq. 1-3): the model's k = 1 term"},
       {"E_multiple", "sum over k >= 2 of E_k: the energy single scattering loses"},
-      {"layout", "arrays indexed [ndf][dimension][alpha][mu], and [k - 1] last for E_sim, E_sim_se, E_model "
-                 "(k = 1..max_k; the last row holds every k > max_k); row-major"}};
+      {"layout",
+       "arrays indexed [ndf][dimension][alpha][mu], and [k - 1] last for E_sim, E_sim_se, E_model "
+       "(k = 1..max_k; the last row holds every k > max_k); row-major"}};
   nlohmann::json arrays;
   const std::vector<EnergyArray> a = energy_arrays(t);
   for (std::size_t n = 0; n < a.size(); ++n) {
@@ -337,7 +345,12 @@ nlohmann::json energy_table_json(const EnergyTable& t, const std::vector<std::st
                   {"lost_rays", ag.lost},
                   {"rays_with_zero_reflections", ag.zero_bounce},
                   {"largest_sim_model_difference_in_se", exact_json(ag.max_z)},
-                  {"at", {{"ndf", ndf_name(w.ndf)}, {"dimension", surface_dim_name(w.dim)}, {"alpha", w.alpha}, {"mu", w.mu}, {"k", ag.k}}},
+                  {"at",
+                   {{"ndf", ndf_name(w.ndf)},
+                    {"dimension", surface_dim_name(w.dim)},
+                    {"alpha", w.alpha},
+                    {"mu", w.mu},
+                    {"k", ag.k}}},
                   {"largest_model_albedo_error", exact_json(ag.max_model_albedo_error)},
                   {"largest_cook_torrance_vs_model_k1", exact_json(ag.max_single_vs_k1)},
                   {"wall_s", t.wall_s}};
@@ -373,8 +386,8 @@ void print_energy_table(std::ostream& os, const EnergyTable& t) {
     }
   const Agreement ag = agreement(t);
   os << "  largest |sim - model| " << fmt("%.2f", ag.max_z) << " standard errors (" << t.cells.size() << " cells x "
-     << g.max_k + 1 << " orders); model albedo within " << fmt("%.1e", ag.max_model_albedo_error)
-     << " of 1; lost rays " << ag.lost << " of " << ag.rays << "; wall " << fmt("%.2f", t.wall_s) << " s\n";
+     << g.max_k + 1 << " orders); model albedo within " << fmt("%.1e", ag.max_model_albedo_error) << " of 1; lost rays "
+     << ag.lost << " of " << ag.rays << "; wall " << fmt("%.2f", t.wall_s) << " s\n";
 }
 
 }  // namespace vgroove::validation

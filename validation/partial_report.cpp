@@ -26,7 +26,8 @@ std::string first_difference(const nlohmann::json& a, const nlohmann::json& b, c
     return "";
   }
   if (a.is_array()) {
-    if (a.size() != b.size()) return at + " (lengths " + std::to_string(a.size()) + ", " + std::to_string(b.size()) + ")";
+    if (a.size() != b.size())
+      return at + " (lengths " + std::to_string(a.size()) + ", " + std::to_string(b.size()) + ")";
     for (std::size_t n = 0; n < a.size(); ++n)
       if (std::string d = first_difference(a[n], b[n], at + "/" + std::to_string(n)); !d.empty()) return d;
     return "";
@@ -128,8 +129,8 @@ std::vector<Part> check_parts(std::vector<Part> parts) {
                                "): parts of different versions cannot be merged");
     if (const std::string d = first_difference(first.header.job, p.header.job, ""); !d.empty())
       throw support::UserError("merge: " + p.file + " belongs to another run: /job" + d + " = " +
-                               value_at(p.header.job, d) + ", " + first.file + " has " +
-                               value_at(first.header.job, d) + " (different suites, options or seeds)");
+                               value_at(p.header.job, d) + ", " + first.file + " has " + value_at(first.header.job, d) +
+                               " (different suites, options or seeds)");
     if (p.header.shard.count != first.header.shard.count)
       throw support::UserError("merge: " + p.file + " is shard " + p.header.shard.text() + ", " + first.file +
                                " shard " + first.header.shard.text() + ": parts of different splits");
@@ -139,8 +140,8 @@ std::vector<Part> check_parts(std::vector<Part> parts) {
   for (const Part& p : parts) {
     const auto [it, fresh] = by_index.emplace(p.header.shard.index, &p);
     if (!fresh)
-      throw support::UserError("merge: shard " + p.header.shard.text() + " is given twice (" + it->second->file +
-                               ", " + p.file + ")");
+      throw support::UserError("merge: shard " + p.header.shard.text() + " is given twice (" + it->second->file + ", " +
+                               p.file + ")");
   }
   std::string missing;
   int missing_count = 0;
@@ -168,6 +169,23 @@ std::vector<Part> check_parts(std::vector<Part> parts) {
   std::sort(parts.begin(), parts.end(),
             [](const Part& a, const Part& b) { return a.header.shard.index < b.header.shard.index; });
   return parts;
+}
+
+nlohmann::json fates_json(const sim::RayFates& t) {
+  return {{"rays", t.rays},
+          {"escaped", t.escaped},
+          {"blocked", t.blocked},
+          {"vertex_hits", t.vertex_hits},
+          {"bounce_limit", t.bounce_limit},
+          {"not_upward", t.not_upward},
+          {"bounces", t.bounces},
+          {"max_k_seen", t.max_k_seen}};
+}
+
+void fates_from_json(sim::RayFates& t, const nlohmann::json& j) {
+  t.rays = j.at("rays"), t.escaped = j.at("escaped"), t.blocked = j.at("blocked");
+  t.vertex_hits = j.at("vertex_hits"), t.bounce_limit = j.at("bounce_limit"), t.not_upward = j.at("not_upward");
+  t.bounces = j.at("bounces"), t.max_k_seen = j.at("max_k_seen");
 }
 
 }  // namespace vgroove::validation

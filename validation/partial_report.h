@@ -9,6 +9,7 @@
 // run is the single-process run bit for bit.
 #pragma once
 
+#include "vgroove/sim/ray_fates.h"
 #include "vgroove/support/work_plan.h"
 
 #include <nlohmann/json.hpp>
@@ -50,5 +51,8 @@ nlohmann::json exact_json(double v);
 nlohmann::json exact_json(const std::vector<double>& v);
 double exact_double(const nlohmann::json& j);
 std::vector<double> exact_doubles(const nlohmann::json& j);
+// The fates of a tally's rays (sim/ray_fates.h) and back.
+nlohmann::json fates_json(const sim::RayFates& t);
+void fates_from_json(sim::RayFates& t, const nlohmann::json& j);
 
 }  // namespace vgroove::validation

@@ -20,9 +20,9 @@
 #pragma once
 
 #include "vgroove/support/parallel.h"
-#include "vgroove/validation/partial_report.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/support/work_plan.h"
+#include "vgroove/validation/partial_report.h"
 
 #include <nlohmann/json.hpp>
 
@@ -275,7 +275,8 @@ template <class Work>
 std::vector<UnitResult<Work>> merge_job_parts(const Job<Work>& job, const std::vector<Part>& parts) {
   for (const Part& p : parts)
     if (p.header.job != job.descriptor)
-      throw support::UserError("merge: " + p.file + ": its job does not match the one rebuilt from it (another version?)");
+      throw support::UserError("merge: " + p.file +
+                               ": its job does not match the one rebuilt from it (another version?)");
   std::vector<PartResults<Work>> results;
   for (const Part& p : parts) {
     results.push_back(part_results_from_json<Work>(p.units, job.units.size(), p.file));
@@ -292,7 +293,8 @@ std::vector<UnitResult<Work>> merge_job_parts(const Job<Work>& job, const std::v
     for (auto& [unit, runs] : expected) std::sort(runs.begin(), runs.end());
     for (const auto& [unit, part] : results.back()) {
       const auto e = expected.find(unit);
-      if ((e == expected.end() ? std::vector<ChunkRun>{} : e->second) != part.runs || fixed.count(unit) != (part.fixed ? 1u : 0u))
+      if ((e == expected.end() ? std::vector<ChunkRun>{} : e->second) != part.runs ||
+          fixed.count(unit) != (part.fixed ? 1u : 0u))
         throw support::UserError("merge: " + p.file + ": unit " + std::to_string(unit) +
                                  " holds other chunks than its items (a damaged part)");
     }
