@@ -1,6 +1,8 @@
 #include "vgroove/app/cli.h"
 
 #include "vgroove/app/commands.h"
+#include "vgroove/app/distributed.h"
+#include "vgroove/app/mpi_world.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/report.h"
 
@@ -215,8 +217,8 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    // One line, like every other input error.
-    std::cerr << "vgroove: error: " << e.what() << " (see vgroove --help)\n";
+    // One line, like every other input error (from rank 0 only in an MPI run: every rank sees it).
+    if (world().root()) std::cerr << "vgroove: error: " << e.what() << " (see vgroove --help)\n";
     return 2;
   }
   try {
@@ -231,8 +233,11 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
     if (*energy) return cmd_energy(ea);
     if (*merge) return cmd_merge(ma);
   } catch (const support::UserError& e) {
-    std::cerr << "vgroove: error: " << e.what() << "\n";
+    if (world().root()) std::cerr << "vgroove: error: " << e.what() << "\n";
     return 2;
+  } catch (const RankFailure& e) {
+    if (world().root()) std::cerr << "vgroove: error: " << e.what() << "; no report written\n";
+    return e.interrupted ? kExitInterrupted : 3;
   } catch (const std::exception& e) {
     std::cerr << "vgroove: internal error: " << e.what() << "\n";
     return 3;

@@ -1,5 +1,8 @@
 #include "vgroove/app/commands.h"
 
+#include "vgroove/app/distributed.h"
+#include "vgroove/app/mpi_world.h"
+
 #include "vgroove/app/options.h"
 #include "vgroove/app/outputs.h"
 #include "vgroove/app/progress.h"
@@ -8,6 +11,7 @@
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/energy_table.h"
 
+#include <chrono>
 #include <iostream>
 
 namespace vgroove::app {
@@ -82,6 +86,8 @@ int cmd_energy(const EnergyArgs& a) {
   g.max_k = a.max_k;
   check_energy_grid(g);
   const std::optional<support::Shard> shard = shard_from(a.shard, a.out);
+  if (shard && world().distributed())
+    throw support::UserError("--shard cannot be combined with mpirun (the ranks split the work among themselves)");
   if (!a.out.empty()) {
     support::check_writable_target(a.out, a.force);  // fail before the work, not after
     if (!shard)
@@ -93,6 +99,17 @@ int cmd_energy(const EnergyArgs& a) {
         run_job_part(energy_job(g), *shard, a.threads, terminal_progress("energy " + shard->text()), a.cancel);
     if (!part) return interrupted_no_report();
     write_partial(a.out, *part, a.force);
+    return 0;
+  }
+  if (world().distributed()) {
+    const auto t0 = std::chrono::steady_clock::now();
+    int threads = 0;
+    auto results = run_distributed(energy_job(g), a.threads, terminal_progress("energy"), a.cancel, &threads);
+    if (!results) return 0;  // not rank 0: its results went there
+    EnergyTable t = energy_table_from(g, std::move(*results));
+    t.threads = threads;
+    t.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    write_energy_table(t, a.out, a.npy, a.force);
     return 0;
   }
   const auto table = run_energy_table(g, a.threads, terminal_progress("energy"), a.cancel);

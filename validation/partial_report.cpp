@@ -6,6 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 
@@ -86,6 +89,38 @@ nlohmann::json partial_report_json(const PartialHeader& h, nlohmann::json units)
                   {"wall_s", h.wall_s}};
   j["units"] = std::move(units);
   return j;
+}
+
+nlohmann::json job_descriptor(const std::string& command, const std::string& kind,
+                              const std::vector<std::string>& files, nlohmann::json options) {
+  return {{"command", command},
+          {"kind", kind},
+          {"input_file", files.empty() ? "" : files.front()},
+          {"input_digest", file_digest(files)},
+          {"options", std::move(options)}};
+}
+
+std::string file_digest(const std::vector<std::string>& files) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (const std::string& f : files) {
+    std::ifstream in(f, std::ios::binary);
+    if (!in) throw support::UserError(f + ": cannot open the file (missing or unreadable)");
+    for (std::istreambuf_iterator<char> it(in), end; it != end; ++it) {
+      h ^= static_cast<unsigned char>(*it);
+      h *= 0x100000001b3ULL;
+    }
+    h ^= 0xff, h *= 0x100000001b3ULL;  // a file boundary
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+void check_input_unchanged(const nlohmann::json& descriptor, const std::vector<std::string>& files,
+                           const std::string& part) {
+  if (descriptor.value("input_digest", "") != file_digest(files))
+    throw support::UserError("merge: " + files.front() + " has changed since " + part +
+                             " was written (its digest differs): the parts were run on another input");
 }
 
 Part part_from_json(const nlohmann::json& j, const std::string& where) {

@@ -36,6 +36,18 @@ struct Part {
 };
 
 nlohmann::json partial_report_json(const PartialHeader& h, nlohmann::json units);
+
+// A job's descriptor: the command, the kind of input, the input file as given on the command line
+// with a digest of its bytes (and of the files it names: `files`, the first being `input_file`),
+// and the options that change results. `vgroove merge` reads the input again and refuses parts
+// whose digest no longer matches.
+nlohmann::json job_descriptor(const std::string& command, const std::string& kind,
+                              const std::vector<std::string>& files, nlohmann::json options);
+// FNV-1a (64 bits) of the files' bytes, as 16 hex digits; a UserError when one cannot be read.
+std::string file_digest(const std::vector<std::string>& files);
+// The digest the descriptor holds against the files as they are now: a UserError when they changed.
+void check_input_unchanged(const nlohmann::json& descriptor, const std::vector<std::string>& files,
+                           const std::string& part);
 // A partial report from its JSON; a UserError naming `where` when it is none.
 Part part_from_json(const nlohmann::json& j, const std::string& where);
 // Reads the file; a UserError when it is missing, truncated (not valid JSON) or not a partial report.
