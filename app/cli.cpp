@@ -105,6 +105,9 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   acc->add_option("--threads", ac.threads, "worker threads (0: all cores)")->capture_default_str();
   acc->add_option("--out", ac.out, "report JSON to write");
   acc->add_flag("--force", ac.force, "overwrite an existing report");
+  acc->add_option("--shard", ac.shard,
+                  "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+                  "report (`vgroove merge` joins them; each run's wall_s is then its summed case time)");
 
   ta.dry_run = aa.dry_run = va.dry_run = ac.dry_run = ctx.dry_run;
   va.cancel = ac.cancel = ctx.cancel;
@@ -127,6 +130,9 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   simu->add_option("--threads", sa.threads, "worker threads (default 0: all cores); results do not depend on it")
       ->capture_default_str();
   simu->add_flag("--force", sa.force, "overwrite an existing result");
+  simu->add_option("--shard", sa.shard,
+                   "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+                   "report (`vgroove merge` joins them)");
   sa.dry_run = ctx.dry_run;
   sa.cancel = ctx.cancel;
   BinsArgs bi;

@@ -27,6 +27,18 @@ int merge_energy(const std::vector<Part>& parts, const MergeArgs& a) {
   return 0;
 }
 
+int merge_simulate(const std::vector<Part>& parts, const MergeArgs& a) {
+  const std::string file = parts.front().header.job.at("input_file").get<std::string>();
+  const scene::Scene sc = scene::load_scene(file);
+  validation::check_input_unchanged(parts.front().header.job, {file}, parts.front().file);
+  if (a.dry_run) return 0;
+  scene::SimulationResult r =
+      scene::simulation_from(sc, merge_job_parts(scene::simulate_job(sc, simulate_descriptor(sc)), parts));
+  for (const Part& p : parts) r.threads += p.header.threads, r.wall_s = std::max(r.wall_s, p.header.wall_s);
+  write_simulation(sc, r, a.out, a.force);
+  return 0;
+}
+
 }  // namespace
 
 int cmd_merge(const MergeArgs& a) {
@@ -36,6 +48,8 @@ int cmd_merge(const MergeArgs& a) {
   if (!a.out.empty()) support::check_writable_target(a.out, a.force);
   const std::string command = parts.front().header.job.value("command", "");
   if (command == "energy") return merge_energy(parts, a);
+  if (command == "simulate") return merge_simulate(parts, a);
+  if (command == "bench accuracy") return merge_accuracy(parts, a);
   throw support::UserError("merge: " + parts.front().file + " is a part of `" + command +
                            "`, which this build cannot merge");
 }

@@ -66,6 +66,7 @@ struct AccuracyArgs {
   std::vector<std::string> samplings{"stratified", "random"};
   int threads = 0;
   bool force = false;
+  std::string shard;  // "I/N": write the I-th of N parts as a partial report
   const std::atomic<bool>* cancel = nullptr;
 };
 int cmd_bench_accuracy(const AccuracyArgs& a);
@@ -84,6 +85,7 @@ struct SimulateArgs {
   std::string out;
   int threads = 0;  // 0: all cores
   bool force = false;
+  std::string shard;                          // "I/N": write the I-th of N parts as a partial report
   const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: no result is written
 };
 int cmd_simulate(const SimulateArgs& a);

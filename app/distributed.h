@@ -49,7 +49,8 @@ std::optional<std::vector<validation::UnitResult<Work>>> run_distributed(const v
     ok = false, error = e.what();
   }
   std::string first;
-  const bool every = all_ok(ok, "rank " + std::to_string(w.rank) + " of " + std::to_string(w.size) + ": " + error, &first);
+  const bool every =
+      all_ok(ok, "rank " + std::to_string(w.rank) + " of " + std::to_string(w.size) + ": " + error, &first);
   if (!every) throw RankFailure(first, first.ends_with(": interrupted"));
   const std::vector<std::string> texts = gather_text(text);
   if (!w.root()) return std::nullopt;

@@ -76,5 +76,4 @@ bool all_ok(bool ok, const std::string& error, std::string* first_error) {
   return false;
 }
 
-
 }  // namespace vgroove::app

@@ -12,15 +12,19 @@ namespace {
 void summarize(const Suite& suite, SuiteRun& run);
 }  // namespace
 
-CaseOutcome GrooveCaseWork::run_chunks(const Context&, std::size_t unit, std::int64_t, std::int64_t) const {
+GrooveCaseTally GrooveCaseWork::run_chunks(const Context&, std::size_t unit, std::int64_t, std::int64_t) const {
+  const auto t0 = std::chrono::steady_clock::now();
   const std::size_t n =
       static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), unit) - first.begin()) - 1;
   const std::size_t c = unit - first[n];
   const SuiteCase sc = suites[n].case_at(c);
-  return run_case(sc.groove, sc.theta_i, options[n], c);
+  GrooveCaseTally t{run_case(sc.groove, sc.theta_i, options[n], c)};
+  t.thread_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return t;
 }
 
-nlohmann::json GrooveCaseWork::tally_json(const Tally& t) {
+nlohmann::json GrooveCaseWork::tally_json(const Tally& tally) {
+  const CaseOutcome& t = tally.outcome;
   nlohmann::json facets = nlohmann::json::array();
   for (const FacetOutcome& f : t.facet)
     facets.push_back({{"compared", f.compared},
@@ -43,11 +47,14 @@ nlohmann::json GrooveCaseWork::tally_json(const Tally& t) {
           {"rays", t.rays},
           {"bounces", t.bounces},
           {"theta_o_error", exact_json(t.theta_o_error)},
-          {"non_finite", t.non_finite}};
+          {"non_finite", t.non_finite},
+          {"thread_s", tally.thread_s}};
 }
 
-CaseOutcome GrooveCaseWork::tally_from_json(const nlohmann::json& j) {
-  CaseOutcome t;
+GrooveCaseTally GrooveCaseWork::tally_from_json(const nlohmann::json& j) {
+  GrooveCaseTally tally;
+  tally.thread_s = j.at("thread_s").get<double>();
+  CaseOutcome& t = tally.outcome;
   for (int n = 0; n < 2; ++n) {
     const nlohmann::json& f = j.at("facets").at(static_cast<std::size_t>(n));
     FacetOutcome& o = t.facet[n];
@@ -60,7 +67,7 @@ CaseOutcome GrooveCaseWork::tally_from_json(const nlohmann::json& j) {
   }
   t.l1 = exact_double(j.at("l1")), t.rays = j.at("rays"), t.bounces = j.at("bounces");
   t.theta_o_error = exact_double(j.at("theta_o_error")), t.non_finite = j.at("non_finite");
-  return t;
+  return tally;
 }
 
 Job<GrooveCaseWork> groove_cases_job(const std::vector<Suite>& suites, const std::vector<CaseOptions>& options,
@@ -90,13 +97,15 @@ std::vector<SuiteRun> suite_runs_from(const GrooveCaseWork& work,
     SuiteRun run;
     run.options = work.options[n];
     run.threads = threads;
+    double thread_s = 0.0;
     for (std::size_t c = 0; c < work.suites[n].cases(); ++c) {
-      CaseOutcome o = results[work.first[n] + c].tally;
+      thread_s += results[work.first[n] + c].tally.thread_s;
+      CaseOutcome o = results[work.first[n] + c].tally.outcome;
       const SuiteCase sc = work.suites[n].case_at(c);
       o.groove = sc.groove, o.theta_i = sc.theta_i;
       run.cases.push_back(std::move(o));
     }
-    run.summary.wall_s = wall_s;
+    run.summary.wall_s = wall_s >= 0.0 ? wall_s : thread_s;
     summarize(work.suites[n], run);
     runs.push_back(std::move(run));
   }

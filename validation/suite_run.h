@@ -49,10 +49,14 @@ SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads,
 // Single-groove suites as work items (work_run.h): one unit per case of every suite of a set
 // (suite-major), one chunk each (a case's rays come from its own streams Rng(seed, case, facet):
 // it is not cut), no fixed part.
+struct GrooveCaseTally {
+  CaseOutcome outcome;
+  double thread_s = 0.0;  // time spent on the case (a timing: never compared)
+};
 struct GrooveCaseWork {
   struct Context {};
   struct Fixed {};
-  using Tally = CaseOutcome;
+  using Tally = GrooveCaseTally;
   std::vector<Suite> suites;
   std::vector<CaseOptions> options;  // per suite
   std::vector<std::size_t> first;    // the first unit of each suite
