@@ -1,6 +1,8 @@
 #include "vgroove/app/cli.h"
 
 #include "vgroove/app/commands.h"
+#include "vgroove/app/distributed.h"
+#include "vgroove/app/mpi_world.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/report.h"
 
@@ -103,6 +105,9 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   acc->add_option("--threads", ac.threads, "worker threads (0: all cores)")->capture_default_str();
   acc->add_option("--out", ac.out, "report JSON to write");
   acc->add_flag("--force", ac.force, "overwrite an existing report");
+  acc->add_option("--shard", ac.shard,
+                  "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+                  "report (`vgroove merge` joins them; each run's wall_s is then its summed case time)");
 
   ta.dry_run = aa.dry_run = va.dry_run = ac.dry_run = ctx.dry_run;
   va.cancel = ac.cancel = ctx.cancel;
@@ -130,6 +135,9 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   simu->add_option("--threads", sa.threads, "worker threads (default 0: all cores); results do not depend on it")
       ->capture_default_str();
   simu->add_flag("--force", sa.force, "overwrite an existing result");
+  simu->add_option("--shard", sa.shard,
+                   "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+                   "report (`vgroove merge` joins them)");
   sa.dry_run = ctx.dry_run;
   sa.cancel = ctx.cancel;
   SampleArgs sma;
@@ -195,6 +203,48 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   brdf->add_flag("--json", ba.json, "print JSON");
   brdf->callback([&ba, theta_o]() { ba.theta_o_given = theta_o->count() > 0; });
   ba.dry_run = ctx.dry_run;
+  EnergyArgs ea;
+  auto* energy = app.add_subcommand(
+      "energy",
+      "Exact energy tables: the directional albedo E(mu, alpha) of V-groove surfaces per bounce order k (F = 1; "
+      "E_1 what single scattering keeps, the rest what it loses), traced with every ray in a groove of its own "
+      "drawn from the NDF, with standard errors, beside the analytic model (quadrature) and Cook-Torrance.");
+  add_list(energy, "--ndf", ea.ndfs, "NDFs, comma-separated: ggx, beckmann, phong");
+  add_list(energy, "--dim", ea.dims, "dimensions, comma-separated: flatland, 3d");
+  energy->add_option("--mu", ea.mu, "mu = cos theta_i, comma-separated, each in (0, 1] (default: --mu-points)")
+      ->delimiter(',');
+  energy->add_option("--mu-points", ea.mu_points, "mu at the midpoints (i + 1/2)/n of (0, 1], n in [1, 4096]")
+      ->capture_default_str();
+  energy->add_option("--alpha", ea.alpha, "roughness, comma-separated, each in (0, 2] (default: --alpha-points)")
+      ->delimiter(',');
+  energy->add_option("--alpha-points", ea.alpha_points, "alpha at the midpoints (j + 1/2)/n of (0, 1], n in [1, 4096]")
+      ->capture_default_str();
+  energy->add_option("--rays", ea.rays, "rays per cell, [1, 10000000000]")->capture_default_str();
+  energy->add_option("--seed", ea.seed, "seed of the rays' streams, >= 0")->capture_default_str();
+  energy->add_option("--max-k", ea.max_k, "bounce orders tabulated one by one, [1, 1000] (a last row holds k > max-k)")
+      ->capture_default_str();
+  energy->add_option("--threads", ea.threads, "worker threads, [0, 1024] (0: all cores); results do not depend on it")
+      ->capture_default_str();
+  energy->add_option("--out", ea.out, "table JSON to write (refuses to overwrite without --force)");
+  energy->add_flag("--npy", ea.npy,
+                   "write the arrays as .npy files beside the JSON (OUT.E_sim.npy, ...); automatic above 65536 values");
+  energy->add_option("--shard", ea.shard,
+                     "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+                     "report (`vgroove merge` joins them)");
+  energy->add_flag("--force", ea.force, "overwrite existing files");
+  ea.dry_run = ctx.dry_run;
+  ea.cancel = ctx.cancel;
+  MergeArgs ma;
+  auto* merge = app.add_subcommand(
+      "merge",
+      "Join the partial reports of one sharded run (--shard 1/N ... N/N) into the report the run gives in one "
+      "process, bit for bit (timings aside). Refuses parts of different runs, versions or splits, missing or "
+      "repeated shards, and damaged files.");
+  merge->add_option("parts", ma.parts, "partial reports, in any order")->required();
+  merge->add_option("--out", ma.out, "report to write (refuses to overwrite without --force)");
+  merge->add_flag("--npy", ma.npy, "energy tables: the arrays as .npy files beside the JSON");
+  merge->add_flag("--force", ma.force, "overwrite existing files");
+  ma.dry_run = ctx.dry_run;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -204,8 +254,8 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    // One line, like every other input error.
-    std::cerr << "vgroove: error: " << e.what() << " (see vgroove --help)\n";
+    // One line, like every other input error (from rank 0 only in an MPI run: every rank sees it).
+    if (world().root()) std::cerr << "vgroove: error: " << e.what() << " (see vgroove --help)\n";
     return 2;
   }
   try {
@@ -218,9 +268,14 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
     if (*smp) return cmd_sample(sma);
     if (*brdf) return cmd_brdf(ba);
     if (*bins) return cmd_bins(bi);
+    if (*energy) return cmd_energy(ea);
+    if (*merge) return cmd_merge(ma);
   } catch (const support::UserError& e) {
-    std::cerr << "vgroove: error: " << e.what() << "\n";
+    if (world().root()) std::cerr << "vgroove: error: " << e.what() << "\n";
     return 2;
+  } catch (const RankFailure& e) {
+    if (world().root()) std::cerr << "vgroove: error: " << e.what() << "; no report written\n";
+    return e.interrupted ? kExitInterrupted : 3;
   } catch (const std::exception& e) {
     std::cerr << "vgroove: internal error: " << e.what() << "\n";
     return 3;
