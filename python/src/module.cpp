@@ -64,6 +64,20 @@ long long to_seed(const py::handle& v, const std::string& what) {
   return to_count(v, what, 0, std::numeric_limits<long long>::max());
 }
 
+void check_directions(const double* w, std::size_t n, const char* what, bool flatland) {
+  for (std::size_t j = 0; j < n; ++j) {
+    const double x = w[3 * j], y = w[3 * j + 1], z = w[3 * j + 2];
+    const double len = std::sqrt(x * x + y * y + z * z);
+    auto text = [&] {
+      return std::string(what) + "[" + std::to_string(j) + "] = (" + support::number_text(x) + ", " +
+             support::number_text(y) + ", " + support::number_text(z) + ")";
+    };
+    if (!(std::abs(len - 1.0) <= 1e-9)) throw support::UserError(text() + " is not a unit vector");
+    if (flatland && !(std::abs(y) <= 1e-9))
+      throw support::UserError(text() + " is not in the plane y = 0 (flatland directions: (-sin t, 0, cos t))");
+  }
+}
+
 void check_alpha(double alpha) {
   if (!(alpha > 0.0 && alpha <= validation::kMaxAlpha))
     throw support::UserError("alpha = " + support::number_text(alpha) + " is out of range (0, 2]");
@@ -90,4 +104,5 @@ PYBIND11_MODULE(_vgroove, m) {
   bind_surfaces(m);
   bind_brdfs(m);
   bind_suites(m);
+  bind_sampling(m);
 }
