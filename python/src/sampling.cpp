@@ -22,6 +22,12 @@ namespace {
 
 using validation::SurfaceDim;
 
+// The NDF, with `vgroove sample`'s message (its list in that command's order).
+NdfKind sampler_ndf(const std::string& name) {
+  if (const auto k = ndf_from_name(name)) return *k;
+  throw support::UserError("ndf = \"" + name + "\" is not one of \"ggx\", \"beckmann\", \"phong\"");
+}
+
 // The sampler's options, checked: the strategy exists for (ndf, dim), max_k in [1, 100000] (the
 // command line's `vgroove sample` ranges).
 analytic::SamplerOptions sampler_options(const std::string& strategy, NdfKind ndf, SurfaceDim dim, long long max_k) {
@@ -89,13 +95,12 @@ void for_rows(std::size_t n, int threads, Row&& row) {
   run_interruptible(
       [&](std::atomic<bool>& cancel) {
         const std::size_t chunk = 4096;
-        support::parallel_for(
-            (n + chunk - 1) / chunk, support::resolve_threads(threads),
-            [&](std::size_t c) {
-              const std::size_t end = std::min(n, (c + 1) * chunk);
-              for (std::size_t j = c * chunk; j < end; ++j) row(j);
-            },
-            {}, &cancel, 1);
+        support::parallel_for((n + chunk - 1) / chunk, support::resolve_threads(threads),
+                              [&](std::size_t c) {
+                                const std::size_t end = std::min(n, (c + 1) * chunk);
+                                for (std::size_t j = c * chunk; j < end; ++j) row(j);
+                              },
+                              {}, &cancel, 1);
         return 0;
       },
       n < 2048);
@@ -104,7 +109,7 @@ void for_rows(std::size_t n, int threads, Row&& row) {
 py::dict sample(const std::string& ndf_name, double alpha, const std::optional<DoubleArray>& wi,
                 const std::optional<DoubleArray>& theta_i_deg, DoubleArray u, const std::string& strategy,
                 long long max_k, const std::string& dim_name, int threads) {
-  const NdfKind ndf = parse_ndf(ndf_name);
+  const NdfKind ndf = sampler_ndf(ndf_name);
   check_alpha(alpha);
   const SurfaceDim dim = parse_dim(dim_name);
   const analytic::SamplerOptions opt = sampler_options(strategy, ndf, dim, max_k);
@@ -146,7 +151,7 @@ py::dict sample(const std::string& ndf_name, double alpha, const std::optional<D
 py::array_t<double> pdf(const std::string& ndf_name, double alpha, const std::optional<DoubleArray>& wi,
                         const std::optional<DoubleArray>& theta_i_deg, DoubleArray wo, const std::string& strategy,
                         long long max_k, const std::string& dim_name, int threads) {
-  const NdfKind ndf = parse_ndf(ndf_name);
+  const NdfKind ndf = sampler_ndf(ndf_name);
   check_alpha(alpha);
   const SurfaceDim dim = parse_dim(dim_name);
   const analytic::SamplerOptions opt = sampler_options(strategy, ndf, dim, max_k);

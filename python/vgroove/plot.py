@@ -133,6 +133,13 @@ class Node:
             raise self.fail(f"has {len(items)} values, needs at least {min_length}")
         return [i.number(lo, hi) for i in items]
 
+    def numbers_or_gaps(self, length: int, lo: float = -math.inf, hi: float = math.inf) -> List[float]:
+        """numbers() where null is a gap (NaN, not drawn): a value the report leaves undefined."""
+        items = self.items()
+        if len(items) != length:
+            raise self.fail(f"has {len(items)} values, needs {length}")
+        return [math.nan if i.value is None else i.number(lo, hi) for i in items]
+
     def opt_text(self, key: str, fallback: str = "?") -> str:
         return self[key].text() if self.has(key) and isinstance(self.value[key], str) else fallback
 
@@ -209,7 +216,9 @@ def _figure(width: float, height: float) -> Figure:
 
 
 def _suptitle(fig: Figure, title: str, sub: str) -> None:
-    fig.suptitle(title + "\n" + sub, fontsize=11)
+    import textwrap
+    width = max(40, int(fig.get_figwidth() * 10))  # characters per line at this font size
+    fig.suptitle("\n".join(textwrap.wrap(title, width) + textwrap.wrap(sub, width)), fontsize=11)
 
 
 # Single-groove suites: Table 1 heatmaps -------------------------------------------------------
@@ -676,8 +685,9 @@ def profiles_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
             g1 = sf["g1"]
             surfaces.append({
                 "surface": safe_text(sf["surface"].text(), 16), "pass": sf["pass"].boolean(),
-                "g1": g1["traced"].numbers(nn), "g1_se": g1["traced_se"].numbers(nn, 0.0),
-                "g1_vcavity": g1["vcavity"].numbers(nn), "g1_smith": g1["smith"].number(),
+                # G1 is undefined (null) in bins no facet normal fell into.
+                "g1": g1["traced"].numbers_or_gaps(nn), "g1_se": g1["traced_se"].numbers_or_gaps(nn, 0.0),
+                "g1_vcavity": g1["vcavity"].numbers_or_gaps(nn), "g1_smith": g1["smith"].number(),
                 "lobe": _row_sums(sf["lobe"]["traced_by_k"], ne)})
         cases.append({"ndf": c["ndf"].one_of(_NDFS), "alpha": c["alpha"].number(0.0, 2.0),
                       "theta": c["theta_deg"].number(-90.0, 90.0), "pass": c["pass"].boolean(),

@@ -76,7 +76,7 @@ TINY_BRDF = {
 }
 TINY_FURNACE = {
     "name": "tiny_furnace", "kind": "furnace", "description": "a small white furnace for the tests",
-    "ndf": ["ggx"], "alpha": [0.3, 1.0], "theta_i_deg": [0, 60], "dimensions": ["flatland", "3d"], "max_k": 16,
+    "ndf": ["ggx"], "alpha": [0.3, 1.0], "theta_i_deg": [0, 60], "dimensions": ["flatland", "3d"], "max_k": 64,
     "samples": 2000, "strategy": "vndf", "rays": 2000, "grooves": 1000, "seed": 1,
     "thresholds": {"sigmas": 5, "quadrature_tolerance": {"flatland": 1e-9, "3d": 1e-5}},
 }

@@ -48,7 +48,28 @@ def test_sample_equals_the_command_line_to_the_last_bit(vg, tmp_path, dim, ndf, 
     theirs = cli_sample(tmp_path, dim, ndf, alpha, theta_i, strategy, n, seed)
     u = vg.uniforms(n, seed, (STREAM, 0 if dim == "3d" else 1))
     r = vg.sample(ndf, alpha, u, theta_i_deg=theta_i, strategy=strategy, dim=dim, threads=2)
-    t = theirs["table"]
+    assert tally(r, dim, theirs["table"]) == tally_of(theirs)
+    # Power: the next stream's samples, or the four numbers of each sample in another order, are
+    # told apart.
+    for other in (vg.uniforms(n, seed + 1, (STREAM, 0 if dim == "3d" else 1)), u[:, [1, 2, 3, 0]]):
+        r2 = vg.sample(ndf, alpha, other, theta_i_deg=theta_i, strategy=strategy, dim=dim)
+        assert tally(r2, dim, theirs["table"]) != tally_of(theirs)
+    # Every returned direction is a unit vector above the horizon, pdf and weight finite.
+    ok = r["k"] > 0
+    assert np.all(np.isfinite(r["wo"])) and np.all(np.isfinite(r["pdf"])) and np.all(np.isfinite(r["weight"]))
+    assert np.all(r["pdf"][ok] > 0) and np.all(r["wo"][ok][:, 2] > 0)
+    assert np.all(r["pdf"][~ok] == 0) and np.all(r["weight"][~ok] == 0)
+    assert np.allclose(np.linalg.norm(r["wo"], axis=-1), 1.0, atol=1e-12, rtol=0)
+
+
+def tally_of(result):
+    """What `vgroove sample --out` reports of its samples: histogram, no-direction count, moments."""
+    t = result["table"]
+    return t["observed"], t["observed_no_direction"], result["weight_mean"], result["weight_variance"]
+
+
+def tally(r, dim, t):
+    """The same of sample()'s output, binned and summed as validation/sampling_check.cpp does."""
     rows, cols = len(t["row_edges"]) - 1, len(t["col_edges"]) - 1
     observed = np.zeros((rows, cols))
     none = 0
@@ -63,16 +84,7 @@ def test_sample_equals_the_command_line_to_the_last_bit(vg, tmp_path, dim, ndf, 
             row = 0
             c = int((math.atan2(-o[0], o[2]) + 0.5 * math.pi) / math.pi * cols)
         observed[row, min(max(c, 0), cols - 1)] += 1
-    assert none == theirs["table"]["observed_no_direction"]
-    assert observed.tolist() == t["observed"]
-    mean, var = moments(r["weight"])
-    assert mean == theirs["weight_mean"] and var == theirs["weight_variance"]
-    # Every returned direction is a unit vector above the horizon, pdf and weight finite.
-    ok = r["k"] > 0
-    assert np.all(np.isfinite(r["wo"])) and np.all(np.isfinite(r["pdf"])) and np.all(np.isfinite(r["weight"]))
-    assert np.all(r["pdf"][ok] > 0) and np.all(r["wo"][ok][:, 2] > 0)
-    assert np.all(r["pdf"][~ok] == 0) and np.all(r["weight"][~ok] == 0)
-    assert np.allclose(np.linalg.norm(r["wo"], axis=-1), 1.0, atol=1e-12, rtol=0)
+    return (observed.tolist(), float(none), *moments(r["weight"]))
 
 
 def gauss_legendre_cells(f, edges, cuts, nodes=48):
@@ -107,6 +119,12 @@ def test_flatland_pdf_integrates_to_the_command_lines_expected_counts(vg, tmp_pa
     ours = n * gauss_legendre_cells(density, edges, [-ti, ti])
     expected = np.array(theirs["table"]["expected"][0])
     assert np.max(np.abs(ours - expected)) < 1e-3 * max(1.0, expected.max()), np.max(np.abs(ours - expected))
+    # Power: another strategy's density is told apart at this tolerance.
+    other = "vndf" if strategy != "vndf" else "printed"
+    wrong = n * gauss_legendre_cells(
+        lambda t: vg.pdf(ndf, alpha, np.stack([-np.sin(t), 0 * t, np.cos(t)], axis=-1), theta_i_deg=theta_i,
+                         strategy=other, dim="flatland"), edges, [-ti, ti])
+    assert np.max(np.abs(wrong - expected)) > 1e-2 * max(1.0, expected.max())
     # Normalization: the cells and the failure probability make 1.
     assert abs(ours.sum() / n + theirs["failure_probability"] - 1.0) < 1e-5
 
@@ -124,6 +142,9 @@ def test_vndf_pdf_is_the_brdf_times_cosine(vg):
         f = vg.brdf("vgroove", ndf, alpha, wi, wo, max_k=64, dim=dim)
         assert np.all(np.isfinite(p)) and np.all(p >= 0)
         np.testing.assert_allclose(p, f * wo[:, 2], rtol=1e-9, atol=1e-300)
+        # Power: the paper's printed facet density does not sample the BRDF exactly.
+        printed = vg.pdf(ndf, alpha, wo, wi=wi, strategy="printed", max_k=64, dim=dim)
+        assert not np.allclose(printed, f * wo[:, 2], rtol=1e-3)
         u = vg.uniforms(n, 11, (1, 2))
         s = vg.sample(ndf, alpha, u, wi=wi, strategy="vndf", max_k=64, dim=dim)
         ok = s["k"] > 0
