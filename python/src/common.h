@@ -32,8 +32,8 @@ namespace py = pybind11;
 // A one-dimensional C-contiguous array of doubles (any number-like input is converted).
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-// JSON (a report) as the Python objects json.loads would give: dict, list, str, int, float,
-// bool, None.
+// JSON (a report) as the Python objects json.loads gives for the file it is written to: dict,
+// list, str, int, float, bool, None (also for NaN and infinity, which the file holds as null).
 py::object to_python(const nlohmann::json& j);
 
 NdfKind parse_ndf(const std::string& name);

@@ -19,8 +19,11 @@ py::object to_python(const nlohmann::json& j) {
       return py::int_(j.get<std::int64_t>());
     case nlohmann::json::value_t::number_unsigned:
       return py::int_(j.get<std::uint64_t>());
-    case nlohmann::json::value_t::number_float:
-      return py::float_(j.get<double>());
+    case nlohmann::json::value_t::number_float: {
+      // A report file holds null where the report has NaN or infinity (nlohmann::json's dump).
+      const double x = j.get<double>();
+      return std::isfinite(x) ? py::object(py::float_(x)) : py::object(py::none());
+    }
     case nlohmann::json::value_t::string:
       return py::str(j.get_ref<const std::string&>());
     case nlohmann::json::value_t::array: {
