@@ -242,3 +242,28 @@ def test_bad_arrays_are_value_errors(vg):
         vg.uniforms(-1)
     with pytest.raises(ValueError, match=r"seed = 1.5 must be an integer"):
         vg.uniforms(3, 1.5)
+
+
+def test_ctrl_c_stops_a_long_call(vg):
+    # pdf() of 3 x 10^6 directions on one thread (tens of seconds) stops within seconds of SIGINT.
+    import signal
+    import subprocess
+    import sys
+    import time
+    code = ("import signal, numpy as np, vgroove\n"
+            "signal.signal(signal.SIGINT, signal.default_int_handler)\n"
+            "wo = np.tile(vgroove.direction(40, 10), (3 * 10**6, 1))\n"
+            "print('started', flush=True)\n"
+            "try:\n"
+            "    vgroove.pdf('ggx', 0.5, wo, theta_i_deg=30, threads=1)\n"
+            "    print('finished', flush=True)\n"
+            "except KeyboardInterrupt:\n"
+            "    print('interrupted', flush=True)\n")
+    p = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
+    assert p.stdout.readline().strip() == "started"
+    time.sleep(0.5)
+    t0 = time.monotonic()
+    p.send_signal(signal.SIGINT)
+    out, _ = p.communicate(timeout=60)
+    assert out.strip() == "interrupted"
+    assert time.monotonic() - t0 < 10  # a chunk of 4096 directions in flight finishes
