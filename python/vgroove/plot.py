@@ -409,20 +409,22 @@ def _furnace_drawers(report: Node, name: str, cases: Node, tolerance: Optional[N
                 pts = sorted(rows[key][a], key=lambda p: p["theta_i"])
                 col = cmap(0.85 * n / max(1, len(alphas) - 1))
                 t = [p["theta_i"] for p in pts]
-                ax.plot(t, [p["quad"] + p["beyond"] for p in pts], color=col, lw=1.3, label=f"alpha {a:g}")
+                ax.plot(t, [p["quad"] + p["beyond"] for p in pts], color=col, lw=1.3, marker="_", ms=8,
+                        label=f"alpha {a:g}")
                 ax.plot(t, [p["quad"] for p in pts], color=col, lw=0.8, ls="--")
                 ax.errorbar(t, [p["est"] + p["beyond"] for p in pts], yerr=[p["se"] for p in pts], color=col,
                             marker="o", ms=3, ls="none", capsize=2)
-                ax.plot(t, [p["ct"] for p in pts], color=col, lw=1.0, ls=":")
+                ax.plot(t, [p["ct"] for p in pts], color=col, lw=1.0, ls=":", marker="v", ms=3)
                 ax.plot(t, [p["sim"] for p in pts], color=col, marker="x", ms=4, ls="none")
             ax.set_title(f"{key[0]}, {key[1]}", fontsize=9)
             ax.set_xlabel("theta_i (deg)")
             ax.set_ylabel("albedo (fraction of the incident flux)")
+            ax.set_xlim(-3, 93)
             ax.set_ylim(0, 1.08)
             ax.legend(fontsize=6, loc="lower left")
         _suptitle(fig, f"{name}: white furnace (F = 1), albedo of Eq. 17 per alpha",
                   "solid: quadrature + light beyond max_k (must be 1); dashed: quadrature, k <= max_k; dots: "
-                  "importance-sampled estimate + beyond (+- 1 standard error); dotted: Cook-Torrance (its loss); "
+                  "importance-sampled estimate + beyond (+- 1 standard error); dotted, triangles: Cook-Torrance (its loss); "
                   f"x: traced sanity line. {_title_bits(report)}")
         return fig
 
@@ -559,6 +561,7 @@ def sampling_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
         a1.set_yscale("log")
         a1.set_ylabel("variance of rho cos / pdf (1e-30: zero)")
         a1.legend(fontsize=7, ncol=3)
+        a2.set_yscale("log")
         a2.set_ylabel("time per sample (ns)")
         a2.set_xticks(x, [v["label"] for v in variance], fontsize=6)
         a2.set_xlabel("case (dimension, NDF, alpha, theta_i in deg; Fresnel)")
