@@ -431,7 +431,7 @@ def _furnace_drawers(report: Node, name: str, cases: Node, tolerance: Optional[N
     def draw_errors() -> Figure:
         import numpy as np
         flat = [(key, a, p) for key in sorted(rows) for a in sorted(rows[key]) for p in rows[key][a]]
-        fig = _figure(max(8.0, 0.12 * len(flat) + 4.0), 6.5)
+        fig = _figure(min(16.0, max(8.0, 0.12 * len(flat) + 4.0)), 6.5)
         a1, a2 = fig.subplots(2, 1, sharex=True)
         x = np.arange(len(flat))
         colors = {k: c for k, c in zip(sorted(rows), ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
@@ -644,7 +644,7 @@ def nonsymmetric_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
 
     def draw_summary() -> Figure:
         import numpy as np
-        fig = _figure(max(8.0, 0.1 * len(summary) + 4.0), 4.6)
+        fig = _figure(min(16.0, max(8.0, 0.1 * len(summary) + 4.0)), 4.6)
         ax = fig.subplots()
         x = np.arange(len(summary))
         ratio = np.array([p["l1"] / p["thr"] if p["thr"] > 0 else 0.0 for *_, p in summary])
