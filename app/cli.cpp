@@ -178,11 +178,26 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   auto* brdf = app.add_subcommand(
       "brdf",
       "Evaluate a BRDF at a pair of directions (or every pair of a JSON file): vgroove's multiple-scattering "
-      "model (Lee et al. 2018, Eq. 16-17) or Cook-Torrance (Eq. 1-3, V-cavity G), F = 1. 3D: polar angles from "
-      "the normal, azimuths about it (phi_o = phi_i + 180 is the mirror side); flatland: signed angles.");
-  brdf->add_option("--model", ba.model, "vgroove or cook-torrance")->capture_default_str();
+      "model (Lee et al. 2018, Eq. 16-17), its nonsymmetric form (Eq. 21-23, partner facets by Eq. 20; "
+      "anisotropic with --alpha-y) or Cook-Torrance (Eq. 1-3, V-cavity G), F = 1. 3D: polar angles from the "
+      "normal, azimuths about it (phi_o = phi_i + 180 is the mirror side; with --alpha-y from the --alpha "
+      "axis); flatland: signed angles.");
+  brdf->add_option("--model", ba.model, "vgroove, vgroove-nonsymmetric or cook-torrance")->capture_default_str();
   brdf->add_option("--ndf", ba.ndf, "ggx, beckmann or phong")->capture_default_str();
-  brdf->add_option("--alpha", ba.alpha, "roughness, (0, 2]")->capture_default_str();
+  brdf->add_option("--alpha", ba.alpha,
+                   "roughness, (0, 2]; vgroove-nonsymmetric with phong and --partner independent: (0, sqrt 2) "
+                   "(Eq. 20 needs it); alpha_x with --alpha-y")
+      ->capture_default_str();
+  auto* brdf_alpha_y =
+      brdf->add_option("--alpha-y", ba.alpha_y,
+                       "vgroove-nonsymmetric, 3D, ggx or beckmann only: the roughness across the --alpha axis, (0, 2] "
+                       "(default: --alpha, isotropic)");
+  auto* brdf_partner =
+      brdf->add_option(
+              "--partner", ba.partner,
+              "vgroove-nonsymmetric only: the partner facet's tilt, independent (Eq. 20) or symmetric (equal to the "
+              "first's: the symmetric model, anisotropic with --alpha-y)")
+          ->capture_default_str();
   brdf->add_option("--dim", ba.dim, "3d or flatland")->capture_default_str();
   brdf->add_option("--theta-i-deg", ba.theta_i_deg, "light: polar angle, [0, 90) (flatland: signed, (-90, 90))")
       ->capture_default_str();
@@ -191,9 +206,10 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
                                    "viewer: polar angle, [0, 90] (flatland: signed, [-90, 90]); required "
                                    "unless --directions");
   brdf->add_option("--phi-o-deg", ba.phi_o_deg, "viewer: azimuth, [-360, 360] (3D only)")->capture_default_str();
-  brdf->add_option("--max-k", ba.max_k,
-                   "orders summed, >= 1 (3D: any, at no extra cost; flatland: <= 4096, O(max_k^2))")
-      ->capture_default_str();
+  auto* brdf_max_k = brdf->add_option(
+      "--max-k", ba.max_k,
+      "orders summed, >= 1; vgroove 3D and cook-torrance: any, at no extra cost (default: all); vgroove "
+      "flatland: <= 4096, O(max_k^2) (default 4096); vgroove-nonsymmetric: <= 1024, O(max_k^2) (default 64)");
   brdf->add_flag("--per-k", ba.per_k, "also print each order k = 1..--per-k-max");
   brdf->add_option("--per-k-max", ba.per_k_max, "orders printed one by one with --per-k, [1, 1000]")
       ->capture_default_str();
@@ -201,7 +217,12 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
                    "JSON file {\"directions\": [{\"theta_i_deg\", \"theta_o_deg\"[, \"phi_i_deg\", "
                    "\"phi_o_deg\"]}, ...]}: evaluate at every pair");
   brdf->add_flag("--json", ba.json, "print JSON");
-  brdf->callback([&ba, theta_o]() { ba.theta_o_given = theta_o->count() > 0; });
+  brdf->callback([&ba, theta_o, brdf_alpha_y, brdf_partner, brdf_max_k]() {
+    ba.theta_o_given = theta_o->count() > 0;
+    ba.alpha_y_given = brdf_alpha_y->count() > 0;
+    ba.partner_given = brdf_partner->count() > 0;
+    ba.max_k_given = brdf_max_k->count() > 0;
+  });
   ba.dry_run = ctx.dry_run;
   EnergyArgs ea;
   auto* energy = app.add_subcommand(
