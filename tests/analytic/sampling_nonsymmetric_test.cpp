@@ -136,6 +136,41 @@ TEST(SamplingNonsymmetric, MeanWeightIsTheAlbedo) {
   }
 }
 
+// The white furnace of Eq. 23 (flatland, F = 1): every ray that enters a groove leaves it, so the
+// albedo of the pointwise BRDF, by deterministic quadrature over theta_o (independent of the
+// sampler), is 1 up to the light beyond max_k and the quadrature's tolerance. The same BRDF with
+// the Jacobian off by (k + 1)/k for k >= 2 (a deliberately broken variant) fails it.
+TEST(SamplingNonsymmetric, FurnaceOfEq23Flatland) {
+  struct Case {
+    NdfKind ndf;
+    double alpha, deg;
+  };
+  for (const Case& c : {Case{NdfKind::ggx, 0.5, 30.0}, Case{NdfKind::beckmann, 1.0, 70.0}}) {
+    NonsymmetricModel m;
+    m.roughness = isotropic_roughness(c.ndf, c.alpha);
+    m.tolerance = 1e-9;
+    const double ti = c.deg * kRadPerDeg;
+    const int max_k = 64;
+    auto albedo = [&](bool broken) {
+      return integrate_half_circle(
+                 ti,
+                 [&](double to) {
+                   double rho = 0.0;
+                   for (int k = 1; k <= max_k; ++k)
+                     rho += flatland_nonsymmetric_brdf_k(ti, to, k, m) * (broken && k >= 2 ? k / (k + 1.0) : 1.0);
+                   return rho * std::cos(to);
+                 },
+                 c.alpha, 1e-8)
+          .value;
+    };
+    const double a = albedo(false), b = albedo(true);
+    std::printf("%s alpha %g theta_i %g: albedo %.10f, broken Jacobian %.6f\n", ndf_name(c.ndf), c.alpha, c.deg, a,
+                b);
+    EXPECT_NEAR(a, 1.0, 1e-6) << ndf_name(c.ndf);
+    EXPECT_GT(std::abs(b - 1.0), 1e-3) << ndf_name(c.ndf);
+  }
+}
+
 // u at 0 and 1 - 2^-53, theta_i at 0 and 89.99 deg, alpha 0.01 and 2: a finite o with a finite
 // positive pdf, or the documented zero-weight return; never NaN.
 TEST(SamplingNonsymmetric, HardCases) {
