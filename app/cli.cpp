@@ -143,7 +143,8 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   SampleArgs sma;
   auto* smp = app.add_subcommand(
       "sample",
-      "Importance-sample the symmetric V-groove BRDF (Lee et al. 2018, Sec. 6): draw --n exit directions, hold them "
+      "Importance-sample the V-groove BRDF (Lee et al. 2018, Sec. 6; symmetric or, with --model "
+      "vgroove-nonsymmetric, Eq. 23): draw --n exit directions, hold them "
       "to the sampler's pdf by a chi-square test (cells of (cos theta_o, phi_o), flatland theta_o; pdf integrated per "
       "cell) and report the weights rho cos / pdf; exit 1 if the chi-square rejects.");
   smp->add_option("--ndf", sma.ndf, "normal distribution: ggx, beckmann or phong")->capture_default_str();
@@ -156,6 +157,11 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
                   "3d only)")
       ->capture_default_str();
   smp->add_option("--dim", sma.dim, "3d or flatland")->capture_default_str();
+  smp->add_option("--model", sma.model,
+                  "vgroove (symmetric grooves, Eq. 16) or vgroove-nonsymmetric (Eq. 23, the partner's tilt from the "
+                  "tabulated inverse CDF of P(theta_r); phong alpha <= 1; its pdf costs ~1 ms: use --n ~10^4 to "
+                  "10^5 and, in 3d, few cells)")
+      ->capture_default_str();
   smp->add_option("--max-k", sma.max_k, "paths with more reflections return zero weight, [1, 100000]")
       ->capture_default_str();
   smp->add_option("--seed", sma.seed, "seed of the uniform numbers, >= 0")->capture_default_str();

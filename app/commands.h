@@ -101,6 +101,7 @@ struct SampleArgs {
   long n = 100000;
   std::string strategy = "vndf";
   std::string dim = "3d";
+  std::string model = "vgroove";  // or "vgroove-nonsymmetric" (Eq. 23)
   int max_k = 256;
   long long seed = 1;
   int cos_bins = 8, phi_bins = 16, theta_bins = 36;

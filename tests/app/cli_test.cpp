@@ -289,6 +289,8 @@ TEST(Cli, SampleRejectsValuesOutOfRange) {
   expect_user_error(vgroove("sample --strategy uniform"), "--strategy", "\"printed\", \"vndf\"");
   expect_user_error(vgroove("sample --ndf phong --strategy smith-vndf"), "--strategy", "ggx only");
   expect_user_error(vgroove("sample --dim flatland --strategy bounded-vndf"), "--strategy", "3d only");
+  expect_user_error(vgroove("sample --model cook-torrance"), "--model", "\"vgroove\", \"vgroove-nonsymmetric\"");
+  expect_user_error(vgroove("sample --model vgroove-nonsymmetric --ndf phong --alpha 1.2"), "--alpha", "(0, 1]");
 }
 
 // A small run: the chi-square accepts (exit 0) and the result holds the table for plots.
@@ -309,6 +311,21 @@ TEST(Cli, SampleWritesTheChiSquareTable) {
   double observed = t.at("observed_no_direction").get<double>();
   for (const json& v : t.at("observed").at(0)) observed += v.get<double>();
   EXPECT_EQ(observed, 20000.0);
+  EXPECT_FALSE(j.at("result").at("reject").get<bool>());
+}
+
+// The nonsymmetric model (Eq. 23): a small flatland run accepts and says so in its JSON.
+TEST(Cli, SampleNonsymmetric) {
+  TempDir dir;
+  const std::string out = dir.file("S.json");
+  const CliRun r = vgroove(
+      "sample --model vgroove-nonsymmetric --ndf ggx --alpha 0.5 --theta-i-deg 30 --n 20000 --dim flatland "
+      "--theta-bins 18 --max-k 16 --out '" +
+      out + "'");
+  ASSERT_EQ(r.status, 0) << r;
+  EXPECT_CONTAINS(r.out, "accepted");
+  const json j = json::parse(read_text(out));
+  EXPECT_EQ(j.at("result").at("model").get<std::string>(), "vgroove-nonsymmetric");
   EXPECT_FALSE(j.at("result").at("reject").get<bool>());
 }
 
