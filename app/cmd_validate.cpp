@@ -1,7 +1,9 @@
 #include "vgroove/app/commands.h"
 
 #include <iostream>
+#include "vgroove/app/mpi_world.h"
 #include "vgroove/app/options.h"
+#include "vgroove/app/outputs.h"
 #include "vgroove/app/progress.h"
 #include "vgroove/support/atomic_file.h"
 #include "vgroove/support/json_reader.h"
@@ -81,6 +83,7 @@ int validate_microsurface(const ValidateArgs& a, const nlohmann::json& j) {
 }  // namespace
 
 int cmd_validate(const ValidateArgs& a) {
+  if (!a.shard.empty() || world().distributed()) return validate_split(a);
   check_threads(a.threads);
   if (const nlohmann::json j = support::read_json_file(a.suite); is_microsurface_suite(j))
     return validate_microsurface(a, j);

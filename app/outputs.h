@@ -36,4 +36,8 @@ void write_accuracy_report(const validation::Suite& suite, const std::vector<val
                            const std::string& out, bool force);
 int merge_accuracy(const std::vector<validation::Part>& parts, const MergeArgs& a);
 
+// `vgroove validate` split over shards (--shard) or MPI ranks, and its parts merged.
+int validate_split(const ValidateArgs& a);
+int merge_validate(const std::vector<validation::Part>& parts, const MergeArgs& a);
+
 }  // namespace vgroove::app
