@@ -115,13 +115,18 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   ta.dry_run = aa.dry_run = va.dry_run = ac.dry_run = ctx.dry_run;
   va.cancel = ac.cancel = ctx.cancel;
   PlotArgs pa;
-  auto* plot = app.add_subcommand("plot",
-                                  "Draw a report as SVG (from the JSON alone, nothing recomputed): the "
-                                  "accuracy-against-time report of `bench accuracy`.");
-  plot->add_option("report", pa.report, "report JSON, e.g. from `vgroove bench accuracy ... --out acc.json`")
+  auto* plot = app.add_subcommand(
+      "plot",
+      "Draw a report with matplotlib (from the JSON alone, nothing recomputed): Table 1 heatmaps, the Fig. 11 "
+      "grids, the furnace, Table 2, accuracy against time and cost, check_brdf. Runs python/vgroove/plot.py "
+      "with Debian's python3 (VGROOVE_PYTHON names another); writes every figure or none.");
+  plot->add_option("report", pa.report, "report JSON (vgroove validate --out, vgroove bench accuracy --out)")
       ->required();
-  plot->add_option("--out", pa.out, "SVG to write (default: the report's name with .svg)");
-  plot->add_flag("--force", pa.force, "overwrite an existing file");
+  plot->add_option("--out", pa.out,
+                   "image to write, or its base name (default: the report's name without .json); figures after "
+                   "the first get a suffix (-ggx-3d, -cost)");
+  plot->add_option("--format", pa.format, "png (default), svg or pdf");
+  plot->add_flag("--force", pa.force, "overwrite existing images");
   pa.dry_run = ctx.dry_run;
   SimulateArgs sa;
   auto* simu = app.add_subcommand("simulate",
@@ -138,6 +143,32 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
                    "report (`vgroove merge` joins them)");
   sa.dry_run = ctx.dry_run;
   sa.cancel = ctx.cancel;
+  SampleArgs sma;
+  auto* smp = app.add_subcommand(
+      "sample",
+      "Importance-sample the symmetric V-groove BRDF (Lee et al. 2018, Sec. 6): draw --n exit directions, hold them "
+      "to the sampler's pdf by a chi-square test (cells of (cos theta_o, phi_o), flatland theta_o; pdf integrated per "
+      "cell) and report the weights rho cos / pdf; exit 1 if the chi-square rejects.");
+  smp->add_option("--ndf", sma.ndf, "normal distribution: ggx, beckmann or phong")->capture_default_str();
+  smp->add_option("--alpha", sma.alpha, "roughness alpha, (0, 2]")->capture_default_str();
+  smp->add_option("--theta-i-deg", sma.theta_i_deg, "incident angle in degrees, [0, 90)")->capture_default_str();
+  smp->add_option("--n", sma.n, "samples, [1, 1000000000]")->capture_default_str();
+  smp->add_option("--strategy", sma.strategy,
+                  "facet distribution: printed (|s.n| D(s), the paper's), vndf (the V-cavity's visible normals), "
+                  "smith-vndf (Smith-GGX visible normals; ggx only) or bounded-vndf (Tokuyoshi and Eto 2024; ggx, "
+                  "3d only)")
+      ->capture_default_str();
+  smp->add_option("--dim", sma.dim, "3d or flatland")->capture_default_str();
+  smp->add_option("--max-k", sma.max_k, "paths with more reflections return zero weight, [1, 100000]")
+      ->capture_default_str();
+  smp->add_option("--seed", sma.seed, "seed of the uniform numbers, >= 0")->capture_default_str();
+  smp->add_option("--cos-bins", sma.cos_bins, "3d: cells over cos theta_o in [0, 1], [1, 1000]")->capture_default_str();
+  smp->add_option("--phi-bins", sma.phi_bins, "3d: cells over phi_o, even, [2, 1000]")->capture_default_str();
+  smp->add_option("--theta-bins", sma.theta_bins, "flatland: cells over theta_o in (-90, 90), [1, 10000]")
+      ->capture_default_str();
+  smp->add_option("--out", sma.out, "result JSON to write (the chi-square table, observed and expected per cell)");
+  smp->add_flag("--force", sma.force, "overwrite an existing result");
+  sma.dry_run = ctx.dry_run;
   BinsArgs bi;
   auto* bins = app.add_subcommand("bins",
                                   "Write a \"brdf\" suite's bin layout (cases, bin edges, frame) as JSON: fill in a "
@@ -237,6 +268,7 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
     if (*acc) return cmd_bench_accuracy(ac);
     if (*plot) return cmd_plot(pa);
     if (*simu) return cmd_simulate(sa);
+    if (*smp) return cmd_sample(sma);
     if (*brdf) return cmd_brdf(ba);
     if (*bins) return cmd_bins(bi);
     if (*energy) return cmd_energy(ea);

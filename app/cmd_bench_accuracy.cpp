@@ -44,7 +44,7 @@ nlohmann::json accuracy_descriptor(const AccuracyArgs& a) {
 }  // namespace
 
 int cmd_bench_accuracy(const AccuracyArgs& a) {
-  check_threads(a.threads);
+  check_threads(a.threads, "--threads");
   const SuiteSet set = load_suite_set(a.suite);
   if (set.suites.size() != 1)
     throw support::UserError(a.suite + ": is a set of " + std::to_string(set.suites.size()) +

@@ -59,7 +59,7 @@ void write_energy_table(const EnergyTable& t, const std::string& out, bool npy, 
 }
 
 int cmd_energy(const EnergyArgs& a) {
-  check_threads(a.threads);
+  check_threads(a.threads, "--threads");
   EnergyGrid g;
   g.ndfs.clear(), g.dims.clear();
   for (const std::string& n : a.ndfs) {

@@ -29,7 +29,7 @@ void write_simulation(const Scene& scene, const SimulationResult& r, const std::
 }
 
 int cmd_simulate(const SimulateArgs& a) {
-  check_threads(a.threads);
+  check_threads(a.threads, "--threads");
   const Scene scene = load_scene(a.scene);
   const std::optional<support::Shard> shard = shard_from(a.shard, a.out);
   if (shard && world().distributed())

@@ -1,7 +1,7 @@
 // `vgroove validate --shard I/N --out P` and `mpirun -n K vgroove validate SUITE`: the suite's work
 // items (validation/work_run.h) split over shards or MPI ranks; and `vgroove merge` of its parts.
-// Every suite kind: single grooves (Table 1, stress; sets of suites), "brdf" (Fig. 11), "furnace",
-// "table2". The report written from the parts is the single-process report (timings aside).
+// The kinds that trace case by case: single grooves (Table 1, stress; sets of suites), "brdf"
+// (Fig. 11), "table2"; the others (read by validation/validate.h) run in one process. The report written from the parts is the single-process report (timings aside).
 #include "vgroove/app/commands.h"
 
 #include "vgroove/app/distributed.h"
@@ -17,6 +17,7 @@
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/suite_run.h"
 #include "vgroove/validation/table2_suite.h"
+#include "vgroove/validation/validate.h"
 
 #include <chrono>
 #include <iostream>
@@ -45,49 +46,43 @@ ValidateArgs args_from(const nlohmann::json& job) {
   return a;
 }
 
-// A suite file read with the command line's overrides, ready to run as a job.
-struct Plan {
-  std::string kind;  // "single-groove", "brdf", "furnace", "table2"
-  std::vector<std::string> files;
-  SuiteSet set;
-  std::vector<CaseOptions> opts;
-  BrdfSuite brdf;
-  Table2Suite table2;
-  long rays = 0;  // rough surfaces: the override, 0 for the suite's
-};
+// The kinds whose work items split over shards and ranks: those that trace rays case by case.
+const char* split_kind_name(ValidationPlan::Kind k) {
+  switch (k) {
+    case ValidationPlan::Kind::single_grooves: return "single-groove";
+    case ValidationPlan::Kind::brdf: return "brdf";
+    case ValidationPlan::Kind::table2: return "table2";
+    default: return nullptr;
+  }
+}
+const char* kind_name(ValidationPlan::Kind k) {
+  switch (k) {
+    case ValidationPlan::Kind::furnace: return "furnace";
+    case ValidationPlan::Kind::sampling: return "sampling";
+    case ValidationPlan::Kind::profiles: return "profiles";
+    case ValidationPlan::Kind::nonsymmetric: return "nonsymmetric_brdf";
+    case ValidationPlan::Kind::model_table: return "brdf with --model-table";
+    default: return split_kind_name(k);
+  }
+}
 
-Plan plan_of(const ValidateArgs& a) {
-  Plan p;
-  const nlohmann::json j = support::read_json_file(a.suite);
-  p.files = {a.suite};
-  const std::string kind = j.is_object() && j.contains("kind") && j["kind"].is_string() ? j["kind"].get<std::string>() : "";
-  if (kind == "brdf" || kind == "furnace" || kind == "table2") {
-    if (!a.sampling.empty())
-      throw support::UserError("--sampling applies to single-groove suites; " + a.suite + " (kind " + kind +
-                               ") lands its rays at random points of the surface");
-    if (!a.eq6_form.empty())
-      throw support::UserError("--eq6-form applies to single-groove suites; " + a.suite + " (kind " + kind +
-                               ") uses the corrected Eq. 6 throughout");
-    if (a.rays != kUnset) check_rays(a.rays, "--rays");
-    if (a.seed != kUnsetSeed) check_seed(a.seed, "--seed");
-    p.kind = kind;
-    p.rays = a.rays != kUnset ? a.rays : 0;
-    if (kind == "table2") {
-      p.table2 = parse_table2_suite(j, a.suite);
-      if (a.seed != kUnsetSeed) p.table2.seed = static_cast<std::uint64_t>(a.seed);
-    } else {
-      p.brdf = parse_brdf_suite(j, a.suite);
-      if (a.seed != kUnsetSeed) p.brdf.seed = static_cast<std::uint64_t>(a.seed);
-    }
-    return p;
-  }
-  p.kind = "single-groove";
-  p.set = load_suite_set(a.suite);
-  for (const Suite& s : p.set.suites) {
-    if (s.file != a.suite) p.files.push_back(s.file);
-    p.opts.push_back(options_with_overrides(s, a.rays, a.sampling, a.eq6_form, a.seed));
-  }
+// The suite file read (validation/validate.h) with the command line's overrides, refused where it
+// cannot be split.
+ValidationPlan plan_of(const ValidateArgs& a, const std::optional<support::Shard>& shard) {
+  ValidationPlan p = plan_validation(validate_options(a));
+  if (!split_kind_name(p.kind))
+    throw support::UserError((shard ? "--shard" : "mpirun") + std::string(": ") + a.suite + " (kind " +
+                             kind_name(p.kind) +
+                             ") runs in one process; single-groove, brdf and table2 suites split over shards and "
+                             "ranks");
   return p;
+}
+
+std::vector<std::string> input_files(const ValidateArgs& a, const ValidationPlan& p) {
+  std::vector<std::string> files = {a.suite};
+  for (const Suite& s : p.set.suites)
+    if (s.file != a.suite) files.push_back(s.file);
+  return files;
 }
 
 using Clock = std::chrono::steady_clock;
@@ -130,8 +125,8 @@ void write_report(const std::string& out, const nlohmann::json& report, bool for
   std::cout << "report: " << out << "\n";
 }
 
-int run_plan(const Plan& p, const nlohmann::json& descriptor, const Source& src, const std::string& out, bool force) {
-  if (p.kind == "brdf" || p.kind == "furnace")
+int run_plan(const ValidationPlan& p, const nlohmann::json& descriptor, const Source& src, const std::string& out, bool force) {
+  if (p.kind == ValidationPlan::Kind::brdf)
     return run_plan_job(brdf_job(p.brdf, p.rays, descriptor), src, out, force,
                         [&](const auto& results, int threads, double wall, const std::string& o, bool f) {
                           BrdfRun run = brdf_run_from(p.brdf, p.rays, results);
@@ -140,7 +135,7 @@ int run_plan(const Plan& p, const nlohmann::json& descriptor, const Source& src,
                           write_report(o, brdf_report_json(p.brdf, run), f);
                           return run.pass ? 0 : 1;
                         });
-  if (p.kind == "table2")
+  if (p.kind == ValidationPlan::Kind::table2)
     return run_plan_job(table2_job(p.table2, p.rays, descriptor), src, out, force,
                         [&](const auto& results, int threads, double wall, const std::string& o, bool f) {
                           Table2Run run = table2_run_from(p.table2, results);
@@ -164,27 +159,25 @@ int run_plan(const Plan& p, const nlohmann::json& descriptor, const Source& src,
 }  // namespace
 
 int validate_split(const ValidateArgs& a) {
-  check_threads(a.threads);
+  check_threads(a.threads, "--threads");
   const std::optional<support::Shard> shard = shard_from(a.shard, a.out);
   if (shard && world().distributed())
     throw support::UserError("--shard cannot be combined with mpirun (the ranks split the work among themselves)");
-  if (!a.model_table.empty())
-    throw support::UserError(std::string("--model-table runs in one process: it cannot be combined with ") +
-                             (shard ? "--shard" : "mpirun"));
-  const Plan p = plan_of(a);
+  const ValidationPlan p = plan_of(a, shard);
   if (!a.out.empty()) support::check_writable_target(a.out, a.force);  // fail before the work, not after
   if (a.dry_run) return 0;
   Source src;
   src.shard = shard;
   src.args = &a;
-  return run_plan(p, job_descriptor("validate", p.kind, p.files, options_json(a)), src, a.out, a.force);
+  return run_plan(p, job_descriptor("validate", split_kind_name(p.kind), input_files(a, p), options_json(a)), src,
+                  a.out, a.force);
 }
 
 int merge_validate(const std::vector<Part>& parts, const MergeArgs& m) {
   const nlohmann::json& job = parts.front().header.job;
   const ValidateArgs a = args_from(job);
-  const Plan p = plan_of(a);
-  check_input_unchanged(job, p.files, parts.front().file);
+  const ValidationPlan p = plan_of(a, support::Shard{});
+  check_input_unchanged(job, input_files(a, p), parts.front().file);
   if (m.dry_run) return 0;
   Source src;
   src.parts = &parts;

@@ -73,9 +73,10 @@ struct AccuracyArgs {
 int cmd_bench_accuracy(const AccuracyArgs& a);
 
 struct PlotArgs {
-  bool dry_run = false;
+  bool dry_run = false;  // check the report, draw nothing
   std::string report;
-  std::string out;  // default: the report's name with .svg
+  std::string out;     // default: the report's name without .json; a suffix per figure
+  std::string format;  // png (default), svg or pdf
   bool force = false;
 };
 int cmd_plot(const PlotArgs& a);
@@ -90,6 +91,24 @@ struct SimulateArgs {
   const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: no result is written
 };
 int cmd_simulate(const SimulateArgs& a);
+
+// Importance sampling of the symmetric V-groove BRDF: n directions, their chi-square against the
+// sampler's pdf and the weights' statistics.
+struct SampleArgs {
+  bool dry_run = false;  // check the values, do no work
+  std::string ndf = "ggx";
+  double alpha = 0.5;
+  double theta_i_deg = 30.0;
+  long n = 100000;
+  std::string strategy = "vndf";
+  std::string dim = "3d";
+  int max_k = 256;
+  long long seed = 1;
+  int cos_bins = 8, phi_bins = 16, theta_bins = 36;
+  std::string out;
+  bool force = false;
+};
+int cmd_sample(const SampleArgs& a);
 
 // `vgroove bins`: a "brdf" suite's bin layout, for a foreign model's table.
 struct BinsArgs {

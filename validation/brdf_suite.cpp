@@ -64,20 +64,15 @@ void compare(BrdfOutcome& out, const BrdfSuite& suite, const std::vector<double>
   out.non_finite = !(std::isfinite(out.l1) && std::isfinite(out.l1_k) && std::isfinite(out.albedo_model) &&
                      std::isfinite(out.albedo_single) && all_finite(model_joint));
   const bool albedo_ok = std::abs(out.albedo_sim - out.albedo_model) <= out.albedo_threshold;
-  // The furnace also holds the model to energy conservation: with F = 1 its lobe integrates to 1
-  // within the quadrature's tolerance.
-  const bool model_conserves = suite.kind != "furnace" || std::abs(out.albedo_model - 1.0) <= model_tolerance;
-  out.pass = !out.non_finite && albedo_ok && model_conserves &&
-             (suite.kind == "furnace" || (out.l1 <= out.l1_threshold && out.l1_k <= out.l1_k_threshold));
+  out.pass = !out.non_finite && albedo_ok && out.l1 <= out.l1_threshold && out.l1_k <= out.l1_k_threshold;
 }
 
 // The counts of a traced case.
-void take_counts(BrdfOutcome& out, const BinnedTally& t, const BrdfSuite& suite) {
+void take_counts(BrdfOutcome& out, const BinnedTally& t) {
   out.rays = t.rays, out.escaped = t.escaped, out.lost = t.lost(), out.bounces = t.bounces;
   out.max_k_seen = t.max_k_seen;
   out.in_flight = t.bounce_limit;
-  out.albedo_sim =
-      static_cast<double>(t.escaped + (suite.kind == "furnace" ? t.bounce_limit : 0)) / static_cast<double>(t.rays);
+  out.albedo_sim = static_cast<double>(t.escaped) / static_cast<double>(t.rays);
 }
 
 sim::MicrosurfaceTraceOptions flatland_trace(const BrdfSuite& suite, const BrdfCase& c, long rays) {
@@ -107,7 +102,7 @@ BrdfOutcome finish_flatland(const BrdfSuite& suite, const BrdfCase& c, const Bin
   out.c = c;
   const int bins = suite.flatland_bins;
   out.sim_wall_s = t.thread_s;
-  take_counts(out, t, suite);
+  take_counts(out, t);
   out.model_wall_s = lobe.wall_s;
   out.albedo_model = lobe.albedo;
   out.albedo_single = lobe.single_albedo;
@@ -140,7 +135,7 @@ BrdfOutcome finish_3d(const BrdfSuite& suite, const BrdfCase& c, const BinnedTal
   out.c = c;
   const int tb = suite.theta_bins, pb = suite.phi_bins, bins = tb * pb;
   out.sim_wall_s = t.thread_s;
-  take_counts(out, t, suite);
+  take_counts(out, t);
   out.model_wall_s = lobe.wall_s;
   out.albedo_model = lobe.albedo;
   out.albedo_single = lobe.single_albedo;
@@ -223,7 +218,7 @@ BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
   s.file = file;
   s.name = root.string("name");
   s.description = root.string_or("description", "");
-  s.kind = root.one_of("kind", {"brdf", "furnace"});
+  s.kind = root.one_of("kind", {"brdf"});
   s.ndfs = read_ndfs(root);
   s.alphas = read_numbers(root, "alpha", 0.0, false, kMaxAlpha, true);
   for (double d : read_numbers(root, "theta_i_deg", 0.0, true, 90.0, false)) s.theta_i.push_back(d * kRadPerDeg);
@@ -412,8 +407,7 @@ nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run) {
   for (const BrdfOutcome& o : run.cases) {
     rays += o.rays, bounces += o.bounces;
     passed += o.pass;
-    if (suite.kind != "furnace")
-      worst_ratio = std::max({worst_ratio, o.l1 / o.l1_threshold, o.l1_k / o.l1_k_threshold});
+    worst_ratio = std::max({worst_ratio, o.l1 / o.l1_threshold, o.l1_k / o.l1_k_threshold});
     worst_albedo = std::max(worst_albedo, std::abs(o.albedo_sim - o.albedo_model));
     worst_single = std::min(worst_single, o.albedo_single);
     nlohmann::json c = {{"ndf", analytic::ndf_name(o.c.ndf)},
@@ -438,7 +432,7 @@ nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run) {
                         {"by_k_model", o.by_k_model},
                         {"non_finite", o.non_finite},
                         {"pass", o.pass}};
-    if (suite.kind != "furnace") {
+    {
       c["l1"] = o.l1;
       c["l1_expected"] = o.l1_expected;
       c["l1_threshold"] = o.l1_threshold;
@@ -477,25 +471,14 @@ void print_brdf_table(std::ostream& os, const BrdfSuite& suite, const BrdfRun& r
                 suite.name.c_str(), suite.kind.c_str(), run.cases.size(), suite.rays, suite.grooves, version_string(),
                 git_revision(), run.threads);
   os << line;
-  if (suite.kind == "furnace") {
-    std::snprintf(line, sizeof line, "  %-8s %-8s %5s %7s %12s %12s %12s %10s %5s\n", "dim", "ndf", "alpha", "theta_i",
-                  "albedo sim", "albedo model", "CT albedo", "wall s", "pass");
-  } else {
-    std::snprintf(line, sizeof line, "  %-8s %-8s %5s %7s %9s %9s %9s %9s %10s %9s %8s %5s\n", "dim", "ndf", "alpha",
-                  "theta_i", "L1", "L1 thr", "L1 by k", "thr", "albedo", "CT alb", "wall s", "pass");
-  }
+  std::snprintf(line, sizeof line, "  %-8s %-8s %5s %7s %9s %9s %9s %9s %10s %9s %8s %5s\n", "dim", "ndf", "alpha",
+                "theta_i", "L1", "L1 thr", "L1 by k", "thr", "albedo", "CT alb", "wall s", "pass");
   os << line;
   for (const BrdfOutcome& o : run.cases) {
-    if (suite.kind == "furnace")
-      std::snprintf(line, sizeof line, "  %-8s %-8s %5.2f %7.2f %12.9f %12.9f %12.6f %10.3f %5s\n",
-                    surface_dim_name(o.c.dim), analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta_i),
-                    o.albedo_sim, o.albedo_model, o.albedo_single, o.sim_wall_s + o.model_wall_s,
-                    o.pass ? "yes" : "NO");
-    else
-      std::snprintf(line, sizeof line, "  %-8s %-8s %5.2f %7.2f %9.5f %9.5f %9.5f %9.5f %10.7f %9.5f %8.3f %5s\n",
-                    surface_dim_name(o.c.dim), analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta_i), o.l1,
-                    o.l1_threshold, o.l1_k, o.l1_k_threshold, o.albedo_sim, o.albedo_single,
-                    o.sim_wall_s + o.model_wall_s, o.pass ? "yes" : "NO");
+    std::snprintf(line, sizeof line, "  %-8s %-8s %5.2f %7.2f %9.5f %9.5f %9.5f %9.5f %10.7f %9.5f %8.3f %5s\n",
+                  surface_dim_name(o.c.dim), analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta_i), o.l1,
+                  o.l1_threshold, o.l1_k, o.l1_k_threshold, o.albedo_sim, o.albedo_single,
+                  o.sim_wall_s + o.model_wall_s, o.pass ? "yes" : "NO");
     os << line;
   }
   std::size_t passed = 0;

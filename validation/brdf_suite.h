@@ -1,7 +1,7 @@
 // vgroove validation: the suites of kind "brdf" (Lee et al. 2018, Fig. 11: the BRDF against the
-// light traced in procedural rough surfaces) and "furnace" (Fig. 12: the albedo with F = 1).
+// light traced in procedural rough surfaces). The white furnace is validation/furnace_suite.h.
 //
-// A "brdf" or "furnace" suite is the grid ndf x alpha x theta_i x dimension. Each case builds a
+// A "brdf" suite is the grid ndf x alpha x theta_i x dimension. Each case builds a
 // procedural surface of G grooves from the NDF (sim/microsurface.h in flatland,
 // sim/microsurface3d.h in 3D), traces N rays exactly and compares the histograms of exit
 // direction (total and per bounce count k) with the analytic BRDF integrated over the same bins
@@ -49,7 +49,7 @@ struct BrdfCase {
 
 struct BrdfSuite {
   std::string file, name, description;
-  std::string kind;  // "brdf" (Fig. 11: lobes and albedo) or "furnace" (albedo only)
+  std::string kind;  // "brdf" (Fig. 11: lobes and albedo)
   std::vector<analytic::NdfKind> ndfs;
   std::vector<double> alphas;
   std::vector<double> theta_i;  // radians
@@ -73,12 +73,11 @@ struct BrdfOutcome {
   BrdfCase c;
   std::int64_t rays = 0, escaped = 0, lost = 0, bounces = 0;
   // Rays still inside after the tracer's bounce limit (10^5 reflections): grooves narrower than
-  // pi / 10^5 rad, which only the roughest Phong surfaces (alpha >= 1.5, exponent < -1) draw
-  // often. With F = 1 they keep their energy; the furnace counts them as reflected and says so.
+  // pi / 10^5 rad, which only the roughest Phong surfaces (alpha >= 1.5, exponent < -1) draw often.
   std::int64_t in_flight = 0;
   int max_k_seen = 0;
   double sim_wall_s = 0.0, model_wall_s = 0.0;
-  // albedo_sim: escaped / rays ("brdf"), (escaped + in_flight) / rays ("furnace": nothing absorbed).
+  // albedo_sim: escaped / rays.
   double albedo_sim = 0.0, albedo_model = 0.0, albedo_single = 0.0;  // single: Cook-Torrance (V-cavity G)
   double albedo_threshold = 0.0;
   double l1 = 0.0, l1_expected = 0.0, l1_threshold = 0.0;        // normalized lobes, all k
