@@ -32,11 +32,12 @@ mkdir -p "$parts"
 [[ ! -e $report ]] || { echo "slurm_shards: $report exists; move it away first" >&2; exit 2; }
 
 q() { printf '%q ' "$@"; }
-task="threads=\${SLURM_CPUS_PER_TASK:-0}; exec $(q "$@") --threads \$threads --shard \${SLURM_ARRAY_TASK_ID}/$n --out $(q "$parts")/part-\${SLURM_ARRAY_TASK_ID}.json --force"
+q1() { printf '%q' "$1"; }
+task="threads=\${SLURM_CPUS_PER_TASK:-0}; exec $(q "$@") --threads \$threads --shard \${SLURM_ARRAY_TASK_ID}/$n --out $(q1 "$parts")/part-\${SLURM_ARRAY_TASK_ID}.json --force"
 array=$("$sbatch" --parsable --job-name=vgroove-shards --array=1-"$n" --output="$parts/slurm-%A_%a.out" \
   "${opts[@]}" --wrap "$task")
 array=${array%%;*}
-merge="exec $(q "$vgroove") merge $(q "$parts")/part-*.json --out $(q "$report")"
+merge="exec $(q1 "$vgroove") merge $(q1 "$parts")/part-*.json --out $(q1 "$report")"
 merge_id=$("$sbatch" --parsable --job-name=vgroove-merge --dependency=afterok:"$array" --output="$parts/slurm-merge-%j.out" \
   --wrap "$merge")
 echo "submitted: array job $array ($n shards into $parts/), merge job ${merge_id%%;*} (into $report)"
