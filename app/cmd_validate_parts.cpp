@@ -1,7 +1,8 @@
 // `vgroove validate --shard I/N --out P` and `mpirun -n K vgroove validate SUITE`: the suite's work
 // items (validation/work_run.h) split over shards or MPI ranks; and `vgroove merge` of its parts.
 // The kinds that trace case by case: single grooves (Table 1, stress; sets of suites), "brdf"
-// (Fig. 11), "table2"; the others (read by validation/validate.h) run in one process. The report written from the parts is the single-process report (timings aside).
+// (Fig. 11), "table2"; the others (read by validation/validate.h) run in one process. The report written from the parts
+// is the single-process report (timings aside).
 #include "vgroove/app/commands.h"
 
 #include "vgroove/app/distributed.h"
@@ -49,20 +50,30 @@ ValidateArgs args_from(const nlohmann::json& job) {
 // The kinds whose work items split over shards and ranks: those that trace rays case by case.
 const char* split_kind_name(ValidationPlan::Kind k) {
   switch (k) {
-    case ValidationPlan::Kind::single_grooves: return "single-groove";
-    case ValidationPlan::Kind::brdf: return "brdf";
-    case ValidationPlan::Kind::table2: return "table2";
-    default: return nullptr;
+    case ValidationPlan::Kind::single_grooves:
+      return "single-groove";
+    case ValidationPlan::Kind::brdf:
+      return "brdf";
+    case ValidationPlan::Kind::table2:
+      return "table2";
+    default:
+      return nullptr;
   }
 }
 const char* kind_name(ValidationPlan::Kind k) {
   switch (k) {
-    case ValidationPlan::Kind::furnace: return "furnace";
-    case ValidationPlan::Kind::sampling: return "sampling";
-    case ValidationPlan::Kind::profiles: return "profiles";
-    case ValidationPlan::Kind::nonsymmetric: return "nonsymmetric_brdf";
-    case ValidationPlan::Kind::model_table: return "brdf with --model-table";
-    default: return split_kind_name(k);
+    case ValidationPlan::Kind::furnace:
+      return "furnace";
+    case ValidationPlan::Kind::sampling:
+      return "sampling";
+    case ValidationPlan::Kind::profiles:
+      return "profiles";
+    case ValidationPlan::Kind::nonsymmetric:
+      return "nonsymmetric_brdf";
+    case ValidationPlan::Kind::model_table:
+      return "brdf with --model-table";
+    default:
+      return split_kind_name(k);
   }
 }
 
@@ -90,7 +101,7 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 // Shard, ranks or merge: where a job's results come from.
 struct Source {
-  std::optional<support::Shard> shard;  // a shard: write its part
+  std::optional<support::Shard> shard;       // a shard: write its part
   const std::vector<Part>* parts = nullptr;  // merge: these parts
   const ValidateArgs* args = nullptr;
 };
@@ -109,7 +120,8 @@ int run_plan_job(const Job<Work>& job, const Source& src, const std::string& out
   }
   const ValidateArgs& a = *src.args;
   if (src.shard) {
-    const auto part = run_job_part(job, *src.shard, a.threads, terminal_progress("validate " + src.shard->text()), a.cancel);
+    const auto part =
+        run_job_part(job, *src.shard, a.threads, terminal_progress("validate " + src.shard->text()), a.cancel);
     if (!part) return interrupted_no_report();
     write_partial(out, *part, force);
     return 0;
@@ -125,7 +137,8 @@ void write_report(const std::string& out, const nlohmann::json& report, bool for
   std::cout << "report: " << out << "\n";
 }
 
-int run_plan(const ValidationPlan& p, const nlohmann::json& descriptor, const Source& src, const std::string& out, bool force) {
+int run_plan(const ValidationPlan& p, const nlohmann::json& descriptor, const Source& src, const std::string& out,
+             bool force) {
   if (p.kind == ValidationPlan::Kind::brdf)
     return run_plan_job(brdf_job(p.brdf, p.rays, descriptor), src, out, force,
                         [&](const auto& results, int threads, double wall, const std::string& o, bool f) {
