@@ -92,6 +92,9 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
                   "\"brdf\" suites: hold this table of a foreign model's bin-integrated lobes (layout from "
                   "`vgroove bins SUITE`) against the simulation instead of vgroove's model");
   val->add_flag("--force", va.force, "overwrite an existing report");
+  val->add_option("--shard", va.shard,
+                  "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts of the suite's work and write it to "
+                  "--out as a partial report (`vgroove merge` joins them into this report)");
 
   auto* bench = app.add_subcommand("bench", "Benchmarks: what accuracy costs in time.");
   bench->require_subcommand(1);

@@ -50,6 +50,7 @@ int cmd_merge(const MergeArgs& a) {
   if (command == "energy") return merge_energy(parts, a);
   if (command == "simulate") return merge_simulate(parts, a);
   if (command == "bench accuracy") return merge_accuracy(parts, a);
+  if (command == "validate") return merge_validate(parts, a);
   throw support::UserError("merge: " + parts.front().file + " is a part of `" + command +
                            "`, which this build cannot merge");
 }

@@ -1,6 +1,8 @@
 #include "vgroove/app/commands.h"
 
 #include <iostream>
+#include "vgroove/app/mpi_world.h"
+#include "vgroove/app/outputs.h"
 #include "vgroove/app/progress.h"
 #include "vgroove/support/atomic_file.h"
 #include "vgroove/support/json_reader.h"
@@ -12,7 +14,7 @@ namespace vgroove::app {
 
 using namespace validation;
 
-int cmd_validate(const ValidateArgs& a) {
+ValidateOptions validate_options(const ValidateArgs& a) {
   ValidateOptions o;
   o.suite = a.suite;
   if (a.rays != kUnset) o.rays = a.rays;
@@ -21,7 +23,12 @@ int cmd_validate(const ValidateArgs& a) {
   if (!a.eq6_form.empty()) o.eq6_form = a.eq6_form;
   if (a.seed != kUnsetSeed) o.seed = a.seed;
   if (!a.model_table.empty()) o.model_table = a.model_table;
-  const ValidationPlan plan = plan_validation(o);
+  return o;
+}
+
+int cmd_validate(const ValidateArgs& a) {
+  if (!a.shard.empty() || world().distributed()) return validate_split(a);
+  const ValidationPlan plan = plan_validation(validate_options(a));
   if (!a.out.empty()) support::check_writable_target(a.out, a.force);  // fail before the work, not after
   if (a.dry_run) return 0;
   const ValidationResult res = run_validation(plan, terminal_progress, a.cancel);

@@ -54,6 +54,7 @@ struct ValidateArgs {
   long long seed = kUnsetSeed;  // kUnsetSeed: the suite's
   std::string model_table;      // a foreign model's bin-integrated lobes ("brdf" suites)
   bool force = false;
+  std::string shard;                          // "I/N": write the I-th of N parts as a partial report
   const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: no report is written
 };
 int cmd_validate(const ValidateArgs& a);

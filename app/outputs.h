@@ -7,6 +7,7 @@
 #include "vgroove/validation/energy_table.h"
 #include "vgroove/validation/partial_report.h"
 #include "vgroove/validation/suite_run.h"
+#include "vgroove/validation/validate.h"
 
 #include <nlohmann/json.hpp>
 
@@ -35,5 +36,10 @@ void write_simulation(const scene::Scene& scene, const scene::SimulationResult& 
 void write_accuracy_report(const validation::Suite& suite, const std::vector<validation::SuiteRun>& runs,
                            const std::string& out, bool force);
 int merge_accuracy(const std::vector<validation::Part>& parts, const MergeArgs& a);
+
+// `vgroove validate` split over shards (--shard) or MPI ranks, and its parts merged.
+validation::ValidateOptions validate_options(const ValidateArgs& a);  // the command line's overrides
+int validate_split(const ValidateArgs& a);
+int merge_validate(const std::vector<validation::Part>& parts, const MergeArgs& a);
 
 }  // namespace vgroove::app
