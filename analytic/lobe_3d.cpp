@@ -35,7 +35,6 @@ KShare share_k(double t_i, double theta_v, FacetSide first, int k) {
   return s;
 }
 
-
 enum class LobeModel { vgroove, cook_torrance };
 
 struct LobeRun {

@@ -1,10 +1,10 @@
 #include "vgroove/validation/table2_suite.h"
 
 #include "vgroove/analytic/bounce_percentiles.h"
-#include "vgroove/sim/microsurface3d.h"
-#include "vgroove/support/parallel.h"
 #include "vgroove/common/angles.h"
+#include "vgroove/sim/microsurface3d.h"
 #include "vgroove/support/json_reader.h"
+#include "vgroove/support/parallel.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
 
