@@ -58,6 +58,12 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
                       {"wall_s", s.wall_s},
                       {"bounces_per_s", s.bounces_per_s},
                       {"pass", s.pass()}});
+      if (smp == sim::Sampling::breakpoints) {
+        // rays_per_facet is the grid's size M; rays counts every ray traced (grid and bisection).
+        runs.back()["zones"] = s.zones;
+        runs.back()["uncertified_cells"] = s.uncertified_cells;
+        runs.back()["max_missed_bound"] = s.max_missed_bound;
+      }
     }
   // Which placement reaches the suite's thresholds first, in wall time.
   std::string fastest = "none";

@@ -21,7 +21,7 @@ int cmd_trace(const TraceArgs& a) {
   check_rays(a.rays, "--rays");
   if (a.max_bounces < 1)
     throw support::UserError("--max-bounces = " + std::to_string(a.max_bounces) + " is out of range [1, 2147483647]");
-  const sim::Sampling sampling = parse_sampling(a.sampling, "--sampling");
+  const sim::Sampling sampling = parse_sampling(a.sampling, "--sampling", false);
   check_seed(a.seed, "--seed");
   if (a.dry_run) return 0;
   const double theta_i = a.theta_i_deg * kRadPerDeg;

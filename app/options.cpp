@@ -22,10 +22,12 @@ void check_rays(long rays, const std::string& what) {
                              "]");
 }
 
-sim::Sampling parse_sampling(const std::string& s, const std::string& what) {
+sim::Sampling parse_sampling(const std::string& s, const std::string& what, bool breakpoints) {
   if (s == "stratified") return sim::Sampling::stratified;
   if (s == "random") return sim::Sampling::random;
-  throw support::UserError(what + " = \"" + s + "\" is not one of \"stratified\", \"random\"");
+  if (breakpoints && s == "breakpoints") return sim::Sampling::breakpoints;
+  throw support::UserError(what + " = \"" + s + "\" is not one of \"stratified\", \"random\"" +
+                           (breakpoints ? ", \"breakpoints\"" : ""));
 }
 
 analytic::Eq6Form parse_form(const std::string& s, const std::string& what) {

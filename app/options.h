@@ -16,7 +16,9 @@ inline constexpr long kMaxRays = 1'000'000'000;
 void check_seed(long long seed, const std::string& what);
 void check_rays(long rays, const std::string& what);
 void check_threads(int threads);
-sim::Sampling parse_sampling(const std::string& s, const std::string& what);
+// "stratified", "random", and with `breakpoints` also "breakpoints" (suites only: validate and
+// bench accuracy; `trace` places rays across the opening).
+sim::Sampling parse_sampling(const std::string& s, const std::string& what, bool breakpoints = true);
 analytic::Eq6Form parse_form(const std::string& s, const std::string& what);
 // The groove the options name, checked; nonsymmetric grooves need both facet angles.
 validation::GrooveParams groove_from(const GrooveArgs& g);

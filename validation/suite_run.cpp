@@ -1,5 +1,6 @@
 #include "vgroove/validation/suite_run.h"
 
+#include <algorithm>
 #include <chrono>
 
 namespace vgroove::validation {
@@ -48,6 +49,12 @@ SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads, 
       s.vertex_hits += f.vertex_hits;
       s.bounce_limit += f.bounce_limit;
       s.wrong_first += f.wrong_first;
+      s.zones += f.zones;
+      s.max_zones = std::max(s.max_zones, f.zones);
+      s.uncertified_cells += f.uncertified_cells;
+      s.max_missed_bound = std::max(s.max_missed_bound, f.missed_bound);
+      if (f.zones > 0 && (s.narrowest_zone == 0.0 || f.narrowest_zone < s.narrowest_zone))
+        s.narrowest_zone = f.narrowest_zone;
     }
   }
   s.mean_l1 = s.cases ? sum_l1 / static_cast<double>(s.cases) : 0.0;
