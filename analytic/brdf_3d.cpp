@@ -198,6 +198,61 @@ double groove_cdf(NdfKind ndf, double alpha, double theta_m) {
   return 0.0;
 }
 
+namespace {
+// cos and sin of atan(t), t >= 0, without overflow.
+void cos_sin_of_atan(double t, double& c, double& s) {
+  if (t <= 1.0) {
+    c = 1.0 / std::sqrt(1.0 + t * t);
+    s = t * c;
+  } else {
+    const double r = 1.0 / t;
+    s = 1.0 / std::sqrt(1.0 + r * r);
+    c = r * s;
+  }
+}
+}  // namespace
+
+void groove_cdf_inverse_cos_sin(NdfKind ndf, double alpha, double u, double& cos_m, double& sin_m) {
+  if (!(u > 0.0)) {
+    cos_m = 1.0, sin_m = 0.0;
+  } else if (!(u < 1.0)) {
+    cos_m = 0.0, sin_m = 1.0;
+  } else if (ndf == NdfKind::phong) {
+    const double one_minus_cos = -std::expm1(std::log1p(-u) / (phong_exponent(alpha) + 2.0));
+    cos_m = 1.0 - one_minus_cos;
+    sin_m = std::sqrt(one_minus_cos * (2.0 - one_minus_cos));
+  } else {
+    cos_sin_of_atan(alpha * std::sqrt(ndf == NdfKind::ggx ? u / (1.0 - u) : -std::log1p(-u)), cos_m, sin_m);
+  }
+}
+
+double groove_cdf_inverse(NdfKind ndf, double alpha, double u, double& cos_m, double& sin_m) {
+  if (!(u > 0.0)) {
+    cos_m = 1.0, sin_m = 0.0;
+    return 0.0;
+  }
+  if (!(u < 1.0)) {
+    cos_m = 0.0, sin_m = 1.0;
+    return 0.5 * std::numbers::pi;
+  }
+  switch (ndf) {
+    case NdfKind::ggx:
+    case NdfKind::beckmann: {
+      const double t = alpha * std::sqrt(ndf == NdfKind::ggx ? u / (1.0 - u) : -std::log1p(-u));
+      cos_sin_of_atan(t, cos_m, sin_m);
+      return std::atan(t);
+    }
+    case NdfKind::phong: {
+      const double one_minus_cos = -std::expm1(std::log1p(-u) / (phong_exponent(alpha) + 2.0));
+      cos_m = 1.0 - one_minus_cos;
+      sin_m = std::sqrt(one_minus_cos * (2.0 - one_minus_cos));
+      return 2.0 * std::asin(std::sqrt(0.5 * one_minus_cos));
+    }
+  }
+  cos_m = 1.0, sin_m = 0.0;
+  return 0.0;
+}
+
 double groove_cdf_inverse(NdfKind ndf, double alpha, double u) {
   if (!(u > 0.0)) return 0.0;
   if (!(u < 1.0)) return 0.5 * std::numbers::pi;

@@ -118,5 +118,10 @@ double cook_torrance(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, co
 // inverse. Exposed for the tests and the simulation's cross-checks.
 double groove_cdf(NdfKind ndf, double alpha, double theta_m);
 double groove_cdf_inverse(NdfKind ndf, double alpha, double u);
+// The same theta_m with its cosine and sine, formed without trigonometry from the closed form
+// (tan theta_m for GGX and Beckmann, 1 - cos theta_m for Phong): for the lobes' quadrature.
+double groove_cdf_inverse(NdfKind ndf, double alpha, double u, double& cos_m, double& sin_m);
+// The cosine and sine alone (no angle: no atan).
+void groove_cdf_inverse_cos_sin(NdfKind ndf, double alpha, double u, double& cos_m, double& sin_m);
 
 }  // namespace vgroove::analytic

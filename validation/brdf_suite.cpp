@@ -148,7 +148,8 @@ BrdfOutcome run_3d(const BrdfSuite& suite, const BrdfCase& c, long rays) {
 
   const auto t1 = Clock::now();
   const analytic::Lobe3d lobe = analytic::vgroove_lobe_3d(c.ndf, c.alpha, c.theta_i, tb, pb, suite.max_k);
-  const analytic::Lobe3d single = analytic::cook_torrance_lobe_3d(c.ndf, c.alpha, c.theta_i, tb, pb);
+  // Cook-Torrance (V-cavity G) is the lobe's k = 1 row (Eq. 25): no second integration.
+  const analytic::Lobe3d single = analytic::cook_torrance_lobe_3d_from(lobe);
   out.model_wall_s = seconds_since(t1);
   out.albedo_model = lobe.albedo;
   out.albedo_single = single.albedo;
