@@ -7,6 +7,7 @@
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/brdf_suite.h"
+#include "vgroove/validation/model_table.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/suite_run.h"
 #include "vgroove/validation/table2_suite.h"
@@ -49,6 +50,18 @@ int validate_microsurface(const ValidateArgs& a, const nlohmann::json& j) {
     print_table2(std::cout, suite, run);
     report = table2_report_json(suite, run).dump(1) + "\n";
     pass = run.pass;
+  } else if (!a.model_table.empty()) {
+    const BrdfSuite suite = with_seed(parse_brdf_suite(j, a.suite));
+    if (suite.kind != "brdf")
+      throw support::UserError("--model-table applies to suites of kind \"brdf\"; " + a.suite + " is of kind " + kind);
+    const ModelTable table = parse_model_table(support::read_json_file(a.model_table), a.model_table, suite);
+    if (!a.out.empty()) support::check_writable_target(a.out, a.force);
+    if (a.dry_run) return 0;
+    const ModelTableRun run = run_model_table(suite, table, rays, a.threads, a.cancel);
+    if (run.interrupted) return interrupted_no_report();
+    print_model_table(std::cout, suite, table, run);
+    report = model_table_report_json(suite, table, run).dump(1) + "\n";
+    pass = run.pass;
   } else {
     const BrdfSuite suite = with_seed(parse_brdf_suite(j, a.suite));
     if (!a.out.empty()) support::check_writable_target(a.out, a.force);
@@ -71,6 +84,9 @@ int cmd_validate(const ValidateArgs& a) {
   check_threads(a.threads);
   if (const nlohmann::json j = support::read_json_file(a.suite); is_microsurface_suite(j))
     return validate_microsurface(a, j);
+  if (!a.model_table.empty())
+    throw support::UserError("--model-table applies to suites of kind \"brdf\" (e.g. data/suites/fig11.json); " +
+                             a.suite + " is a single-groove suite");
   const SuiteSet set = load_suite_set(a.suite);
   std::vector<CaseOptions> opts;
   for (const Suite& suite : set.suites)
@@ -91,6 +107,23 @@ int cmd_validate(const ValidateArgs& a) {
     std::cout << "report: " << a.out << "\n";
   }
   return pass ? 0 : 1;
+}
+
+int cmd_bins(const BinsArgs& a) {
+  const nlohmann::json j = support::read_json_file(a.suite);
+  if (!j.is_object() || !j.contains("kind") || j["kind"] != "brdf")
+    throw support::UserError(a.suite + ": `vgroove bins` takes a suite of kind \"brdf\" (e.g. data/suites/fig11.json)");
+  const BrdfSuite suite = parse_brdf_suite(j, a.suite);
+  if (!a.out.empty()) support::check_writable_target(a.out, a.force);
+  if (a.dry_run) return 0;
+  const std::string text = bin_layout_json(suite).dump(1) + "\n";
+  if (a.out.empty()) {
+    std::cout << text;
+    return 0;
+  }
+  support::write_file_atomically(a.out, text, a.force);
+  std::cout << "layout: " << a.out << " (" << suite.cases() << " cases)\n";
+  return 0;
 }
 
 }  // namespace vgroove::app
