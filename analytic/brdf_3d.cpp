@@ -1,7 +1,8 @@
 #include "vgroove/analytic/brdf_3d.h"
 
-#include "vgroove/analytic/brdf_3d_terms.h"
+#include "vgroove/analytic/brdf_3d_passes.h"
 #include "vgroove/analytic/kaleidoscope.h"
+#include "vgroove/analytic/kaleidoscope_solutions.h"
 
 #include <algorithm>
 #include <array>
@@ -17,82 +18,56 @@ Dir3 dir3(double theta, double phi) {
 
 namespace {
 
-using namespace brdf_terms;
-
-// Eq. (16) for one k, straightforwardly: every j with theta_v in (0, pi], both facets.
-double brdf_k_every_j(const Plane& p, double cos_i, double cos_o, int k, NdfKind ndf, double alpha,
-                      const FresnelFn& F) {
-  double sum = 0.0;
-  for (FacetSide side : {FacetSide::left, FacetSide::right}) {
-    // k = 1: s = h is the left facet by the choice of a (t_h <= 0); the right facet's solution
-    // theta_m = -theta_h exists only as the rounding image of theta_h = 0.
-    if (k == 1 && side == FacetSide::right) continue;
-    const Ends e = ends_of(p, side, k);
-    const double d = e.a - e.b;
-    const int j_lo = static_cast<int>(std::ceil((-d - std::numbers::pi) / (2.0 * std::numbers::pi)));
-    const int j_hi =
-        static_cast<int>(std::floor((k * std::numbers::pi - d - std::numbers::pi) / (2.0 * std::numbers::pi)));
-    for (int j = j_lo; j <= j_hi; ++j) {
-      const double theta_v = solution(d, j, k);
-      if (!(theta_v > 0.0 && theta_v <= std::numbers::pi)) continue;
-      sum += solution_term(p, e, side, k, theta_v, cos_i, cos_o, ndf, alpha, F);
-    }
-  }
-  return sum;
-}
+double dot(const Dir3& a, const Dir3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
 }  // namespace
 
-namespace brdf_terms {
-
-// Eq. (16) summed over k = k_lo..k_hi in one pass over the solutions that can exist.
-// For one facet and one parity of k the ends (a, b) are fixed, and theta_v = X / k with
-// X = a - b + (2 j + 1) pi. Eq. (4) allows the k-outcome only for K in {k, k + 1}, i.e.
-//   (k - 1) X <= k span < (k + 1) X,   span = pi + 2a   <=>   k |X - span| <= X (up to the ends),
-// and theta_v <= pi needs k >= X / pi. With X - span = 2 pi j - (a + b) and |a + b| < pi, only
-// j = 0 can meet both (|X - span| <= X / k <= pi), and then k runs over [X / pi, X / |a + b|]:
-// a handful of k for most (i, o), all of them only near a = -b (the path equal to its reverse).
-// So the pass visits the solutions that exist plus O(1) others, whatever max_k is; the j = +-1
-// and one k beyond each end are visited too, against rounding (outcome_possible decides, as in
-// brdf_k_every_j, so both sum the same terms). Each solution's term is computed on its own
-// (solution_term): the previous evaluation, kept as vgroove_brdf_per_solution_reference beside
-// the batched pass (brdf_3d_batch.cpp) that vgroove_brdf runs.
-double brdf_per_solution(const Plane& p, double cos_i, double cos_o, int k_lo, int k_hi, NdfKind ndf, double alpha,
-                         const FresnelFn& F) {
-  double sum = 0.0;
-  for (FacetSide side : {FacetSide::left, FacetSide::right}) {
-    for (int k_first : {1, 2}) {
-      const Ends e = ends_of(p, side, k_first);  // depends on the parity of k only
-      const double d = e.a - e.b;
-      const double span = std::numbers::pi + 2.0 * e.a;
-      for (int j = -1; j <= 1; ++j) {
-        const double X = d + (2.0 * j + 1.0) * std::numbers::pi;
-        if (!(X > 0.0)) continue;
-        const double dev = std::abs(X - span);
-        // In double until clamped: X / dev may exceed any int.
-        const double k_top = dev > 0.0 ? std::floor(X / dev) + 1.0 : static_cast<double>(k_hi);
-        const int k_end = static_cast<int>(std::min(static_cast<double>(k_hi), k_top));
-        int k = std::max(k_lo, static_cast<int>(std::ceil(X / std::numbers::pi)) - 1);
-        if (k < 1) k = 1;
-        if ((k - k_first) % 2 != 0) ++k;  // the parity of this pass
-        for (; k <= k_end; k += 2) {
-          // k = 1: s = h is the left facet (as in brdf_k_every_j).
-          if (k == 1 && side == FacetSide::right) continue;
-          const double theta_v = solution(d, j, k);
-          if (!(theta_v > 0.0 && theta_v <= std::numbers::pi)) continue;
-          sum += solution_term(p, e, side, k, theta_v, cos_i, cos_o, ndf, alpha, F);
-        }
-      }
-    }
-  }
-  return sum;
+// h = (i + o)/|i + o|, a = the horizontal direction of h, so that t_h = -theta_h <= 0 and the
+// facet with normal h is the "left" one (2D angle -theta_m). Every field is computed symmetrically
+// in (i, o) or swaps with them bitwise (t_i <-> t_o, ...), so that the evaluation below is
+// reciprocal to the last bit (see beam_width).
+bool groove_frame(const Dir3& i, const Dir3& o, GrooveFrame& p) {
+  Dir3 h{i.x + o.x, i.y + o.y, i.z + o.z};
+  const double len = std::sqrt(dot(h, h));
+  h = {h.x / len, h.y / len, h.z / len};
+  const double rho = std::hypot(h.x, h.y);
+  // The averages make c and i.h bitwise symmetric in (i, o) (they are equal mathematically).
+  p.cos_d = 0.5 * (dot(i, h) + dot(o, h));
+  p.sin_h = rho;
+  if (!(rho > 0.0)) return false;
+  const Dir3 a{h.x / rho, h.y / rho, 0.0};
+  p.ax = a.x;
+  p.ay = a.y;
+  const double ia = dot(i, a), oa = dot(o, a);
+  p.x.t_i = std::atan2(-ia, i.z);
+  p.x.t_o = std::atan2(-oa, o.z);
+  p.t_h = -std::atan2(rho, h.z);
+  const double c_i = std::sqrt(ia * ia + i.z * i.z), c_o = std::sqrt(oa * oa + o.z * o.z);
+  p.c = 0.5 * (c_i + c_o);
+  p.x.sin_ti = -ia / c_i;
+  p.x.cos_ti = i.z / c_i;
+  p.x.sin_to = -oa / c_o;
+  p.x.cos_to = o.z / c_o;
+  // cos((t_i + t_o)/2) = cos(t_h) = h.n and cos((t_i - t_o)/2) = (i.h)/c (h bisects i_perp and o_perp).
+  p.x.cos_half_sum = h.z;
+  p.x.cos_half_diff = p.cos_d / p.c;
+  return true;
 }
-
-}  // namespace brdf_terms
 
 namespace {
 
-using namespace brdf_terms;
+// The term of Eq. (16) of one solution of Eq. (5).
+double solution_term(const GrooveFrame& p, const Solution& q, double cos_i, double cos_o, NdfKind ndf, double alpha,
+                     const FresnelFn& F) {
+  const double theta_m = 0.5 * (std::numbers::pi - q.theta_v);
+  const double i_dot_s = p.c * q.W;  // |i.s| G = c G f_a: f_a is the 2D cosine of incidence
+  // k = 1: s = h, so sin(theta_s)/sin(theta_h) = 1 exactly (Eq. 25); computing it would
+  // divide two rounding errors next to the mirror direction.
+  const double ratio = q.k == 1 ? 1.0 : q.C / (q.k * p.sin_h);
+  // Lee et al. 2018, Eq. (16) with the Jacobian of Eq. (13).
+  return ratio * fresnel_along_path(F, p.x.t_i, theta_m, q.first, q.k, p.c) * i_dot_s * D_cs(ndf, q.S, q.C, alpha) /
+         (4.0 * p.cos_d * (cos_i * cos_o));
+}
 
 double ct_at(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, const FresnelFn& F) {
   const double cos_i = i.z, cos_o = o.z;
@@ -109,6 +84,8 @@ double ct_at(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, const Fres
   return Fr * D(ndf, theta_h, alpha) * G / (4.0 * cos_i * cos_o);
 }
 
+// Which pass sums the solutions: the batched one (brdf_3d_batch.cpp, vgroove_brdf's), each
+// solution on its own (for_each_solution), or every j of every k (for_each_solution_every_j).
 enum class Pass { batched, per_solution, every_j };
 
 double brdf_range(const Dir3& i, const Dir3& o, int k_lo, int k_hi, NdfKind ndf, double alpha, const FresnelFn& F,
@@ -116,33 +93,56 @@ double brdf_range(const Dir3& i, const Dir3& o, int k_lo, int k_hi, NdfKind ndf,
   const double cos_i = i.z, cos_o = o.z;
   // Below or at the horizon: no flux (a set of measure zero; see the header).
   if (!(cos_i > 0.0 && cos_o > 0.0)) return 0.0;
-  Plane p;
-  if (!make_plane(i, o, p)) {
+  GrooveFrame p;
+  if (!groove_frame(i, o, p)) {
     // h = n: the limit of Eq. (16) is Cook-Torrance with G = 1 for k = 1 (sin theta_s / sin theta_h
     // -> 1) and diverges like 1 / sin(theta_h) for k >= 2.
     if (k_hi >= 2) return std::numeric_limits<double>::infinity();
     return k_lo <= 1 ? ct_at(i, o, ndf, alpha, F) : 0.0;
   }
-  if (pass == Pass::batched) return brdf_batched(p, cos_i, cos_o, std::max(1, k_lo), k_hi, ndf, alpha, F);
-  if (pass == Pass::per_solution) return brdf_per_solution(p, cos_i, cos_o, std::max(1, k_lo), k_hi, ndf, alpha, F);
+  if (pass == Pass::batched) return brdf_passes::brdf_batched(p, cos_i, cos_o, std::max(1, k_lo), k_hi, ndf, alpha, F);
+  if (pass == Pass::per_solution) {
+    return brdf_passes::brdf_per_solution(p, cos_i, cos_o, std::max(1, k_lo), k_hi, ndf, alpha, F);
+  }
   double sum = 0.0;
-  for (int k = std::max(1, k_lo); k <= k_hi; ++k) sum += brdf_k_every_j(p, cos_i, cos_o, k, ndf, alpha, F);
+  auto add = [&](const Solution& q) { sum += solution_term(p, q, cos_i, cos_o, ndf, alpha, F); };
+  for (int k = std::max(1, k_lo); k <= k_hi; ++k) for_each_solution_every_j(p.x, k, add);
   return sum;
 }
 
 }  // namespace
 
+// One pass over the solutions Eq. (4) allows (kaleidoscope_solutions.h), whatever k_hi is, each
+// solution's term on its own: the evaluation before the batched pass, kept beside it as
+// vgroove_brdf_per_solution_reference and run by the batched pass where both directions graze.
+double brdf_passes::brdf_per_solution(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_hi, NdfKind ndf,
+                                      double alpha, const FresnelFn& F) {
+  double sum = 0.0;
+  for_each_solution(p.x, k_lo, k_hi,
+                    [&](const Solution& q) { sum += solution_term(p, q, cos_i, cos_o, ndf, alpha, F); });
+  return sum;
+}
+
+double fresnel_along_path(const FresnelFn& F, double t_i, double theta_m, FacetSide first, int k, double c) {
+  if (!F) return 1.0;
+  double dx = std::sin(t_i), dy = -std::cos(t_i);  // travel direction (into the groove)
+  const double sm = std::sin(theta_m), cm = std::cos(theta_m);
+  bool left = first == FacetSide::left;
+  double prod = 1.0;
+  for (int j = 0; j < k; ++j) {
+    // Left facet normal at 2D angle -theta_m: (sin, cos); right at +theta_m: (-sin, cos).
+    const double nx = left ? sm : -sm, ny = cm;
+    const double dn = dx * nx + dy * ny;
+    prod *= F(c * std::abs(dn));
+    dx -= 2.0 * dn * nx;
+    dy -= 2.0 * dn * ny;
+    left = !left;
+  }
+  return prod;
+}
+
 double beam_width_k(double t_i, double t_o, double theta_v, int k, FacetSide first) {
-  Plane p;
-  p.t_i = t_i;
-  p.t_o = t_o;
-  p.sin_ti = std::sin(t_i);
-  p.cos_ti = std::cos(t_i);
-  p.sin_to = std::sin(t_o);
-  p.cos_to = std::cos(t_o);
-  p.cos_half_sum = std::cos(0.5 * (t_i + t_o));
-  p.cos_half_diff = std::cos(0.5 * (t_i - t_o));
-  const Ends e = ends_of(p, first, k);
+  const Ends e = ends_of(cross_section(t_i, t_o), first, k);
   if (!outcome_possible(e, theta_v, k)) return 0.0;
   return beam_width(e, theta_v, std::sin(0.5 * theta_v), std::cos(0.5 * theta_v), k);
 }

@@ -3,12 +3,13 @@
 //
 // The same terms as the per-solution pass (brdf_3d.cpp, vgroove_brdf_per_solution_reference):
 // the same solutions theta_v = X / k of Eq. (5) (the same bits), the same Eq. (4) test
-// (outcome_possible), the same ends and sine arguments of the width of Eq. (6) (brdf_3d_terms.h).
+// (outcome_possible), the same ends and sine arguments of the width of Eq. (6) (beam_width;
+// all three in kaleidoscope_solutions.h).
 // What changes is how the work is arranged, since a loop over solutions spends its time on
 // unpredictable branches, on divisions a branch waits for, and on library sines:
 //   - the four families (facet hit first x parity of k) are the lanes of a vector (GCC/clang
 //     vector extensions; an AVX2 copy is picked at start-up, the generic one uses SSE2 pairs);
-//     each family's candidates k run from k_lo of its parity (brdf_per_solution's lower bound
+//     each family's candidates k run from k_lo of its parity (for_each_solution's lower bound
 //     ceil(X / pi) - 1 is at most 1, X = a - b + pi < 2 pi) while k m <= X, a division-free
 //     bound that keeps exactly the k outcome_possible can accept (see below);
 //   - the first two candidates of each family are packed into lanes by a table (one vector for
@@ -24,7 +25,7 @@
 //     while theta_v <= pi needs X / k <= pi, so Eq. (4)'s k |X - span| <= X fails by far more
 //     than rounding unless |a + b| is within 1e-9 of pi (both directions grazing); such pairs go
 //     to the per-solution pass.
-// The angles t_i, t_o (atan2 in make_plane) are not touched: the width's sine arguments and
+// The angles t_i, t_o (atan2 in groove_frame) are not touched: the width's sine arguments and
 // theta_v = X / k keep their bits, so the only differences from the per-solution pass are the
 // polynomial sines (2 ulp, relative) and the order of products. Two D amplify the ulp of
 // theta_m's sine and cosine: Phong's cos^p theta_m, p = 2 / alpha^2 - 2, by p (2e-12 at
@@ -34,7 +35,8 @@
 //
 // Values: the same as the per-solution pass within 1e-12 relative (tests/analytic/brdf_3d_test.cpp,
 // BatchedPassEqualsPerSolutionPass). Cost: bench/brdf_bench.cpp.
-#include "vgroove/analytic/brdf_3d_terms.h"
+#include "vgroove/analytic/brdf_3d_passes.h"
+#include "vgroove/analytic/kaleidoscope_solutions.h"
 #include "vgroove/analytic/sin_batch.h"
 
 #include <algorithm>
@@ -42,7 +44,7 @@
 #include <cstring>
 #include <numbers>
 
-namespace vgroove::analytic::brdf_terms {
+namespace vgroove::analytic::brdf_passes {
 
 namespace {
 
@@ -81,7 +83,7 @@ struct Slots {
 };
 
 // The terms of the live slots that need D evaluated one at a time (Beckmann, Phong, Fresnel).
-void add_terms(const Plane& p, const Slots& sl, NdfKind ndf, double alpha, const FresnelFn& F, double& sum_1,
+void add_terms(const GrooveFrame& p, const Slots& sl, NdfKind ndf, double alpha, const FresnelFn& F, double& sum_1,
                double& sum_k) {
   int live[4], n = 0;
   for (int s = 0; s < 4; ++s) {
@@ -103,7 +105,7 @@ void add_terms(const Plane& p, const Slots& sl, NdfKind ndf, double alpha, const
     if (F) {
       const FacetSide side = sl.left[s] ? FacetSide::left : FacetSide::right;
       const double theta_m = 0.5 * (std::numbers::pi - 2.0 * sl.half[s]);  // as solution_term's
-      t *= fresnel_product(F, p.t_i, theta_m, side, static_cast<int>(k), p.c);
+      t *= fresnel_along_path(F, p.x.t_i, theta_m, side, static_cast<int>(k), p.c);
     }
     if (k == 1.0) {
       sum_1 += t;
@@ -121,7 +123,7 @@ void add_terms(const Plane& p, const Slots& sl, NdfKind ndf, double alpha, const
 [[gnu::target_clones("avx2", "default")]]
 #endif
 double
-brdf_batched(const Plane& p, double cos_i, double cos_o, int k_lo, int k_hi, NdfKind ndf, double alpha,
+brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_hi, NdfKind ndf, double alpha,
              const FresnelFn& F) {
   constexpr double pi = std::numbers::pi;
   const V zero = splat(0.0), one = splat(1.0);
@@ -132,15 +134,15 @@ brdf_batched(const Plane& p, double cos_i, double cos_o, int k_lo, int k_hi, Ndf
   const double ggx_norm = alpha * alpha / std::numbers::pi;  // D_cs's alpha^2 / pi, for GGX
   // The families, one per lane: a = m t_i, b = (-1)^k m t_o, m = +-1 for left/right (ends_of).
   const V m_a = {1.0, 1.0, -1.0, -1.0}, m_b = {-1.0, 1.0, 1.0, -1.0};
-  const V fa = splat(p.t_i) * m_a, fb = splat(p.t_o) * m_b;
+  const V fa = splat(p.x.t_i) * m_a, fb = splat(p.x.t_o) * m_b;
   // Both directions grazing: the j = +-1 solutions need the per-solution pass (header).
   const auto grazing = !(pi - select(fa + fb < 0.0, -(fa + fb), fa + fb) > 1e-9);
   if (grazing[0] | grazing[1] | grazing[2] | grazing[3]) {
     return brdf_per_solution(p, cos_i, cos_o, k_lo, k_hi, ndf, alpha, F);
   }
   // Each family's k that can pass outcome_possible, from k_first in steps of 2 (its parity):
-  //  - k_first: k_lo of the lane's parity (brdf_per_solution's ceil(X / pi) - 1 is at most 1 for
-  //    X = a - b + pi < 2 pi); k = 1 only for the left facet (s = h, brdf_3d.cpp);
+  //  - k_first: k_lo of the lane's parity (for_each_solution's ceil(X / pi) - 1 is at most 1 for
+  //    X = a - b + pi < 2 pi); k = 1 only for the left facet (s = h, kaleidoscope_solutions.h);
   //  - up to k_hi and while k m <= X, m = max(|X - span|, 2a, -2b): outcome_possible's
   //    k |X - span| <= X (Eq. 4 for the path and its reverse, whose span differs from X by
   //    a + b as well), theta_v > 2a and theta_v > -2b. Its comparisons hold up to rounding of
@@ -176,14 +178,14 @@ brdf_batched(const Plane& p, double cos_i, double cos_o, int k_lo, int k_hi, Ndf
     const auto left = f < 1.5, odd = (f == 0.0) | (f == 2.0);
     const V sa = select(left, one, -one), sb = select((f == 0.0) | (f == 3.0), -one, one);
     // ends_of, lane by lane (products by +-1 are exact).
-    const V a = splat(p.t_i) * sa, b = splat(p.t_o) * sb;
-    const V sin_a = splat(p.sin_ti) * sa, sin_b = splat(p.sin_to) * sb;
-    const V cos_a = splat(p.cos_ti), cos_b = splat(p.cos_to);
-    const V chd2 = 2.0 * select(odd, splat(p.cos_half_sum), splat(p.cos_half_diff));  // 2 cos((a - b)/2)
-    const V chs = select(odd, splat(p.cos_half_diff), splat(p.cos_half_sum));         // cos((a + b)/2)
+    const V a = splat(p.x.t_i) * sa, b = splat(p.x.t_o) * sb;
+    const V sin_a = splat(p.x.sin_ti) * sa, sin_b = splat(p.x.sin_to) * sb;
+    const V cos_a = splat(p.x.cos_ti), cos_b = splat(p.x.cos_to);
+    const V chd2 = 2.0 * select(odd, splat(p.x.cos_half_sum), splat(p.x.cos_half_diff));  // 2 cos((a - b)/2)
+    const V chs = select(odd, splat(p.x.cos_half_diff), splat(p.x.cos_half_sum));         // cos((a + b)/2)
     const V Xk = (a - b) + pi;
-    const V theta_v = Xk / k;  // solution(d, 0, k) of brdf_3d_terms.h, bitwise
-    // outcome_possible (brdf_3d_terms.h), every comparison made.
+    const V theta_v = Xk / k;  // solution_theta_v(d, 0, k), bitwise
+    // outcome_possible, every comparison made.
     const V span_k = pi + 2.0 * a, span_rev = pi - 2.0 * b;
     const V below = (k - 1.0) * theta_v, above = (k + 1.0) * theta_v;
     const auto valid = (lane < count) & (theta_v > 0.0) & (theta_v <= pi) & (theta_v > 2.0 * a) & (theta_v > -2.0 * b) &
@@ -192,7 +194,7 @@ brdf_batched(const Plane& p, double cos_i, double cos_o, int k_lo, int k_hi, Ndf
     const V half = 0.5 * theta_v;
     V S, C;
     sin_cos_quadrant(half, S, C);
-    // beam_width_form (brdf_3d_terms.h) with selects: the width is value, or factor sin(arg).
+    // beam_width with selects: the width is value, or factor sin(arg).
     const V f_a = S * cos_a - C * sin_a;      // sin(theta_v/2 - a)
     const V g_lo = S * cos_b + C * sin_b;     // sin(theta_v/2 + b)
     const V f_b = -(S * cos_a + C * sin_a);   // -sin(theta_v/2 + a)
@@ -217,7 +219,7 @@ brdf_batched(const Plane& p, double cos_i, double cos_o, int k_lo, int k_hi, Ndf
     const V w = select(live, select(sine, sine_value, value), zero);
     const V W = select(w > 0.0, w, zero);
     if (ggx) {
-      // D_cs of brdf_3d_terms.h without alpha^2 / pi, and sin(theta_m) / k for k >= 2.
+      // D_cs (ndf.h) without alpha^2 / pi, and sin(theta_m) / k for k >= 2.
       // (The quotient does not wait for the width.)
       const V qd = alpha * alpha * S * S + C * C;
       const V t = W * (select(k1, one, C) / (qd * qd * k));
@@ -265,4 +267,4 @@ brdf_batched(const Plane& p, double cos_i, double cos_o, int k_lo, int k_hi, Ndf
   return (sum_1 + sum_k * inv_sin_h) * common;
 }
 
-}  // namespace vgroove::analytic::brdf_terms
+}  // namespace vgroove::analytic::brdf_passes

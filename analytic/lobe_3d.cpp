@@ -1,7 +1,7 @@
 #include "vgroove/analytic/lobe_3d.h"
 
-#include "vgroove/analytic/brdf_3d_terms.h"
 #include "vgroove/analytic/kaleidoscope.h"
+#include "vgroove/analytic/ndf.h"
 #include "vgroove/analytic/quadrature.h"
 #include "vgroove/analytic/sin_batch.h"
 
@@ -371,10 +371,9 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
               sin_cos_quadrant(v, sin_m, cos_m);
             }
             const double w = weight_piece(az, side, k, K_piece, cos_m, sin_m);
-            // The density: du = 2 w dw in w, 2 pi D cos sin d theta_m in theta_m (D_cs of brdf_3d_terms.h).
+            // The density: du = 2 w dw in w, 2 pi D cos sin d theta_m in theta_m (D_cs of ndf.h).
             const double density =
-                in_w ? 2.0 * v
-                     : 2.0 * std::numbers::pi * brdf_terms::D_cs(r.ndf, cos_m, sin_m, r.alpha) * cos_m * sin_m;
+                in_w ? 2.0 * v : 2.0 * std::numbers::pi * D_cs(r.ndf, cos_m, sin_m, r.alpha) * cos_m * sin_m;
             sum += rule.w[q] * w * density;
           } else if (in_w) {
             const double theta_v = std::numbers::pi - 2.0 * groove_cdf_inverse(r.ndf, r.alpha, v * v);
