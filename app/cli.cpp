@@ -85,7 +85,10 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   val->add_option("--rays", va.rays, "rays per lit facet (default: the suite's)");
   val->add_option("--threads", va.threads, "worker threads (default 0: all cores); results do not depend on it")
       ->capture_default_str();
-  val->add_option("--sampling", va.sampling, "override the suite's placement: stratified or random");
+  val->add_option("--sampling", va.sampling,
+                  "override the suite's placement: stratified, random, or breakpoints (a grid of --rays stratified "
+                  "rays, then bisection between neighbours of different outcome down to adjacent doubles: exact "
+                  "fractions)");
   val->add_option("--seed", va.seed, "override the suite's seed");
   val->add_option("--eq6-form", va.eq6_form, "override the suite's form of Eq. 6: corrected or printed");
   val->add_option("--model-table", va.model_table,
@@ -104,7 +107,8 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
                                     "L1 against rays and wall time.");
   acc->add_option("suite", ac.suite, "suite spec")->required();
   add_list(acc, "--rays", ac.rays, "rays per lit facet, comma-separated");
-  add_list(acc, "--sampling", ac.samplings, "placements, comma-separated: stratified, random");
+  add_list(acc, "--sampling", ac.samplings,
+           "placements, comma-separated: stratified, random, breakpoints (--rays is then the grid's size)");
   acc->add_option("--threads", ac.threads, "worker threads (0: all cores)")->capture_default_str();
   acc->add_option("--out", ac.out, "report JSON to write");
   acc->add_flag("--force", ac.force, "overwrite an existing report");

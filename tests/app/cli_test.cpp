@@ -128,10 +128,27 @@ TEST(Cli, ValidateRejectsBadOverrides) {
   const std::string suite = small_suite(dir);
   expect_user_error(vgroove("validate " + quoted(suite) + " --rays 0"), "--rays", "[1, ");
   expect_user_error(vgroove("validate " + quoted(suite) + " --threads -1"), "--threads", "[0, 1024]");
-  expect_user_error(vgroove("validate " + quoted(suite) + " --sampling sobol"), "--sampling", "\"random\"");
+  expect_user_error(vgroove("validate " + quoted(suite) + " --sampling sobol"), "--sampling", "\"breakpoints\"");
+  // `trace` places rays across the opening: no breakpoint search there.
+  expect_user_error(vgroove("trace --sampling breakpoints"), "--sampling", "\"stratified\", \"random\"");
   // An --out in a directory that does not exist fails before any work.
   expect_user_error(vgroove("validate " + quoted(suite) + " --out " + quoted(dir.file("no/dir/r.json"))), "no/dir",
                     "does not exist");
+}
+
+// --sampling breakpoints: exact fractions, reported with the zones found; the report says how.
+TEST(Cli, ValidateWithBreakpointsIsExact) {
+  TempDir dir;
+  const std::string suite = small_suite(dir), out = dir.file("bp.json");
+  const CliRun r = vgroove("validate " + quoted(suite) + " --sampling breakpoints --rays 4 --out " + quoted(out));
+  EXPECT_EQ(r.status, 0) << r;
+  EXPECT_CONTAINS(r.out, "breakpoints: grid of 4 rays per lit facet");
+  const nlohmann::json j = nlohmann::json::parse(read_text(out));
+  EXPECT_EQ(j["sampling"], "breakpoints");
+  EXPECT_LT(j["summary"]["max_l1"].get<double>(), 1e-12);
+  EXPECT_EQ(j["summary"]["breakpoints"]["uncertified_cells"], 0);
+  EXPECT_GT(j["summary"]["breakpoints"]["zones"].get<long>(), 6);
+  EXPECT_TRUE(j["cases"][0]["left"].contains("zones"));
 }
 
 TEST(Cli, ValidateMissingSuiteIsNamed) {
