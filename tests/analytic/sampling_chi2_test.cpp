@@ -38,10 +38,10 @@ std::string describe(const Chi2Outcome& o) {
   const Chi2Spec& s = o.spec;
   os << surface_dim_name(s.dim) << " " << analytic::ndf_name(s.ndf) << " alpha=" << s.alpha
      << " theta_i=" << s.theta_i / kRadPerDeg << " " << analytic::strategy_name(s.strategy)
-     << (s.nonsymmetric ? " nonsymmetric" : "") << ": stat "
-     << o.test.statistic << " dof " << o.test.dof << " p " << o.test.p_value << " level " << o.test.level
-     << " | pdf integral " << o.pdf_integral << " + failure " << o.failure_probability
-     << " - 1 = " << o.normalization_error << " (quadrature error " << o.quadrature_error << ")";
+     << (s.nonsymmetric ? " nonsymmetric" : "") << ": stat " << o.test.statistic << " dof " << o.test.dof << " p "
+     << o.test.p_value << " level " << o.test.level << " | pdf integral " << o.pdf_integral << " + failure "
+     << o.failure_probability << " - 1 = " << o.normalization_error << " (quadrature error " << o.quadrature_error
+     << ")";
   if (!o.pass) os << "\n" << chi2_json(o)["table"].dump();  // the table, for a failure
   return os.str();
 }
@@ -254,9 +254,9 @@ TEST(SamplingChi2Nonsymmetric, Flatland) {
     double alpha, deg;
     FacetStrategy st;
   };
-  for (const Case& c : {Case{NdfKind::ggx, 0.5, 30.0, FacetStrategy::vndf},
-                        Case{NdfKind::beckmann, 0.3, 75.0, FacetStrategy::printed},
-                        Case{NdfKind::phong, 1.0, 0.0, FacetStrategy::vndf}}) {
+  for (const Case& c :
+       {Case{NdfKind::ggx, 0.5, 30.0, FacetStrategy::vndf}, Case{NdfKind::beckmann, 0.3, 75.0, FacetStrategy::printed},
+        Case{NdfKind::phong, 1.0, 0.0, FacetStrategy::vndf}}) {
     const Chi2Outcome o =
         run_chi2(nonsym(SurfaceDim::flatland, c.ndf, c.alpha, c.deg, c.st, 100000, kNonsymmetricFamily));
     EXPECT_TRUE(o.pass) << describe(o);
@@ -296,14 +296,16 @@ TEST(SamplingChi2NonsymmetricPower, FlatlandRejectsAThreePercentErrorInTheBackLo
       nonsym(SurfaceDim::flatland, NdfKind::ggx, 0.7, 30.0, FacetStrategy::vndf, 1000000, kNonsymmetricFamily));
   EXPECT_FALSE(right.test.reject) << describe(right);
   const Chi2Spec& s = right.spec;
-  analytic::NonsymmetricSampler S = analytic::make_nonsymmetric_sampler(
-      s.ndf, s.alpha, analytic::SamplerOptions{s.strategy, s.max_k}, true);
+  analytic::NonsymmetricSampler S =
+      analytic::make_nonsymmetric_sampler(s.ndf, s.alpha, analytic::SamplerOptions{s.strategy, s.max_k}, true);
   S.tolerance = 1e-6;
   auto part = [=](double o) { return o > 0.0 ? analytic::nonsymmetric_pdf_flatland(S, s.theta_i, o) : 0.0; };
   const Raised r{0.03, analytic::integrate_half_circle(s.theta_i, part, s.alpha, 1e-7).value,
                  right.failure_probability};
   HeldDensity h;
-  h.pdf2 = [=](double o) { return r.scale() * (analytic::nonsymmetric_pdf_flatland(S, s.theta_i, o) + r.eps * part(o)); };
+  h.pdf2 = [=](double o) {
+    return r.scale() * (analytic::nonsymmetric_pdf_flatland(S, s.theta_i, o) + r.eps * part(o));
+  };
   h.none = r.none;
   const Chi2Outcome bad = retest_chi2(right, h);
   EXPECT_TRUE(bad.test.reject) << describe(bad);
