@@ -236,8 +236,8 @@ TEST(SamplingChi2Power, RejectsThePrintedP) {
 // ---- The nonsymmetric model (analytic/sampling_nonsymmetric.h) -------------------------------------
 
 // Its pdf costs ~1 ms (an adaptive integral over the partner per k and orientation), so the default
-// run holds flatland cases (36 cells); one coarse 3D case (4 x 8 cells) and the flatland grid are long. Phong only up to
-// alpha = 1 (partner_table.h).
+// run holds flatland cases (36 cells); one coarse 3D case (4 x 8 cells) and the flatland grid are long. Phong only up
+// to alpha = 1 (partner_table.h).
 Chi2Spec nonsym(SurfaceDim dim, NdfKind ndf, double alpha, double deg, FacetStrategy st, long samples, int tests) {
   Chi2Spec s = spec(dim, ndf, alpha, deg, st, samples, tests);
   s.nonsymmetric = true;
