@@ -44,7 +44,8 @@ int cmd_sample(const SampleArgs& a) {
     throw support::UserError("--model = \"" + a.model + "\" is not one of \"vgroove\", \"vgroove-nonsymmetric\"");
   const bool nonsymmetric = a.model == "vgroove-nonsymmetric";
   if (nonsymmetric && *ndf == analytic::NdfKind::phong && a.alpha > 1.0)
-    out_of_range("--alpha", a.alpha, "(0, 1] for --model vgroove-nonsymmetric with --ndf phong (the partner law's table)");
+    out_of_range("--alpha", a.alpha,
+                 "(0, 1] for --model vgroove-nonsymmetric with --ndf phong (the partner law's table)");
   if (a.max_k < 1 || a.max_k > 100000) out_of_range("--max-k", a.max_k, "[1, 100000]");
   check_seed(a.seed, "--seed");
   if (a.cos_bins < 1 || a.cos_bins > 1000) out_of_range("--cos-bins", a.cos_bins, "[1, 1000]");

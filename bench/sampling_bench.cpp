@@ -136,6 +136,10 @@ void BM_ct_eval(benchmark::State& state) {
 // weight) and pdf() at the drawn directions.
 //   build/vgroove_bench --benchmark_filter='BM_nonsymmetric' --benchmark_repetitions=5
 //     --benchmark_enable_random_interleaving=true
+// Measured (Release, medians of 5, CPU time per call, the host shared at ~10x oversubscription):
+//   draw 316 ns (alpha 0.3), 341 ns (1.0); pdf 1.66 ms, 1.52 ms; sample (draw, pdf, Eq. 23) 2.37 ms,
+//   2.27 ms; beside the symmetric vndf sample 1.07 us / pdf 0.74 us and Cook-Torrance's VNDF sample
+//   129 ns / eval 75 ns in the same run.
 constexpr int kNs = 64;
 const analytic::NonsymmetricSampler& nonsymmetric_sampler(double alpha) {
   static const analytic::NonsymmetricSampler a3 = analytic::make_nonsymmetric_sampler(

@@ -1,9 +1,9 @@
 #include "vgroove/validation/sampling_check.h"
 
+#include "vgroove/analytic/brdf_nonsymmetric.h"
 #include "vgroove/analytic/quadrature.h"
 #include "vgroove/analytic/sampling_3d.h"
 #include "vgroove/analytic/sampling_flatland.h"
-#include "vgroove/analytic/brdf_nonsymmetric.h"
 #include "vgroove/analytic/sampling_nonsymmetric.h"
 #include "vgroove/sim/rng.h"
 #include "vgroove/validation/report.h"
@@ -110,7 +110,8 @@ void expect_3d(Chi2Outcome& out, const HeldDensity* held) {
   const analytic::NonsymmetricSampler ns = s.nonsymmetric ? nonsymmetric_sampler(s) : analytic::NonsymmetricSampler{};
   auto pdf = [&](const analytic::Dir3& o) {
     if (held) return held->pdf3(o);
-    return s.nonsymmetric ? analytic::nonsymmetric_pdf_3d(ns, i, o) : analytic::vgroove_pdf_3d(i, o, s.ndf, s.alpha, opt);
+    return s.nonsymmetric ? analytic::nonsymmetric_pdf_3d(ns, i, o)
+                          : analytic::vgroove_pdf_3d(i, o, s.ndf, s.alpha, opt);
   };
   const analytic::AdaptiveOptions outer = cell_options(s.samples);
   const double N = static_cast<double>(s.samples);
@@ -283,37 +284,37 @@ nlohmann::json chi2_json(const Chi2Outcome& o) {
     observed.push_back(ob);
     expected.push_back(ex);
   }
-  nlohmann::json j = {{"dimension", surface_dim_name(s.dim)},
-                      {"ndf", analytic::ndf_name(s.ndf)},
-                      {"alpha", s.alpha},
-                      {"theta_i_deg", output_deg(s.theta_i)},
-                      {"strategy", analytic::strategy_name(s.strategy)},
-                      {"model", s.nonsymmetric ? "vgroove-nonsymmetric" : "vgroove"},
-                      {"max_k", s.max_k},
-                      {"samples", s.samples},
-                      {"seed", s.seed},
-                      {"statistic", o.test.statistic},
-                      {"dof", o.test.dof},
-                      {"p_value", o.test.p_value},
-                      {"level", o.test.level},
-                      {"pooled_in", o.test.pooled_in},
-                      {"pooled_out", o.test.pooled_out},
-                      {"samples_where_none_expected", o.test.samples_where_none_expected},
-                      {"reject", o.test.reject},
-                      {"pdf_integral", o.pdf_integral},
-                      {"quadrature_error", o.quadrature_error},
-                      {"failure_probability", o.failure_probability},
-                      {"normalization_error", o.normalization_error},
-                      {"normalization_tolerance", o.normalization_tolerance},
-                      {"weight_mean", o.weight_mean},
-                      {"weight_variance", o.weight_variance},
-                      {"weight_samples", o.weight_samples},
-                      {"weight_standard_error",
-                       std::sqrt(o.weight_variance / static_cast<double>(std::max(1L, o.weight_samples)))},
-                      {"ns_per_sample", 1e9 * o.sample_s / static_cast<double>(s.samples)},
-                      {"sample_s", o.sample_s},
-                      {"integrate_s", o.integrate_s},
-                      {"pass", o.pass}};
+  nlohmann::json j = {
+      {"dimension", surface_dim_name(s.dim)},
+      {"ndf", analytic::ndf_name(s.ndf)},
+      {"alpha", s.alpha},
+      {"theta_i_deg", output_deg(s.theta_i)},
+      {"strategy", analytic::strategy_name(s.strategy)},
+      {"model", s.nonsymmetric ? "vgroove-nonsymmetric" : "vgroove"},
+      {"max_k", s.max_k},
+      {"samples", s.samples},
+      {"seed", s.seed},
+      {"statistic", o.test.statistic},
+      {"dof", o.test.dof},
+      {"p_value", o.test.p_value},
+      {"level", o.test.level},
+      {"pooled_in", o.test.pooled_in},
+      {"pooled_out", o.test.pooled_out},
+      {"samples_where_none_expected", o.test.samples_where_none_expected},
+      {"reject", o.test.reject},
+      {"pdf_integral", o.pdf_integral},
+      {"quadrature_error", o.quadrature_error},
+      {"failure_probability", o.failure_probability},
+      {"normalization_error", o.normalization_error},
+      {"normalization_tolerance", o.normalization_tolerance},
+      {"weight_mean", o.weight_mean},
+      {"weight_variance", o.weight_variance},
+      {"weight_samples", o.weight_samples},
+      {"weight_standard_error", std::sqrt(o.weight_variance / static_cast<double>(std::max(1L, o.weight_samples)))},
+      {"ns_per_sample", 1e9 * o.sample_s / static_cast<double>(s.samples)},
+      {"sample_s", o.sample_s},
+      {"integrate_s", o.integrate_s},
+      {"pass", o.pass}};
   j["table"] = {{"rows", s.dim == SurfaceDim::three_d ? "cos_theta_o" : "one row"},
                 {"cols", s.dim == SurfaceDim::three_d ? "phi_o (rad)" : "theta_o (rad)"},
                 {"row_edges", t.row_edges},

@@ -73,7 +73,7 @@ struct Chi2Outcome {
   // The weights rho cos / pdf of the same samples (zero-weight returns count 0), F = 1.
   double weight_mean = 0.0, weight_variance = 0.0;
   long weight_samples = 0;  // samples the weight's moments are over
-  bool pass = false;  // the chi-square accepts and |normalization_error| <= normalization_tolerance
+  bool pass = false;        // the chi-square accepts and |normalization_error| <= normalization_tolerance
 };
 
 // A density the test holds the sampler to in place of its own pdf (the power tests), with the
@@ -98,7 +98,7 @@ struct VarianceSpec {
   int max_k = 256;
   long samples = 20000;
   std::uint64_t seed = 1;
-  double schlick_f0 = 1.0;  // Fresnel: Schlick with this F0 (1: F = 1, the furnace); 3D only
+  double schlick_f0 = 1.0;    // Fresnel: Schlick with this F0 (1: F = 1, the furnace); 3D only
   bool nonsymmetric = false;  // the nonsymmetric model (Chi2Spec)
 };
 struct StrategyStats {

@@ -46,8 +46,8 @@ int main() {
       sum += x.weight;
       if (j < 100 && x.k > 0) {  // the weight is the evaluation over the pdf, pointwise
         const double eval = va::vgroove_brdf(wi, x.o, ndf, alpha, so.max_k) * x.o.z;
-        sampling_ok = sampling_ok && std::abs(x.weight - eval / va::vgroove_pdf_3d(wi, x.o, ndf, alpha, so)) <=
-                                         1e-9 * x.weight;
+        sampling_ok =
+            sampling_ok && std::abs(x.weight - eval / va::vgroove_pdf_3d(wi, x.o, ndf, alpha, so)) <= 1e-9 * x.weight;
       }
     }
     std::printf("symmetric, V-cavity VNDF: mean weight over %d samples %.6f (the albedo with F = 1)\n", n, sum / n);

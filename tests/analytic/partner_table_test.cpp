@@ -43,8 +43,8 @@ TEST(PartnerTable, CoarseTableExceedsTheBound) {
 TEST(PartnerTable, IsADensity) {
   for (NdfKind ndf : kNdfs) {
     const PartnerTable t = make_partner_table(ndf, 0.5, false);
-    const double total = integrate_adaptive([&](double B) { return partner_table_pdf(t, B); }, 0.0, kHalfPi, 1e-12,
-                                            0.0, 1024, 4096);
+    const double total =
+        integrate_adaptive([&](double B) { return partner_table_pdf(t, B); }, 0.0, kHalfPi, 1e-12, 0.0, 1024, 4096);
     EXPECT_NEAR(total, 1.0, 1e-10) << ndf_name(ndf);
     EXPECT_EQ(partner_table_pdf(t, -0.1), 0.0);
     EXPECT_EQ(partner_table_pdf(t, 2.0), 0.0);

@@ -34,8 +34,9 @@ NonsymmetricSampler sampler(NdfKind ndf, double alpha, FacetStrategy st, bool fl
 void check_normalization_flatland(NdfKind ndf, double alpha, double deg, FacetStrategy st) {
   const NonsymmetricSampler S = sampler(ndf, alpha, st, true);
   const double ti = deg * kRadPerDeg;
-  const double mass =
-      integrate_half_circle(ti, [&](double to) { return nonsymmetric_pdf_flatland(S, ti, to); }, alpha, 1e-8).value;
+  const double mass = integrate_half_circle(
+                          ti, [&](double to) { return nonsymmetric_pdf_flatland(S, ti, to); }, alpha, 1e-8)
+                          .value;
   const double fail = nonsymmetric_failure_probability_flatland(S, ti);
   EXPECT_NEAR(mass + fail, 1.0, 2e-6) << ndf_name(ndf) << " " << alpha << " " << deg << " " << strategy_name(st)
                                       << ": mass " << mass << " fail " << fail;
@@ -61,9 +62,9 @@ TEST(SamplingNonsymmetricLong, ThreeDPdfIntegratesToOneMinusTheFailureProbabilit
     HemisphereOptions ho;
     ho.tol = 1e-5;
     ho.scale = 0.5;
-    const double mass =
-        integrate_hemisphere(Dir3{-i.x, -i.y, i.z}, [&](const Dir3& o) { return nonsymmetric_pdf_3d(S, i, o); }, ho)
-            .value;
+    const double mass = integrate_hemisphere(
+                            Dir3{-i.x, -i.y, i.z}, [&](const Dir3& o) { return nonsymmetric_pdf_3d(S, i, o); }, ho)
+                            .value;
     const double fail = nonsymmetric_failure_probability_3d(S, i);
     EXPECT_NEAR(mass + fail, 1.0, 3e-5) << strategy_name(st) << ": mass " << mass << " fail " << fail;
   }
@@ -164,8 +165,7 @@ TEST(SamplingNonsymmetric, FurnaceOfEq23Flatland) {
           .value;
     };
     const double a = albedo(false), b = albedo(true);
-    std::printf("%s alpha %g theta_i %g: albedo %.10f, broken Jacobian %.6f\n", ndf_name(c.ndf), c.alpha, c.deg, a,
-                b);
+    std::printf("%s alpha %g theta_i %g: albedo %.10f, broken Jacobian %.6f\n", ndf_name(c.ndf), c.alpha, c.deg, a, b);
     EXPECT_NEAR(a, 1.0, 1e-6) << ndf_name(c.ndf);
     EXPECT_GT(std::abs(b - 1.0), 1e-3) << ndf_name(c.ndf);
   }
