@@ -1,5 +1,6 @@
 #include "vgroove/analytic/brdf_3d.h"
 
+#include "vgroove/analytic/brdf_3d_passes.h"
 #include "vgroove/analytic/kaleidoscope.h"
 #include "vgroove/analytic/kaleidoscope_solutions.h"
 
@@ -83,8 +84,12 @@ double ct_at(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, const Fres
   return Fr * D(ndf, theta_h, alpha) * G / (4.0 * cos_i * cos_o);
 }
 
+// Which pass sums the solutions: the batched one (brdf_3d_batch.cpp, vgroove_brdf's), each
+// solution on its own (for_each_solution), or every j of every k (for_each_solution_every_j).
+enum class Pass { batched, per_solution, every_j };
+
 double brdf_range(const Dir3& i, const Dir3& o, int k_lo, int k_hi, NdfKind ndf, double alpha, const FresnelFn& F,
-                  bool reference = false) {
+                  Pass pass = Pass::batched) {
   const double cos_i = i.z, cos_o = o.z;
   // Below or at the horizon: no flux (a set of measure zero; see the header).
   if (!(cos_i > 0.0 && cos_o > 0.0)) return 0.0;
@@ -95,18 +100,28 @@ double brdf_range(const Dir3& i, const Dir3& o, int k_lo, int k_hi, NdfKind ndf,
     if (k_hi >= 2) return std::numeric_limits<double>::infinity();
     return k_lo <= 1 ? ct_at(i, o, ndf, alpha, F) : 0.0;
   }
+  if (pass == Pass::batched) return brdf_passes::brdf_batched(p, cos_i, cos_o, std::max(1, k_lo), k_hi, ndf, alpha, F);
+  if (pass == Pass::per_solution) {
+    return brdf_passes::brdf_per_solution(p, cos_i, cos_o, std::max(1, k_lo), k_hi, ndf, alpha, F);
+  }
   double sum = 0.0;
   auto add = [&](const Solution& q) { sum += solution_term(p, q, cos_i, cos_o, ndf, alpha, F); };
-  if (!reference) {
-    // One pass over the solutions Eq. (4) allows (kaleidoscope_solutions.h), whatever k_hi is.
-    for_each_solution(p.x, std::max(1, k_lo), k_hi, add);
-    return sum;
-  }
   for (int k = std::max(1, k_lo); k <= k_hi; ++k) for_each_solution_every_j(p.x, k, add);
   return sum;
 }
 
 }  // namespace
+
+// One pass over the solutions Eq. (4) allows (kaleidoscope_solutions.h), whatever k_hi is, each
+// solution's term on its own: the evaluation before the batched pass, kept beside it as
+// vgroove_brdf_per_solution_reference and run by the batched pass where both directions graze.
+double brdf_passes::brdf_per_solution(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_hi, NdfKind ndf,
+                                      double alpha, const FresnelFn& F) {
+  double sum = 0.0;
+  for_each_solution(p.x, k_lo, k_hi,
+                    [&](const Solution& q) { sum += solution_term(p, q, cos_i, cos_o, ndf, alpha, F); });
+  return sum;
+}
 
 double fresnel_along_path(const FresnelFn& F, double t_i, double theta_m, FacetSide first, int k, double c) {
   if (!F) return 1.0;
@@ -133,10 +148,17 @@ double beam_width_k(double t_i, double t_o, double theta_v, int k, FacetSide fir
 }
 
 double vgroove_brdf_k_reference(const Dir3& i, const Dir3& o, int k, NdfKind ndf, double alpha) {
-  return brdf_range(i, o, k, k, ndf, alpha, FresnelFn{}, true);
+  return brdf_range(i, o, k, k, ndf, alpha, FresnelFn{}, Pass::every_j);
 }
 double vgroove_brdf_reference(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, int max_k) {
-  return brdf_range(i, o, 1, max_k, ndf, alpha, FresnelFn{}, true);
+  return brdf_range(i, o, 1, max_k, ndf, alpha, FresnelFn{}, Pass::every_j);
+}
+double vgroove_brdf_per_solution_reference(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, int max_k,
+                                           const FresnelFn& F) {
+  return brdf_range(i, o, 1, max_k, ndf, alpha, F, Pass::per_solution);
+}
+double vgroove_brdf_k_per_solution_reference(const Dir3& i, const Dir3& o, int k, NdfKind ndf, double alpha) {
+  return brdf_range(i, o, k, k, ndf, alpha, FresnelFn{}, Pass::per_solution);
 }
 
 double vgroove_brdf_k(const Dir3& i, const Dir3& o, int k, NdfKind ndf, double alpha) {
@@ -173,6 +195,61 @@ double groove_cdf(NdfKind ndf, double alpha, double theta_m) {
       return -std::expm1((phong_exponent(alpha) + 2.0) * std::log1p(-2.0 * s * s));
     }
   }
+  return 0.0;
+}
+
+namespace {
+// cos and sin of atan(t), t >= 0, without overflow.
+void cos_sin_of_atan(double t, double& c, double& s) {
+  if (t <= 1.0) {
+    c = 1.0 / std::sqrt(1.0 + t * t);
+    s = t * c;
+  } else {
+    const double r = 1.0 / t;
+    s = 1.0 / std::sqrt(1.0 + r * r);
+    c = r * s;
+  }
+}
+}  // namespace
+
+void groove_cdf_inverse_cos_sin(NdfKind ndf, double alpha, double u, double& cos_m, double& sin_m) {
+  if (!(u > 0.0)) {
+    cos_m = 1.0, sin_m = 0.0;
+  } else if (!(u < 1.0)) {
+    cos_m = 0.0, sin_m = 1.0;
+  } else if (ndf == NdfKind::phong) {
+    const double one_minus_cos = -std::expm1(std::log1p(-u) / (phong_exponent(alpha) + 2.0));
+    cos_m = 1.0 - one_minus_cos;
+    sin_m = std::sqrt(one_minus_cos * (2.0 - one_minus_cos));
+  } else {
+    cos_sin_of_atan(alpha * std::sqrt(ndf == NdfKind::ggx ? u / (1.0 - u) : -std::log1p(-u)), cos_m, sin_m);
+  }
+}
+
+double groove_cdf_inverse(NdfKind ndf, double alpha, double u, double& cos_m, double& sin_m) {
+  if (!(u > 0.0)) {
+    cos_m = 1.0, sin_m = 0.0;
+    return 0.0;
+  }
+  if (!(u < 1.0)) {
+    cos_m = 0.0, sin_m = 1.0;
+    return 0.5 * std::numbers::pi;
+  }
+  switch (ndf) {
+    case NdfKind::ggx:
+    case NdfKind::beckmann: {
+      const double t = alpha * std::sqrt(ndf == NdfKind::ggx ? u / (1.0 - u) : -std::log1p(-u));
+      cos_sin_of_atan(t, cos_m, sin_m);
+      return std::atan(t);
+    }
+    case NdfKind::phong: {
+      const double one_minus_cos = -std::expm1(std::log1p(-u) / (phong_exponent(alpha) + 2.0));
+      cos_m = 1.0 - one_minus_cos;
+      sin_m = std::sqrt(one_minus_cos * (2.0 - one_minus_cos));
+      return 2.0 * std::asin(std::sqrt(0.5 * one_minus_cos));
+    }
+  }
+  cos_m = 1.0, sin_m = 0.0;
   return 0.0;
 }
 

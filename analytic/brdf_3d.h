@@ -57,11 +57,17 @@
 //     worst cases sit within ~1e-5 of the edge of a k's support, where rho_k vanishes linearly:
 //     there the rounding of t_i, t_o themselves (atan2) sets a relative error ~1e-16 / width;
 //   - cost: the solutions of Eq. (5) that Eq. (4) allows have j = 0 and k in [X / pi, X / |a + b|]
-//     (brdf_single_pass), so one pass visits them all, ~3-4.5 solutions per (i, o), for any
-//     max_k. Measured (bench/brdf_bench.cpp, 1024 cosine-weighted pairs, 2 loaded cores):
-//     ~260-430 ns at max_k 4 and ~310-470 ns at max_k 16, GGX and Beckmann, alpha 0.3-1.0,
-//     against 63-92 ns for cook_torrance (before: ~1 us and ~10-13 us). The straightforward per-k
-//     evaluation (every j) stays as vgroove_brdf_k_reference for the tests.
+//     (for_each_solution, kaleidoscope_solutions.h), so one pass visits them all, ~3-4.5 solutions per (i, o), for any
+//     max_k. vgroove_brdf takes them four at a time without branches (brdf_3d_batch.cpp: vector
+//     lanes, polynomial sines, the common factors once); the previous evaluation, each solution's
+//     term on its own, stays as vgroove_brdf_per_solution_reference (values within 1e-12 relative,
+//     measured 2.5e-14 worst). Measured (bench/brdf_bench.cpp, 1024 cosine-weighted pairs, GGX
+//     alpha 0.3, one run on a shared 2-core machine): ~150 ns at max_k 4 and ~185 ns at max_k 16,
+//     against ~260 and ~315 ns per solution and ~63 ns for cook_torrance (2.4x and 2.9x; the
+//     per-solution pass 4.2x and 5x). Half of the remainder is the plane itself (two atan2, a
+//     hypot, ten divisions: about one Cook-Torrance), whose angles must keep their bits (Beckmann's
+//     tails multiply an ulp of t_i by up to 10^4). The straightforward per-k evaluation (every j)
+//     stays as vgroove_brdf_k_reference for the tests.
 #pragma once
 
 #include "vgroove/analytic/kaleidoscope.h"
@@ -111,9 +117,15 @@ double vgroove_brdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, int
 // The tests' reference for the single pass; F = 1.
 double vgroove_brdf_k_reference(const Dir3& i, const Dir3& o, int k, NdfKind ndf, double alpha);
 double vgroove_brdf_reference(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, int max_k);
+// The same single pass as vgroove_brdf with each solution's term computed on its own (std::sin
+// and std::cos per solution, the common factors per term): the evaluation before the batched
+// pass (brdf_3d_batch.cpp), kept for the tests and the benchmarks' side-by-side.
+double vgroove_brdf_per_solution_reference(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, int max_k,
+                                           const FresnelFn& F = {});
+double vgroove_brdf_k_per_solution_reference(const Dir3& i, const Dir3& o, int k, NdfKind ndf, double alpha);
 // The 2D width G f_a of Eq. (6) (corrected) of the outcome with exactly k reflections, for light
 // at t_i aimed at `first` and leaving at t_o, where theta_v solves Eq. (5) for (t_i, t_o, k)
-// (the form used by Eq. 16; derivation and numerics in brdf_3d.cpp). Exposed for the tests.
+// (the form used by Eq. 16; derivation and numerics in kaleidoscope_solutions.h). Exposed for the tests.
 double beam_width_k(double t_i, double t_o, double theta_v, int k, FacetSide first);
 // Fresnel along a path of the cross-section: prod_j F(c |d_j . s_j|) over its k reflections, the
 // first on `first` (Eq. 11 with the 3D cosines c times the 2D ones); 1 when F is empty.
@@ -126,5 +138,10 @@ double cook_torrance(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, co
 // inverse. Exposed for the tests and the simulation's cross-checks.
 double groove_cdf(NdfKind ndf, double alpha, double theta_m);
 double groove_cdf_inverse(NdfKind ndf, double alpha, double u);
+// The same theta_m with its cosine and sine, formed without trigonometry from the closed form
+// (tan theta_m for GGX and Beckmann, 1 - cos theta_m for Phong): for the lobes' quadrature.
+double groove_cdf_inverse(NdfKind ndf, double alpha, double u, double& cos_m, double& sin_m);
+// The cosine and sine alone (no angle: no atan).
+void groove_cdf_inverse_cos_sin(NdfKind ndf, double alpha, double u, double& cos_m, double& sin_m);
 
 }  // namespace vgroove::analytic

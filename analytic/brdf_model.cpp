@@ -1,24 +1,55 @@
 #include "vgroove/analytic/brdf_model.h"
 
 #include "vgroove/analytic/brdf_flatland.h"
+#include "vgroove/analytic/brdf_nonsymmetric.h"
 
 #include <cmath>
 
 namespace vgroove::analytic {
 
-const char* brdf_model_name(BrdfModel m) { return m == BrdfModel::vgroove ? "vgroove" : "cook-torrance"; }
+const char* brdf_model_name(BrdfModel m) {
+  switch (m) {
+    case BrdfModel::vgroove:
+      return "vgroove";
+    case BrdfModel::cook_torrance:
+      return "cook-torrance";
+    case BrdfModel::vgroove_nonsymmetric:
+      return "vgroove-nonsymmetric";
+  }
+  return "?";
+}
 
 std::optional<BrdfModel> brdf_model_from_name(std::string_view name) {
-  for (BrdfModel m : {BrdfModel::vgroove, BrdfModel::cook_torrance})
+  for (BrdfModel m : {BrdfModel::vgroove, BrdfModel::cook_torrance, BrdfModel::vgroove_nonsymmetric})
     if (name == brdf_model_name(m)) return m;
   return std::nullopt;
 }
 
 namespace {
 double flat_angle(const Dir3& d) { return std::atan2(-d.x, d.z); }
+
+// Eq. (23) per k and summed over k = 1..max_k (the sum in the order nonsymmetric_brdf adds it).
+BrdfValue evaluate_nonsymmetric(const Dir3& i, const Dir3& o, const BrdfEvalOptions& opt) {
+  NonsymmetricModel m;
+  m.roughness = Roughness{opt.ndf, opt.alpha, opt.alpha_y > 0.0 ? opt.alpha_y : opt.alpha};
+  m.partner = opt.symmetric_partner ? PartnerLaw::symmetric : PartnerLaw::independent;
+  BrdfValue v;
+  v.by_k.assign(static_cast<std::size_t>(opt.per_k), 0.0);
+  if (opt.flatland) {
+    const double ti = flat_angle(i), to = flat_angle(o);
+    v.value = flatland_nonsymmetric_brdf(ti, to, opt.max_k, m);
+    for (int k = 1; k <= opt.per_k; ++k)
+      v.by_k[static_cast<std::size_t>(k - 1)] = flatland_nonsymmetric_brdf_k(ti, to, k, m);
+    return v;
+  }
+  v.value = nonsymmetric_brdf(i, o, opt.max_k, m);
+  for (int k = 1; k <= opt.per_k; ++k) v.by_k[static_cast<std::size_t>(k - 1)] = nonsymmetric_brdf_k(i, o, k, m);
+  return v;
+}
 }  // namespace
 
 BrdfValue evaluate_brdf(BrdfModel model, const Dir3& i, const Dir3& o, const BrdfEvalOptions& opt) {
+  if (model == BrdfModel::vgroove_nonsymmetric) return evaluate_nonsymmetric(i, o, opt);
   BrdfValue v;
   v.by_k.assign(static_cast<std::size_t>(opt.per_k), 0.0);
   if (opt.flatland) {

@@ -1,6 +1,7 @@
 // vgroove analytic: the BRDFs by name, one entry point for every face (CLI, Python, C++ users):
 // vgroove's multiple-scattering V-groove BRDF (Lee et al. 2018, Eq. 16-17; brdf_3d.h and, in
-// flatland, brdf_flatland.h) and Cook-Torrance with the V-cavity G (Eq. 1-3), F = 1.
+// flatland, brdf_flatland.h), its nonsymmetric form (Eq. 21-23 with P(theta_r) of Eq. 20;
+// brdf_nonsymmetric.h), and Cook-Torrance with the V-cavity G (Eq. 1-3), F = 1.
 //
 // Directions: analytic::Dir3 in the macrosurface frame (n = (0, 0, 1)), i towards the light and o
 // towards the viewer, both away from the surface. In flatland both lie in the plane y = 0 and
@@ -17,19 +18,28 @@
 
 namespace vgroove::analytic {
 
-enum class BrdfModel : unsigned char { vgroove, cook_torrance };
-const char* brdf_model_name(BrdfModel m);  // "vgroove", "cook-torrance"
+enum class BrdfModel : unsigned char { vgroove, cook_torrance, vgroove_nonsymmetric };
+const char* brdf_model_name(BrdfModel m);  // "vgroove", "cook-torrance", "vgroove-nonsymmetric"
 std::optional<BrdfModel> brdf_model_from_name(std::string_view name);
 
 struct BrdfEvalOptions {
   NdfKind ndf = NdfKind::ggx;
   double alpha = 0.5;
   bool flatland = false;
-  // Orders summed: all of them by default (the 3D single pass visits only the orders Eq. (4)
-  // allows, so the cost does not grow with max_k; the flatland sum costs O(max_k^2)).
+  // Orders summed: all of them by default (the symmetric 3D single pass visits only the orders
+  // Eq. (4) allows, so the cost does not grow with max_k; the flatland sum and the nonsymmetric
+  // model cost O(max_k^2): callers bound max_k there).
   int max_k = 1'000'000;
   // Orders reported one by one, k = 1..per_k (0: none); the total includes every order up to max_k.
   int per_k = 0;
+  // vgroove_nonsymmetric only. The roughness across the alpha axis, 3D, GGX and Beckmann
+  // (analytic/ndf_anisotropic.h; 0: alpha, isotropic): alpha is then alpha_x and the azimuths are
+  // measured from its axis.
+  double alpha_y = 0.0;
+  // vgroove_nonsymmetric only: the partner facet's tilt equal to the first's (B = A: the symmetric
+  // model, Eq. 24; with alpha_y its anisotropic form) instead of independent (Eq. 20, which for
+  // Phong needs alpha < sqrt(2): std::domain_error otherwise).
+  bool symmetric_partner = false;
 };
 
 struct BrdfValue {

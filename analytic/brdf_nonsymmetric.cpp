@@ -281,6 +281,13 @@ NonsymmetricModel isotropic_model(NdfKind ndf, double alpha) {
 
 }  // namespace
 
+std::vector<PartnerPiece> partner_pieces(double t_i, double t_o, int k) {
+  std::vector<PartnerPiece> out;
+  for (const Family& f : families(t_i, t_o, k))
+    for (const auto& [a, b] : pieces(t_i, f, k)) out.push_back({f.C, f.beta, a, b});
+  return out;
+}
+
 double nonsymmetric_brdf_k(const Dir3& i, const Dir3& o, int k, const NonsymmetricModel& m, const FresnelFn& F) {
   return brdf_k_3d(i, o, k, m, F);
 }

@@ -67,6 +67,8 @@
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/analytic/ndf_anisotropic.h"
 
+#include <vector>
+
 namespace vgroove::analytic {
 
 enum class PartnerLaw : unsigned char {
@@ -106,5 +108,15 @@ struct CountWidth {
   double len_left = 0.0;
 };
 CountWidth count_width(double t_i, double theta_l, double theta_r, int k);
+
+// The grooves that send t_i to t_o after k reflections with the left facet hit first, as Eq. (23)'s
+// integral visits them: along a family theta_l = C + beta B (the inversions of Eq. 8 above) the
+// B-intervals [lo, hi] with constant k_b that can hold a k-reflection outcome. Exposed for the
+// nonsymmetric sampler's pdf (analytic/sampling_nonsymmetric.h), which integrates its own density
+// over the same pieces.
+struct PartnerPiece {
+  double C = 0.0, beta = 0.0, lo = 0.0, hi = 0.0;
+};
+std::vector<PartnerPiece> partner_pieces(double t_i, double t_o, int k);
 
 }  // namespace vgroove::analytic

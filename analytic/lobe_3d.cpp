@@ -1,7 +1,9 @@
 #include "vgroove/analytic/lobe_3d.h"
 
 #include "vgroove/analytic/kaleidoscope.h"
+#include "vgroove/analytic/ndf.h"
 #include "vgroove/analytic/quadrature.h"
+#include "vgroove/analytic/sin_batch.h"
 
 #include <algorithm>
 #include <array>
@@ -43,15 +45,19 @@ struct LobeRun {
   double theta_i;
   int tb, pb, max_k;
   LobeModel model;
-  std::vector<double>* acc;  // where the deposits go: [row][t][p], as Lobe3d::hist_by_k
+  std::vector<double>* acc;      // where the deposits go: [row][t][p], as Lobe3d::hist_by_k
+  bool fast = true;              // the kernels without per-node trigonometry (below); false: the reference ones
+  double m_half = 0.0;           // the median of theta_m over the grooves' area
+  std::vector<double> cos_edge;  // cos of the theta_o bin edges, b = 0..tb (decreasing)
 };
 
 // One groove azimuth: the geometry of the cross-section.
 struct Azimuth {
-  double tau;     // projected incident angle t_i
-  double iu;      // i.u
-  double c;       // sqrt(1 - iu^2)
-  double ca, sa;  // cos, sin phi_a
+  double tau;               // projected incident angle t_i
+  double iu;                // i.u
+  double c;                 // sqrt(1 - iu^2)
+  double ca, sa;            // cos, sin phi_a
+  double sin_tau, cos_tau;  // of tau
 };
 
 // The bin of the 2D exit angle t in the cross-section, or -1 below the horizon.
@@ -157,11 +163,104 @@ int ct_branch(const Azimuth& az, FacetSide side, double theta_v) {
   return gi < go ? 1 : 2;
 }
 
+// The kernels without per-node trigonometry (LobeRun::fast). A node's theta_m comes with its
+// cosine and sine from the closed form of the CDF's inverse (groove_cdf_inverse), so that with
+// h = theta_v / 2 = pi/2 - theta_m, sin h = cos theta_m and cos h = sin theta_m, and the
+// offsets of Eq. (6) are angle sums: f_a = sin(h - tf) = cos_m cos tf - sin_m sin tf,
+// f_b = -sin(h + tf); only f_k = sin((2K - 1) h - tf) needs one sincos. They differ from the
+// reference kernels by rounding only (the same integrand at the same nodes: per bin within 1e-15,
+// Lobe3d.FastKernelsEqualTheReference).
+
+// sin x for |x| <= pi, by the polynomial of sin_batch.h (within 2 ulp: the integrand's rounding).
+double sin_pi(double x) { return x < 0.0 ? -sin_full(-x) : sin_full(x); }
+// cos x for |x| <= pi: sin(pi/2 - |x|).
+double cos_pi(double x) { return sin_full(cos_arg(x < 0.0 ? -x : x)); }
+// f_k = sin((K - 1/2) theta_v - tf) = -sin((K - 1/2) theta_v - tf - pi), whose argument lies in
+// [tf - theta_v/2, tf + theta_v/2) by Eq. (4) ((K - 1) theta_v <= pi + 2 tf < K theta_v).
+double f_k_of(int K, double theta_v, double tf) { return -sin_pi((K - 0.5) * theta_v - tf - std::numbers::pi); }
+// Eq. (5)'s exit angle for the binning, wrapped into (-pi, pi] without std::remainder.
+double exit_angle_fast(double tau, double theta_v, int n, FacetSide side) {
+  const double ti = side == FacetSide::left ? tau : -tau;
+  double t = ((n % 2 == 0) ? 1.0 : -1.0) * (ti + std::numbers::pi - n * theta_v);
+  t -= 2.0 * std::numbers::pi * std::round(t / (2.0 * std::numbers::pi));
+  return side == FacetSide::left ? t : -t;
+}
+
+// weight_k on a piece where Eq. (4)'s K is known (constant between the piece's breakpoints, as
+// are the tests on f_a and f_b): no angle is needed at all. With z = e^{i h} = sin_m + i cos_m
+// (h = theta_v / 2), f_k = sin((2K - 1) h - tf) = Im(z^(2K-1)) cos tf - Re(z^(2K-1)) sin tf, the
+// power by squaring (its rounding grows like (2K - 1) ulp: far below the quadrature's error).
+double weight_piece(const Azimuth& az, FacetSide side, int k, int K, double cos_m, double sin_m) {
+  const double st = side == FacetSide::left ? az.sin_tau : -az.sin_tau, ct = az.cos_tau;
+  const double f_a = cos_m * ct - sin_m * st;
+  if (!(f_a > 0.0)) return 0.0;
+  const double f_b = std::max(0.0, -(cos_m * ct + sin_m * st));
+  double re = 1.0, im = 0.0, br = sin_m, bi = cos_m;
+  for (unsigned n = static_cast<unsigned>(2 * K - 1);; n >>= 1) {
+    if (n & 1u) {
+      const double t = re * br - im * bi;
+      im = re * bi + im * br;
+      re = t;
+    }
+    if (n <= 1u) break;
+    const double t = br * br - bi * bi;
+    bi = 2.0 * br * bi;
+    br = t;
+  }
+  const double f_k = std::clamp(im * ct - re * st, f_b, f_a);
+  const double Gf = K == k ? f_k - f_b : f_a - f_k;
+  return Gf / (2.0 * cos_m * az.cos_tau);
+}
+
+// weight_k with theta_m's cosine and sine given.
+double weight_fast(const Azimuth& az, FacetSide side, int k, double theta_v, double cos_m, double sin_m) {
+  const double st = side == FacetSide::left ? az.sin_tau : -az.sin_tau, ct = az.cos_tau;
+  const double f_a = cos_m * ct - sin_m * st;  // sin(theta_v/2 - tf)
+  if (!(f_a > 0.0)) return 0.0;
+  const double f_b = std::max(0.0, -(cos_m * ct + sin_m * st));  // max(0, -sin(theta_v/2 + tf))
+  const double tf = side == FacetSide::left ? az.tau : -az.tau;
+  const int K = saturate_to_int(std::floor((std::numbers::pi + 2.0 * tf) / theta_v) + 1.0);
+  if (K != k && K != k + 1) return 0.0;
+  const double f_k = std::clamp(f_k_of(K, theta_v, tf), f_b, f_a);
+  const double Gf = K == k ? f_k - f_b : f_a - f_k;
+  return Gf / (2.0 * cos_m * az.cos_tau);  // over the opening's width 2 sin(theta_v/2) cos(tau)
+}
+
+// bin_of with the theta_o bin found among the cosines of its edges.
+int bin_fast(const LobeRun& r, const Azimuth& az, double t) {
+  const double st = sin_pi(t), ct = cos_pi(t);
+  const double ox = -az.c * st * az.ca + az.iu * az.sa;
+  const double oy = -az.c * st * az.sa - az.iu * az.ca;
+  const double oz = az.c * ct;
+  if (!(oz > 0.0)) return -1;
+  // theta_o >= edge b <=> o_z <= cos(edge b): the edges 1..tb-1 with cos >= o_z.
+  const auto first = r.cos_edge.begin() + 1, last = r.cos_edge.begin() + r.tb;
+  const int tb = static_cast<int>(std::upper_bound(first, last, oz, std::greater<double>()) - first);
+  const double dphi = 2.0 * std::numbers::pi / r.pb;
+  int p = static_cast<int>(std::floor((std::atan2(oy, ox) + 0.5 * dphi) / dphi));
+  p = ((p % r.pb) + r.pb) % r.pb;
+  return tb * r.pb + p;
+}
+
 struct Scratch {
   std::vector<double> T, X;
   double band_total = 0.0;                      // flux deposited by the bands at this node
   std::vector<std::pair<size_t, double>> tail;  // the tail's deposits at this node
+  // The bin of each segment between consecutive crossings T (constant there: T holds every exit
+  // angle where a bin edge or the horizon is crossed), found at the segment's middle when first
+  // asked for; -2 not yet known.
+  std::vector<int> segment_bin;
 };
+
+// The bin of the exit angle t (LobeRun::fast): its segment among the crossings, no trigonometry
+// but once per segment.
+int bin_by_segment(const LobeRun& r, const Azimuth& az, Scratch& sc, double t) {
+  const std::size_t pos = static_cast<std::size_t>(std::upper_bound(sc.T.begin(), sc.T.end(), t) - sc.T.begin());
+  if (pos == 0 || pos == sc.T.size()) return -1;  // beyond -pi/2 or pi/2: below the horizon
+  int& b = sc.segment_bin[pos];
+  if (b == -2) b = bin_fast(r, az, 0.5 * (sc.T[pos - 1] + sc.T[pos]));
+  return b;
+}
 
 // Integrate one facet's k-reflection outcomes over theta_v in [x_lo, x_hi] with the weight
 // `weight` (the phi_a quadrature weight), depositing into the bins (and their mirror images).
@@ -223,16 +322,32 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
   for (size_t s = 0; s + 1 < X.size(); ++s) {
     const double x0 = X[s], x1 = X[s + 1];
     if (!(x1 > x0)) continue;
-    const Outcome mid = outcome(r, az, side, k, 0.5 * (x0 + x1));
-    if (!(mid.P > 0.0)) continue;
-    const int bin = bin_of(r, az, mid.t_o);
+    int bin;
+    const double x_mid = 0.5 * (x0 + x1);
+    if (r.fast && r.model == LobeModel::vgroove) {
+      // weight_fast > 0 is outcome's P > 0 (the same width over the same opening); the exit is Eq. (5).
+      double cos_m, sin_m;
+      sin_cos_quadrant(0.5 * (std::numbers::pi - x_mid), sin_m, cos_m);
+      if (!(weight_fast(az, side, k, x_mid, cos_m, sin_m) > 0.0)) continue;
+      bin = bin_by_segment(r, az, sc, exit_angle_fast(az.tau, x_mid, k, side));
+    } else {
+      const Outcome mid = outcome(r, az, side, k, x_mid);
+      if (!(mid.P > 0.0)) continue;
+      bin = r.fast ? bin_fast(r, az, mid.t_o) : bin_of(r, az, mid.t_o);
+    }
     if (bin < 0) continue;
     // The weight is dCDF(theta_m) = 2 pi D cos sin d theta_m. Near theta_m = 0, where D peaks
     // (width alpha), Gauss-Legendre runs in w = sqrt(CDF) (du = 2 w dw, theta_m(w) analytic at
     // w = 0); above the median in theta_m itself, since theta_m(w) is singular at w = 1 (sqrt for
     // GGX, log for Beckmann). Pieces are cut to at most 0.05 in w or theta_m.
     const double m0 = 0.5 * (std::numbers::pi - x1), m1 = 0.5 * (std::numbers::pi - x0);
-    const double m_half = groove_cdf_inverse(r.ndf, r.alpha, 0.5);
+    const double m_half = r.m_half;
+    const bool fast = r.fast && r.model == LobeModel::vgroove;
+    // Eq. (4)'s K on this piece (the piece is cut where it changes); outside {k, k + 1} the piece
+    // holds no k-reflection outcome.
+    const double tf_piece = side == FacetSide::left ? az.tau : -az.tau;
+    const int K_piece = saturate_to_int(std::floor((std::numbers::pi + 2.0 * tf_piece) / x_mid) + 1.0);
+    if (fast && K_piece != k && K_piece != k + 1) continue;
     double val = 0.0;
     auto gl_pieces = [&](double a0, double a1, bool in_w) {
       if (!(a1 > a0)) return;
@@ -248,7 +363,19 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
         double sum = 0.0;
         for (size_t q = 0; q < rule.x.size(); ++q) {
           const double v = 0.5 * (b0 + b1) + 0.5 * (b1 - b0) * rule.x[q];
-          if (in_w) {
+          if (fast) {
+            double cos_m, sin_m;
+            if (in_w) {
+              groove_cdf_inverse_cos_sin(r.ndf, r.alpha, v * v, cos_m, sin_m);
+            } else {
+              sin_cos_quadrant(v, sin_m, cos_m);
+            }
+            const double w = weight_piece(az, side, k, K_piece, cos_m, sin_m);
+            // The density: du = 2 w dw in w, 2 pi D cos sin d theta_m in theta_m (D_cs of ndf.h).
+            const double density =
+                in_w ? 2.0 * v : 2.0 * std::numbers::pi * D_cs(r.ndf, cos_m, sin_m, r.alpha) * cos_m * sin_m;
+            sum += rule.w[q] * w * density;
+          } else if (in_w) {
             const double theta_v = std::numbers::pi - 2.0 * groove_cdf_inverse(r.ndf, r.alpha, v * v);
             sum += rule.w[q] * weight_k(r, az, side, k, theta_v) * 2.0 * v;
           } else {
@@ -280,21 +407,40 @@ void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_c
   const double u0 = groove_cdf(r.ndf, r.alpha, 0.5 * (std::numbers::pi - (std::numbers::pi + 2.0 * tf) / k_cap));
   const double mass = 1.0 - u0;
   if (!(mass > 0.0)) return;
+  auto deposit = [&](int k, double Gf_over_w, double theta_o) {
+    const int bin = r.fast ? bin_by_segment(r, az, sc, theta_o) : bin_of(r, az, theta_o);
+    if (bin < 0) return;
+    const int row = std::min(k, r.max_k + 1);
+    const int t = bin / r.pb, pp = bin % r.pb;
+    const double val = weight * mass / n * Gf_over_w;
+    sc.tail.emplace_back((static_cast<size_t>(row) * r.tb + t) * r.pb + pp, val);
+    sc.tail.emplace_back((static_cast<size_t>(row) * r.tb + t) * r.pb + (r.pb - pp) % r.pb, val);
+  };
   for (int q = 0; q < n; ++q) {
     const double u = u0 + mass * (q + 0.5) / n;
+    if (r.fast) {
+      // Both outcomes of Eq. (6) as weight_fast forms them: K reflections on [f_b, f_k], K - 1 on [f_k, f_a].
+      double cos_m, sin_m;
+      const double theta_v = std::numbers::pi - 2.0 * groove_cdf_inverse(r.ndf, r.alpha, u, cos_m, sin_m);
+      const double st = side == FacetSide::left ? az.sin_tau : -az.sin_tau, ct = az.cos_tau;
+      const double f_a = cos_m * ct - sin_m * st;
+      if (!(f_a > 0.0)) continue;
+      const double f_b = std::max(0.0, -(cos_m * ct + sin_m * st));
+      const int K = saturate_to_int(std::floor((std::numbers::pi + 2.0 * tf) / theta_v) + 1.0);
+      const double f_k = std::clamp(f_k_of(K, theta_v, tf), f_b, f_a);
+      const double w = 2.0 * cos_m * az.cos_tau;
+      if (K > k_cap && f_k - f_b > 0.0) deposit(K, (f_k - f_b) / w, exit_angle_fast(az.tau, theta_v, K, side));
+      if (K - 1 > k_cap && f_a - f_k > 0.0)
+        deposit(K - 1, (f_a - f_k) / w, exit_angle_fast(az.tau, theta_v, K - 1, side));
+      continue;
+    }
     const double theta_v = std::numbers::pi - 2.0 * groove_cdf_inverse(r.ndf, r.alpha, u);
     const FacetPrediction p = G_kaleidoscopic(az.tau, theta_v, side);
     if (!p.lit) continue;
     const double w = opening_width(az.tau, theta_v);
     for (const BounceShare& b : {p.fewer, p.more}) {
       if (!(b.G > 0.0) || b.n <= k_cap) continue;
-      const int bin = bin_of(r, az, b.theta_o);
-      if (bin < 0) continue;
-      const int row = std::min(b.n, r.max_k + 1);
-      const int t = bin / r.pb, pp = bin % r.pb;
-      const double val = weight * mass / n * b.G * p.f_a / w;
-      sc.tail.emplace_back((static_cast<size_t>(row) * r.tb + t) * r.pb + pp, val);
-      sc.tail.emplace_back((static_cast<size_t>(row) * r.tb + t) * r.pb + (r.pb - pp) % r.pb, val);
+      deposit(b.n, b.G * p.f_a / w, b.theta_o);
     }
   }
 }
@@ -309,7 +455,10 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
   L.by_k.assign(rows, 0.0);
   L.hist.assign(static_cast<size_t>(theta_bins) * phi_bins, 0.0);
   L.hist_by_k.assign(static_cast<size_t>(rows) * theta_bins * phi_bins, 0.0);
-  LobeRun r{ndf, alpha, theta_i, theta_bins, phi_bins, max_k, model, &L.hist_by_k};
+  LobeRun r{ndf, alpha, theta_i, theta_bins, phi_bins, max_k, model, &L.hist_by_k, true, 0.0, {}};
+  r.fast = !opt.reference_kernels;
+  r.m_half = groove_cdf_inverse(ndf, alpha, 0.5);
+  for (int b = 0; b <= theta_bins; ++b) r.cos_edge.push_back(std::cos(b * 0.5 * std::numbers::pi / theta_bins));
   const GaussLegendre phi_rule = gauss_legendre(opt.phi_order);
   const std::vector<double>&gx = phi_rule.x, &gw = phi_rule.w;
   Scratch sc;
@@ -329,7 +478,10 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
     az.tau = std::atan2(si * az.ca, ci);
     az.iu = si * az.sa;
     az.c = std::sqrt(std::max(0.0, 1.0 - az.iu * az.iu));
+    az.sin_tau = std::sin(az.tau);
+    az.cos_tau = std::cos(az.tau);
     edge_crossings(r, az, sc.T);
+    sc.segment_bin.assign(sc.T.size() + 1, -2);
     sc.band_total = 0.0;
     sc.tail.clear();
     for (FacetSide side : {FacetSide::left, FacetSide::right}) {
@@ -460,6 +612,21 @@ Lobe3d vgroove_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins
                        const Lobe3dOptions& opt) {
   return run_lobe(ndf, alpha, theta_i, theta_bins, phi_bins, max_k, LobeModel::vgroove, opt);
 }
+Lobe3d cook_torrance_lobe_3d_from(const Lobe3d& v) {
+  Lobe3d L;
+  L.theta_bins = v.theta_bins;
+  L.phi_bins = v.phi_bins;
+  L.max_k = 1;
+  const std::size_t bins = static_cast<std::size_t>(v.theta_bins) * v.phi_bins;
+  L.by_k.assign(3, 0.0);
+  L.hist.assign(v.hist_by_k.begin() + bins, v.hist_by_k.begin() + 2 * bins);
+  L.hist_by_k.assign(3 * bins, 0.0);
+  std::copy(L.hist.begin(), L.hist.end(), L.hist_by_k.begin() + bins);
+  L.by_k[1] = v.max_k >= 1 ? v.by_k[1] : 0.0;
+  L.albedo = L.by_k[1];
+  return L;
+}
+
 Lobe3d cook_torrance_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins) {
   return cook_torrance_lobe_3d(ndf, alpha, theta_i, theta_bins, phi_bins, Lobe3dOptions{});
 }

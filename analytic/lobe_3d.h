@@ -51,6 +51,10 @@ struct Lobe3dOptions {
   int k_bands = 32;      // k beyond which a midpoint rule in the CDF replaces the exact bands
   int tail_strata = 512;
   bool corner_cuts = true;  // cut the phi_a range where arcs pass through bin corners (kinks)
+  // The per-node kernels as they were before the algebraic ones (trigonometry per node, Eq. 6 via
+  // G_kaleidoscopic at each piece): the same integrand at the same nodes, kept for the tests and
+  // the benchmark's side-by-side (lobe_3d.cpp, weight_fast).
+  bool reference_kernels = false;
 };
 
 Lobe3d vgroove_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins, int max_k);
@@ -58,6 +62,11 @@ Lobe3d vgroove_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins
                        const Lobe3dOptions& opt);
 // Single scattering with the V-cavity G (Eq. 1-3), k = 1 only: albedo < 1.
 Lobe3d cook_torrance_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins);
+// The same from a vgroove lobe: its k = 1 row. Cook-Torrance with the V-cavity G is the k = 1 term
+// of Eq. (16) everywhere (Eq. 25; Brdf3d.CookTorranceIsTheK1Term, to 1e-10 relative), so both
+// lobes integrate one function over the same bins: per bin within 1e-16 of
+// cook_torrance_lobe_3d (Lobe3d.CookTorranceIsTheK1Row), at no cost.
+Lobe3d cook_torrance_lobe_3d_from(const Lobe3d& vgroove_lobe);
 Lobe3d cook_torrance_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins,
                              const Lobe3dOptions& opt);
 

@@ -85,7 +85,10 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   val->add_option("--rays", va.rays, "rays per lit facet (default: the suite's)");
   val->add_option("--threads", va.threads, "worker threads (default 0: all cores); results do not depend on it")
       ->capture_default_str();
-  val->add_option("--sampling", va.sampling, "override the suite's placement: stratified or random");
+  val->add_option("--sampling", va.sampling,
+                  "override the suite's placement: stratified, random, or breakpoints (a grid of --rays stratified "
+                  "rays, then bisection between neighbours of different outcome down to adjacent doubles: exact "
+                  "fractions)");
   val->add_option("--seed", va.seed, "override the suite's seed");
   val->add_option("--eq6-form", va.eq6_form, "override the suite's form of Eq. 6: corrected or printed");
   val->add_option("--model-table", va.model_table,
@@ -104,7 +107,8 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
                                     "L1 against rays and wall time.");
   acc->add_option("suite", ac.suite, "suite spec")->required();
   add_list(acc, "--rays", ac.rays, "rays per lit facet, comma-separated");
-  add_list(acc, "--sampling", ac.samplings, "placements, comma-separated: stratified, random");
+  add_list(acc, "--sampling", ac.samplings,
+           "placements, comma-separated: stratified, random, breakpoints (--rays is then the grid's size)");
   acc->add_option("--threads", ac.threads, "worker threads (0: all cores)")->capture_default_str();
   acc->add_option("--out", ac.out, "report JSON to write");
   acc->add_flag("--force", ac.force, "overwrite an existing report");
@@ -146,7 +150,8 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   SampleArgs sma;
   auto* smp = app.add_subcommand(
       "sample",
-      "Importance-sample the symmetric V-groove BRDF (Lee et al. 2018, Sec. 6): draw --n exit directions, hold them "
+      "Importance-sample the V-groove BRDF (Lee et al. 2018, Sec. 6; symmetric or, with --model "
+      "vgroove-nonsymmetric, Eq. 23): draw --n exit directions, hold them "
       "to the sampler's pdf by a chi-square test (cells of (cos theta_o, phi_o), flatland theta_o; pdf integrated per "
       "cell) and report the weights rho cos / pdf; exit 1 if the chi-square rejects.");
   smp->add_option("--ndf", sma.ndf, "normal distribution: ggx, beckmann or phong")->capture_default_str();
@@ -159,6 +164,11 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
                   "3d only)")
       ->capture_default_str();
   smp->add_option("--dim", sma.dim, "3d or flatland")->capture_default_str();
+  smp->add_option("--model", sma.model,
+                  "vgroove (symmetric grooves, Eq. 16) or vgroove-nonsymmetric (Eq. 23, the partner's tilt from the "
+                  "tabulated inverse CDF of P(theta_r); phong alpha <= 1; its pdf costs ~1 ms: use --n ~10^4 to "
+                  "10^5 and, in 3d, few cells)")
+      ->capture_default_str();
   smp->add_option("--max-k", sma.max_k, "paths with more reflections return zero weight, [1, 100000]")
       ->capture_default_str();
   smp->add_option("--seed", sma.seed, "seed of the uniform numbers, >= 0")->capture_default_str();
@@ -181,11 +191,26 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   auto* brdf = app.add_subcommand(
       "brdf",
       "Evaluate a BRDF at a pair of directions (or every pair of a JSON file): vgroove's multiple-scattering "
-      "model (Lee et al. 2018, Eq. 16-17) or Cook-Torrance (Eq. 1-3, V-cavity G), F = 1. 3D: polar angles from "
-      "the normal, azimuths about it (phi_o = phi_i + 180 is the mirror side); flatland: signed angles.");
-  brdf->add_option("--model", ba.model, "vgroove or cook-torrance")->capture_default_str();
+      "model (Lee et al. 2018, Eq. 16-17), its nonsymmetric form (Eq. 21-23, partner facets by Eq. 20; "
+      "anisotropic with --alpha-y) or Cook-Torrance (Eq. 1-3, V-cavity G), F = 1. 3D: polar angles from the "
+      "normal, azimuths about it (phi_o = phi_i + 180 is the mirror side; with --alpha-y from the --alpha "
+      "axis); flatland: signed angles.");
+  brdf->add_option("--model", ba.model, "vgroove, vgroove-nonsymmetric or cook-torrance")->capture_default_str();
   brdf->add_option("--ndf", ba.ndf, "ggx, beckmann or phong")->capture_default_str();
-  brdf->add_option("--alpha", ba.alpha, "roughness, (0, 2]")->capture_default_str();
+  brdf->add_option("--alpha", ba.alpha,
+                   "roughness, (0, 2]; vgroove-nonsymmetric with phong and --partner independent: (0, sqrt 2) "
+                   "(Eq. 20 needs it); alpha_x with --alpha-y")
+      ->capture_default_str();
+  auto* brdf_alpha_y =
+      brdf->add_option("--alpha-y", ba.alpha_y,
+                       "vgroove-nonsymmetric, 3D, ggx or beckmann only: the roughness across the --alpha axis, (0, 2] "
+                       "(default: --alpha, isotropic)");
+  auto* brdf_partner =
+      brdf->add_option(
+              "--partner", ba.partner,
+              "vgroove-nonsymmetric only: the partner facet's tilt, independent (Eq. 20) or symmetric (equal to the "
+              "first's: the symmetric model, anisotropic with --alpha-y)")
+          ->capture_default_str();
   brdf->add_option("--dim", ba.dim, "3d or flatland")->capture_default_str();
   brdf->add_option("--theta-i-deg", ba.theta_i_deg, "light: polar angle, [0, 90) (flatland: signed, (-90, 90))")
       ->capture_default_str();
@@ -194,9 +219,10 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
                                    "viewer: polar angle, [0, 90] (flatland: signed, [-90, 90]); required "
                                    "unless --directions");
   brdf->add_option("--phi-o-deg", ba.phi_o_deg, "viewer: azimuth, [-360, 360] (3D only)")->capture_default_str();
-  brdf->add_option("--max-k", ba.max_k,
-                   "orders summed, >= 1 (3D: any, at no extra cost; flatland: <= 4096, O(max_k^2))")
-      ->capture_default_str();
+  auto* brdf_max_k = brdf->add_option(
+      "--max-k", ba.max_k,
+      "orders summed, >= 1; vgroove 3D and cook-torrance: any, at no extra cost (default: all); vgroove "
+      "flatland: <= 4096, O(max_k^2) (default 4096); vgroove-nonsymmetric: <= 1024, O(max_k^2) (default 64)");
   brdf->add_flag("--per-k", ba.per_k, "also print each order k = 1..--per-k-max");
   brdf->add_option("--per-k-max", ba.per_k_max, "orders printed one by one with --per-k, [1, 1000]")
       ->capture_default_str();
@@ -204,7 +230,12 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
                    "JSON file {\"directions\": [{\"theta_i_deg\", \"theta_o_deg\"[, \"phi_i_deg\", "
                    "\"phi_o_deg\"]}, ...]}: evaluate at every pair");
   brdf->add_flag("--json", ba.json, "print JSON");
-  brdf->callback([&ba, theta_o]() { ba.theta_o_given = theta_o->count() > 0; });
+  brdf->callback([&ba, theta_o, brdf_alpha_y, brdf_partner, brdf_max_k]() {
+    ba.theta_o_given = theta_o->count() > 0;
+    ba.alpha_y_given = brdf_alpha_y->count() > 0;
+    ba.partner_given = brdf_partner->count() > 0;
+    ba.max_k_given = brdf_max_k->count() > 0;
+  });
   ba.dry_run = ctx.dry_run;
   EnergyArgs ea;
   auto* energy = app.add_subcommand(

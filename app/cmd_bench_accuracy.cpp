@@ -52,7 +52,7 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
   const Suite& suite = set.suites.front();
   for (long r : a.rays) check_rays(r, "--rays");
   std::vector<sim::Sampling> samplings;
-  for (const auto& s : a.samplings) samplings.push_back(parse_sampling(s, "--sampling"));
+  for (const auto& s : a.samplings) samplings.push_back(parse_sampling(s, "--sampling", true));
   const std::optional<support::Shard> shard = shard_from(a.shard, a.out);
   if (shard && world().distributed())
     throw support::UserError("--shard cannot be combined with mpirun (the ranks split the work among themselves)");
@@ -111,6 +111,12 @@ void write_accuracy_report(const Suite& suite, const std::vector<SuiteRun>& all_
                     {"wall_s", s.wall_s},
                     {"bounces_per_s", s.bounces_per_s},
                     {"pass", s.pass()}});
+    if (smp == sim::Sampling::breakpoints) {
+      // rays_per_facet is the grid's size M; rays counts every ray traced (grid and bisection).
+      runs.back()["zones"] = s.zones;
+      runs.back()["uncertified_cells"] = s.uncertified_cells;
+      runs.back()["max_missed_bound"] = s.max_missed_bound;
+    }
   }
   // Which placement reaches the suite's thresholds first, in wall time.
   std::string fastest = "none";
@@ -161,7 +167,7 @@ int merge_accuracy(const std::vector<Part>& parts, const MergeArgs& a) {
   const SuiteSet set = load_suite_set(file);
   check_input_unchanged(job, {file}, parts.front().file);
   std::vector<sim::Sampling> samplings;
-  for (const auto& smp : job.at("options").at("sampling")) samplings.push_back(parse_sampling(smp, "sampling"));
+  for (const auto& smp : job.at("options").at("sampling")) samplings.push_back(parse_sampling(smp, "sampling", true));
   const AccuracyPlan plan =
       accuracy_plan(set.suites.front(), samplings, job.at("options").at("rays").get<std::vector<long>>());
   if (!a.out.empty()) support::check_writable_target(a.out, a.force);

@@ -1,4 +1,5 @@
 #include "vgroove/analytic/brdf_model.h"
+#include "vgroove/analytic/partner_distribution.h"
 #include "vgroove/app/commands.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/support/json_reader.h"
@@ -20,6 +21,9 @@ struct Pair {
 };
 
 constexpr std::size_t kMaxPairs = 10'000'000;
+// The sums that cost O(max_k^2): their largest --max-k and the default.
+constexpr int kFlatlandMaxK = 4096;
+constexpr int kNonsymmetricMaxK = 1024, kNonsymmetricDefaultK = 64;
 
 void check_angle(double v, double lo, bool lo_closed, double hi, bool hi_closed, const std::string& what) {
   const bool ok = std::isfinite(v) && (lo_closed ? v >= lo : v > lo) && (hi_closed ? v <= hi : v < hi);
@@ -73,24 +77,69 @@ analytic::Dir3 direction(double theta_deg, double phi_deg, bool flat) {
   return analytic::dir3(deg_to_rad(theta_deg), deg_to_rad(phi_deg));
 }
 
+// The orders summed: --max-k checked against the model's range, or the model's default.
+int orders(const BrdfArgs& a, analytic::BrdfModel model, bool flat) {
+  if (a.max_k < 1)
+    throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, 2147483647]");
+  if (model == analytic::BrdfModel::vgroove_nonsymmetric) {
+    if (!a.max_k_given) return kNonsymmetricDefaultK;
+    if (a.max_k > kNonsymmetricMaxK)
+      throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, " +
+                               std::to_string(kNonsymmetricMaxK) +
+                               "] with --model vgroove-nonsymmetric (the sum costs O(max_k^2))");
+    return a.max_k;
+  }
+  if (flat && model == analytic::BrdfModel::vgroove) {
+    if (!a.max_k_given) return kFlatlandMaxK;
+    if (a.max_k > kFlatlandMaxK)
+      throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, " +
+                               std::to_string(kFlatlandMaxK) +
+                               "] with --dim flatland (the flatland sum costs O(max_k^2))");
+  }
+  return a.max_k;
+}
+
+// The options of vgroove-nonsymmetric (--alpha-y, --partner), refused with the other models.
+void check_nonsymmetric_options(const BrdfArgs& a, analytic::BrdfModel model, NdfKind ndf, bool flat) {
+  const bool nonsym = model == analytic::BrdfModel::vgroove_nonsymmetric;
+  if (a.partner != "independent" && a.partner != "symmetric")
+    throw support::UserError("--partner = \"" + a.partner + "\" is not one of \"independent\", \"symmetric\"");
+  if (a.partner_given && !nonsym)
+    throw support::UserError("--partner applies to --model vgroove-nonsymmetric only (--model = \"" + a.model + "\")");
+  if (a.alpha_y_given) {
+    if (!nonsym)
+      throw support::UserError("--alpha-y applies to --model vgroove-nonsymmetric only (--model = \"" + a.model +
+                               "\")");
+    if (flat) throw support::UserError("--alpha-y applies to --dim 3d only (flatland has one roughness)");
+    if (ndf == NdfKind::phong)
+      throw support::UserError("--alpha-y applies to --ndf ggx and beckmann only (Phong has no elliptical form)");
+    check_angle(a.alpha_y, 0, false, 2, true, "--alpha-y");
+  }
+  // Eq. (20)'s partner law exists for Phong below alpha = sqrt(2) only (ERRATA E-NS1).
+  if (nonsym && a.partner == "independent" && !analytic::partner_law_exists(ndf, a.alpha))
+    throw support::UserError("--alpha = " + support::number_text(a.alpha) + " is out of range " +
+                             support::interval_text(0, false, std::sqrt(2.0), false) +
+                             " with --model vgroove-nonsymmetric --ndf phong --partner independent (Eq. 20's "
+                             "partner law needs alpha < sqrt(2))");
+}
+
 }  // namespace
 
 int cmd_brdf(const BrdfArgs& a) {
   const auto model = analytic::brdf_model_from_name(a.model);
-  if (!model) throw support::UserError("--model = \"" + a.model + "\" is not one of \"vgroove\", \"cook-torrance\"");
+  if (!model)
+    throw support::UserError("--model = \"" + a.model +
+                             "\" is not one of \"vgroove\", \"vgroove-nonsymmetric\", \"cook-torrance\"");
   const auto ndf = ndf_from_name(a.ndf);
   if (!ndf) throw support::UserError("--ndf = \"" + a.ndf + "\" is not one of \"ggx\", \"beckmann\", \"phong\"");
   if (a.dim != "3d" && a.dim != "flatland")
     throw support::UserError("--dim = \"" + a.dim + "\" is not one of \"3d\", \"flatland\"");
   const bool flat = a.dim == "flatland";
   check_angle(a.alpha, 0, false, 2, true, "--alpha");
-  if (a.max_k < 1)
-    throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, 2147483647]");
+  check_nonsymmetric_options(a, *model, *ndf, flat);
+  const int max_k = orders(a, *model, flat);
   if (a.per_k_max < 1 || a.per_k_max > 1000)
     throw support::UserError("--per-k-max = " + std::to_string(a.per_k_max) + " is out of range [1, 1000]");
-  if (flat && a.max_k > 4096)
-    throw support::UserError("--max-k = " + std::to_string(a.max_k) +
-                             " is out of range [1, 4096] with --dim flatland (the flatland sum costs O(max_k^2))");
   std::vector<Pair> pairs;
   if (!a.directions.empty()) {
     if (a.theta_o_given)
@@ -107,8 +156,13 @@ int cmd_brdf(const BrdfArgs& a) {
   opt.ndf = *ndf;
   opt.alpha = a.alpha;
   opt.flatland = flat;
-  opt.max_k = flat ? std::min(a.max_k, 4096) : a.max_k;
+  opt.max_k = max_k;
   opt.per_k = a.per_k ? a.per_k_max : 0;
+  const bool nonsym = *model == analytic::BrdfModel::vgroove_nonsymmetric;
+  if (nonsym) {
+    opt.alpha_y = a.alpha_y_given ? a.alpha_y : a.alpha;
+    opt.symmetric_partner = a.partner == "symmetric";
+  }
   nlohmann::json points = nlohmann::json::array();
   std::vector<analytic::BrdfValue> values;
   values.reserve(pairs.size());
@@ -121,6 +175,7 @@ int cmd_brdf(const BrdfArgs& a) {
     j["kind"] = "brdf";
     j["inputs"] = {{"model", a.model},   {"ndf", a.ndf},       {"alpha", a.alpha},
                    {"dimension", a.dim}, {"max_k", opt.max_k}, {"per_k", opt.per_k}};
+    if (nonsym) j["inputs"]["alpha_y"] = opt.alpha_y, j["inputs"]["partner"] = a.partner;
     j["unit"] = unit;
     for (std::size_t n = 0; n < pairs.size(); ++n) {
       nlohmann::json e = {
@@ -133,8 +188,12 @@ int cmd_brdf(const BrdfArgs& a) {
     std::cout << j.dump(1) << "\n";
     return 0;
   }
-  std::printf("brdf %s: %s alpha %g, %s, orders 1..%d; value in %s\n", a.model.c_str(), a.ndf.c_str(), a.alpha,
-              flat ? "flatland" : "3D", opt.max_k, unit);
+  if (nonsym)
+    std::printf("brdf %s: %s alpha %g (x) %g (y), partner %s, %s, orders 1..%d; value in %s\n", a.model.c_str(),
+                a.ndf.c_str(), a.alpha, opt.alpha_y, a.partner.c_str(), flat ? "flatland" : "3D", opt.max_k, unit);
+  else
+    std::printf("brdf %s: %s alpha %g, %s, orders 1..%d; value in %s\n", a.model.c_str(), a.ndf.c_str(), a.alpha,
+                flat ? "flatland" : "3D", opt.max_k, unit);
   std::printf("  %12s %10s %12s %10s  %s\n", "theta_i_deg", "phi_i_deg", "theta_o_deg", "phi_o_deg", "value");
   for (std::size_t n = 0; n < pairs.size(); ++n) {
     std::printf("  %12.9g %10.9g %12.9g %10.9g  %.17g\n", pairs[n].theta_i_deg, flat ? 0.0 : pairs[n].phi_i_deg,

@@ -9,6 +9,7 @@
 #include "vgroove/validation/sampling_check.h"
 #include "vgroove/validation/spec_lists.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -39,6 +40,11 @@ int cmd_sample(const SampleArgs& a) {
   if (!analytic::strategy_supports(*strategy, *ndf, flatland))
     throw support::UserError("--strategy = \"" + a.strategy + "\" does not exist for --ndf " + a.ndf + " --dim " +
                              a.dim + " (smith-vndf: ggx only; bounded-vndf: ggx in 3d only)");
+  if (a.model != "vgroove" && a.model != "vgroove-nonsymmetric")
+    throw support::UserError("--model = \"" + a.model + "\" is not one of \"vgroove\", \"vgroove-nonsymmetric\"");
+  const bool nonsymmetric = a.model == "vgroove-nonsymmetric";
+  if (nonsymmetric && *ndf == analytic::NdfKind::phong && a.alpha > 1.0)
+    out_of_range("--alpha", a.alpha, "(0, 1] for --model vgroove-nonsymmetric with --ndf phong (the partner law's table)");
   if (a.max_k < 1 || a.max_k > 100000) out_of_range("--max-k", a.max_k, "[1, 100000]");
   check_seed(a.seed, "--seed");
   if (a.cos_bins < 1 || a.cos_bins > 1000) out_of_range("--cos-bins", a.cos_bins, "[1, 1000]");
@@ -54,6 +60,7 @@ int cmd_sample(const SampleArgs& a) {
   s.alpha = a.alpha;
   s.theta_i = a.theta_i_deg * kRadPerDeg;
   s.strategy = *strategy;
+  s.nonsymmetric = nonsymmetric;
   s.max_k = a.max_k;
   s.samples = a.n;
   s.seed = static_cast<std::uint64_t>(a.seed);
@@ -62,13 +69,16 @@ int cmd_sample(const SampleArgs& a) {
   s.theta_bins = a.theta_bins;
   const validation::Chi2Outcome o = validation::run_chi2(s);
 
-  const double se = std::sqrt(o.weight_variance / static_cast<double>(a.n));
-  std::printf("sample: %s %s alpha %g, theta_i %g deg, strategy %s, max_k %d, %ld samples (seed %lld)\n", a.dim.c_str(),
-              a.ndf.c_str(), a.alpha, a.theta_i_deg, a.strategy.c_str(), a.max_k, a.n, a.seed);
+  const double se = std::sqrt(o.weight_variance / static_cast<double>(std::max(1L, o.weight_samples)));
+  std::printf("sample: %s %s %s alpha %g, theta_i %g deg, strategy %s, max_k %d, %ld samples (seed %lld)\n",
+              a.model.c_str(), a.dim.c_str(), a.ndf.c_str(), a.alpha, a.theta_i_deg, a.strategy.c_str(), a.max_k, a.n,
+              a.seed);
   std::printf("  no direction: %.0f of %ld (expected %.1f: the sampler's failure probability %.3e)\n",
               o.table.observed_none, a.n, o.table.expected_none, o.failure_probability);
-  std::printf("  weight rho cos / pdf: mean %.6f, standard deviation %.4g, standard error %.2g; %.0f ns per sample\n",
-              o.weight_mean, std::sqrt(o.weight_variance), se, 1e9 * o.sample_s / static_cast<double>(a.n));
+  std::printf(
+      "  weight rho cos / pdf (over %ld samples): mean %.6f, standard deviation %.4g, standard error %.2g; %.0f ns per "
+      "sample\n",
+      o.weight_samples, o.weight_mean, std::sqrt(o.weight_variance), se, 1e9 * o.sample_s / static_cast<double>(a.n));
   std::printf("  pdf over the cells %.8f + failure %.3e - 1 = %.2e (tolerance %.1e)\n", o.pdf_integral,
               o.failure_probability, o.normalization_error, o.normalization_tolerance);
   std::printf("  chi-square %.2f, dof %d (%d cells pooled into %d), p = %.4g at level %.3g: %s\n", o.test.statistic,

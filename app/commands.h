@@ -102,6 +102,7 @@ struct SampleArgs {
   long n = 100000;
   std::string strategy = "vndf";
   std::string dim = "3d";
+  std::string model = "vgroove";  // or "vgroove-nonsymmetric" (Eq. 23)
   int max_k = 256;
   long long seed = 1;
   int cos_bins = 8, phi_bins = 16, theta_bins = 36;
@@ -129,7 +130,14 @@ struct BrdfArgs {
   double theta_i_deg = 0.0, phi_i_deg = 0.0;
   double theta_o_deg = 0.0, phi_o_deg = 180.0;
   bool theta_o_given = false;
-  int max_k = 1'000'000;
+  // vgroove-nonsymmetric only: the roughness across the --alpha axis (3D, GGX and Beckmann) and the
+  // partner law ("independent": Eq. 20; "symmetric": B = A).
+  double alpha_y = 0.0;
+  bool alpha_y_given = false;
+  std::string partner = "independent";
+  bool partner_given = false;
+  int max_k = 1'000'000;  // when not given: every order (3D vgroove), 4096 (flatland), 64 (nonsymmetric)
+  bool max_k_given = false;
   bool per_k = false;
   int per_k_max = 16;
   std::string directions;  // JSON file of direction pairs

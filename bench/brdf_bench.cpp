@@ -7,15 +7,11 @@
 // evaluations alone is an upper bound on that overhead.
 // Arguments: /ndf (0 = GGX, 1 = Beckmann)/alpha x 10/max_k (vgroove only).
 //
-// Measured (Release, 2 cores shared with other builds, load ~2.8; medians of 5, ns per call):
-//                 alpha  0.3   0.5   0.7   1.0
-//   GGX      k<=4        328   261   268   257     k<=16  420   339   304   315
-//   Beckmann k<=4        288   334   423   280     k<=16  387   531   358   343
-//   cook_torrance         62    62    62    63 (GGX)     88    88    88    88 (Beckmann)
-// i.e. 4-7x Cook-Torrance at max_k 4 and 5-6x at max_k 16 (run-to-run noise ~+-30 % here). The
-// single pass visits only the solutions of Eq. (5) that Eq. (4) allows (~3 per pair at max_k 4,
-// ~4.4 at 16), so the cost no longer grows like max_k^2 (before: ~1 us at max_k 4, ~10-13 us at
-// 16). What remains per solution is sin/cos of theta_v / 2, one more sine for the width, D.
+// BM_vgroove_brdf runs the batched pass (analytic/brdf_3d_batch.cpp), BM_vgroove_brdf_per_solution
+// the evaluation it replaced (each solution's term on its own), on the same pairs, in the same run.
+// Measured (Release, 2 cores shared with other jobs, load 9-15; medians of 5, ns per call):
+// see the README's "The BRDF's cost against Cook-Torrance". GGX alpha 0.3: batched ~150 (max_k 4),
+// ~185 (16); per solution ~260, ~315; cook_torrance ~63.
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/analytic/brdf_nonsymmetric.h"
 
@@ -64,6 +60,19 @@ void BM_vgroove_brdf(benchmark::State& state) {
   for (auto _ : state) {
     for (int n = 0; n < kPairs; ++n)
       benchmark::DoNotOptimize(analytic::vgroove_brdf(p.i[n], p.o[n], ndf, alpha, max_k));
+  }
+  report_time_per_call(state);
+}
+
+// The evaluation before the batched pass (each solution's term on its own), same pairs.
+void BM_vgroove_brdf_per_solution(benchmark::State& state) {
+  const analytic::NdfKind ndf = ndf_of(state.range(0));
+  const double alpha = state.range(1) / 10.0;
+  const int max_k = static_cast<int>(state.range(2));
+  const Pairs& p = pairs();
+  for (auto _ : state) {
+    for (int n = 0; n < kPairs; ++n)
+      benchmark::DoNotOptimize(analytic::vgroove_brdf_per_solution_reference(p.i[n], p.o[n], ndf, alpha, max_k));
   }
   report_time_per_call(state);
 }
@@ -125,5 +134,6 @@ void ct_args(benchmark::internal::Benchmark* b) {
 }  // namespace
 
 BENCHMARK(BM_vgroove_brdf)->Apply(vgroove_args);
+BENCHMARK(BM_vgroove_brdf_per_solution)->Apply(vgroove_args);
 BENCHMARK(BM_cook_torrance)->Apply(ct_args);
 BENCHMARK(BM_vgroove_nonsymmetric_brdf)->Apply(nonsymmetric_args)->Unit(benchmark::kMicrosecond);

@@ -6,6 +6,8 @@
 // 1.0, theta_i 0 and 60 deg, 10^4 grooves (the surface is built once, outside the timing). One
 // iteration traces one chunk of kRaysPerChunk rays with default bins (90; 90 x 72 in 3D). Rougher
 // surfaces have deeper grooves: bounces_per_ray says how much of the time is the reflection loop.
+// BM_microsurface_*: the batch trace (sim/symmetric_block.h, bins by comparisons); *_reference:
+// the path before it (sim::trace per ray, atan2/acos bins). Both give the same tallies.
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/microsurface3d.h"
 
@@ -47,6 +49,24 @@ void BM_microsurface_flatland(benchmark::State& state) {
 }
 BENCHMARK(BM_microsurface_flatland)->ArgsProduct({{30, 100}, {0, 60}})->Unit(benchmark::kMillisecond);
 
+// The path before the blocks: one ray at a time with sim::trace, bins by atan2 (same tallies).
+void BM_microsurface_flatland_reference(benchmark::State& state) {
+  const double alpha = static_cast<double>(state.range(0)) / 100.0;
+  const sim::Microsurface m = sim::make_microsurface({sim::NdfKind::ggx, alpha, kGrooves, 1});
+  sim::MicrosurfaceTraceOptions opt;
+  opt.theta_i = deg(static_cast<double>(state.range(1)));
+  opt.rays = sim::kRaysPerChunk;
+  std::int64_t rays = 0, bounces = 0;
+  for (auto _ : state) {
+    const sim::MicrosurfaceTally t = sim::trace_microsurface_chunk_reference(m, opt, 0);
+    benchmark::DoNotOptimize(t.escaped);
+    rays += t.rays;
+    bounces += t.bounces;
+  }
+  report(state, rays, bounces);
+}
+BENCHMARK(BM_microsurface_flatland_reference)->ArgsProduct({{30, 100}, {0, 60}})->Unit(benchmark::kMillisecond);
+
 void BM_microsurface_3d(benchmark::State& state) {
   const double alpha = static_cast<double>(state.range(0)) / 100.0;
   const sim::Microsurface3d m = sim::make_microsurface3d({sim::NdfKind::ggx, alpha, kGrooves, 1});
@@ -63,5 +83,22 @@ void BM_microsurface_3d(benchmark::State& state) {
   report(state, rays, bounces);
 }
 BENCHMARK(BM_microsurface_3d)->ArgsProduct({{30, 100}, {0, 60}})->Unit(benchmark::kMillisecond);
+
+void BM_microsurface_3d_reference(benchmark::State& state) {
+  const double alpha = static_cast<double>(state.range(0)) / 100.0;
+  const sim::Microsurface3d m = sim::make_microsurface3d({sim::NdfKind::ggx, alpha, kGrooves, 1});
+  sim::Microsurface3dTraceOptions opt;
+  opt.theta_i = deg(static_cast<double>(state.range(1)));
+  opt.rays = sim::kRaysPerChunk;
+  std::int64_t rays = 0, bounces = 0;
+  for (auto _ : state) {
+    const sim::Microsurface3dTally t = sim::trace_microsurface3d_chunk_reference(m, opt, 0);
+    benchmark::DoNotOptimize(t.escaped);
+    rays += t.rays;
+    bounces += t.bounces;
+  }
+  report(state, rays, bounces);
+}
+BENCHMARK(BM_microsurface_3d_reference)->ArgsProduct({{30, 100}, {0, 60}})->Unit(benchmark::kMillisecond);
 
 }  // namespace

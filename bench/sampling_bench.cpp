@@ -25,6 +25,7 @@
 // evaluation. The bounded VNDF's pdf tests each path's facet against the cap (a stretched
 // reflection): ~1.5x the others.
 #include "vgroove/analytic/sampling_3d.h"
+#include "vgroove/analytic/sampling_nonsymmetric.h"
 #include "vgroove/analytic/vndf.h"
 
 #include <benchmark/benchmark.h>
@@ -129,6 +130,54 @@ void BM_ct_eval(benchmark::State& state) {
   per_call(state);
 }
 
+// The nonsymmetric sampler (analytic/sampling_nonsymmetric.h), vndf strategy, max_k 32, over the
+// first 64 incident directions (its pdf integrates over the partner's tilt: ~ms per call): the draw
+// alone (the table's binary search, Eq. 7-9), the whole sample() (draw, pdf and Eq. 23 for the
+// weight) and pdf() at the drawn directions.
+//   build/vgroove_bench --benchmark_filter='BM_nonsymmetric' --benchmark_repetitions=5
+//     --benchmark_enable_random_interleaving=true
+constexpr int kNs = 64;
+const analytic::NonsymmetricSampler& nonsymmetric_sampler(double alpha) {
+  static const analytic::NonsymmetricSampler a3 = analytic::make_nonsymmetric_sampler(
+      analytic::NdfKind::ggx, 0.3, analytic::SamplerOptions{analytic::FacetStrategy::vndf, 32}, false);
+  static const analytic::NonsymmetricSampler a10 = analytic::make_nonsymmetric_sampler(
+      analytic::NdfKind::ggx, 1.0, analytic::SamplerOptions{analytic::FacetStrategy::vndf, 32}, false);
+  return alpha < 0.5 ? a3 : a10;
+}
+std::array<double, 5> u5(const std::array<double, 4>& u) { return {u[0], u[1], u[2], u[3], 1.0 - u[0]}; }
+
+void per_call_ns(benchmark::State& state) {
+  state.counters["time_per_call"] = benchmark::Counter(static_cast<double>(state.iterations()) * kNs,
+                                                       benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_nonsymmetric_draw(benchmark::State& state) {
+  const double alpha = state.range(0) / 10.0;
+  const Inputs& in = inputs(alpha);
+  const analytic::NonsymmetricSampler& S = nonsymmetric_sampler(alpha);
+  for (auto _ : state)
+    for (int n = 0; n < kNs; ++n) benchmark::DoNotOptimize(analytic::draw_nonsymmetric_3d(S, in.i[n], u5(in.u[n])));
+  per_call_ns(state);
+}
+
+void BM_nonsymmetric_sample(benchmark::State& state) {
+  const double alpha = state.range(0) / 10.0;
+  const Inputs& in = inputs(alpha);
+  const analytic::NonsymmetricSampler& S = nonsymmetric_sampler(alpha);
+  for (auto _ : state)
+    for (int n = 0; n < kNs; ++n) benchmark::DoNotOptimize(analytic::sample_nonsymmetric_3d(S, in.i[n], u5(in.u[n])));
+  per_call_ns(state);
+}
+
+void BM_nonsymmetric_pdf(benchmark::State& state) {
+  const double alpha = state.range(0) / 10.0;
+  const Inputs& in = inputs(alpha);
+  const analytic::NonsymmetricSampler& S = nonsymmetric_sampler(alpha);
+  for (auto _ : state)
+    for (int n = 0; n < kNs; ++n) benchmark::DoNotOptimize(analytic::nonsymmetric_pdf_3d(S, in.i[n], in.o[n]));
+  per_call_ns(state);
+}
+
 void strategies(benchmark::internal::Benchmark* b) {
   for (int s = 0; s < 4; ++s)
     for (int a : {3, 10}) b->Args({s, a});
@@ -139,5 +188,8 @@ BENCHMARK(BM_vgroove_pdf)->Apply(strategies);
 BENCHMARK(BM_vgroove_eval)->Arg(3)->Arg(10);
 BENCHMARK(BM_ct_sample_vndf)->Arg(3)->Arg(10);
 BENCHMARK(BM_ct_eval)->Arg(3)->Arg(10);
+BENCHMARK(BM_nonsymmetric_draw)->Arg(3)->Arg(10);
+BENCHMARK(BM_nonsymmetric_sample)->Arg(3)->Arg(10);
+BENCHMARK(BM_nonsymmetric_pdf)->Arg(3)->Arg(10);
 
 }  // namespace

@@ -5,11 +5,13 @@
 #   table1   Table 1, symmetric and nonsymmetric single grooves       results/table1.json, table1.png (L1 heatmaps)
 #   fig11    Fig. 11: BRDF vs traced procedural surfaces (2D and 3D)  results/fig11.json, fig11-NDF-DIM.png (6 grids)
 #   table2   Table 2: bounce counts at percentiles of D               results/table2.json, table2.png
-#   furnace  white furnace of the BRDF: Eq. 17 by quadrature and by   results/furnace.json, furnace.png
-#            importance sampling; Cook-Torrance's loss
-#   sampling importance sampling (Sec. 6): chi-square of the samplers,  results/sampling.json
-#            variance per strategy, furnace
-#   nonsymmetric_brdf  the nonsymmetric BRDF (Eq. 23) and anisotropy vs traced nonsymmetric surfaces  results/nonsymmetric_brdf.json
+#   furnace  white furnace of the BRDF: Eq. 17 by quadrature and by   results/furnace.json, furnace.png (albedo),
+#            importance sampling; Cook-Torrance's loss                  furnace-errors.png
+#   sampling importance sampling (Sec. 6): chi-square of the samplers,  results/sampling.json, sampling.png (chi-square),
+#            variance per strategy, furnace                             sampling-variance.png, sampling-furnace*.png
+#   nonsymmetric_brdf  the nonsymmetric BRDF (Eq. 23) and anisotropy    results/nonsymmetric_brdf.json,
+#            vs traced nonsymmetric surfaces                            nonsymmetric_brdf.png (L1 per case),
+#                                                                       nonsymmetric_brdf[-aniso]-NDF-DIM.png (grids)
 # Extra arguments go to every `vgroove validate` (e.g. --threads 1). Exit status: 0 when every
 # suite passes, 1 when a threshold is exceeded, 2 on bad input.
 set -euo pipefail
@@ -22,7 +24,7 @@ for suite in table1 fig11 table2 furnace sampling nonsymmetric_brdf; do
   [[ $status -eq 0 || $status -eq 1 ]] || exit "$status"
   echo
 done
-for suite in table1 fig11 table2 furnace; do
+for suite in table1 fig11 table2 furnace sampling nonsymmetric_brdf; do
   build/vgroove plot "results/$suite.json" --force
 done
 exit "$status"

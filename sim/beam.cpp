@@ -2,7 +2,17 @@
 
 namespace vgroove::sim {
 
-const char* sampling_name(Sampling s) { return s == Sampling::stratified ? "stratified" : "random"; }
+const char* sampling_name(Sampling s) {
+  switch (s) {
+    case Sampling::stratified:
+      return "stratified";
+    case Sampling::random:
+      return "random";
+    case Sampling::breakpoints:
+      return "breakpoints";
+  }
+  return "?";
+}
 
 Interval opening(const Groove& g) { return {g.rim_x(Side::left), g.rim_x(Side::right)}; }
 
@@ -22,7 +32,7 @@ double rim_line_x(const Groove& g, double theta_i, const Vec2& p) {
 void sample_positions(Sampling sampling, const Interval& iv, long j0, int count, long n, Rng& rng,
                       double* __restrict out) {
   const double lo = iv.lo, width = iv.hi - iv.lo;
-  if (sampling == Sampling::stratified) {
+  if (sampling != Sampling::random) {
     // static_cast<double>(j) + 0.5 as sample_position forms it: j0 + i is exact in a double
     // (j < 2^53), and the loop's counter is that double, so the lanes need no integer conversion.
     const double nd = static_cast<double>(n), jd0 = static_cast<double>(j0);

@@ -14,8 +14,9 @@
 namespace vgroove::sim {
 
 enum class Sampling : unsigned char {
-  stratified,  // midpoints of N equal strata
-  random,      // independent uniform positions from a seeded stream
+  stratified,   // midpoints of N equal strata
+  random,       // independent uniform positions from a seeded stream
+  breakpoints,  // the zones of equal outcome, found by a search from a stratified grid (sim/zones.h)
 };
 const char* sampling_name(Sampling s);
 
@@ -32,10 +33,11 @@ Interval opening(const Groove& g);
 // f_a). The part of it outside the opening is shadowed by the other facet's rim.
 Interval aimed_at(const Groove& g, double theta_i, Side side);
 
-// Position of ray j of n in the interval.
+// Position of ray j of n in the interval (stratified or random placement; breakpoints place
+// their grid as stratified).
 inline double sample_position(Sampling sampling, const Interval& iv, long j, long n, Rng& rng) {
   const double u =
-      sampling == Sampling::stratified ? (static_cast<double>(j) + 0.5) / static_cast<double>(n) : rng.uniform();
+      sampling != Sampling::random ? (static_cast<double>(j) + 0.5) / static_cast<double>(n) : rng.uniform();
   return iv.lo + u * (iv.hi - iv.lo);
 }
 

@@ -1,5 +1,7 @@
 #include "vgroove/sim/microsurface.h"
 
+#include "vgroove/sim/exit_bins.h"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -23,6 +25,7 @@ Microsurface make_microsurface(const MicrosurfaceOptions& opt) {
     m.theta_m.push_back(t);
     // make_symmetric_groove's left facet normal is at -(pi - theta_v)/2 = -t, the right one at +t.
     m.grooves.push_back(make_symmetric_groove(std::numbers::pi - 2.0 * t));
+    m.data.push_back(symmetric_groove_data(m.grooves.back()));
   }
   return m;
 }
@@ -51,6 +54,17 @@ void MicrosurfaceTally::add(Termination how, int k, const Vec2& exit_dir) {
   ++theta_o_by_k[static_cast<std::size_t>(row) * bins + bin];
 }
 
+void MicrosurfaceTally::add(const TraceResult& r, const AngleEdges& edges) {
+  if (!count(r.how, r.bounces, r.exit_dir.y() > 0.0)) return;
+  const int row = row_of(r.bounces);
+  // angle_from_normal(e) = atan2(-e.x, e.y): the angle of (e.y, -e.x).
+  const double x = r.exit_dir.y(), y = -r.exit_dir.x();
+  const int bin = edges.bin(x, y, atan2_guess(y, x));
+  ++by_k[static_cast<std::size_t>(row)];
+  ++theta_o[static_cast<std::size_t>(bin)];
+  ++theta_o_by_k[static_cast<std::size_t>(row) * bins + bin];
+}
+
 void MicrosurfaceTally::merge(const MicrosurfaceTally& o) {
   assert(o.bins == bins && o.max_k == max_k);
   merge_fates(o);
@@ -61,8 +75,53 @@ void MicrosurfaceTally::merge(const MicrosurfaceTally& o) {
 
 std::int64_t chunk_count(const MicrosurfaceTraceOptions& opt) { return (opt.rays + kRaysPerChunk - 1) / kRaysPerChunk; }
 
-MicrosurfaceTally trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOptions& opt,
-                                           std::int64_t chunk) {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+// An AVX2 copy beside the x86-64 one, picked at start-up (no FMA: both round alike).
+[[gnu::target_clones("avx2", "default")]]
+#endif
+MicrosurfaceTally
+trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOptions& opt, std::int64_t chunk) {
+  assert(std::abs(opt.theta_i) < 0.5 * std::numbers::pi && opt.rays >= 0);
+  if (surface.data.size() != surface.grooves.size() || opt.trace.max_bounces < 1)
+    return trace_microsurface_chunk_reference(surface, opt, chunk);
+  MicrosurfaceTally tally(opt.theta_o_bins, opt.max_k);
+  const std::int64_t begin = chunk * kRaysPerChunk;
+  const std::int64_t end = std::min(opt.rays, begin + kRaysPerChunk);
+  if (begin >= end || surface.grooves.empty()) return tally;
+  // for_each_landing's landing points, in the same order from the same stream.
+  Rng rng(opt.seed, kRayStream, static_cast<std::uint64_t>(chunk));
+  const Vec2 dir = beam_direction(opt.theta_i);
+  const double g_count = static_cast<double>(surface.grooves.size());
+  const int last = static_cast<int>(surface.grooves.size()) - 1;
+  const AngleEdges edges(-0.5 * std::numbers::pi, std::numbers::pi / opt.theta_o_bins, opt.theta_o_bins);
+  SymmetricBlock in;
+  SymmetricHits hits;
+  for (std::int64_t j0 = begin; j0 < end; j0 += kSymmetricBlock) {
+    const int m = static_cast<int>(std::min<std::int64_t>(kSymmetricBlock, end - j0));
+    for (int q = 0; q < m; ++q) {
+      const std::int64_t j = j0 + q;
+      const double u = opt.sampling == Sampling::stratified
+                           ? (static_cast<double>(j) + 0.5) / static_cast<double>(opt.rays)
+                           : uniform_open(rng);
+      const double x = u * g_count;
+      const int g = std::min(last, static_cast<int>(x));
+      const double f = x - g;
+      const SymmetricGrooveData& d = surface.data[static_cast<std::size_t>(g)];
+      in.left_x[q] = d.left_x;
+      in.right_x[q] = d.right_x;
+      in.rim_height[q] = d.rim_height;
+      in.x[q] = d.left_x + f * (d.right_x - d.left_x);
+      in.dx[q] = dir.x();
+      in.dy[q] = dir.y();
+    }
+    block_reflections(in, m, opt.trace.max_bounces, kBlockRounds, hits);
+    for (int q = 0; q < m; ++q) tally.add(finish_lane(in, hits, q, opt.trace), edges);
+  }
+  return tally;
+}
+
+MicrosurfaceTally trace_microsurface_chunk_reference(const Microsurface& surface, const MicrosurfaceTraceOptions& opt,
+                                                     std::int64_t chunk) {
   assert(std::abs(opt.theta_i) < 0.5 * std::numbers::pi && opt.rays >= 0);
   MicrosurfaceTally tally(opt.theta_o_bins, opt.max_k);
   for_each_landing(surface.grooves, opt.theta_i, opt.sampling, opt.rays, opt.seed, chunk,

@@ -36,6 +36,7 @@
 #include "vgroove/sim/ray_fates.h"
 #include "vgroove/sim/rng.h"
 #include "vgroove/sim/slope_sampling.h"
+#include "vgroove/sim/symmetric_block.h"
 #include "vgroove/sim/tracer.h"
 
 #include <algorithm>
@@ -56,6 +57,9 @@ struct Microsurface {
   MicrosurfaceOptions options;
   std::vector<double> theta_m;  // |theta_m| of each groove, in [0, pi/2)
   std::vector<Groove> grooves;  // aperture pi - 2 theta_m[j], unit facets (make_symmetric_groove)
+  // The same grooves in 24 bytes each (symmetric_block.h), what the batch trace reads; a surface
+  // without them (built by hand) is traced one ray at a time.
+  std::vector<SymmetricGrooveData> data;
 };
 
 inline constexpr std::uint64_t kGrooveStream = 0x67726f6f7665ULL;  // "groove"
@@ -80,6 +84,8 @@ struct MicrosurfaceTraceOptions {
 
 // What happened to the rays. Every ray is in exactly one of escaped, blocked, vertex_hits,
 // bounce_limit, not_upward; every escaped ray in one k row and one theta_o bin.
+struct AngleEdges;
+
 struct MicrosurfaceTally : RayFates {
   int bins = 0;
   int max_k = 0;
@@ -99,6 +105,8 @@ struct MicrosurfaceTally : RayFates {
 
   void add(const TraceResult& r) { add(r.how, r.bounces, r.exit_dir); }
   void add(Termination how, int k, const Vec2& exit_dir);
+  // The same, the bin found among the edges (sim/exit_bins.h) instead of by atan2.
+  void add(const TraceResult& r, const AngleEdges& edges);
   void merge(const MicrosurfaceTally& other);  // same bins and max_k
 };
 
@@ -133,9 +141,16 @@ void for_each_landing(const std::vector<Groove>& grooves, double theta_i, Sampli
   }
 }
 
-// The rays of chunk c (kRaysPerChunk of them; the last chunk holds the rest).
+// The rays of chunk c (kRaysPerChunk of them; the last chunk holds the rest): the landing points of
+// for_each_landing, traced in blocks (symmetric_block.h: each ray's first reflection computed
+// with the block's, without branches; bit for bit sim::trace) and binned by comparisons
+// (sim/exit_bins.h).
 MicrosurfaceTally trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOptions& opt,
                                            std::int64_t chunk);
+// The same one ray at a time with sim::trace on surface.grooves, binned by atan2: the path before
+// the blocks, kept for the tests and the benchmarks' side-by-side.
+MicrosurfaceTally trace_microsurface_chunk_reference(const Microsurface& surface, const MicrosurfaceTraceOptions& opt,
+                                                     std::int64_t chunk);
 
 // All chunks, merged in order (one thread; a caller may run the chunks on several and merge).
 MicrosurfaceTally trace_microsurface(const Microsurface& surface, const MicrosurfaceTraceOptions& opt);

@@ -1,5 +1,7 @@
 #include "vgroove/sim/microsurface3d.h"
 
+#include "vgroove/sim/exit_bins.h"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -71,6 +73,7 @@ void add_groove3d(Microsurface3d& m, double theta_m, double phi_a) {
   // make_symmetric_groove's facet normals are at -t (left, leaning towards +a) and +t: the 2D
   // images of s = dir(t, phi_a) and s' = dir(t, phi_a + pi).
   m.grooves.push_back(make_symmetric_groove(std::numbers::pi - 2.0 * t));
+  m.data.push_back(symmetric_groove_data(m.grooves.back()));
 }
 
 Microsurface3d make_microsurface3d(const Microsurface3dOptions& opt) {
@@ -149,6 +152,29 @@ void Microsurface3dTally::add(const Trace3dResult& r) {
   ++hist_by_k[index(row, t, p)];
 }
 
+void Microsurface3dTally::add(const Trace3dResult& r, const AngleEdges& theta_edges, const AngleEdges& phi_edges) {
+  const int k = r.trace.bounces;
+  if (!count(r.trace.how, k, r.o.z() > 0.0)) return;
+  const int row = row_of(k);
+  // theta_o = atan2(|o_xy|, o_z) (acos(o_z) for the unit o); phi_o = atan2(o_y, o_x).
+  const double rho = std::sqrt(r.o.x() * r.o.x() + r.o.y() * r.o.y());
+  const int t = theta_edges.bin(r.o.z(), rho, atan2_guess(rho, r.o.z()));
+  int p = phi_edges.bin(r.o.x(), r.o.y(), atan2_guess(r.o.y(), r.o.x())) - phi_bins / 2;
+  p = p < 0 ? p + phi_bins : (p >= phi_bins ? p - phi_bins : p);
+  ++by_k[static_cast<std::size_t>(row)];
+  ++hist[static_cast<std::size_t>(t) * phi_bins + p];
+  ++hist_by_k[index(row, t, p)];
+}
+
+void Microsurface3dTally::add_binned(Termination how, int k, bool upward, int t, int p) {
+  if (!count(how, k, upward)) return;
+  const int row = row_of(k);
+  p = p < 0 ? p + phi_bins : (p >= phi_bins ? p - phi_bins : p);
+  ++by_k[static_cast<std::size_t>(row)];
+  ++hist[static_cast<std::size_t>(t) * phi_bins + p];
+  ++hist_by_k[index(row, t, p)];
+}
+
 void Microsurface3dTally::merge(const Microsurface3dTally& o) {
   assert(o.theta_bins == theta_bins && o.phi_bins == phi_bins && o.max_k == max_k);
   merge_fates(o);
@@ -161,8 +187,85 @@ std::int64_t chunk_count(const Microsurface3dTraceOptions& opt) {
   return (opt.rays + kRaysPerChunk - 1) / kRaysPerChunk;
 }
 
-Microsurface3dTally trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt,
-                                               std::int64_t chunk) {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+// An AVX2 copy beside the x86-64 one, picked at start-up (no FMA: both round alike).
+[[gnu::target_clones("avx2", "default")]]
+#endif
+Microsurface3dTally
+trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt, std::int64_t chunk) {
+  assert(opt.theta_i >= 0.0 && opt.theta_i < 0.5 * std::numbers::pi && opt.rays >= 0);
+  if (surface.data.size() != surface.grooves.size() || opt.trace.max_bounces < 1)
+    return trace_microsurface3d_chunk_reference(surface, opt, chunk);
+  Microsurface3dTally tally(opt.theta_bins, opt.phi_bins, opt.max_k);
+  const std::int64_t begin = chunk * kRaysPerChunk;
+  const std::int64_t end = std::min(opt.rays, begin + kRaysPerChunk);
+  if (begin >= end || surface.grooves.empty()) return tally;
+  Rng rng(opt.seed, kRay3dStream, static_cast<std::uint64_t>(chunk));
+  const Vec3 i(-std::sin(opt.theta_i), 0.0, std::cos(opt.theta_i));  // as the reference
+  const double g_count = static_cast<double>(surface.grooves.size());
+  const int last = static_cast<int>(surface.grooves.size()) - 1;
+  const double dphi = 2.0 * std::numbers::pi / opt.phi_bins;
+  const AngleEdges theta_edges(0.0, 0.5 * std::numbers::pi / opt.theta_bins, opt.theta_bins);
+  const AngleEdges phi_edges(-std::numbers::pi - 0.5 * dphi, dphi, opt.phi_bins + 1);
+  SymmetricBlock in;
+  SymmetricHits hits;
+  double iu_of[kSymmetricBlock], r_of[kSymmetricBlock], ca_of[kSymmetricBlock], sa_of[kSymmetricBlock];
+  double ex[kSymmetricBlock], ey[kSymmetricBlock], oz[kSymmetricBlock], t_of[kSymmetricBlock], p_of[kSymmetricBlock];
+  Termination how[kSymmetricBlock];
+  int k_of[kSymmetricBlock];
+  for (std::int64_t j0 = begin; j0 < end; j0 += kSymmetricBlock) {
+    const int m = static_cast<int>(std::min<std::int64_t>(kSymmetricBlock, end - j0));
+    for (int q = 0; q < m; ++q) {
+      // Equal macro areas: the groove uniformly; then the landing point uniformly across it.
+      const int g = std::min(last, static_cast<int>(uniform_open(rng) * g_count));
+      const double f = uniform_open(rng);
+      const auto gi = static_cast<std::size_t>(g);
+      const GrooveFrame3d& frame = surface.frames[gi];
+      const SymmetricGrooveData& d = surface.data[gi];
+      // trace_groove3d's cross-section, operation for operation.
+      const double ia = i.x() * frame.cos_phi_a + i.y() * frame.sin_phi_a;
+      const double iu = -i.x() * frame.sin_phi_a + i.y() * frame.cos_phi_a;
+      const double in_ = i.z();
+      const double r = std::sqrt(ia * ia + in_ * in_);
+      in.dx[q] = -ia / r;
+      in.dy[q] = -in_ / r;
+      in.left_x[q] = d.left_x;
+      in.right_x[q] = d.right_x;
+      in.rim_height[q] = d.rim_height;
+      in.x[q] = d.left_x + f * (d.right_x - d.left_x);
+      iu_of[q] = iu;
+      r_of[q] = r;
+      ca_of[q] = frame.cos_phi_a;
+      sa_of[q] = frame.sin_phi_a;
+    }
+    block_reflections(in, m, opt.trace.max_bounces, kBlockRounds, hits);
+    // The rays the block did not settle, one by one.
+    for (int q = 0; q < m; ++q) {
+      if (hits.path[q] == 0) [[likely]] {
+        how[q] = Termination::escaped, k_of[q] = static_cast<int>(hits.k[q]), ex[q] = hits.d1x[q], ey[q] = hits.d1y[q];
+        continue;
+      }
+      const TraceResult tr = finish_lane(in, hits, q, opt.trace);
+      how[q] = tr.how, k_of[q] = tr.bounces, ex[q] = tr.exit_dir.x(), ey[q] = tr.exit_dir.y();
+    }
+    // Lift and bin, every lane (o = r (e_x a + e_y n) - (i.u) u, as trace_groove3d).
+    for (int q = 0; q < m; ++q) {
+      const double oa = r_of[q] * ex[q], iu = iu_of[q];
+      const double ox = oa * ca_of[q] + iu * sa_of[q], oy = oa * sa_of[q] - iu * ca_of[q];
+      oz[q] = r_of[q] * ey[q];
+      const double rho = std::sqrt(ox * ox + oy * oy);
+      t_of[q] = theta_edges.bin_branchless(oz[q], rho, atan2_guess(rho, oz[q]));
+      p_of[q] = phi_edges.bin_branchless(ox, oy, atan2_guess(oy, ox));
+    }
+    for (int q = 0; q < m; ++q)
+      tally.add_binned(how[q], k_of[q], oz[q] > 0.0, static_cast<int>(t_of[q]),
+                       static_cast<int>(p_of[q]) - opt.phi_bins / 2);
+  }
+  return tally;
+}
+
+Microsurface3dTally trace_microsurface3d_chunk_reference(const Microsurface3d& surface,
+                                                         const Microsurface3dTraceOptions& opt, std::int64_t chunk) {
   assert(opt.theta_i >= 0.0 && opt.theta_i < 0.5 * std::numbers::pi && opt.rays >= 0);
   Microsurface3dTally tally(opt.theta_bins, opt.phi_bins, opt.max_k);
   const std::int64_t begin = chunk * kRaysPerChunk;

@@ -93,6 +93,8 @@ struct Microsurface3d {
   std::vector<double> phi_a;          // [0, pi)
   std::vector<GrooveFrame3d> frames;  // from phi_a
   std::vector<Groove> grooves;        // cross-sections: aperture pi - 2 theta_m, unit facets
+  // The cross-sections in 24 bytes each (symmetric_block.h), what the batch trace reads.
+  std::vector<SymmetricGrooveData> data;
 };
 
 inline constexpr std::uint64_t kGroove3dStream = 0x67726f6f76653364ULL;  // "groove3d"
@@ -149,14 +151,26 @@ struct Microsurface3dTally : RayFates {
   }
 
   void add(const Trace3dResult& r);
+  // The same, the bins found among the edges (sim/exit_bins.h) instead of by acos and atan2:
+  // theta_edges over [0, pi/2), phi_edges the phi_bins + 1 edges from -pi - d/2 (the bin centred
+  // on pi counted at both ends).
+  void add(const Trace3dResult& r, const AngleEdges& theta_edges, const AngleEdges& phi_edges);
+  // A ray whose bins are known: theta bin t, phi bin p (taken modulo phi_bins).
+  void add_binned(Termination how, int k, bool upward, int t, int p);
   void merge(const Microsurface3dTally& other);  // same bins and max_k
 };
 
 std::int64_t chunk_count(const Microsurface3dTraceOptions& opt);
 
-// The rays of chunk c (kRaysPerChunk of them; the last chunk holds the rest).
+// The rays of chunk c (kRaysPerChunk of them; the last chunk holds the rest): the grooves and
+// landing points in the order of the stream, traced in blocks (symmetric_block.h, bit for bit
+// trace_groove3d's 2D trace) and binned by comparisons (sim/exit_bins.h).
 Microsurface3dTally trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt,
                                                std::int64_t chunk);
+// The same one ray at a time with trace_groove3d on surface.grooves, binned by acos and atan2:
+// the path before the blocks, kept for the tests and the benchmarks' side-by-side.
+Microsurface3dTally trace_microsurface3d_chunk_reference(const Microsurface3d& surface,
+                                                         const Microsurface3dTraceOptions& opt, std::int64_t chunk);
 
 // All chunks, merged in order (one thread; a caller may run the chunks on several and merge).
 Microsurface3dTally trace_microsurface3d(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt);

@@ -292,8 +292,8 @@ BrdfModel BrdfWork::run_fixed(std::size_t n) const {
   } else {
     analytic::Lobe3d lobe =
         analytic::vgroove_lobe_3d(c.ndf, c.alpha, c.theta_i, suite.theta_bins, suite.phi_bins, suite.max_k);
-    analytic::Lobe3d single =
-        analytic::cook_torrance_lobe_3d(c.ndf, c.alpha, c.theta_i, suite.theta_bins, suite.phi_bins);
+    // Cook-Torrance (V-cavity G) is the lobe's k = 1 row (Eq. 25): no second integration.
+    analytic::Lobe3d single = analytic::cook_torrance_lobe_3d_from(lobe);
     m.by_k = std::move(lobe.by_k), m.hist = std::move(lobe.hist), m.hist_by_k = std::move(lobe.hist_by_k);
     m.albedo = lobe.albedo, m.single_hist = std::move(single.hist), m.single_albedo = single.albedo;
   }

@@ -1,9 +1,11 @@
 #include "vgroove/validation/groove_case.h"
 
 #include "vgroove/sim/tally.h"
+#include "vgroove/sim/zones.h"
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace vgroove::validation {
 
@@ -58,38 +60,77 @@ FacetOutcome run_facet(const GrooveParams& params, const sim::Groove& g, double 
   // One beam, one direction: BeamTracer computes once what depends on the direction only and
   // traces each ray exactly as sim::trace does (bit for bit), a block of rays at a time.
   const sim::BeamTracer beam(g, dir, topt);
+  // Every traced ray is tallied (its exit direction is checked); the fractions come from the
+  // counts, or with breakpoints from the zones' measures.
   sim::Tally tally;
-  sim::trace_beam(beam, opt.sampling, aim, opt.rays, rng, [&](long, const sim::TraceResult& r) { tally.add(r); });
-
-  const double n = static_cast<double>(opt.rays);
+  const int f = static_cast<int>(side), o = 1 - f;
+  double blocked = 0.0, lost = 0.0;  // fractions: shadowed; no bin in the model (vertex, limit, other facet)
+  std::vector<double> traced;        // fractions per k on this facet
+  if (opt.sampling == sim::Sampling::breakpoints) {
+    const sim::ZoneSearch zs =
+        sim::find_zones(beam, aim, opt.rays, [&](double, const sim::TraceResult& r) { tally.add(r); });
+    const double width = aim.width();
+    for (const sim::Zone& z : zs.zones) {
+      const double share = z.width() / width;
+      const sim::TraceResult& r = z.ray;
+      if (r.how == sim::Termination::blocked) {
+        blocked += share;
+      } else if (r.how != sim::Termination::escaped || static_cast<int>(r.first) != f) {
+        lost += share;
+      } else {
+        if (static_cast<int>(traced.size()) <= r.bounces) traced.resize(r.bounces + 1, 0.0);
+        traced[r.bounces] += share;
+      }
+    }
+    // Zones of distinct outcome; a vertex hit between two zones of one outcome (a point, or a few
+    // ulps where the rounded s equals a facet's end) does not split it.
+    const sim::TraceResult* last = nullptr;
+    for (const sim::Zone& z : zs.zones) {
+      if (z.ray.how == sim::Termination::vertex_hit) continue;
+      if (last == nullptr || !sim::same_outcome(*last, z.ray)) ++out.zones;
+      last = &z.ray;
+    }
+    out.grid = zs.grid;
+    out.uncertified_cells = zs.uncertified_cells;
+    out.missed_bound = zs.missed_bound() / width;
+    out.narrowest_zone = zs.narrowest() / width;
+  } else {
+    sim::trace_beam(beam, opt.sampling, aim, opt.rays, rng, [&](long, const sim::TraceResult& r) { tally.add(r); });
+    const double n = static_cast<double>(opt.rays);
+    blocked = static_cast<double>(tally.blocked) / n;
+    std::int64_t other = 0;
+    for (const auto& b : tally.bins[o]) other += b.count;
+    lost = static_cast<double>(tally.vertex_hits + tally.bounce_limit + other) / n;
+    for (const auto& b : tally.bins[f]) traced.push_back(static_cast<double>(b.count) / n);
+  }
   out.rays = tally.rays;
   out.bounces = tally.bounces;
   out.vertex_hits = tally.vertex_hits;
   out.bounce_limit = tally.bounce_limit;
-  for (const auto& b : tally.bins[1 - static_cast<int>(side)]) out.wrong_first += b.count;
+  for (const auto& b : tally.bins[o]) out.wrong_first += b.count;
 
   // L1 over every bin either side has.
-  double l1 = std::abs(static_cast<double>(tally.blocked) / n - pred.shadow);
-  l1 += static_cast<double>(tally.vertex_hits + tally.bounce_limit + out.wrong_first) / n;
-  const auto& bins = tally.bins[static_cast<int>(side)];
+  double l1 = std::abs(blocked - pred.shadow) + lost;
+  const auto& bins = tally.bins[f];
   // Shares of the model outside the traced bins (a count below 0 or past the last bin) count too.
-  int kmax = static_cast<int>(bins.size()) - 1;
+  int kmax = static_cast<int>(traced.size()) - 1;
   for (int z = 0; z < pred.shares; ++z) {
     kmax = std::max(kmax, pred.share[z].n);
     if (pred.share[z].n < 0) l1 += std::abs(pred.share[z].G);
   }
   for (int k = 0; k <= kmax; ++k) {
-    const double traced = k < static_cast<int>(bins.size()) ? static_cast<double>(bins[k].count) / n : 0.0;
+    const double fraction = k < static_cast<int>(traced.size()) ? traced[k] : 0.0;
     double model = 0.0;
     for (int z = 0; z < pred.shares; ++z)
       if (pred.share[z].n == k) model += pred.share[z].G;
-    l1 += std::abs(traced - model);
-    if (traced > 0.0) {
-      // Eq. (5) and (8) hold for any bounce count, so every traced bin is checked, predicted or not.
-      const double theta_o = model_exit_angle(params, theta_i, k, side);
-      const double err = std::abs(sim::angle_between(sim::direction_at(theta_o), bins[k].exit_dir)) + bins[k].spread();
-      out.theta_o_error = std::max(out.theta_o_error, err);
-    }
+    l1 += std::abs(fraction - model);
+  }
+  // Eq. (5) and (8) hold for any bounce count, so every traced bin is checked, predicted or not.
+  for (int k = 0; k < static_cast<int>(bins.size()); ++k) {
+    if (bins[k].count == 0) continue;
+    const double theta_o = model_exit_angle(params, theta_i, k, side);
+    const double err = std::abs(sim::angle_between(sim::direction_at(theta_o), bins[k].exit_dir)) + bins[k].spread();
+    out.theta_o_error = std::max(out.theta_o_error, err);
   }
   out.l1 = l1;
   out.non_finite = !std::isfinite(out.l1) || !std::isfinite(out.theta_o_error);

@@ -3,9 +3,10 @@
 // The error follows the paper's normalization of G (Lee et al. 2018, Eq. 6): for each facet the
 // light reaches, N rays aimed at it (spread over its projected width f_a) are traced; the error
 // is the L1 distance between the traced fractions per bounce count and G, with the shadowed rays
-// (blocked by the other facet's rim) a bin of their own. Rays the model has no bin for (vertex
-// hits, the bounce limit, a different facet hit first) count against it in full. A case's error
-// is the larger of its facets'.
+// (blocked by the other facet's rim) a bin of their own. With breakpoint placement the traced
+// fractions are the measures of the zones of equal outcome (sim/zones.h, N the grid's rays). Rays the model has no bin
+// for (vertex hits, the bounce limit, a different facet hit first) count against it in full. A case's error is the
+// larger of its facets'.
 #pragma once
 
 #include "vgroove/validation/suite.h"
@@ -27,6 +28,15 @@ struct FacetOutcome {
   // Rays aimed exactly at the apex and the rims (CaseOptions::probe_vertices), kept out of l1.
   std::int64_t probe_rays = 0, probe_escaped = 0, probe_vertex_hits = 0, probe_blocked = 0, probe_bounce_limit = 0;
   bool non_finite = false;  // a NaN or infinity in any figure or exit direction
+  // Breakpoint placement (sim/zones.h): the zones of distinct outcome found (vertex hits, points
+  // or a few ulps, not counted), the grid's rays M, the grid cells with equal ends no certificate
+  // covers, what may be missing there (their width, a fraction of the beam), and the
+  // narrowest zone found, vertex hits left out (a fraction of the beam).
+  long zones = 0;
+  long grid = 0;
+  long uncertified_cells = 0;
+  double missed_bound = 0.0;
+  double narrowest_zone = 0.0;
 };
 
 struct CaseOutcome {

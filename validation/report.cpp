@@ -3,6 +3,7 @@
 
 #include "vgroove_version.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -73,6 +74,13 @@ nlohmann::json case_json(const CaseOutcome& c) {
                 {"vertex_hits", fo.vertex_hits},
                 {"bounce_limit", fo.bounce_limit},
                 {"wrong_first_facet", fo.wrong_first}};
+    // Breakpoint placement (sim/zones.h) finds at least one zone on every facet it compares.
+    if (fo.zones > 0) {
+      jc[name]["zones"] = fo.zones;
+      jc[name]["narrowest_zone"] = fo.narrowest_zone;
+      jc[name]["uncertified_cells"] = fo.uncertified_cells;
+      jc[name]["missed_bound"] = fo.missed_bound;
+    }
   }
   return jc;
 }
@@ -119,6 +127,21 @@ nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
                   {"non_finite_cases", s.non_finite_cases},
                   {"wall_s", s.wall_s},
                   {"bounces_per_s", s.bounces_per_s}};
+  if (run.options.sampling == sim::Sampling::breakpoints)
+    j["summary"]["breakpoints"] = {
+        {"grid_rays", run.options.rays},
+        {"definition",
+         "per lit facet: a stratified grid of grid_rays rays and the two ends of the beam, then bisection "
+         "between neighbours of different outcome (facet hit first, k, termination) down to adjacent doubles; "
+         "fractions are the zones' measures. A zone can be missed only inside a grid cell whose ends have the "
+         "same outcome and no certificate (the convexity lemma of sim/zones.h covers every cell but vertex "
+         "hits; cells with vertex-hit ends are halved 8 times first); missed_bound = the uncertified cells' width, a "
+         "fraction of the beam"},
+        {"zones", s.zones},
+        {"max_zones_per_facet", s.max_zones},
+        {"narrowest_zone", s.narrowest_zone},
+        {"uncertified_cells", s.uncertified_cells},
+        {"max_missed_bound", s.max_missed_bound}};
   if (run.options.probe_vertices)
     j["summary"]["vertex_probes"] = {{"rays", s.probe_rays},
                                      {"escaped", s.probe_escaped},
@@ -173,6 +196,11 @@ void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run) {
   os << "  rays " << s.rays << ", bounces " << s.bounces << ", vertex hits " << s.vertex_hits << ", bounce limit "
      << s.bounce_limit << ", wall " << fmt("%.3f", s.wall_s) << " s, " << fmt("%.1f", s.bounces_per_s / 1e6)
      << " M bounces/s\n";
+  if (run.options.sampling == sim::Sampling::breakpoints)
+    os << "  breakpoints: grid of " << run.options.rays << " rays per lit facet, " << s.zones
+       << " zones found (at most " << s.max_zones << " per facet, the narrowest " << fmt("%.3g", s.narrowest_zone)
+       << " of its beam), " << s.uncertified_cells << " uncertified grid cells"
+       << (s.uncertified_cells ? " (may hide up to " + fmt("%.3g", s.max_missed_bound) + " of a beam)" : "") << "\n";
   if (run.options.probe_vertices)
     os << "  rays aimed exactly at the apex and rims: " << s.probe_rays << " (escaped " << s.probe_escaped
        << ", vertex hits " << s.probe_vertex_hits << ", blocked " << s.probe_blocked << ", bounce limit "
@@ -207,8 +235,12 @@ void print_set_table(std::ostream& os, const SuiteSet& set, const std::vector<Su
     print_table(os, set.suites[n], runs[n]);
   }
   if (runs.size() < 2) return;
+  // The first column as wide as the longest suite name (22 at least).
+  int width = 22;
+  for (const Suite& su : set.suites) width = std::max(width, static_cast<int>(su.name.size()));
   os << "\n" << set.name << ": the paper's figures beside ours\n";
-  os << "  column                 paper max L1  ours max L1   paper mean L1  ours mean L1   cases   wall s\n";
+  os << "  " << std::string("column") + std::string(width - 6, ' ')
+     << " paper max L1  ours max L1   paper mean L1  ours mean L1   cases   wall s\n";
   bool pass = true;
   for (std::size_t n = 0; n < runs.size(); ++n) {
     const Suite& su = set.suites[n];
@@ -216,7 +248,7 @@ void print_set_table(std::ostream& os, const SuiteSet& set, const std::vector<Su
     pass = pass && s.pass();
     os << "  ";
     char buf[256];
-    std::snprintf(buf, sizeof buf, "%-22s %12.4g %12.4g %14.4g %13.4g %7zu %8.3f\n", su.name.c_str(),
+    std::snprintf(buf, sizeof buf, "%-*s %12.4g %12.4g %14.4g %13.4g %7zu %8.3f\n", width, su.name.c_str(),
                   su.paper ? su.paper->max_l1 : NAN, s.max_l1, su.paper ? su.paper->mean_l1 : NAN, s.mean_l1, s.cases,
                   s.wall_s);
     os << buf;

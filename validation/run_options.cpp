@@ -33,10 +33,12 @@ void check_threads(int threads, const std::string& what) {
     throw support::UserError(what + " = " + std::to_string(threads) + " is out of range [0, 1024] (0: all cores)");
 }
 
-sim::Sampling parse_sampling(const std::string& s, const std::string& what) {
+sim::Sampling parse_sampling(const std::string& s, const std::string& what, bool allow_breakpoints) {
   if (s == "stratified") return sim::Sampling::stratified;
   if (s == "random") return sim::Sampling::random;
-  throw support::UserError(what + " = \"" + s + "\" is not one of \"stratified\", \"random\"");
+  if (allow_breakpoints && s == "breakpoints") return sim::Sampling::breakpoints;
+  throw support::UserError(what + " = \"" + s + "\" is not one of \"stratified\", \"random\"" +
+                           (allow_breakpoints ? ", \"breakpoints\"" : ""));
 }
 
 analytic::Eq6Form parse_form(const std::string& s, const std::string& what) {
@@ -77,7 +79,7 @@ CaseOptions options_with_overrides(const Suite& suite, std::optional<long> rays,
                                    const OptionNames& names) {
   CaseOptions o = suite.options;
   if (rays) check_rays(*rays, names.rays), o.rays = *rays;
-  if (sampling) o.sampling = parse_sampling(*sampling, names.sampling);
+  if (sampling) o.sampling = parse_sampling(*sampling, names.sampling, true);
   if (eq6_form) o.form = parse_form(*eq6_form, names.eq6_form);
   if (seed) check_seed(*seed, names.seed), o.seed = static_cast<std::uint64_t>(*seed);
   return o;

@@ -17,7 +17,10 @@ void check_seed(long long seed, const std::string& what);
 void check_rays(long rays, const std::string& what);
 // 0 means all cores.
 void check_threads(int threads, const std::string& what);
-sim::Sampling parse_sampling(const std::string& s, const std::string& what);
+// "stratified", "random", and with allow_breakpoints also "breakpoints" (sim/zones.h: a suite's
+// single-groove cases, validate and bench accuracy; a beam's rays themselves are placed across the
+// opening by the other two).
+sim::Sampling parse_sampling(const std::string& s, const std::string& what, bool allow_breakpoints = false);
 analytic::Eq6Form parse_form(const std::string& s, const std::string& what);
 
 // The names of the values above and of a groove's angles in messages.

@@ -3,6 +3,8 @@
 #include "vgroove/analytic/quadrature.h"
 #include "vgroove/analytic/sampling_3d.h"
 #include "vgroove/analytic/sampling_flatland.h"
+#include "vgroove/analytic/brdf_nonsymmetric.h"
+#include "vgroove/analytic/sampling_nonsymmetric.h"
 #include "vgroove/sim/rng.h"
 #include "vgroove/validation/report.h"
 
@@ -21,11 +23,23 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 std::array<double, 4> uniforms(sim::Rng& rng) { return {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()}; }
+std::array<double, 5> uniforms5(sim::Rng& rng) {
+  return {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
+}
+
+// The nonsymmetric sampler of a spec; the pdf to 1e-6 relative per B-piece (the cells ask 1e-4).
+analytic::NonsymmetricSampler nonsymmetric_sampler(const Chi2Spec& s) {
+  analytic::NonsymmetricSampler S = analytic::make_nonsymmetric_sampler(
+      s.ndf, s.alpha, analytic::SamplerOptions{s.strategy, s.max_k}, s.dim == SurfaceDim::flatland);
+  S.tolerance = 1e-6;
+  return S;
+}
 
 struct Moments {
   double sum = 0.0, sum2 = 0.0;
   void add(double w) { sum += w, sum2 += w * w; }
   void into(Chi2Outcome& out, long n) const {
+    out.weight_samples = n;
     const double N = static_cast<double>(n);
     out.weight_mean = sum / N;
     out.weight_variance = N > 1.0 ? std::max(0.0, sum2 / N - out.weight_mean * out.weight_mean) * N / (N - 1.0) : 0.0;
@@ -57,9 +71,20 @@ void sample_3d(Chi2Outcome& out) {
   const auto t0 = Clock::now();
   sim::Rng rng(s.seed, 0x5a3d, 0);
   Moments w;
+  const analytic::NonsymmetricSampler ns = s.nonsymmetric ? nonsymmetric_sampler(s) : analytic::NonsymmetricSampler{};
+  const long weighted = s.nonsymmetric ? std::min(s.samples, kNonsymmetricWeightSamples) : s.samples;
   for (long n = 0; n < s.samples; ++n) {
-    const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(i, uniforms(rng), s.ndf, s.alpha, opt);
-    w.add(x.weight);
+    analytic::VgrooveSample3d x;
+    if (s.nonsymmetric) {
+      const std::array<double, 5> u = uniforms5(rng);
+      const analytic::NonsymmetricDraw3d d = analytic::draw_nonsymmetric_3d(ns, i, u);
+      x.o = d.o;
+      x.k = d.k;
+      if (n < weighted) w.add(analytic::sample_nonsymmetric_3d(ns, i, u).weight);
+    } else {
+      x = analytic::sample_vgroove_3d(i, uniforms(rng), s.ndf, s.alpha, opt);
+      w.add(x.weight);
+    }
     if (x.k == 0) {
       t.observed_none += 1.0;
       continue;
@@ -71,7 +96,7 @@ void sample_3d(Chi2Outcome& out) {
     t.observed[static_cast<std::size_t>(r * t.cols + c)] += 1.0;
   }
   out.sample_s = seconds_since(t0);
-  w.into(out, s.samples);
+  w.into(out, weighted);
 }
 
 // The expected counts: the density integrated over each cell.
@@ -82,8 +107,10 @@ void expect_3d(Chi2Outcome& out, const HeldDensity* held) {
   const analytic::Dir3 i = analytic::dir3(s.theta_i, std::numbers::pi);
   const analytic::SamplerOptions opt{s.strategy, s.max_k};
   const auto t1 = Clock::now();
+  const analytic::NonsymmetricSampler ns = s.nonsymmetric ? nonsymmetric_sampler(s) : analytic::NonsymmetricSampler{};
   auto pdf = [&](const analytic::Dir3& o) {
-    return held ? held->pdf3(o) : analytic::vgroove_pdf_3d(i, o, s.ndf, s.alpha, opt);
+    if (held) return held->pdf3(o);
+    return s.nonsymmetric ? analytic::nonsymmetric_pdf_3d(ns, i, o) : analytic::vgroove_pdf_3d(i, o, s.ndf, s.alpha, opt);
   };
   const analytic::AdaptiveOptions outer = cell_options(s.samples);
   const double N = static_cast<double>(s.samples);
@@ -133,7 +160,8 @@ void expect_3d(Chi2Outcome& out, const HeldDensity* held) {
       out.quadrature_error += 2.0 * a.error;
     }
   out.integrate_s = seconds_since(t1);
-  out.failure_probability = analytic::sampler_failure_probability_3d(i, s.ndf, s.alpha, opt, 1e-9);
+  out.failure_probability = s.nonsymmetric ? analytic::nonsymmetric_failure_probability_3d(ns, i, 1e-8)
+                                           : analytic::sampler_failure_probability_3d(i, s.ndf, s.alpha, opt, 1e-9);
 }
 
 void sample_flatland(Chi2Outcome& out) {
@@ -148,10 +176,20 @@ void sample_flatland(Chi2Outcome& out) {
   const auto t0 = Clock::now();
   sim::Rng rng(s.seed, 0x5a3d, 1);
   Moments w;
+  const analytic::NonsymmetricSampler ns = s.nonsymmetric ? nonsymmetric_sampler(s) : analytic::NonsymmetricSampler{};
+  const long weighted = s.nonsymmetric ? std::min(s.samples, kNonsymmetricWeightSamples) : s.samples;
   for (long n = 0; n < s.samples; ++n) {
-    const analytic::VgrooveSampleFlatland x =
-        analytic::sample_vgroove_flatland(s.theta_i, uniforms(rng), s.ndf, s.alpha, opt);
-    w.add(x.weight);
+    analytic::VgrooveSampleFlatland x;
+    if (s.nonsymmetric) {
+      const std::array<double, 5> u = uniforms5(rng);
+      const analytic::NonsymmetricDrawFlatland d = analytic::draw_nonsymmetric_flatland(ns, s.theta_i, u);
+      x.theta_o = d.theta_o;
+      x.k = d.k;
+      if (n < weighted) w.add(analytic::sample_nonsymmetric_flatland(ns, s.theta_i, u).weight);
+    } else {
+      x = analytic::sample_vgroove_flatland(s.theta_i, uniforms(rng), s.ndf, s.alpha, opt);
+      w.add(x.weight);
+    }
     if (x.k == 0) {
       t.observed_none += 1.0;
       continue;
@@ -161,7 +199,7 @@ void sample_flatland(Chi2Outcome& out) {
     t.observed[static_cast<std::size_t>(c)] += 1.0;
   }
   out.sample_s = seconds_since(t0);
-  w.into(out, s.samples);
+  w.into(out, weighted);
 }
 
 void expect_flatland(Chi2Outcome& out, const HeldDensity* held) {
@@ -170,8 +208,11 @@ void expect_flatland(Chi2Outcome& out, const HeldDensity* held) {
   t.expected.assign(t.observed.size(), 0.0);
   const analytic::SamplerOptions opt{s.strategy, s.max_k};
   const auto t1 = Clock::now();
+  const analytic::NonsymmetricSampler ns = s.nonsymmetric ? nonsymmetric_sampler(s) : analytic::NonsymmetricSampler{};
   auto pdf = [&](double to) {
-    return held ? held->pdf2(to) : analytic::vgroove_pdf_flatland(s.theta_i, to, s.ndf, s.alpha, opt);
+    if (held) return held->pdf2(to);
+    return s.nonsymmetric ? analytic::nonsymmetric_pdf_flatland(ns, s.theta_i, to)
+                          : analytic::vgroove_pdf_flatland(s.theta_i, to, s.ndf, s.alpha, opt);
   };
   const analytic::AdaptiveOptions o = cell_options(s.samples);
   for (int c = 0; c < t.cols; ++c) {
@@ -185,7 +226,9 @@ void expect_flatland(Chi2Outcome& out, const HeldDensity* held) {
     out.quadrature_error += a.error;
   }
   out.integrate_s = seconds_since(t1);
-  out.failure_probability = analytic::sampler_failure_probability_flatland(s.theta_i, s.ndf, s.alpha, opt);
+  out.failure_probability = s.nonsymmetric
+                                ? analytic::nonsymmetric_failure_probability_flatland(ns, s.theta_i, 1e-10)
+                                : analytic::sampler_failure_probability_flatland(s.theta_i, s.ndf, s.alpha, opt);
 }
 
 // The expected counts under the sampler's pdf or the held density, and the test.
@@ -245,6 +288,7 @@ nlohmann::json chi2_json(const Chi2Outcome& o) {
                       {"alpha", s.alpha},
                       {"theta_i_deg", output_deg(s.theta_i)},
                       {"strategy", analytic::strategy_name(s.strategy)},
+                      {"model", s.nonsymmetric ? "vgroove-nonsymmetric" : "vgroove"},
                       {"max_k", s.max_k},
                       {"samples", s.samples},
                       {"seed", s.seed},
@@ -263,7 +307,9 @@ nlohmann::json chi2_json(const Chi2Outcome& o) {
                       {"normalization_tolerance", o.normalization_tolerance},
                       {"weight_mean", o.weight_mean},
                       {"weight_variance", o.weight_variance},
-                      {"weight_standard_error", std::sqrt(o.weight_variance / static_cast<double>(s.samples))},
+                      {"weight_samples", o.weight_samples},
+                      {"weight_standard_error",
+                       std::sqrt(o.weight_variance / static_cast<double>(std::max(1L, o.weight_samples)))},
                       {"ns_per_sample", 1e9 * o.sample_s / static_cast<double>(s.samples)},
                       {"sample_s", o.sample_s},
                       {"integrate_s", o.integrate_s},
@@ -281,6 +327,14 @@ nlohmann::json chi2_json(const Chi2Outcome& o) {
 
 // ---- Variance and efficiency ---------------------------------------------------------------------
 
+namespace {
+analytic::NonsymmetricModel nonsymmetric_model(const VarianceSpec& spec) {
+  analytic::NonsymmetricModel m;
+  m.roughness = analytic::isotropic_roughness(spec.ndf, spec.alpha);
+  return m;
+}
+}  // namespace
+
 VarianceOutcome run_variance(const VarianceSpec& spec) {
   VarianceOutcome out;
   out.spec = spec;
@@ -297,7 +351,7 @@ VarianceOutcome run_variance(const VarianceSpec& spec) {
     long none = 0;
     const auto t0 = Clock::now();
     for (long n = 0; n < spec.samples; ++n) {
-      const auto [w, returned] = draw(uniforms(rng));
+      const auto [w, returned] = draw(uniforms5(rng));
       sum += w, sum2 += w * w;
       none += !returned;
     }
@@ -317,13 +371,29 @@ VarianceOutcome run_variance(const VarianceSpec& spec) {
                                     analytic::FacetStrategy::smith_vndf, analytic::FacetStrategy::bounded_vndf}) {
     if (!analytic::strategy_supports(s, spec.ndf, !three_d)) continue;
     const analytic::SamplerOptions opt{s, spec.max_k};
+    if (spec.nonsymmetric) {
+      const analytic::NonsymmetricSampler ns = analytic::make_nonsymmetric_sampler(spec.ndf, spec.alpha, opt, !three_d);
+      if (three_d)
+        run(analytic::strategy_name(s), [&](const std::array<double, 5>& u) {
+          const analytic::VgrooveSample3d x = analytic::sample_nonsymmetric_3d(ns, i, u, F);
+          return std::pair<double, bool>{x.weight, x.k > 0};
+        });
+      else
+        run(analytic::strategy_name(s), [&](const std::array<double, 5>& u) {
+          const analytic::VgrooveSampleFlatland x = analytic::sample_nonsymmetric_flatland(ns, spec.theta_i, u);
+          return std::pair<double, bool>{x.weight, x.k > 0};
+        });
+      continue;
+    }
     if (three_d)
-      run(analytic::strategy_name(s), [&](const std::array<double, 4>& u) {
+      run(analytic::strategy_name(s), [&](const std::array<double, 5>& u5) {
+        const std::array<double, 4> u{u5[0], u5[1], u5[2], u5[3]};
         const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(i, u, spec.ndf, spec.alpha, opt, F);
         return std::pair<double, bool>{x.weight, x.k > 0};
       });
     else
-      run(analytic::strategy_name(s), [&](const std::array<double, 4>& u) {
+      run(analytic::strategy_name(s), [&](const std::array<double, 5>& u5) {
+        const std::array<double, 4> u{u5[0], u5[1], u5[2], u5[3]};
         const analytic::VgrooveSampleFlatland x =
             analytic::sample_vgroove_flatland(spec.theta_i, u, spec.ndf, spec.alpha, opt);
         return std::pair<double, bool>{x.weight, x.k > 0};
@@ -331,19 +401,23 @@ VarianceOutcome run_variance(const VarianceSpec& spec) {
   }
   // Cosine-weighted sampling: weight = rho cos / (cos / pi) = pi rho (flatland: 2 rho2).
   if (three_d)
-    run("cosine", [&](const std::array<double, 4>& u) {
+    run("cosine", [&](const std::array<double, 5>& u) {
       const analytic::Dir3 o = analytic::sample_cosine_hemisphere(u[0], u[1]);
       const double pdf = analytic::cosine_hemisphere_pdf(o);
-      const double rho = analytic::vgroove_brdf(i, o, spec.ndf, spec.alpha, spec.max_k, F);
+      const double rho = spec.nonsymmetric ? analytic::nonsymmetric_brdf(i, o, spec.max_k, nonsymmetric_model(spec), F)
+                                           : analytic::vgroove_brdf(i, o, spec.ndf, spec.alpha, spec.max_k, F);
       return std::pair<double, bool>{pdf > 0.0 && std::isfinite(rho) ? rho * o.z / pdf : 0.0, pdf > 0.0};
     });
   else
-    run("cosine", [&](const std::array<double, 4>& u) {
+    run("cosine", [&](const std::array<double, 5>& u) {
       const double to = analytic::sample_cosine_flatland(u[0]);
       const double pdf = analytic::cosine_flatland_pdf(to);
       const analytic::SamplerOptions opt{analytic::FacetStrategy::vndf, spec.max_k};
       const double rho_cos =
-          analytic::vgroove_pdf_and_brdf_flatland(spec.theta_i, to, spec.ndf, spec.alpha, opt).rho_cos;
+          spec.nonsymmetric
+              ? analytic::flatland_nonsymmetric_brdf(spec.theta_i, to, spec.max_k, nonsymmetric_model(spec)) *
+                    std::cos(to)
+              : analytic::vgroove_pdf_and_brdf_flatland(spec.theta_i, to, spec.ndf, spec.alpha, opt).rho_cos;
       return std::pair<double, bool>{pdf > 0.0 ? rho_cos / pdf : 0.0, pdf > 0.0};
     });
   const auto lowest =
@@ -373,6 +447,7 @@ nlohmann::json variance_json(const VarianceOutcome& o) {
       {"ndf", analytic::ndf_name(s.ndf)},
       {"alpha", s.alpha},
       {"theta_i_deg", output_deg(s.theta_i)},
+      {"model", s.nonsymmetric ? "vgroove-nonsymmetric" : "vgroove"},
       {"max_k", s.max_k},
       {"samples", s.samples},
       {"fresnel", s.schlick_f0 < 1.0 ? "schlick F0 = " + std::to_string(s.schlick_f0) : std::string("none (F = 1)")},

@@ -43,7 +43,12 @@ struct Chi2Spec {
   int theta_bins = 36;              // flatland: theta_o in (-pi/2, pi/2)
   double level = 0.01;              // the family's significance level
   int tests = 1;                    // tests run together (Sidak)
+  // The nonsymmetric model (analytic/sampling_nonsymmetric.h: the independent partner law, Eq. 20)
+  // instead of the symmetric one. Its directions are histogrammed from the draws alone; its pdf and
+  // weight cost ~ms, so the weight's moments are taken over the first kNonsymmetricWeightSamples.
+  bool nonsymmetric = false;
 };
+inline constexpr long kNonsymmetricWeightSamples = 256;
 
 // The histogram and the expected counts, for plots: [row * cols + col]; 3D rows are cos(theta_o)
 // bins (row_edges ascending) and columns phi_o bins (col_edges from -pi); flatland has one row
@@ -67,6 +72,7 @@ struct Chi2Outcome {
   double sample_s = 0.0, integrate_s = 0.0;
   // The weights rho cos / pdf of the same samples (zero-weight returns count 0), F = 1.
   double weight_mean = 0.0, weight_variance = 0.0;
+  long weight_samples = 0;  // samples the weight's moments are over
   bool pass = false;  // the chi-square accepts and |normalization_error| <= normalization_tolerance
 };
 
@@ -93,6 +99,7 @@ struct VarianceSpec {
   long samples = 20000;
   std::uint64_t seed = 1;
   double schlick_f0 = 1.0;  // Fresnel: Schlick with this F0 (1: F = 1, the furnace); 3D only
+  bool nonsymmetric = false;  // the nonsymmetric model (Chi2Spec)
 };
 struct StrategyStats {
   std::string strategy;  // a FacetStrategy's name, or "cosine"

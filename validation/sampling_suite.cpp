@@ -36,6 +36,18 @@ analytic::FacetStrategy read_strategy(support::JsonObject& o, const BrdfCase& c)
   return s;
 }
 
+// "model": "vgroove" (the default, symmetric) or "vgroove-nonsymmetric" (Eq. 23, the independent
+// partner law; its table needs Phong alpha <= 1, analytic/partner_table.h).
+bool read_nonsymmetric(support::JsonObject& o, const BrdfCase& c) {
+  const std::string fallback = "vgroove";
+  const bool ns = o.one_of("model", {"vgroove", "vgroove-nonsymmetric"}, &fallback) == "vgroove-nonsymmetric";
+  if (ns && c.ndf == analytic::NdfKind::phong && c.alpha > 1.0)
+    o.fail("alpha", "= " + std::to_string(c.alpha) +
+                        " is out of range for model vgroove-nonsymmetric with phong (the partner law's table needs "
+                        "alpha <= 1)");
+  return ns;
+}
+
 // The elements of the list `key`, each as a strict object.
 template <class Fn>
 void for_each_listed(support::JsonObject& parent, const std::string& key, Fn&& fn) {
@@ -75,6 +87,7 @@ SamplingSuite parse_sampling_suite(const nlohmann::json& j, const std::string& f
       Chi2Spec spec;
       spec.dim = bc.dim, spec.ndf = bc.ndf, spec.alpha = bc.alpha, spec.theta_i = bc.theta_i;
       spec.strategy = read_strategy(o, bc);
+      spec.nonsymmetric = read_nonsymmetric(o, bc);
       spec.max_k = max_k;
       spec.samples = bc.dim == SurfaceDim::three_d ? n3 : n2;
       spec.seed = s.seed;
@@ -91,14 +104,17 @@ SamplingSuite parse_sampling_suite(const nlohmann::json& j, const std::string& f
     const std::vector<double> f0s = read_numbers(v, "schlick_f0", 0.0, true, 1.0, true);
     for_each_listed(v, "cases", [&](support::JsonObject& o) {
       const BrdfCase bc = read_case(o);
+      const bool ns = read_nonsymmetric(o, bc);
+      const long case_n = static_cast<long>(o.integer_or("samples", n, 100, kMaxRays));
       for (double f0 : f0s) {
         if (f0 < 1.0 && bc.dim == SurfaceDim::flatland) continue;  // the flatland sampler has F = 1 only
         VarianceSpec spec;
         spec.dim = bc.dim, spec.ndf = bc.ndf, spec.alpha = bc.alpha, spec.theta_i = bc.theta_i;
         spec.max_k = max_k;
-        spec.samples = n;
+        spec.samples = case_n;
         spec.seed = s.seed;
         spec.schlick_f0 = f0;
+        spec.nonsymmetric = ns;
         s.variance.push_back(spec);
       }
     });

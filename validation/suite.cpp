@@ -149,9 +149,10 @@ Suite parse_suite(const nlohmann::json& j, const std::string& file) {
   if (s.cases() == 0) root.fail("cases", "is missing: a suite needs \"groove\" with \"theta_i_deg\", or \"cases\"");
   s.options.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
   const std::string stratified = "stratified";
-  s.options.sampling = root.one_of("sampling", {"stratified", "random"}, &stratified) == "random"
-                           ? sim::Sampling::random
-                           : sim::Sampling::stratified;
+  const std::string sampling = root.one_of("sampling", {"stratified", "random", "breakpoints"}, &stratified);
+  s.options.sampling = sampling == "random"        ? sim::Sampling::random
+                       : sampling == "breakpoints" ? sim::Sampling::breakpoints
+                                                   : sim::Sampling::stratified;
   s.options.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
   s.options.max_bounces = static_cast<int>(root.integer_or("max_bounces", 100000, 1, 100'000'000));
   s.options.probe_vertices = root.boolean_or("probe_vertices", false);

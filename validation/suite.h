@@ -35,7 +35,7 @@ struct PaperFigures {
 
 // How a suite's rays are cast; the same for every case.
 struct CaseOptions {
-  long rays = 1000;  // per lit facet
+  long rays = 1000;  // per lit facet (with breakpoint placement: the grid's rays M)
   sim::Sampling sampling = sim::Sampling::stratified;
   std::uint64_t seed = 1;
   int max_bounces = 100000;

@@ -41,7 +41,12 @@ nlohmann::json GrooveCaseWork::tally_json(const Tally& tally) {
                       {"probe_vertex_hits", f.probe_vertex_hits},
                       {"probe_blocked", f.probe_blocked},
                       {"probe_bounce_limit", f.probe_bounce_limit},
-                      {"non_finite", f.non_finite}});
+                      {"non_finite", f.non_finite},
+                      {"zones", f.zones},
+                      {"grid", f.grid},
+                      {"uncertified_cells", f.uncertified_cells},
+                      {"missed_bound", exact_json(f.missed_bound)},
+                      {"narrowest_zone", exact_json(f.narrowest_zone)}});
   return {{"facets", facets},
           {"l1", exact_json(t.l1)},
           {"rays", t.rays},
@@ -64,6 +69,8 @@ GrooveCaseTally GrooveCaseWork::tally_from_json(const nlohmann::json& j) {
     o.probe_escaped = f.at("probe_escaped"), o.probe_vertex_hits = f.at("probe_vertex_hits");
     o.probe_blocked = f.at("probe_blocked"), o.probe_bounce_limit = f.at("probe_bounce_limit");
     o.non_finite = f.at("non_finite");
+    o.zones = f.at("zones"), o.grid = f.at("grid"), o.uncertified_cells = f.at("uncertified_cells");
+    o.missed_bound = exact_double(f.at("missed_bound")), o.narrowest_zone = exact_double(f.at("narrowest_zone"));
   }
   t.l1 = exact_double(j.at("l1")), t.rays = j.at("rays"), t.bounces = j.at("bounces");
   t.theta_o_error = exact_double(j.at("theta_o_error")), t.non_finite = j.at("non_finite");
@@ -158,6 +165,12 @@ void summarize(const Suite& suite, SuiteRun& run) {
       s.vertex_hits += f.vertex_hits;
       s.bounce_limit += f.bounce_limit;
       s.wrong_first += f.wrong_first;
+      s.zones += f.zones;
+      s.max_zones = std::max(s.max_zones, f.zones);
+      s.uncertified_cells += f.uncertified_cells;
+      s.max_missed_bound = std::max(s.max_missed_bound, f.missed_bound);
+      if (f.zones > 0 && (s.narrowest_zone == 0.0 || f.narrowest_zone < s.narrowest_zone))
+        s.narrowest_zone = f.narrowest_zone;
     }
   }
   s.mean_l1 = s.cases ? sum_l1 / static_cast<double>(s.cases) : 0.0;

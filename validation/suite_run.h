@@ -27,6 +27,14 @@ struct Summary {
   std::int64_t wrong_first = 0;
   std::int64_t probe_rays = 0, probe_escaped = 0, probe_vertex_hits = 0, probe_blocked = 0, probe_bounce_limit = 0;
   std::size_t non_finite_cases = 0;  // cases with a NaN or infinity anywhere: always a failure
+  // Breakpoint placement (sim/zones.h): zones found over all facets and per facet at most, grid
+  // cells with equal ends no certificate covers, the largest fraction of a beam they may hide,
+  // and the narrowest zone found (a fraction of its beam).
+  std::int64_t zones = 0;
+  long max_zones = 0;
+  std::int64_t uncertified_cells = 0;
+  double max_missed_bound = 0.0;
+  double narrowest_zone = 0.0;
   double rays_per_case = 0.0;
   double wall_s = 0.0;
   double bounces_per_s = 0.0;

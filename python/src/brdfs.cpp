@@ -33,25 +33,6 @@ void check_max_k(long long max_k) {
     throw support::UserError("max_k = " + std::to_string(max_k) + " is out of range [1, 1000000000]");
 }
 
-// Directions n x 3, unit length to 1e-9 (flatland: in the plane y = 0), else ValueError naming
-// the first offending row.
-void check_directions(const double* w, std::size_t n, const char* what, bool flatland) {
-  for (std::size_t j = 0; j < n; ++j) {
-    const double x = w[3 * j], y = w[3 * j + 1], z = w[3 * j + 2];
-    const double len = std::sqrt(x * x + y * y + z * z);
-    auto text = [&] {
-      return std::string(what) + "[" + std::to_string(j) + "] = (" + support::number_text(x) + ", " +
-             support::number_text(y) + ", " + support::number_text(z) + ")";
-    };
-    if (!(std::abs(len - 1.0) <= 1e-9)) throw support::UserError(text() + " is not a unit vector");
-    if (flatland && !(std::abs(y) <= 1e-9))
-      throw support::UserError(text() + " is not in the plane y = 0 (flatland directions: (-sin t, 0, cos t))");
-  }
-}
-
-// The flatland angle of a direction in the plane y = 0: (-sin t, 0, cos t) -> t.
-double flat_angle(const double* w) { return std::atan2(-w[0], w[2]); }
-
 // f(wi_j, wo_j) for j < n into out (per_k: out[j * max_k + k - 1] for k = 1..max_k).
 void evaluate(Model model, NdfKind ndf, double alpha, SurfaceDim dim, bool per_k, int max_k, const double* wi,
               const double* wo, std::size_t n, double* out, int threads, std::atomic<bool>& cancel) {

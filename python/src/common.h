@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <exception>
 #include <mutex>
@@ -31,8 +32,8 @@ namespace py = pybind11;
 // A one-dimensional C-contiguous array of doubles (any number-like input is converted).
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-// JSON (a report) as the Python objects json.loads would give: dict, list, str, int, float,
-// bool, None.
+// JSON (a report) as the Python objects json.loads gives for the file it is written to: dict,
+// list, str, int, float, bool, None (also for NaN and infinity, which the file holds as null).
 py::object to_python(const nlohmann::json& j);
 
 NdfKind parse_ndf(const std::string& name);
@@ -43,6 +44,11 @@ long long to_seed(const py::handle& v, const std::string& what);
 long long to_count(const py::handle& v, const std::string& what, long long lo, long long hi);
 // alpha in (0, 2].
 void check_alpha(double alpha);
+// Directions n x 3 (row-major), unit length to 1e-9 (flatland: in the plane y = 0), else
+// ValueError naming the first offending row of `what`.
+void check_directions(const double* w, std::size_t n, const char* what, bool flatland);
+// The flatland angle of a direction in the plane y = 0: (-sin t, 0, cos t) -> t.
+inline double flat_angle(const double* w) { return std::atan2(-w[0], w[2]); }
 
 // Runs work(cancel) (cancel: a std::atomic<bool>&, which the work may set too) on a worker thread with the GIL released
 // while this thread polls Python's signal handlers every 50 ms: a KeyboardInterrupt (Ctrl-C) or any other exception a
@@ -120,5 +126,6 @@ void bind_grooves(py::module_& m);
 void bind_surfaces(py::module_& m);
 void bind_brdfs(py::module_& m);
 void bind_suites(py::module_& m);
+void bind_sampling(py::module_& m);
 
 }  // namespace vgroove::python

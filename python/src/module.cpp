@@ -19,8 +19,11 @@ py::object to_python(const nlohmann::json& j) {
       return py::int_(j.get<std::int64_t>());
     case nlohmann::json::value_t::number_unsigned:
       return py::int_(j.get<std::uint64_t>());
-    case nlohmann::json::value_t::number_float:
-      return py::float_(j.get<double>());
+    case nlohmann::json::value_t::number_float: {
+      // A report file holds null where the report has NaN or infinity (nlohmann::json's dump).
+      const double x = j.get<double>();
+      return std::isfinite(x) ? py::object(py::float_(x)) : py::object(py::none());
+    }
     case nlohmann::json::value_t::string:
       return py::str(j.get_ref<const std::string&>());
     case nlohmann::json::value_t::array: {
@@ -64,6 +67,20 @@ long long to_seed(const py::handle& v, const std::string& what) {
   return to_count(v, what, 0, std::numeric_limits<long long>::max());
 }
 
+void check_directions(const double* w, std::size_t n, const char* what, bool flatland) {
+  for (std::size_t j = 0; j < n; ++j) {
+    const double x = w[3 * j], y = w[3 * j + 1], z = w[3 * j + 2];
+    const double len = std::sqrt(x * x + y * y + z * z);
+    auto text = [&] {
+      return std::string(what) + "[" + std::to_string(j) + "] = (" + support::number_text(x) + ", " +
+             support::number_text(y) + ", " + support::number_text(z) + ")";
+    };
+    if (!(std::abs(len - 1.0) <= 1e-9)) throw support::UserError(text() + " is not a unit vector");
+    if (flatland && !(std::abs(y) <= 1e-9))
+      throw support::UserError(text() + " is not in the plane y = 0 (flatland directions: (-sin t, 0, cos t))");
+  }
+}
+
 void check_alpha(double alpha) {
   if (!(alpha > 0.0 && alpha <= validation::kMaxAlpha))
     throw support::UserError("alpha = " + support::number_text(alpha) + " is out of range (0, 2]");
@@ -90,4 +107,5 @@ PYBIND11_MODULE(_vgroove, m) {
   bind_surfaces(m);
   bind_brdfs(m);
   bind_suites(m);
+  bind_sampling(m);
 }

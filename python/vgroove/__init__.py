@@ -38,7 +38,7 @@ __all__ = [
     "__version__", "git_revision", "FATES", "LEFT", "RIGHT", "direction", "output_deg",
     "kaleidoscope", "analytic", "trace", "groove_case",
     "Microsurface", "microsurface", "trace_microsurface", "lobe",
-    "brdf", "check_brdf", "validate",
+    "brdf", "check_brdf", "validate", "sample", "pdf", "uniforms",
 ]
 
 __version__: str = _vgroove.__version__
@@ -238,3 +238,79 @@ def validate(path: str, *, rays: Optional[int] = None, threads: int = 0, samplin
     ``verbose`` prints the command line's table."""
     return _vgroove.validate(str(path), rays, threads, sampling, eq6_form, seed,
                              None if model_table is None else str(model_table), verbose)
+
+
+def _light(wi, theta_i_deg):
+    """The light as the extension takes it: flattened rows of wi, or of theta_i_deg."""
+    if (wi is None) == (theta_i_deg is None):
+        raise ValueError("give the light as either wi (unit vectors) or theta_i_deg, not both or neither")
+    if wi is not None:
+        wi = np.asarray(wi, dtype=float)
+        if wi.shape[-1:] != (3,):
+            raise ValueError(f"wi must be an array of unit vectors, shape (..., 3); got {wi.shape}")
+        return wi.shape[:-1], wi, None
+    t = np.asarray(theta_i_deg, dtype=float)
+    return t.shape, None, t
+
+
+def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = None,
+           theta_i_deg: Optional[ArrayLike] = None, strategy: str = "vndf", max_k: int = 256, dim: str = "3d",
+           threads: int = 0) -> dict:
+    """Importance-samples the symmetric V-groove BRDF (Lee et al. 2018, Sec. 6; analytic/
+    sampling_3d.h, analytic/sampling_flatland.h): one exit direction per row of uniform numbers
+    ``u`` (shape S + (4,), each in [0, 1); :func:`uniforms` gives vgroove's streams).
+
+    The light: ``wi`` (unit vectors towards the light, S + (3,) broadcast; flatland: in the plane
+    y = 0) or ``theta_i_deg`` (angles, broadcast to S; the suites' light at azimuth 180 deg, the
+    bits ``vgroove sample --theta-i-deg`` uses). ``strategy``: how the facet met first is drawn:
+    "vndf" (the V-cavity's visible normals: samples the BRDF exactly, weight 1 with F = 1),
+    "printed" (the paper's |s.n| D(s)), "smith-vndf" (GGX), "bounded-vndf" (GGX, 3D). Paths of more
+    than ``max_k`` reflections return zero weight.
+
+    Returns arrays over S: ``wo`` (S + (3,), unit vectors; the mirror direction on a zero-weight
+    return), ``k`` (int32 reflections; 0: no direction), ``pdf`` (density of wo per steradian, per
+    radian in flatland; 0 on a zero-weight return) and ``weight`` (rho cos(theta_o) / pdf, F = 1).
+    Runs on ``threads`` threads (0: all cores) without the GIL; the values do not depend on it."""
+    u = np.asarray(u, dtype=float)
+    if u.shape[-1:] != (4,):
+        raise ValueError(f"u must be an array of uniform numbers, shape (..., 4); got {u.shape}")
+    lshape, wi_, ti = _light(wi, theta_i_deg)
+    shape = np.broadcast_shapes(u.shape[:-1], lshape)
+    u = np.ascontiguousarray(np.broadcast_to(u, shape + (4,))).reshape(-1, 4)
+    if wi_ is not None:
+        wi_ = np.ascontiguousarray(np.broadcast_to(wi_, shape + (3,))).reshape(-1, 3)
+    else:
+        ti = np.ascontiguousarray(np.broadcast_to(ti, shape)).reshape(-1)
+    out = _vgroove.sample(ndf, float(alpha), wi_, ti, u, strategy, max_k, dim, threads)
+    return {key: a.reshape(shape + a.shape[1:]) for key, a in out.items()}
+
+
+def pdf(ndf: str, alpha: float, wo: np.ndarray, *, wi: Optional[np.ndarray] = None,
+        theta_i_deg: Optional[ArrayLike] = None, strategy: str = "vndf", max_k: int = 256, dim: str = "3d",
+        threads: int = 0) -> np.ndarray:
+    """The density of the directions :func:`sample` produces, at ``wo`` (unit vectors, S + (3,);
+    flatland: in the plane y = 0), per steradian (per radian in flatland): the sum over every path
+    of k <= max_k reflections that ends at wo (analytic/sampling_3d.h). The light and the options
+    as in :func:`sample`. 0 below the horizon; +inf exactly at the mirror direction in 3D (where the
+    BRDF diverges too). With ``strategy="vndf"`` it equals rho(wi, wo) cos(theta_o) (F = 1)."""
+    wo = np.asarray(wo, dtype=float)
+    if wo.shape[-1:] != (3,):
+        raise ValueError(f"wo must be an array of unit vectors, shape (..., 3); got {wo.shape}")
+    lshape, wi_, ti = _light(wi, theta_i_deg)
+    shape = np.broadcast_shapes(wo.shape[:-1], lshape)
+    wo = np.ascontiguousarray(np.broadcast_to(wo, shape + (3,))).reshape(-1, 3)
+    if wi_ is not None:
+        wi_ = np.ascontiguousarray(np.broadcast_to(wi_, shape + (3,))).reshape(-1, 3)
+    else:
+        ti = np.ascontiguousarray(np.broadcast_to(ti, shape)).reshape(-1)
+    return _vgroove.pdf(ndf, float(alpha), wi_, ti, wo, strategy, max_k, dim, threads).reshape(shape)
+
+
+def uniforms(n: int, seed: int = 1, stream: Sequence[int] = (0, 0), dims: int = 4) -> np.ndarray:
+    """``n`` rows of ``dims`` uniform numbers in [0, 1) from vgroove's deterministic stream
+    sim::Rng(seed, stream[0], stream[1]) (sim/rng.h), drawn row after row. ``vgroove sample --seed S``
+    draws its samples' four numbers from the stream (S, (0x5a3d, 0)) in 3D and (S, (0x5a3d, 1)) in
+    flatland."""
+    if len(stream) != 2:
+        raise ValueError(f"stream = {tuple(stream)!r} must be two integers")
+    return _vgroove.uniforms(n, seed, stream[0], stream[1], dims)

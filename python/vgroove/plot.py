@@ -10,8 +10,18 @@ One or more images per report, named after the report (or --out) with a suffix p
     "brdf" suites (Fig. 11)                  BASE-NDF-DIM.png  one grid per (NDF, dimension): rows theta_i,
                                                             columns alpha; traced lobe as bars, the model
                                                             as a line, per k dashed, Cook-Torrance dotted
-    "furnace"                                BASE.png       albedo against theta_i per alpha: traced,
-                                                            model, Cook-Torrance (what it loses)
+    "furnace"                                BASE.png       albedo against theta_i per alpha: Eq. 17 by
+                                                            quadrature (+ the light beyond max_k), by
+                                                            importance sampling (+- standard error),
+                                                            Cook-Torrance (what it loses), the traced line;
+                                             BASE-errors.png  energy error and estimate error per case
+    "sampling"                               BASE.png       chi-square per case: observed vs expected counts;
+                                             BASE-variance.png  variance and ns per sample per strategy;
+                                             BASE-furnace.png, BASE-furnace-errors.png  its furnace
+    "nonsymmetric_brdf"                      BASE.png       L1 / threshold per case (model, other partner law);
+                                             BASE[-aniso]-NDF-DIM.png  lobe grids on the plane of incidence
+    "profiles"                               BASE.png       masking G1 per facet normal: traced, V-cavity, Smith;
+                                             BASE-lobes.png  lobes: traced profiles, random walk, V-groove model
     "table2"                                 BASE.png       the paper's bounce counts, ours, the traced ones
     `bench accuracy --out`                   BASE.png       L1 against wall time (log-log);
                                              BASE-cost.png  tracer vs model cost against theta_v
@@ -123,6 +133,13 @@ class Node:
             raise self.fail(f"has {len(items)} values, needs at least {min_length}")
         return [i.number(lo, hi) for i in items]
 
+    def numbers_or_gaps(self, length: int, lo: float = -math.inf, hi: float = math.inf) -> List[float]:
+        """numbers() where null is a gap (NaN, not drawn): a value the report leaves undefined."""
+        items = self.items()
+        if len(items) != length:
+            raise self.fail(f"has {len(items)} values, needs {length}")
+        return [math.nan if i.value is None else i.number(lo, hi) for i in items]
+
     def opt_text(self, key: str, fallback: str = "?") -> str:
         return self[key].text() if self.has(key) and isinstance(self.value[key], str) else fallback
 
@@ -180,7 +197,7 @@ def report_kind(report: Node) -> str:
     if not isinstance(v, dict):
         raise report.fail(f"is {_kind(v)}: a report is a JSON object")
     kind = v.get("kind")
-    if kind in ("brdf", "furnace", "table2", "check_brdf"):
+    if kind in ("brdf", "furnace", "table2", "check_brdf", "sampling", "nonsymmetric_brdf", "profiles"):
         return kind
     if "runs" in v:
         return "accuracy"
@@ -199,7 +216,9 @@ def _figure(width: float, height: float) -> Figure:
 
 
 def _suptitle(fig: Figure, title: str, sub: str) -> None:
-    fig.suptitle(title + "\n" + sub, fontsize=11)
+    import textwrap
+    width = max(40, int(fig.get_figwidth() * 10))  # characters per line at this font size
+    fig.suptitle("\n".join(textwrap.wrap(title, width) + textwrap.wrap(sub, width)), fontsize=11)
 
 
 # Single-groove suites: Table 1 heatmaps -------------------------------------------------------
@@ -348,21 +367,38 @@ def _brdf_grid(report: Node, name: str, ndf: str, dim: str, panels: List[Dict[st
 
 # Furnace ------------------------------------------------------------------------------------------
 
-def furnace_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
-    rows: Dict[Tuple[str, str], Dict[float, List[Tuple[float, float, float, float]]]] = {}
-    for c in report["cases"].nonempty():
-        key = (c["dimension"].one_of(("flatland", "3d")), c["ndf"].one_of(("ggx", "beckmann", "phong")))
-        rows.setdefault(key, {}).setdefault(c["alpha"].number(0.0, 2.0), []).append(
-            (c["theta_i_deg"].number(-90.0, 90.0), c["albedo_sim"].number(0.0, 2.0),
-             c["albedo_model"].number(-1.0, 3.0), c["albedo_cook_torrance"].number(-1.0, 3.0)))
-    name = safe_text(report["suite"].text())
+_NDFS = ("ggx", "beckmann", "phong")
+_DIMS = ("flatland", "3d")
 
-    def draw() -> Figure:
+
+def _furnace_cases(cases: List[Node]) -> Dict[Tuple[str, str], Dict[float, List[Dict[str, float]]]]:
+    """The furnace's cases (kind "furnace", and the "furnace" part of a "sampling" report) by
+    (dimension, ndf) and alpha."""
+    rows: Dict[Tuple[str, str], Dict[float, List[Dict[str, float]]]] = {}
+    for c in cases:
+        key = (c["dimension"].one_of(_DIMS), c["ndf"].one_of(_NDFS))
+        p = {"theta_i": c["theta_i_deg"].number(-90.0, 90.0), "quad": c["albedo_quadrature"].number(-1.0, 3.0),
+             "beyond": c["flux_beyond_max_k"].number(-1.0, 2.0), "energy": c["energy_error"].number(-2.0, 2.0),
+             "est": c["albedo_estimate"].number(-1.0, 3.0), "se": c["standard_error"].number(0.0),
+             "est_err": c["estimate_error"].number(-3.0, 3.0), "ct": c["cook_torrance_quadrature"].number(-1.0, 3.0),
+             "ct_est": c["cook_torrance_estimate"].number(-1.0, 3.0), "sim": c["albedo_sim"].number(0.0, 2.0),
+             "energy_ok": c["energy_ok"].boolean(), "estimate_ok": c["estimate_ok"].boolean(),
+             "pass": c["pass"].boolean()}
+        rows.setdefault(key, {}).setdefault(c["alpha"].number(0.0, 2.0), []).append(p)
+    return rows
+
+
+def _furnace_drawers(report: Node, name: str, cases: Node, tolerance: Optional[Node],
+                     sigmas: Optional[float]) -> List[Tuple[str, Drawer]]:
+    rows = _furnace_cases(cases.nonempty())
+    tol = {d: tolerance[d].number(0.0) for d in _DIMS} if tolerance is not None else {}
+
+    def draw_albedo() -> Figure:
         import matplotlib
         keys = sorted(rows)
         cols = min(3, len(keys))
         nrows = (len(keys) + cols - 1) // cols
-        fig = _figure(max(4.6 * cols + 0.5, 10.0), 3.6 * nrows + 1.0)
+        fig = _figure(max(4.6 * cols + 0.5, 10.0), 3.6 * nrows + 1.2)
         axes = fig.subplots(nrows, cols, squeeze=False)
         for ax in axes.flat[len(keys):]:
             ax.set_visible(False)
@@ -370,22 +406,357 @@ def furnace_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
         for ax, key in zip(axes.flat, keys):
             alphas = sorted(rows[key])
             for n, a in enumerate(alphas):
-                pts = sorted(rows[key][a])
+                pts = sorted(rows[key][a], key=lambda p: p["theta_i"])
                 col = cmap(0.85 * n / max(1, len(alphas) - 1))
-                t = [p[0] for p in pts]
-                ax.plot(t, [p[3] for p in pts], color=col, lw=1.3, label=f"alpha {a:g}")
-                ax.plot(t, [p[2] for p in pts], color=col, lw=0.8, ls="--")
-                ax.plot(t, [p[1] for p in pts], color=col, marker="o", ms=3, ls="none")
+                t = [p["theta_i"] for p in pts]
+                ax.plot(t, [p["quad"] + p["beyond"] for p in pts], color=col, lw=1.3, marker="_", ms=8,
+                        label=f"alpha {a:g}")
+                ax.plot(t, [p["quad"] for p in pts], color=col, lw=0.8, ls="--")
+                ax.errorbar(t, [p["est"] + p["beyond"] for p in pts], yerr=[p["se"] for p in pts], color=col,
+                            marker="o", ms=3, ls="none", capsize=2)
+                ax.plot(t, [p["ct"] for p in pts], color=col, lw=1.0, ls=":", marker="v", ms=3)
+                ax.plot(t, [p["sim"] for p in pts], color=col, marker="x", ms=4, ls="none")
             ax.set_title(f"{key[0]}, {key[1]}", fontsize=9)
             ax.set_xlabel("theta_i (deg)")
             ax.set_ylabel("albedo (fraction of the incident flux)")
-            ax.set_ylim(0, 1.05)
-            ax.legend(fontsize=6, loc="lower right")
-        _suptitle(fig, f"{name}: white furnace (F = 1), albedo per alpha",
-                  f"solid: Cook-Torrance (the energy it loses); dashed: the model; dots: traced. {_title_bits(report)}")
+            ax.set_xlim(-3, 93)
+            ax.set_ylim(0, 1.08)
+            ax.legend(fontsize=6, loc="lower left")
+        _suptitle(fig, f"{name}: white furnace (F = 1), albedo of Eq. 17 per alpha",
+                  "solid: quadrature + light beyond max_k (must be 1); dashed: quadrature, k <= max_k; dots: "
+                  "importance-sampled estimate + beyond (+- 1 standard error); dotted, triangles: Cook-Torrance (its loss); "
+                  f"x: traced sanity line. {_title_bits(report)}")
         return fig
 
-    return [("", draw)]
+    def draw_errors() -> Figure:
+        import numpy as np
+        flat = [(key, a, p) for key in sorted(rows) for a in sorted(rows[key]) for p in rows[key][a]]
+        fig = _figure(min(16.0, max(8.0, 0.12 * len(flat) + 4.0)), 6.5)
+        a1, a2 = fig.subplots(2, 1, sharex=True)
+        x = np.arange(len(flat))
+        colors = {k: c for k, c in zip(sorted(rows), ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                                      "#8c564b"])}
+        energy = np.array([max(abs(p["energy"]), 1e-17) for _, _, p in flat])
+        z = np.array([abs(p["est_err"]) / p["se"] if p["se"] > 0 else 0.0 for _, _, p in flat])
+        for key in sorted(rows):
+            idx = [n for n, f in enumerate(flat) if f[0] == key]
+            a1.plot(x[idx], energy[idx], "o", ms=3, color=colors[key], label=f"{key[0]}, {key[1]}")
+            a2.plot(x[idx], z[idx], "o", ms=3, color=colors[key])
+        for d, ls in zip(_DIMS, ("-", "--")):
+            if d in tol and tol[d] > 0:
+                a1.axhline(tol[d], color="red", lw=0.8, ls=ls, label=f"quadrature tolerance, {d}")
+        if sigmas is not None:
+            a2.axhline(sigmas, color="red", lw=0.8, label=f"{sigmas:g} standard errors")
+        bad = [n for n, f in enumerate(flat) if not f[2]["pass"]]
+        if bad:
+            a1.plot(x[bad], energy[bad], "s", mfc="none", mec="red", ms=7, label="case fails")
+        a1.set_yscale("log")
+        a1.set_ylabel("|albedo + beyond max_k - 1|")
+        a1.legend(fontsize=6, ncol=2)
+        a2.set_ylabel("|estimate + beyond - 1| / standard error")
+        a2.set_xlabel("case (dimension, ndf, alpha, theta_i as in the report)")
+        a2.legend(fontsize=6)
+        _suptitle(fig, f"{name}: white furnace errors per case (quadrature above, importance sampling below)",
+                  _title_bits(report))
+        return fig
+
+    return [("", draw_albedo), ("-errors", draw_errors)]
+
+
+def furnace_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
+    return _furnace_drawers(report, safe_text(report["suite"].text()), report["cases"],
+                            *_furnace_thresholds(report["inputs"] if report.has("inputs") else None))
+
+
+def _furnace_thresholds(inputs: Optional[Node]) -> Tuple[Optional[Node], Optional[float]]:
+    """The furnace's quadrature tolerances (per dimension) and sigmas, from its "inputs"."""
+    if inputs is None:
+        return None, None
+    tol = inputs["quadrature_tolerance"] if inputs.has("quadrature_tolerance") else None
+    return tol, (inputs["sigmas"].number(0.0) if inputs.has("sigmas") else None)
+
+
+# Sampling: chi-square tables, variance per strategy, furnace -------------------------------------
+
+def sampling_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
+    name = safe_text(report["suite"].text())
+    tests = []
+    for c in report["chi_square"].nonempty():
+        t = c["table"]
+        rows_e = t["row_edges"].numbers(lo=-1.0, hi=1.0, min_length=2)
+        cols_e = t["col_edges"].numbers(lo=-4.0, hi=4.0, min_length=2)
+        nr, nc = len(rows_e) - 1, len(cols_e) - 1
+        obs = [r.numbers(nc, 0.0) for r in t["observed"].items()]
+        exp = [r.numbers(nc, 0.0) for r in t["expected"].items()]
+        if len(obs) != nr or len(exp) != nr:
+            raise t.fail(f"has {len(obs)} observed and {len(exp)} expected rows, needs {nr}")
+        tests.append({
+            "dim": c["dimension"].one_of(_DIMS), "ndf": c["ndf"].one_of(_NDFS), "alpha": c["alpha"].number(0.0, 2.0),
+            "theta_i": c["theta_i_deg"].number(-90.0, 90.0), "strategy": safe_text(c["strategy"].text(), 16),
+            "samples": c["samples"].number(1.0), "p": c["p_value"].number(0.0, 1.0), "dof": c["dof"].number(0.0),
+            "stat": c["statistic"].number(0.0), "level": c["level"].number(0.0, 1.0), "pass": c["pass"].boolean(),
+            "norm": c["normalization_error"].number(), "rows": rows_e, "cols": cols_e, "obs": obs, "exp": exp,
+            "obs_none": t["observed_no_direction"].number(0.0), "exp_none": t["expected_no_direction"].number()})
+    variance = []
+    for v in report["variance"].items():
+        strategies = []
+        for r in v["strategies"].nonempty():
+            strategies.append((safe_text(r["strategy"].text(), 16), r["variance"].number(0.0),
+                               r["ns_per_sample"].number(0.0)))
+        variance.append({"label": f"{v['dimension'].one_of(_DIMS)} {v['ndf'].one_of(_NDFS)} "
+                                  f"a {v['alpha'].number(0.0, 2.0):g} ti {v['theta_i_deg'].number(-90.0, 90.0):g}\n"
+                                  f"{safe_text(v['fresnel'].text(), 24)}", "rows": strategies})
+
+    def draw_chi2() -> Figure:
+        import numpy as np
+        cols = min(4, len(tests))
+        nrows = (len(tests) + cols - 1) // cols
+        fig = _figure(4.2 * cols + 0.5, 3.2 * nrows + 1.2)
+        axes = fig.subplots(nrows, cols, squeeze=False)
+        for ax in axes.flat[len(tests):]:
+            ax.set_visible(False)
+        for ax, t in zip(axes.flat, tests):
+            exp = np.asarray(t["exp"], dtype=float)
+            obs = np.asarray(t["obs"], dtype=float)
+            if t["dim"] == "flatland":
+                e = np.degrees(np.asarray(t["cols"]))
+                x = (e[1:] + e[:-1]) / 2
+                ax.bar(x, exp[0], width=np.diff(e), color="#bbbbbb", label="expected (pdf over the bin)")
+                ax.errorbar(x, obs[0], yerr=np.sqrt(np.maximum(exp[0], 1.0)), fmt="o", ms=2, color="#1f77b4",
+                            capsize=1, label="observed (+- sqrt(expected))")
+                ax.set_xlabel("theta_o (deg)", fontsize=7)
+            else:
+                # Cells in row-major order: cos(theta_o) bands, phi_o within each.
+                x = np.arange(exp.size)
+                ax.bar(x, exp.ravel(), width=1.0, color="#bbbbbb", label="expected (pdf over the cell)")
+                ax.errorbar(x, obs.ravel(), yerr=np.sqrt(np.maximum(exp.ravel(), 1.0)), fmt="o", ms=2,
+                            color="#1f77b4", capsize=1, label="observed (+- sqrt(expected))")
+                for r in range(1, len(t["rows"]) - 1):
+                    ax.axvline(r * (len(t["cols"]) - 1) - 0.5, color="#999", lw=0.4)
+                ax.set_xlabel("cell: cos(theta_o) band x phi_o bin", fontsize=7)
+            ax.set_ylabel("samples per cell", fontsize=7)
+            ax.tick_params(labelsize=6)
+            verdict = "pass" if t["pass"] else "FAIL"
+            ax.set_title(f"{t['dim']} {t['ndf']} alpha {t['alpha']:g} theta_i {t['theta_i']:g}, {t['strategy']}\n"
+                         f"chi2 {t['stat']:.1f} dof {t['dof']:g} p {t['p']:.3g}; none {t['obs_none']:.0f} "
+                         f"(exp {t['exp_none']:.1f}): {verdict}", fontsize=7,
+                         color="black" if t["pass"] else "#d62728")
+        axes.flat[0].legend(fontsize=5)
+        _suptitle(fig, f"{name}: chi-square of the sampled directions against the sampler's pdf (Lee et al. 2018, "
+                       "Sec. 6)", _title_bits(report))
+        return fig
+
+    def draw_variance() -> Figure:
+        import numpy as np
+        strategies = sorted({r[0] for v in variance for r in v["rows"]})
+        fig = _figure(max(7.0, 1.1 * len(variance) + 3.0), 6.0)
+        a1, a2 = fig.subplots(2, 1, sharex=True)
+        x = np.arange(len(variance))
+        w = 0.8 / max(1, len(strategies))
+        for n, s in enumerate(strategies):
+            var = [next((r[1] for r in v["rows"] if r[0] == s), np.nan) for v in variance]
+            ns = [next((r[2] for r in v["rows"] if r[0] == s), np.nan) for v in variance]
+            a1.bar(x + (n - (len(strategies) - 1) / 2) * w, np.maximum(var, 1e-30), w, label=s)
+            a2.bar(x + (n - (len(strategies) - 1) / 2) * w, ns, w, label=s)
+        a1.set_yscale("log")
+        a1.set_ylabel("variance of rho cos / pdf (1e-30: zero)")
+        a1.legend(fontsize=7, ncol=3)
+        a2.set_yscale("log")
+        a2.set_ylabel("time per sample (ns)")
+        a2.set_xticks(x, [v["label"] for v in variance], fontsize=6)
+        a2.set_xlabel("case (dimension, NDF, alpha, theta_i in deg; Fresnel)")
+        _suptitle(fig, f"{name}: variance and cost of the estimator per sampling strategy", _title_bits(report))
+        return fig
+
+    figs: List[Tuple[str, Drawer]] = [("", draw_chi2)]
+    if variance:
+        figs.append(("-variance", draw_variance))
+    if report.has("furnace") and report["furnace"]["cases"].value:
+        f = report["furnace"]
+        figs += [("-furnace" + s, d) for s, d in
+                 _furnace_drawers(report, name, f["cases"], *_furnace_thresholds(f["inputs"] if f.has("inputs")
+                                                                                  else None))]
+    return figs
+
+
+# Nonsymmetric grooves (Eq. 23) and anisotropy --------------------------------------------------
+
+def nonsymmetric_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
+    groups: Dict[Tuple[str, str, str], List[Dict[str, Any]]] = {}
+    summary = []
+    for c in report["cases"].nonempty():
+        ndf = c["ndf"].one_of(_NDFS)
+        dim = c["dimension"].one_of(_DIMS)
+        aniso = c["anisotropic_block"].boolean()
+        pl = c["plane"]
+        th = pl["theta_deg"].numbers(lo=-90.0, hi=90.0)
+        n = len(th)
+        p = {"ax": c["alpha_x"].number(0.0, 2.0), "ay": c["alpha_y"].number(0.0, 2.0),
+             "theta_i": c["theta_i_deg"].number(-90.0, 90.0), "phi_i": c["phi_i_deg"].number(-360.0, 360.0),
+             "partner": safe_text(c["partner"].text(), 16), "other": safe_text(c["other_partner"].text(), 16),
+             "theta": th, "sim": pl["sim"].numbers(n, 0.0), "model": pl["model"].numbers(n),
+             "other_model": pl["other_model"].numbers(n), "unit": safe_text(pl["unit"].text()),
+             "l1": c["l1"].number(0.0, 2.0), "thr": c["l1_threshold"].number(0.0),
+             "l1_other": c["l1_other_model"].number(0.0, 2.0), "pass": c["pass"].boolean(),
+             "rejected": c["other_model_rejected"].boolean(), "rays": c["rays"].number(0.0)}
+        if aniso:
+            p["row"], p["col"] = (p["ay"], f"phi_i {p['phi_i']:g} deg, {p['partner']}")
+            p["title"] = f"alpha {p['ax']:g} x {p['ay']:g}, phi_i {p['phi_i']:g}, theta_i {p['theta_i']:g}"
+        else:
+            p["row"], p["col"] = (p["theta_i"], p["ax"])
+            p["title"] = f"alpha {p['ax']:g}, theta_i {p['theta_i']:g} deg"
+        groups.setdefault(("-aniso" if aniso else "", ndf, dim), []).append(p)
+        summary.append((ndf, dim, aniso, p))
+    name = safe_text(report["suite"].text())
+
+    def grid(block: str, ndf: str, dim: str, panels: List[Dict[str, Any]]) -> Drawer:
+        def draw() -> Figure:
+            import numpy as np
+            rows = sorted({p["row"] for p in panels})
+            cols = sorted({p["col"] for p in panels}, key=str)
+            fig = _figure(3.0 * len(cols) + 1.0, 2.3 * len(rows) + 1.4)
+            axes = fig.subplots(len(rows), len(cols), squeeze=False)
+            for ax in axes.flat:
+                ax.set_visible(False)
+            for p in panels:
+                ax = axes[rows.index(p["row"])][cols.index(p["col"])]
+                ax.set_visible(True)
+                th = np.asarray(p["theta"])
+                width = float(np.min(np.abs(np.diff(th)))) if len(th) > 1 else 1.0
+                ax.bar(th, p["sim"], width=width, color="#8fd18f", label="traced")
+                ax.plot(th, p["other_model"], color="black", lw=1.0, ls=":", label="the other partner law's model")
+                ax.plot(th, p["model"], color="#d62728", lw=1.4, label="model (Eq. 23)")
+                ax.set_xlim(-90, 90)
+                ax.set_ylim(0, 1.08 * max(max(p["sim"]), max(p["model"]), 1e-300))
+                ax.set_title(p["title"] + ("" if not block else f", {p['partner']}"), fontsize=7)
+                ax.text(0.02, 0.97, f"L1 {p['l1']:.4f} (thr {p['thr']:.4f})\nother {p['l1_other']:.4f}"
+                        f"{' rejected' if p['rejected'] else ''}", transform=ax.transAxes, fontsize=6, va="top",
+                        color="#555" if p["pass"] else "#d62728")
+                ax.tick_params(labelsize=6)
+                ax.set_xlabel("theta_o (deg; < 0: mirror side)", fontsize=7)
+                ax.set_ylabel(p["unit"].replace("fraction of the flux", "flux"), fontsize=7)
+            next(a for a in axes.flat if a.get_visible()).legend(fontsize=5, loc="upper right")
+            what = "anisotropic" if block else "nonsymmetric grooves"
+            _suptitle(fig, f"{name}: {ndf}, {dim}, {what} (Lee et al. 2018, Eq. 23): lobe on the plane of incidence",
+                      _title_bits(report))
+            return fig
+        return draw
+
+    def draw_summary() -> Figure:
+        import numpy as np
+        fig = _figure(min(16.0, max(8.0, 0.1 * len(summary) + 4.0)), 4.6)
+        ax = fig.subplots()
+        x = np.arange(len(summary))
+        ratio = np.array([p["l1"] / p["thr"] if p["thr"] > 0 else 0.0 for *_, p in summary])
+        other = np.array([p["l1_other"] / p["thr"] if p["thr"] > 0 else 0.0 for *_, p in summary])
+        ax.plot(x, np.maximum(ratio, 1e-6), "o", ms=3, label="model (Eq. 23)")
+        ax.plot(x, np.maximum(other, 1e-6), "x", ms=4, label="the other partner law's model")
+        ax.axhline(1.0, color="red", lw=1, label="threshold")
+        ax.set_yscale("log")
+        ax.set_xlabel("case (as in the report: dimension, ndf, alpha, theta_i; then the anisotropic block)")
+        ax.set_ylabel("L1 / threshold (> 1 fails)")
+        ax.legend(fontsize=7)
+        _suptitle(fig, f"{name}: L1 of the lobes against the traced surfaces, per case", _title_bits(report))
+        return fig
+
+    figs: List[Tuple[str, Drawer]] = [("", draw_summary)]
+    for (block, ndf, dim), panels in groups.items():
+        figs.append((f"{block}-{ndf}-{dim}", grid(block, ndf, dim, panels)))
+    return figs
+
+
+# Profiles: masking and lobes beyond V-grooves ---------------------------------------------------
+
+def _row_sums(rows: Node, bins: int) -> List[float]:
+    """The sum over the k rows of a (rows x bins) table: the lobe over every k."""
+    out = [0.0] * bins
+    for r in rows.nonempty():
+        for b, v in enumerate(r.numbers(bins, 0.0)):
+            out[b] += v
+    return out
+
+
+def profiles_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
+    bins = report["bins"]
+    normal_edges = bins["normal_deg_edges"].numbers(lo=-90.0, hi=90.0, min_length=2)
+    exit_edges = bins["exit_deg_edges"].numbers(lo=-90.0, hi=90.0, min_length=2)
+    nn, ne = len(normal_edges) - 1, len(exit_edges) - 1
+    cases = []
+    for c in report["cases"].nonempty():
+        surfaces = []
+        for sf in c["surfaces"].nonempty():
+            g1 = sf["g1"]
+            surfaces.append({
+                "surface": safe_text(sf["surface"].text(), 16), "pass": sf["pass"].boolean(),
+                # G1 is undefined (null) in bins no facet normal fell into.
+                "g1": g1["traced"].numbers_or_gaps(nn), "g1_se": g1["traced_se"].numbers_or_gaps(nn, 0.0),
+                "g1_vcavity": g1["vcavity"].numbers_or_gaps(nn), "g1_smith": g1["smith"].number(),
+                "lobe": _row_sums(sf["lobe"]["traced_by_k"], ne)})
+        cases.append({"ndf": c["ndf"].one_of(_NDFS), "alpha": c["alpha"].number(0.0, 2.0),
+                      "theta": c["theta_deg"].number(-90.0, 90.0), "pass": c["pass"].boolean(),
+                      "walk": _row_sums(c["walk"]["lobe_by_k"], ne),
+                      "model": _row_sums(c["vgroove_model"]["lobe_by_k"], ne), "surfaces": surfaces})
+    name = safe_text(report["suite"].text())
+    colors = ["#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd"]
+
+    def layout(width: float, height: float):
+        rows = sorted({(c["ndf"], c["alpha"]) for c in cases})
+        cols = sorted({c["theta"] for c in cases})
+        fig = _figure(width * len(cols) + 1.0, height * len(rows) + 1.4)
+        axes = fig.subplots(len(rows), len(cols), squeeze=False)
+        for ax in axes.flat:
+            ax.set_visible(False)
+        return fig, [(axes[rows.index((c["ndf"], c["alpha"]))][cols.index(c["theta"])], c) for c in cases]
+
+    def centres(edges: List[float]) -> List[float]:
+        return [(a + b) / 2 for a, b in zip(edges[:-1], edges[1:])]
+
+    def draw_masking() -> Figure:
+        fig, panels = layout(3.2, 2.5)
+        x = centres(normal_edges)
+        for ax, c in panels:
+            ax.set_visible(True)
+            for n, sf in enumerate(c["surfaces"]):
+                col = colors[n % 4]
+                ax.errorbar(x, sf["g1"], yerr=sf["g1_se"], fmt="o", ms=2, color=col, capsize=1,
+                            label=f"traced, {sf['surface']} profile")
+                ax.plot(x, sf["g1_vcavity"], color=col, lw=0.9, ls="--", label=f"V-cavity, {sf['surface']}")
+            if c["surfaces"]:
+                ax.axhline(c["surfaces"][0]["g1_smith"], color="black", lw=0.8, ls=":", label="Smith")
+            ax.set_ylim(-0.02, 1.05)
+            ax.set_title(f"{c['ndf']} alpha {c['alpha']:g}, view {c['theta']:g} deg", fontsize=7,
+                         color="black" if c["pass"] else "#d62728")
+            ax.set_xlabel("microfacet normal angle m (deg)", fontsize=7)
+            ax.set_ylabel("G1(view, m)", fontsize=7)
+            ax.tick_params(labelsize=6)
+        next(a for a in fig.axes if a.get_visible()).legend(fontsize=5)
+        _suptitle(fig, f"{name}: masking G1 per facet normal on traced profiles, V-cavity and Smith",
+                  _title_bits(report))
+        return fig
+
+    def draw_lobes() -> Figure:
+        import numpy as np
+        fig, panels = layout(3.2, 2.5)
+        x = np.asarray(centres(exit_edges))
+        width = float(np.min(np.diff(exit_edges)))
+        for ax, c in panels:
+            ax.set_visible(True)
+            for n, sf in enumerate(c["surfaces"]):
+                ax.step(x, sf["lobe"], where="mid", color=colors[n % 4], lw=1.0, label=f"traced, {sf['surface']}")
+            ax.plot(x, c["walk"], color="black", lw=0.9, ls=":", label="Smith random walk")
+            ax.plot(x, c["model"], color="#d62728", lw=1.2, ls="--", label="V-groove model")
+            ax.set_xlim(-90, 90)
+            ax.set_title(f"{c['ndf']} alpha {c['alpha']:g}, theta_i {c['theta']:g} deg", fontsize=7,
+                         color="black" if c["pass"] else "#d62728")
+            ax.set_xlabel("exit angle (deg)", fontsize=7)
+            ax.set_ylabel(f"flux per {width:g} deg bin", fontsize=7)
+            ax.tick_params(labelsize=6)
+        next(a for a in fig.axes if a.get_visible()).legend(fontsize=5)
+        _suptitle(fig, f"{name}: flatland lobes (every k) on traced profiles, the random walk and the V-groove model",
+                  _title_bits(report))
+        return fig
+
+    return [("", draw_masking), ("-lobes", draw_lobes)]
 
 
 # Table 2 -------------------------------------------------------------------------------------------
@@ -536,7 +907,10 @@ KINDS = {
     "table2": table2_figures,
     "accuracy": accuracy_figures,
     "check_brdf": check_brdf_figures,
-    # Report kinds still to come (sampling chi-square, nonsymmetric profiles) add a function here.
+    "sampling": sampling_figures,
+    "nonsymmetric_brdf": nonsymmetric_figures,
+    "profiles": profiles_figures,
+    # A new report kind adds a function here (and its name to report_kind).
 }
 
 

@@ -16,6 +16,7 @@
 #include "vgroove/analytic/hemisphere_quadrature.h"
 #include "vgroove/analytic/sampling_3d.h"
 #include "vgroove/analytic/sampling_flatland.h"
+#include "vgroove/analytic/sampling_nonsymmetric.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/validation/sampling_check.h"
 
@@ -36,7 +37,8 @@ std::string describe(const Chi2Outcome& o) {
   std::ostringstream os;
   const Chi2Spec& s = o.spec;
   os << surface_dim_name(s.dim) << " " << analytic::ndf_name(s.ndf) << " alpha=" << s.alpha
-     << " theta_i=" << s.theta_i / kRadPerDeg << " " << analytic::strategy_name(s.strategy) << ": stat "
+     << " theta_i=" << s.theta_i / kRadPerDeg << " " << analytic::strategy_name(s.strategy)
+     << (s.nonsymmetric ? " nonsymmetric" : "") << ": stat "
      << o.test.statistic << " dof " << o.test.dof << " p " << o.test.p_value << " level " << o.test.level
      << " | pdf integral " << o.pdf_integral << " + failure " << o.failure_probability
      << " - 1 = " << o.normalization_error << " (quadrature error " << o.quadrature_error << ")";
@@ -229,6 +231,88 @@ TEST(SamplingChi2Power, RejectsThePrintedP) {
   const Chi2Outcome bad = retest_chi2(right, printed);
   EXPECT_TRUE(bad.test.reject) << describe(bad);
   EXPECT_GT(bad.test.statistic, 10.0 * bad.test.dof);  // not a near miss
+}
+
+// ---- The nonsymmetric model (analytic/sampling_nonsymmetric.h) -------------------------------------
+
+// Its pdf costs ~1 ms (an adaptive integral over the partner per k and orientation), so the default
+// run holds flatland cases (36 cells) and one coarse 3D case; the grid is long. Phong only up to
+// alpha = 1 (partner_table.h).
+Chi2Spec nonsym(SurfaceDim dim, NdfKind ndf, double alpha, double deg, FacetStrategy st, long samples, int tests) {
+  Chi2Spec s = spec(dim, ndf, alpha, deg, st, samples, tests);
+  s.nonsymmetric = true;
+  s.max_k = 32;
+  if (dim == SurfaceDim::three_d) s.cos_bins = 4, s.phi_bins = 8;
+  return s;
+}
+
+constexpr int kNonsymmetricFamily = 4;
+
+TEST(SamplingChi2Nonsymmetric, Flatland) {
+  struct Case {
+    NdfKind ndf;
+    double alpha, deg;
+    FacetStrategy st;
+  };
+  for (const Case& c : {Case{NdfKind::ggx, 0.5, 30.0, FacetStrategy::vndf},
+                        Case{NdfKind::beckmann, 0.3, 75.0, FacetStrategy::printed},
+                        Case{NdfKind::phong, 1.0, 0.0, FacetStrategy::vndf}}) {
+    const Chi2Outcome o =
+        run_chi2(nonsym(SurfaceDim::flatland, c.ndf, c.alpha, c.deg, c.st, 100000, kNonsymmetricFamily));
+    EXPECT_TRUE(o.pass) << describe(o);
+  }
+}
+
+TEST(SamplingChi2NonsymmetricLong, ThreeD) {
+  const Chi2Outcome o =
+      run_chi2(nonsym(SurfaceDim::three_d, NdfKind::ggx, 0.5, 30.0, FacetStrategy::vndf, 50000, kNonsymmetricFamily));
+  EXPECT_TRUE(o.pass) << describe(o);
+}
+
+// The grid: every NDF, alpha 0.1 to 1.5 (Phong to 1.0), theta_i 0 to 85 deg, printed and vndf.
+void run_nonsymmetric_grid(SurfaceDim dim, long samples) {
+  constexpr double alphas[] = {0.1, 0.5, 1.0, 1.5};
+  constexpr double thetas[] = {0.0, 45.0, 85.0};
+  int family = 0;
+  for (NdfKind ndf : kNdfs)
+    for (double alpha : alphas) family += ndf == NdfKind::phong && alpha > 1.0 ? 0 : 2 * 3;
+  for (NdfKind ndf : kNdfs)
+    for (double alpha : alphas) {
+      if (ndf == NdfKind::phong && alpha > 1.0) continue;
+      for (double deg : thetas)
+        for (FacetStrategy st : {FacetStrategy::printed, FacetStrategy::vndf}) {
+          const Chi2Outcome o = run_chi2(nonsym(dim, ndf, alpha, deg, st, samples, family));
+          EXPECT_TRUE(o.pass) << describe(o);
+        }
+    }
+}
+TEST(SamplingChi2NonsymmetricLong, FlatlandGrid) { run_nonsymmetric_grid(SurfaceDim::flatland, 200000); }
+TEST(SamplingChi2NonsymmetricLong, ThreeDGrid) { run_nonsymmetric_grid(SurfaceDim::three_d, 50000); }
+
+// Power: the back half (theta_o > 0, the light's side) raised by 3 % and renormalized is rejected;
+// so is the symmetric model's pdf held against the nonsymmetric draws (the partner law matters).
+TEST(SamplingChi2NonsymmetricPower, FlatlandRejectsAThreePercentErrorInTheBackLobe) {
+  const Chi2Outcome right = run_chi2(
+      nonsym(SurfaceDim::flatland, NdfKind::ggx, 0.7, 30.0, FacetStrategy::vndf, 1000000, kNonsymmetricFamily));
+  EXPECT_FALSE(right.test.reject) << describe(right);
+  const Chi2Spec& s = right.spec;
+  analytic::NonsymmetricSampler S = analytic::make_nonsymmetric_sampler(
+      s.ndf, s.alpha, analytic::SamplerOptions{s.strategy, s.max_k}, true);
+  S.tolerance = 1e-6;
+  auto part = [=](double o) { return o > 0.0 ? analytic::nonsymmetric_pdf_flatland(S, s.theta_i, o) : 0.0; };
+  const Raised r{0.03, analytic::integrate_half_circle(s.theta_i, part, s.alpha, 1e-7).value,
+                 right.failure_probability};
+  HeldDensity h;
+  h.pdf2 = [=](double o) { return r.scale() * (analytic::nonsymmetric_pdf_flatland(S, s.theta_i, o) + r.eps * part(o)); };
+  h.none = r.none;
+  const Chi2Outcome bad = retest_chi2(right, h);
+  EXPECT_TRUE(bad.test.reject) << describe(bad);
+  HeldDensity sym;
+  const analytic::SamplerOptions opt{s.strategy, s.max_k};
+  sym.pdf2 = [=](double o) { return analytic::vgroove_pdf_flatland(s.theta_i, o, s.ndf, s.alpha, opt); };
+  sym.none = analytic::sampler_failure_probability_flatland(s.theta_i, s.ndf, s.alpha, opt);
+  const Chi2Outcome other = retest_chi2(right, sym);
+  EXPECT_TRUE(other.test.reject) << describe(other);
 }
 
 }  // namespace

@@ -128,10 +128,27 @@ TEST(Cli, ValidateRejectsBadOverrides) {
   const std::string suite = small_suite(dir);
   expect_user_error(vgroove("validate " + quoted(suite) + " --rays 0"), "--rays", "[1, ");
   expect_user_error(vgroove("validate " + quoted(suite) + " --threads -1"), "--threads", "[0, 1024]");
-  expect_user_error(vgroove("validate " + quoted(suite) + " --sampling sobol"), "--sampling", "\"random\"");
+  expect_user_error(vgroove("validate " + quoted(suite) + " --sampling sobol"), "--sampling", "\"breakpoints\"");
+  // `trace` places rays across the opening: no breakpoint search there.
+  expect_user_error(vgroove("trace --sampling breakpoints"), "--sampling", "\"stratified\", \"random\"");
   // An --out in a directory that does not exist fails before any work.
   expect_user_error(vgroove("validate " + quoted(suite) + " --out " + quoted(dir.file("no/dir/r.json"))), "no/dir",
                     "does not exist");
+}
+
+// --sampling breakpoints: exact fractions, reported with the zones found; the report says how.
+TEST(Cli, ValidateWithBreakpointsIsExact) {
+  TempDir dir;
+  const std::string suite = small_suite(dir), out = dir.file("bp.json");
+  const CliRun r = vgroove("validate " + quoted(suite) + " --sampling breakpoints --rays 4 --out " + quoted(out));
+  EXPECT_EQ(r.status, 0) << r;
+  EXPECT_CONTAINS(r.out, "breakpoints: grid of 4 rays per lit facet");
+  const nlohmann::json j = nlohmann::json::parse(read_text(out));
+  EXPECT_EQ(j["sampling"], "breakpoints");
+  EXPECT_LT(j["summary"]["max_l1"].get<double>(), 1e-12);
+  EXPECT_EQ(j["summary"]["breakpoints"]["uncertified_cells"], 0);
+  EXPECT_GT(j["summary"]["breakpoints"]["zones"].get<long>(), 6);
+  EXPECT_TRUE(j["cases"][0]["left"].contains("zones"));
 }
 
 TEST(Cli, ValidateMissingSuiteIsNamed) {
@@ -289,6 +306,8 @@ TEST(Cli, SampleRejectsValuesOutOfRange) {
   expect_user_error(vgroove("sample --strategy uniform"), "--strategy", "\"printed\", \"vndf\"");
   expect_user_error(vgroove("sample --ndf phong --strategy smith-vndf"), "--strategy", "ggx only");
   expect_user_error(vgroove("sample --dim flatland --strategy bounded-vndf"), "--strategy", "3d only");
+  expect_user_error(vgroove("sample --model cook-torrance"), "--model", "\"vgroove\", \"vgroove-nonsymmetric\"");
+  expect_user_error(vgroove("sample --model vgroove-nonsymmetric --ndf phong --alpha 1.2"), "--alpha", "(0, 1]");
 }
 
 // A small run: the chi-square accepts (exit 0) and the result holds the table for plots.
@@ -309,6 +328,21 @@ TEST(Cli, SampleWritesTheChiSquareTable) {
   double observed = t.at("observed_no_direction").get<double>();
   for (const json& v : t.at("observed").at(0)) observed += v.get<double>();
   EXPECT_EQ(observed, 20000.0);
+  EXPECT_FALSE(j.at("result").at("reject").get<bool>());
+}
+
+// The nonsymmetric model (Eq. 23): a small flatland run accepts and says so in its JSON.
+TEST(Cli, SampleNonsymmetric) {
+  TempDir dir;
+  const std::string out = dir.file("S.json");
+  const CliRun r = vgroove(
+      "sample --model vgroove-nonsymmetric --ndf ggx --alpha 0.5 --theta-i-deg 30 --n 20000 --dim flatland "
+      "--theta-bins 18 --max-k 16 --out '" +
+      out + "'");
+  ASSERT_EQ(r.status, 0) << r;
+  EXPECT_CONTAINS(r.out, "accepted");
+  const json j = json::parse(read_text(out));
+  EXPECT_EQ(j.at("result").at("model").get<std::string>(), "vgroove-nonsymmetric");
   EXPECT_FALSE(j.at("result").at("reject").get<bool>());
 }
 

@@ -1,6 +1,10 @@
 // Tests of `vgroove brdf`: the numbers the library returns, to the last digit; the per-k terms sum
-// to the total; bad input named with its range; a directions file read strictly.
+// to the total; bad input named with its range; a directions file read strictly; the nonsymmetric
+// model (Lee et al. 2018, Eq. 21-23): its symmetric limit is the symmetric model (Eq. 24) and its
+// first order Cook-Torrance where Eq. (25) holds.
+#include "vgroove/analytic/brdf_flatland.h"
 #include "vgroove/analytic/brdf_model.h"
+#include "vgroove/analytic/brdf_nonsymmetric.h"
 #include "vgroove/common/angles.h"
 
 #include "tests/cli_run.h"
@@ -9,7 +13,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 namespace vgroove::app {
@@ -103,6 +109,23 @@ TEST(CmdBrdf, BadInput) {
       {"brdf --theta-o-deg 10 --dim 2d", "--dim = \"2d\" is not one of"},
       {"brdf --theta-o-deg 10 --max-k 0", "--max-k = 0 is out of range"},
       {"brdf --theta-o-deg 10 --dim flatland --max-k 5000", "--max-k = 5000 is out of range [1, 4096]"},
+      {"brdf --theta-o-deg 10 --model vgroove-nonsymmetric --max-k 1025",
+       "--max-k = 1025 is out of range [1, 1024] with --model vgroove-nonsymmetric"},
+      {"brdf --theta-o-deg 10 --alpha-y 0.3", "--alpha-y applies to --model vgroove-nonsymmetric only"},
+      {"brdf --theta-o-deg 10 --model cook-torrance --partner symmetric",
+       "--partner applies to --model vgroove-nonsymmetric only"},
+      {"brdf --theta-o-deg 10 --model vgroove-nonsymmetric --partner mirrored",
+       "--partner = \"mirrored\" is not one of \"independent\", \"symmetric\""},
+      {"brdf --theta-o-deg 10 --model vgroove-nonsymmetric --alpha-y 0", "--alpha-y = 0 is out of range (0, 2]"},
+      {"brdf --theta-o-deg 10 --model vgroove-nonsymmetric --alpha-y 2.5", "--alpha-y = 2.5 is out of range (0, 2]"},
+      {"brdf --theta-o-deg 10 --model vgroove-nonsymmetric --alpha-y 0.3 --dim flatland",
+       "--alpha-y applies to --dim 3d only"},
+      {"brdf --theta-o-deg 10 --model vgroove-nonsymmetric --alpha-y 0.3 --ndf phong",
+       "--alpha-y applies to --ndf ggx and beckmann only"},
+      {"brdf --theta-o-deg 10 --model vgroove-nonsymmetric --ndf phong --alpha 1.5",
+       "--alpha = 1.5 is out of range (0, 1.41421356"},
+      {"brdf --theta-o-deg 10 --model vgroove-nonsymmetric --ndf phong --alpha 1.4142135623730951",
+       "--alpha = 1.41421356"},
   };
   for (const Case& c : cases) {
     const auto r = vgroove(c.args);
@@ -124,6 +147,161 @@ TEST(CmdBrdf, FlatlandSignedAngles) {
   const json j = json::parse(r.out);
   EXPECT_EQ(j["points"][0]["value"].get<double>(), want);
   EXPECT_EQ(j["unit"], "1/rad");
+}
+
+// Without --max-k, flatland sums its 4096 orders (the largest it accepts; the value is the library's
+// as FlatlandSignedAngles checks at 64 orders).
+TEST(CmdBrdf, FlatlandDefaultOrders) {
+  const auto r = vgroove("brdf --json --dim flatland --theta-i-deg 30 --theta-o-deg -35");
+  ASSERT_EQ(r.status, 0) << r;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["inputs"]["max_k"], 4096);
+  EXPECT_GT(j["points"][0]["value"].get<double>(), 0.0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// --model vgroove-nonsymmetric
+
+json run_json(const std::string& args) {
+  const auto r = vgroove("brdf --json " + args);
+  EXPECT_EQ(r.status, 0) << args << "\n" << r;
+  return r.status == 0 ? json::parse(r.out) : json::object();
+}
+
+double rel(double a, double b) { return std::abs(a - b) / std::max({std::abs(a), std::abs(b), 1e-300}); }
+
+// The CLI prints what analytic/brdf_nonsymmetric.h returns, to the last digit: the sum over the
+// default 64 orders and each order, 3D (isotropic and anisotropic, both partner laws) and flatland.
+TEST(CmdBrdf, NonsymmetricEqualsTheLibraryToTheLastDigit) {
+  struct Case {
+    const char* ndf;
+    double alpha, alpha_y;
+    bool symmetric;
+  } cases[] = {{"ggx", 0.7, 0.7, false}, {"beckmann", 0.4, 0.4, false}, {"phong", 0.6, 0.6, false},
+               {"ggx", 0.1, 0.8, false}, {"beckmann", 0.3, 1.0, true},  {"phong", 1.8, 1.8, true}};
+  for (const Case& c : cases) {
+    std::string args = std::string("--model vgroove-nonsymmetric --per-k --per-k-max 6 --ndf ") + c.ndf + " --alpha " +
+                       std::to_string(c.alpha) + " --theta-i-deg 35 --phi-i-deg 20 --theta-o-deg 50 --phi-o-deg 160";
+    if (c.alpha_y != c.alpha) args += " --alpha-y " + std::to_string(c.alpha_y);
+    if (c.symmetric) args += " --partner symmetric";
+    const json j = run_json(args);
+    ASSERT_TRUE(j.contains("points")) << args;
+    EXPECT_EQ(j["inputs"]["max_k"], 64);
+    EXPECT_EQ(j["inputs"]["partner"], c.symmetric ? "symmetric" : "independent");
+    EXPECT_EQ(j["inputs"]["alpha_y"].get<double>(), c.alpha_y);
+    analytic::NonsymmetricModel m;
+    m.roughness = analytic::Roughness{*ndf_from_name(c.ndf), c.alpha, c.alpha_y};
+    m.partner = c.symmetric ? analytic::PartnerLaw::symmetric : analytic::PartnerLaw::independent;
+    const analytic::Dir3 i = analytic::dir3(deg_to_rad(35), deg_to_rad(20)),
+                         o = analytic::dir3(deg_to_rad(50), deg_to_rad(160));
+    const json p = j["points"][0];
+    const double want = analytic::nonsymmetric_brdf(i, o, 64, m);
+    EXPECT_GT(want, 0.0) << args;
+    EXPECT_EQ(p["value"].get<double>(), want) << args;
+    for (int k = 1; k <= 6; ++k)
+      EXPECT_EQ(p["by_k"][k - 1].get<double>(), analytic::nonsymmetric_brdf_k(i, o, k, m)) << args << " k=" << k;
+  }
+  // Flatland, and the text output's 17 digits.
+  const json f = run_json(
+      "--model vgroove-nonsymmetric --dim flatland --ndf beckmann --alpha 0.5 "
+      "--theta-i-deg 30 --theta-o-deg -35 --max-k 12");
+  analytic::NonsymmetricModel m;
+  m.roughness = analytic::isotropic_roughness(NdfKind::beckmann, 0.5);
+  const double want = analytic::flatland_nonsymmetric_brdf(deg_to_rad(30), deg_to_rad(-35), 12, m);
+  EXPECT_GT(want, 0.0);
+  EXPECT_EQ(f["points"][0]["value"].get<double>(), want);
+  EXPECT_EQ(f["unit"], "1/rad");
+  const auto t = vgroove(
+      "brdf --model vgroove-nonsymmetric --dim flatland --ndf beckmann --alpha 0.5 "
+      "--theta-i-deg 30 --theta-o-deg -35 --max-k 12");
+  ASSERT_EQ(t.status, 0) << t;
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", want);
+  EXPECT_NE(t.out.find(buf), std::string::npos) << t << "\nwant " << buf;
+  EXPECT_NE(t.out.find("partner independent"), std::string::npos) << t;
+}
+
+// Eq. (24): with the partner's tilt equal to the first's, the nonsymmetric model is the symmetric
+// one (Eq. 16), order by order, 3D and flatland; with the independent partner (Eq. 20) it is not.
+TEST(CmdBrdf, NonsymmetricSymmetricLimitIsTheSymmetricModel) {
+  const char* dirs[] = {"--theta-i-deg 35 --phi-i-deg 20 --theta-o-deg 50 --phi-o-deg 160",
+                        "--theta-i-deg 70 --theta-o-deg 20 --phi-o-deg 90",
+                        "--theta-i-deg 10 --theta-o-deg 80 --phi-o-deg 10"};
+  const char* flat_dirs[] = {"--theta-i-deg 30 --theta-o-deg -35", "--theta-i-deg 60 --theta-o-deg 50",
+                             "--theta-i-deg -20 --theta-o-deg 75"};
+  int differs = 0, compared = 0;
+  for (const char* ndf : {"ggx", "beckmann", "phong"})
+    for (int dim = 0; dim < 2; ++dim)
+      for (int n = 0; n < 3; ++n) {
+        const std::string common = std::string(" --ndf ") + ndf + " --alpha 0.8 --max-k 24 --per-k --per-k-max 8 " +
+                                   (dim == 0 ? dirs[n] : std::string(flat_dirs[n]) + " --dim flatland");
+        const json sym = run_json("--model vgroove" + common);
+        const json lim = run_json("--model vgroove-nonsymmetric --partner symmetric" + common);
+        const json ind = run_json("--model vgroove-nonsymmetric" + common);
+        ASSERT_TRUE(sym.contains("points") && lim.contains("points") && ind.contains("points")) << common;
+        const double a = sym["points"][0]["value"], b = lim["points"][0]["value"], c = ind["points"][0]["value"];
+        ASSERT_GT(a, 0.0) << common;
+        EXPECT_LT(rel(a, b), 1e-9) << common << ": " << a << " vs " << b;
+        for (int k = 0; k < 8; ++k) {
+          const double ak = sym["points"][0]["by_k"][k], bk = lim["points"][0]["by_k"][k];
+          EXPECT_NEAR(ak, bk, 1e-9 * a) << common << " k=" << k + 1;
+        }
+        ++compared;
+        differs += rel(a, c) > 1e-2;
+      }
+  // Power: the independent partner's BRDF differs by more than 1 % (at most a few coincidences).
+  EXPECT_GE(differs, compared - 2) << differs << " of " << compared;
+}
+
+// Eq. (25): the first order is Cook-Torrance with the V-cavity G for symmetric grooves (3D and
+// flatland); with the independent partner the single-reflection share of Eq. (9) is averaged over
+// P(theta_r) instead, which is not the V-cavity G (docs/ERRATA.md, "Eq. (25) and Fig. 8").
+TEST(CmdBrdf, NonsymmetricFirstOrderIsCookTorranceForSymmetricGrooves) {
+  int differs = 0, compared = 0;
+  for (const char* ndf : {"ggx", "beckmann", "phong"})
+    for (const char* d :
+         {"--theta-i-deg 35 --phi-i-deg 20 --theta-o-deg 50 --phi-o-deg 160",
+          "--theta-i-deg 75 --theta-o-deg 60 --phi-o-deg 200", "--dim flatland --theta-i-deg 30 --theta-o-deg -35",
+          "--dim flatland --theta-i-deg 70 --theta-o-deg -10"}) {
+      const std::string common = std::string(" --ndf ") + ndf + " --alpha 0.6 " + d;
+      const json ct = run_json("--model cook-torrance" + common);
+      const json lim = run_json("--model vgroove-nonsymmetric --partner symmetric --per-k --per-k-max 1" + common);
+      const json ind = run_json("--model vgroove-nonsymmetric --per-k --per-k-max 1" + common);
+      ASSERT_TRUE(ct.contains("points") && lim.contains("points") && ind.contains("points")) << common;
+      const double c = ct["points"][0]["value"], s1 = lim["points"][0]["by_k"][0], i1 = ind["points"][0]["by_k"][0];
+      ASSERT_GT(c, 0.0) << common;
+      EXPECT_LT(rel(c, s1), 1e-10) << common << ": " << c << " vs " << s1;
+      // Power: the independent partner's first order is another G.
+      ++compared;
+      differs += rel(c, i1) > 1e-4;
+    }
+  EXPECT_GE(differs, compared / 2) << differs << " of " << compared;
+}
+
+// Hard cases through the CLI: roughness 0.01 and 2, grazing light (89.9 deg), the mirror
+// direction, alpha_x / alpha_y = 100: finite and non-negative.
+TEST(CmdBrdf, NonsymmetricHardCasesAreFinite) {
+  TempDir d;
+  const std::string f = d.file("dirs.json");
+  write_text(f, R"({"directions": [{"theta_i_deg": 89.9, "theta_o_deg": 89.9, "phi_o_deg": 180},
+                                   {"theta_i_deg": 89.9, "theta_o_deg": 0},
+                                   {"theta_i_deg": 40, "theta_o_deg": 40, "phi_o_deg": 180},
+                                   {"theta_i_deg": 40, "theta_o_deg": 41, "phi_o_deg": 180},
+                                   {"theta_i_deg": 0, "theta_o_deg": 0.001},
+                                   {"theta_i_deg": 20, "theta_o_deg": 90, "phi_o_deg": 30}]})");
+  for (const char* extra :
+       {"--ndf ggx --alpha 0.01", "--ndf beckmann --alpha 2", "--ndf ggx --alpha 2", "--ndf phong --alpha 1.4",
+        "--ndf phong --alpha 0.01", "--ndf beckmann --alpha 0.01 --alpha-y 1",
+        "--ndf ggx --alpha 1 --alpha-y 0.01 --partner symmetric"}) {
+    const json j = run_json("--model vgroove-nonsymmetric --max-k 16 --directions '" + f + "' " + extra);
+    ASSERT_TRUE(j.contains("points")) << extra;
+    for (const json& p : j["points"]) {
+      // nlohmann writes a non-finite double as null.
+      ASSERT_TRUE(p["value"].is_number()) << extra << " " << p.dump();
+      const double v = p["value"];
+      EXPECT_TRUE(std::isfinite(v) && v >= 0.0) << extra << " " << p.dump();
+    }
+  }
 }
 
 }  // namespace

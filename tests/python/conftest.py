@@ -19,7 +19,8 @@ PLOT = os.environ.get("VGROOVE_PLOT", os.path.join(SOURCE, "python", "vgroove", 
 HAVE_MODULE = os.environ.get("VGROOVE_PYTHON_MODULE", "1") == "1"
 
 # Fields that differ between two runs of the same inputs (wall times, the thread count used).
-TIMING_KEYS = {"wall_s", "sim_wall_s", "model_wall_s", "bounces_per_s"}
+TIMING_KEYS = {"wall_s", "sim_wall_s", "model_wall_s", "bounces_per_s", "quadrature_s", "estimate_s", "sim_s",
+               "sample_s", "integrate_s", "ns_per_sample", "efficiency", "most_efficient"}
 
 
 def strip_timing(j):
@@ -73,8 +74,46 @@ TINY_BRDF = {
     "rays": 20000, "grooves": 5000, "seed": 3, "flatland_bins": 30, "theta_bins": 10, "phi_bins": 8, "max_k": 8,
     "thresholds": {"sigmas": 5, "model_tolerance": {"flatland": 1e-5, "3d": 1e-4}},
 }
-TINY_FURNACE = dict(TINY_BRDF, name="tiny_furnace", kind="furnace", alpha=[0.3, 1.0], theta_i_deg=[0, 60],
-                    dimensions=["flatland"], rays=5000, grooves=2000)
+TINY_FURNACE = {
+    "name": "tiny_furnace", "kind": "furnace", "description": "a small white furnace for the tests",
+    "ndf": ["ggx"], "alpha": [0.3, 1.0], "theta_i_deg": [0, 60], "dimensions": ["flatland", "3d"], "max_k": 64,
+    "samples": 2000, "strategy": "vndf", "rays": 2000, "grooves": 1000, "seed": 1,
+    "thresholds": {"sigmas": 5, "quadrature_tolerance": {"flatland": 1e-9, "3d": 1e-5}},
+}
+TINY_SAMPLING = {
+    "name": "tiny_sampling", "kind": "sampling", "description": "a small sampling suite for the tests", "seed": 1,
+    "max_k": 64,
+    "chi_square": {
+        "level": 0.01, "samples": {"3d": 5000, "flatland": 5000}, "cos_bins": 4, "phi_bins": 8, "theta_bins": 18,
+        "cases": [{"dimension": "3d", "ndf": "ggx", "alpha": 0.5, "theta_i_deg": 30, "strategy": "vndf"},
+                  {"dimension": "flatland", "ndf": "ggx", "alpha": 0.5, "theta_i_deg": 30, "strategy": "printed"}],
+    },
+    "variance": {
+        "samples": 2000, "schlick_f0": [1.0, 0.5],
+        "cases": [{"dimension": "3d", "ndf": "ggx", "alpha": 0.5, "theta_i_deg": 30},
+                  {"dimension": "flatland", "ndf": "beckmann", "alpha": 1.0, "theta_i_deg": 60}],
+    },
+    "furnace": {
+        "max_k": 16, "samples": 2000, "strategy": "vndf", "rays": 1000, "grooves": 1000, "sigmas": 5,
+        "quadrature_tolerance": {"flatland": 1e-9, "3d": 1e-5},
+        "cases": [{"dimension": "flatland", "ndf": "ggx", "alpha": 0.5, "theta_i_deg": 30}],
+    },
+}
+TINY_NONSYMMETRIC_BRDF = {
+    "name": "tiny_nonsymmetric_brdf", "kind": "nonsymmetric_brdf", "description": "a small Eq. 23 suite",
+    "ndf": ["ggx"], "alpha": [0.5], "theta_i_deg": [0, 40], "dimensions": ["flatland", "3d"],
+    "anisotropic": {"ndf": ["ggx"], "alpha_x": [0.1], "alpha_y": [0.3], "theta_i_deg": [40], "phi_i_deg": [0, 90],
+                    "partners": ["independent", "symmetric"]},
+    "rays": 5000, "grooves": 2000, "seed": 1, "flatland_bins": 30, "theta_bins": 6, "phi_bins": 8, "max_k": 8,
+    "plane_k": 2, "reciprocity_pairs": 5,
+    "thresholds": {"sigmas": 5, "model_tolerance": {"flatland": 1e-3, "3d": 3e-3}},
+}
+TINY_PROFILES = {
+    "name": "tiny_profiles", "kind": "profiles", "description": "a small profiles suite for the tests",
+    "ndf": ["ggx"], "alpha": [0.5], "theta_deg": [0, 60], "surfaces": ["random", "vgroove"], "realizations": 2,
+    "segments": 4096, "samples_per_length": 8, "rays": 5000, "walk_paths": 5000, "normal_bins": 9,
+    "lobe_bins": 30, "max_k": 4, "seed": 1, "thresholds": {"p_min": 1e-3, "sigmas": 5, "model_tolerance": 1e-5},
+}
 TINY_TABLE2 = {
     "name": "tiny_table2", "kind": "table2", "ndf": ["ggx"], "alpha": [0.5, 1.0], "percentiles": [90, 99],
     "rays": 5000, "grooves": 2000, "seed": 1,
@@ -100,6 +139,10 @@ TINY_SET = {"name": "tiny_set", "description": "both columns of a small Table 1"
             "suites": ["tiny_table1.json", "tiny_nonsymmetric.json"]}
 
 
+# Every suite kind `vgroove validate` runs, in the order the reports are made.
+SUITE_KINDS = ("brdf", "furnace", "table2", "table1", "table1_set", "sampling", "nonsymmetric_brdf", "profiles")
+
+
 def make_suites(d):
     """Writes the small suites into directory d; returns their paths by kind."""
     write_json(os.path.join(d, "tiny_nonsymmetric.json"), TINY_NONSYMMETRIC)
@@ -109,6 +152,9 @@ def make_suites(d):
         "table2": write_json(os.path.join(d, "tiny_table2.json"), TINY_TABLE2),
         "table1": write_json(os.path.join(d, "tiny_table1.json"), TINY_TABLE1),
         "table1_set": write_json(os.path.join(d, "tiny_set.json"), TINY_SET),
+        "sampling": write_json(os.path.join(d, "tiny_sampling.json"), TINY_SAMPLING),
+        "nonsymmetric_brdf": write_json(os.path.join(d, "tiny_nonsymmetric_brdf.json"), TINY_NONSYMMETRIC_BRDF),
+        "profiles": write_json(os.path.join(d, "tiny_profiles.json"), TINY_PROFILES),
     }
 
 
@@ -116,7 +162,7 @@ def make_reports(d, suites):
     """The command line's reports for the small suites (and a `bench accuracy` report), written
     with --out into directory d; returns their paths by kind."""
     out = {}
-    for kind in ("brdf", "furnace", "table2", "table1", "table1_set"):
+    for kind in SUITE_KINDS:
         out[kind] = os.path.join(d, f"{kind}.json")
         cli("validate", suites[kind], "--out", out[kind], "--threads", 2, "--force")
     out["accuracy"] = os.path.join(d, "accuracy.json")

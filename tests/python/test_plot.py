@@ -13,8 +13,11 @@ from conftest import PLOT, SOURCE, cli
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 EXPECTED = {  # report -> the suffixes of its figures
-    "table1": [""], "table1_set": [""], "furnace": [""], "table2": [""], "accuracy": ["", "-cost"],
+    "table1": [""], "table1_set": [""], "furnace": ["", "-errors"], "table2": [""], "accuracy": ["", "-cost"],
     "brdf": ["-ggx-flatland", "-ggx-3d"],
+    "sampling": ["", "-variance", "-furnace", "-furnace-errors"],
+    "nonsymmetric_brdf": ["", "-ggx-flatland", "-ggx-3d", "-aniso-ggx-3d"],
+    "profiles": ["", "-lobes"],
 }
 
 
@@ -152,6 +155,18 @@ BROKEN = [
     ("brdf", lambda r: r.update(cases=[]), "/cases is an empty list"),
     ("brdf", lambda r: r["cases"][0]["plane"]["sim"].__setitem__(3, "1"), "/cases/0/plane/sim/3 is a string"),
     ("furnace", lambda r: r["cases"][0].update(albedo_sim=None), "/cases/0/albedo_sim is null"),
+    ("furnace", lambda r: r["cases"][1].pop("albedo_estimate"), "/cases/1 has no \"albedo_estimate\""),
+    ("sampling", lambda r: r["chi_square"][0]["table"]["observed"].pop(), "/chi_square/0/table has"),
+    ("sampling", lambda r: r["chi_square"][1]["table"]["expected"][0].__setitem__(2, -1.0),
+     "/chi_square/1/table/expected/0/2 = -1.0 is out of range"),
+    ("sampling", lambda r: r["variance"][0].update(strategies=[]), "/variance/0/strategies is an empty list"),
+    ("sampling", lambda r: r["furnace"]["cases"][0].update(ndf="x"), "/furnace/cases/0/ndf = \"x\" is not one of"),
+    ("nonsymmetric_brdf", lambda r: r["cases"][2]["plane"].update(other_model=[0.0]),
+     "/cases/2/plane/other_model has 1 values"),
+    ("nonsymmetric_brdf", lambda r: r["cases"][0].update(anisotropic_block="no"),
+     "/cases/0/anisotropic_block is a string"),
+    ("profiles", lambda r: r["cases"][0]["surfaces"][1]["g1"].update(traced=[0.5]), "/cases/0/surfaces/1/g1/traced has"),
+    ("profiles", lambda r: r["bins"].update(exit_deg_edges=[0.0]), "/bins/exit_deg_edges has 1 values, needs at least 2"),
     ("table1", lambda r: r.update(cases=None), "/cases is null"),
     ("table1", lambda r: r["cases"][0].update(l1=1e308 * 10), None),
     ("table1_set", lambda r: r["suites"][1].pop("thresholds"), "/suites/1 has no \"thresholds\""),
@@ -290,3 +305,22 @@ def test_fig11_grid_has_one_panel_per_case(reports):
         for ax in panels:
             assert ax.get_xlabel().startswith("theta_o (deg") and "per steradian" in ax.get_ylabel() or \
                 "per radian" in ax.get_ylabel()
+
+
+def test_the_main_job_plots_every_report_it_writes():
+    # scripts/run.sh: the plot loop covers the suites the validate loop runs, and each suite's kind
+    # is one plot.py draws (the tiny reports of every kind are drawn above).
+    import re
+    m = plot_module()
+    text = open(os.path.join(SOURCE, "scripts", "run.sh")).read()
+    loops = re.findall(r"^for suite in ([^;]+); do\n(.*?)^done", text, re.S | re.M)
+    validated = [s.split() for s, body in loops if "vgroove validate" in body]
+    plotted = [s.split() for s, body in loops if "vgroove plot" in body]
+    assert len(validated) == 1 and len(plotted) == 1, loops
+    assert plotted[0] == validated[0]
+    for suite in validated[0]:
+        with open(os.path.join(SOURCE, "data", "suites", f"{suite}.json")) as f:
+            kind = json.load(f).get("kind", "table1")  # a set of suites: Table 1's two columns
+        kind = {"table1": "single_grooves", "stress": "single_grooves"}.get(kind, kind)
+        assert kind in m.KINDS, (suite, kind)
+        assert kind == "single_grooves" or kind in EXPECTED, (suite, kind)

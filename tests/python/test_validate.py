@@ -5,10 +5,10 @@ import json
 
 import pytest
 
-from conftest import cli_error, strip_timing, write_json
+from conftest import SUITE_KINDS, cli_error, strip_timing, write_json
 
 
-@pytest.mark.parametrize("kind", ["table1", "table1_set", "brdf", "furnace", "table2"])
+@pytest.mark.parametrize("kind", SUITE_KINDS)
 def test_validate_equals_the_cli_report(vg, suites, reports, kind):
     ours = vg.validate(suites[kind], threads=1)
     with open(reports[kind]) as f:

@@ -1,0 +1,210 @@
+// vgroove Python module: importance sampling of the symmetric V-groove BRDF (analytic/
+// sampling_3d.h, analytic/sampling_flatland.h; Lee et al. 2018, Sec. 6) over arrays, the density of
+// the directions it produces, and the uniform numbers of vgroove's deterministic streams (sim/rng.h).
+#include "common.h"
+
+#include "vgroove/analytic/brdf_3d.h"
+#include "vgroove/analytic/facet_strategy.h"
+#include "vgroove/analytic/sampling_3d.h"
+#include "vgroove/analytic/sampling_flatland.h"
+#include "vgroove/common/angles.h"
+#include "vgroove/sim/rng.h"
+#include "vgroove/support/parallel.h"
+#include "vgroove/validation/run_options.h"
+#include "vgroove/validation/spec_lists.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace vgroove::python {
+
+namespace {
+
+using validation::SurfaceDim;
+
+// The NDF, with `vgroove sample`'s message (its list in that command's order).
+NdfKind sampler_ndf(const std::string& name) {
+  if (const auto k = ndf_from_name(name)) return *k;
+  throw support::UserError("ndf = \"" + name + "\" is not one of \"ggx\", \"beckmann\", \"phong\"");
+}
+
+// The sampler's options, checked: the strategy exists for (ndf, dim), max_k in [1, 100000] (the
+// command line's `vgroove sample` ranges).
+analytic::SamplerOptions sampler_options(const std::string& strategy, NdfKind ndf, SurfaceDim dim, long long max_k) {
+  const auto s = analytic::strategy_from_name(strategy);
+  if (!s)
+    throw support::UserError("strategy = \"" + strategy +
+                             "\" is not one of \"printed\", \"vndf\", \"smith-vndf\", \"bounded-vndf\"");
+  const bool flat = dim == SurfaceDim::flatland;
+  if (!analytic::strategy_supports(*s, ndf, flat))
+    throw support::UserError("strategy = \"" + strategy + "\" does not exist for ndf " + analytic::ndf_name(ndf) +
+                             " dim " + (flat ? "flatland" : "3d") +
+                             " (smith-vndf: ggx only; bounded-vndf: ggx in 3d only)");
+  if (max_k < 1 || max_k > 100000)
+    throw support::UserError("max_k = " + std::to_string(max_k) + " is out of range [1, 100000]");
+  return {*s, static_cast<int>(max_k)};
+}
+
+// Rows of u in [0, 1)^4.
+void check_uniforms(const double* u, std::size_t n) {
+  for (std::size_t j = 0; j < 4 * n; ++j)
+    if (!(u[j] >= 0.0 && u[j] < 1.0))
+      throw support::UserError("u[" + std::to_string(j / 4) + "][" + std::to_string(j % 4) +
+                               "] = " + support::number_text(u[j]) + " is out of range [0, 1)");
+}
+
+// The light: rows of wi (n x 3), or the angles theta_i_deg (n) of the suites' convention (azimuth
+// 180 deg: dir3(theta_i, pi) in 3D; in flatland the signed angle itself), as radians = deg * pi/180.
+struct Light {
+  const double* wi = nullptr;
+  const double* theta_i_deg = nullptr;
+  analytic::Dir3 dir(std::size_t j) const {
+    if (wi) return {wi[3 * j], wi[3 * j + 1], wi[3 * j + 2]};
+    return analytic::dir3(theta_i_deg[j] * kRadPerDeg, std::numbers::pi);
+  }
+  double angle(std::size_t j) const { return wi ? flat_angle(wi + 3 * j) : theta_i_deg[j] * kRadPerDeg; }
+};
+
+Light light_of(const std::optional<DoubleArray>& wi, const std::optional<DoubleArray>& theta_i_deg, std::size_t n,
+               bool flat) {
+  Light l;
+  if (wi.has_value() == theta_i_deg.has_value())
+    throw support::UserError("give the light as either wi (unit vectors) or theta_i_deg, not both or neither");
+  if (wi) {
+    if (wi->ndim() != 2 || wi->shape(1) != 3 || static_cast<std::size_t>(wi->shape(0)) != n)
+      throw support::UserError("wi must be an array of shape (n, 3) with n = " + std::to_string(n));
+    check_directions(wi->data(), n, "wi", flat);
+    l.wi = wi->data();
+  } else {
+    if (theta_i_deg->ndim() != 1 || static_cast<std::size_t>(theta_i_deg->shape(0)) != n)
+      throw support::UserError("theta_i_deg must be an array of shape (n,) with n = " + std::to_string(n));
+    for (std::size_t j = 0; j < n; ++j) {
+      const double t = theta_i_deg->data()[j];
+      if (!(t > -90.0 && t < 90.0))
+        throw support::UserError("theta_i_deg[" + std::to_string(j) + "] = " + support::number_text(t) +
+                                 " is out of range (-90, 90)");
+    }
+    l.theta_i_deg = theta_i_deg->data();
+  }
+  return l;
+}
+
+// Runs row(j) for j < n in chunks of 4096 on `threads` threads, without the GIL (Ctrl-C stops it).
+template <class Row>
+void for_rows(std::size_t n, int threads, Row&& row) {
+  run_interruptible(
+      [&](std::atomic<bool>& cancel) {
+        const std::size_t chunk = 4096;
+        support::parallel_for((n + chunk - 1) / chunk, support::resolve_threads(threads),
+                              [&](std::size_t c) {
+                                const std::size_t end = std::min(n, (c + 1) * chunk);
+                                for (std::size_t j = c * chunk; j < end; ++j) row(j);
+                              },
+                              {}, &cancel, 1);
+        return 0;
+      },
+      n < 2048);
+}
+
+py::dict sample(const std::string& ndf_name, double alpha, const std::optional<DoubleArray>& wi,
+                const std::optional<DoubleArray>& theta_i_deg, DoubleArray u, const std::string& strategy,
+                long long max_k, const std::string& dim_name, int threads) {
+  const NdfKind ndf = sampler_ndf(ndf_name);
+  check_alpha(alpha);
+  const SurfaceDim dim = parse_dim(dim_name);
+  const analytic::SamplerOptions opt = sampler_options(strategy, ndf, dim, max_k);
+  validation::check_threads(threads, "threads");
+  if (u.ndim() != 2 || u.shape(1) != 4) throw support::UserError("u must be an array of shape (n, 4)");
+  const std::size_t n = static_cast<std::size_t>(u.shape(0));
+  const bool flat = dim == SurfaceDim::flatland;
+  const Light light = light_of(wi, theta_i_deg, n, flat);
+  check_uniforms(u.data(), n);
+  const auto sn = static_cast<py::ssize_t>(n);
+  auto wo = new_array<double>({sn, 3});
+  auto k = new_array<std::int32_t>({sn});
+  auto pdf = new_array<double>({sn});
+  auto weight = new_array<double>({sn});
+  double* po = wo.mutable_data();
+  std::int32_t* pk = k.mutable_data();
+  double *pp = pdf.mutable_data(), *pw = weight.mutable_data();
+  const double* pu = u.data();
+  for_rows(n, threads, [&](std::size_t j) {
+    const std::array<double, 4> uj{pu[4 * j], pu[4 * j + 1], pu[4 * j + 2], pu[4 * j + 3]};
+    if (flat) {
+      const analytic::VgrooveSampleFlatland x = analytic::sample_vgroove_flatland(light.angle(j), uj, ndf, alpha, opt);
+      po[3 * j] = -std::sin(x.theta_o), po[3 * j + 1] = 0.0, po[3 * j + 2] = std::cos(x.theta_o);
+      pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight;
+    } else {
+      const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(light.dir(j), uj, ndf, alpha, opt);
+      po[3 * j] = x.o.x, po[3 * j + 1] = x.o.y, po[3 * j + 2] = x.o.z;
+      pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight;
+    }
+  });
+  py::dict out;
+  out["wo"] = wo;
+  out["k"] = k;
+  out["pdf"] = pdf;
+  out["weight"] = weight;
+  return out;
+}
+
+py::array_t<double> pdf(const std::string& ndf_name, double alpha, const std::optional<DoubleArray>& wi,
+                        const std::optional<DoubleArray>& theta_i_deg, DoubleArray wo, const std::string& strategy,
+                        long long max_k, const std::string& dim_name, int threads) {
+  const NdfKind ndf = sampler_ndf(ndf_name);
+  check_alpha(alpha);
+  const SurfaceDim dim = parse_dim(dim_name);
+  const analytic::SamplerOptions opt = sampler_options(strategy, ndf, dim, max_k);
+  validation::check_threads(threads, "threads");
+  if (wo.ndim() != 2 || wo.shape(1) != 3) throw support::UserError("wo must be an array of shape (n, 3)");
+  const std::size_t n = static_cast<std::size_t>(wo.shape(0));
+  const bool flat = dim == SurfaceDim::flatland;
+  const Light light = light_of(wi, theta_i_deg, n, flat);
+  check_directions(wo.data(), n, "wo", flat);
+  auto out = new_array<double>({static_cast<py::ssize_t>(n)});
+  double* po = out.mutable_data();
+  const double* pw = wo.data();
+  for_rows(n, threads, [&](std::size_t j) {
+    const double* o = pw + 3 * j;
+    po[j] = flat ? analytic::vgroove_pdf_flatland(light.angle(j), flat_angle(o), ndf, alpha, opt)
+                 : analytic::vgroove_pdf_3d(light.dir(j), analytic::Dir3{o[0], o[1], o[2]}, ndf, alpha, opt);
+  });
+  return out;
+}
+
+// n x dims uniform numbers in [0, 1), row after row, from the stream sim::Rng(seed, a, b): what
+// vgroove's Monte Carlo draws (e.g. `vgroove sample`: a = 0x5a3d, b = 0 in 3D, 1 in flatland, four
+// per sample).
+py::array_t<double> uniforms(const py::object& n_obj, const py::object& seed_obj, const py::object& a_obj,
+                             const py::object& b_obj, const py::object& dims_obj) {
+  const auto n = static_cast<std::size_t>(to_count(n_obj, "n", 0, validation::kMaxRays));
+  const auto dims = static_cast<std::size_t>(to_count(dims_obj, "dims", 1, 64));
+  const auto seed = static_cast<std::uint64_t>(to_seed(seed_obj, "seed"));
+  const auto a = static_cast<std::uint64_t>(to_seed(a_obj, "stream[0]"));
+  const auto b = static_cast<std::uint64_t>(to_seed(b_obj, "stream[1]"));
+  auto out = new_array<double>({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(dims)});
+  double* p = out.mutable_data();
+  run_interruptible(
+      [&](std::atomic<bool>& cancel) {
+        sim::Rng rng(seed, a, b);
+        for (std::size_t j = 0; j < n * dims; ++j) {
+          if ((j & 0xfffff) == 0 && cancel.load()) break;
+          p[j] = rng.uniform();
+        }
+        return 0;
+      },
+      n * dims < 1'000'000);
+  return out;
+}
+
+}  // namespace
+
+void bind_sampling(py::module_& m) {
+  m.def("sample", &sample, py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("theta_i_deg"), py::arg("u"),
+        py::arg("strategy"), py::arg("max_k"), py::arg("dim"), py::arg("threads"));
+  m.def("pdf", &pdf, py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("theta_i_deg"), py::arg("wo"),
+        py::arg("strategy"), py::arg("max_k"), py::arg("dim"), py::arg("threads"));
+  m.def("uniforms", &uniforms, py::arg("n"), py::arg("seed"), py::arg("a"), py::arg("b"), py::arg("dims"));
+}
+
+}  // namespace vgroove::python

@@ -1,0 +1,71 @@
+// vgroove sim: the bins of exit directions found by comparisons, without inverse trigonometry
+// (the procedural surfaces' tallies, microsurface.cpp and microsurface3d.cpp).
+//
+// A guess from a cheap arctangent (error below 1e-5 rad, far below any bin) is corrected by the
+// exact test against the bin's edges: a direction lies at or past an edge at angle e exactly when
+// its cross product with the edge's direction is >= 0. The bins are those of the tallies'
+// bin_of functions (floor of the angle over the bin width); the two differ only for a direction
+// within rounding (~1e-16 rad) of an edge, where the library's atan2 or acos decides one way and
+// the cross product the other (probability ~1e-15 per ray).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace vgroove::sim {
+
+// atan2(y, x) to about 1e-5 rad (octant reduction and a minimax polynomial): only a guess.
+inline double atan2_guess(double y, double x) {
+  const double ax = std::abs(x), ay = std::abs(y);
+  const double hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
+  const double a = lo / (hi > 0.0 ? hi : 1.0), s = a * a;
+  double r = ((-0.0464964749 * s + 0.15931422) * s - 0.327622764) * s * a + a;
+  r = ay > ax ? 0.5 * std::numbers::pi - r : r;
+  r = x < 0.0 ? std::numbers::pi - r : r;
+  return y < 0.0 ? -r : r;
+}
+
+// Equal bins of width w from the angle lo, n of them; the edges' unit directions (cos, sin) in
+// the (x, y) plane where the angle is atan2(y, x).
+struct AngleEdges {
+  double lo = 0.0, w = 1.0, inv_w = 1.0;
+  int n = 0;
+  std::vector<double> c, s;  // edge b at lo + b w, b = 0..n
+  AngleEdges() = default;
+  AngleEdges(double lo_, double w_, int n_) : lo(lo_), w(w_), inv_w(1.0 / w_), n(n_) {
+    for (int b = 0; b <= n; ++b) {
+      c.push_back(std::cos(lo + b * w));
+      s.push_back(std::sin(lo + b * w));
+    }
+  }
+  // Whether the direction (x, y) lies at or past edge b (counter-clockwise), for directions
+  // within pi of it.
+  bool at_or_past(int b, double x, double y) const { return c[b] * y - s[b] * x >= 0.0; }
+  // The bin of (x, y) among bins 0..n-1 (clamped at the ends, as the tallies clamp), from a
+  // guess of its angle.
+  int bin(double x, double y, double angle_guess) const {
+    int j = std::clamp(static_cast<int>(std::floor((angle_guess - lo) / w)), 0, n - 1);
+    while (j > 0 && !at_or_past(j, x, y)) --j;
+    while (j < n - 1 && at_or_past(j + 1, x, y)) ++j;
+    return j;
+  }
+  // The same without branches, for the blocks' vectorized loops: the guess is within 1e-5 rad,
+  // far less than a bin, so one step each way is all the correction there is. Requires n >= 2
+  // bins of width > 2e-5.
+  double bin_branchless(double x, double y, double angle_guess) const {
+    const double last = static_cast<double>(n - 1);
+    // The guess's bin: clamped at 0 first, so truncation is the floor.
+    double j = (angle_guess - lo) * inv_w;
+    j = j < 0.0 ? 0.0 : (j > last ? last : j);
+    const int b = static_cast<int>(j);
+    j = static_cast<double>(b);
+    const int b1 = b + 1 > n ? n : b + 1;
+    j -= (j > 0.0) & !at_or_past(b, x, y) ? 1.0 : 0.0;
+    j += (j < last) & at_or_past(b1, x, y) ? 1.0 : 0.0;
+    return j;
+  }
+};
+
+}  // namespace vgroove::sim
