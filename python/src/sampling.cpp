@@ -1,12 +1,14 @@
 // vgroove Python module: importance sampling of the symmetric V-groove BRDF (analytic/
-// sampling_3d.h, analytic/sampling_flatland.h; Lee et al. 2018, Sec. 6) over arrays, the density of
-// the directions it produces, and the uniform numbers of vgroove's deterministic streams (sim/rng.h).
+// sampling_3d.h, analytic/sampling_flatland.h) and of the nonsymmetric one (analytic/
+// sampling_nonsymmetric.h; Lee et al. 2018, Sec. 6) over arrays, the density of the directions
+// they produce, and the uniform numbers of vgroove's deterministic streams (sim/rng.h).
 #include "common.h"
 
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/analytic/facet_strategy.h"
 #include "vgroove/analytic/sampling_3d.h"
 #include "vgroove/analytic/sampling_flatland.h"
+#include "vgroove/analytic/sampling_nonsymmetric.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/sim/rng.h"
 #include "vgroove/support/parallel.h"
@@ -45,12 +47,38 @@ analytic::SamplerOptions sampler_options(const std::string& strategy, NdfKind nd
   return {*s, static_cast<int>(max_k)};
 }
 
-// Rows of u in [0, 1)^4.
-void check_uniforms(const double* u, std::size_t n) {
-  for (std::size_t j = 0; j < 4 * n; ++j)
+// Rows of u in [0, 1)^m.
+void check_uniforms(const double* u, std::size_t n, std::size_t m) {
+  for (std::size_t j = 0; j < m * n; ++j)
     if (!(u[j] >= 0.0 && u[j] < 1.0))
-      throw support::UserError("u[" + std::to_string(j / 4) + "][" + std::to_string(j % 4) +
+      throw support::UserError("u[" + std::to_string(j / m) + "][" + std::to_string(j % m) +
                                "] = " + support::number_text(u[j]) + " is out of range [0, 1)");
+}
+
+// "vgroove" (symmetric grooves, four numbers per sample) or "vgroove-nonsymmetric" (Eq. 21-23 with
+// the independent partner law of Eq. 20, five numbers), as `vgroove sample --model`.
+bool parse_sampler_model(const std::string& m) {
+  if (m == "vgroove") return false;
+  if (m == "vgroove-nonsymmetric") return true;
+  throw support::UserError("model = \"" + m + "\" is not one of \"vgroove\", \"vgroove-nonsymmetric\"");
+}
+
+// The nonsymmetric sampler (its partner table), or UserError where the partner law does not exist.
+analytic::NonsymmetricSampler nonsymmetric_sampler(NdfKind ndf, double alpha, const analytic::SamplerOptions& opt,
+                                                   bool flat, double tolerance) {
+  if (!(tolerance >= 1e-12 && tolerance <= 1e-2))
+    throw support::UserError("tolerance = " + support::number_text(tolerance) + " is out of range [1e-12, 0.01]");
+  if (ndf == NdfKind::phong && alpha > 1.0)
+    throw support::UserError("alpha = " + support::number_text(alpha) +
+                             " is out of range (0, 1] for model vgroove-nonsymmetric with ndf phong (the partner "
+                             "law's table)");
+  try {
+    analytic::NonsymmetricSampler S = analytic::make_nonsymmetric_sampler(ndf, alpha, opt, flat);
+    S.tolerance = tolerance;
+    return S;
+  } catch (const std::domain_error& e) {
+    throw support::UserError(e.what());
+  }
 }
 
 // The light: rows of wi (n x 3), or the angles theta_i_deg (n) of the suites' convention (azimuth
@@ -106,19 +134,25 @@ void for_rows(std::size_t n, int threads, Row&& row) {
       n < 2048);
 }
 
-py::dict sample(const std::string& ndf_name, double alpha, const std::optional<DoubleArray>& wi,
-                const std::optional<DoubleArray>& theta_i_deg, DoubleArray u, const std::string& strategy,
-                long long max_k, const std::string& dim_name, int threads) {
+py::dict sample(const std::string& model, const std::string& ndf_name, double alpha,
+                const std::optional<DoubleArray>& wi, const std::optional<DoubleArray>& theta_i_deg, DoubleArray u,
+                const std::string& strategy, long long max_k, double tolerance, const std::string& dim_name,
+                int threads) {
+  const bool nonsym = parse_sampler_model(model);
   const NdfKind ndf = sampler_ndf(ndf_name);
   check_alpha(alpha);
   const SurfaceDim dim = parse_dim(dim_name);
   const analytic::SamplerOptions opt = sampler_options(strategy, ndf, dim, max_k);
   validation::check_threads(threads, "threads");
-  if (u.ndim() != 2 || u.shape(1) != 4) throw support::UserError("u must be an array of shape (n, 4)");
+  const py::ssize_t m = nonsym ? 5 : 4;
+  if (u.ndim() != 2 || u.shape(1) != m)
+    throw support::UserError("u must be an array of shape (n, " + std::to_string(m) + ")");
   const std::size_t n = static_cast<std::size_t>(u.shape(0));
   const bool flat = dim == SurfaceDim::flatland;
   const Light light = light_of(wi, theta_i_deg, n, flat);
-  check_uniforms(u.data(), n);
+  check_uniforms(u.data(), n, static_cast<std::size_t>(m));
+  const analytic::NonsymmetricSampler ns =
+      nonsym ? nonsymmetric_sampler(ndf, alpha, opt, flat, tolerance) : analytic::NonsymmetricSampler{};
   const auto sn = static_cast<py::ssize_t>(n);
   auto wo = new_array<double>({sn, 3});
   auto k = new_array<std::int32_t>({sn});
@@ -129,6 +163,20 @@ py::dict sample(const std::string& ndf_name, double alpha, const std::optional<D
   double *pp = pdf.mutable_data(), *pw = weight.mutable_data();
   const double* pu = u.data();
   for_rows(n, threads, [&](std::size_t j) {
+    if (nonsym) {
+      const double* v = pu + 5 * j;
+      const std::array<double, 5> uj{v[0], v[1], v[2], v[3], v[4]};
+      if (flat) {
+        const analytic::VgrooveSampleFlatland x = analytic::sample_nonsymmetric_flatland(ns, light.angle(j), uj);
+        po[3 * j] = -std::sin(x.theta_o), po[3 * j + 1] = 0.0, po[3 * j + 2] = std::cos(x.theta_o);
+        pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight;
+      } else {
+        const analytic::VgrooveSample3d x = analytic::sample_nonsymmetric_3d(ns, light.dir(j), uj);
+        po[3 * j] = x.o.x, po[3 * j + 1] = x.o.y, po[3 * j + 2] = x.o.z;
+        pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight;
+      }
+      return;
+    }
     const std::array<double, 4> uj{pu[4 * j], pu[4 * j + 1], pu[4 * j + 2], pu[4 * j + 3]};
     if (flat) {
       const analytic::VgrooveSampleFlatland x = analytic::sample_vgroove_flatland(light.angle(j), uj, ndf, alpha, opt);
@@ -148,9 +196,11 @@ py::dict sample(const std::string& ndf_name, double alpha, const std::optional<D
   return out;
 }
 
-py::array_t<double> pdf(const std::string& ndf_name, double alpha, const std::optional<DoubleArray>& wi,
-                        const std::optional<DoubleArray>& theta_i_deg, DoubleArray wo, const std::string& strategy,
-                        long long max_k, const std::string& dim_name, int threads) {
+py::array_t<double> pdf(const std::string& model, const std::string& ndf_name, double alpha,
+                        const std::optional<DoubleArray>& wi, const std::optional<DoubleArray>& theta_i_deg,
+                        DoubleArray wo, const std::string& strategy, long long max_k, double tolerance,
+                        const std::string& dim_name, int threads) {
+  const bool nonsym = parse_sampler_model(model);
   const NdfKind ndf = sampler_ndf(ndf_name);
   check_alpha(alpha);
   const SurfaceDim dim = parse_dim(dim_name);
@@ -161,11 +211,18 @@ py::array_t<double> pdf(const std::string& ndf_name, double alpha, const std::op
   const bool flat = dim == SurfaceDim::flatland;
   const Light light = light_of(wi, theta_i_deg, n, flat);
   check_directions(wo.data(), n, "wo", flat);
+  const analytic::NonsymmetricSampler ns =
+      nonsym ? nonsymmetric_sampler(ndf, alpha, opt, flat, tolerance) : analytic::NonsymmetricSampler{};
   auto out = new_array<double>({static_cast<py::ssize_t>(n)});
   double* po = out.mutable_data();
   const double* pw = wo.data();
   for_rows(n, threads, [&](std::size_t j) {
     const double* o = pw + 3 * j;
+    if (nonsym) {
+      po[j] = flat ? analytic::nonsymmetric_pdf_flatland(ns, light.angle(j), flat_angle(o))
+                   : analytic::nonsymmetric_pdf_3d(ns, light.dir(j), analytic::Dir3{o[0], o[1], o[2]});
+      return;
+    }
     po[j] = flat ? analytic::vgroove_pdf_flatland(light.angle(j), flat_angle(o), ndf, alpha, opt)
                  : analytic::vgroove_pdf_3d(light.dir(j), analytic::Dir3{o[0], o[1], o[2]}, ndf, alpha, opt);
   });
@@ -200,10 +257,10 @@ py::array_t<double> uniforms(const py::object& n_obj, const py::object& seed_obj
 }  // namespace
 
 void bind_sampling(py::module_& m) {
-  m.def("sample", &sample, py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("theta_i_deg"), py::arg("u"),
-        py::arg("strategy"), py::arg("max_k"), py::arg("dim"), py::arg("threads"));
-  m.def("pdf", &pdf, py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("theta_i_deg"), py::arg("wo"),
-        py::arg("strategy"), py::arg("max_k"), py::arg("dim"), py::arg("threads"));
+  m.def("sample", &sample, py::arg("model"), py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("theta_i_deg"),
+        py::arg("u"), py::arg("strategy"), py::arg("max_k"), py::arg("tolerance"), py::arg("dim"), py::arg("threads"));
+  m.def("pdf", &pdf, py::arg("model"), py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("theta_i_deg"),
+        py::arg("wo"), py::arg("strategy"), py::arg("max_k"), py::arg("tolerance"), py::arg("dim"), py::arg("threads"));
   m.def("uniforms", &uniforms, py::arg("n"), py::arg("seed"), py::arg("a"), py::arg("b"), py::arg("dims"));
 }
 

@@ -175,8 +175,9 @@ py::dict lobe(const std::string& model, const std::string& ndf_name, double alph
     throw support::UserError("phi_bins = " + std::to_string(phi_bins) + " is out of range [2, 10000], even");
   const analytic::Lobe3d l = run_interruptible([&](std::atomic<bool>&) {
     const double ti = theta_i_deg * kRadPerDeg;
-    return ct ? analytic::cook_torrance_lobe_3d(ndf, alpha, ti, theta_bins, phi_bins)
-              : analytic::vgroove_lobe_3d(ndf, alpha, ti, theta_bins, phi_bins, max_k);
+    // Cook-Torrance (V-cavity G) is the vgroove lobe's k = 1 row (Eq. 25), as the "brdf" suites take it.
+    const analytic::Lobe3d v = analytic::vgroove_lobe_3d(ndf, alpha, ti, theta_bins, phi_bins, max_k);
+    return ct ? analytic::cook_torrance_lobe_3d_from(v) : v;
   });
   const auto rows = static_cast<py::ssize_t>(l.max_k + 2), tb = static_cast<py::ssize_t>(theta_bins),
              pb = static_cast<py::ssize_t>(phi_bins);

@@ -493,6 +493,7 @@ def sampling_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
         tests.append({
             "dim": c["dimension"].one_of(_DIMS), "ndf": c["ndf"].one_of(_NDFS), "alpha": c["alpha"].number(0.0, 2.0),
             "theta_i": c["theta_i_deg"].number(-90.0, 90.0), "strategy": safe_text(c["strategy"].text(), 16),
+            "model": " nonsymmetric" if c.has("model") and c["model"].text() == "vgroove-nonsymmetric" else "",
             "samples": c["samples"].number(1.0), "p": c["p_value"].number(0.0, 1.0), "dof": c["dof"].number(0.0),
             "stat": c["statistic"].number(0.0), "level": c["level"].number(0.0, 1.0), "pass": c["pass"].boolean(),
             "norm": c["normalization_error"].number(), "rows": rows_e, "cols": cols_e, "obs": obs, "exp": exp,
@@ -503,7 +504,8 @@ def sampling_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
         for r in v["strategies"].nonempty():
             strategies.append((safe_text(r["strategy"].text(), 16), r["variance"].number(0.0),
                                r["ns_per_sample"].number(0.0)))
-        variance.append({"label": f"{v['dimension'].one_of(_DIMS)} {v['ndf'].one_of(_NDFS)} "
+        ns = " nonsym." if v.has("model") and v["model"].text() == "vgroove-nonsymmetric" else ""
+        variance.append({"label": f"{v['dimension'].one_of(_DIMS)}{ns} {v['ndf'].one_of(_NDFS)} "
                                   f"a {v['alpha'].number(0.0, 2.0):g} ti {v['theta_i_deg'].number(-90.0, 90.0):g}\n"
                                   f"{safe_text(v['fresnel'].text(), 24)}", "rows": strategies})
 
@@ -537,7 +539,8 @@ def sampling_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
             ax.set_ylabel("samples per cell", fontsize=7)
             ax.tick_params(labelsize=6)
             verdict = "pass" if t["pass"] else "FAIL"
-            ax.set_title(f"{t['dim']} {t['ndf']} alpha {t['alpha']:g} theta_i {t['theta_i']:g}, {t['strategy']}\n"
+            ax.set_title(f"{t['dim']}{t['model']} {t['ndf']} alpha {t['alpha']:g} theta_i {t['theta_i']:g}, "
+                         f"{t['strategy']}\n"
                          f"chi2 {t['stat']:.1f} dof {t['dof']:g} p {t['p']:.3g}; none {t['obs_none']:.0f} "
                          f"(exp {t['exp_none']:.1f}): {verdict}", fontsize=7,
                          color="black" if t["pass"] else "#d62728")

@@ -267,3 +267,43 @@ def test_ctrl_c_stops_a_long_call(vg):
     out, _ = p.communicate(timeout=60)
     assert out.strip() == "interrupted"
     assert time.monotonic() - t0 < 10  # a chunk of 4096 directions in flight finishes
+
+
+def test_nonsymmetric_sample_and_pdf_agree(vg):
+    # model="vgroove-nonsymmetric" (analytic/sampling_nonsymmetric.h): the pdf of each sample is
+    # pdf() at its direction; the symmetric model's pdf is another density. (`vgroove sample --model
+    # vgroove-nonsymmetric` integrates this pdf over its cells, minutes at any sample count: not here.)
+    for dim in ("3d", "flatland"):
+        u = vg.uniforms(40, 3, (STREAM, 0 if dim == "3d" else 1), dims=5)
+        r = vg.sample("ggx", 0.5, u, theta_i_deg=30, dim=dim, model="vgroove-nonsymmetric", tolerance=1e-6)
+        ok = r["k"] > 0
+        assert ok.sum() > 30 and np.all(np.isfinite(r["weight"])) and np.all(r["pdf"][ok] > 0)
+        p = vg.pdf("ggx", 0.5, r["wo"][ok], theta_i_deg=30, dim=dim, model="vgroove-nonsymmetric", tolerance=1e-6)
+        np.testing.assert_allclose(p, r["pdf"][ok], rtol=1e-9)  # flatland: theta_o read back from wo
+        sym = vg.pdf("ggx", 0.5, r["wo"][ok], theta_i_deg=30, dim=dim)
+        assert not np.allclose(sym, p, rtol=1e-3)
+
+
+@pytest.mark.parametrize("kwargs,flags", [
+    ({"model": "cook_torrance"}, ["--model", "cook_torrance"]),
+    ({"model": "vgroove-nonsymmetric", "ndf": "phong", "alpha": 1.5},
+     ["--model", "vgroove-nonsymmetric", "--ndf", "phong", "--alpha", 1.5]),
+])
+def test_nonsymmetric_bad_input_gives_the_command_lines_message(vg, kwargs, flags):
+    expected = cli_error("sample", *flags)
+    for flag in ("--model", "--ndf", "--alpha"):
+        expected = expected.replace(flag, flag[2:])
+    args = {"ndf": "ggx", "alpha": 0.5}
+    args.update(kwargs)
+    ndf, alpha = args.pop("ndf"), args.pop("alpha")
+    m = 5 if args.get("model") == "vgroove-nonsymmetric" else 4
+    with pytest.raises(ValueError) as e:
+        vg.sample(ndf, alpha, [[0.1] * m], theta_i_deg=30, **args)
+    assert str(e.value) == expected
+    with pytest.raises(ValueError) as e:
+        vg.pdf(ndf, alpha, [[0.0, 0.0, 1.0]], theta_i_deg=30, **args)
+    assert str(e.value) == expected
+    with pytest.raises(ValueError, match=r"tolerance = 0 is out of range"):
+        vg.pdf("ggx", 0.5, [0, 0, 1], theta_i_deg=30, model="vgroove-nonsymmetric", tolerance=0)
+    with pytest.raises(ValueError, match=r"shape \(\.\.\., 5\)"):
+        vg.sample("ggx", 0.5, [0.1] * 4, theta_i_deg=30, model="vgroove-nonsymmetric")
