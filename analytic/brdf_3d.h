@@ -50,17 +50,17 @@
 // turns Eq. 6's transition point into a function of t_o), as one intersection of offsets that
 // the reversed path permutes, each difference of sines as a product (beam_width):
 //   - reciprocity: rho_k(i, o) = rho_k(o, i) bitwise (20 000 random pairs, k = 1..6), the sum
-//     over k = 1..16 within 7e-16 relative (the order of the terms); the old difference-of-sines
-//     form was off by up to 3e-11;
+//     over k = 1..16 within 7e-16 relative (the order of the terms); a difference of sines
+//     would be off by up to 3e-11;
 //   - accuracy against Eq. (16) in long double from the same (i, o) (GGX, 20 000 pairs x k 1..6):
-//     median 3e-16, 99.9 % below 1.1e-13, worst 8e-12 relative (old: 6e-13 and 7e-11). The
+//     median 3e-16, 99.9 % below 1.1e-13, worst 8e-12 relative. The
 //     worst cases sit within ~1e-5 of the edge of a k's support, where rho_k vanishes linearly:
 //     there the rounding of t_i, t_o themselves (atan2) sets a relative error ~1e-16 / width;
 //   - cost: the solutions of Eq. (5) that Eq. (4) allows have j = 0 and k in [X / pi, X / |a + b|]
 //     (for_each_solution, kaleidoscope_solutions.h), so one pass visits them all, ~3-4.5 solutions per (i, o), for any
 //     max_k. vgroove_brdf takes them four at a time without branches (brdf_3d_batch.cpp: vector
-//     lanes, polynomial sines, the common factors once); the previous evaluation, each solution's
-//     term on its own, stays as vgroove_brdf_per_solution_reference (values within 1e-12 relative,
+//     lanes, polynomial sines, the common factors once); the plain evaluation, each solution's
+//     term on its own, is vgroove_brdf_per_solution_reference (values within 1e-12 relative,
 //     measured 2.5e-14 worst). Measured (bench/brdf_bench.cpp, 1024 cosine-weighted pairs, GGX
 //     alpha 0.3, one run on a shared 2-core machine): ~150 ns at max_k 4 and ~185 ns at max_k 16,
 //     against ~260 and ~315 ns per solution and ~63 ns for cook_torrance (2.4x and 2.9x; the
@@ -118,8 +118,8 @@ double vgroove_brdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, int
 double vgroove_brdf_k_reference(const Dir3& i, const Dir3& o, int k, NdfKind ndf, double alpha);
 double vgroove_brdf_reference(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, int max_k);
 // The same single pass as vgroove_brdf with each solution's term computed on its own (std::sin
-// and std::cos per solution, the common factors per term): the evaluation before the batched
-// pass (brdf_3d_batch.cpp), kept for the tests and the benchmarks' side-by-side.
+// and std::cos per solution, the common factors per term): the plain form of the batched pass
+// (brdf_3d_batch.cpp), for the tests and the benchmarks' side-by-side.
 double vgroove_brdf_per_solution_reference(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, int max_k,
                                            const FresnelFn& F = {});
 double vgroove_brdf_k_per_solution_reference(const Dir3& i, const Dir3& o, int k, NdfKind ndf, double alpha);

@@ -27,8 +27,8 @@ namespace vgroove::analytic {
 // (albedo - 1 < 3e-14 for F = 1); hist is limited by the phi_a quadrature. Its per-bin integrands
 // have square-root points (theta edges tangent to an arc) and kinks where an arc passes through a
 // bin corner (at phi_a = the azimuth of i + corner): the phi_a range is cut at both (brdf_3d.cpp,
-// run_lobe). Without the corner cuts the kinks left ~|slope jump| h^2 each: up to 1.6e-5 per bin
-// at 384 panels, worst in the back-scattering plane, and the 384 -> 768 change was <= 1e-5.
+// run_lobe). Without the corner cuts the kinks leave ~|slope jump| h^2 each: up to 1.6e-5 per bin
+// at 384 panels, worst in the back-scattering plane, and the 384 -> 768 change is <= 1e-5.
 // With them, at 30 x 24 bins and max_k 16 (GGX 0.5 at 30 deg, GGX 0.3 at 60, 0.7 at 75, Beckmann
 // 1.0 at 10): per bin within 1.4e-7..9.6e-7 of 6144 panels, the 384 -> 768 change <= 2.7e-7
 // (GGX 0.5 at 30 deg); against Eq. (16) integrated over single bins, < 3.1e-9 at and beside the
@@ -51,9 +51,9 @@ struct Lobe3dOptions {
   int k_bands = 32;      // k beyond which a midpoint rule in the CDF replaces the exact bands
   int tail_strata = 512;
   bool corner_cuts = true;  // cut the phi_a range where arcs pass through bin corners (kinks)
-  // The per-node kernels as they were before the algebraic ones (trigonometry per node, Eq. 6 via
-  // G_kaleidoscopic at each piece): the same integrand at the same nodes, kept for the tests and
-  // the benchmark's side-by-side (lobe_3d.cpp, weight_fast).
+  // The plain per-node kernels in place of the algebraic ones (trigonometry per node, Eq. 6 via
+  // G_kaleidoscopic at each piece): the same integrand at the same nodes, for the tests and the
+  // benchmark's side-by-side (lobe_3d.cpp, weight_fast).
   bool reference_kernels = false;
 };
 

@@ -64,7 +64,7 @@ void BM_vgroove_brdf(benchmark::State& state) {
   report_time_per_call(state);
 }
 
-// The evaluation before the batched pass (each solution's term on its own), same pairs.
+// The plain pass (each solution's term on its own), same pairs.
 void BM_vgroove_brdf_per_solution(benchmark::State& state) {
   const analytic::NdfKind ndf = ndf_of(state.range(0));
   const double alpha = state.range(1) / 10.0;

@@ -128,7 +128,7 @@ def test_hostile_names_render(reports, tmp_path, capsys, fmt):
             assert status == 0, err
             for suffix in EXPECTED[kind]:
                 check_image(f"{tmp_path}/{kind}{first}{suffix}.{fmt}", fmt)
-    # And through the command line, the example.
+    # And through the command line.
     with open(reports["brdf"]) as f:
         r = json.load(f)
     r["suite"] = 'ggx <R&D> "quotes" <script>'

@@ -32,7 +32,7 @@ json shipped() {
 
 TEST(NonsymmetricSuite, ShippedSuiteParses) {
   const NonsymmetricSuite s = parse_nonsymmetric_suite(shipped(), "nonsymmetric_brdf.json");
-  // The grid (3 NDFs x 4 alphas x 5 theta_i x 2 dimensions) and the anisotropic block
+  // The grid (3 NDFs x 4 alphas x 5 theta_i x 2 dimensions) and the anisotropic block
   // (2 NDFs x alpha_y 0.1, 0.3, 1.0 x light along and across x 2 partner laws).
   EXPECT_EQ(s.cases().size(), 3u * 4u * 5u * 2u + 2u * 3u * 2u * 2u);
   const NonsymmetricCase last = s.cases().back();
