@@ -8,6 +8,7 @@
 
 #include "vgroove/analytic/brdf_3d.h"
 
+#include <atomic>
 #include <vector>
 
 namespace vgroove::analytic {
@@ -51,6 +52,9 @@ struct Lobe3dOptions {
   int k_bands = 32;      // k beyond which a midpoint rule in the CDF replaces the exact bands
   int tail_strata = 512;
   bool corner_cuts = true;  // cut the phi_a range where arcs pass through bin corners (kinks)
+  // Read before each phi_a node (may be null): once set, the remaining nodes are skipped and the
+  // lobe is incomplete (the caller, stopped by Ctrl-C, discards it).
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 Lobe3d vgroove_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins, int max_k);

@@ -1,32 +1,82 @@
 #include "vgroove/app/cli.h"
 
 #include "vgroove/app/commands.h"
+#include "vgroove/app/options.h"
+#include "vgroove/support/printable.h"
+#include "vgroove/support/std_streams.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
 
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <new>
 
 namespace vgroove::app {
 
 namespace {
-// Comma-separated values in one option: --rays 1000,10000.
+
+using namespace validation;
+
+// Validators run on the option's text before CLI11 converts it: numbers are read strictly and
+// in range (options.h), text options may not be empty. They throw a UserError naming the option.
+CLI::Validator strict_integer(const std::string& name, long long lo, long long hi, const std::string& note = "") {
+  return CLI::Validator([=](std::string& s) { return s = integer_text(s, name, lo, hi, note), std::string(); }, "", "");
+}
+CLI::Validator strict_real(const std::string& name) {
+  return CLI::Validator([=](std::string& s) { return s = real_text(s, name), std::string(); }, "", "");
+}
+CLI::Validator non_empty(const std::string& name) {
+  return CLI::Validator(
+      [=](std::string& s) {
+        if (s.empty()) throw support::UserError(name + " = \"\" is empty");
+        return std::string();
+      },
+      "", "");
+}
+std::string range_text(long long lo, long long hi) {
+  std::string s(1, '[');  // appended piecewise: GCC 12 warns on "[" + std::string (bug 105651)
+  s += std::to_string(lo);
+  s += ", ";
+  s += std::to_string(hi);
+  return s + "]";
+}
 template <class T>
-void add_list(CLI::App* app, const std::string& name, std::vector<T>& v, const std::string& help) {
-  app->add_option(name, v, help)->delimiter(',')->capture_default_str();
+CLI::Option* add_integer(CLI::App* app, const std::string& name, T& v, const std::string& help, long long lo,
+                         long long hi, const std::string& note = "") {
+  return app->add_option(name, v, help + ", " + range_text(lo, hi))->transform(strict_integer(name, lo, hi, note));
+}
+template <class T>
+CLI::Option* add_real(CLI::App* app, const std::string& name, T& v, const std::string& help) {
+  return app->add_option(name, v, help)->transform(strict_real(name));
+}
+template <class T>
+CLI::Option* add_text(CLI::App* app, const std::string& name, T& v, const std::string& help) {
+  return app->add_option(name, v, help)->check(non_empty(name));
+}
+CLI::Option* add_threads(CLI::App* app, int& v) {
+  return add_integer(app, "--threads", v, "worker threads (0: all cores); results do not depend on it", 0, kMaxThreads,
+                     " (0: all cores)")
+      ->capture_default_str();
+}
+CLI::Option* add_seed(CLI::App* app, long long& v, const std::string& help) {
+  return add_integer(app, "--seed", v, help, 0, kMaxSeed);
 }
 // --theta-v-deg for a symmetric groove, or --theta-l-deg with --theta-r-deg for a nonsymmetric one.
 void add_groove_options(CLI::App* app, GrooveArgs& g) {
-  auto* v = app->add_option("--theta-v-deg", g.theta_v_deg, "symmetric groove: aperture theta_v in degrees, (0, 180]")
-                ->capture_default_str();
-  auto* l = app->add_option("--theta-l-deg", g.theta_l_deg,
-                            "nonsymmetric groove: angle of the left facet's normal from n, [-90, 0] (Lee et al. "
-                            "2018, Fig. 5; counter-clockwise positive, so the left facet's normal leans right and "
-                            "theta_l <= 0)");
-  auto* r = app->add_option("--theta-r-deg", g.theta_r_deg,
-                            "nonsymmetric groove: angle of the right facet's normal, [0, 90]; aperture "
-                            "theta_v = 180 + theta_l - theta_r; a symmetric groove is theta_l = -theta_r");
+  auto* v =
+      add_real(app, "--theta-v-deg", g.theta_v_deg,
+               "symmetric groove: aperture theta_v in degrees, [" + support::number_text(kMinApertureDeg) + ", 180]")
+          ->capture_default_str();
+  auto* l = add_real(app, "--theta-l-deg", g.theta_l_deg,
+                     "nonsymmetric groove: angle of the left facet's normal from n, [-90, 0] (Lee et al. "
+                     "2018, Fig. 5; counter-clockwise positive, so the left facet's normal leans right and "
+                     "theta_l <= 0)");
+  auto* r = add_real(app, "--theta-r-deg", g.theta_r_deg,
+                     "nonsymmetric groove: angle of the right facet's normal, [0, 90]; aperture "
+                     "theta_v = 180 + theta_l - theta_r >= " +
+                         support::number_text(kMinApertureDeg) + "; a symmetric groove is theta_l = -theta_r");
   l->needs(r);
   r->needs(l);
   app->callback([&g, v, l]() {
@@ -35,14 +85,15 @@ void add_groove_options(CLI::App* app, GrooveArgs& g) {
   });
 }
 
-}  // namespace
+void print_error(const std::string& what) { std::cerr << "vgroove: error: " << support::printable(what) << "\n"; }
 
-int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
+int run_command(int argc, const char* const* argv, const CliContext& ctx) {
   CLI::App app{
       "vgroove: traces light exactly through 2D V-grooves and checks the kaleidoscopic model of\n"
       "Lee et al. 2018 (\"Practical Multiple Scattering for Rough Surfaces\") against it.\n"
       "Angles in degrees, measured from the surface normal, counter-clockwise positive\n"
-      "(theta_i > 0: light from the upper left). Exit status: 0 ok, 1 a threshold exceeded, 2 bad input."};
+      "(theta_i > 0: light from the upper left). Exit status: 0 ok, 1 a threshold exceeded, 2 bad input\n"
+      "or output that could not be written, 3 internal error, 130 interrupted (Ctrl-C)."};
   app.set_version_flag("--version", std::string("vgroove ") + validation::version_string() + " (git " +
                                         validation::git_revision() + ")");
   app.require_subcommand(1);
@@ -52,14 +103,16 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
                                    "Trace a beam through one V-groove (symmetric or not) exactly; print the fraction "
                                    "of the beam and the exit angle per (facet hit first, bounce count k).");
   add_groove_options(trace, ta.groove);
-  trace->add_option("--theta-i-deg", ta.theta_i_deg, "incident angle theta_i in degrees, (-90, 90)")
+  add_real(trace, "--theta-i-deg", ta.theta_i_deg, "incident angle theta_i in degrees, " + theta_i_range_text())
       ->capture_default_str();
-  trace->add_option("--rays", ta.rays, "rays across the groove's opening, >= 1")->capture_default_str();
-  trace->add_option("--sampling", ta.sampling, "ray placement: stratified (midpoints of equal strata) or random")
+  add_integer(trace, "--rays", ta.rays, "rays across the groove's opening", 1, kMaxRays)->capture_default_str();
+  add_text(trace, "--sampling", ta.sampling, "ray placement: stratified (midpoints of equal strata) or random")
       ->capture_default_str();
-  trace->add_option("--seed", ta.seed, "seed of the random placement")->capture_default_str();
-  trace->add_option("--max-bounces", ta.max_bounces, "bounce limit; rays past it are counted, not dropped")
-      ->capture_default_str();
+  add_seed(trace, ta.seed, "seed of the random placement")->capture_default_str();
+  add_integer(trace, "--max-bounces", ta.max_bounces,
+              "bounce limit; rays past it are counted, not dropped (default: " + std::to_string(kDefaultMaxBounces) +
+                  ", raised to the groove's bound ceil(180 / theta_v) + 1 for apertures narrow enough to need it)",
+              1, kMaxBounces);
   trace->add_flag("--json", ta.json, "print JSON (the same shape as `analytic --json`)");
 
   AnalyticArgs aa;
@@ -67,10 +120,10 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
                                 "Evaluate the kaleidoscopic model (Eq. 4-6 symmetric, Eq. 7-9 nonsymmetric) for one "
                                 "V-groove; same output as trace.");
   add_groove_options(an, aa.groove);
-  an->add_option("--theta-i-deg", aa.theta_i_deg, "incident angle theta_i in degrees, (-90, 90)")
+  add_real(an, "--theta-i-deg", aa.theta_i_deg, "incident angle theta_i in degrees, " + theta_i_range_text())
       ->capture_default_str();
-  an->add_option("--eq6-form", aa.eq6_form,
-                 "symmetric grooves: corrected (see validation/ERRATA.md) or printed (as in the paper)")
+  add_text(an, "--eq6-form", aa.eq6_form,
+           "symmetric grooves: corrected (see docs/ERRATA.md) or printed (as in the paper)")
       ->capture_default_str();
   an->add_flag("--json", aa.json, "print JSON (the same shape as `trace --json`)");
 
@@ -78,14 +131,13 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   auto* val = app.add_subcommand("validate",
                                  "Run a suite (sim against analytic), print the table beside the paper's "
                                  "figures, write the report JSON; exit 1 if a threshold is exceeded.");
-  val->add_option("suite", va.suite, "suite spec, e.g. data/suites/table1_symmetric.json")->required();
-  val->add_option("--out", va.out, "report JSON to write (refuses to overwrite without --force)");
-  val->add_option("--rays", va.rays, "rays per lit facet (default: the suite's)");
-  val->add_option("--threads", va.threads, "worker threads (default 0: all cores); results do not depend on it")
-      ->capture_default_str();
-  val->add_option("--sampling", va.sampling, "override the suite's placement: stratified or random");
-  val->add_option("--seed", va.seed, "override the suite's seed");
-  val->add_option("--eq6-form", va.eq6_form, "override the suite's form of Eq. 6: corrected or printed");
+  add_text(val, "suite", va.suite, "suite spec, e.g. data/suites/table1_symmetric.json")->required();
+  add_text(val, "--out", va.out, "report JSON to write (refuses to overwrite without --force)");
+  add_integer(val, "--rays", va.rays, "rays per lit facet (default: the suite's)", 1, kMaxRays);
+  add_threads(val, va.threads);
+  add_text(val, "--sampling", va.sampling, "override the suite's placement: stratified or random");
+  add_seed(val, va.seed, "override the suite's seed");
+  add_text(val, "--eq6-form", va.eq6_form, "override the suite's form of Eq. 6: corrected or printed");
   val->add_flag("--force", va.force, "overwrite an existing report");
 
   auto* bench = app.add_subcommand("bench", "Benchmarks: what accuracy costs in time.");
@@ -94,22 +146,25 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   auto* acc = bench->add_subcommand("accuracy",
                                     "Run a suite at several ray counts and placements; report max/mean "
                                     "L1 against rays and wall time.");
-  acc->add_option("suite", ac.suite, "suite spec")->required();
-  add_list(acc, "--rays", ac.rays, "rays per lit facet, comma-separated");
-  add_list(acc, "--sampling", ac.samplings, "placements, comma-separated: stratified, random");
-  acc->add_option("--threads", ac.threads, "worker threads (0: all cores)")->capture_default_str();
-  acc->add_option("--out", ac.out, "report JSON to write");
+  add_text(acc, "suite", ac.suite, "suite spec")->required();
+  add_integer(acc, "--rays", ac.rays, "rays per lit facet, comma-separated", 1, kMaxRays)
+      ->delimiter(',')
+      ->capture_default_str();
+  add_text(acc, "--sampling", ac.samplings, "placements, comma-separated: stratified, random")
+      ->delimiter(',')
+      ->capture_default_str();
+  add_threads(acc, ac.threads);
+  add_text(acc, "--out", ac.out, "report JSON to write");
   acc->add_flag("--force", ac.force, "overwrite an existing report");
 
   ta.dry_run = aa.dry_run = va.dry_run = ac.dry_run = ctx.dry_run;
-  va.cancel = ac.cancel = ctx.cancel;
+  ta.cancel = va.cancel = ac.cancel = ctx.cancel;
   PlotArgs pa;
   auto* plot = app.add_subcommand("plot",
                                   "Draw a report as SVG (from the JSON alone, nothing recomputed): the "
                                   "accuracy-against-time report of `bench accuracy`.");
-  plot->add_option("report", pa.report, "report JSON, e.g. from `vgroove bench accuracy ... --out acc.json`")
-      ->required();
-  plot->add_option("--out", pa.out, "SVG to write (default: the report's name with .svg)");
+  add_text(plot, "report", pa.report, "report JSON, e.g. from `vgroove bench accuracy ... --out acc.json`")->required();
+  add_text(plot, "--out", pa.out, "SVG to write (default: the report's name with .svg)");
   plot->add_flag("--force", pa.force, "overwrite an existing file");
   pa.dry_run = ctx.dry_run;
   SimulateArgs sa;
@@ -117,10 +172,9 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
                                   "Run a scene (data/scenes/*.json): trace every theta_i with the effects it "
                                   "chooses (Fresnel, histograms, energy per k); print a table, write the "
                                   "result JSON.");
-  simu->add_option("scene", sa.scene, "scene spec, e.g. data/scenes/gold_groove.json")->required();
-  simu->add_option("--out", sa.out, "result JSON to write (refuses to overwrite without --force)");
-  simu->add_option("--threads", sa.threads, "worker threads (default 0: all cores); results do not depend on it")
-      ->capture_default_str();
+  add_text(simu, "scene", sa.scene, "scene spec, e.g. data/scenes/gold_groove.json")->required();
+  add_text(simu, "--out", sa.out, "result JSON to write (refuses to overwrite without --force)");
+  add_threads(simu, sa.threads);
   simu->add_flag("--force", sa.force, "overwrite an existing result");
   sa.dry_run = ctx.dry_run;
   sa.cancel = ctx.cancel;
@@ -134,7 +188,10 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // One line, like every other input error.
-    std::cerr << "vgroove: error: " << e.what() << " (see vgroove --help)\n";
+    print_error(std::string(e.what()) + " (see vgroove --help)");
+    return 2;
+  } catch (const support::UserError& e) {
+    print_error(e.what());
     return 2;
   }
   try {
@@ -145,13 +202,30 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
     if (*plot) return cmd_plot(pa);
     if (*simu) return cmd_simulate(sa);
   } catch (const support::UserError& e) {
-    std::cerr << "vgroove: error: " << e.what() << "\n";
+    print_error(e.what());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    print_error(
+        "out of memory: the run needs more memory than this process may use (fewer rays, cases, grooves, "
+        "bins or threads need less)");
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "vgroove: internal error: " << e.what() << "\n";
+    std::cerr << "vgroove: internal error: " << support::printable(e.what()) << "\n";
     return 3;
   }
   return 0;
+}
+
+}  // namespace
+
+int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
+  const int status = run_command(argc, argv, ctx);
+  // Output that did not reach its destination (a full disk, a closed stdout) is a failure.
+  if (const std::string failed = support::flush_standard_output(); !failed.empty()) {
+    print_error(failed);
+    return status == kExitInterrupted ? status : 2;
+  }
+  return status;
 }
 
 }  // namespace vgroove::app

@@ -25,12 +25,9 @@ int cmd_analytic(const AnalyticArgs& a) {
   // G is normalized by each facet's projected width f_a; the beam entering the opening is as wide
   // as the two facets' unshadowed parts together, f_a - f_b summed.
   ModelShares m[2];
-  double width = 0.0;
-  for (sim::Side side : {sim::Side::left, sim::Side::right}) {
+  for (sim::Side side : {sim::Side::left, sim::Side::right})
     m[static_cast<int>(side)] = model_shares(params, theta_i, side, form);
-    const ModelShares& p = m[static_cast<int>(side)];
-    if (p.lit) width += p.f_a * (1.0 - p.shadow);
-  }
+  const double width = entering_width(m);
   for (sim::Side side : {sim::Side::left, sim::Side::right}) {
     const ModelShares& p = m[static_cast<int>(side)];
     const char* name = sim::side_name(side);

@@ -1,11 +1,13 @@
 #include "vgroove/app/commands.h"
 #include "vgroove/common/angles.h"
+#include "vgroove/support/printable.h"
 
 #include <cstdio>
 #include <numbers>
 #include "vgroove/app/options.h"
 #include "vgroove/app/progress.h"
 #include "vgroove/support/atomic_file.h"
+#include "vgroove/support/memory.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/cost_curve.h"
 #include "vgroove/validation/report.h"
@@ -25,12 +27,18 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
   for (long r : a.rays) check_rays(r, "--rays");
   std::vector<sim::Sampling> samplings;
   for (const auto& s : a.samplings) samplings.push_back(parse_sampling(s, "--sampling"));
-  if (!a.out.empty()) support::check_writable_target(a.out, a.force);
+  for (long r : a.rays) {
+    CaseOptions o = suite.options;
+    o.rays = r;
+    support::check_memory(run_memory_bytes(suite, o, a.threads, false), a.suite + ": the run",
+                          std::to_string(suite.cases()) + " cases");
+  }
+  if (!a.out.empty()) support::check_writable_target(a.out, a.force, {a.suite});
   if (a.dry_run) return 0;
 
   nlohmann::json runs = nlohmann::json::array();
-  std::printf("accuracy against rays: suite %s (%zu cases), vgroove %s (git %s)\n", suite.name.c_str(), suite.cases(),
-              version_string(), git_revision());
+  std::printf("accuracy against rays: suite %s (%zu cases), vgroove %s (git %s)\n",
+              support::printable(suite.name).c_str(), suite.cases(), version_string(), git_revision());
   std::printf("  %-10s %10s %12s %12s %12s %10s %8s\n", "sampling", "rays/facet", "max L1", "mean L1", "rays", "wall s",
               "pass");
   int threads_used = 0;
@@ -98,7 +106,7 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
     j["soonest_to_thresholds"] = fastest;
     j["cost_vs_theta_v"] = {{"theta_i_deg", 30.0}, {"rays", 20000}, {"threads", 1}, {"points", cost_json}};
     support::write_file_atomically(a.out, j.dump(1) + "\n", a.force);
-    std::printf("report: %s\n", a.out.c_str());
+    std::printf("report: %s\n", support::printable(a.out).c_str());
   }
   return 0;
 }

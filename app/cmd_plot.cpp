@@ -1,4 +1,5 @@
 #include "vgroove/app/commands.h"
+#include "vgroove/support/printable.h"
 
 #include <cstdio>
 #include "vgroove/support/atomic_file.h"
@@ -22,11 +23,12 @@ int cmd_plot(const PlotArgs& a) {
     const std::string base =
         out.size() > 4 && out.compare(out.size() - 4, 4, ".svg") == 0 ? out.substr(0, out.size() - 4) : out;
     const auto svgs = brdf_grid_svgs(report, a.report);
-    for (const auto& [suffix, svg] : svgs) support::check_writable_target(base + "-" + suffix + ".svg", a.force);
+    for (const auto& [suffix, svg] : svgs)
+      support::check_writable_target(base + "-" + suffix + ".svg", a.force, {a.report});
     if (a.dry_run) return 0;
     for (const auto& [suffix, svg] : svgs) {
       support::write_file_atomically(base + "-" + suffix + ".svg", svg, a.force);
-      std::printf("plot: %s\n", (base + "-" + suffix + ".svg").c_str());
+      std::printf("plot: %s\n", support::printable(base + "-" + suffix + ".svg").c_str());
     }
     return 0;
   }
@@ -35,14 +37,14 @@ int cmd_plot(const PlotArgs& a) {
   const std::string cost_out =
       (out.size() > 4 && out.compare(out.size() - 4, 4, ".svg") == 0 ? out.substr(0, out.size() - 4) : out) +
       "-cost.svg";
-  support::check_writable_target(out, a.force);
-  if (!cost.empty()) support::check_writable_target(cost_out, a.force);
+  support::check_writable_target(out, a.force, {a.report});
+  if (!cost.empty()) support::check_writable_target(cost_out, a.force, {a.report});
   if (a.dry_run) return 0;
   support::write_file_atomically(out, svg, a.force);
-  std::printf("plot: %s\n", out.c_str());
+  std::printf("plot: %s\n", support::printable(out).c_str());
   if (!cost.empty()) {
     support::write_file_atomically(cost_out, cost, a.force);
-    std::printf("plot: %s\n", cost_out.c_str());
+    std::printf("plot: %s\n", support::printable(cost_out).c_str());
   }
   return 0;
 }

@@ -1,10 +1,12 @@
 #include "vgroove/app/commands.h"
+#include "vgroove/support/printable.h"
 
 #include <iostream>
 #include "vgroove/app/options.h"
 #include "vgroove/app/progress.h"
 #include "vgroove/support/atomic_file.h"
 #include "vgroove/support/json_reader.h"
+#include "vgroove/support/memory.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/brdf_suite.h"
 #include "vgroove/validation/report.h"
@@ -42,7 +44,9 @@ int validate_microsurface(const ValidateArgs& a, const nlohmann::json& j) {
   bool pass = false;
   if (kind == "table2") {
     const Table2Suite suite = with_seed(parse_table2_suite(j, a.suite));
-    if (!a.out.empty()) support::check_writable_target(a.out, a.force);
+    support::check_memory(table2_run_memory_bytes(suite, a.threads), a.suite + ": the run",
+                          std::to_string(suite.grooves) + " grooves per surface on each thread");
+    if (!a.out.empty()) support::check_writable_target(a.out, a.force, {a.suite});
     if (a.dry_run) return 0;
     const Table2Run run = run_table2_suite(suite, rays, a.threads, a.cancel);
     if (run.interrupted) return interrupted_no_report();
@@ -51,7 +55,10 @@ int validate_microsurface(const ValidateArgs& a, const nlohmann::json& j) {
     pass = run.pass;
   } else {
     const BrdfSuite suite = with_seed(parse_brdf_suite(j, a.suite));
-    if (!a.out.empty()) support::check_writable_target(a.out, a.force);
+    support::check_memory(brdf_run_memory_bytes(suite, a.threads, !a.out.empty()), a.suite + ": the run",
+                          std::to_string(suite.cases()) + " cases, " + std::to_string(suite.grooves) +
+                              " grooves per surface on each thread");
+    if (!a.out.empty()) support::check_writable_target(a.out, a.force, {a.suite});
     if (a.dry_run) return 0;
     const BrdfRun run = run_brdf_suite(suite, rays, a.threads, terminal_progress("validate " + suite.name), a.cancel);
     if (run.interrupted) return interrupted_no_report();
@@ -61,7 +68,7 @@ int validate_microsurface(const ValidateArgs& a, const nlohmann::json& j) {
   }
   if (!a.out.empty()) {
     support::write_file_atomically(a.out, report, a.force);
-    std::cout << "report: " << a.out << "\n";
+    std::cout << "report: " << support::printable(a.out) << "\n";
   }
   return pass ? 0 : 1;
 }
@@ -69,13 +76,24 @@ int validate_microsurface(const ValidateArgs& a, const nlohmann::json& j) {
 
 int cmd_validate(const ValidateArgs& a) {
   check_threads(a.threads);
-  if (const nlohmann::json j = support::read_json_file(a.suite); is_microsurface_suite(j))
-    return validate_microsurface(a, j);
-  const SuiteSet set = load_suite_set(a.suite);
+  // Read once: the suite may come from a pipe.
+  const nlohmann::json j = support::read_json_file(a.suite);
+  if (is_microsurface_suite(j)) return validate_microsurface(a, j);
+  const SuiteSet set = parse_suite_set(j, a.suite);
   std::vector<CaseOptions> opts;
   for (const Suite& suite : set.suites)
     opts.push_back(options_with_overrides(suite, a.rays, a.sampling, a.eq6_form, a.seed));
-  if (!a.out.empty()) support::check_writable_target(a.out, a.force);  // fail before the work, not after
+  double memory = 0.0;
+  std::size_t cases = 0;
+  for (std::size_t n = 0; n < set.suites.size(); ++n) {
+    memory += run_memory_bytes(set.suites[n], opts[n], a.threads, !a.out.empty());
+    cases += set.suites[n].cases();
+  }
+  support::check_memory(memory, a.suite + ": the run",
+                        std::to_string(cases) + " cases" + (a.out.empty() ? "" : ", with the report"));
+  std::vector<std::string> inputs{a.suite};
+  for (const Suite& suite : set.suites) inputs.push_back(suite.file);
+  if (!a.out.empty()) support::check_writable_target(a.out, a.force, inputs);  // fail before the work, not after
   if (a.dry_run) return 0;
   std::vector<SuiteRun> runs;
   bool pass = true;
@@ -88,7 +106,7 @@ int cmd_validate(const ValidateArgs& a) {
   print_set_table(std::cout, set, runs);
   if (!a.out.empty()) {
     support::write_file_atomically(a.out, report_json(set, runs).dump(1) + "\n", a.force);
-    std::cout << "report: " << a.out << "\n";
+    std::cout << "report: " << support::printable(a.out) << "\n";
   }
   return pass ? 0 : 1;
 }

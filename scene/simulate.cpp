@@ -1,4 +1,5 @@
 #include "vgroove/scene/simulate.h"
+#include "vgroove/support/printable.h"
 
 #include "vgroove/analytic/kaleidoscope_fresnel.h"
 #include "vgroove/optics/fresnel.h"
@@ -50,6 +51,7 @@ struct Setup {
   const Scene* scene = nullptr;
   std::vector<sim::Groove> grooves;
   int channels = 0;
+  const std::atomic<bool>* cancel = nullptr;  // read before each ray: a chunk of narrow-groove rays is long
 };
 
 template <class Observer>
@@ -94,6 +96,7 @@ ThetaTally run_chunk(const Setup& s, double theta_i, std::int64_t chunk) {
   sim::for_each_landing(
       s.grooves, theta_i, scene.light.sampling, scene.light.rays, scene.light.seed, chunk,
       [&](const sim::Groove& groove, const sim::Ray2& ray) {
+        if (support::cancelled(s.cancel)) return;  // the rest of the chunk is skipped; the run reports it
         if constexpr (kEnergy) obs.reset();
         const sim::TraceResult r = sim::trace(groove, ray, opt, obs);
         if (!t.count(r.how, r.bounces, r.exit_dir.y() > 0.0)) return;
@@ -192,12 +195,9 @@ ModelFigures model_figures(const Scene& s, double theta_i) {
   // G is normalized by each facet's projected width f_a; the beam entering the opening is as wide
   // as the lit facets' unshadowed parts together (as in `vgroove analytic`).
   ModelShares shares[2];
-  double width = 0.0;
-  for (sim::Side side : {sim::Side::left, sim::Side::right}) {
-    ModelShares& sh = shares[static_cast<int>(side)];
-    sh = model_shares(p, theta_i, side, analytic::Eq6Form::corrected);
-    if (sh.lit) width += sh.f_a * (1.0 - sh.shadow);
-  }
+  for (sim::Side side : {sim::Side::left, sim::Side::right})
+    shares[static_cast<int>(side)] = model_shares(p, theta_i, side, analytic::Eq6Form::corrected);
+  const double width = entering_width(shares);
   for (sim::Side side : {sim::Side::left, sim::Side::right}) {
     const ModelShares& sh = shares[static_cast<int>(side)];
     if (!sh.lit) continue;
@@ -220,6 +220,19 @@ ModelFigures model_figures(const Scene& s, double theta_i) {
   return m;
 }
 
+double simulate_memory_bytes(const Scene& scene, int threads, bool result) {
+  constexpr double kNumberBytes = 64;  // a count in the result JSON: its node, vector slot and text
+  const double C = static_cast<double>(scene.channels.size());
+  const double rows = kMaxKRow + 2.0;
+  const double cells = scene.record.theta_o_bins * (1.0 + scene.record.histogram_max_k + 2.0);
+  const double tally = 8.0 * (C + rows + (scene.record.energy_per_k ? rows * C : 0.0) + cells);
+  const double T = static_cast<double>(scene.light.theta_i.size());
+  const double wave = std::max(8.0, 4.0 * support::resolve_threads(threads));
+  const double grooves = scene.geometry.kind == GeometryKind::groove ? 1.0 : 2.0 * scene.geometry.grooves;
+  const double json = result ? T * kNumberBytes * (cells + rows * (1.0 + C)) : 0.0;
+  return (T + wave) * tally + grooves * (sizeof(sim::Groove) + 8.0) + json;
+}
+
 SimulationResult simulate(const Scene& scene, int threads, const std::atomic<bool>* cancel) {
   const auto start = std::chrono::steady_clock::now();
   SimulationResult r;
@@ -228,6 +241,7 @@ SimulationResult simulate(const Scene& scene, int threads, const std::atomic<boo
   Setup s;
   s.scene = &scene;
   s.channels = static_cast<int>(scene.channels.size());
+  s.cancel = cancel;
   if (scene.geometry.kind == GeometryKind::groove) {
     s.grooves.push_back(make_groove(scene.geometry.groove));
   } else {
@@ -255,7 +269,7 @@ SimulationResult simulate(const Scene& scene, int threads, const std::atomic<boo
           slots[i] = fn(s, r.theta_i[item / chunks], static_cast<std::int64_t>(item % chunks));
         },
         {}, cancel, 1);
-    if (!complete) {
+    if (!complete || support::cancelled(cancel)) {
       r.interrupted = true;
       break;
     }
@@ -387,7 +401,7 @@ void print_result_table(std::ostream& os, const Scene& scene, const SimulationRe
   std::string fresnel = fresnel_kind_name(scene.fresnel);
   if (!scene.channels.empty()) fresnel += " over " + std::to_string(scene.channels.size()) + " channel(s)";
   std::snprintf(buf, sizeof buf, "simulate %s: %s; fresnel %s; %lld rays per theta_i (%s, seed %llu)\n",
-                scene.name.c_str(), geometry_text(scene).c_str(), fresnel.c_str(),
+                support::printable(scene.name).c_str(), geometry_text(scene).c_str(), fresnel.c_str(),
                 static_cast<long long>(scene.light.rays), sim::sampling_name(scene.light.sampling),
                 static_cast<unsigned long long>(scene.light.seed));
   os << buf;
@@ -395,10 +409,10 @@ void print_result_table(std::ostream& os, const Scene& scene, const SimulationRe
   os << "  theta_i       rays   escaped   mean k";
   if (model) os << "  model k";
   for (const FresnelChannel& c : scene.channels) {
-    std::snprintf(buf, sizeof buf, " %10s", ("E " + c.name).substr(0, 10).c_str());
+    std::snprintf(buf, sizeof buf, " %10s", ("E " + support::printable(c.name)).substr(0, 10).c_str());
     os << buf;
     if (model) {
-      std::snprintf(buf, sizeof buf, " %10s", ("model " + c.name).substr(0, 10).c_str());
+      std::snprintf(buf, sizeof buf, " %10s", ("model " + support::printable(c.name)).substr(0, 10).c_str());
       os << buf;
     }
   }

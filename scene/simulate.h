@@ -81,6 +81,10 @@ struct SimulationResult {
   std::int64_t rays = 0, bounces = 0;
 };
 
+// An upper bound of the memory simulate needs (support/memory.h): the grooves, a tally per theta_i
+// and per work item of a wave (counts per k, energies, histograms), and with `result` its JSON.
+double simulate_memory_bytes(const Scene& scene, int threads, bool result);
+
 // Runs every theta_i of the scene on `threads` threads (0: all cores).
 SimulationResult simulate(const Scene& scene, int threads, const std::atomic<bool>* cancel = nullptr);
 

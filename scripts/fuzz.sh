@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fuzzes the suite JSON loader and the command-line parser with libFuzzer (clang, with ASan and
+# Fuzzes the suite and scene JSON loaders and the command-line parser with libFuzzer (clang, with ASan and
 # UBSan) for SECONDS each (default 60). New interesting inputs are kept in tests/fuzz/corpus/TARGET;
 # a finding (crash, hang, sanitizer report, uncaught exception) stops with a non-zero exit and
 # leaves the input as crash-*/timeout-* in the build-fuzz directory.
@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 secs=${1:-60}
 shift || true
 targets=("$@")
-((${#targets[@]})) || targets=(suite_loader_fuzz cli_fuzz)
+((${#targets[@]})) || targets=(suite_loader_fuzz scene_loader_fuzz cli_fuzz)
 
 scripts/install-deps.sh clang libclang-rt-14-dev
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
@@ -20,6 +20,7 @@ for t in "${targets[@]}"; do
   mkdir -p "$corpus"
   seeds=()
   [[ $t == suite_loader_fuzz ]] && seeds=(data/suites)
+  [[ $t == scene_loader_fuzz ]] && seeds=(data/scenes)
   echo "fuzz: $t for $secs s (corpus $corpus)" >&2
   (cd build-fuzz && ./"$t" -max_total_time="$secs" -timeout=10 -rss_limit_mb=4096 -close_fd_mask=3 \
       -print_final_stats=1 "../$corpus" "${seeds[@]/#/../}")

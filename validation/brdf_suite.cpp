@@ -1,11 +1,12 @@
 #include "vgroove/validation/brdf_suite.h"
+#include "vgroove/support/printable.h"
 
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/analytic/brdf_flatland.h"
 #include "vgroove/analytic/lobe_3d.h"
+#include "vgroove/common/angles.h"
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/microsurface3d.h"
-#include "vgroove/common/angles.h"
 #include "vgroove/support/json_reader.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
@@ -80,7 +81,7 @@ void take_counts(BrdfOutcome& out, const Tally& t, const BrdfSuite& suite) {
       static_cast<double>(t.escaped + (suite.kind == "furnace" ? t.bounce_limit : 0)) / static_cast<double>(t.rays);
 }
 
-BrdfOutcome run_flatland(const BrdfSuite& suite, const BrdfCase& c, long rays) {
+BrdfOutcome run_flatland(const BrdfSuite& suite, const BrdfCase& c, long rays, support::CancelFlag cancel) {
   BrdfOutcome out;
   out.c = c;
   const int bins = suite.flatland_bins;
@@ -94,7 +95,11 @@ BrdfOutcome run_flatland(const BrdfSuite& suite, const BrdfCase& c, long rays) {
   to.seed = suite.seed;
   to.theta_o_bins = bins;
   to.max_k = suite.max_k;
-  const sim::MicrosurfaceTally t = sim::trace_microsurface(surface, to);
+  sim::MicrosurfaceTally t(to.theta_o_bins, to.max_k);  // sim::trace_microsurface, cancellable
+  for (std::int64_t ch = 0; ch < sim::chunk_count(to); ++ch) {
+    if (support::cancelled(cancel)) return out;
+    t.merge(sim::trace_microsurface_chunk(surface, to, ch));
+  }
   out.sim_wall_s = seconds_since(t0);
   take_counts(out, t, suite);
 
@@ -128,7 +133,7 @@ BrdfOutcome run_flatland(const BrdfSuite& suite, const BrdfCase& c, long rays) {
   return out;
 }
 
-BrdfOutcome run_3d(const BrdfSuite& suite, const BrdfCase& c, long rays) {
+BrdfOutcome run_3d(const BrdfSuite& suite, const BrdfCase& c, long rays, support::CancelFlag cancel) {
   BrdfOutcome out;
   out.c = c;
   const int tb = suite.theta_bins, pb = suite.phi_bins, bins = tb * pb;
@@ -142,13 +147,20 @@ BrdfOutcome run_3d(const BrdfSuite& suite, const BrdfCase& c, long rays) {
   to.theta_bins = tb;
   to.phi_bins = pb;
   to.max_k = suite.max_k;
-  const sim::Microsurface3dTally t = sim::trace_microsurface3d(surface, to);
+  sim::Microsurface3dTally t(to.theta_bins, to.phi_bins, to.max_k);  // sim::trace_microsurface3d, cancellable
+  for (std::int64_t ch = 0; ch < sim::chunk_count(to); ++ch) {
+    if (support::cancelled(cancel)) return out;
+    t.merge(sim::trace_microsurface3d_chunk(surface, to, ch));
+  }
   out.sim_wall_s = seconds_since(t0);
   take_counts(out, t, suite);
 
   const auto t1 = Clock::now();
-  const analytic::Lobe3d lobe = analytic::vgroove_lobe_3d(c.ndf, c.alpha, c.theta_i, tb, pb, suite.max_k);
-  const analytic::Lobe3d single = analytic::cook_torrance_lobe_3d(c.ndf, c.alpha, c.theta_i, tb, pb);
+  analytic::Lobe3dOptions lo;
+  lo.cancel = cancel;
+  const analytic::Lobe3d lobe = analytic::vgroove_lobe_3d(c.ndf, c.alpha, c.theta_i, tb, pb, suite.max_k, lo);
+  const analytic::Lobe3d single = analytic::cook_torrance_lobe_3d(c.ndf, c.alpha, c.theta_i, tb, pb, lo);
+  if (support::cancelled(cancel)) return out;
   out.model_wall_s = seconds_since(t1);
   out.albedo_model = lobe.albedo;
   out.albedo_single = single.albedo;
@@ -225,20 +237,33 @@ BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
   s.description = root.string_or("description", "");
   s.kind = root.one_of("kind", {"brdf", "furnace"});
   s.ndfs = read_ndfs(root);
-  s.alphas = read_numbers(root, "alpha", 0.0, false, kMaxAlpha, true);
-  for (double d : read_numbers(root, "theta_i_deg", 0.0, true, 90.0, false)) s.theta_i.push_back(d * kRadPerDeg);
+  s.alphas = read_numbers(root, "alpha", kMinAlpha, true, kMaxAlpha, true);
+  for (double d : read_numbers(root, "theta_i_deg", 0.0, true, kMaxSurfaceThetaIDeg, true))
+    s.theta_i.push_back(d * kRadPerDeg);
   for (const auto& d : read_names(root, "dimensions", {"flatland", "3d"}))
     s.dims.push_back(d == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d);
   s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
-  s.grooves = static_cast<int>(root.integer("grooves", 1, 10'000'000));
-  s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
+  s.grooves = static_cast<int>(root.integer("grooves", 1, kMaxGrooves));
+  s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, kMaxSeed));
   s.flatland_bins = static_cast<int>(root.integer_or("flatland_bins", s.flatland_bins, 1, 100000));
   s.theta_bins = static_cast<int>(root.integer_or("theta_bins", s.theta_bins, 1, 10000));
   s.phi_bins = static_cast<int>(root.integer_or("phi_bins", s.phi_bins, 2, 10000));
   if (s.phi_bins % 2 != 0)
     root.fail("phi_bins",
               "= " + std::to_string(s.phi_bins) + " must be even (the plane of incidence runs through two bins)");
-  s.max_k = static_cast<int>(root.integer_or("max_k", s.max_k, 1, 10000));
+  s.max_k = static_cast<int>(root.integer_or("max_k", s.max_k, 0, kMaxHistogramK));
+  // Each worker holds a few arrays of the joint (k, bin) cells (tallies, lobes): bound them, as
+  // scenes do.
+  for (SurfaceDim d : s.dims) {
+    const bool flat = d == SurfaceDim::flatland;
+    const long long cells =
+        (flat ? static_cast<long long>(s.flatland_bins) : static_cast<long long>(s.theta_bins) * s.phi_bins) *
+        (s.max_k + 2);
+    if (cells > kMaxHistogramCells)
+      throw support::UserError(file + ": " + (flat ? "flatland_bins" : "theta_bins x phi_bins") +
+                               " x (max_k + 2) = " + std::to_string(cells) + " histogram cells, out of range [1, " +
+                               std::to_string(kMaxHistogramCells) + "]");
+  }
   {
     support::JsonObject t = root.object("thresholds");
     s.sigmas = t.number("sigmas", 0.0, false, 100.0, true);
@@ -252,8 +277,29 @@ BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
   return s;
 }
 
-BrdfOutcome run_brdf_case(const BrdfSuite& suite, const BrdfCase& c, long rays) {
-  return c.dim == SurfaceDim::flatland ? run_flatland(suite, c, rays) : run_3d(suite, c, rays);
+double brdf_run_memory_bytes(const BrdfSuite& suite, int threads, bool report) {
+  constexpr double kNumberBytes = 64;  // a double in the report: its JSON node, vector slot and text
+  const double rows = suite.max_k + 2.0;
+  double cells = 0.0, groove = 0.0, plane = 0.0;
+  for (SurfaceDim d : suite.dims) {
+    const bool flat = d == SurfaceDim::flatland;
+    cells =
+        std::max(cells, rows * (flat ? suite.flatland_bins : static_cast<double>(suite.theta_bins) * suite.phi_bins));
+    groove = std::max(groove, sizeof(sim::Groove) + (flat ? 8.0 : 8.0 + 8.0 + sizeof(sim::GrooveFrame3d)));
+    plane = std::max(plane, (flat ? suite.flatland_bins : 2.0 * suite.theta_bins) * (3.0 + 2.0 * kPlotK));
+  }
+  const double cases = static_cast<double>(suite.cases());
+  const double workers = std::min<double>(support::resolve_threads(threads), cases);
+  // Per worker: the surface; two tallies (a chunk's and the sum); the lobes (multiple scattering
+  // and Cook-Torrance) and the comparison's copies: about ten arrays of the joint (k, bin) cells.
+  const double per_worker = suite.grooves * groove + 10.0 * cells * 8.0;
+  const double per_case =
+      sizeof(BrdfOutcome) + (2.0 * rows + plane) * 8.0 + (report ? (2.0 * rows + plane) * kNumberBytes : 0.0);
+  return workers * per_worker + cases * per_case;
+}
+
+BrdfOutcome run_brdf_case(const BrdfSuite& suite, const BrdfCase& c, long rays, support::CancelFlag cancel) {
+  return c.dim == SurfaceDim::flatland ? run_flatland(suite, c, rays, cancel) : run_3d(suite, c, rays, cancel);
 }
 
 BrdfRun run_brdf_suite(const BrdfSuite& suite, long rays, int threads, const support::ProgressFn& progress,
@@ -266,11 +312,13 @@ BrdfRun run_brdf_suite(const BrdfSuite& suite, long rays, int threads, const sup
   // One case per work item: each case's rays run in order on one thread, so the results do not
   // depend on the thread count.
   const bool complete = support::parallel_for(
-      suite.cases(), run.threads, [&](std::size_t c) { run.cases[c] = run_brdf_case(suite, suite.case_at(c), n_rays); },
-      progress, cancel, 1);
+      suite.cases(), run.threads,
+      [&](std::size_t c) { run.cases[c] = run_brdf_case(suite, suite.case_at(c), n_rays, cancel); }, progress, cancel,
+      1);
   run.wall_s = seconds_since(t0);
-  run.interrupted = !complete;
-  run.pass = complete && std::all_of(run.cases.begin(), run.cases.end(), [](const BrdfOutcome& o) { return o.pass; });
+  run.interrupted = !complete || support::cancelled(cancel);
+  run.pass =
+      !run.interrupted && std::all_of(run.cases.begin(), run.cases.end(), [](const BrdfOutcome& o) { return o.pass; });
   return run;
 }
 
@@ -353,8 +401,8 @@ nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run) {
 void print_brdf_table(std::ostream& os, const BrdfSuite& suite, const BrdfRun& run) {
   char line[400];
   std::snprintf(line, sizeof line, "%s (%s): %zu cases, %ld rays x %d grooves each, vgroove %s (git %s), %d threads\n",
-                suite.name.c_str(), suite.kind.c_str(), run.cases.size(), suite.rays, suite.grooves, version_string(),
-                git_revision(), run.threads);
+                support::printable(suite.name).c_str(), suite.kind.c_str(), run.cases.size(), suite.rays, suite.grooves,
+                version_string(), git_revision(), run.threads);
   os << line;
   if (suite.kind == "furnace") {
     std::snprintf(line, sizeof line, "  %-8s %-8s %5s %7s %12s %12s %12s %10s %5s\n", "dim", "ndf", "alpha", "theta_i",

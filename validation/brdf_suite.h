@@ -100,10 +100,14 @@ struct BrdfRun {
 };
 
 BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file);
+// An upper bound of the memory run_brdf_suite needs (support/memory.h): per worker a surface of
+// `grooves` grooves, its tallies and lobes; per case its outcome, and with `report` its JSON.
+double brdf_run_memory_bytes(const BrdfSuite& suite, int threads, bool report);
 // rays > 0 overrides the suite's.
 BrdfRun run_brdf_suite(const BrdfSuite& suite, long rays, int threads, const support::ProgressFn& progress = {},
                        const std::atomic<bool>* cancel = nullptr);
-BrdfOutcome run_brdf_case(const BrdfSuite& suite, const BrdfCase& c, long rays);
+// `cancel` (may be null) is read between chunks of rays; once set the outcome is incomplete.
+BrdfOutcome run_brdf_case(const BrdfSuite& suite, const BrdfCase& c, long rays, support::CancelFlag cancel = nullptr);
 nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run);
 void print_brdf_table(std::ostream& os, const BrdfSuite& suite, const BrdfRun& run);
 

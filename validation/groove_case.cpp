@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <vector>
 
 namespace vgroove::validation {
 
@@ -12,6 +14,8 @@ namespace {
 // A facet whose projected width is below this fraction of its length receives a beam too thin
 // to place rays in (positions round at 1e-16): it is treated as not lit, by model and tracer alike.
 constexpr double kMinProjectedWidth = 1e-12;
+// Reflections traced between two reads of the cancellation flag, at most (a few milliseconds).
+constexpr double kBouncesPerPoll = 4e6;
 
 }  // namespace
 
@@ -34,6 +38,17 @@ ModelShares model_shares(const GrooveParams& p, double theta_i, sim::Side side, 
   return m;
 }
 
+double entering_width(const ModelShares (&shares)[2]) {
+  double width = 0.0;
+  for (const ModelShares& m : shares) {
+    if (!m.lit) continue;
+    double entering = 0.0;
+    for (int z = 0; z < m.shares; ++z) entering += m.share[z].G;
+    width += m.f_a * entering;
+  }
+  return width;
+}
+
 double model_exit_angle(const GrooveParams& p, double theta_i, int n, sim::Side side) {
   return p.symmetric ? analytic::exit_angle(theta_i, p.theta_v, n, side)
                      : analytic::exit_angle_nonsymmetric(theta_i, p.theta_l, p.theta_r, n, side);
@@ -42,7 +57,7 @@ double model_exit_angle(const GrooveParams& p, double theta_i, int n, sim::Side 
 namespace {
 
 FacetOutcome run_facet(const GrooveParams& params, const sim::Groove& g, double theta_i, sim::Side side,
-                       const CaseOptions& opt, std::uint64_t stream) {
+                       const CaseOptions& opt, std::uint64_t stream, const std::atomic<bool>* cancel) {
   FacetOutcome out;
   const ModelShares pred = model_shares(params, theta_i, side, opt.form);
   // The model's f_a is in units of the longer facet, the tracer's too (unit facets or the longer
@@ -59,27 +74,39 @@ FacetOutcome run_facet(const GrooveParams& params, const sim::Groove& g, double 
   // traces each ray exactly as sim::trace does (bit for bit), a block of rays at a time.
   const sim::BeamTracer beam(g, dir, topt);
   sim::Tally tally;
-  sim::trace_beam(beam, opt.sampling, aim, opt.rays, rng, [&](long, const sim::TraceResult& r) { tally.add(r); });
+  // Blocks of rays small enough that the cancellation flag is read every few million reflections
+  // (a ray in a groove of aperture theta_v makes at most ceil(pi / theta_v) of them).
+  const double per_ray = std::ceil(std::numbers::pi / g.theta_v) + 1.0;
+  const int block = static_cast<int>(std::clamp(kBouncesPerPoll / per_ray, 1.0, double{sim::BeamTracer::kBlock}));
+  sim::trace_beam(
+      beam, opt.sampling, aim, opt.rays, rng, [&](long, const sim::TraceResult& r) { tally.add(r); }, cancel, block);
 
   const double n = static_cast<double>(opt.rays);
   out.rays = tally.rays;
   out.bounces = tally.bounces;
   out.vertex_hits = tally.vertex_hits;
   out.bounce_limit = tally.bounce_limit;
-  for (const auto& b : tally.bins[1 - static_cast<int>(side)]) out.wrong_first += b.count;
+  for (const auto& e : tally.bins[1 - static_cast<int>(side)]) out.wrong_first += e.bin.count;
 
-  // L1 over every bin either side has.
+  // L1 over every bin either side has, in ascending k (the bins with rays and the model's shares;
+  // every other k adds |0 - 0|).
   double l1 = std::abs(static_cast<double>(tally.blocked) / n - pred.shadow);
   l1 += static_cast<double>(tally.vertex_hits + tally.bounce_limit + out.wrong_first) / n;
-  const auto& bins = tally.bins[static_cast<int>(side)];
+  const sim::BounceBins& bins = tally.bins[static_cast<int>(side)];
+  std::vector<int> ks;
+  for (const auto& e : bins) ks.push_back(e.k);
   // Shares of the model outside the traced bins (a count below 0 or past the last bin) count too.
-  int kmax = static_cast<int>(bins.size()) - 1;
   for (int z = 0; z < pred.shares; ++z) {
-    kmax = std::max(kmax, pred.share[z].n);
-    if (pred.share[z].n < 0) l1 += std::abs(pred.share[z].G);
+    if (pred.share[z].n < 0)
+      l1 += std::abs(pred.share[z].G);
+    else
+      ks.push_back(pred.share[z].n);
   }
-  for (int k = 0; k <= kmax; ++k) {
-    const double traced = k < static_cast<int>(bins.size()) ? static_cast<double>(bins[k].count) / n : 0.0;
+  std::sort(ks.begin(), ks.end());
+  ks.erase(std::unique(ks.begin(), ks.end()), ks.end());
+  for (int k : ks) {
+    const sim::BounceBin& b = bins[k];
+    const double traced = static_cast<double>(b.count) / n;
     double model = 0.0;
     for (int z = 0; z < pred.shares; ++z)
       if (pred.share[z].n == k) model += pred.share[z].G;
@@ -87,15 +114,15 @@ FacetOutcome run_facet(const GrooveParams& params, const sim::Groove& g, double 
     if (traced > 0.0) {
       // Eq. (5) and (8) hold for any bounce count, so every traced bin is checked, predicted or not.
       const double theta_o = model_exit_angle(params, theta_i, k, side);
-      const double err = std::abs(sim::angle_between(sim::direction_at(theta_o), bins[k].exit_dir)) + bins[k].spread();
+      const double err = std::abs(sim::angle_between(sim::direction_at(theta_o), b.exit_dir)) + b.spread();
       out.theta_o_error = std::max(out.theta_o_error, err);
     }
   }
   out.l1 = l1;
   out.non_finite = !std::isfinite(out.l1) || !std::isfinite(out.theta_o_error);
   for (const auto& side_bins : tally.bins)
-    for (const sim::BounceBin& b : side_bins)
-      if (b.count > 0 && !b.exit_dir.allFinite()) out.non_finite = true;
+    for (const auto& e : side_bins)
+      if (e.bin.count > 0 && !e.bin.exit_dir.allFinite()) out.non_finite = true;
 
   if (opt.probe_vertices) {
     // The line through the apex, the facet's own rim, and both rims of the opening.
@@ -125,7 +152,8 @@ FacetOutcome run_facet(const GrooveParams& params, const sim::Groove& g, double 
 
 }  // namespace
 
-CaseOutcome run_case(const GrooveParams& groove, double theta_i, const CaseOptions& opt, std::uint64_t stream) {
+CaseOutcome run_case(const GrooveParams& groove, double theta_i, const CaseOptions& opt, std::uint64_t stream,
+                     const std::atomic<bool>* cancel) {
   CaseOutcome c;
   c.groove = groove;
   c.theta_i = theta_i;
@@ -133,7 +161,7 @@ CaseOutcome run_case(const GrooveParams& groove, double theta_i, const CaseOptio
   const sim::Groove g = make_groove(groove);
   for (sim::Side s : {sim::Side::left, sim::Side::right}) {
     FacetOutcome& f = c.facet[static_cast<int>(s)];
-    f = run_facet(groove, g, theta_i, s, opt, stream);
+    f = run_facet(groove, g, theta_i, s, opt, stream, cancel);
     if (!f.compared) continue;
     c.l1 = std::max(c.l1, f.l1);
     c.rays += f.rays;

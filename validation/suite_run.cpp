@@ -1,8 +1,28 @@
 #include "vgroove/validation/suite_run.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <numbers>
 
 namespace vgroove::validation {
+
+double run_memory_bytes(const Suite& suite, const CaseOptions& options, int threads, bool report) {
+  constexpr double kReportBytesPerCase = 4096;  // measured: 2.5 kB (Table 1's nonsymmetric report)
+  constexpr double kTableEntryBytes = 64;       // a BeamTracer reflection, rounded up
+  const double cases = static_cast<double>(suite.cases());
+  const double workers = std::min(static_cast<double>(support::resolve_threads(threads)), std::ceil(cases / 16.0));
+  // A BeamTracer tabulates the reflections a ray can make, at most ceil(pi / theta_v) + 1.
+  double narrowest = std::numbers::pi;
+  for (std::size_t c = 0; c < suite.grooves.size() + suite.listed.size(); ++c) {
+    const GrooveParams& g = c < suite.grooves.size() ? suite.grooves[c] : suite.listed[c - suite.grooves.size()].groove;
+    if (!g.degenerate()) narrowest = std::min(narrowest, g.theta_v);
+  }
+  const double entries = std::min({std::ceil(std::numbers::pi / narrowest) + 1.0, double{sim::BeamTracer::kMaxTable},
+                                   static_cast<double>(options.max_bounces)});
+  const double tables = 2.0 * entries * kTableEntryBytes;
+  return cases * (sizeof(CaseOutcome) + (report ? kReportBytesPerCase : 0.0)) + workers * tables;
+}
 
 SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads, const support::ProgressFn& progress,
                    const std::atomic<bool>* cancel) {
@@ -12,12 +32,13 @@ SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads, 
   run.cases.resize(suite.cases());
   const auto t0 = std::chrono::steady_clock::now();
   run.interrupted = !support::parallel_for(
-      run.cases.size(), run.threads,
-      [&](std::size_t c) {
-        const SuiteCase sc = suite.case_at(c);
-        run.cases[c] = run_case(sc.groove, sc.theta_i, options, c);
-      },
-      progress, cancel);
+                        run.cases.size(), run.threads,
+                        [&](std::size_t c) {
+                          const SuiteCase sc = suite.case_at(c);
+                          run.cases[c] = run_case(sc.groove, sc.theta_i, options, c, cancel);
+                        },
+                        progress, cancel) ||
+                    support::cancelled(cancel);
   Summary& s = run.summary;
   s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 

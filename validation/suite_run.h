@@ -39,6 +39,10 @@ struct SuiteRun {
   bool interrupted = false;  // cancelled before every case ran: the summary is not meaningful
 };
 
+// An upper bound of the memory run_suite needs (support/memory.h): every case's outcome, each
+// worker's tables, and with `report` the report's JSON (document and text, ~4 kB per case).
+double run_memory_bytes(const Suite& suite, const CaseOptions& options, int threads, bool report);
+
 // `cancel` (may be null) is polled between chunks of cases: set it from a signal handler to stop.
 SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads,
                    const support::ProgressFn& progress = {}, const std::atomic<bool>* cancel = nullptr);

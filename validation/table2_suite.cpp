@@ -1,10 +1,11 @@
 #include "vgroove/validation/table2_suite.h"
+#include "vgroove/support/printable.h"
 
 #include "vgroove/analytic/bounce_percentiles.h"
-#include "vgroove/sim/microsurface3d.h"
-#include "vgroove/support/parallel.h"
 #include "vgroove/common/angles.h"
+#include "vgroove/sim/microsurface3d.h"
 #include "vgroove/support/json_reader.h"
+#include "vgroove/support/parallel.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
 
@@ -59,11 +60,11 @@ Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file)
   s.description = root.string_or("description", "");
   root.one_of("kind", {"table2"});
   s.ndfs = read_ndfs(root);
-  s.alphas = read_numbers(root, "alpha", 0.0, false, kMaxAlpha, true);
+  s.alphas = read_numbers(root, "alpha", kMinAlpha, true, kMaxAlpha, true);
   for (double p : read_numbers(root, "percentiles", 0.0, false, 100.0, false)) s.percentiles.push_back(p / 100.0);
   s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
-  s.grooves = static_cast<int>(root.integer("grooves", 1, 10'000'000));
-  s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
+  s.grooves = static_cast<int>(root.integer("grooves", 1, kMaxGrooves));
+  s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, kMaxSeed));
   support::JsonObject paper = root.object("paper");
   s.source = paper.string("source");
   const nlohmann::json& rows = paper.raw("max_bounces");
@@ -78,13 +79,22 @@ Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file)
     for (std::size_t n = 0; n < per_row; ++n) {
       if (!rows[r][n].is_number_integer() || rows[r][n].get<long long>() < 1 || rows[r][n].get<long long>() > 1000000)
         throw support::UserError(file + ": " + paper.path("max_bounces") + "/" + std::to_string(r) + "/" +
-                                 std::to_string(n) + " = " + rows[r][n].dump() + " must be an integer in [1, 1000000]");
+                                 std::to_string(n) + " = " + support::value_text(rows[r][n]) +
+                                 " must be an integer in [1, 1000000]");
       s.paper.push_back(rows[r][n].get<int>());
     }
   }
   paper.finish();
   root.finish();
   return s;
+}
+
+double table2_run_memory_bytes(const Table2Suite& s, int threads) {
+  const double surfaces = static_cast<double>(s.ndfs.size() * s.alphas.size());
+  const double workers = std::min<double>(support::resolve_threads(threads), surfaces);
+  const double groove = sizeof(sim::Groove) + 8.0 + 8.0 + sizeof(sim::GrooveFrame3d);
+  const double entries = static_cast<double>(s.percentiles.size()) * surfaces;
+  return workers * (s.grooves * groove + 4.0 * 1002.0 * 2.0 * 8.0) + entries * (4.0 * sizeof(int) + 1024.0);
 }
 
 Table2Run run_table2_suite(const Table2Suite& s, long rays, int threads, const std::atomic<bool>* cancel) {
@@ -99,6 +109,10 @@ Table2Run run_table2_suite(const Table2Suite& s, long rays, int threads, const s
   for (std::size_t q = 0; q < nq; ++q)
     for (std::size_t n = 0; n < nn; ++n)
       for (std::size_t a = 0; a < na; ++a) {
+        if (support::cancelled(cancel)) {
+          run.interrupted = true;
+          return run;
+        }
         run.ours[at(q, n, a)] = analytic::max_bounces_at_percentile(s.ndfs[n], s.alphas[a], s.percentiles[q],
                                                                     analytic::PercentileMeasure::projected_area);
         for (std::size_t m = 0; m < std::size(kOtherMeasures); ++m)
@@ -121,13 +135,17 @@ Table2Run run_table2_suite(const Table2Suite& s, long rays, int threads, const s
         to.theta_bins = 1;
         to.phi_bins = 2;
         to.max_k = 1000;
-        const sim::Microsurface3dTally t = sim::trace_microsurface3d(surface, to);
+        sim::Microsurface3dTally t(to.theta_bins, to.phi_bins, to.max_k);  // sim::trace_microsurface3d, cancellable
+        for (std::int64_t ch = 0; ch < sim::chunk_count(to); ++ch) {
+          if (support::cancelled(cancel)) return;
+          t.merge(sim::trace_microsurface3d_chunk(surface, to, ch));
+        }
         for (std::size_t q = 0; q < nq; ++q) run.traced[at(q, n, a)] = percentile_of_counts(t.by_k, s.percentiles[q]);
       },
       {}, cancel, 1);
-  run.interrupted = !complete;
+  run.interrupted = !complete || support::cancelled(cancel);
   run.wall_s = seconds_since(t0);
-  run.pass = complete && run.agree == static_cast<int>(run.ours.size());
+  run.pass = !run.interrupted && run.agree == static_cast<int>(run.ours.size());
   return run;
 }
 
@@ -176,7 +194,8 @@ nlohmann::json table2_report_json(const Table2Suite& s, const Table2Run& run) {
 void print_table2(std::ostream& os, const Table2Suite& s, const Table2Run& run) {
   char line[256];
   std::snprintf(line, sizeof line, "%s: maximum bounces at percentiles of D (%s), vgroove %s (git %s)\n",
-                s.name.c_str(), s.source.c_str(), version_string(), git_revision());
+                support::printable(s.name).c_str(), support::printable(s.source).c_str(), version_string(),
+                git_revision());
   os << line;
   os << "  cell: paper / ours (projected-area percentile, Eq. 4 at theta_i = 0) / traced percentile of k\n";
   std::string head = "  perc.  ";

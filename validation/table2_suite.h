@@ -37,6 +37,8 @@ struct Table2Run {
   bool pass = false;  // all entries agree
 };
 Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file);
+// An upper bound of the memory run_table2_suite needs (support/memory.h): a 3D surface per worker.
+double table2_run_memory_bytes(const Table2Suite& suite, int threads);
 Table2Run run_table2_suite(const Table2Suite& suite, long rays, int threads, const std::atomic<bool>* cancel = nullptr);
 nlohmann::json table2_report_json(const Table2Suite& suite, const Table2Run& run);
 void print_table2(std::ostream& os, const Table2Suite& suite, const Table2Run& run);
