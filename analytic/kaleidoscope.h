@@ -18,7 +18,7 @@
 // theta on the unit circle, f = sin(theta - theta_i).
 //
 // The printed Eq. (6) clamps only f_b; the corrected form clamps f_k too (see
-// validation/ERRATA.md, E1). Both are available, so a suite can report the printed form's error.
+// docs/ERRATA.md, E1). Both are available, so a suite can report the printed form's error.
 #pragma once
 
 #include "vgroove/common/side.h"

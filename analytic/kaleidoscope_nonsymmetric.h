@@ -16,7 +16,7 @@
 // Unfolded fan for light hitting the left facet first: vertex P_j at angle theta_l + pi/2 + j theta_v,
 // on the left facet's circle for even j and the right facet's for odd j; P_0 = a. A ray of offset
 // f (f(p) = i_perp . p as in the symmetric model) makes at least j + 1 reflections when f <= f(P_j)
-// and it already made j. The paper's transition points, not printed, follow (validation/ERRATA.md,
+// and it already made j. The paper's transition points, not printed, follow (docs/ERRATA.md,
 // E2): k_2 = P_1, k_b = P_{k_b - 1}, k_a = P_{k_b}.
 #pragma once
 
@@ -50,7 +50,7 @@ NonsymmetricPrediction G_nonsymmetric(double theta_i, double theta_l, double the
 
 // d theta_h / d theta_l at fixed theta_r and k, from Eq. (8) with theta_h = (theta_i + theta_o) / 2:
 // 0.5 (0.5 - (-1)^k (k + 0.5)). Its reciprocal is the angular factor of the Jacobian printed after
-// Eq. (23); validation/ERRATA.md records the check against the tracer.
+// Eq. (23); docs/ERRATA.md records the check against the tracer.
 double dtheta_h_dtheta_l(int k);
 
 // The Jacobian |ds_l/do| as printed after Eq. (23):

@@ -37,7 +37,7 @@
 // isotropic 3D surface; its slopes along the cut are distributed as the marginal of P22 along one
 // axis, P(s) = int P22(s, t) dt. This choice has two properties the tests check:
 //   - it is one rule for the three NDFs (no form is picked per NDF), and Beckmann's marginal is
-//     the 1D Gaussian in tan(theta) that the brief asks for;
+//     the 1D Gaussian in tan(theta);
 //   - Smith's Lambda depends on P22 only through this marginal along the view's azimuth (Heitz
 //     2014, App. A), so the flatland Smith G1 with D2 equals the 3D Smith G1 with D: the 2D
 //     projected-area constraint int G1 <o, m> D2 dtheta_m = cos(theta_o) holds with Heitz's

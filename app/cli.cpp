@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <limits>
 #include <new>
 
 namespace vgroove::app {
@@ -138,6 +139,9 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
   add_text(val, "--sampling", va.sampling, "override the suite's placement: stratified or random");
   add_seed(val, va.seed, "override the suite's seed");
   add_text(val, "--eq6-form", va.eq6_form, "override the suite's form of Eq. 6: corrected or printed");
+  add_text(val, "--model-table", va.model_table,
+           "\"brdf\" suites: hold this table of a foreign model's bin-integrated lobes (layout from "
+           "`vgroove bins SUITE`) against the simulation instead of vgroove's model");
   val->add_flag("--force", va.force, "overwrite an existing report");
 
   auto* bench = app.add_subcommand("bench", "Benchmarks: what accuracy costs in time.");
@@ -178,6 +182,44 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
   simu->add_flag("--force", sa.force, "overwrite an existing result");
   sa.dry_run = ctx.dry_run;
   sa.cancel = ctx.cancel;
+  BinsArgs bi;
+  auto* bins = app.add_subcommand("bins",
+                                  "Write a \"brdf\" suite's bin layout (cases, bin edges, frame) as JSON: fill in a "
+                                  "model's flux per bin and run `vgroove validate SUITE --model-table FILE`.");
+  add_text(bins, "suite", bi.suite, "suite spec of kind \"brdf\", e.g. data/suites/fig11.json")->required();
+  add_text(bins, "--out", bi.out, "layout JSON to write (default: stdout)");
+  bins->add_flag("--force", bi.force, "overwrite an existing file");
+  bi.dry_run = ctx.dry_run;
+  BrdfArgs ba;
+  auto* brdf = app.add_subcommand(
+      "brdf",
+      "Evaluate a BRDF at a pair of directions (or every pair of a JSON file): vgroove's multiple-scattering "
+      "model (Lee et al. 2018, Eq. 16-17) or Cook-Torrance (Eq. 1-3, V-cavity G), F = 1. 3D: polar angles from "
+      "the normal, azimuths about it (phi_o = phi_i + 180 is the mirror side); flatland: signed angles.");
+  add_text(brdf, "--model", ba.model, "vgroove or cook-torrance")->capture_default_str();
+  add_text(brdf, "--ndf", ba.ndf, "ggx, beckmann or phong")->capture_default_str();
+  add_real(brdf, "--alpha", ba.alpha, "roughness, " + support::interval_text(kMinAlpha, true, kMaxAlpha, true))
+      ->capture_default_str();
+  add_text(brdf, "--dim", ba.dim, "3d or flatland")->capture_default_str();
+  add_real(brdf, "--theta-i-deg", ba.theta_i_deg, "light: polar angle, [0, 90) (flatland: signed, (-90, 90))")
+      ->capture_default_str();
+  add_real(brdf, "--phi-i-deg", ba.phi_i_deg, "light: azimuth, [-360, 360] (3D only)")->capture_default_str();
+  auto* theta_o = add_real(brdf, "--theta-o-deg", ba.theta_o_deg,
+                           "viewer: polar angle, [0, 90] (flatland: signed, [-90, 90]); required "
+                           "unless --directions");
+  add_real(brdf, "--phi-o-deg", ba.phi_o_deg, "viewer: azimuth, [-360, 360] (3D only)")->capture_default_str();
+  add_integer(brdf, "--max-k", ba.max_k, "orders summed (3D: any, at no extra cost; flatland: <= 4096, O(max_k^2))", 1,
+              std::numeric_limits<int>::max())
+      ->capture_default_str();
+  brdf->add_flag("--per-k", ba.per_k, "also print each order k = 1..--per-k-max");
+  add_integer(brdf, "--per-k-max", ba.per_k_max, "orders printed one by one with --per-k", 1, 1000)
+      ->capture_default_str();
+  add_text(brdf, "--directions", ba.directions,
+           "JSON file {\"directions\": [{\"theta_i_deg\", \"theta_o_deg\"[, \"phi_i_deg\", "
+           "\"phi_o_deg\"]}, ...]}: evaluate at every pair");
+  brdf->add_flag("--json", ba.json, "print JSON");
+  brdf->callback([&ba, theta_o]() { ba.theta_o_given = theta_o->count() > 0; });
+  ba.dry_run = ctx.dry_run;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -201,6 +243,8 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
     if (*acc) return cmd_bench_accuracy(ac);
     if (*plot) return cmd_plot(pa);
     if (*simu) return cmd_simulate(sa);
+    if (*brdf) return cmd_brdf(ba);
+    if (*bins) return cmd_bins(bi);
   } catch (const support::UserError& e) {
     print_error(e.what());
     return 2;

@@ -9,6 +9,7 @@
 #include "vgroove/support/memory.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/brdf_suite.h"
+#include "vgroove/validation/model_table.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/suite_run.h"
 #include "vgroove/validation/table2_suite.h"
@@ -53,6 +54,21 @@ int validate_microsurface(const ValidateArgs& a, const nlohmann::json& j) {
     print_table2(std::cout, suite, run);
     report = table2_report_json(suite, run).dump(1) + "\n";
     pass = run.pass;
+  } else if (!a.model_table.empty()) {
+    const BrdfSuite suite = with_seed(parse_brdf_suite(j, a.suite));
+    if (suite.kind != "brdf")
+      throw support::UserError("--model-table applies to suites of kind \"brdf\"; " + a.suite + " is of kind " + kind);
+    const ModelTable table = parse_model_table(support::read_json_file(a.model_table), a.model_table, suite);
+    support::check_memory(brdf_run_memory_bytes(suite, a.threads, !a.out.empty()), a.suite + ": the run",
+                          std::to_string(suite.cases()) + " cases, " + std::to_string(suite.grooves) +
+                              " grooves per surface on each thread");
+    if (!a.out.empty()) support::check_writable_target(a.out, a.force, {a.suite, a.model_table});
+    if (a.dry_run) return 0;
+    const ModelTableRun run = run_model_table(suite, table, rays, a.threads, a.cancel);
+    if (run.interrupted) return interrupted_no_report();
+    print_model_table(std::cout, suite, table, run);
+    report = model_table_report_json(suite, table, run).dump(1) + "\n";
+    pass = run.pass;
   } else {
     const BrdfSuite suite = with_seed(parse_brdf_suite(j, a.suite));
     support::check_memory(brdf_run_memory_bytes(suite, a.threads, !a.out.empty()), a.suite + ": the run",
@@ -79,6 +95,9 @@ int cmd_validate(const ValidateArgs& a) {
   // Read once: the suite may come from a pipe.
   const nlohmann::json j = support::read_json_file(a.suite);
   if (is_microsurface_suite(j)) return validate_microsurface(a, j);
+  if (!a.model_table.empty())
+    throw support::UserError("--model-table applies to suites of kind \"brdf\" (e.g. data/suites/fig11.json); " +
+                             a.suite + " is a single-groove suite");
   const SuiteSet set = parse_suite_set(j, a.suite);
   std::vector<CaseOptions> opts;
   for (const Suite& suite : set.suites)
@@ -109,6 +128,23 @@ int cmd_validate(const ValidateArgs& a) {
     std::cout << "report: " << support::printable(a.out) << "\n";
   }
   return pass ? 0 : 1;
+}
+
+int cmd_bins(const BinsArgs& a) {
+  const nlohmann::json j = support::read_json_file(a.suite);
+  if (!j.is_object() || !j.contains("kind") || j["kind"] != "brdf")
+    throw support::UserError(a.suite + ": `vgroove bins` takes a suite of kind \"brdf\" (e.g. data/suites/fig11.json)");
+  const BrdfSuite suite = parse_brdf_suite(j, a.suite);
+  if (!a.out.empty()) support::check_writable_target(a.out, a.force, {a.suite});
+  if (a.dry_run) return 0;
+  const std::string text = bin_layout_json(suite).dump(1) + "\n";
+  if (a.out.empty()) {
+    std::cout << text;
+    return 0;
+  }
+  support::write_file_atomically(a.out, text, a.force);
+  std::cout << "layout: " << support::printable(a.out) << " (" << suite.cases() << " cases)\n";
+  return 0;
 }
 
 }  // namespace vgroove::app

@@ -53,6 +53,7 @@ struct ValidateArgs {
   std::string sampling;         // empty: the suite's
   std::string eq6_form;         // empty: the suite's
   long long seed = kUnsetSeed;  // kUnsetSeed: the suite's
+  std::string model_table;      // a foreign model's bin-integrated lobes ("brdf" suites)
   bool force = false;
   const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: no report is written
 };
@@ -87,6 +88,33 @@ struct SimulateArgs {
   const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: no result is written
 };
 int cmd_simulate(const SimulateArgs& a);
+
+// `vgroove bins`: a "brdf" suite's bin layout, for a foreign model's table.
+struct BinsArgs {
+  bool dry_run = false;
+  std::string suite;
+  std::string out;  // empty: stdout
+  bool force = false;
+};
+int cmd_bins(const BinsArgs& a);
+
+// `vgroove brdf`: the BRDF at one pair of directions, or at every pair of a JSON file.
+struct BrdfArgs {
+  bool dry_run = false;
+  std::string model = "vgroove";
+  std::string ndf = "ggx";
+  double alpha = 0.5;
+  std::string dim = "3d";
+  double theta_i_deg = 0.0, phi_i_deg = 0.0;
+  double theta_o_deg = 0.0, phi_o_deg = 180.0;
+  bool theta_o_given = false;
+  int max_k = 1'000'000;
+  bool per_k = false;
+  int per_k_max = 16;
+  std::string directions;  // JSON file of direction pairs
+  bool json = false;
+};
+int cmd_brdf(const BrdfArgs& a);
 
 // Exit status of a run stopped by Ctrl-C (128 + SIGINT, as a shell reports it).
 inline constexpr int kExitInterrupted = 130;

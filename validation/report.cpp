@@ -26,7 +26,12 @@ double output_deg(double rad) { return std::round(rad * kDegPerRad * 1e9) / 1e9 
 const char* version_string() { return VGROOVE_VERSION; }
 const char* git_revision() { return VGROOVE_GIT; }
 
-nlohmann::json provenance() { return {{"tool", "vgroove"}, {"version", VGROOVE_VERSION}, {"git", VGROOVE_GIT}}; }
+nlohmann::json provenance() {
+  return {{"tool", "vgroove"},
+          {"schema_version", kReportSchemaVersion},
+          {"version", VGROOVE_VERSION},
+          {"git", VGROOVE_GIT}};
+}
 
 nlohmann::json groove_json(const GrooveParams& g) {
   if (g.symmetric) return {{"theta_v_deg", output_deg(g.theta_v)}};

@@ -15,7 +15,9 @@
 
 namespace vgroove::validation {
 
-// {"tool", "version", "git"} for every JSON the tool writes.
+// The version of the report layout (docs/schemas/); raised when a field changes meaning or goes.
+inline constexpr int kReportSchemaVersion = 1;
+// {"tool", "schema_version", "version", "git"} for every JSON the tool writes.
 nlohmann::json provenance();
 const char* version_string();
 const char* git_revision();

@@ -271,7 +271,7 @@ TEST(Brdf3d, Eq16IntegratesToThePushForwardMassPerK) {
 // angle by nested tanh-sinh (the bin split at the mirror direction so that the integrable
 // 1/sin(theta_h) sits at a corner), (b) the push-forward lobe at its default phi_a quadrature.
 // Measured |a - b| (k = 1..3): <= 3.1e-9 at the mirror bin, <= 1.1e-10 beside it, 2.5e-8 / 9e-10 /
-// 1.4e-9 in the back-scattering bin (before the corner cuts of the phi_a quadrature: 1.6e-6 /
+// 1.4e-9 in the back-scattering bin (without the corner cuts of the phi_a quadrature: 1.6e-6 /
 // 2.8e-7 / 1.8e-7 there). Tolerance 1e-7: four times the worst measured.
 TEST(Brdf3d, LobeBinsAgreeWithEq16Quadrature) {
   const int tb = 45, pb = 36, max_k = 3;

@@ -175,8 +175,8 @@ TEST(CliOutput, SymbolicLinksAreFollowedAndDanglingOnesRefused) {
 // 2. Ctrl-C inside any long loop: exit 130 within about a second, no report.
 
 struct Interrupted {
-  int status = -1;           // exit status, -1 if killed by a signal
-  double seconds = 0.0;      // from SIGINT to exit
+  int status = -1;       // exit status, -1 if killed by a signal
+  double seconds = 0.0;  // from SIGINT to exit
   std::string err;
 };
 
@@ -265,7 +265,8 @@ TEST(CliInterrupt, InsideABenchmarkRun) {
 // 3. Deeply nested JSON: exit 2 with one line, never a crash.
 
 std::string nested(int depth, char open, char close, const std::string& inner) {
-  return std::string(static_cast<std::size_t>(depth), open) + inner + std::string(static_cast<std::size_t>(depth), close);
+  return std::string(static_cast<std::size_t>(depth), open) + inner +
+         std::string(static_cast<std::size_t>(depth), close);
 }
 
 TEST(CliJson, DeepNestingIsRefusedInOneLine) {
@@ -327,7 +328,6 @@ TEST(CliLimits, ThreadsThatCannotStartAreNotACrash) {
   EXPECT_EQ(s.status, 0) << s;
 }
 
-
 // ---------------------------------------------------------------------------------------------
 // 7. Specs that cannot fit in memory are refused before any work, with the estimate.
 
@@ -351,10 +351,12 @@ TEST(CliLimits, SpecsThatCannotFitAreRefusedWithTheEstimate) {
   std::string angles = "0";
   for (int n = 1; n < 100000; ++n) angles += ", " + std::to_string((n % 1700) * 0.05);
   std::string channels;
-  for (int c = 0; c < 64; ++c) channels += std::string(c ? ", " : "") + "{\"name\": \"c" + std::to_string(c) + "\", \"F0\": 0.5}";
+  for (int c = 0; c < 64; ++c)
+    channels += std::string(c ? ", " : "") + "{\"name\": \"c" + std::to_string(c) + "\", \"F0\": 0.5}";
   write_text(f, R"({"scene": "big", "geometry": {"kind": "groove", "theta_v_deg": 60},
-    "light": {"theta_i_deg": [)" + angles + R"(], "rays": 10}, "effects": {"fresnel": {"kind": "schlick", "channels": [)" +
-                    channels + R"(]}, "record": {"theta_o_histograms": {"bins": 10000, "max_k": 98}, "energy_per_k": true}}})");
+    "light": {"theta_i_deg": [)" +
+                    angles + R"(], "rays": 10}, "effects": {"fresnel": {"kind": "schlick", "channels": [)" + channels +
+                    R"(]}, "record": {"theta_o_histograms": {"bins": 10000, "max_k": 98}, "energy_per_k": true}}})");
   const CliRun sc = vgroove("simulate " + q(f));
   expect_refused(sc, "100000 incident angles x 64 channels, 1000000 histogram cells");
 }
@@ -424,7 +426,8 @@ TEST(CliNumerics, TraceAgreesWithTheModelAtTheNarrowestAperture) {
     for (const json& r : aj.at("bounces")) model[{r.at("first_facet"), r.at("k")}] = r.at("fraction");
     double l1 = 0.0;
     std::size_t rows = model.size();
-    for (const auto& [key, f] : traced) l1 += std::abs(f - (model.count(key) ? model[key] : 0.0)), rows += !model.count(key);
+    for (const auto& [key, f] : traced)
+      l1 += std::abs(f - (model.count(key) ? model[key] : 0.0)), rows += !model.count(key);
     for (const auto& [key, f] : model)
       if (!traced.count(key)) l1 += f;
     EXPECT_LE(l1, static_cast<double>(rows) / n) << "theta_i " << ti;
@@ -545,11 +548,13 @@ TEST(CliInput, OneRangePerQuantity) {
 TEST(CliNumerics, ConductorExtremesAreFinite) {
   TempDir dir;
   const std::string f = dir.file("c.json");
-  for (const char* ch : {R"({"name": "a", "eta": 1e-300, "kappa": 0})", R"({"name": "b", "eta": 1e-300, "kappa": 1e-300})",
-                         R"({"name": "c", "eta": 1000, "kappa": 1000})", R"({"name": "d", "eta": 1e-300, "kappa": 1000})"}) {
+  for (const char* ch :
+       {R"({"name": "a", "eta": 1e-300, "kappa": 0})", R"({"name": "b", "eta": 1e-300, "kappa": 1e-300})",
+        R"({"name": "c", "eta": 1000, "kappa": 1000})", R"({"name": "d", "eta": 1e-300, "kappa": 1000})"}) {
     write_text(f, std::string(R"({"scene": "s", "geometry": {"kind": "groove", "theta_v_deg": 60},
       "light": {"theta_i_deg": [0, 60, 89.999], "rays": 100}, "effects": {"fresnel": {"kind": "conductor",
-      "channels": [)") + ch + R"(]}, "record": {"energy_per_k": true}}})");
+      "channels": [)") +
+                      ch + R"(]}, "record": {"energy_per_k": true}}})");
     const std::string out = dir.file("r.json");
     const CliRun r = vgroove("simulate " + q(f) + " --out " + q(out) + " --force");
     ASSERT_EQ(r.status, 0) << r;

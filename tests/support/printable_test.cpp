@@ -21,8 +21,12 @@ TEST(Printable, EscapesControlsOnOneLine) {
 }
 
 TEST(Printable, EscapesBidirectionalControlsAndSeparators) {
-  EXPECT_EQ(printable("a\xe2\x80\xae" "b"), "a\\u{202E}b");  // RIGHT-TO-LEFT OVERRIDE
-  EXPECT_EQ(printable("\xe2\x81\xa6" "x\xe2\x81\xa9"), "\\u{2066}x\\u{2069}");
+  EXPECT_EQ(printable("a\xe2\x80\xae"
+                      "b"),
+            "a\\u{202E}b");  // RIGHT-TO-LEFT OVERRIDE
+  EXPECT_EQ(printable("\xe2\x81\xa6"
+                      "x\xe2\x81\xa9"),
+            "\\u{2066}x\\u{2069}");
   EXPECT_EQ(printable("\xe2\x80\x8f"), "\\u{200F}");
   EXPECT_EQ(printable("\xd8\x9c"), "\\u{061C}");
   EXPECT_EQ(printable("\xe2\x80\xa8"), "\\u{2028}");
@@ -30,9 +34,9 @@ TEST(Printable, EscapesBidirectionalControlsAndSeparators) {
 
 TEST(Printable, EscapesBytesThatAreNotUtf8) {
   EXPECT_EQ(printable("\xff"), "\\xff");
-  EXPECT_EQ(printable("\xc3"), "\\xc3");                 // truncated sequence
-  EXPECT_EQ(printable("\xc0\xaf"), "\\xc0\\xaf");        // overlong "/"
-  EXPECT_EQ(printable("\xed\xa0\x80"), "\\xed\\xa0\\x80");  // a surrogate
+  EXPECT_EQ(printable("\xc3"), "\\xc3");                             // truncated sequence
+  EXPECT_EQ(printable("\xc0\xaf"), "\\xc0\\xaf");                    // overlong "/"
+  EXPECT_EQ(printable("\xed\xa0\x80"), "\\xed\\xa0\\x80");           // a surrogate
   EXPECT_EQ(printable("\xf4\x90\x80\x80"), "\\xf4\\x90\\x80\\x80");  // past U+10FFFF
 }
 

@@ -37,7 +37,7 @@ json fig11_spec() {
 TEST(MicrosurfaceSuite, ShippedSuitesParse) {
   const std::string dir = std::string(VGROOVE_SOURCE_DIR) + "/data/suites/";
   const BrdfSuite fig11 = parse_brdf_suite(fig11_spec(), "fig11.json");
-  // The grid: 3 NDFs x 4 alphas x 5 theta_i, in flatland and in 3D.
+  // The Fig. 11 grid: 3 NDFs x 4 alphas x 5 theta_i, in flatland and in 3D.
   EXPECT_EQ(fig11.cases(), 3u * 4u * 5u * 2u);
   EXPECT_EQ(fig11.kind, "brdf");
   const BrdfCase last = fig11.case_at(fig11.cases() - 1);

@@ -1,0 +1,149 @@
+#include "vgroove/analytic/brdf_model.h"
+#include "vgroove/app/commands.h"
+#include "vgroove/common/angles.h"
+#include "vgroove/support/json_reader.h"
+#include "vgroove/support/user_error.h"
+#include "vgroove/validation/ranges.h"
+#include "vgroove/validation/report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <vector>
+
+namespace vgroove::app {
+
+namespace {
+
+// One pair of directions, in degrees as given.
+struct Pair {
+  double theta_i_deg, phi_i_deg, theta_o_deg, phi_o_deg;
+};
+
+constexpr std::size_t kMaxPairs = 10'000'000;
+
+void check_angle(double v, double lo, bool lo_closed, double hi, bool hi_closed, const std::string& what) {
+  const bool ok = std::isfinite(v) && (lo_closed ? v >= lo : v > lo) && (hi_closed ? v <= hi : v < hi);
+  if (!ok)
+    throw support::UserError(what + " = " + support::number_text(v) + " is out of range " +
+                             support::interval_text(lo, lo_closed, hi, hi_closed));
+}
+
+// The ranges of the directions: 3D polar angles in [0, 90) towards the light and [0, 90] towards
+// the viewer, azimuths in [-360, 360]; flatland signed angles in (-90, 90) and [-90, 90].
+void check_pair(const Pair& p, bool flat, const std::string& where) {
+  if (flat) {
+    check_angle(p.theta_i_deg, -90, false, 90, false, where + "theta-i-deg");
+    check_angle(p.theta_o_deg, -90, true, 90, true, where + "theta-o-deg");
+    return;
+  }
+  check_angle(p.theta_i_deg, 0, true, 90, false, where + "theta-i-deg");
+  check_angle(p.theta_o_deg, 0, true, 90, true, where + "theta-o-deg");
+  check_angle(p.phi_i_deg, -360, true, 360, true, where + "phi-i-deg");
+  check_angle(p.phi_o_deg, -360, true, 360, true, where + "phi-o-deg");
+}
+
+std::vector<Pair> read_pairs(const std::string& file, bool flat) {
+  const nlohmann::json j = support::read_json_file(file);
+  support::JsonObject root(j, file, "");
+  const nlohmann::json& list = root.raw("directions");
+  root.finish();
+  if (!list.is_array() || list.empty() || list.size() > kMaxPairs)
+    throw support::UserError(file +
+                             ": /directions must be a list of 1 to 10000000 objects {\"theta_i_deg\", "
+                             "\"theta_o_deg\"[, \"phi_i_deg\", \"phi_o_deg\"]}");
+  std::vector<Pair> out;
+  out.reserve(list.size());
+  for (std::size_t n = 0; n < list.size(); ++n) {
+    support::JsonObject o(list[n], file, "/directions/" + std::to_string(n));
+    Pair p{};
+    p.theta_i_deg = o.number("theta_i_deg", -90, false, 90, false);
+    p.theta_o_deg = o.number("theta_o_deg", -90, true, 90, true);
+    p.phi_i_deg = o.number_or("phi_i_deg", 0.0, -360, true, 360, true);
+    p.phi_o_deg = o.number_or("phi_o_deg", 180.0, -360, true, 360, true);
+    o.finish();
+    check_pair(p, flat, file + ": /directions/" + std::to_string(n) + "/");
+    out.push_back(p);
+  }
+  return out;
+}
+
+analytic::Dir3 direction(double theta_deg, double phi_deg, bool flat) {
+  // Flatland: the signed 2D angle theta is the direction (-sin theta, 0, cos theta).
+  if (flat) return {-std::sin(deg_to_rad(theta_deg)), 0.0, std::cos(deg_to_rad(theta_deg))};
+  return analytic::dir3(deg_to_rad(theta_deg), deg_to_rad(phi_deg));
+}
+
+}  // namespace
+
+int cmd_brdf(const BrdfArgs& a) {
+  const auto model = analytic::brdf_model_from_name(a.model);
+  if (!model) throw support::UserError("--model = \"" + a.model + "\" is not one of \"vgroove\", \"cook-torrance\"");
+  const auto ndf = ndf_from_name(a.ndf);
+  if (!ndf) throw support::UserError("--ndf = \"" + a.ndf + "\" is not one of \"ggx\", \"beckmann\", \"phong\"");
+  if (a.dim != "3d" && a.dim != "flatland")
+    throw support::UserError("--dim = \"" + a.dim + "\" is not one of \"3d\", \"flatland\"");
+  const bool flat = a.dim == "flatland";
+  check_angle(a.alpha, validation::kMinAlpha, true, validation::kMaxAlpha, true, "--alpha");
+  if (a.max_k < 1)
+    throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, 2147483647]");
+  if (a.per_k_max < 1 || a.per_k_max > 1000)
+    throw support::UserError("--per-k-max = " + std::to_string(a.per_k_max) + " is out of range [1, 1000]");
+  if (flat && a.max_k > 4096)
+    throw support::UserError("--max-k = " + std::to_string(a.max_k) +
+                             " is out of range [1, 4096] with --dim flatland (the flatland sum costs O(max_k^2))");
+  std::vector<Pair> pairs;
+  if (!a.directions.empty()) {
+    if (a.theta_o_given)
+      throw support::UserError("--directions cannot be combined with --theta-o-deg (the file gives the directions)");
+    pairs = read_pairs(a.directions, flat);
+  } else {
+    if (!a.theta_o_given) throw support::UserError("--theta-o-deg is required (or --directions FILE)");
+    pairs.push_back({a.theta_i_deg, a.phi_i_deg, a.theta_o_deg, a.phi_o_deg});
+    check_pair(pairs.back(), flat, "--");
+  }
+  if (a.dry_run) return 0;
+
+  analytic::BrdfEvalOptions opt;
+  opt.ndf = *ndf;
+  opt.alpha = a.alpha;
+  opt.flatland = flat;
+  opt.max_k = flat ? std::min(a.max_k, 4096) : a.max_k;
+  opt.per_k = a.per_k ? a.per_k_max : 0;
+  nlohmann::json points = nlohmann::json::array();
+  std::vector<analytic::BrdfValue> values;
+  values.reserve(pairs.size());
+  for (const Pair& p : pairs)
+    values.push_back(analytic::evaluate_brdf(*model, direction(p.theta_i_deg, p.phi_i_deg, flat),
+                                             direction(p.theta_o_deg, p.phi_o_deg, flat), opt));
+  const char* unit = flat ? "1/rad" : "1/sr";
+  if (a.json) {
+    nlohmann::json j = validation::provenance();
+    j["kind"] = "brdf";
+    j["inputs"] = {{"model", a.model},   {"ndf", a.ndf},       {"alpha", a.alpha},
+                   {"dimension", a.dim}, {"max_k", opt.max_k}, {"per_k", opt.per_k}};
+    j["unit"] = unit;
+    for (std::size_t n = 0; n < pairs.size(); ++n) {
+      nlohmann::json e = {
+          {"theta_i_deg", pairs[n].theta_i_deg}, {"theta_o_deg", pairs[n].theta_o_deg}, {"value", values[n].value}};
+      if (!flat) e["phi_i_deg"] = pairs[n].phi_i_deg, e["phi_o_deg"] = pairs[n].phi_o_deg;
+      if (opt.per_k > 0) e["by_k"] = values[n].by_k;
+      points.push_back(std::move(e));
+    }
+    j["points"] = std::move(points);
+    std::cout << j.dump(1) << "\n";
+    return 0;
+  }
+  std::printf("brdf %s: %s alpha %g, %s, orders 1..%d; value in %s\n", a.model.c_str(), a.ndf.c_str(), a.alpha,
+              flat ? "flatland" : "3D", opt.max_k, unit);
+  std::printf("  %12s %10s %12s %10s  %s\n", "theta_i_deg", "phi_i_deg", "theta_o_deg", "phi_o_deg", "value");
+  for (std::size_t n = 0; n < pairs.size(); ++n) {
+    std::printf("  %12.9g %10.9g %12.9g %10.9g  %.17g\n", pairs[n].theta_i_deg, flat ? 0.0 : pairs[n].phi_i_deg,
+                pairs[n].theta_o_deg, flat ? 0.0 : pairs[n].phi_o_deg, values[n].value);
+    for (int k = 1; k <= opt.per_k; ++k)
+      std::printf("  %48s k = %-4d %.17g\n", "", k, values[n].by_k[static_cast<std::size_t>(k - 1)]);
+  }
+  return 0;
+}
+
+}  // namespace vgroove::app

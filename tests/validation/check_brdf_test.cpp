@@ -1,0 +1,153 @@
+// Tests of the check-my-BRDF API: vgroove's own model passes, Cook-Torrance fails where it loses
+// energy, a model a few percent off is caught, the thresholds do not depend on the thread count.
+#include "vgroove/validation/check_brdf.h"
+
+#include "vgroove/analytic/brdf_3d.h"
+#include "vgroove/analytic/brdf_flatland.h"
+#include "vgroove/support/user_error.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace vgroove::validation {
+namespace {
+
+// The single pass visits only the orders Eq. (4) allows, so a huge max_k costs nothing and
+// leaves no tail out (at alpha 1 a tenth of the flux is beyond k = 16).
+constexpr int kAllOrders = 1'000'000;
+
+CheckBrdfOptions small_3d(double alpha) {
+  CheckBrdfOptions o;
+  o.alpha = alpha;
+  o.theta_i_deg = {0, 40, 80};
+  o.rays = 200'000;
+  o.grooves = 100'000;
+  o.seed = 7;
+  o.threads = 2;
+  return o;
+}
+
+BrdfFn vgroove_model(const CheckBrdfOptions& o, double scale = 1.0) {
+  return [=](const analytic::Dir3& wi, const analytic::Dir3& wo) {
+    return scale * analytic::vgroove_brdf(wi, wo, o.ndf, o.alpha, kAllOrders);
+  };
+}
+
+std::string dump(const CheckBrdfResult& r) { return r.to_json().dump(1); }
+
+TEST(CheckBrdf, VgrooveModelPasses3d) {
+  const CheckBrdfOptions o = small_3d(0.5);
+  const CheckBrdfResult r = check_brdf(vgroove_model(o), o);
+  ASSERT_EQ(r.cases.size(), 3u);
+  EXPECT_TRUE(r.pass) << dump(r);
+  for (const CheckBrdfCase& c : r.cases) {
+    EXPECT_NEAR(c.albedo_model, 1.0, 2e-4) << "theta_i " << c.theta_i_deg;  // F = 1: nothing is lost
+    EXPECT_LE(c.model_error, o.model_tolerance * 1.0001);
+  }
+}
+
+TEST(CheckBrdf, CookTorranceFailsAtHighRoughness) {
+  const CheckBrdfOptions o = small_3d(1.0);
+  const CheckBrdfResult r =
+      check_brdf([&](const analytic::Dir3& wi,
+                     const analytic::Dir3& wo) { return analytic::cook_torrance(wi, wo, o.ndf, o.alpha); },
+                 o);
+  EXPECT_FALSE(r.pass);
+  // The furnace's figure: Cook-Torrance with the V-cavity G keeps 0.375 of the light at normal
+  // incidence on GGX alpha = 1 (3D); the traced surface keeps all of it.
+  EXPECT_NEAR(r.cases[0].albedo_model, 0.375, 2e-3);
+  EXPECT_NEAR(r.cases[0].albedo_sim, 1.0, 1e-12);
+  EXPECT_FALSE(r.cases[0].pass);
+}
+
+// Power: the right lobe with 2 % of its energy missing fails on the albedo alone.
+TEST(CheckBrdf, TwoPercentLessEnergyFails) {
+  const CheckBrdfOptions o = small_3d(0.5);
+  const CheckBrdfResult r = check_brdf(vgroove_model(o, 0.98), o);
+  EXPECT_FALSE(r.pass);
+  for (const CheckBrdfCase& c : r.cases) {
+    EXPECT_FALSE(c.pass) << "theta_i " << c.theta_i_deg;
+    EXPECT_GT(std::abs(c.albedo_sim - c.albedo_model), c.albedo_threshold);
+  }
+}
+
+// Power: the right energy with the wrong shape (the model of a 20 % smoother surface) fails on L1.
+TEST(CheckBrdf, WrongRoughnessFailsOnShape) {
+  CheckBrdfOptions o = small_3d(0.5);
+  CheckBrdfOptions other = o;
+  other.alpha = 0.4;
+  const CheckBrdfResult r = check_brdf(vgroove_model(other), o);
+  EXPECT_FALSE(r.pass);
+  for (const CheckBrdfCase& c : r.cases) EXPECT_GT(c.l1, c.l1_threshold) << "theta_i " << c.theta_i_deg;
+}
+
+TEST(CheckBrdf, VgrooveModelPassesFlatland) {
+  CheckBrdfOptions o = small_3d(0.7);
+  o.dim = SurfaceDim::flatland;
+  const CheckBrdfResult r = check_brdf(
+      [&](const analytic::Dir3& wi, const analytic::Dir3& wo) {
+        // Flatland directions lie in y = 0: the signed 2D angle of (x, 0, z) is atan2(-x, z). The
+        // flatland sum costs O(max_k^2) per evaluation; k > 64 carries < 2e-4 of the flux here.
+        return analytic::flatland_brdf(o.ndf, o.alpha, std::atan2(-wi.x, wi.z), std::atan2(-wo.x, wo.z), 64);
+      },
+      o);
+  EXPECT_TRUE(r.pass) << dump(r);
+}
+
+TEST(CheckBrdf, ResultsDoNotDependOnThreads) {
+  CheckBrdfOptions o = small_3d(0.3);
+  o.theta_i_deg = {30};
+  o.rays = 70'000;  // three chunks
+  o.threads = 1;
+  const CheckBrdfResult a = check_brdf(vgroove_model(o), o);
+  o.threads = 2;
+  const CheckBrdfResult b = check_brdf(vgroove_model(o), o);
+  EXPECT_EQ(a.cases[0].albedo_sim, b.cases[0].albedo_sim);
+  EXPECT_EQ(a.cases[0].l1, b.cases[0].l1);
+  EXPECT_EQ(a.cases[0].l1_flux, b.cases[0].l1_flux);
+  EXPECT_EQ(a.cases[0].albedo_model, b.cases[0].albedo_model);
+}
+
+TEST(CheckBrdf, NonFiniteModelFails) {
+  const CheckBrdfOptions o = small_3d(0.5);
+  const CheckBrdfResult r =
+      check_brdf([](const analytic::Dir3&, const analytic::Dir3& wo) { return wo.z > 0.5 ? -1.0 : 0.1; }, o);
+  EXPECT_FALSE(r.pass);
+  EXPECT_TRUE(r.cases[0].non_finite);
+}
+
+TEST(CheckBrdf, BadOptionsNameTheField) {
+  CheckBrdfOptions o;
+  o.alpha = 3.0;
+  try {
+    check_options(o);
+    FAIL() << "alpha 3 accepted";
+  } catch (const support::UserError& e) {
+    EXPECT_STREQ(e.what(), "alpha = 3 is out of range (0, 2]");
+  }
+  o = {};
+  o.theta_i_deg = {10, 90};
+  EXPECT_THROW(check_options(o), support::UserError);
+  o = {};
+  o.phi_bins = 7;
+  EXPECT_THROW(check_options(o), support::UserError);
+  o = {};
+  o.rays = 0;
+  EXPECT_THROW(check_options(o), support::UserError);
+}
+
+// compare_lobes on hand-made histograms: equal lobes pass; a bin moved fails.
+TEST(CheckBrdf, CompareLobesByHand) {
+  const std::vector<double> p = {0.25, 0.25, 0.25, 0.25};
+  const CheckBrdfCase same = compare_lobes(p, p, 1e6, 1e6, 5.0, 0.0);
+  EXPECT_TRUE(same.pass);
+  EXPECT_EQ(same.l1, 0.0);
+  const std::vector<double> moved = {0.35, 0.15, 0.25, 0.25};
+  const CheckBrdfCase off = compare_lobes(moved, p, 1e6, 1e6, 5.0, 0.0);
+  EXPECT_NEAR(off.l1, 0.2, 1e-15);
+  EXPECT_FALSE(off.pass);
+}
+
+}  // namespace
+}  // namespace vgroove::validation

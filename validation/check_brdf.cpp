@@ -1,0 +1,336 @@
+#include "vgroove/validation/check_brdf.h"
+
+#include "vgroove/analytic/quadrature.h"
+#include "vgroove/common/angles.h"
+#include "vgroove/support/parallel.h"
+#include "vgroove/support/user_error.h"
+#include "vgroove/validation/histogram_metrics.h"
+#include "vgroove/validation/report.h"
+#include "vgroove/validation/spec_lists.h"
+#include "vgroove/validation/traced_lobe.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <numeric>
+#include <queue>
+
+namespace vgroove::validation {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+constexpr double kPi = std::numbers::pi;
+constexpr int kWorstBins = 5;
+
+void check_range(bool ok, const std::string& what, double v, const std::string& range) {
+  if (!ok) throw support::UserError(what + " = " + support::number_text(v) + " is out of range " + range);
+}
+
+// The user's model integrated over the bins, globally adaptive: every bin starts as one cell; a
+// cell's value is the Gauss-Legendre rule on its four quarters (two halves in flatland) and its
+// error estimate the difference from the rule on the whole cell. The cell with the largest
+// estimate is split until the estimates sum to at most `tolerance` or `max_evals` evaluations
+// are spent. A model's discontinuities (the support of a bounce order ending) and integrable
+// peaks (1/sin(theta_h) at the mirror direction) are resolved where they are, not everywhere.
+struct Cell {
+  std::size_t bin;
+  double t0, t1, p0, p1;       // theta and phi ranges (flatland: the signed angle, p unused)
+  std::array<double, 4> part;  // the rule on each quarter (half)
+  double value, err;
+  bool operator<(const Cell& o) const { return err < o.err; }
+};
+
+class BinIntegrator {
+ public:
+  BinIntegrator(const BrdfFn& f, const analytic::Dir3& wi, bool flat, const analytic::GaussLegendre& g)
+      : f_(f), wi_(wi), flat_(flat), g_(g) {}
+
+  // The rule on [t0, t1] x [p0, p1]: f(wi, wo) cos(theta) sin(theta) (3D) or f cos(theta) (flatland).
+  double rule(double t0, double t1, double p0, double p1) {
+    const double ht = 0.5 * (t1 - t0), hp = 0.5 * (p1 - p0);
+    double s = 0.0;
+    for (std::size_t a = 0; a < g_.size(); ++a) {
+      const double theta = t0 + ht * (1.0 + g_.x[a]);
+      if (flat_) {
+        s += g_.w[a] * f_(wi_, analytic::Dir3{-std::sin(theta), 0.0, std::cos(theta)}) * std::cos(theta);
+        ++evals;
+        continue;
+      }
+      double row = 0.0;
+      for (std::size_t b = 0; b < g_.size(); ++b) {
+        row += g_.w[b] * f_(wi_, analytic::dir3(theta, p0 + hp * (1.0 + g_.x[b])));
+        ++evals;
+      }
+      s += g_.w[a] * row * std::cos(theta) * std::sin(theta);
+    }
+    return flat_ ? s * ht : s * ht * hp;
+  }
+
+  Cell make(std::size_t bin, double t0, double t1, double p0, double p1, double coarse) {
+    Cell c{bin, t0, t1, p0, p1, {}, 0.0, 0.0};
+    const double tm = 0.5 * (t0 + t1), pm = 0.5 * (p0 + p1);
+    if (flat_) {
+      c.part = {rule(t0, tm, p0, p1), rule(tm, t1, p0, p1), 0.0, 0.0};
+    } else {
+      c.part = {rule(t0, tm, p0, pm), rule(tm, t1, p0, pm), rule(t0, tm, pm, p1), rule(tm, t1, pm, p1)};
+    }
+    c.value = c.part[0] + c.part[1] + c.part[2] + c.part[3];
+    c.err = std::abs(c.value - coarse);
+    if (!std::isfinite(c.err)) c.err = std::numeric_limits<double>::max();  // refine what is not finite
+    return c;
+  }
+
+  void split(const Cell& c, std::vector<Cell>& out) {
+    const double tm = 0.5 * (c.t0 + c.t1), pm = 0.5 * (c.p0 + c.p1);
+    if (flat_) {
+      out.push_back(make(c.bin, c.t0, tm, c.p0, c.p1, c.part[0]));
+      out.push_back(make(c.bin, tm, c.t1, c.p0, c.p1, c.part[1]));
+      return;
+    }
+    out.push_back(make(c.bin, c.t0, tm, c.p0, pm, c.part[0]));
+    out.push_back(make(c.bin, tm, c.t1, c.p0, pm, c.part[1]));
+    out.push_back(make(c.bin, c.t0, tm, pm, c.p1, c.part[2]));
+    out.push_back(make(c.bin, tm, c.t1, pm, c.p1, c.part[3]));
+  }
+
+  std::int64_t evals = 0;
+
+ private:
+  const BrdfFn& f_;
+  analytic::Dir3 wi_;
+  bool flat_;
+  const analytic::GaussLegendre& g_;
+};
+
+struct ModelBins {
+  std::vector<double> flux;  // per bin
+  double error = 0.0;        // the estimates summed over the final cells
+  std::int64_t evals = 0;
+};
+
+ModelBins model_bins(const BrdfFn& f, const analytic::Dir3& wi, const CheckBrdfOptions& o,
+                     const analytic::GaussLegendre& g, const std::atomic<bool>* cancel) {
+  const bool flat = o.dim == SurfaceDim::flatland;
+  BinIntegrator in(f, wi, flat, g);
+  std::priority_queue<Cell> cells;
+  double err = 0.0;
+  if (flat) {
+    const double w = kPi / o.flatland_bins;
+    for (int b = 0; b < o.flatland_bins; ++b) {
+      const double t0 = -0.5 * kPi + b * w, t1 = t0 + w;
+      cells.push(in.make(static_cast<std::size_t>(b), t0, t1, 0.0, 0.0, in.rule(t0, t1, 0.0, 0.0)));
+    }
+  } else {
+    const double dt = 0.5 * kPi / o.theta_bins, dp = 2.0 * kPi / o.phi_bins;
+    for (int t = 0; t < o.theta_bins; ++t)
+      for (int p = 0; p < o.phi_bins; ++p) {
+        const double t0 = t * dt, t1 = t0 + dt, p0 = p * dp - 0.5 * dp, p1 = p0 + dp;
+        cells.push(in.make(static_cast<std::size_t>(t) * o.phi_bins + p, t0, t1, p0, p1, in.rule(t0, t1, p0, p1)));
+      }
+  }
+  std::vector<Cell> children;
+  double total = 0.0;  // the running sum of the estimates (summed afresh at the end)
+  for (auto q = cells; !q.empty(); q.pop()) total += q.top().err;
+  while (total > o.model_tolerance && in.evals < o.max_model_evals) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) break;
+    const Cell c = cells.top();
+    cells.pop();
+    total -= c.err;
+    children.clear();
+    in.split(c, children);
+    for (Cell& ch : children) total += ch.err, cells.push(std::move(ch));
+  }
+  const std::size_t bins = flat ? static_cast<std::size_t>(o.flatland_bins)
+                                : static_cast<std::size_t>(o.theta_bins) * static_cast<std::size_t>(o.phi_bins);
+  ModelBins out;
+  out.flux.assign(bins, 0.0);
+  while (!cells.empty()) {
+    out.flux[cells.top().bin] += cells.top().value;
+    err += cells.top().err;
+    cells.pop();
+  }
+  out.error = err;
+  out.evals = in.evals;
+  return out;
+}
+
+}  // namespace
+
+void check_options(const CheckBrdfOptions& o) {
+  check_range(o.alpha > 0.0 && o.alpha <= kMaxAlpha, "alpha", o.alpha, "(0, 2]");
+  if (o.theta_i_deg.empty()) throw support::UserError("theta_i_deg: give at least one incident angle");
+  for (double t : o.theta_i_deg) check_range(t >= 0.0 && t < 90.0, "theta_i_deg", t, "[0, 90)");
+  check_range(o.rays >= 1 && o.rays <= kMaxRays, "rays", static_cast<double>(o.rays), "[1, 1000000000]");
+  check_range(o.grooves >= 1 && o.grooves <= 10'000'000, "grooves", o.grooves, "[1, 10000000]");
+  check_range(o.theta_bins >= 1 && o.theta_bins <= 1000, "theta_bins", o.theta_bins, "[1, 1000]");
+  check_range(o.phi_bins >= 2 && o.phi_bins <= 1000 && o.phi_bins % 2 == 0, "phi_bins", o.phi_bins, "[2, 1000], even");
+  check_range(o.flatland_bins >= 1 && o.flatland_bins <= 100'000, "flatland_bins", o.flatland_bins, "[1, 100000]");
+  check_range(o.sigmas > 0.0 && o.sigmas <= 100.0, "sigmas", o.sigmas, "(0, 100]");
+  check_range(o.model_tolerance >= 0.0 && o.model_tolerance <= 1.0, "model_tolerance", o.model_tolerance, "[0, 1]");
+  check_range(o.quadrature_order >= 1 && o.quadrature_order <= 64, "quadrature_order", o.quadrature_order, "[1, 64]");
+  check_range(o.max_model_evals >= 1, "max_model_evals", static_cast<double>(o.max_model_evals), "[1, 2^63)");
+  check_range(o.threads >= 0 && o.threads <= 1024, "threads", o.threads, "[0, 1024]");
+}
+
+CheckBrdfCase compare_lobes(const std::vector<double>& sim, const std::vector<double>& model, double rays,
+                            double grooves, double sigmas, double model_tolerance) {
+  CheckBrdfCase c;
+  c.albedo_sim = sum(sim);
+  c.albedo_model = sum(model);
+  c.non_finite = !all_finite(model) || std::any_of(model.begin(), model.end(), [](double v) { return v < 0.0; });
+  const std::vector<double> p = normalized(model);
+  c.l1 = l1(normalized(sim), p);
+  const ExpectedL1 e = expected_l1(p, rays, grooves);
+  c.l1_expected = e.mean;
+  c.l1_threshold = e.mean + sigmas * e.sd + model_tolerance;
+  std::vector<double> clamped(model.size());
+  std::transform(model.begin(), model.end(), clamped.begin(), [](double v) { return std::clamp(v, 0.0, 1.0); });
+  c.l1_flux = l1(sim, model);
+  const ExpectedL1 ef = expected_l1(clamped, rays, grooves);
+  c.l1_flux_expected = ef.mean;
+  c.l1_flux_threshold = ef.mean + sigmas * ef.sd + model_tolerance;
+  // The albedo: a binomial fraction of N rays over G grooves, plus one ray's worth and the tolerance.
+  const double a = std::clamp(c.albedo_model, 0.0, 1.0);
+  c.albedo_threshold = sigmas * std::sqrt(a * (1.0 - a) * (1.0 / rays + 1.0 / grooves)) + 1.0 / rays + model_tolerance;
+  c.pass = !c.non_finite && std::isfinite(c.l1) && c.l1 <= c.l1_threshold && c.l1_flux <= c.l1_flux_threshold &&
+           std::abs(c.albedo_sim - c.albedo_model) <= c.albedo_threshold;
+  return c;
+}
+
+CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt) {
+  check_options(opt);
+  CheckBrdfResult res;
+  res.options = opt;
+  res.threads = support::resolve_threads(opt.threads);
+  const auto t0 = Clock::now();
+  const std::size_t cases = opt.theta_i_deg.size();
+  std::vector<double> theta_i;
+  for (double d : opt.theta_i_deg) theta_i.push_back(deg_to_rad(d));
+
+  // The model's bins, one work item per incidence, then the traced lobes.
+  std::vector<ModelBins> model(cases);
+  std::vector<double> model_s(cases, 0.0);
+  const analytic::GaussLegendre rule = analytic::gauss_legendre(opt.quadrature_order);
+  const bool integrated = support::parallel_for(
+      cases, res.threads,
+      [&](std::size_t c) {
+        const auto ti = Clock::now();
+        model[c] = model_bins(f, analytic::dir3(theta_i[c], kPi), opt, rule, opt.cancel);
+        model_s[c] = seconds_since(ti);
+      },
+      {}, opt.cancel, 1);
+  LobeSetup setup;
+  setup.ndf = opt.ndf, setup.alpha = opt.alpha, setup.dim = opt.dim, setup.rays = opt.rays;
+  setup.grooves = opt.grooves, setup.seed = opt.seed;
+  setup.theta_bins = opt.theta_bins, setup.phi_bins = opt.phi_bins, setup.flatland_bins = opt.flatland_bins;
+  const std::vector<TracedLobe> traced =
+      integrated ? trace_lobes(setup, theta_i, res.threads, opt.cancel) : std::vector<TracedLobe>{};
+  res.wall_s = seconds_since(t0);
+  if (traced.size() != cases || (opt.cancel && opt.cancel->load())) {
+    res.interrupted = true;
+    return res;
+  }
+  res.pass = true;
+  for (std::size_t c = 0; c < cases; ++c) {
+    const std::vector<double>& sim = traced[c].flux;
+    const std::vector<double>& m = model[c].flux;
+    const double N = static_cast<double>(traced[c].rays);
+    // The model's side is known to within its integration error: it widens each threshold.
+    CheckBrdfCase out = compare_lobes(sim, m, N, opt.grooves, opt.sigmas, opt.model_tolerance + model[c].error);
+    out.model_error = model[c].error;
+    out.model_evals = model[c].evals;
+    out.theta_i_deg = opt.theta_i_deg[c];
+    out.rays = traced[c].rays;
+    out.sim_wall_s = traced[c].thread_s;
+    out.model_wall_s = model_s[c];
+    out.worst = worst_bins(sim, m, opt.dim, opt.theta_bins, opt.phi_bins, opt.flatland_bins);
+    res.pass = res.pass && out.pass;
+    res.cases.push_back(std::move(out));
+  }
+  return res;
+}
+
+std::vector<WorstBin> worst_bins(const std::vector<double>& sim, const std::vector<double>& model, SurfaceDim dim,
+                                 int theta_bins, int phi_bins, int flatland_bins) {
+  std::vector<std::size_t> order(sim.size());
+  std::iota(order.begin(), order.end(), 0);
+  const std::size_t shown = std::min<std::size_t>(kWorstBins, order.size());
+  std::partial_sort(
+      order.begin(), order.begin() + static_cast<std::ptrdiff_t>(shown), order.end(),
+      [&](std::size_t a, std::size_t b) { return std::abs(sim[a] - model[a]) > std::abs(sim[b] - model[b]); });
+  std::vector<WorstBin> out;
+  for (std::size_t n = 0; n < shown; ++n) {
+    WorstBin w;
+    const std::size_t i = order[n];
+    if (dim == SurfaceDim::flatland) {
+      w.theta_o_deg = output_deg(-0.5 * kPi + (static_cast<double>(i) + 0.5) * kPi / flatland_bins);
+    } else {
+      const std::size_t t = i / static_cast<std::size_t>(phi_bins), p = i % static_cast<std::size_t>(phi_bins);
+      w.theta_o_deg = output_deg((static_cast<double>(t) + 0.5) * 0.5 * kPi / theta_bins);
+      double phi = static_cast<double>(p) * 2.0 * kPi / phi_bins;
+      if (phi > kPi) phi -= 2.0 * kPi;
+      w.phi_o_deg = output_deg(phi);
+    }
+    w.sim = sim[i], w.model = model[i];
+    out.push_back(w);
+  }
+  return out;
+}
+
+nlohmann::json CheckBrdfResult::to_json() const {
+  nlohmann::json j = provenance();
+  j["kind"] = "check_brdf";
+  j["name"] = options.name;
+  j["seed"] = options.seed;
+  j["threads"] = threads;
+  j["wall_s"] = wall_s;
+  j["inputs"] = {{"ndf", ndf_name(options.ndf)},
+                 {"alpha", options.alpha},
+                 {"dimension", surface_dim_name(options.dim)},
+                 {"theta_i_deg", options.theta_i_deg},
+                 {"rays", options.rays},
+                 {"grooves", options.grooves},
+                 {"theta_bins", options.theta_bins},
+                 {"phi_bins", options.phi_bins},
+                 {"flatland_bins", options.flatland_bins},
+                 {"sigmas", options.sigmas},
+                 {"model_tolerance", options.model_tolerance},
+                 {"quadrature_order", options.quadrature_order},
+                 {"max_model_evals", options.max_model_evals}};
+  nlohmann::json cs = nlohmann::json::array();
+  for (const CheckBrdfCase& c : cases) {
+    nlohmann::json worst = nlohmann::json::array();
+    for (const WorstBin& w : c.worst)
+      worst.push_back({{"theta_o_deg", w.theta_o_deg}, {"phi_o_deg", w.phi_o_deg}, {"sim", w.sim}, {"model", w.model}});
+    cs.push_back({{"theta_i_deg", c.theta_i_deg},
+                  {"rays", c.rays},
+                  {"albedo_sim", c.albedo_sim},
+                  {"albedo_model", c.albedo_model},
+                  {"albedo_threshold", c.albedo_threshold},
+                  {"l1", c.l1},
+                  {"l1_expected", c.l1_expected},
+                  {"l1_threshold", c.l1_threshold},
+                  {"l1_flux", c.l1_flux},
+                  {"l1_flux_expected", c.l1_flux_expected},
+                  {"l1_flux_threshold", c.l1_flux_threshold},
+                  {"worst_bins", worst},
+                  {"sim_wall_s", c.sim_wall_s},
+                  {"model_integration_error", c.model_error},
+                  {"model_evaluations", c.model_evals},
+                  {"model_wall_s", c.model_wall_s},
+                  {"non_finite", c.non_finite},
+                  {"pass", c.pass}});
+  }
+  j["cases"] = cs;
+  j["interrupted"] = interrupted;
+  j["pass"] = pass;
+  return j;
+}
+
+}  // namespace vgroove::validation

@@ -1,0 +1,112 @@
+// vgroove validation: hold a BRDF of your own against vgroove's exact simulation.
+//
+// A renderer developer links vgroove::validation and writes one call:
+//
+//   vgroove::validation::CheckBrdfOptions opt;          // GGX, alpha 0.5, theta_i 0..80 deg, 3D
+//   auto result = vgroove::validation::check_brdf(
+//       [](const vgroove::analytic::Dir3& wi, const vgroove::analytic::Dir3& wo) { return my_brdf(wi, wo); },
+//       opt);
+//   EXPECT_TRUE(result.pass) << result.to_json().dump(1);
+//
+// What it does, per incidence theta_i: builds the procedural V-groove microsurface of the NDF and
+// alpha (sim/microsurface3d.h in 3D, sim/microsurface.h in flatland; the surface of the Fig. 11
+// suite), traces `rays` rays exactly, and bins the exit directions as that suite does (3D: theta_o
+// in [0, pi/2) in theta_bins equal bins times phi_o in phi_bins bins centred on the mirror
+// direction's azimuth; flatland: theta_o in (-pi/2, pi/2) in flatland_bins bins). The user's BRDF
+// is integrated over the same bins, f(wi, wo) cos(theta_o) d omega_o, by globally adaptive
+// Gauss-Legendre cubature (quadrature_order^2 nodes per cell, cells split where the error
+// estimate is largest, until the estimates sum to model_tolerance or max_model_evals is spent):
+// the fraction of the incident flux the model sends into each bin, and a bound on its error. The two are compared as
+// the Fig. 11 suite compares vgroove's own model (validation/histogram_metrics.h): the L1 distance of the normalized
+// lobes (the shape) and of the flux fractions (shape and energy), each against the error expected of a correct model at
+// this sample count plus `sigmas` standard deviations plus `model_tolerance` and the integration's error estimate, and
+// the albedo against its binomial error. A case passes when all three hold.
+//
+// Frame and units: n = (0, 0, 1); wi = dir3(theta_i, pi) points to the light, wo away from the
+// surface, both unit vectors; f in 1/sr (3D). In flatland the directions lie in the plane y = 0
+// (wi at azimuth pi, wo at azimuth 0 or pi) and f is per radian: the flux fraction of a bin is
+// int f(wi, wo) cos(theta_o) d theta_o. The light is white and the surface a perfect mirror
+// (F = 1): a BRDF that includes Fresnel should be checked with its Fresnel term set to 1.
+#pragma once
+
+#include "vgroove/analytic/brdf_3d.h"
+#include "vgroove/common/ndf_kind.h"
+#include "vgroove/validation/brdf_suite.h"
+
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace vgroove::validation {
+
+// The BRDF under test: f(wi, wo), both unit vectors pointing away from the surface (see above).
+using BrdfFn = std::function<double(const analytic::Dir3& wi, const analytic::Dir3& wo)>;
+
+struct CheckBrdfOptions {
+  std::string name = "check_brdf";  // names the report
+  NdfKind ndf = NdfKind::ggx;
+  double alpha = 0.5;                                     // (0, 2]
+  std::vector<double> theta_i_deg = {0, 20, 40, 60, 80};  // each in [0, 90)
+  SurfaceDim dim = SurfaceDim::three_d;
+  long rays = 1'000'000;                      // per theta_i, [1, 1e9]
+  int grooves = 250'000;                      // grooves of the traced surface, [1, 1e7]
+  std::uint64_t seed = 1;                     // surface and rays
+  int theta_bins = 30;                        // 3D: theta_o bins over [0, 90) deg
+  int phi_bins = 24;                          // 3D: phi_o bins, even
+  int flatland_bins = 90;                     // flatland: theta_o bins over (-90, 90) deg
+  double sigmas = 5.0;                        // standard deviations allowed beyond the expected error
+  double model_tolerance = 1e-4;              // the bin integration's target error (summed over bins)
+  int quadrature_order = 4;                   // Gauss-Legendre nodes per cell and axis
+  std::int64_t max_model_evals = 4'000'000;   // per theta_i: the integration stops there
+  int threads = 0;                            // 0: all cores; the results do not depend on it
+  const std::atomic<bool>* cancel = nullptr;  // set to stop: the result says interrupted
+};
+
+// One bin where the simulation and the model differ most (flux fractions of the incident light).
+struct WorstBin {
+  double theta_o_deg = 0.0, phi_o_deg = 0.0;  // the bin's centre (flatland: signed theta_o, phi 0)
+  double sim = 0.0, model = 0.0;
+};
+
+struct CheckBrdfCase {
+  double theta_i_deg = 0.0;
+  std::int64_t rays = 0;
+  double albedo_sim = 0.0, albedo_model = 0.0, albedo_threshold = 0.0;
+  double l1 = 0.0, l1_expected = 0.0, l1_threshold = 0.0;                 // normalized lobes
+  double l1_flux = 0.0, l1_flux_expected = 0.0, l1_flux_threshold = 0.0;  // flux fractions
+  std::vector<WorstBin> worst;  // the five largest |sim - model|, largest first
+  double model_error = 0.0;     // the integration's error estimate, added to every threshold
+  std::int64_t model_evals = 0;
+  double sim_wall_s = 0.0, model_wall_s = 0.0;
+  bool non_finite = false;  // the model returned NaN, infinity or a negative value somewhere
+  bool pass = false;
+};
+
+struct CheckBrdfResult {
+  CheckBrdfOptions options;
+  std::vector<CheckBrdfCase> cases;
+  int threads = 1;
+  double wall_s = 0.0;
+  bool interrupted = false;
+  bool pass = false;
+  // The report JSON (provenance, options, every case's figures, pass), as `vgroove validate` writes.
+  nlohmann::json to_json() const;
+};
+
+// Throws support::UserError naming the option when an option is out of range.
+void check_options(const CheckBrdfOptions& opt);
+CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt);
+
+// The comparison itself, for a model given as flux fractions per bin (the model-table route of
+// `vgroove validate --model-table`): sim and model over the same bins, N rays over G grooves.
+CheckBrdfCase compare_lobes(const std::vector<double>& sim, const std::vector<double>& model, double rays,
+                            double grooves, double sigmas, double model_tolerance);
+// The five bins where |sim - model| is largest, largest first, with their centres.
+std::vector<WorstBin> worst_bins(const std::vector<double>& sim, const std::vector<double>& model, SurfaceDim dim,
+                                 int theta_bins, int phi_bins, int flatland_bins);
+
+}  // namespace vgroove::validation
