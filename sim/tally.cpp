@@ -19,6 +19,13 @@ void add_to_bin(BounceBin& b, std::int64_t n, const Vec2& dir, double spread_sin
 
 void Tally::add_first(BounceBin& b, const Vec2& dir) { add_to_bin(b, 1, dir, 0.0, false); }
 
+BounceBin& BounceBins::find_or_insert(int k) {
+  const auto it = std::lower_bound(e_.begin(), e_.end(), k, [](const Entry& e, int key) { return e.k < key; });
+  last_ = static_cast<std::size_t>(it - e_.begin());
+  if (it == e_.end() || it->k != k) e_.insert(it, Entry{k, BounceBin{}});
+  return e_[last_].bin;
+}
+
 void Tally::merge(const Tally& o) {
   merge_fates(o);
   for (int f = 0; f < 2; ++f)

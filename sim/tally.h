@@ -43,13 +43,12 @@ class BounceBins {
     const Entry* e = find(k);
     return e ? e->bin : empty_;
   }
-  // The bin of k, added (empty) if absent.
+  // The bin of k, added (empty) if absent. Inline only the common case, the k of the previous
+  // ray (a beam's rays come in runs of one k), so that Tally::add stays small enough to inline.
   BounceBin& bin(int k) {
-    if (last_ < e_.size() && e_[last_].k == k) return e_[last_].bin;  // rays of a beam repeat their k
-    const auto it = std::lower_bound(e_.begin(), e_.end(), k, [](const Entry& e, int key) { return e.k < key; });
-    last_ = static_cast<std::size_t>(it - e_.begin());
-    if (it == e_.end() || it->k != k) e_.insert(it, Entry{k, BounceBin{}});
-    return e_[last_].bin;
+    if (last_ < e_.size() && e_[last_].k == k) [[likely]]
+      return e_[last_].bin;
+    return find_or_insert(k);
   }
   std::vector<Entry>::const_iterator begin() const { return e_.begin(); }
   std::vector<Entry>::const_iterator end() const { return e_.end(); }
@@ -57,6 +56,7 @@ class BounceBins {
   int max_k() const { return e_.empty() ? 0 : e_.back().k; }  // largest k with a ray, 0 if none
 
  private:
+  BounceBin& find_or_insert(int k);
   const Entry* find(int k) const {
     const auto it = std::lower_bound(e_.begin(), e_.end(), k, [](const Entry& e, int key) { return e.k < key; });
     return it != e_.end() && it->k == k ? &*it : nullptr;
