@@ -255,6 +255,16 @@ TEST(CliInterrupt, InsideRoughSurfaceCases) {
   expect_prompt_stop("validate " + q(table2) + " --rays 1000000000 --threads 1 --out " + q(report), dir, report);
 }
 
+TEST(CliInterrupt, InsideTheLobeIntegration) {
+  // 200 x 200 bins: the 3D lobe's quadrature takes minutes (a few rays, so it starts at once).
+  TempDir dir;
+  const std::string suite = dir.file("lobe.json"), report = dir.file("r.json");
+  write_text(suite, R"({"name": "g", "kind": "brdf", "ndf": ["ggx"], "alpha": [0.5], "theta_i_deg": [30],
+    "dimensions": ["3d"], "rays": 1000, "grooves": 1000, "theta_bins": 200, "phi_bins": 200, "max_k": 23,
+    "thresholds": {"sigmas": 5, "model_tolerance": {"flatland": 1e-5, "3d": 1e-4}}})");
+  expect_prompt_stop("validate " + q(suite) + " --out " + q(report), dir, report);
+}
+
 TEST(CliInterrupt, InsideABenchmarkRun) {
   TempDir dir;
   const std::string report = dir.file("r.json");
@@ -311,6 +321,21 @@ TEST(CliOutput, FullDiskAndClosedStdoutAreFailures) {
   const CliRun r = vgroove("validate " + q(small_suite(dir)) + " --out " + q(report) + " >&-");
   EXPECT_EQ(r.status, 2) << r;
   EXPECT_EQ(json::parse(read_text(report)).at("suite"), "small");
+}
+
+// A report on a full file system: the write error is reported, and nothing is left there.
+TEST(CliOutput, FullFileSystemIsAFailure) {
+  if (::geteuid() != 0) GTEST_SKIP() << "mounting a small tmpfs needs root";
+  TempDir dir;
+  const std::string mnt = dir.file("small");
+  fs::create_directory(mnt);
+  if (sh("mount -t tmpfs -o size=16k tmpfs " + q(mnt)).status != 0) GTEST_SKIP() << "mount not permitted here";
+  const std::string sym = std::string(VGROOVE_SOURCE_DIR) + "/data/suites/table1_symmetric.json";
+  const CliRun r = vgroove("validate " + q(sym) + " --out " + q(mnt + "/r.json"));  // a 3 MB report
+  const bool empty = fs::is_empty(mnt);
+  sh("umount " + q(mnt));
+  expect_refused(r, "r.json: writing failed (No space left on device)");
+  EXPECT_TRUE(empty) << "a partial report or temporary was left";
 }
 
 // ---------------------------------------------------------------------------------------------
