@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <tuple>
 #include <vector>
 
 namespace vgroove::validation {
@@ -50,8 +51,10 @@ std::string accuracy_svg(const nlohmann::json& report, const std::string& file) 
     }
   }
   if (lines.empty()) throw support::UserError(file + ": no run with positive wall time and error to plot");
-  const auto [tx0, tx1] = log_range(tmin, tmax);
-  const auto [ey0, ey1] = log_range(emin, emax);
+  // Plain variables, not structured bindings: clang 14 cannot capture those in the lambdas below.
+  double tx0, tx1, ey0, ey1;
+  std::tie(tx0, tx1) = log_range(tmin, tmax);
+  std::tie(ey0, ey1) = log_range(emin, emax);
   const double W = 720, H = 480, L = 80, R = 160, T = 48, B = 60;
   auto X = [&](double t) { return L + (std::log10(t) - tx0) / std::max(1.0, tx1 - tx0) * (W - L - R); };
   auto Y = [&](double e) { return H - B - (std::log10(e) - ey0) / std::max(1.0, ey1 - ey0) * (H - T - B); };
@@ -134,8 +137,10 @@ std::string cost_svg(const nlohmann::json& report) {
     vmin = std::min(vmin, q.v), vmax = std::max(vmax, q.v);
     nmin = std::min({nmin, q.tracer, q.model}), nmax = std::max({nmax, q.tracer, q.model});
   }
-  const auto [vx0, vx1] = log_range(vmin, vmax);
-  const auto [ny0, ny1] = log_range(nmin, nmax);
+  // Plain variables, not structured bindings: clang 14 cannot capture those in the lambdas below.
+  double vx0, vx1, ny0, ny1;
+  std::tie(vx0, vx1) = log_range(vmin, vmax);
+  std::tie(ny0, ny1) = log_range(nmin, nmax);
   const double W = 720, H = 420, L = 80, R = 190, T = 48, B = 60;
   auto X = [&](double v) { return L + (std::log10(v) - vx0) / std::max(1.0, vx1 - vx0) * (W - L - R); };
   auto Y = [&](double n) { return H - B - (std::log10(n) - ny0) / std::max(1.0, ny1 - ny0) * (H - T - B); };
