@@ -65,6 +65,7 @@
 #pragma once
 
 #include "vgroove/analytic/kaleidoscope.h"
+#include "vgroove/analytic/kaleidoscope_solutions.h"
 #include "vgroove/analytic/ndf.h"
 
 #include <functional>
@@ -78,6 +79,22 @@ struct Dir3 {
   double x = 0.0, y = 0.0, z = 1.0;
 };
 Dir3 dir3(double theta, double phi);
+
+// The cross-section of the groove that holds h = (i + o)/|i + o| (the header's derivation): a is
+// the horizontal direction of h, so that t_h = -theta_h <= 0 and the facet with normal h is the
+// left one; x holds t_i = atan2(-(i.a), i.n) and t_o with their sines and cosines. Every field is
+// computed symmetrically in (i, o) or swaps with them bitwise, which makes Eq. (16) reciprocal
+// to the last bit.
+struct GrooveFrame {
+  CrossSection x;
+  double t_h = 0.0;
+  double c = 1.0;      // sqrt(1 - (i.u)^2) = sqrt(1 - (o.u)^2): the length of i's projection
+  double sin_h = 0.0;  // sin(theta_h)
+  double cos_d = 1.0;  // i.h = o.h
+  double ax = 1.0, ay = 0.0;
+};
+// False when h = n exactly (the plane is undefined); i and o above the horizon.
+bool groove_frame(const Dir3& i, const Dir3& o, GrooveFrame& f);
 
 // F(cos theta_incidence) -> reflectance in [0, 1]. An empty function means F = 1.
 using FresnelFn = std::function<double(double)>;
@@ -98,6 +115,9 @@ double vgroove_brdf_reference(const Dir3& i, const Dir3& o, NdfKind ndf, double 
 // at t_i aimed at `first` and leaving at t_o, where theta_v solves Eq. (5) for (t_i, t_o, k)
 // (the form used by Eq. 16; derivation and numerics in brdf_3d.cpp). Exposed for the tests.
 double beam_width_k(double t_i, double t_o, double theta_v, int k, FacetSide first);
+// Fresnel along a path of the cross-section: prod_j F(c |d_j . s_j|) over its k reflections, the
+// first on `first` (Eq. 11 with the 3D cosines c times the 2D ones); 1 when F is empty.
+double fresnel_along_path(const FresnelFn& F, double t_i, double theta_m, FacetSide first, int k, double c);
 // Eq. (1)-(3): Cook-Torrance with the V-cavity G (Eq. 2), F = 1.
 double cook_torrance(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha);
 double cook_torrance(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, const FresnelFn& F);

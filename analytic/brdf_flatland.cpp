@@ -1,6 +1,7 @@
 #include "vgroove/analytic/brdf_flatland.h"
 
 #include "vgroove/analytic/kaleidoscope.h"
+#include "vgroove/analytic/kaleidoscope_solutions.h"
 #include "vgroove/analytic/quadrature.h"
 
 #include <algorithm>
@@ -272,6 +273,16 @@ double flatland_brdf(NdfKind ndf, double alpha, double theta_i, double theta_o, 
   double s = 0.0;
   for (int k = 1; k <= max_k; ++k) s += flatland_brdf_k(ndf, alpha, theta_i, theta_o, k);
   return s;
+}
+
+double flatland_brdf_fast(NdfKind ndf, double alpha, double theta_i, double theta_o, int max_k) {
+  if (!(std::abs(theta_i) < kHalfPi && std::abs(theta_o) < kHalfPi)) return 0.0;
+  const double m = theta_i + theta_o > 0.0 ? -1.0 : 1.0;
+  double sum = 0.0;
+  // Step (d): D2(theta_s) w_k / (2k) per solution.
+  for_each_solution(cross_section(m * theta_i, m * theta_o), 1, max_k,
+                    [&](const Solution& q) { sum += D2_cs(ndf, q.S, q.C, alpha) * q.W / (2.0 * q.k); });
+  return sum / (std::cos(theta_i) * std::cos(theta_o));
 }
 
 double flatland_brdf_single(NdfKind ndf, double alpha, double theta_i, double theta_o) {

@@ -98,6 +98,11 @@ namespace vgroove::analytic {
 double flatland_brdf_k(NdfKind ndf, double alpha, double theta_i, double theta_o, int k);
 // Sum over k = 1..max_k.
 double flatland_brdf(NdfKind ndf, double alpha, double theta_i, double theta_o, int max_k);
+// The same sum in one pass over the solutions Eq. (4) allows (kaleidoscope_solutions.h, in the
+// frame where t_h <= 0, the profile being mirror symmetric), whatever max_k is: the cost of a few
+// k, where flatland_brdf visits every k and m. Equal to it to 1e-10 relative (Eq. 6's widths are
+// written as products here, as differences of sines there).
+double flatland_brdf_fast(NdfKind ndf, double alpha, double theta_i, double theta_o, int max_k);
 // Single scattering (the Cook-Torrance analogue, V-cavity G).
 double flatland_brdf_single(NdfKind ndf, double alpha, double theta_i, double theta_o);
 

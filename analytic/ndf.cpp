@@ -59,6 +59,25 @@ double D(NdfKind kind, double theta_m, double alpha) {
   return 0.0;
 }
 
+double D_cs(NdfKind kind, double c, double s, double alpha) {
+  // The formulas of D_beckmann, D_ggx and D_phong.
+  switch (kind) {
+    case NdfKind::ggx: {
+      const double q = alpha * alpha * c * c + s * s;
+      return alpha * alpha / (std::numbers::pi * q * q);
+    }
+    case NdfKind::beckmann: {
+      const double t = s / c, c2 = c * c;
+      return std::exp(-(t * t) / (alpha * alpha)) / (std::numbers::pi * alpha * alpha * c2 * c2);
+    }
+    case NdfKind::phong: {
+      const double p = phong_exponent(alpha);
+      return (p + 2.0) / (2.0 * std::numbers::pi) * std::pow(c, p);
+    }
+  }
+  return 0.0;
+}
+
 double D2_beckmann(double theta_m, double alpha) {
   assert(alpha > 0.0);
   if (outside(theta_m)) return 0.0;
@@ -101,6 +120,28 @@ double D2(NdfKind kind, double theta_m, double alpha) {
   return 0.0;
 }
 
+double D2_cs(NdfKind kind, double c, double s, double alpha) {
+  // The formulas of D2_beckmann, D2_ggx and D2_phong.
+  if (!(c > 0.0)) return 0.0;
+  switch (kind) {
+    case NdfKind::ggx: {
+      const double q = alpha * alpha * c * c + s * s;
+      return alpha * alpha / (2.0 * q * std::sqrt(q));
+    }
+    case NdfKind::beckmann: {
+      const double t = s / c;
+      return std::exp(-(t * t) / (alpha * alpha)) / (std::sqrt(std::numbers::pi) * alpha * c * c * c);
+    }
+    case NdfKind::phong: {
+      const double p = phong_exponent(alpha);
+      const double K =
+          std::exp(std::lgamma(0.5 * (p + 3.0)) - std::lgamma(0.5 * (p + 2.0))) / std::sqrt(std::numbers::pi);
+      return K * std::pow(c, p);
+    }
+  }
+  return 0.0;
+}
+
 double G1_vcavity(double o_dot_h, double o_dot_n, double h_dot_n) {
   // Lee et al. 2018, Eq. (2): G1(o, h) = H(o.h / o.n) min(1, 2 |h.n| |o.n| / |o.h|).
   // H(x) = 0 for x <= 0: a facet seen edge-on (o.h = 0) shows no area.
@@ -129,6 +170,11 @@ double Lambda_ggx(double theta_o, double alpha) {
   const double t = std::tan(theta_o);
   const double x = alpha * alpha * t * t;
   return x / (2.0 * (1.0 + std::sqrt(1.0 + x)));
+}
+
+double Lambda(NdfKind kind, double theta_o, double alpha) {
+  assert(kind == NdfKind::beckmann || kind == NdfKind::ggx);
+  return kind == NdfKind::ggx ? Lambda_ggx(theta_o, alpha) : Lambda_beckmann(theta_o, alpha);
 }
 
 double G1_smith_beckmann(double theta_o, double alpha) {

@@ -4,7 +4,7 @@
 // Papers (cited below by first author and year):
 //   Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces".
 //     ACM TOG 37(6), 2018. Sec. 3, Eq. (2); Sec. 5.1, Eq. (10) (D weighted by projected area);
-//     App. C builds P(theta_r) on these D (not implemented here).
+//     App. C builds P(theta_r) on these D (analytic/partner_distribution.h).
 //   Heitz. "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs".
 //     JCGT 3(2), 2014. Eq. (5) (projected-area constraint), Eq. (10) (Smith G1), Sec. 3.2
 //     (Beckmann and GGX D and Lambda), Eq. (24) (V-cavity G1), App. A (Lambda from the slopes).
@@ -78,12 +78,17 @@ double D_beckmann(double theta_m, double alpha);  // exp(-tan^2/a^2) / (pi a^2 c
 double D_ggx(double theta_m, double alpha);       // a^2 / (pi cos^4 (a^2 + tan^2)^2)
 double D_phong(double theta_m, double alpha);     // (p+2)/(2 pi) cos^p, p = phong_exponent(a)
 double D(NdfKind kind, double theta_m, double alpha);
+// The same from cos(theta_m) and sin(theta_m), theta_m in [0, pi/2) (no chi+ test): saves the
+// transcendental calls where the caller has both (the BRDF's and the samplers' sums).
+double D_cs(NdfKind kind, double cos_m, double sin_m, double alpha);
 
 // Flatland NDFs, D2(theta_m; alpha) over (-pi/2, pi/2), zero outside (see the header comment).
 double D2_beckmann(double theta_m, double alpha);
 double D2_ggx(double theta_m, double alpha);
 double D2_phong(double theta_m, double alpha);
 double D2(NdfKind kind, double theta_m, double alpha);
+// The same from cos(theta_m) >= 0 and sin(theta_m).
+double D2_cs(NdfKind kind, double cos_m, double sin_m, double alpha);
 
 // Lee et al. 2018, Eq. (2) (Heitz 2014, Eq. (24)): the V-cavity masking
 //   G1(o, h) = H(o.h / o.n) min(1, 2 |h.n| |o.n| / |o.h|),
@@ -100,6 +105,9 @@ double G1_vcavity_inplane(double theta_o, double theta_h);
 // (it is not shape invariant: Heitz 2014, Sec. 3.2) and is left out.
 double Lambda_beckmann(double theta_o, double alpha);
 double Lambda_ggx(double theta_o, double alpha);
+// Either of the two by kind (beckmann or ggx). They depend on |tan theta_o| only, so the same
+// value serves the direction reversed (theta_o + pi).
+double Lambda(NdfKind kind, double theta_o, double alpha);
 
 // Heitz 2014, Eq. (10): Smith's G1(o, m) = chi+(o.m) / (1 + Lambda(o)). These return the value
 // for a normal m facing o (o.m > 0); the caller applies chi+(o.m), which needs m.

@@ -5,8 +5,7 @@
 
 namespace vgroove::app {
 
-// One row of the trace/analytic JSON: the same shape from both, so the two can be diffed.
-nlohmann::json bounce_row(const char* facet, int k, double fraction, double theta_o);
+// Prints the rows of validation::rows_json.
 void print_rows(const nlohmann::json& rows);
 
 }  // namespace vgroove::app

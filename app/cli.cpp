@@ -1,6 +1,8 @@
 #include "vgroove/app/cli.h"
 
 #include "vgroove/app/commands.h"
+#include "vgroove/app/distributed.h"
+#include "vgroove/app/mpi_world.h"
 #include "vgroove/app/options.h"
 #include "vgroove/support/printable.h"
 #include "vgroove/support/std_streams.h"
@@ -56,6 +58,11 @@ template <class T>
 CLI::Option* add_text(CLI::App* app, const std::string& name, T& v, const std::string& help) {
   return app->add_option(name, v, help)->check(non_empty(name));
 }
+// Comma-separated values in one option (--ndf ggx,phong), each non-empty.
+template <class T>
+CLI::Option* add_list(CLI::App* app, const std::string& name, std::vector<T>& v, const std::string& help) {
+  return add_text(app, name, v, help)->delimiter(',')->capture_default_str();
+}
 CLI::Option* add_threads(CLI::App* app, int& v) {
   return add_integer(app, "--threads", v, "worker threads (0: all cores); results do not depend on it", 0, kMaxThreads,
                      " (0: all cores)")
@@ -86,7 +93,10 @@ void add_groove_options(CLI::App* app, GrooveArgs& g) {
   });
 }
 
-void print_error(const std::string& what) { std::cerr << "vgroove: error: " << support::printable(what) << "\n"; }
+// Every rank of an MPI run sees the same input errors: rank 0 alone prints them.
+void print_error(const std::string& what) {
+  if (world().root()) std::cerr << "vgroove: error: " << support::printable(what) << "\n";
+}
 
 int run_command(int argc, const char* const* argv, const CliContext& ctx) {
   CLI::App app{
@@ -160,16 +170,24 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
   add_threads(acc, ac.threads);
   add_text(acc, "--out", ac.out, "report JSON to write");
   acc->add_flag("--force", ac.force, "overwrite an existing report");
+  acc->add_option("--shard", ac.shard,
+                  "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+                  "report (`vgroove merge` joins them; each run's wall_s is then its summed case time)");
 
   ta.dry_run = aa.dry_run = va.dry_run = ac.dry_run = ctx.dry_run;
   ta.cancel = va.cancel = ac.cancel = ctx.cancel;
   PlotArgs pa;
-  auto* plot = app.add_subcommand("plot",
-                                  "Draw a report as SVG (from the JSON alone, nothing recomputed): the "
-                                  "accuracy-against-time report of `bench accuracy`.");
-  add_text(plot, "report", pa.report, "report JSON, e.g. from `vgroove bench accuracy ... --out acc.json`")->required();
-  add_text(plot, "--out", pa.out, "SVG to write (default: the report's name with .svg)");
-  plot->add_flag("--force", pa.force, "overwrite an existing file");
+  auto* plot = app.add_subcommand(
+      "plot",
+      "Draw a report with matplotlib (from the JSON alone, nothing recomputed): Table 1 heatmaps, the Fig. 11 "
+      "grids, the furnace, Table 2, accuracy against time and cost, check_brdf. Runs python/vgroove/plot.py "
+      "with Debian's python3 (VGROOVE_PYTHON names another); writes every figure or none.");
+  add_text(plot, "report", pa.report, "report JSON (vgroove validate --out, vgroove bench accuracy --out)")->required();
+  add_text(plot, "--out", pa.out,
+           "image to write, or its base name (default: the report's name without .json); figures after "
+           "the first get a suffix (-ggx-3d, -cost)");
+  add_text(plot, "--format", pa.format, "png (default), svg or pdf");
+  plot->add_flag("--force", pa.force, "overwrite existing images");
   pa.dry_run = ctx.dry_run;
   SimulateArgs sa;
   auto* simu = app.add_subcommand("simulate",
@@ -180,8 +198,37 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
   add_text(simu, "--out", sa.out, "result JSON to write (refuses to overwrite without --force)");
   add_threads(simu, sa.threads);
   simu->add_flag("--force", sa.force, "overwrite an existing result");
+  simu->add_option("--shard", sa.shard,
+                   "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+                   "report (`vgroove merge` joins them)");
   sa.dry_run = ctx.dry_run;
   sa.cancel = ctx.cancel;
+  SampleArgs sma;
+  auto* smp = app.add_subcommand(
+      "sample",
+      "Importance-sample the symmetric V-groove BRDF (Lee et al. 2018, Sec. 6): draw --n exit directions, hold them "
+      "to the sampler's pdf by a chi-square test (cells of (cos theta_o, phi_o), flatland theta_o; pdf integrated per "
+      "cell) and report the weights rho cos / pdf; exit 1 if the chi-square rejects.");
+  smp->add_option("--ndf", sma.ndf, "normal distribution: ggx, beckmann or phong")->capture_default_str();
+  smp->add_option("--alpha", sma.alpha, "roughness alpha, (0, 2]")->capture_default_str();
+  smp->add_option("--theta-i-deg", sma.theta_i_deg, "incident angle in degrees, [0, 90)")->capture_default_str();
+  smp->add_option("--n", sma.n, "samples, [1, 1000000000]")->capture_default_str();
+  smp->add_option("--strategy", sma.strategy,
+                  "facet distribution: printed (|s.n| D(s), the paper's), vndf (the V-cavity's visible normals), "
+                  "smith-vndf (Smith-GGX visible normals; ggx only) or bounded-vndf (Tokuyoshi and Eto 2024; ggx, "
+                  "3d only)")
+      ->capture_default_str();
+  smp->add_option("--dim", sma.dim, "3d or flatland")->capture_default_str();
+  smp->add_option("--max-k", sma.max_k, "paths with more reflections return zero weight, [1, 100000]")
+      ->capture_default_str();
+  smp->add_option("--seed", sma.seed, "seed of the uniform numbers, >= 0")->capture_default_str();
+  smp->add_option("--cos-bins", sma.cos_bins, "3d: cells over cos theta_o in [0, 1], [1, 1000]")->capture_default_str();
+  smp->add_option("--phi-bins", sma.phi_bins, "3d: cells over phi_o, even, [2, 1000]")->capture_default_str();
+  smp->add_option("--theta-bins", sma.theta_bins, "flatland: cells over theta_o in (-90, 90), [1, 10000]")
+      ->capture_default_str();
+  smp->add_option("--out", sma.out, "result JSON to write (the chi-square table, observed and expected per cell)");
+  smp->add_flag("--force", sma.force, "overwrite an existing result");
+  sma.dry_run = ctx.dry_run;
   BinsArgs bi;
   auto* bins = app.add_subcommand("bins",
                                   "Write a \"brdf\" suite's bin layout (cases, bin edges, frame) as JSON: fill in a "
@@ -220,6 +267,48 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
   brdf->add_flag("--json", ba.json, "print JSON");
   brdf->callback([&ba, theta_o]() { ba.theta_o_given = theta_o->count() > 0; });
   ba.dry_run = ctx.dry_run;
+  EnergyArgs ea;
+  auto* energy = app.add_subcommand(
+      "energy",
+      "Exact energy tables: the directional albedo E(mu, alpha) of V-groove surfaces per bounce order k (F = 1; "
+      "E_1 what single scattering keeps, the rest what it loses), traced with every ray in a groove of its own "
+      "drawn from the NDF, with standard errors, beside the analytic model (quadrature) and Cook-Torrance.");
+  add_list(energy, "--ndf", ea.ndfs, "NDFs, comma-separated: ggx, beckmann, phong");
+  add_list(energy, "--dim", ea.dims, "dimensions, comma-separated: flatland, 3d");
+  energy->add_option("--mu", ea.mu, "mu = cos theta_i, comma-separated, each in (0, 1] (default: --mu-points)")
+      ->delimiter(',');
+  energy->add_option("--mu-points", ea.mu_points, "mu at the midpoints (i + 1/2)/n of (0, 1], n in [1, 4096]")
+      ->capture_default_str();
+  energy->add_option("--alpha", ea.alpha, "roughness, comma-separated, each in (0, 2] (default: --alpha-points)")
+      ->delimiter(',');
+  energy->add_option("--alpha-points", ea.alpha_points, "alpha at the midpoints (j + 1/2)/n of (0, 1], n in [1, 4096]")
+      ->capture_default_str();
+  energy->add_option("--rays", ea.rays, "rays per cell, [1, 10000000000]")->capture_default_str();
+  energy->add_option("--seed", ea.seed, "seed of the rays' streams, >= 0")->capture_default_str();
+  energy->add_option("--max-k", ea.max_k, "bounce orders tabulated one by one, [1, 1000] (a last row holds k > max-k)")
+      ->capture_default_str();
+  energy->add_option("--threads", ea.threads, "worker threads, [0, 1024] (0: all cores); results do not depend on it")
+      ->capture_default_str();
+  energy->add_option("--out", ea.out, "table JSON to write (refuses to overwrite without --force)");
+  energy->add_flag("--npy", ea.npy,
+                   "write the arrays as .npy files beside the JSON (OUT.E_sim.npy, ...); automatic above 65536 values");
+  energy->add_option("--shard", ea.shard,
+                     "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+                     "report (`vgroove merge` joins them)");
+  energy->add_flag("--force", ea.force, "overwrite existing files");
+  ea.dry_run = ctx.dry_run;
+  ea.cancel = ctx.cancel;
+  MergeArgs ma;
+  auto* merge = app.add_subcommand(
+      "merge",
+      "Join the partial reports of one sharded run (--shard 1/N ... N/N) into the report the run gives in one "
+      "process, bit for bit (timings aside). Refuses parts of different runs, versions or splits, missing or "
+      "repeated shards, and damaged files.");
+  merge->add_option("parts", ma.parts, "partial reports, in any order")->required();
+  merge->add_option("--out", ma.out, "report to write (refuses to overwrite without --force)");
+  merge->add_flag("--npy", ma.npy, "energy tables: the arrays as .npy files beside the JSON");
+  merge->add_flag("--force", ma.force, "overwrite existing files");
+  ma.dry_run = ctx.dry_run;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -243,8 +332,11 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
     if (*acc) return cmd_bench_accuracy(ac);
     if (*plot) return cmd_plot(pa);
     if (*simu) return cmd_simulate(sa);
+    if (*smp) return cmd_sample(sma);
     if (*brdf) return cmd_brdf(ba);
     if (*bins) return cmd_bins(bi);
+    if (*energy) return cmd_energy(ea);
+    if (*merge) return cmd_merge(ma);
   } catch (const support::UserError& e) {
     print_error(e.what());
     return 2;
@@ -253,6 +345,9 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
         "out of memory: the run needs more memory than this process may use (fewer rays, cases, grooves, "
         "bins or threads need less)");
     return 2;
+  } catch (const RankFailure& e) {
+    print_error(std::string(e.what()) + "; no report written");
+    return e.interrupted ? kExitInterrupted : 3;
   } catch (const std::exception& e) {
     std::cerr << "vgroove: internal error: " << support::printable(e.what()) << "\n";
     return 3;

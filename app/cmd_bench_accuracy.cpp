@@ -4,12 +4,16 @@
 
 #include <cstdio>
 #include <numbers>
+#include "vgroove/app/distributed.h"
+#include "vgroove/app/mpi_world.h"
 #include "vgroove/app/options.h"
+#include "vgroove/app/outputs.h"
 #include "vgroove/app/progress.h"
 #include "vgroove/support/atomic_file.h"
 #include "vgroove/support/memory.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/cost_curve.h"
+#include "vgroove/validation/partial_report.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/suite_run.h"
 
@@ -17,8 +21,32 @@ namespace vgroove::app {
 
 using namespace validation;
 
+namespace {
+// The runs of `bench accuracy` as one job: the suite once per (sampling, rays), sampling outer.
+struct AccuracyPlan {
+  std::vector<Suite> suites;
+  std::vector<CaseOptions> options;
+};
+AccuracyPlan accuracy_plan(const Suite& suite, const std::vector<sim::Sampling>& samplings,
+                           const std::vector<long>& rays) {
+  AccuracyPlan p;
+  for (sim::Sampling smp : samplings)
+    for (long r : rays) {
+      CaseOptions o = suite.options;
+      o.rays = r;
+      o.sampling = smp;
+      p.suites.push_back(suite);
+      p.options.push_back(o);
+    }
+  return p;
+}
+nlohmann::json accuracy_descriptor(const AccuracyArgs& a) {
+  return job_descriptor("bench accuracy", "single-groove", {a.suite}, {{"rays", a.rays}, {"sampling", a.samplings}});
+}
+}  // namespace
+
 int cmd_bench_accuracy(const AccuracyArgs& a) {
-  check_threads(a.threads);
+  check_threads(a.threads, "--threads");
   const SuiteSet set = load_suite_set(a.suite);
   if (set.suites.size() != 1)
     throw support::UserError(a.suite + ": is a set of " + std::to_string(set.suites.size()) +
@@ -33,40 +61,65 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
     support::check_memory(run_memory_bytes(suite, o, a.threads, false), a.suite + ": the run",
                           std::to_string(suite.cases()) + " cases");
   }
+  const std::optional<support::Shard> shard = shard_from(a.shard, a.out);
+  if (shard && world().distributed())
+    throw support::UserError("--shard cannot be combined with mpirun (the ranks split the work among themselves)");
   if (!a.out.empty()) support::check_writable_target(a.out, a.force, {a.suite});
   if (a.dry_run) return 0;
+  const AccuracyPlan plan = accuracy_plan(suite, samplings, a.rays);
+  if (shard) {
+    const auto part = run_job_part(groove_cases_job(plan.suites, plan.options, accuracy_descriptor(a)), *shard,
+                                   a.threads, terminal_progress("accuracy " + shard->text()), a.cancel);
+    if (!part) return interrupted_no_report();
+    write_partial(a.out, *part, a.force);
+    return 0;
+  }
+  std::vector<SuiteRun> runs;
+  if (world().distributed()) {
+    const auto job = groove_cases_job(plan.suites, plan.options, accuracy_descriptor(a));
+    int threads = 0;
+    const auto results = run_distributed(job, a.threads, terminal_progress("accuracy"), a.cancel, &threads);
+    if (!results) return 0;  // not rank 0: its results went there
+    runs = suite_runs_from(job.work, *results, threads, -1.0);
+  } else {
+    for (std::size_t n = 0; n < plan.suites.size(); ++n) {
+      const CaseOptions& o = plan.options[n];
+      runs.push_back(run_suite(
+          suite, o, a.threads,
+          terminal_progress(std::string(sim::sampling_name(o.sampling)) + " " + std::to_string(o.rays)), a.cancel));
+      if (runs.back().interrupted) return interrupted_no_report();
+    }
+  }
+  write_accuracy_report(suite, runs, a.out, a.force);
+  return 0;
+}
 
+void write_accuracy_report(const Suite& suite, const std::vector<SuiteRun>& all_runs, const std::string& out,
+                           bool force) {
   nlohmann::json runs = nlohmann::json::array();
   std::printf("accuracy against rays: suite %s (%zu cases), vgroove %s (git %s)\n",
               support::printable(suite.name).c_str(), suite.cases(), version_string(), git_revision());
   std::printf("  %-10s %10s %12s %12s %12s %10s %8s\n", "sampling", "rays/facet", "max L1", "mean L1", "rays", "wall s",
               "pass");
-  int threads_used = 0;
-  for (sim::Sampling smp : samplings)
-    for (long rays : a.rays) {
-      CaseOptions o = suite.options;
-      o.rays = rays;
-      o.sampling = smp;
-      const SuiteRun run =
-          run_suite(suite, o, a.threads,
-                    terminal_progress(std::string(sim::sampling_name(smp)) + " " + std::to_string(rays)), a.cancel);
-      if (run.interrupted) return interrupted_no_report();
-      threads_used = run.threads;
-      const Summary& s = run.summary;
-      std::printf("  %-10s %10ld %12.4g %12.4g %12lld %10.3f %8s\n", sim::sampling_name(smp), rays, s.max_l1, s.mean_l1,
-                  static_cast<long long>(s.rays), s.wall_s, s.pass() ? "yes" : "no");
-      std::fflush(stdout);
-      runs.push_back({{"sampling", sim::sampling_name(smp)},
-                      {"rays_per_facet", rays},
-                      {"max_l1", s.max_l1},
-                      {"mean_l1", s.mean_l1},
-                      {"max_theta_o_error_rad", s.max_theta_o_error},
-                      {"rays", s.rays},
-                      {"bounces", s.bounces},
-                      {"wall_s", s.wall_s},
-                      {"bounces_per_s", s.bounces_per_s},
-                      {"pass", s.pass()}});
-    }
+  const int threads_used = all_runs.empty() ? 0 : all_runs.front().threads;
+  for (const SuiteRun& run : all_runs) {
+    const sim::Sampling smp = run.options.sampling;
+    const long rays = run.options.rays;
+    const Summary& s = run.summary;
+    std::printf("  %-10s %10ld %12.4g %12.4g %12lld %10.3f %8s\n", sim::sampling_name(smp), rays, s.max_l1, s.mean_l1,
+                static_cast<long long>(s.rays), s.wall_s, s.pass() ? "yes" : "no");
+    std::fflush(stdout);
+    runs.push_back({{"sampling", sim::sampling_name(smp)},
+                    {"rays_per_facet", rays},
+                    {"max_l1", s.max_l1},
+                    {"mean_l1", s.mean_l1},
+                    {"max_theta_o_error_rad", s.max_theta_o_error},
+                    {"rays", s.rays},
+                    {"bounces", s.bounces},
+                    {"wall_s", s.wall_s},
+                    {"bounces_per_s", s.bounces_per_s},
+                    {"pass", s.pass()}});
+  }
   // Which placement reaches the suite's thresholds first, in wall time.
   std::string fastest = "none";
   double fastest_s = 0.0;
@@ -95,7 +148,7 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
                          {"tracer_ns_per_ray", c.tracer_ns_per_ray},
                          {"model_ns_per_eval", c.model_ns_per_eval}});
   }
-  if (!a.out.empty()) {
+  if (!out.empty()) {
     nlohmann::json j = provenance();
     j["suite"] = suite.name;
     j["suite_file"] = suite.file;
@@ -105,9 +158,27 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
     j["thresholds"] = {{"max_l1", suite.thresholds.max_l1}, {"mean_l1", suite.thresholds.mean_l1}};
     j["soonest_to_thresholds"] = fastest;
     j["cost_vs_theta_v"] = {{"theta_i_deg", 30.0}, {"rays", 20000}, {"threads", 1}, {"points", cost_json}};
-    support::write_file_atomically(a.out, j.dump(1) + "\n", a.force);
-    std::printf("report: %s\n", support::printable(a.out).c_str());
+    support::write_file_atomically(out, j.dump(1) + "\n", force);
+    std::printf("report: %s\n", support::printable(out).c_str());
   }
+}
+
+int merge_accuracy(const std::vector<Part>& parts, const MergeArgs& a) {
+  const nlohmann::json& job = parts.front().header.job;
+  const std::string file = job.at("input_file").get<std::string>();
+  const SuiteSet set = load_suite_set(file);
+  check_input_unchanged(job, {file}, parts.front().file);
+  std::vector<sim::Sampling> samplings;
+  for (const auto& smp : job.at("options").at("sampling")) samplings.push_back(parse_sampling(smp, "sampling"));
+  const AccuracyPlan plan =
+      accuracy_plan(set.suites.front(), samplings, job.at("options").at("rays").get<std::vector<long>>());
+  if (!a.out.empty()) support::check_writable_target(a.out, a.force);
+  if (a.dry_run) return 0;
+  const auto j = groove_cases_job(plan.suites, plan.options, job);
+  int threads = 0;
+  for (const Part& p : parts) threads += p.header.threads;
+  write_accuracy_report(set.suites.front(), suite_runs_from(j.work, merge_job_parts(j, parts), threads, -1.0), a.out,
+                        a.force);
   return 0;
 }
 

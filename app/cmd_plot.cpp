@@ -1,52 +1,72 @@
 #include "vgroove/app/commands.h"
-#include "vgroove/support/printable.h"
 
-#include <cstdio>
-#include "vgroove/support/atomic_file.h"
-#include "vgroove/support/json_reader.h"
-#include "vgroove/validation/plot.h"
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+#include "vgroove/support/user_error.h"
+
+extern char** environ;
 
 namespace vgroove::app {
 
-using namespace validation;
+namespace {
+
+namespace fs = std::filesystem;
+
+// The plot script (python/vgroove/plot.py): beside the binary in the build tree
+// (build/python/vgroove/plot.py), or in the installed Python package (PREFIX/bin/vgroove ->
+// PREFIX/VGROOVE_PYTHON_INSTALL_DIR/vgroove/plot.py).
+std::string plot_script() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    for (const fs::path& p : {exe.parent_path() / "python" / "vgroove" / "plot.py",
+                              exe.parent_path().parent_path() / VGROOVE_PYTHON_INSTALL_DIR / "vgroove" / "plot.py"})
+      if (fs::is_regular_file(p, ec)) return p.string();
+  }
+  throw support::UserError(
+      "plot: the plot script (python/vgroove/plot.py) is neither beside this binary nor in its installed Python "
+      "package (" VGROOVE_PYTHON_INSTALL_DIR ")");
+}
+
+}  // namespace
 
 int cmd_plot(const PlotArgs& a) {
-  const nlohmann::json report = support::read_json_file(a.report);
-  std::string out = a.out;
-  if (out.empty()) {
-    out = a.report;
-    const auto dot = out.rfind(".json");
-    out = (dot != std::string::npos && dot + 5 == out.size() ? out.substr(0, dot) : out) + ".svg";
-  }
-  if (is_brdf_report(report)) {
-    // The Fig. 11 grid: one SVG per (NDF, dimension), named after --out (or the report).
-    const std::string base =
-        out.size() > 4 && out.compare(out.size() - 4, 4, ".svg") == 0 ? out.substr(0, out.size() - 4) : out;
-    const auto svgs = brdf_grid_svgs(report, a.report);
-    for (const auto& [suffix, svg] : svgs)
-      support::check_writable_target(base + "-" + suffix + ".svg", a.force, {a.report});
-    if (a.dry_run) return 0;
-    for (const auto& [suffix, svg] : svgs) {
-      support::write_file_atomically(base + "-" + suffix + ".svg", svg, a.force);
-      std::printf("plot: %s\n", support::printable(base + "-" + suffix + ".svg").c_str());
-    }
-    return 0;
-  }
-  const std::string svg = accuracy_svg(report, a.report);
-  const std::string cost = cost_svg(report);
-  const std::string cost_out =
-      (out.size() > 4 && out.compare(out.size() - 4, 4, ".svg") == 0 ? out.substr(0, out.size() - 4) : out) +
-      "-cost.svg";
-  support::check_writable_target(out, a.force, {a.report});
-  if (!cost.empty()) support::check_writable_target(cost_out, a.force, {a.report});
-  if (a.dry_run) return 0;
-  support::write_file_atomically(out, svg, a.force);
-  std::printf("plot: %s\n", support::printable(out).c_str());
-  if (!cost.empty()) {
-    support::write_file_atomically(cost_out, cost, a.force);
-    std::printf("plot: %s\n", support::printable(cost_out).c_str());
-  }
-  return 0;
+  if (!a.format.empty() && a.format != "png" && a.format != "svg" && a.format != "pdf")
+    throw support::UserError("--format = \"" + a.format + "\" is not one of \"png\", \"svg\", \"pdf\"");
+  // Drawing is matplotlib's: the work is plot.py's, run by Debian's interpreter (VGROOVE_PYTHON
+  // names another). It validates the report, renders every figure and writes all or nothing.
+  const char* env = std::getenv("VGROOVE_PYTHON");
+  const std::string python = env && *env ? env : VGROOVE_PYTHON_EXECUTABLE;
+  const std::string script = plot_script();
+  std::vector<std::string> args = {python, script, a.report};
+  if (!a.out.empty()) args.insert(args.end(), {"--out", a.out});
+  if (!a.format.empty()) args.insert(args.end(), {"--format", a.format});
+  if (a.force) args.push_back("--force");
+  if (a.dry_run) return 0;  // the report is the script's to check; a dry run starts nothing
+  // A report named like an option must stay the report: after "--" argparse reads no options.
+  if (!a.report.empty() && a.report[0] == '-') args.insert(args.begin() + 2, "--");
+  std::vector<char*> argv;
+  for (std::string& s : args) argv.push_back(s.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (const int err = posix_spawn(&pid, python.c_str(), nullptr, nullptr, argv.data(), environ); err != 0)
+    throw support::UserError("plot: cannot run " + python + " (" + std::strerror(err) +
+                             "): plots need Debian's python3 with python3-matplotlib (scripts/install-deps.sh), "
+                             "or VGROOVE_PYTHON naming an interpreter that has matplotlib");
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR)
+      throw support::UserError(std::string("plot: waiting for the plot script: ") + std::strerror(errno));
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : 3;
 }
 
 }  // namespace vgroove::app

@@ -1,19 +1,37 @@
 #include "vgroove/app/commands.h"
 #include "vgroove/support/printable.h"
 
+#include "vgroove/app/distributed.h"
+#include "vgroove/app/mpi_world.h"
 #include "vgroove/app/options.h"
+#include "vgroove/app/outputs.h"
+#include "vgroove/app/progress.h"
 #include "vgroove/scene/simulate.h"
 #include "vgroove/support/atomic_file.h"
 #include "vgroove/support/memory.h"
+#include "vgroove/validation/partial_report.h"
 
+#include <chrono>
 #include <iostream>
 
 namespace vgroove::app {
 
 using namespace scene;
 
+nlohmann::json simulate_descriptor(const Scene& scene) {
+  return validation::job_descriptor("simulate", "scene", {scene.file}, nlohmann::json::object());
+}
+
+void write_simulation(const Scene& scene, const SimulationResult& r, const std::string& out, bool force) {
+  print_result_table(std::cout, scene, r);
+  if (!out.empty()) {
+    support::write_file_atomically(out, result_json(scene, r).dump(1) + "\n", force);
+    std::cout << "result: " << support::printable(out) << "\n";
+  }
+}
+
 int cmd_simulate(const SimulateArgs& a) {
-  check_threads(a.threads);
+  check_threads(a.threads, "--threads");
   const Scene scene = load_scene(a.scene);
   support::check_memory(simulate_memory_bytes(scene, a.threads, !a.out.empty()), a.scene + ": the run",
                         std::to_string(scene.light.theta_i.size()) + " incident angles x " +
@@ -23,18 +41,36 @@ int cmd_simulate(const SimulateArgs& a) {
                             (scene.geometry.kind == GeometryKind::microsurface
                                  ? ", " + std::to_string(scene.geometry.grooves) + " grooves"
                                  : std::string()));
+  const std::optional<support::Shard> shard = shard_from(a.shard, a.out);
+  if (shard && world().distributed())
+    throw support::UserError("--shard cannot be combined with mpirun (the ranks split the work among themselves)");
   if (!a.out.empty()) support::check_writable_target(a.out, a.force, {a.scene});  // fail before the work, not after
   if (a.dry_run) return 0;
+  auto job = simulate_job(scene, simulate_descriptor(scene));
+  job.work.cancel = a.cancel;
+  if (shard) {
+    const auto part = validation::run_job_part(job, *shard, a.threads, {}, a.cancel);
+    if (!part) return interrupted_no_report();
+    write_partial(a.out, *part, a.force);
+    return 0;
+  }
+  if (world().distributed()) {
+    const auto t0 = std::chrono::steady_clock::now();
+    int threads = 0;
+    const auto results = run_distributed(job, a.threads, {}, a.cancel, &threads);
+    if (!results) return 0;  // not rank 0: its results went there
+    SimulationResult r = simulation_from(scene, *results);
+    r.threads = threads;
+    r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    write_simulation(scene, r, a.out, a.force);
+    return 0;
+  }
   const SimulationResult r = simulate(scene, a.threads, a.cancel);
   if (r.interrupted) {
     std::cerr << "vgroove: interrupted; no result written\n";
     return kExitInterrupted;
   }
-  print_result_table(std::cout, scene, r);
-  if (!a.out.empty()) {
-    support::write_file_atomically(a.out, result_json(scene, r).dump(1) + "\n", a.force);
-    std::cout << "result: " << support::printable(a.out) << "\n";
-  }
+  write_simulation(scene, r, a.out, a.force);
   return 0;
 }
 

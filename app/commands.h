@@ -67,14 +67,16 @@ struct AccuracyArgs {
   std::vector<std::string> samplings{"stratified", "random"};
   int threads = 0;
   bool force = false;
+  std::string shard;  // "I/N": write the I-th of N parts as a partial report
   const std::atomic<bool>* cancel = nullptr;
 };
 int cmd_bench_accuracy(const AccuracyArgs& a);
 
 struct PlotArgs {
-  bool dry_run = false;
+  bool dry_run = false;  // check the report, draw nothing
   std::string report;
-  std::string out;  // default: the report's name with .svg
+  std::string out;     // default: the report's name without .json; a suffix per figure
+  std::string format;  // png (default), svg or pdf
   bool force = false;
 };
 int cmd_plot(const PlotArgs& a);
@@ -85,9 +87,28 @@ struct SimulateArgs {
   std::string out;
   int threads = 0;  // 0: all cores
   bool force = false;
+  std::string shard;                          // "I/N": write the I-th of N parts as a partial report
   const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: no result is written
 };
 int cmd_simulate(const SimulateArgs& a);
+
+// Importance sampling of the symmetric V-groove BRDF: n directions, their chi-square against the
+// sampler's pdf and the weights' statistics.
+struct SampleArgs {
+  bool dry_run = false;  // check the values, do no work
+  std::string ndf = "ggx";
+  double alpha = 0.5;
+  double theta_i_deg = 30.0;
+  long n = 100000;
+  std::string strategy = "vndf";
+  std::string dim = "3d";
+  int max_k = 256;
+  long long seed = 1;
+  int cos_bins = 8, phi_bins = 16, theta_bins = 36;
+  std::string out;
+  bool force = false;
+};
+int cmd_sample(const SampleArgs& a);
 
 // `vgroove bins`: a "brdf" suite's bin layout, for a foreign model's table.
 struct BinsArgs {
@@ -115,6 +136,37 @@ struct BrdfArgs {
   bool json = false;
 };
 int cmd_brdf(const BrdfArgs& a);
+
+// `vgroove energy`: exact energy tables E(mu, alpha) per bounce order (validation/energy_table.h).
+struct EnergyArgs {
+  bool dry_run = false;
+  std::vector<std::string> ndfs{"ggx", "beckmann", "phong"};
+  std::vector<std::string> dims{"flatland", "3d"};
+  std::vector<double> mu;     // empty: --mu-points
+  int mu_points = 8;          // midpoints of (0, 1]
+  std::vector<double> alpha;  // empty: --alpha-points
+  int alpha_points = 8;       // midpoints of (0, 1]
+  long long rays = 100000;
+  long long seed = 1;
+  int max_k = 16;
+  int threads = 0;
+  std::string out;
+  bool npy = false;   // arrays as .npy files beside the JSON whatever their size
+  std::string shard;  // "I/N": write the I-th of N parts as a partial report
+  bool force = false;
+  const std::atomic<bool>* cancel = nullptr;
+};
+int cmd_energy(const EnergyArgs& a);
+
+// `vgroove merge`: partial reports of one run (`--shard I/N`) into the run's report.
+struct MergeArgs {
+  bool dry_run = false;
+  std::vector<std::string> parts;
+  std::string out;
+  bool npy = false;  // energy tables: arrays as .npy files
+  bool force = false;
+};
+int cmd_merge(const MergeArgs& a);
 
 // Exit status of a run stopped by Ctrl-C (128 + SIGINT, as a shell reports it).
 inline constexpr int kExitInterrupted = 130;

@@ -1,6 +1,7 @@
 // vgroove: check the kaleidoscopic V-groove model (Lee et al. 2018) against exact 2D tracing.
 // Parse, run, report: the command line is in cli.cpp, the work in the cmd_*.cpp files.
 #include "vgroove/app/cli.h"
+#include "vgroove/app/mpi_world.h"
 #include "vgroove/support/std_streams.h"
 
 #include <atomic>
@@ -19,6 +20,9 @@ extern "C" void on_sigint(int) {
 
 int main(int argc, char** argv) {
   vgroove::support::guard_standard_descriptors();
+  vgroove::app::world_init(&argc, &argv);
   std::signal(SIGINT, on_sigint);
-  return vgroove::app::run_cli(argc, argv, {&interrupted, false});
+  const int status = vgroove::app::run_cli(argc, argv, {&interrupted, false});
+  vgroove::app::world_finalize();
+  return status;
 }

@@ -6,6 +6,7 @@
 #include "vgroove/app/commands.h"
 #include "vgroove/sim/beam.h"
 #include "vgroove/validation/ranges.h"
+#include "vgroove/validation/run_options.h"
 #include "vgroove/validation/suite.h"
 
 #include <string>
@@ -24,15 +25,12 @@ std::string integer_text(const std::string& text, const std::string& option, lon
                          const std::string& note = "");
 std::string real_text(const std::string& text, const std::string& option);
 
-void check_seed(long long seed, const std::string& what);
-void check_rays(long rays, const std::string& what);
-void check_threads(int threads);
-sim::Sampling parse_sampling(const std::string& s, const std::string& what);
-analytic::Eq6Form parse_form(const std::string& s, const std::string& what);
+using validation::check_rays;
+using validation::check_seed;
+using validation::check_threads;
+using validation::parse_form;
+using validation::parse_sampling;
 // The groove the options name, checked; nonsymmetric grooves need both facet angles.
 validation::GrooveParams groove_from(const GrooveArgs& g);
-// A suite's case options with the command line's overrides (kUnset / empty: the suite's).
-validation::CaseOptions options_with_overrides(const validation::Suite& suite, long rays, const std::string& sampling,
-                                               const std::string& form, long long seed);
 
 }  // namespace vgroove::app

@@ -9,6 +9,7 @@
 #include "vgroove/support/parallel.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/groove_case.h"
+#include "vgroove/validation/partial_report.h"
 #include "vgroove/validation/report.h"
 
 #include <algorithm>
@@ -222,26 +223,36 @@ ModelFigures model_figures(const Scene& s, double theta_i) {
 
 double simulate_memory_bytes(const Scene& scene, int threads, bool result) {
   constexpr double kNumberBytes = 64;  // a count in the result JSON: its node, vector slot and text
+  constexpr double kVectorBytes = 64;  // a vector's header and its allocation's overhead
   const double C = static_cast<double>(scene.channels.size());
-  const double rows = kMaxKRow + 2.0;
+  const double rows = std::min<double>(kMaxKRow, scene.max_bounces) + 2.0;
   const double cells = scene.record.theta_o_bins * (1.0 + scene.record.histogram_max_k + 2.0);
-  const double tally = 8.0 * (C + rows + (scene.record.energy_per_k ? rows * C : 0.0) + cells);
+  const double counts = 8.0 * (rows + cells) + 3 * kVectorBytes;
+  // Each chunk's energies are kept apart until its theta_i is complete (added in chunk order).
+  const double chunk_energy = 8.0 * C * (1.0 + (scene.record.energy_per_k ? rows : 0.0)) + 3 * kVectorBytes;
+  const double chunks = std::ceil(static_cast<double>(scene.light.rays) / sim::kRaysPerChunk);
   const double T = static_cast<double>(scene.light.theta_i.size());
-  const double wave = std::max(8.0, 4.0 * support::resolve_threads(threads));
+  const double P = support::resolve_threads(threads);
+  // Per theta_i: the merged counts and every chunk's energies, held twice while the parts are
+  // merged; per thread an item's tally in flight and a context (the surface's grooves).
+  const double unit = counts + chunks * chunk_energy;
   const double grooves = scene.geometry.kind == GeometryKind::groove ? 1.0 : 2.0 * scene.geometry.grooves;
   const double json = result ? T * kNumberBytes * (cells + rows * (1.0 + C)) : 0.0;
-  return (T + wave) * tally + grooves * (sizeof(sim::Groove) + 8.0) + json;
+  return 2.0 * T * unit + P * (counts + 64.0 * chunk_energy) + std::min(P, T) * grooves * (sizeof(sim::Groove) + 8.0) +
+         json;
 }
 
-SimulationResult simulate(const Scene& scene, int threads, const std::atomic<bool>* cancel) {
-  const auto start = std::chrono::steady_clock::now();
-  SimulationResult r;
-  r.theta_i = scene.light.theta_i;
-  r.threads = support::resolve_threads(threads);
-  Setup s;
+struct SimulateWork::Context {
+  Setup setup;
+  ChunkFn fn = nullptr;
+};
+
+std::shared_ptr<const SimulateWork::Context> SimulateWork::prepare(std::size_t) const {
+  auto ctx = std::make_shared<Context>();
+  Setup& s = ctx->setup;
   s.scene = &scene;
   s.channels = static_cast<int>(scene.channels.size());
-  s.cancel = cancel;
+  s.cancel = cancel;  // the work's flag: a chunk of narrow-groove rays is long
   if (scene.geometry.kind == GeometryKind::groove) {
     s.grooves.push_back(make_groove(scene.geometry.groove));
   } else {
@@ -252,34 +263,99 @@ SimulationResult simulate(const Scene& scene, int threads, const std::atomic<boo
     mo.seed = scene.geometry.surface_seed;
     s.grooves = sim::make_microsurface(mo).grooves;
   }
-  const ChunkFn fn = pick_chunk_fn(scene);
-  const std::size_t T = r.theta_i.size();
-  const auto chunks = static_cast<std::size_t>((scene.light.rays + sim::kRaysPerChunk - 1) / sim::kRaysPerChunk);
-  // Items are theta-major: merging each wave's slots in item order merges every theta_i's chunks
-  // in chunk order.
-  const std::size_t items = T * chunks, wave = static_cast<std::size_t>(std::max(8, 4 * r.threads));
-  r.tallies.assign(T, empty_tally(scene));
-  std::vector<ThetaTally> slots(wave);
-  for (std::size_t w0 = 0; w0 < items; w0 += wave) {
-    const std::size_t n = std::min(wave, items - w0);
-    const bool complete = support::parallel_for(
-        n, r.threads,
-        [&](std::size_t i) {
-          const std::size_t item = w0 + i;
-          slots[i] = fn(s, r.theta_i[item / chunks], static_cast<std::int64_t>(item % chunks));
-        },
-        {}, cancel, 1);
-    if (!complete || support::cancelled(cancel)) {
-      r.interrupted = true;
-      break;
-    }
-    for (std::size_t i = 0; i < n; ++i) r.tallies[(w0 + i) / chunks].merge(slots[i]);
+  ctx->fn = pick_chunk_fn(scene);
+  return ctx;
+}
+
+SimTally SimulateWork::run_chunks(const Context& ctx, std::size_t unit, std::int64_t begin, std::int64_t end) const {
+  SimTally out;
+  out.counts = empty_tally(scene);
+  for (std::int64_t c = begin; c < end; ++c) {
+    ThetaTally t = ctx.fn(ctx.setup, scene.light.theta_i[unit], c);
+    out.energies.push_back({c, std::move(t.energy), std::move(t.energy_by_k)});
+    t.energy.assign(scene.channels.size(), 0.0);
+    out.counts.merge(t);
   }
-  for (std::size_t t = 0; t < T; ++t) {
-    r.rays += r.tallies[t].rays;
-    r.bounces += r.tallies[t].bounces;
+  return out;
+}
+
+void SimulateWork::merge(Tally& into, const Tally& from) {
+  into.counts.merge(from.counts);
+  into.energies.insert(into.energies.end(), from.energies.begin(), from.energies.end());
+}
+
+nlohmann::json SimulateWork::tally_json(const Tally& t) {
+  nlohmann::json j = fates_json(t.counts);
+  j["by_k"] = t.counts.by_k, j["theta_o"] = t.counts.theta_o, j["theta_o_by_k"] = t.counts.theta_o_by_k;
+  nlohmann::json e = nlohmann::json::array();
+  for (const ChunkEnergy& c : t.energies)
+    e.push_back({{"chunk", c.chunk}, {"energy", exact_json(c.energy)}, {"energy_by_k", exact_json(c.energy_by_k)}});
+  j["energies"] = std::move(e);
+  return j;
+}
+
+SimTally SimulateWork::tally_from_json(const nlohmann::json& j) {
+  SimTally t;
+  fates_from_json(t.counts, j);
+  t.counts.by_k = j.at("by_k").get<std::vector<std::int64_t>>();
+  t.counts.theta_o = j.at("theta_o").get<std::vector<std::int64_t>>();
+  t.counts.theta_o_by_k = j.at("theta_o_by_k").get<std::vector<std::int64_t>>();
+  for (const nlohmann::json& c : j.at("energies"))
+    t.energies.push_back(
+        {c.at("chunk").get<std::int64_t>(), exact_doubles(c.at("energy")), exact_doubles(c.at("energy_by_k"))});
+  return t;
+}
+
+validation::Job<SimulateWork> simulate_job(const Scene& scene, nlohmann::json descriptor) {
+  // Cost: about 10 ns per reflection plus a ray's set-up; Fresnel conductors ~30 ns per bounce
+  // and channel. Without a model of the scene's bounce counts: a flat estimate per ray.
+  const std::int64_t per_ray = scene.fresnel == FresnelKind::conductor ? 200 : 40;
+  std::vector<support::WorkUnit> units(scene.light.theta_i.size());
+  for (auto& u : units) {
+    u.chunks = (scene.light.rays + sim::kRaysPerChunk - 1) / sim::kRaysPerChunk;
+    u.chunk_cost = per_ray * std::min<std::int64_t>(scene.light.rays, sim::kRaysPerChunk);
+  }
+  return validation::make_job(SimulateWork{scene}, std::move(units), std::move(descriptor));
+}
+
+SimulationResult simulation_from(const Scene& scene, const std::vector<validation::UnitResult<SimulateWork>>& results) {
+  SimulationResult r;
+  r.theta_i = scene.light.theta_i;
+  for (std::size_t t = 0; t < results.size(); ++t) {
+    ThetaTally total = results[t].tally.counts;
+    std::vector<ChunkEnergy> energies = results[t].tally.energies;
+    std::sort(energies.begin(), energies.end(),
+              [](const ChunkEnergy& a, const ChunkEnergy& b) { return a.chunk < b.chunk; });
+    // The energies as simulate() has always added them: from zero, chunk after chunk.
+    ThetaTally sum = empty_tally(scene);
+    for (ChunkEnergy& e : energies) {
+      ThetaTally chunk = empty_tally(scene);
+      chunk.energy = std::move(e.energy), chunk.energy_by_k = std::move(e.energy_by_k);
+      chunk.theta_o.assign(sum.theta_o.size(), 0), chunk.theta_o_by_k.assign(sum.theta_o_by_k.size(), 0);
+      sum.merge(chunk);
+    }
+    total.energy = std::move(sum.energy), total.energy_by_k = std::move(sum.energy_by_k);
+    r.rays += total.rays;
+    r.bounces += total.bounces;
+    r.tallies.push_back(std::move(total));
     r.model.push_back(model_figures(scene, r.theta_i[t]));
   }
+  return r;
+}
+
+SimulationResult simulate(const Scene& scene, int threads, const std::atomic<bool>* cancel) {
+  const auto start = std::chrono::steady_clock::now();
+  auto job = simulate_job(scene, {});
+  job.work.cancel = cancel;
+  const auto results = validation::run_job(job, threads, {}, cancel);
+  SimulationResult r;
+  if (results) {
+    r = simulation_from(scene, *results);
+  } else {
+    r.theta_i = scene.light.theta_i;
+    r.interrupted = true;
+  }
+  r.threads = support::resolve_threads(threads);
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

@@ -16,10 +16,10 @@
 // rays cut into chunks of sim::kRaysPerChunk. Every theta_i uses the same landing points (common
 // random numbers), so a microsurface scene with fresnel none reproduces sim::trace_microsurface.
 //
-// Determinism. The work items are (theta_i, chunk); each fills its own tally, and the tallies of
-// a theta_i are merged in chunk order, so the results (the energy sums included) are bit-identical
-// for any thread count. Items run in waves of a few per thread, merged after each wave, so memory
-// does not grow with the number of chunks.
+// Determinism. The work items are runs of a theta_i's chunks (SimulateWork below); each chunk
+// fills its own tally, the counts are integers, and the energies of a theta_i are added in chunk
+// order, so the results (the energy sums included) are bit-identical for any thread count, shard
+// or MPI split.
 //
 // Cost, measured (Release, 1 thread, a 10 deg groove, 4 x 10^6 rays, 4.8 x 10^7 reflections,
 // best of 3 on the shared 2-core machine): fresnel none 0.52 s (11 ns per reflection); conductor
@@ -30,11 +30,13 @@
 
 #include "vgroove/scene/scene.h"
 #include "vgroove/sim/ray_fates.h"
+#include "vgroove/validation/work_run.h"
 
 #include <nlohmann/json.hpp>
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -81,12 +83,46 @@ struct SimulationResult {
   std::int64_t rays = 0, bounces = 0;
 };
 
-// An upper bound of the memory simulate needs (support/memory.h): the grooves, a tally per theta_i
-// and per work item of a wave (counts per k, energies, histograms), and with `result` its JSON.
+// An upper bound of the memory simulate needs (support/memory.h): the grooves of each context in
+// use, a tally per theta_i (counts per k, histograms, each chunk's energies) and per item in
+// flight, and with `result` its JSON.
 double simulate_memory_bytes(const Scene& scene, int threads, bool result);
 
 // Runs every theta_i of the scene on `threads` threads (0: all cores).
 SimulationResult simulate(const Scene& scene, int threads, const std::atomic<bool>* cancel = nullptr);
+
+// The scene as work items (validation/work_run.h): a unit per theta_i, its rays in chunks. The
+// counts merge in any grouping; the energies are sums of doubles, so each chunk's are kept apart
+// and added in chunk order when the unit is complete (as simulate() always added them), which
+// makes a sharded or MPI run the single-process run bit for bit.
+struct ChunkEnergy {
+  std::int64_t chunk = 0;
+  std::vector<double> energy, energy_by_k;
+};
+struct SimTally {
+  ThetaTally counts;  // its energies empty
+  std::vector<ChunkEnergy> energies;
+};
+struct SimulateWork {
+  struct Context;
+  struct Fixed {};
+  using Tally = SimTally;
+  Scene scene;
+  // Polled before each ray (a chunk of rays in a narrow groove runs long); a cancelled chunk's
+  // tally is incomplete, and so is the run (validation::run_work_items returns nothing).
+  const std::atomic<bool>* cancel = nullptr;
+  std::shared_ptr<const Context> prepare(std::size_t unit) const;
+  Tally run_chunks(const Context& ctx, std::size_t unit, std::int64_t begin, std::int64_t end) const;
+  Fixed run_fixed(std::size_t) const { return {}; }
+  static void merge(Tally& into, const Tally& from);
+  static nlohmann::json tally_json(const Tally& t);
+  static Tally tally_from_json(const nlohmann::json& j);
+  static nlohmann::json fixed_json(const Fixed&) { return nlohmann::json::object(); }
+  static Fixed fixed_from_json(const nlohmann::json&) { return {}; }
+};
+validation::Job<SimulateWork> simulate_job(const Scene& scene, nlohmann::json descriptor);
+// The result from every theta_i's merged tally (energies added in chunk order), with the model.
+SimulationResult simulation_from(const Scene& scene, const std::vector<validation::UnitResult<SimulateWork>>& results);
 
 // The model's figures for one theta_i of a single-groove scene (available = false otherwise).
 ModelFigures model_figures(const Scene& scene, double theta_i);

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Fuzzes the suite and scene JSON loaders and the command-line parser with libFuzzer (clang, with ASan and
-# UBSan) for SECONDS each (default 60). New interesting inputs are kept in tests/fuzz/corpus/TARGET;
+# Fuzzes the suite and scene JSON loaders and the command-line parser with libFuzzer (clang, with ASan
+# and UBSan) for SECONDS each (default 60), and the report files `vgroove plot` reads (target
+# report_plot: scripts/fuzz_reports.py, a deterministic mutation fuzzer of plot.py's checks and
+# drawing; Debian's python3 with python3-matplotlib). New interesting inputs are kept in tests/fuzz/corpus/TARGET;
 # a finding (crash, hang, sanitizer report, uncaught exception) stops with a non-zero exit and
 # leaves the input as crash-*/timeout-* in the build-fuzz directory.
-#   scripts/fuzz.sh [SECONDS] [TARGET...]        e.g. scripts/fuzz.sh 600
+#   scripts/fuzz.sh [SECONDS] [TARGET...]        e.g. scripts/fuzz.sh 600, scripts/fuzz.sh 600 report_plot
 set -euo pipefail
 cd "$(dirname "$0")/.."
 secs=${1:-60}
@@ -11,6 +13,15 @@ shift || true
 targets=("$@")
 ((${#targets[@]})) || targets=(suite_loader_fuzz scene_loader_fuzz cli_fuzz)
 
+if [[ " ${targets[*]} " == *" report_plot "* ]]; then
+  scripts/install-deps.sh
+  echo "fuzz: report_plot for $secs s (corpus tests/fuzz/corpus/report_plot)" >&2
+  /usr/bin/python3 scripts/fuzz_reports.py --seconds "$secs"
+  rest=()
+  for t in "${targets[@]}"; do [[ $t == report_plot ]] || rest+=("$t"); done
+  ((${#rest[@]})) || exit 0
+  targets=("${rest[@]}")
+fi
 scripts/install-deps.sh clang libclang-rt-14-dev
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
       -DVGROOVE_FUZZ=ON -DVGROOVE_BUILD_TESTS=OFF -DVGROOVE_BUILD_BENCH=OFF >/dev/null

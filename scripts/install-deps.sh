@@ -2,8 +2,12 @@
 # Installs the Debian packages vgroove needs that are missing (and any named as arguments).
 # Does nothing, quickly, when all are installed.
 set -euo pipefail
+# The Python module and the plots: pybind11-dev python3-dev (build), python3-numpy
+# python3-matplotlib (run; matplotlib brings PIL), python3-pytest (tests); all for Debian's
+# /usr/bin/python3.
 packages=(g++ cmake ninja-build git libeigen3-dev libcli11-dev nlohmann-json3-dev
-          libgtest-dev libgmock-dev libbenchmark-dev python3-jsonschema "$@")
+          libgtest-dev libgmock-dev libbenchmark-dev python3-jsonschema
+          pybind11-dev python3-dev python3-numpy python3-matplotlib python3-pytest "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -42,10 +42,10 @@ int MicrosurfaceTally::bin_of(double theta) const {
   return std::clamp(j, 0, bins - 1);
 }
 
-void MicrosurfaceTally::add(const TraceResult& r) {
-  if (!count(r.how, r.bounces, r.exit_dir.y() > 0.0)) return;
-  const int row = row_of(r.bounces);
-  const int bin = bin_of(angle_from_normal(r.exit_dir));
+void MicrosurfaceTally::add(Termination how, int k, const Vec2& exit_dir) {
+  if (!count(how, k, exit_dir.y() > 0.0)) return;
+  const int row = row_of(k);
+  const int bin = bin_of(angle_from_normal(exit_dir));
   ++by_k[static_cast<std::size_t>(row)];
   ++theta_o[static_cast<std::size_t>(bin)];
   ++theta_o_by_k[static_cast<std::size_t>(row) * bins + bin];

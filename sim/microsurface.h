@@ -97,7 +97,8 @@ struct MicrosurfaceTally : RayFates {
   int row_of(int k) const { return k > max_k ? max_k + 1 : k; }
   std::int64_t hist(int k_row, int bin) const { return theta_o_by_k[static_cast<std::size_t>(k_row) * bins + bin]; }
 
-  void add(const TraceResult& r);
+  void add(const TraceResult& r) { add(r.how, r.bounces, r.exit_dir); }
+  void add(Termination how, int k, const Vec2& exit_dir);
   void merge(const MicrosurfaceTally& other);  // same bins and max_k
 };
 

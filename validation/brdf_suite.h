@@ -1,7 +1,7 @@
 // vgroove validation: the suites of kind "brdf" (Lee et al. 2018, Fig. 11: the BRDF against the
-// light traced in procedural rough surfaces) and "furnace" (Fig. 12: the albedo with F = 1).
+// light traced in procedural rough surfaces). The white furnace is validation/furnace_suite.h.
 //
-// A "brdf" or "furnace" suite is the grid ndf x alpha x theta_i x dimension. Each case builds a
+// A "brdf" suite is the grid ndf x alpha x theta_i x dimension. Each case builds a
 // procedural surface of G grooves from the NDF (sim/microsurface.h in flatland,
 // sim/microsurface3d.h in 3D), traces N rays exactly and compares the histograms of exit
 // direction (total and per bounce count k) with the analytic BRDF integrated over the same bins
@@ -20,13 +20,17 @@
 #pragma once
 
 #include "vgroove/analytic/ndf.h"
+#include "vgroove/sim/microsurface.h"
+#include "vgroove/sim/microsurface3d.h"
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/histogram_metrics.h"
+#include "vgroove/validation/work_run.h"
 
 #include <nlohmann/json.hpp>
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -45,7 +49,7 @@ struct BrdfCase {
 
 struct BrdfSuite {
   std::string file, name, description;
-  std::string kind;  // "brdf" (Fig. 11: lobes and albedo) or "furnace" (albedo only)
+  std::string kind;  // "brdf" (Fig. 11: lobes and albedo)
   std::vector<analytic::NdfKind> ndfs;
   std::vector<double> alphas;
   std::vector<double> theta_i;  // radians
@@ -69,12 +73,11 @@ struct BrdfOutcome {
   BrdfCase c;
   std::int64_t rays = 0, escaped = 0, lost = 0, bounces = 0;
   // Rays still inside after the tracer's bounce limit (10^5 reflections): grooves narrower than
-  // pi / 10^5 rad, which only the roughest Phong surfaces (alpha >= 1.5, exponent < -1) draw
-  // often. With F = 1 they keep their energy; the furnace counts them as reflected and says so.
+  // pi / 10^5 rad, which only the roughest Phong surfaces (alpha >= 1.5, exponent < -1) draw often.
   std::int64_t in_flight = 0;
   int max_k_seen = 0;
   double sim_wall_s = 0.0, model_wall_s = 0.0;
-  // albedo_sim: escaped / rays ("brdf"), (escaped + in_flight) / rays ("furnace": nothing absorbed).
+  // albedo_sim: escaped / rays.
   double albedo_sim = 0.0, albedo_model = 0.0, albedo_single = 0.0;  // single: Cook-Torrance (V-cavity G)
   double albedo_threshold = 0.0;
   double l1 = 0.0, l1_expected = 0.0, l1_threshold = 0.0;        // normalized lobes, all k
@@ -106,8 +109,46 @@ double brdf_run_memory_bytes(const BrdfSuite& suite, int threads, bool report);
 // rays > 0 overrides the suite's.
 BrdfRun run_brdf_suite(const BrdfSuite& suite, long rays, int threads, const support::ProgressFn& progress = {},
                        const std::atomic<bool>* cancel = nullptr);
-// `cancel` (may be null) is read between chunks of rays; once set the outcome is incomplete.
+// `cancel` (may be null) is read between chunks of rays and inside the 3D lobes' quadrature; once
+// set the outcome is incomplete.
 BrdfOutcome run_brdf_case(const BrdfSuite& suite, const BrdfCase& c, long rays, support::CancelFlag cancel = nullptr);
+
+// The suite as work items (work_run.h): a unit per case, its rays in chunks (sim::kRaysPerChunk,
+// the procedural surface's streams), the analytic lobes its fixed part. The traced histograms of
+// flatland (theta_o) and 3D ((theta_o, phi_o)) have the same layout: rows k, bins.
+struct BinnedTally : sim::RayFates {
+  std::vector<std::int64_t> by_k, hist, hist_by_k;
+  double thread_s = 0.0;  // time spent tracing (a timing: never compared)
+};
+struct BrdfModel {
+  std::vector<double> by_k, hist, hist_by_k;  // Lee et al. 2018 (flatland lobe; Eq. 16-17 in 3D)
+  std::vector<double> single_hist;            // Cook-Torrance, V-cavity G
+  double albedo = 0.0, single_albedo = 0.0;
+  double wall_s = 0.0;  // a timing
+};
+struct BrdfWork {
+  struct Context {
+    sim::Microsurface flat;
+    sim::Microsurface3d three_d;
+  };
+  using Tally = BinnedTally;
+  using Fixed = BrdfModel;
+  BrdfSuite suite;
+  long rays = 0;                              // per case
+  const std::atomic<bool>* cancel = nullptr;  // polled between chunks and inside the 3D lobes
+  std::shared_ptr<const Context> prepare(std::size_t c) const;
+  Tally run_chunks(const Context& ctx, std::size_t c, std::int64_t begin, std::int64_t end) const;
+  Fixed run_fixed(std::size_t c) const;
+  static void merge(Tally& into, const Tally& from);
+  static nlohmann::json tally_json(const Tally& t);
+  static Tally tally_from_json(const nlohmann::json& j);
+  static nlohmann::json fixed_json(const Fixed& f);
+  static Fixed fixed_from_json(const nlohmann::json& j);
+};
+// `descriptor`: what identifies the run in its parts (partial_report.h); rays > 0 overrides the suite's.
+Job<BrdfWork> brdf_job(const BrdfSuite& suite, long rays, nlohmann::json descriptor);
+// The run from every case's merged results (each case compared with its model).
+BrdfRun brdf_run_from(const BrdfSuite& suite, long rays, const std::vector<UnitResult<BrdfWork>>& results);
 nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run);
 void print_brdf_table(std::ostream& os, const BrdfSuite& suite, const BrdfRun& run);
 

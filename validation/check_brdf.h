@@ -36,6 +36,7 @@
 #include <nlohmann/json.hpp>
 
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -45,6 +46,11 @@ namespace vgroove::validation {
 
 // The BRDF under test: f(wi, wo), both unit vectors pointing away from the surface (see above).
 using BrdfFn = std::function<double(const analytic::Dir3& wi, const analytic::Dir3& wo)>;
+// The same, n directions at a time (for callers that evaluate arrays, such as the Python module):
+// out[j] = f(wi_j, wo_j) with wi_j = (wi[3j], wi[3j + 1], wi[3j + 2]), likewise wo_j. Called with
+// the nodes of one Gauss-Legendre rule at a time (quadrature_order^2 directions in 3D), from the
+// worker threads (several calls may run at once unless opt.threads is 1).
+using BrdfBatchFn = std::function<void(const double* wi, const double* wo, std::size_t n, double* out)>;
 
 struct CheckBrdfOptions {
   std::string name = "check_brdf";  // names the report
@@ -100,6 +106,8 @@ struct CheckBrdfResult {
 // Throws support::UserError naming the option when an option is out of range.
 void check_options(const CheckBrdfOptions& opt);
 CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt);
+// The same check with the model evaluated a rule's nodes at a time: the same nodes, sums and report.
+CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt);
 
 // The comparison itself, for a model given as flux fractions per bin (the model-table route of
 // `vgroove validate --model-table`): sim and model over the same bins, N rays over G grooves.

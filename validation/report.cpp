@@ -50,6 +50,34 @@ std::string groove_text(const GrooveParams& g) {
   return buf;
 }
 
+nlohmann::json case_json(const CaseOutcome& c) {
+  nlohmann::json jc = groove_json(c.groove);
+  jc["theta_i_deg"] = output_deg(c.theta_i);
+  if (c.groove.degenerate()) {
+    jc["degenerate"] = "zero aperture: no opening, no light enters; not compared";
+    return jc;
+  }
+  jc["l1"] = c.l1;
+  jc["rays"] = c.rays;
+  jc["bounces"] = c.bounces;
+  jc["theta_o_error_rad"] = c.theta_o_error;
+  for (int f = 0; f < 2; ++f) {
+    const FacetOutcome& fo = c.facet[f];
+    const char* name = f == 0 ? "left" : "right";
+    if (!fo.compared) {
+      jc[name] = nullptr;  // the light does not reach this facet
+      continue;
+    }
+    jc[name] = {{"l1", fo.l1},
+                {"k", fo.k},
+                {"rays", fo.rays},
+                {"vertex_hits", fo.vertex_hits},
+                {"bounce_limit", fo.bounce_limit},
+                {"wrong_first_facet", fo.wrong_first}};
+  }
+  return jc;
+}
+
 nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
   const Summary& s = run.summary;
   nlohmann::json j = provenance();
@@ -66,34 +94,7 @@ nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
       "per lit facet: L1 over bounce counts (and a shadow bin) between the fractions of the rays aimed at the "
       "facet and G (Eq. 6); a case's error is the larger of its facets'";
   nlohmann::json cases = nlohmann::json::array();
-  for (const CaseOutcome& c : run.cases) {
-    nlohmann::json jc = groove_json(c.groove);
-    jc["theta_i_deg"] = output_deg(c.theta_i);
-    if (c.groove.degenerate()) {
-      jc["degenerate"] = "zero aperture: no opening, no light enters; not compared";
-      cases.push_back(std::move(jc));
-      continue;
-    }
-    jc["l1"] = c.l1;
-    jc["rays"] = c.rays;
-    jc["bounces"] = c.bounces;
-    jc["theta_o_error_rad"] = c.theta_o_error;
-    for (int f = 0; f < 2; ++f) {
-      const FacetOutcome& fo = c.facet[f];
-      const char* name = f == 0 ? "left" : "right";
-      if (!fo.compared) {
-        jc[name] = nullptr;  // the light does not reach this facet
-        continue;
-      }
-      jc[name] = {{"l1", fo.l1},
-                  {"k", fo.k},
-                  {"rays", fo.rays},
-                  {"vertex_hits", fo.vertex_hits},
-                  {"bounce_limit", fo.bounce_limit},
-                  {"wrong_first_facet", fo.wrong_first}};
-    }
-    cases.push_back(std::move(jc));
-  }
+  for (const CaseOutcome& c : run.cases) cases.push_back(case_json(c));
   j["cases"] = std::move(cases);
   const CaseOutcome& worst = run.cases.empty() ? CaseOutcome{} : run.cases[s.worst_case];
   nlohmann::json worst_j = groove_json(worst.groove);

@@ -25,6 +25,8 @@ const char* git_revision();
 double output_deg(double rad);
 
 nlohmann::json report_json(const Suite& suite, const SuiteRun& run);
+// One case of a single-groove report (its entry in "cases").
+nlohmann::json case_json(const CaseOutcome& c);
 void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run);
 
 // A set of suites: one report with every suite's, and the paper's table beside ours.

@@ -4,6 +4,9 @@
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/groove_case.h"
 #include "vgroove/validation/suite.h"
+#include "vgroove/validation/work_run.h"
+
+#include <memory>
 
 #include <vector>
 
@@ -46,5 +49,36 @@ double run_memory_bytes(const Suite& suite, const CaseOptions& options, int thre
 // `cancel` (may be null) is polled between chunks of cases: set it from a signal handler to stop.
 SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads,
                    const support::ProgressFn& progress = {}, const std::atomic<bool>* cancel = nullptr);
+
+// Single-groove suites as work items (work_run.h): one unit per case of every suite of a set
+// (suite-major), one chunk each (a case's rays come from its own streams Rng(seed, case, facet):
+// it is not cut), no fixed part.
+struct GrooveCaseTally {
+  CaseOutcome outcome;
+  double thread_s = 0.0;  // time spent on the case (a timing: never compared)
+};
+struct GrooveCaseWork {
+  struct Context {};
+  struct Fixed {};
+  using Tally = GrooveCaseTally;
+  std::vector<Suite> suites;
+  std::vector<CaseOptions> options;           // per suite
+  std::vector<std::size_t> first;             // the first unit of each suite
+  const std::atomic<bool>* cancel = nullptr;  // polled between a case's rays
+  std::shared_ptr<const Context> prepare(std::size_t) const { return std::make_shared<Context>(); }
+  Tally run_chunks(const Context&, std::size_t unit, std::int64_t begin, std::int64_t end) const;
+  Fixed run_fixed(std::size_t) const { return {}; }
+  static void merge(Tally&, const Tally&) {}  // one chunk per unit: never two tallies to merge
+  static nlohmann::json tally_json(const Tally& t);
+  static Tally tally_from_json(const nlohmann::json& j);
+  static nlohmann::json fixed_json(const Fixed&) { return nlohmann::json::object(); }
+  static Fixed fixed_from_json(const nlohmann::json&) { return {}; }
+};
+Job<GrooveCaseWork> groove_cases_job(const std::vector<Suite>& suites, const std::vector<CaseOptions>& options,
+                                     nlohmann::json descriptor);
+// Each suite's run (cases and summary) from every unit's results; wall_s and threads are the caller's.
+std::vector<SuiteRun> suite_runs_from(const GrooveCaseWork& work,
+                                      const std::vector<UnitResult<GrooveCaseWork>>& results, int threads,
+                                      double wall_s);
 
 }  // namespace vgroove::validation

@@ -2,11 +2,15 @@
 #pragma once
 
 #include "vgroove/analytic/ndf.h"
+#include "vgroove/sim/microsurface3d.h"
+#include "vgroove/sim/ndf_grooves.h"
+#include "vgroove/validation/work_run.h"
 
 #include <nlohmann/json.hpp>
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -40,6 +44,34 @@ Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file)
 // An upper bound of the memory run_table2_suite needs (support/memory.h): a 3D surface per worker.
 double table2_run_memory_bytes(const Table2Suite& suite, int threads);
 Table2Run run_table2_suite(const Table2Suite& suite, long rays, int threads, const std::atomic<bool>* cancel = nullptr);
+
+// The traced column as work items (work_run.h): a unit per (ndf, alpha) surface (ndf outer), its
+// rays at normal incidence in chunks; bounce counts per k (rows up to kTable2MaxK, one beyond).
+inline constexpr int kTable2MaxK = 1000;
+struct Table2Work {
+  struct Context {
+    sim::Microsurface3d surface;
+  };
+  struct Fixed {};
+  using Tally = sim::BounceCounts;
+  Table2Suite suite;
+  long rays = 0;
+  const std::atomic<bool>* cancel = nullptr;  // polled between chunks
+  std::shared_ptr<const Context> prepare(std::size_t unit) const;
+  Tally run_chunks(const Context& ctx, std::size_t unit, std::int64_t begin, std::int64_t end) const;
+  Fixed run_fixed(std::size_t) const { return {}; }
+  static void merge(Tally& into, const Tally& from) { into.merge(from); }
+  static nlohmann::json tally_json(const Tally& t);
+  static Tally tally_from_json(const nlohmann::json& j);
+  static nlohmann::json fixed_json(const Fixed&) { return nlohmann::json::object(); }
+  static Fixed fixed_from_json(const nlohmann::json&) { return {}; }
+};
+// rays > 0 overrides the suite's.
+Job<Table2Work> table2_job(const Table2Suite& suite, long rays, nlohmann::json descriptor);
+// The table (the rule under each reading, and the traced percentiles from the merged counts).
+// `cancel` (may be null) is read between the model's entries; once set the run is interrupted.
+Table2Run table2_run_from(const Table2Suite& suite, const std::vector<UnitResult<Table2Work>>& results,
+                          const std::atomic<bool>* cancel = nullptr);
 nlohmann::json table2_report_json(const Table2Suite& suite, const Table2Run& run);
 void print_table2(std::ostream& os, const Table2Suite& suite, const Table2Run& run);
 

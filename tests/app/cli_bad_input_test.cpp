@@ -513,8 +513,8 @@ TEST(CliInput, SuitesAndScenesFromPipes) {
   // A rough-surface suite: dispatched by its kind after the one read.
   const std::string furnace = dir.file("furnace.json");
   write_text(furnace, R"({"name": "f", "kind": "furnace", "ndf": ["ggx"], "alpha": [0.5], "theta_i_deg": [30],
-    "dimensions": ["flatland"], "rays": 1000, "grooves": 1000,
-    "thresholds": {"sigmas": 5, "model_tolerance": {"flatland": 1e-9, "3d": 1e-6}}})");
+    "dimensions": ["flatland"], "max_k": 16, "samples": 2000, "strategy": "vndf", "rays": 1000, "grooves": 1000,
+    "thresholds": {"sigmas": 5, "quadrature_tolerance": {"flatland": 1e-9, "3d": 1e-6}}})");
   const CliRun d = sh("cat " + q(furnace) + " | " + kBin + " validate /dev/stdin");
   EXPECT_EQ(d.status, 0) << d;
 }

@@ -193,6 +193,24 @@ TEST(Cli, ValidateExitsOneWhenAThresholdIsExceeded) {
   EXPECT_EQ(r.status, 1) << r;
 }
 
+TEST(Cli, ValidateRunsAProfilesSuite) {
+  TempDir dir;
+  const std::string f = dir.file("profiles.json"), out = dir.file("r.json");
+  write_text(f, R"({"name": "cli_profiles", "kind": "profiles", "ndf": ["ggx"], "alpha": [0.5], "theta_deg": [60],
+                    "surfaces": ["random", "vgroove"], "realizations": 2, "segments": 2048, "rays": 5000,
+                    "walk_paths": 5000, "thresholds": {"p_min": 1e-3, "sigmas": 5}})");
+  const CliRun r = vgroove("validate " + quoted(f) + " --out " + quoted(out) + " --threads 2");
+  EXPECT_EQ(r.status, 0) << r;
+  const json j = json::parse(read_text(out));
+  EXPECT_EQ(j.at("kind"), "profiles");
+  EXPECT_EQ(j.at("cases").size(), 1u);
+  EXPECT_EQ(j.at("cases").at(0).at("surfaces").size(), 2u);
+  expect_user_error(vgroove("validate " + quoted(f) + " --sampling random"), "--sampling", "single-groove");
+  write_text(f, R"({"name": "x", "kind": "profiles", "ndf": ["phong"], "alpha": [0.5], "theta_deg": [60],
+                    "surfaces": ["random"], "rays": 10, "walk_paths": 10, "thresholds": {"p_min": 1e-3, "sigmas": 5}})");
+  expect_user_error(vgroove("validate " + quoted(f)), f + ": /ndf/0", "\"beckmann\", \"ggx\"");
+}
+
 // ---------------------------------------------------------------------------------------------
 // trace --json and analytic --json: the same rows, (first facet, k) -> (fraction, theta_o_deg).
 using Rows = std::map<std::pair<std::string, int>, std::pair<double, double>>;
@@ -254,6 +272,44 @@ TEST(Cli, TraceAt90And30ByHand) {
   ASSERT_NE(it, rows.end()) << t;
   EXPECT_NEAR(it->second.first, std::tan(std::numbers::pi / 6), 1e-4) << t;
   EXPECT_EQ(it->second.second, 60.0) << t;
+}
+
+// ---------------------------------------------------------------------------------------------
+// sample
+
+TEST(Cli, SampleRejectsValuesOutOfRange) {
+  expect_user_error(vgroove("sample --alpha 0"), "--alpha", "(0, 2]");
+  expect_user_error(vgroove("sample --alpha 2.5"), "--alpha", "(0, 2]");
+  expect_user_error(vgroove("sample --theta-i-deg 90"), "--theta-i-deg", "[0, 90)");
+  expect_user_error(vgroove("sample --n 0"), "--n", "[1, 1000000000]");
+  expect_user_error(vgroove("sample --max-k 0"), "--max-k", "[1, 100000]");
+  expect_user_error(vgroove("sample --phi-bins 7"), "--phi-bins", "even");
+  expect_user_error(vgroove("sample --ndf trowbridge"), "--ndf", "\"ggx\", \"beckmann\", \"phong\"");
+  expect_user_error(vgroove("sample --dim 2d"), "--dim", "\"3d\", \"flatland\"");
+  expect_user_error(vgroove("sample --strategy uniform"), "--strategy", "\"printed\", \"vndf\"");
+  expect_user_error(vgroove("sample --ndf phong --strategy smith-vndf"), "--strategy", "ggx only");
+  expect_user_error(vgroove("sample --dim flatland --strategy bounded-vndf"), "--strategy", "3d only");
+}
+
+// A small run: the chi-square accepts (exit 0) and the result holds the table for plots.
+TEST(Cli, SampleWritesTheChiSquareTable) {
+  TempDir dir;
+  const std::string out = dir.file("S.json");
+  const CliRun r = vgroove(
+      "sample --ndf beckmann --alpha 0.5 --theta-i-deg 40 --n 20000 --dim flatland --strategy "
+      "printed --out '" +
+      out + "'");
+  ASSERT_EQ(r.status, 0) << r;
+  EXPECT_CONTAINS(r.out, "accepted");
+  const json j = json::parse(read_text(out));
+  const json& t = j.at("result").at("table");
+  EXPECT_EQ(t.at("observed").size(), 1u);
+  EXPECT_EQ(t.at("observed").at(0).size(), 36u);
+  EXPECT_EQ(t.at("col_edges").size(), 37u);
+  double observed = t.at("observed_no_direction").get<double>();
+  for (const json& v : t.at("observed").at(0)) observed += v.get<double>();
+  EXPECT_EQ(observed, 20000.0);
+  EXPECT_FALSE(j.at("result").at("reject").get<bool>());
 }
 
 }  // namespace

@@ -43,6 +43,9 @@ check(typo, "suite", "fig11 with a typo'd key", valid=False)
 odd = copy.deepcopy(fig11)
 odd["phi_bins"] = 7
 check(odd, "suite", "fig11 with odd phi_bins", valid=False)
+profiles = json.loads((src / "data/suites/profiles.json").read_text())
+profiles["ndf"] = ["phong"]
+check(profiles, "suite", "profiles with phong", valid=False)
 gold = json.loads((src / "data/scenes/gold_groove.json").read_text())
 gold["geometry"]["theta_v_deg"] = 195
 check(gold, "scene", "gold_groove with theta_v 195", valid=False)
@@ -57,6 +60,15 @@ check(layout, "report", "vgroove bins")
 table = {"kind": "model_table", "suite": layout["suite"], "model": "zeros",
          "cases": [dict({k: v for k, v in c.items() if k != "bins"}, flux=[0.0] * c["bins"]) for c in layout["cases"]]}
 check(table, "model_table", "a model table filled from the layout")
+import tempfile
+with tempfile.TemporaryDirectory() as tmp:
+    out = pathlib.Path(tmp) / "sample.json"
+    subprocess.run([vgroove, "sample", "--n", "2000", "--dim", "flatland", "--out", str(out)], check=True,
+                   capture_output=True, text=True)
+    check(json.loads(out.read_text()), "report", "vgroove sample --out")
+furnace = json.loads((src / "data/suites/furnace.json").read_text())
+furnace["strategy"] = "uniform"
+check(furnace, "suite", "furnace with an unknown strategy", valid=False)
 bad = copy.deepcopy(table)
 bad["cases"][0]["flux"][0] = -1
 check(bad, "model_table", "a model table with a negative flux", valid=False)

@@ -1,0 +1,155 @@
+// vgroove analytic: the inverse of the symmetric kaleidoscope. For the light at t_i and an exit at
+// t_o in a groove's cross-section, every (facet hit first, bounce count k, aperture theta_v) of
+// Eq. (5) whose outcome of exactly k reflections has a non-empty beam in Eq. (6), with the beam's
+// width. The 3D BRDF (brdf_3d.h, Eq. 16), the flatland BRDF and the pdfs of the samplers
+// (sampling_3d.h, sampling_flatland.h) are sums over these solutions.
+//
+// Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces".
+// ACM TOG 37(6), 2018. Sec. 4.1, Eq. (4)-(6); Sec. 5.1, Eq. (15)-(16).
+//
+// Conventions: those of kaleidoscope.h (2D angles from n, counter-clockwise positive; the left
+// facet's normal at -theta_m, the right one's at +theta_m, theta_v = pi - 2 theta_m). The frame is
+// chosen so that t_h = (t_i + t_o)/2 <= 0: then the k = 1 solution (s = h) is the left facet.
+//
+// Derivation of the width (beam_width) and of the single pass (for_each_solution): brdf_3d.cpp
+// wrote them first; they are unchanged here.
+//   Width. With f(theta) = sin(theta - a) the offset of the point at angle theta on the unit
+//   circle, Eq. (6) needs f_a = f(theta_v/2), f_b = max(0, f(-theta_v/2)) and f at the transition
+//   point theta_v (K - 1/2), K from Eq. (4); the k-outcome is [f_b, f_k] for K = k and [f_k, f_a]
+//   for K = k + 1. Eq. (5), k theta_v = a + pi - b + 2 pi j, turns the transition points into
+//     f(theta_v (k - 1/2)) = sin(theta_v/2 + b) =: g_lo,   f(theta_v (k + 1/2)) = -sin(theta_v/2 - b) =: g_hi,
+//   and both cases of Eq. (6) are one intersection
+//     W = min(f_a, g_lo) - max(0, f_b_raw, g_hi),   f_b_raw = -sin(theta_v/2 + a),
+//   valid while K in {k, k + 1}. The reversed path (o -> i) has a' = -b, b' = -a, the same
+//   theta_v and k, so its four offsets are these four, permuted: W is reciprocal term by term.
+//   Each difference of sines is written as a product (sin x + sin y = 2 sin((x+y)/2) cos((x-y)/2))
+//   so that W keeps its relative accuracy where the ends nearly meet.
+//   Single pass. For one facet and one parity of k the ends (a, b) are fixed and theta_v = X / k,
+//   X = a - b + (2 j + 1) pi. Eq. (4) allows the k-outcome only for K in {k, k + 1}, i.e.
+//   k |X - span| <= X (span = pi + 2a, up to the ends), and theta_v <= pi needs k >= X / pi. With
+//   X - span = 2 pi j - (a + b) and |a + b| < pi, only j = 0 can meet both, and then k runs over
+//   [X / pi, X / |a + b|]: a handful of k for most (t_i, t_o), many only near a = -b (narrow
+//   grooves send their light back near +-t_i). j = +-1 and one k beyond each end are visited too,
+//   against rounding; outcome_possible decides.
+#pragma once
+
+#include "vgroove/analytic/kaleidoscope.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace vgroove::analytic {
+
+// The incident and exit angles in a cross-section, with their sines and cosines (given, so that a
+// 3D caller can pass values computed from the vectors) and the cosines of the half sum and
+// difference: cos((t_i + t_o)/2) = cos(t_h), cos((t_i - t_o)/2).
+struct CrossSection {
+  double t_i = 0.0, t_o = 0.0;
+  double sin_ti = 0.0, cos_ti = 1.0, sin_to = 0.0, cos_to = 1.0;
+  double cos_half_sum = 1.0, cos_half_diff = 1.0;
+};
+// From the two angles alone.
+CrossSection cross_section(double t_i, double t_o);
+
+// One facet-first path family of Eq. (5) in the frame of the facet hit first (the right facet
+// mirrored: t -> -t): a = the incident angle, b = (-1)^k times the exit angle. Only the parity of
+// k matters.
+struct Ends {
+  double a, b, sin_a, cos_a, sin_b, cos_b;
+  double cos_half_diff, cos_half_sum;  // cos((a - b)/2), cos((a + b)/2)
+};
+Ends ends_of(const CrossSection& p, FacetSide side, int k);
+
+// Whether the k-outcome can be non-empty at theta_v (the test of Eq. 4, written with products; see
+// brdf_3d.cpp): both rims lit and K in {k, k + 1} for the path and for its reverse.
+bool outcome_possible(const Ends& e, double theta_v, int k);
+
+// The width G f_a of Eq. (6) (corrected, ERRATA E1) of the k-reflection outcome, in the units of
+// Eq. (6) (unit facets), for theta_v solving Eq. (5) for the ends e; S = sin(theta_v/2) =
+// cos(theta_m), C = cos(theta_v/2) = sin(theta_m). Called only where outcome_possible holds.
+double beam_width(const Ends& e, double theta_v, double S, double C, int k);
+
+// The solutions of Eq. (5): theta_v = (a - b + (2 j + 1) pi) / k.
+inline double solution_theta_v(double a_minus_b, int j, int k) {
+  return (a_minus_b + (2.0 * j + 1.0) * std::numbers::pi) / k;
+}
+
+// One solution with a non-empty beam.
+struct Solution {
+  FacetSide first;  // the facet hit first
+  int k;            // reflections
+  double theta_v;   // aperture
+  double S, C;      // sin(theta_v/2) = cos(theta_m), cos(theta_v/2) = sin(theta_m)
+  double W;         // G f_a of Eq. (6): the k-outcome's width, > 0
+  const Ends* e;
+  // f_a = sin(theta_v/2 - a): the facet's projected width (its 2D cosine of incidence), and the
+  // lit width f_a - max(0, f_b): the part of the beam that meets this facet first.
+  double f_a() const { return S * e->cos_a - C * e->sin_a; }
+  double lit() const {
+    const double f_b = -(S * e->cos_a + C * e->sin_a);
+    return f_b > 0.0 ? 2.0 * S * e->cos_a : f_a();  // f_a - f_b = 2 sin(theta_v/2) cos(a)
+  }
+};
+
+// Calls fn(const Solution&) for every solution with k in [k_lo, k_hi] and W > 0, in a fixed order
+// (facet, parity, j, k). k = 1: s = h is the left facet (the frame's choice t_h <= 0); the right
+// facet's k = 1 solution exists only as the rounding image of t_h = 0 and is skipped.
+template <class Fn>
+void for_each_solution(const CrossSection& p, int k_lo, int k_hi, Fn&& fn) {
+  for (FacetSide side : {FacetSide::left, FacetSide::right}) {
+    for (int k_first : {1, 2}) {
+      const Ends e = ends_of(p, side, k_first);  // depends on the parity of k only
+      const double d = e.a - e.b;
+      const double span = std::numbers::pi + 2.0 * e.a;
+      for (int j = -1; j <= 1; ++j) {
+        const double X = d + (2.0 * j + 1.0) * std::numbers::pi;
+        if (!(X > 0.0)) continue;
+        const double dev = std::abs(X - span);
+        // In double until clamped: X / dev may exceed any int.
+        const double k_top = dev > 0.0 ? std::floor(X / dev) + 1.0 : static_cast<double>(k_hi);
+        const int k_end = static_cast<int>(std::min(static_cast<double>(k_hi), k_top));
+        int k = std::max(k_lo, static_cast<int>(std::ceil(X / std::numbers::pi)) - 1);
+        if (k < 1) k = 1;
+        if ((k - k_first) % 2 != 0) ++k;  // the parity of this pass
+        for (; k <= k_end; k += 2) {
+          if (k == 1 && side == FacetSide::right) continue;
+          const double theta_v = solution_theta_v(d, j, k);
+          if (!(theta_v > 0.0 && theta_v <= std::numbers::pi)) continue;
+          if (!outcome_possible(e, theta_v, k)) continue;
+          const double half = 0.5 * theta_v;
+          const double S = std::sin(half), C = std::cos(half);
+          const double W = beam_width(e, theta_v, S, C, k);
+          if (!(W > 0.0)) continue;
+          fn(Solution{side, k, theta_v, S, C, W, &e});
+        }
+      }
+    }
+  }
+}
+
+// The same solutions visited straightforwardly, one k at a time and every j with theta_v in
+// (0, pi] (O(k) candidates per k): the reference the tests hold the single pass to.
+template <class Fn>
+void for_each_solution_every_j(const CrossSection& p, int k, Fn&& fn) {
+  for (FacetSide side : {FacetSide::left, FacetSide::right}) {
+    if (k == 1 && side == FacetSide::right) continue;
+    const Ends e = ends_of(p, side, k);
+    const double d = e.a - e.b;
+    const int j_lo = static_cast<int>(std::ceil((-d - std::numbers::pi) / (2.0 * std::numbers::pi)));
+    const int j_hi =
+        static_cast<int>(std::floor((k * std::numbers::pi - d - std::numbers::pi) / (2.0 * std::numbers::pi)));
+    for (int j = j_lo; j <= j_hi; ++j) {
+      const double theta_v = solution_theta_v(d, j, k);
+      if (!(theta_v > 0.0 && theta_v <= std::numbers::pi)) continue;
+      if (!outcome_possible(e, theta_v, k)) continue;
+      const double half = 0.5 * theta_v;
+      const double S = std::sin(half), C = std::cos(half);
+      const double W = beam_width(e, theta_v, S, C, k);
+      if (!(W > 0.0)) continue;
+      fn(Solution{side, k, theta_v, S, C, W, &e});
+    }
+  }
+}
+
+}  // namespace vgroove::analytic

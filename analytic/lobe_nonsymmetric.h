@@ -1,0 +1,68 @@
+// vgroove analytic: the nonsymmetric V-groove BRDF (analytic/brdf_nonsymmetric.h) integrated over
+// bins of exit direction, flatland and 3D, isotropic or anisotropic: the lobes the nonsymmetric
+// suite compares with the light traced in sim/microsurface_nonsymmetric.h. The symmetric partner
+// law gives the symmetric model's lobe by the same code (anisotropic included).
+//
+// Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces".
+// ACM TOG 37(6), 2018. Sec. 4.2 (Eq. 7-9), Sec. 5.2 (Eq. 18-23), Fig. 7-8.
+//
+// The lobe is the push-forward of the groove population through the kaleidoscope (the change of
+// variables that gives Eq. 23 read backwards; tests/analytic/lobe_nonsymmetric_test.cpp checks the
+// two against each other). Per unit macro area every groove receives the same flux; the grooves'
+// first facet (leaning towards a = (cos phi_a, sin phi_a, 0)) has its azimuth phi_a with the density
+// alpha(phi)^2 / (2 pi alpha_x alpha_y) (phi measured from the alpha_x axis; uniform when
+// isotropic), its tilt A with the groove law q(A) = 2 pi D_iso(A; alpha(phi)) cos A sin A, and its
+// partner the tilt B with P(B; alpha(phi)) (Eq. 20) or B = A (the population of
+// sim/microsurface_nonsymmetric.h, which makes every facet's normal follow D in projected area and
+// its partner P). In the groove's cross-section (t_i the projected angle) Eq. (9) splits the
+// opening, of perpendicular width W cos(t_i) (W the rims' distance), among the outcomes (first facet
+// hit, zone): each sends the fraction width / (W cos t_i) of the groove's flux along Eq. (8)'s t_o,
+// lifted to o = c (-sin t_o a + cos t_o n) - (i.u) u. Flatland: the first facet on the left
+// (theta_l = -A) or, with probability 1/2, on the right (the mirror image: the lobe at -theta_i,
+// flipped).
+//
+// Integration. phi_a (3D) and B by Gauss-Legendre panels (the azimuth over [0, pi] with the mirror
+// phi_a -> -phi_a when the roughness axes lie along or across the plane of incidence); A over
+// panels uniform in v, A = atan(alpha tan(pi v / 2)), cut where Eq. (7)'s k_b changes for either
+// facet (closed forms: theta_l and theta_r are linear in A) and where any outcome's exit crosses a
+// bin edge (t_o is linear in A within a k_b piece, and the bin edges are finitely many t in each
+// cross-section), so that every outcome stays in one bin on each piece: the deposits are smooth
+// functions of (phi_a, B) with kinks, not steps. The remaining errors are the kinks of Eq. (9)'s
+// max and min inside the pieces and of the deposits in (phi_a, B) (~h^2 each), measured by
+// refinement in the tests and the report (model_tolerance). Beyond k_b = kb_cap (apertures below
+// ~pi / kb_cap) a piece is integrated without cuts.
+//
+// Layouts: FlatlandLobe and Lobe3d (analytic/brdf_flatland.h, analytic/lobe_3d.h), the light at
+// azimuth pi in 3D; rows k = 0..max_k, row max_k + 1 for every k > max_k.
+#pragma once
+
+#include "vgroove/analytic/brdf_flatland.h"
+#include "vgroove/analytic/brdf_nonsymmetric.h"
+#include "vgroove/analytic/lobe_3d.h"
+
+namespace vgroove::analytic {
+
+// The defaults are the 3D suite's (joint (k, bin) L1 within ~2e-3 of refined runs at 15 x 12 bins,
+// 0.2-0.5 s of one core per case); flatland is cheap enough for flatland_options().
+struct NonsymmetricLobeOptions {
+  int phi_panels = 32;     // 3D: panels over [0, pi] (mirrored) or 2 x over [0, 2 pi), besides the cuts
+  int partner_panels = 8;  // panels over B (independent partner law)
+  int tilt_panels = 8;     // panels over A before the cuts
+  int order = 4;           // Gauss-Legendre nodes per phi and B panel: 2, 4 or 8
+  int tilt_order = 2;      // nodes per A piece: 2, 4 or 8
+  int kb_cap = 256;
+  double negligible = 1e-13;  // a piece of A (or B) carrying less flux is not cut at bin edges
+};
+
+// The light at theta_i in (-pi/2, pi/2) (flatland, signed) or [0, pi/2) (3D, azimuth pi).
+// axes_azimuth: 3D, the azimuth of the alpha_x axis in the lobe's frame (light at pi); a light at
+// azimuth phi_i over the roughness axes is axes_azimuth = pi - phi_i.
+// Flatland's options: joint L1 within ~3e-4 of refined runs at 90 bins, ~10 ms per case.
+NonsymmetricLobeOptions flatland_options();
+
+FlatlandLobe flatland_nonsymmetric_lobe(const NonsymmetricModel& m, double theta_i, int bins, int max_k,
+                                        const NonsymmetricLobeOptions& opt = flatland_options());
+Lobe3d nonsymmetric_lobe_3d(const NonsymmetricModel& m, double theta_i, double axes_azimuth, int theta_bins,
+                            int phi_bins, int max_k, const NonsymmetricLobeOptions& opt = {});
+
+}  // namespace vgroove::analytic

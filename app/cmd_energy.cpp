@@ -1,0 +1,121 @@
+#include "vgroove/app/commands.h"
+
+#include "vgroove/app/distributed.h"
+#include "vgroove/app/mpi_world.h"
+
+#include "vgroove/app/options.h"
+#include "vgroove/app/outputs.h"
+#include "vgroove/app/progress.h"
+#include "vgroove/support/atomic_file.h"
+#include "vgroove/support/npy.h"
+#include "vgroove/support/user_error.h"
+#include "vgroove/validation/energy_table.h"
+
+#include <chrono>
+#include <iostream>
+
+namespace vgroove::app {
+
+using namespace validation;
+
+std::optional<support::Shard> shard_from(const std::string& text, const std::string& out) {
+  if (text.empty()) return std::nullopt;
+  const support::Shard s = support::parse_shard(text, "--shard");
+  if (out.empty()) throw support::UserError("--shard needs --out (the partial report to write)");
+  return s;
+}
+
+void write_partial(const std::string& out, const nlohmann::json& part, bool force) {
+  support::write_file_atomically(out, part.dump() + "\n", force);
+  const nlohmann::json& h = part["partial"];
+  std::cout << "partial report: " << out << " (shard " << h["shard"]["index"] << "/" << h["shard"]["count"] << ", "
+            << h["items"].size() << " of " << h["job"]["items"] << " work items, " << part["units"].size() << " units, "
+            << h["wall_s"].get<double>() << " s); merge the parts with `vgroove merge PART... --out R.json`\n";
+}
+
+std::vector<std::string> energy_npy_files(const EnergyGrid& g, const std::string& out, bool npy) {
+  const std::size_t largest = g.cells() * (static_cast<std::size_t>(g.max_k) + 1);
+  if (out.empty() || (!npy && largest <= kInlineArrayValues)) return {};
+  std::string base = out;
+  if (base.size() > 5 && base.ends_with(".json")) base.resize(base.size() - 5);
+  EnergyTable empty;
+  empty.grid = g;
+  std::vector<std::string> files;
+  for (const EnergyArray& a : energy_arrays(empty)) files.push_back(base + "." + a.name + ".npy");
+  return files;
+}
+
+void write_energy_table(const EnergyTable& t, const std::string& out, bool npy, bool force) {
+  print_energy_table(std::cout, t);
+  if (out.empty()) return;
+  const std::vector<std::string> files = energy_npy_files(t.grid, out, npy);
+  const std::vector<EnergyArray> arrays = energy_arrays(t);
+  for (std::size_t n = 0; n < files.size(); ++n)
+    support::write_file_atomically(files[n], support::npy_bytes(arrays[n].values, arrays[n].shape), force);
+  support::write_file_atomically(out, energy_table_json(t, files).dump(1) + "\n", force);
+  std::cout << "table: " << out;
+  if (!files.empty()) std::cout << " (arrays in " << files.size() << " .npy files beside it)";
+  std::cout << "\n";
+}
+
+int cmd_energy(const EnergyArgs& a) {
+  check_threads(a.threads, "--threads");
+  EnergyGrid g;
+  g.ndfs.clear(), g.dims.clear();
+  for (const std::string& n : a.ndfs) {
+    const auto k = ndf_from_name(n);
+    if (!k) throw support::UserError("--ndf = \"" + n + "\" is not one of \"ggx\", \"beckmann\", \"phong\"");
+    g.ndfs.push_back(*k);
+  }
+  for (const std::string& d : a.dims) {
+    if (d != "flatland" && d != "3d")
+      throw support::UserError("--dim = \"" + d + "\" is not one of \"flatland\", \"3d\"");
+    g.dims.push_back(d == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d);
+  }
+  auto points = [](int n, const std::string& flag) {
+    if (n < 1 || n > static_cast<int>(kMaxGridPoints))
+      throw support::UserError(flag + " = " + std::to_string(n) + " is out of range [1, " +
+                               std::to_string(kMaxGridPoints) + "]");
+    return midpoints(n);
+  };
+  g.mus = a.mu.empty() ? points(a.mu_points, "--mu-points") : a.mu;
+  g.alphas = a.alpha.empty() ? points(a.alpha_points, "--alpha-points") : a.alpha;
+  g.rays = a.rays;
+  check_seed(a.seed, "--seed");
+  g.seed = static_cast<std::uint64_t>(a.seed);
+  g.max_k = a.max_k;
+  check_energy_grid(g);
+  const std::optional<support::Shard> shard = shard_from(a.shard, a.out);
+  if (shard && world().distributed())
+    throw support::UserError("--shard cannot be combined with mpirun (the ranks split the work among themselves)");
+  if (!a.out.empty()) {
+    support::check_writable_target(a.out, a.force);  // fail before the work, not after
+    if (!shard)
+      for (const std::string& f : energy_npy_files(g, a.out, a.npy)) support::check_writable_target(f, a.force);
+  }
+  if (a.dry_run) return 0;
+  if (shard) {
+    const auto part =
+        run_job_part(energy_job(g), *shard, a.threads, terminal_progress("energy " + shard->text()), a.cancel);
+    if (!part) return interrupted_no_report();
+    write_partial(a.out, *part, a.force);
+    return 0;
+  }
+  if (world().distributed()) {
+    const auto t0 = std::chrono::steady_clock::now();
+    int threads = 0;
+    auto results = run_distributed(energy_job(g), a.threads, terminal_progress("energy"), a.cancel, &threads);
+    if (!results) return 0;  // not rank 0: its results went there
+    EnergyTable t = energy_table_from(g, std::move(*results));
+    t.threads = threads;
+    t.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    write_energy_table(t, a.out, a.npy, a.force);
+    return 0;
+  }
+  const auto table = run_energy_table(g, a.threads, terminal_progress("energy"), a.cancel);
+  if (!table) return interrupted_no_report();
+  write_energy_table(*table, a.out, a.npy, a.force);
+  return 0;
+}
+
+}  // namespace vgroove::app

@@ -1,0 +1,87 @@
+#include "vgroove/app/commands.h"
+
+#include "vgroove/analytic/facet_strategy.h"
+#include "vgroove/app/options.h"
+#include "vgroove/common/angles.h"
+#include "vgroove/support/atomic_file.h"
+#include "vgroove/support/user_error.h"
+#include "vgroove/validation/report.h"
+#include "vgroove/validation/sampling_check.h"
+#include "vgroove/validation/spec_lists.h"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+namespace vgroove::app {
+
+namespace {
+
+[[noreturn]] void out_of_range(const std::string& flag, double v, const std::string& range) {
+  throw support::UserError(flag + " = " + support::number_text(v) + " is out of range " + range);
+}
+
+}  // namespace
+
+int cmd_sample(const SampleArgs& a) {
+  const auto ndf = ndf_from_name(a.ndf);
+  if (!ndf) throw support::UserError("--ndf = \"" + a.ndf + "\" is not one of \"ggx\", \"beckmann\", \"phong\"");
+  if (!(a.alpha > 0.0 && a.alpha <= validation::kMaxAlpha)) out_of_range("--alpha", a.alpha, "(0, 2]");
+  if (!(a.theta_i_deg >= 0.0 && a.theta_i_deg < 90.0)) out_of_range("--theta-i-deg", a.theta_i_deg, "[0, 90)");
+  if (a.n < 1 || a.n > validation::kMaxRays) out_of_range("--n", static_cast<double>(a.n), "[1, 1000000000]");
+  if (a.dim != "3d" && a.dim != "flatland")
+    throw support::UserError("--dim = \"" + a.dim + "\" is not one of \"3d\", \"flatland\"");
+  const bool flatland = a.dim == "flatland";
+  const auto strategy = analytic::strategy_from_name(a.strategy);
+  if (!strategy)
+    throw support::UserError("--strategy = \"" + a.strategy +
+                             "\" is not one of \"printed\", \"vndf\", \"smith-vndf\", \"bounded-vndf\"");
+  if (!analytic::strategy_supports(*strategy, *ndf, flatland))
+    throw support::UserError("--strategy = \"" + a.strategy + "\" does not exist for --ndf " + a.ndf + " --dim " +
+                             a.dim + " (smith-vndf: ggx only; bounded-vndf: ggx in 3d only)");
+  if (a.max_k < 1 || a.max_k > 100000) out_of_range("--max-k", a.max_k, "[1, 100000]");
+  check_seed(a.seed, "--seed");
+  if (a.cos_bins < 1 || a.cos_bins > 1000) out_of_range("--cos-bins", a.cos_bins, "[1, 1000]");
+  if (a.phi_bins < 2 || a.phi_bins > 1000 || a.phi_bins % 2 != 0)
+    out_of_range("--phi-bins", a.phi_bins, "[2, 1000], even");
+  if (a.theta_bins < 1 || a.theta_bins > 10000) out_of_range("--theta-bins", a.theta_bins, "[1, 10000]");
+  if (!a.out.empty()) support::check_writable_target(a.out, a.force);
+  if (a.dry_run) return 0;
+
+  validation::Chi2Spec s;
+  s.dim = flatland ? validation::SurfaceDim::flatland : validation::SurfaceDim::three_d;
+  s.ndf = *ndf;
+  s.alpha = a.alpha;
+  s.theta_i = a.theta_i_deg * kRadPerDeg;
+  s.strategy = *strategy;
+  s.max_k = a.max_k;
+  s.samples = a.n;
+  s.seed = static_cast<std::uint64_t>(a.seed);
+  s.cos_bins = a.cos_bins;
+  s.phi_bins = a.phi_bins;
+  s.theta_bins = a.theta_bins;
+  const validation::Chi2Outcome o = validation::run_chi2(s);
+
+  const double se = std::sqrt(o.weight_variance / static_cast<double>(a.n));
+  std::printf("sample: %s %s alpha %g, theta_i %g deg, strategy %s, max_k %d, %ld samples (seed %lld)\n", a.dim.c_str(),
+              a.ndf.c_str(), a.alpha, a.theta_i_deg, a.strategy.c_str(), a.max_k, a.n, a.seed);
+  std::printf("  no direction: %.0f of %ld (expected %.1f: the sampler's failure probability %.3e)\n",
+              o.table.observed_none, a.n, o.table.expected_none, o.failure_probability);
+  std::printf("  weight rho cos / pdf: mean %.6f, standard deviation %.4g, standard error %.2g; %.0f ns per sample\n",
+              o.weight_mean, std::sqrt(o.weight_variance), se, 1e9 * o.sample_s / static_cast<double>(a.n));
+  std::printf("  pdf over the cells %.8f + failure %.3e - 1 = %.2e (tolerance %.1e)\n", o.pdf_integral,
+              o.failure_probability, o.normalization_error, o.normalization_tolerance);
+  std::printf("  chi-square %.2f, dof %d (%d cells pooled into %d), p = %.4g at level %.3g: %s\n", o.test.statistic,
+              o.test.dof, o.test.pooled_in, o.test.pooled_out, o.test.p_value, o.test.level,
+              o.test.reject ? "REJECTED" : "accepted");
+  if (!a.out.empty()) {
+    nlohmann::json j = validation::provenance();
+    j["command"] = "sample";
+    j["result"] = validation::chi2_json(o);
+    support::write_file_atomically(a.out, j.dump(1) + "\n", a.force);
+    std::cout << "result: " << a.out << "\n";
+  }
+  return o.pass ? 0 : 1;
+}
+
+}  // namespace vgroove::app

@@ -1,0 +1,124 @@
+// vgroove Python module: what the bindings share. NumPy arrays in and out, user errors as
+// ValueError, long work on a worker thread with the GIL released and Ctrl-C honoured.
+#pragma once
+
+#include "vgroove/common/ndf_kind.h"
+#include "vgroove/support/user_error.h"
+#include "vgroove/validation/brdf_suite.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+namespace vgroove::python {
+
+namespace py = pybind11;
+
+// A one-dimensional C-contiguous array of doubles (any number-like input is converted).
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// JSON (a report) as the Python objects json.loads would give: dict, list, str, int, float,
+// bool, None.
+py::object to_python(const nlohmann::json& j);
+
+NdfKind parse_ndf(const std::string& name);
+validation::SurfaceDim parse_dim(const std::string& name);
+// A Python int as a seed in [0, 2^63 - 1], else ValueError naming `what`.
+long long to_seed(const py::handle& v, const std::string& what);
+// A Python int as a count in [lo, hi], else ValueError naming `what`.
+long long to_count(const py::handle& v, const std::string& what, long long lo, long long hi);
+// alpha in (0, 2].
+void check_alpha(double alpha);
+
+// Runs work(cancel) (cancel: a std::atomic<bool>&, which the work may set too) on a worker thread with the GIL released
+// while this thread polls Python's signal handlers every 50 ms: a KeyboardInterrupt (Ctrl-C) or any other exception a
+// handler raises sets `cancel`, which the libraries check between chunks of work, and is raised here once the work has
+// stopped. Exceptions thrown by the work are rethrown here (support::UserError becomes ValueError). Work that is known
+// to be short runs inline (still without the GIL).
+template <class Work>
+auto run_interruptible(Work&& work, bool short_work = false) {
+  using R = decltype(work(std::declval<std::atomic<bool>&>()));
+  std::atomic<bool> cancel{false};
+  if (short_work) {
+    py::gil_scoped_release release;
+    return work(cancel);
+  }
+  std::optional<R> result;
+  std::exception_ptr error;
+  bool signalled = false;
+  {
+    py::gil_scoped_release release;
+    std::mutex mu;
+    std::condition_variable cv;
+    bool done = false;
+    std::thread worker([&] {
+      try {
+        result.emplace(work(cancel));
+      } catch (...) {
+        error = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(mu);
+      done = true;
+      cv.notify_one();
+    });
+    std::unique_lock<std::mutex> lock(mu);
+    while (!done) {
+      cv.wait_for(lock, std::chrono::milliseconds(50));
+      if (done || signalled) continue;
+      lock.unlock();
+      {
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) signalled = true;
+      }
+      if (signalled) cancel.store(true);
+      lock.lock();
+    }
+    lock.unlock();
+    worker.join();
+  }
+  if (signalled) throw py::error_already_set();
+  if (error) std::rethrow_exception(error);
+  return std::move(*result);
+}
+
+// A new NumPy array of the given shape over memory allocated here (uninitialized, freed with the
+// array). numpy.empty would madvise large arrays into transparent huge pages, which on a busy
+// host can cost more kernel time than the work that fills them; plain allocations cost what the
+// same outputs cost a C++ caller (bench/bindings_baseline_bench.cpp).
+template <class T>
+py::array_t<T> new_array(std::vector<py::ssize_t> shape) {
+  std::size_t n = 1;
+  for (py::ssize_t d : shape) n *= static_cast<std::size_t>(d);
+  T* data = new T[std::max<std::size_t>(n, 1)];
+  py::capsule owner(data, [](void* p) { delete[] static_cast<T*>(p); });
+  return py::array_t<T>(shape, data, owner);
+}
+
+// A NumPy array of the given shape holding a copy of `data`.
+template <class T>
+py::array_t<T> array_of(const std::vector<T>& data, std::vector<py::ssize_t> shape) {
+  py::array_t<T> a(shape);
+  std::copy(data.begin(), data.end(), a.mutable_data());
+  return a;
+}
+
+void bind_grooves(py::module_& m);
+void bind_surfaces(py::module_& m);
+void bind_brdfs(py::module_& m);
+void bind_suites(py::module_& m);
+
+}  // namespace vgroove::python

@@ -1,0 +1,93 @@
+// vgroove Python module vgroove._vgroove: the extension under the package vgroove (python/vgroove).
+#include "common.h"
+
+#include "vgroove/common/angles.h"
+#include "vgroove/validation/report.h"
+#include "vgroove/validation/spec_lists.h"
+
+#include <cmath>
+
+namespace vgroove::python {
+
+py::object to_python(const nlohmann::json& j) {
+  switch (j.type()) {
+    case nlohmann::json::value_t::null:
+      return py::none();
+    case nlohmann::json::value_t::boolean:
+      return py::bool_(j.get<bool>());
+    case nlohmann::json::value_t::number_integer:
+      return py::int_(j.get<std::int64_t>());
+    case nlohmann::json::value_t::number_unsigned:
+      return py::int_(j.get<std::uint64_t>());
+    case nlohmann::json::value_t::number_float:
+      return py::float_(j.get<double>());
+    case nlohmann::json::value_t::string:
+      return py::str(j.get_ref<const std::string&>());
+    case nlohmann::json::value_t::array: {
+      py::list l;
+      for (const auto& e : j) l.append(to_python(e));
+      return l;
+    }
+    case nlohmann::json::value_t::object: {
+      py::dict d;
+      for (const auto& [k, v] : j.items()) d[py::str(k)] = to_python(v);
+      return d;
+    }
+    default:
+      return py::none();
+  }
+}
+
+NdfKind parse_ndf(const std::string& name) {
+  if (const auto k = ndf_from_name(name)) return *k;
+  throw support::UserError("ndf = \"" + name + "\" is not one of \"beckmann\", \"ggx\", \"phong\"");
+}
+
+validation::SurfaceDim parse_dim(const std::string& name) {
+  if (name == "3d") return validation::SurfaceDim::three_d;
+  if (name == "flatland") return validation::SurfaceDim::flatland;
+  throw support::UserError("dim = \"" + name + "\" is not one of \"3d\", \"flatland\"");
+}
+
+long long to_count(const py::handle& v, const std::string& what, long long lo, long long hi) {
+  if (!py::isinstance<py::int_>(v) || py::isinstance<py::bool_>(v))
+    throw support::UserError(what + " = " + py::repr(v).cast<std::string>() + " must be an integer");
+  const py::int_ n = py::reinterpret_borrow<py::int_>(v);
+  const bool in_range = n >= py::int_(lo) && n <= py::int_(hi);
+  if (!in_range)
+    throw support::UserError(what + " = " + py::repr(n).cast<std::string>() + " is out of range [" +
+                             std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return n.cast<long long>();
+}
+
+long long to_seed(const py::handle& v, const std::string& what) {
+  return to_count(v, what, 0, std::numeric_limits<long long>::max());
+}
+
+void check_alpha(double alpha) {
+  if (!(alpha > 0.0 && alpha <= validation::kMaxAlpha))
+    throw support::UserError("alpha = " + support::number_text(alpha) + " is out of range (0, 2]");
+}
+
+}  // namespace vgroove::python
+
+PYBIND11_MODULE(_vgroove, m) {
+  namespace py = pybind11;
+  using namespace vgroove::python;
+  m.doc() = "vgroove's C++ core (sim, analytic, validation); use the package vgroove, not this module.";
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const vgroove::support::UserError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+  m.attr("__version__") = vgroove::validation::version_string();
+  m.attr("git_revision") = vgroove::validation::git_revision();
+  m.def("output_deg", py::vectorize([](double rad) { return vgroove::validation::output_deg(rad); }),
+        "Radians to degrees rounded to 1e-9 deg, as every report and --json output prints them.");
+  bind_grooves(m);
+  bind_surfaces(m);
+  bind_brdfs(m);
+  bind_suites(m);
+}

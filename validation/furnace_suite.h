@@ -1,0 +1,100 @@
+// vgroove validation: the white furnace of the BRDF itself (suite kind "furnace"; Lee et al. 2018,
+// Fig. 12; Heitz et al. 2016): with F = 1 every ray that enters a groove leaves it (the ridges lie
+// on one plane), so the albedo of the multiple-scattering BRDF must be 1, and Cook-Torrance's
+// albedo (the k = 1 term) shows what single scattering loses.
+//
+// What each figure of a case tests:
+//   albedo_quadrature  int rho(i, o) cos(theta_o) do of the pointwise Eq. (17) (N = max_k;
+//                      analytic/brdf_3d.h vgroove_brdf, flatland flatland_brdf_fast), by
+//                      deterministic adaptive quadrature over the hemisphere (analytic/
+//                      hemisphere_quadrature.h): the BRDF a renderer evaluates, Eq. (13)'s
+//                      Jacobian, Eq. (16)'s solutions and widths, the NDF's normalization.
+//                      It does not use the binned lobes (analytic/lobe_3d.h).
+//   flux_beyond_max_k  the light that leaves after more than max_k reflections, integrated over
+//                      the grooves (the V-cavity sampler's failure probability: Eq. 4 and 6 only,
+//                      no Jacobian). Energy: albedo_quadrature + flux_beyond_max_k = 1 within the
+//                      quadrature's tolerance.
+//   albedo_estimate    the mean of rho(i, o) cos(theta_o) / pdf(o) over `samples` directions from
+//                      the sampler (analytic/sampling_3d.h; zero-weight returns count 0): the same
+//                      integral by Monte Carlo, with its standard error. It holds rho against the
+//                      sampler's pdf (checked by the chi-square tests): albedo_estimate +
+//                      flux_beyond_max_k = 1 within sigmas standard errors (plus 1e-12 of rounding:
+//                      with the V-cavity strategy every weight is 1 and the standard error 0).
+//   cook_torrance_*    the same two routes for Eq. (1)-(3) with the V-cavity G: they must agree
+//                      with each other; 1 - albedo is the energy Cook-Torrance loses.
+//   albedo_sim         (sanity line) rays traced on a procedural surface (sim/) that leave or are
+//                      still inside at the bounce limit, over rays: 1 by construction of the
+//                      surface; it tests the tracer's bookkeeping, not the BRDF.
+#pragma once
+
+#include "vgroove/analytic/brdf_3d.h"
+#include "vgroove/analytic/facet_strategy.h"
+#include "vgroove/support/parallel.h"
+#include "vgroove/validation/brdf_suite.h"
+
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace vgroove::validation {
+
+struct FurnaceSuite {
+  std::string file, name, description;
+  std::vector<analytic::NdfKind> ndfs;
+  std::vector<double> alphas;
+  std::vector<double> theta_i;  // radians
+  std::vector<SurfaceDim> dims;
+  int max_k = 256;
+  long samples = 20000;  // the estimator's
+  analytic::FacetStrategy strategy = analytic::FacetStrategy::vndf;
+  long rays = 20000;  // the simulated sanity line
+  int grooves = 20000;
+  std::uint64_t seed = 1;
+  double sigmas = 5.0;
+  double tolerance_flatland = 1e-9, tolerance_3d = 1e-6;  // the quadratures' absolute tolerances
+  std::size_t cases() const { return ndfs.size() * alphas.size() * theta_i.size() * dims.size(); }
+  BrdfCase case_at(std::size_t c) const;  // order: dimension, ndf, alpha, theta_i (innermost)
+};
+
+struct FurnaceOutcome {
+  BrdfCase c;
+  double albedo_quadrature = 0.0, quadrature_error = 0.0;
+  double flux_beyond_max_k = 0.0;
+  double albedo_estimate = 0.0, standard_error = 0.0;
+  double cook_torrance_quadrature = 0.0, cook_torrance_estimate = 0.0, cook_torrance_standard_error = 0.0;
+  double albedo_sim = 0.0;
+  long rays = 0, in_flight = 0;  // the sanity line: rays, and those still inside at the bounce limit
+  double quadrature_s = 0.0, estimate_s = 0.0, sim_s = 0.0;
+  bool energy_ok = false, estimate_ok = false, cook_torrance_ok = false, sim_ok = false, finite = false;
+  bool pass = false;
+};
+
+struct FurnaceRun {
+  std::vector<FurnaceOutcome> cases;
+  int threads = 1;
+  double wall_s = 0.0;
+  bool interrupted = false;
+  bool pass = false;
+};
+
+// The BRDF under test, pointwise: 3D rho(i, o) and flatland rho2(theta_i, theta_o). Empty: Eq. (17)
+// with N = max_k (vgroove_brdf, flatland_brdf_fast). The tests pass deliberately broken variants.
+struct BrdfUnderTest {
+  std::function<double(const analytic::Dir3&, const analytic::Dir3&)> rho3;
+  std::function<double(double, double)> rho2;
+};
+
+FurnaceSuite parse_furnace_suite(const nlohmann::json& j, const std::string& file);
+FurnaceOutcome run_furnace_case(const FurnaceSuite& suite, const BrdfCase& c, const BrdfUnderTest& brdf = {});
+// samples > 0 overrides the suite's estimator samples.
+FurnaceRun run_furnace_suite(const FurnaceSuite& suite, long samples, int threads,
+                             const support::ProgressFn& progress = {}, const std::atomic<bool>* cancel = nullptr);
+nlohmann::json furnace_report_json(const FurnaceSuite& suite, const FurnaceRun& run);
+void print_furnace_table(std::ostream& os, const FurnaceSuite& suite, const FurnaceRun& run);
+
+}  // namespace vgroove::validation

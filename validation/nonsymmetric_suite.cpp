@@ -1,0 +1,505 @@
+#include "vgroove/validation/nonsymmetric_suite.h"
+
+#include "vgroove/analytic/brdf_nonsymmetric.h"
+#include "vgroove/analytic/lobe_nonsymmetric.h"
+#include "vgroove/analytic/partner_distribution.h"
+#include "vgroove/common/angles.h"
+#include "vgroove/sim/microsurface_nonsymmetric.h"
+#include "vgroove/support/json_reader.h"
+#include "vgroove/validation/histogram_metrics.h"
+#include "vgroove/validation/report.h"
+#include "vgroove/validation/spec_lists.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <random>
+
+namespace vgroove::validation {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+constexpr double kPi = std::numbers::pi;
+constexpr double kReciprocityTolerance = 1e-8;
+
+analytic::NonsymmetricModel model_of(const NonsymmetricCase& c, bool symmetric) {
+  analytic::NonsymmetricModel m;
+  m.roughness = analytic::Roughness{c.ndf, c.alpha_x, c.alpha_y};
+  m.partner = symmetric ? analytic::PartnerLaw::symmetric : analytic::PartnerLaw::independent;
+  return m;
+}
+
+const char* partner_name(bool symmetric) { return symmetric ? "symmetric" : "independent"; }
+
+// The comparison of the traced joint (row, bin) fractions with the model's: L1 of the normalized
+// lobes and of the joint fractions against their expected values at N rays over G grooves.
+void compare(NonsymmetricOutcome& out, const NonsymmetricSuite& suite, const std::vector<double>& sim_joint,
+             const std::vector<double>& model_joint, const std::vector<double>& other_joint, int bins,
+             double tolerance) {
+  const int rows = suite.max_k + 2;
+  std::vector<double> sim_total(static_cast<std::size_t>(bins), 0.0), model_total(sim_total), other_total(sim_total);
+  for (int r = 0; r < rows; ++r)
+    for (int b = 0; b < bins; ++b) {
+      const std::size_t n = static_cast<std::size_t>(r) * bins + b;
+      sim_total[static_cast<std::size_t>(b)] += sim_joint[n];
+      model_total[static_cast<std::size_t>(b)] += model_joint[n];
+      other_total[static_cast<std::size_t>(b)] += other_joint[n];
+    }
+  const double N = static_cast<double>(out.rays), G = static_cast<double>(suite.grooves);
+  const std::vector<double> p = normalized(model_total), s = normalized(sim_total);
+  out.l1 = l1(s, p);
+  const ExpectedL1 e = expected_l1(p, N, G);
+  out.l1_expected = e.mean;
+  out.l1_threshold = e.mean + suite.sigmas * e.sd + tolerance;
+  out.l1_k = l1(sim_joint, model_joint);
+  const ExpectedL1 ek = expected_l1(model_joint, N, G);
+  out.l1_k_expected = ek.mean;
+  out.l1_k_threshold = ek.mean + suite.sigmas * ek.sd + tolerance;
+  out.l1_other = l1(s, normalized(other_total));
+  out.other_rejected = out.l1_other > out.l1_threshold;
+  const double a = std::clamp(out.albedo_model, 0.0, 1.0);
+  out.albedo_threshold = suite.sigmas * std::sqrt(a * (1.0 - a) * (1.0 / N + 1.0 / G)) + 1.0 / N + tolerance;
+  out.non_finite = !(std::isfinite(out.l1) && std::isfinite(out.l1_k) && std::isfinite(out.albedo_model) &&
+                     all_finite(model_joint) && all_finite(other_joint));
+  out.pass = !out.non_finite && std::abs(out.albedo_sim - out.albedo_model) <= out.albedo_threshold &&
+             out.l1 <= out.l1_threshold && out.l1_k <= out.l1_k_threshold;
+}
+
+template <class Tally>
+void take_counts(NonsymmetricOutcome& out, const Tally& t) {
+  out.rays = t.rays, out.escaped = t.escaped, out.lost = t.lost(), out.bounces = t.bounces;
+  out.max_k_seen = t.max_k_seen;
+  out.albedo_sim = static_cast<double>(t.escaped) / static_cast<double>(t.rays);
+}
+
+sim::NonsymmetricSurfaceOptions surface_options(const NonsymmetricSuite& suite, const NonsymmetricCase& c) {
+  sim::NonsymmetricSurfaceOptions o;
+  o.ndf = c.ndf;
+  o.alpha_x = c.alpha_x;
+  o.alpha_y = c.alpha_y;
+  // The tally's frame has the light at azimuth pi: the alpha_x axis sits at pi - phi_i.
+  o.axes_azimuth = kPi - c.phi_i;
+  o.partner = c.symmetric ? sim::Partner::symmetric : sim::Partner::independent;
+  o.grooves = suite.grooves;
+  o.seed = suite.seed;
+  return o;
+}
+
+NonsymmetricOutcome run_flatland(const NonsymmetricSuite& suite, const NonsymmetricCase& c, long rays) {
+  NonsymmetricOutcome out;
+  out.c = c;
+  const int bins = suite.flatland_bins;
+  const auto t0 = Clock::now();
+  const sim::NonsymmetricMicrosurface surface = sim::make_nonsymmetric_microsurface(surface_options(suite, c));
+  sim::MicrosurfaceTraceOptions to;
+  to.theta_i = c.theta_i;
+  to.rays = rays;
+  to.sampling = sim::Sampling::random;
+  to.seed = suite.seed;
+  to.theta_o_bins = bins;
+  to.max_k = suite.max_k;
+  const sim::MicrosurfaceTally t = sim::trace_nonsymmetric_microsurface(surface, to);
+  out.sim_wall_s = seconds_since(t0);
+  take_counts(out, t);
+  const auto t1 = Clock::now();
+  const analytic::FlatlandLobe lobe =
+      analytic::flatland_nonsymmetric_lobe(model_of(c, c.symmetric), c.theta_i, bins, suite.max_k);
+  const analytic::FlatlandLobe other =
+      analytic::flatland_nonsymmetric_lobe(model_of(c, !c.symmetric), c.theta_i, bins, suite.max_k);
+  out.model_wall_s = seconds_since(t1);
+  out.albedo_model = lobe.albedo;
+  const double N = static_cast<double>(t.rays);
+  out.by_k_sim = fractions(t.by_k, N);
+  out.by_k_model = lobe.by_k;
+  out.by_k_other = other.by_k;
+  compare(out, suite, fractions(t.theta_o_by_k, N), lobe.theta_o_by_k, other.theta_o_by_k, bins,
+          suite.model_tolerance_flatland);
+  const double width = kPi / bins;
+  for (int b = 0; b < bins; ++b) {
+    const auto s = static_cast<std::size_t>(b);
+    out.plane_theta_deg.push_back(output_deg(-0.5 * kPi + (b + 0.5) * width));
+    out.plane_sim.push_back(static_cast<double>(t.theta_o[s]) / N / width);
+    out.plane_model.push_back(lobe.theta_o[s] / width);
+    out.plane_other.push_back(other.theta_o[s] / width);
+  }
+  for (int k = 1; k <= std::min(suite.plane_k, suite.max_k); ++k) {
+    std::vector<double> a, m, o;
+    for (int b = 0; b < bins; ++b) {
+      const std::size_t n = static_cast<std::size_t>(k) * bins + b;
+      a.push_back(static_cast<double>(t.theta_o_by_k[n]) / N / width);
+      m.push_back(lobe.theta_o_by_k[n] / width);
+      o.push_back(other.theta_o_by_k[n] / width);
+    }
+    out.plane_sim_k.push_back(std::move(a));
+    out.plane_model_k.push_back(std::move(m));
+    out.plane_other_k.push_back(std::move(o));
+  }
+  return out;
+}
+
+NonsymmetricOutcome run_3d(const NonsymmetricSuite& suite, const NonsymmetricCase& c, long rays) {
+  NonsymmetricOutcome out;
+  out.c = c;
+  const int tb = suite.theta_bins, pb = suite.phi_bins, bins = tb * pb;
+  const auto t0 = Clock::now();
+  const sim::NonsymmetricMicrosurface3d surface = sim::make_nonsymmetric_microsurface3d(surface_options(suite, c));
+  sim::Microsurface3dTraceOptions to;
+  to.theta_i = c.theta_i;
+  to.rays = rays;
+  to.seed = suite.seed;
+  to.theta_bins = tb;
+  to.phi_bins = pb;
+  to.max_k = suite.max_k;
+  const sim::Microsurface3dTally t = sim::trace_nonsymmetric_microsurface3d(surface, to);
+  out.sim_wall_s = seconds_since(t0);
+  take_counts(out, t);
+  const auto t1 = Clock::now();
+  const double axes = kPi - c.phi_i;
+  const analytic::Lobe3d lobe =
+      analytic::nonsymmetric_lobe_3d(model_of(c, c.symmetric), c.theta_i, axes, tb, pb, suite.max_k);
+  const analytic::Lobe3d other =
+      analytic::nonsymmetric_lobe_3d(model_of(c, !c.symmetric), c.theta_i, axes, tb, pb, suite.max_k);
+  out.model_wall_s = seconds_since(t1);
+  out.albedo_model = lobe.albedo;
+  const double N = static_cast<double>(t.rays);
+  out.by_k_sim = fractions(t.by_k, N);
+  out.by_k_model = lobe.by_k;
+  out.by_k_other = other.by_k;
+  compare(out, suite, fractions(t.hist_by_k, N), lobe.hist_by_k, other.hist_by_k, bins, suite.model_tolerance_3d);
+  // The plane of incidence: phi bin pb/2 (towards the light, +theta) and bin 0 (mirror side, -theta).
+  const double dt = 0.5 * kPi / tb, dp = 2.0 * kPi / pb;
+  auto solid_angle = [&](int t_) { return dp * (std::cos(t_ * dt) - std::cos((t_ + 1) * dt)); };
+  auto cut = [&](auto&& value, std::vector<double>& into) {
+    for (int t_ = tb - 1; t_ >= 0; --t_) into.push_back(value(static_cast<std::size_t>(t_) * pb) / solid_angle(t_));
+    for (int t_ = 0; t_ < tb; ++t_) into.push_back(value(static_cast<std::size_t>(t_) * pb + pb / 2) / solid_angle(t_));
+  };
+  for (int t_ = tb - 1; t_ >= 0; --t_) out.plane_theta_deg.push_back(output_deg(-(t_ + 0.5) * dt));
+  for (int t_ = 0; t_ < tb; ++t_) out.plane_theta_deg.push_back(output_deg((t_ + 0.5) * dt));
+  cut([&](std::size_t n) { return static_cast<double>(t.hist[n]) / N; }, out.plane_sim);
+  cut([&](std::size_t n) { return lobe.hist[n]; }, out.plane_model);
+  cut([&](std::size_t n) { return other.hist[n]; }, out.plane_other);
+  for (int k = 1; k <= std::min(suite.plane_k, suite.max_k); ++k) {
+    const std::size_t off = static_cast<std::size_t>(k) * bins;
+    std::vector<double> a, m, o;
+    cut([&](std::size_t n) { return static_cast<double>(t.hist_by_k[off + n]) / N; }, a);
+    cut([&](std::size_t n) { return lobe.hist_by_k[off + n]; }, m);
+    cut([&](std::size_t n) { return other.hist_by_k[off + n]; }, o);
+    out.plane_sim_k.push_back(std::move(a));
+    out.plane_model_k.push_back(std::move(m));
+    out.plane_other_k.push_back(std::move(o));
+  }
+  return out;
+}
+
+// The rows of the reciprocity check: every (ndf, alpha, dimension) of the grid, every anisotropic
+// roughness of the block (3D).
+std::vector<ReciprocityRow> reciprocity_rows(const NonsymmetricSuite& s) {
+  std::vector<ReciprocityRow> rows;
+  for (SurfaceDim d : s.dims)
+    for (auto ndf : s.ndfs)
+      for (double a : s.alphas) rows.push_back({ndf, a, a, d, s.reciprocity_pairs, 0, 0.0, false});
+  for (auto ndf : s.aniso_ndfs)
+    for (double ax : s.alpha_x)
+      for (double ay : s.alpha_y)
+        rows.push_back({ndf, ax, ay, SurfaceDim::three_d, s.reciprocity_pairs, 0, 0.0, false});
+  return rows;
+}
+
+void run_reciprocity(ReciprocityRow& row, std::uint64_t seed, std::size_t index) {
+  std::mt19937_64 g(seed * 0x9e3779b97f4a7c15ULL + index);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  analytic::NonsymmetricModel m;
+  m.roughness = analytic::Roughness{row.ndf, row.alpha_x, row.alpha_y};
+  for (int n = 0; n < row.pairs; ++n) {
+    for (int k = 1; k <= 4; ++k) {
+      double a = 0.0, b = 0.0;
+      if (row.dim == SurfaceDim::three_d) {
+        const analytic::Dir3 i = analytic::dir3(std::acos(U(g)), 2.0 * kPi * U(g));
+        const analytic::Dir3 o = analytic::dir3(std::acos(U(g)), 2.0 * kPi * U(g));
+        a = analytic::nonsymmetric_brdf_k(i, o, k, m);
+        b = analytic::nonsymmetric_brdf_k(o, i, k, m);
+      } else {
+        const double ti = (U(g) - 0.5) * kPi, to = (U(g) - 0.5) * kPi;
+        a = analytic::flatland_nonsymmetric_brdf_k(ti, to, k, m);
+        b = analytic::flatland_nonsymmetric_brdf_k(to, ti, k, m);
+      }
+      const double big = std::max(a, b);
+      if (!(big > 1e-300)) continue;
+      ++row.evaluated;
+      row.worst = std::max(row.worst, std::abs(a - b) / big);
+    }
+  }
+  row.pass = std::isfinite(row.worst) && row.worst <= kReciprocityTolerance;
+}
+
+std::vector<bool> read_partners(support::JsonObject& o) {
+  std::vector<bool> out;
+  for (const auto& p : read_names(o, "partners", {"independent", "symmetric"})) out.push_back(p == "symmetric");
+  return out;
+}
+
+// Phong's independent partner law exists for alpha < sqrt(2) only (analytic/partner_distribution.h).
+void check_partner_laws(support::JsonObject& o, const std::vector<analytic::NdfKind>& ndfs,
+                        const std::vector<double>& alphas, const std::string& key) {
+  for (auto ndf : ndfs)
+    for (double a : alphas)
+      if (!analytic::partner_law_exists(ndf, a))
+        o.fail(key, "= " + support::number_text(a) + " has no partner law for " + analytic::ndf_name(ndf) +
+                        " (Eq. 20 needs alpha < sqrt(2) for Phong)");
+}
+
+nlohmann::json case_json(const NonsymmetricOutcome& o) {
+  return {{"ndf", analytic::ndf_name(o.c.ndf)},
+          {"alpha_x", o.c.alpha_x},
+          {"alpha_y", o.c.alpha_y},
+          {"theta_i_deg", output_deg(o.c.theta_i)},
+          {"phi_i_deg", output_deg(o.c.phi_i)},
+          {"dimension", surface_dim_name(o.c.dim)},
+          {"partner", partner_name(o.c.symmetric)},
+          {"anisotropic_block", o.c.anisotropic},
+          {"rays", o.rays},
+          {"escaped", o.escaped},
+          {"lost", o.lost},
+          {"bounces", o.bounces},
+          {"max_k_seen", o.max_k_seen},
+          {"sim_wall_s", o.sim_wall_s},
+          {"model_wall_s", o.model_wall_s},
+          {"albedo_sim", o.albedo_sim},
+          {"albedo_model", o.albedo_model},
+          {"albedo_threshold", o.albedo_threshold},
+          {"l1", o.l1},
+          {"l1_expected", o.l1_expected},
+          {"l1_threshold", o.l1_threshold},
+          {"l1_by_k", o.l1_k},
+          {"l1_by_k_expected", o.l1_k_expected},
+          {"l1_by_k_threshold", o.l1_k_threshold},
+          {"other_partner", partner_name(!o.c.symmetric)},
+          {"l1_other_model", o.l1_other},
+          {"other_model_rejected", o.other_rejected},
+          {"by_k_sim", o.by_k_sim},
+          {"by_k_model", o.by_k_model},
+          {"by_k_other_model", o.by_k_other},
+          {"plane",
+           {{"theta_deg", o.plane_theta_deg},
+            {"unit", o.c.dim == SurfaceDim::flatland ? "fraction of the flux per radian"
+                                                     : "fraction of the flux per steradian"},
+            {"sim", o.plane_sim},
+            {"model", o.plane_model},
+            {"other_model", o.plane_other},
+            {"sim_by_k", o.plane_sim_k},
+            {"model_by_k", o.plane_model_k},
+            {"other_model_by_k", o.plane_other_k}}},
+          {"non_finite", o.non_finite},
+          {"pass", o.pass}};
+}
+
+}  // namespace
+
+std::vector<NonsymmetricCase> NonsymmetricSuite::cases() const {
+  std::vector<NonsymmetricCase> out;
+  for (SurfaceDim d : dims)
+    for (auto ndf : ndfs)
+      for (double a : alphas)
+        for (double t : theta_i) out.push_back({ndf, a, a, t, 0.0, d, false, false});
+  for (bool sym : partners_symmetric)
+    for (auto ndf : aniso_ndfs)
+      for (double ax : alpha_x)
+        for (double ay : alpha_y)
+          for (double p : phi_i)
+            for (double t : aniso_theta_i) out.push_back({ndf, ax, ay, t, p, SurfaceDim::three_d, sym, true});
+  return out;
+}
+
+NonsymmetricSuite parse_nonsymmetric_suite(const nlohmann::json& j, const std::string& file) {
+  support::JsonObject root(j, file, "");
+  NonsymmetricSuite s;
+  s.file = file;
+  s.name = root.string("name");
+  s.description = root.string_or("description", "");
+  root.one_of("kind", {"nonsymmetric_brdf"});
+  s.ndfs = read_ndfs(root);
+  s.alphas = read_numbers(root, "alpha", 0.0, false, kMaxAlpha, true);
+  check_partner_laws(root, s.ndfs, s.alphas, "alpha");
+  for (double d : read_numbers(root, "theta_i_deg", 0.0, true, 90.0, false)) s.theta_i.push_back(d * kRadPerDeg);
+  for (const auto& d : read_names(root, "dimensions", {"flatland", "3d"}))
+    s.dims.push_back(d == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d);
+  if (root.has("anisotropic")) {
+    support::JsonObject a = root.object("anisotropic");
+    for (const auto& n : read_names(a, "ndf", {"beckmann", "ggx"})) s.aniso_ndfs.push_back(*ndf_from_name(n));
+    s.alpha_x = read_numbers(a, "alpha_x", 0.0, false, kMaxAlpha, true);
+    s.alpha_y = read_numbers(a, "alpha_y", 0.0, false, kMaxAlpha, true);
+    for (double d : read_numbers(a, "theta_i_deg", 0.0, true, 90.0, false)) s.aniso_theta_i.push_back(d * kRadPerDeg);
+    for (double d : read_numbers(a, "phi_i_deg", -360.0, true, 360.0, true)) s.phi_i.push_back(d * kRadPerDeg);
+    s.partners_symmetric = read_partners(a);
+    a.finish();
+  }
+  s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
+  s.grooves = static_cast<int>(root.integer("grooves", 1, 10'000'000));
+  s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
+  s.flatland_bins = static_cast<int>(root.integer_or("flatland_bins", s.flatland_bins, 1, 100000));
+  s.theta_bins = static_cast<int>(root.integer_or("theta_bins", s.theta_bins, 1, 10000));
+  s.phi_bins = static_cast<int>(root.integer_or("phi_bins", s.phi_bins, 2, 10000));
+  if (s.phi_bins % 2 != 0)
+    root.fail("phi_bins",
+              "= " + std::to_string(s.phi_bins) + " must be even (the plane of incidence runs through two bins)");
+  s.max_k = static_cast<int>(root.integer_or("max_k", s.max_k, 1, 10000));
+  s.plane_k = static_cast<int>(root.integer_or("plane_k", s.plane_k, 0, 64));
+  s.reciprocity_pairs = static_cast<int>(root.integer_or("reciprocity_pairs", s.reciprocity_pairs, 0, 100000));
+  {
+    support::JsonObject t = root.object("thresholds");
+    s.sigmas = t.number("sigmas", 0.0, false, 100.0, true);
+    support::JsonObject m = t.object("model_tolerance");
+    s.model_tolerance_flatland = m.number("flatland", 0.0, true, 2.0, true);
+    s.model_tolerance_3d = m.number("3d", 0.0, true, 2.0, true);
+    m.finish();
+    t.finish();
+  }
+  root.finish();
+  return s;
+}
+
+NonsymmetricOutcome run_nonsymmetric_case(const NonsymmetricSuite& suite, const NonsymmetricCase& c, long rays) {
+  return c.dim == SurfaceDim::flatland ? run_flatland(suite, c, rays) : run_3d(suite, c, rays);
+}
+
+NonsymmetricRun run_nonsymmetric_suite(const NonsymmetricSuite& suite, long rays, int threads,
+                                       const support::ProgressFn& progress, const std::atomic<bool>* cancel) {
+  NonsymmetricRun run;
+  run.threads = support::resolve_threads(threads);
+  const std::vector<NonsymmetricCase> cases = suite.cases();
+  run.cases.resize(cases.size());
+  run.reciprocity = reciprocity_rows(suite);
+  const long n_rays = rays > 0 ? rays : suite.rays;
+  const auto t0 = Clock::now();
+  // One work item per case (its rays in order on one thread) or per reciprocity row: the results
+  // do not depend on the thread count.
+  const std::size_t items = cases.size() + run.reciprocity.size();
+  const bool complete = support::parallel_for(
+      items, run.threads,
+      [&](std::size_t n) {
+        if (n < cases.size())
+          run.cases[n] = run_nonsymmetric_case(suite, cases[n], n_rays);
+        else
+          run_reciprocity(run.reciprocity[n - cases.size()], suite.seed, n - cases.size());
+      },
+      progress, cancel, 1);
+  run.wall_s = seconds_since(t0);
+  run.interrupted = !complete;
+  run.pass =
+      complete &&
+      std::all_of(run.cases.begin(), run.cases.end(), [](const NonsymmetricOutcome& o) { return o.pass; }) &&
+      std::all_of(run.reciprocity.begin(), run.reciprocity.end(), [](const ReciprocityRow& r) { return r.pass; });
+  return run;
+}
+
+nlohmann::json nonsymmetric_report_json(const NonsymmetricSuite& suite, const NonsymmetricRun& run) {
+  nlohmann::json j = provenance();
+  j["suite"] = suite.name;
+  j["suite_file"] = suite.file;
+  j["kind"] = "nonsymmetric_brdf";
+  j["description"] = suite.description;
+  j["seed"] = suite.seed;
+  j["threads"] = run.threads;
+  j["wall_s"] = run.wall_s;
+  nlohmann::json ti = nlohmann::json::array(), ati = nlohmann::json::array(), phi = nlohmann::json::array();
+  for (double t : suite.theta_i) ti.push_back(output_deg(t));
+  for (double t : suite.aniso_theta_i) ati.push_back(output_deg(t));
+  for (double p : suite.phi_i) phi.push_back(output_deg(p));
+  j["inputs"] = {{"theta_i_deg", ti},
+                 {"alpha", suite.alphas},
+                 {"anisotropic",
+                  {{"alpha_x", suite.alpha_x}, {"alpha_y", suite.alpha_y}, {"theta_i_deg", ati}, {"phi_i_deg", phi}}},
+                 {"grooves", suite.grooves},
+                 {"flatland_bins", suite.flatland_bins},
+                 {"theta_bins", suite.theta_bins},
+                 {"phi_bins", suite.phi_bins},
+                 {"max_k", suite.max_k},
+                 {"sigmas", suite.sigmas},
+                 {"model_tolerance", {{"flatland", suite.model_tolerance_flatland}, {"3d", suite.model_tolerance_3d}}}};
+  nlohmann::json cases = nlohmann::json::array();
+  std::int64_t rays = 0, bounces = 0;
+  double worst_ratio = 0.0, worst_albedo = 0.0;
+  std::size_t passed = 0, rejected = 0;
+  for (const NonsymmetricOutcome& o : run.cases) {
+    rays += o.rays, bounces += o.bounces;
+    passed += o.pass;
+    rejected += o.other_rejected;
+    worst_ratio = std::max({worst_ratio, o.l1 / o.l1_threshold, o.l1_k / o.l1_k_threshold});
+    worst_albedo = std::max(worst_albedo, std::abs(o.albedo_sim - o.albedo_model));
+    cases.push_back(case_json(o));
+  }
+  j["cases"] = std::move(cases);
+  nlohmann::json recip = nlohmann::json::array();
+  double worst_recip = 0.0;
+  for (const ReciprocityRow& r : run.reciprocity) {
+    worst_recip = std::max(worst_recip, r.worst);
+    recip.push_back({{"ndf", analytic::ndf_name(r.ndf)},
+                     {"alpha_x", r.alpha_x},
+                     {"alpha_y", r.alpha_y},
+                     {"dimension", surface_dim_name(r.dim)},
+                     {"pairs", r.pairs},
+                     {"values_compared", r.evaluated},
+                     {"worst_relative_asymmetry", r.worst},
+                     {"pass", r.pass}});
+  }
+  j["reciprocity"] = {{"rule", "|rho_k(i, o) - rho_k(o, i)| / max over random pairs, k = 1..4; passes below 1e-8"},
+                      {"rows", recip},
+                      {"worst_relative_asymmetry", worst_recip}};
+  j["summary"] = {{"cases", run.cases.size()},
+                  {"passed", passed},
+                  {"other_model_rejected", rejected},
+                  {"rays", rays},
+                  {"bounces", bounces},
+                  {"worst_error_over_threshold", worst_ratio},
+                  {"largest_albedo_difference", worst_albedo},
+                  {"worst_relative_asymmetry", worst_recip},
+                  {"wall_s", run.wall_s}};
+  j["thresholds"] = {{"rule", "expected L1 + sigmas x its standard deviation + model tolerance (per case)"},
+                     {"sigmas", suite.sigmas}};
+  j["pass"] = run.pass;
+  return j;
+}
+
+void print_nonsymmetric_table(std::ostream& os, const NonsymmetricSuite& suite, const NonsymmetricRun& run) {
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "%s (nonsymmetric_brdf): %zu cases, %ld rays x %d grooves each, vgroove %s (git %s), %d threads\n",
+                suite.name.c_str(), run.cases.size(), suite.rays, suite.grooves, version_string(), git_revision(),
+                run.threads);
+  os << line;
+  std::snprintf(line, sizeof line, "  %-8s %-8s %5s %5s %7s %6s %-11s %8s %8s %8s %8s %8s %-8s %8s %5s\n", "dim", "ndf",
+                "ax", "ay", "theta_i", "phi_i", "partner", "L1", "L1 thr", "L1 by k", "thr", "other L1", "other",
+                "wall s", "pass");
+  os << line;
+  for (const NonsymmetricOutcome& o : run.cases) {
+    std::snprintf(
+        line, sizeof line, "  %-8s %-8s %5.2f %5.2f %7.2f %6.1f %-11s %8.5f %8.5f %8.5f %8.5f %8.5f %-8s %8.3f %5s\n",
+        surface_dim_name(o.c.dim), analytic::ndf_name(o.c.ndf), o.c.alpha_x, o.c.alpha_y, output_deg(o.c.theta_i),
+        output_deg(o.c.phi_i), partner_name(o.c.symmetric), o.l1, o.l1_threshold, o.l1_k, o.l1_k_threshold, o.l1_other,
+        o.other_rejected ? "rejected" : "accepted", o.sim_wall_s + o.model_wall_s, o.pass ? "yes" : "NO");
+    os << line;
+  }
+  double worst = 0.0;
+  std::size_t recip_pass = 0;
+  for (const ReciprocityRow& r : run.reciprocity) {
+    worst = std::max(worst, r.worst);
+    recip_pass += r.pass;
+  }
+  std::size_t passed = 0, rejected = 0;
+  for (const auto& o : run.cases) {
+    passed += o.pass;
+    rejected += o.other_rejected;
+  }
+  std::snprintf(line, sizeof line,
+                "  reciprocity: %zu/%zu rows below 1e-8, worst relative asymmetry %.2e\n"
+                "  %zu/%zu cases pass; the other partner law's model rejected in %zu; wall %.2f s\n",
+                recip_pass, run.reciprocity.size(), worst, passed, run.cases.size(), rejected, run.wall_s);
+  os << line;
+}
+
+}  // namespace vgroove::validation

@@ -1,0 +1,121 @@
+// vgroove validation: the suite of kind "nonsymmetric_brdf" (Lee et al. 2018, Sec. 5.2-5.3, Fig. 7-8:
+// the BRDF of nonsymmetric V-grooves, the one the paper renders with, and anisotropic roughness)
+// against the light traced exactly in procedural nonsymmetric microsurfaces.
+//
+// Cases. An isotropic grid ndf x alpha x theta_i x dimension (flatland, 3D) and an anisotropic
+// block (3D): ndf x alpha_x x alpha_y x theta_i x phi_i (the light's azimuth over the alpha_x axis:
+// 0 along it, 90 across) x partner law (independent: Eq. 20; symmetric: B = A, the symmetric model
+// of an anisotropic surface). Each case builds the surface of sim/microsurface_nonsymmetric.h from
+// the suite's seed, traces N rays and compares the histograms of exit direction (joint (k, bin)
+// fractions, and the normalized lobe over all k) with the model's push-forward lobe
+// (analytic/lobe_nonsymmetric.h) over the same bins; thresholds from the sample count
+// (validation/histogram_metrics.h: expected L1 + sigmas x its sd + model_tolerance, the lobe's
+// quadrature error measured in tests/analytic/lobe_nonsymmetric_long_test.cpp). Each case also
+// reports the L1 of the same traced lobe against the model of the other partner law (the
+// symmetric model for the nonsymmetric surface) and whether that model is rejected by the same
+// threshold: what Fig. 8 shows, measured.
+//
+// Reciprocity: the nonsymmetric point evaluation (analytic/brdf_nonsymmetric.h) at
+// `reciprocity_pairs` random pairs (i, o) per NDF and roughness, per k = 1..4, 3D and flatland; the
+// worst relative asymmetry |rho(i, o) - rho(o, i)| / max is reported and must stay below 1e-8.
+//
+// The report carries, per case, the lobe on the plane of incidence (sim, this model, the other
+// partner law's model; all k and per k = 1..plane_k) as densities (per radian in flatland, per
+// steradian in 3D) at signed angles (negative: the mirror side), for plots like Fig. 8 and 11.
+#pragma once
+
+#include "vgroove/analytic/ndf.h"
+#include "vgroove/support/parallel.h"
+#include "vgroove/validation/brdf_suite.h"
+
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace vgroove::validation {
+
+struct NonsymmetricCase {
+  analytic::NdfKind ndf = analytic::NdfKind::beckmann;
+  double alpha_x = 0.5, alpha_y = 0.5;
+  double theta_i = 0.0;  // radians
+  double phi_i = 0.0;    // radians: the light's azimuth over the alpha_x axis (3D)
+  SurfaceDim dim = SurfaceDim::flatland;
+  bool symmetric = false;    // partner law: B = A instead of Eq. (20)
+  bool anisotropic = false;  // from the anisotropic block
+};
+
+struct NonsymmetricSuite {
+  std::string file, name, description;
+  // The isotropic grid.
+  std::vector<analytic::NdfKind> ndfs;
+  std::vector<double> alphas;
+  std::vector<double> theta_i;  // radians
+  std::vector<SurfaceDim> dims;
+  // The anisotropic block (3D; empty when absent).
+  std::vector<analytic::NdfKind> aniso_ndfs;
+  std::vector<double> alpha_x, alpha_y, aniso_theta_i, phi_i;  // radians
+  std::vector<bool> partners_symmetric;                        // false: independent, true: symmetric
+  long rays = 100000;
+  int grooves = 100000;
+  std::uint64_t seed = 1;
+  int flatland_bins = 90;
+  int theta_bins = 15;
+  int phi_bins = 12;
+  int max_k = 16;
+  int plane_k = 4;
+  int reciprocity_pairs = 20;
+  double sigmas = 5.0;
+  double model_tolerance_flatland = 1e-3;
+  double model_tolerance_3d = 3e-3;
+  std::vector<NonsymmetricCase> cases() const;  // the grid (dimension, ndf, alpha, theta_i), then the block
+};
+
+struct NonsymmetricOutcome {
+  NonsymmetricCase c;
+  std::int64_t rays = 0, escaped = 0, lost = 0, bounces = 0;
+  int max_k_seen = 0;
+  double sim_wall_s = 0.0, model_wall_s = 0.0;
+  double albedo_sim = 0.0, albedo_model = 0.0, albedo_threshold = 0.0;
+  double l1 = 0.0, l1_expected = 0.0, l1_threshold = 0.0;        // normalized lobes, all k
+  double l1_k = 0.0, l1_k_expected = 0.0, l1_k_threshold = 0.0;  // joint (k, bin) fractions
+  double l1_other = 0.0;        // the traced lobe against the other partner law's model (normalized)
+  bool other_rejected = false;  // l1_other > l1_threshold
+  std::vector<double> by_k_sim, by_k_model, by_k_other;
+  std::vector<double> plane_theta_deg, plane_sim, plane_model, plane_other;
+  std::vector<std::vector<double>> plane_sim_k, plane_model_k, plane_other_k;  // k = 1..plane_k
+  bool non_finite = false;
+  bool pass = false;
+};
+
+struct ReciprocityRow {
+  analytic::NdfKind ndf = analytic::NdfKind::beckmann;
+  double alpha_x = 0.5, alpha_y = 0.5;
+  SurfaceDim dim = SurfaceDim::three_d;
+  int pairs = 0, evaluated = 0;  // pairs, and (pair, k) values above 1e-300 compared
+  double worst = 0.0;            // largest |rho(i, o) - rho(o, i)| / max
+  bool pass = false;             // worst <= 1e-8
+};
+
+struct NonsymmetricRun {
+  std::vector<NonsymmetricOutcome> cases;
+  std::vector<ReciprocityRow> reciprocity;
+  int threads = 1;
+  double wall_s = 0.0;
+  bool interrupted = false;
+  bool pass = false;
+};
+
+NonsymmetricSuite parse_nonsymmetric_suite(const nlohmann::json& j, const std::string& file);
+// rays > 0 overrides the suite's.
+NonsymmetricRun run_nonsymmetric_suite(const NonsymmetricSuite& suite, long rays, int threads,
+                                       const support::ProgressFn& progress = {},
+                                       const std::atomic<bool>* cancel = nullptr);
+NonsymmetricOutcome run_nonsymmetric_case(const NonsymmetricSuite& suite, const NonsymmetricCase& c, long rays);
+nlohmann::json nonsymmetric_report_json(const NonsymmetricSuite& suite, const NonsymmetricRun& run);
+void print_nonsymmetric_table(std::ostream& os, const NonsymmetricSuite& suite, const NonsymmetricRun& run);
+
+}  // namespace vgroove::validation

@@ -1,0 +1,226 @@
+#include "vgroove/validation/partial_report.h"
+
+#include "vgroove/support/json_reader.h"
+#include "vgroove/support/user_error.h"
+#include "vgroove/validation/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <map>
+
+namespace vgroove::validation {
+
+namespace {
+
+// The JSON pointer of the first place where a and b differ ("" when equal).
+std::string first_difference(const nlohmann::json& a, const nlohmann::json& b, const std::string& at) {
+  if (a.type() != b.type()) return at.empty() ? "/" : at;
+  if (a.is_object()) {
+    for (const auto& [k, v] : a.items()) {
+      if (!b.contains(k)) return at + "/" + k;
+      if (std::string d = first_difference(v, b[k], at + "/" + k); !d.empty()) return d;
+    }
+    for (const auto& [k, v] : b.items())
+      if (!a.contains(k)) return at + "/" + k;
+    return "";
+  }
+  if (a.is_array()) {
+    if (a.size() != b.size())
+      return at + " (lengths " + std::to_string(a.size()) + ", " + std::to_string(b.size()) + ")";
+    for (std::size_t n = 0; n < a.size(); ++n)
+      if (std::string d = first_difference(a[n], b[n], at + "/" + std::to_string(n)); !d.empty()) return d;
+    return "";
+  }
+  return a == b ? "" : (at.empty() ? "/" : at);
+}
+
+std::string value_at(const nlohmann::json& j, const std::string& pointer) {
+  try {
+    const std::string p = pointer.substr(0, pointer.find(' '));
+    const nlohmann::json& v = j.at(nlohmann::json::json_pointer(p == "/" ? "" : p));
+    const std::string text = v.dump();
+    return text.size() > 60 ? text.substr(0, 57) + "..." : text;
+  } catch (const nlohmann::json::exception&) {
+    return "(absent)";
+  }
+}
+
+}  // namespace
+
+nlohmann::json exact_json(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  return v;
+}
+
+nlohmann::json exact_json(const std::vector<double>& v) {
+  nlohmann::json a = nlohmann::json::array();
+  for (double x : v) a.push_back(exact_json(x));
+  return a;
+}
+
+double exact_double(const nlohmann::json& j) {
+  if (j.is_string()) {
+    const std::string s = j.get<std::string>();
+    if (s == "nan") return std::numeric_limits<double>::quiet_NaN();
+    if (s == "inf") return std::numeric_limits<double>::infinity();
+    if (s == "-inf") return -std::numeric_limits<double>::infinity();
+  }
+  return j.get<double>();
+}
+
+std::vector<double> exact_doubles(const nlohmann::json& j) {
+  std::vector<double> v;
+  v.reserve(j.size());
+  for (const nlohmann::json& x : j) v.push_back(exact_double(x));
+  return v;
+}
+
+nlohmann::json partial_report_json(const PartialHeader& h, nlohmann::json units) {
+  nlohmann::json j = provenance();
+  j["partial"] = {{"job", h.job},
+                  {"shard", {{"index", h.shard.index}, {"count", h.shard.count}}},
+                  {"items", h.items},
+                  {"threads", h.threads},
+                  {"wall_s", h.wall_s}};
+  j["units"] = std::move(units);
+  return j;
+}
+
+nlohmann::json job_descriptor(const std::string& command, const std::string& kind,
+                              const std::vector<std::string>& files, nlohmann::json options) {
+  return {{"command", command},
+          {"kind", kind},
+          {"input_file", files.empty() ? "" : files.front()},
+          {"input_digest", file_digest(files)},
+          {"options", std::move(options)}};
+}
+
+std::string file_digest(const std::vector<std::string>& files) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (const std::string& f : files) {
+    std::ifstream in(f, std::ios::binary);
+    if (!in) throw support::UserError(f + ": cannot open the file (missing or unreadable)");
+    for (std::istreambuf_iterator<char> it(in), end; it != end; ++it) {
+      h ^= static_cast<unsigned char>(*it);
+      h *= 0x100000001b3ULL;
+    }
+    h ^= 0xff, h *= 0x100000001b3ULL;  // a file boundary
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+void check_input_unchanged(const nlohmann::json& descriptor, const std::vector<std::string>& files,
+                           const std::string& part) {
+  if (descriptor.value("input_digest", "") != file_digest(files))
+    throw support::UserError("merge: " + files.front() + " has changed since " + part +
+                             " was written (its digest differs): the parts were run on another input");
+}
+
+Part part_from_json(const nlohmann::json& j, const std::string& where) {
+  if (!j.is_object() || !j.contains("partial") || !j.contains("units"))
+    throw support::UserError(where + ": not a partial report (no /partial; one is written by --shard I/N --out FILE)");
+  Part p;
+  p.file = where;
+  try {
+    const nlohmann::json& h = j.at("partial");
+    p.header.job = h.at("job");
+    p.header.shard.index = h.at("shard").at("index").get<int>();
+    p.header.shard.count = h.at("shard").at("count").get<int>();
+    p.header.items = h.at("items").get<std::vector<std::size_t>>();
+    p.header.threads = h.at("threads").get<int>();
+    p.header.wall_s = h.at("wall_s").get<double>();
+    p.version = {{"version", j.at("version")}, {"git", j.at("git")}};
+    p.units = j.at("units");
+    const auto items = p.header.job.at("items").get<std::size_t>();
+    if (p.header.shard.count < 1 || p.header.shard.index < 1 || p.header.shard.index > p.header.shard.count)
+      throw support::UserError(where + ": /partial/shard = " + h["shard"].dump() + " is not a shard I/N");
+    for (std::size_t i : p.header.items)
+      if (i >= items)
+        throw support::UserError(where + ": /partial/items lists item " + std::to_string(i) + " of a job of " +
+                                 std::to_string(items));
+  } catch (const nlohmann::json::exception& e) {
+    throw support::UserError(where + ": not a partial report (" + e.what() + ")");
+  }
+  return p;
+}
+
+Part read_part(const std::string& file) { return part_from_json(support::read_json_file(file), file); }
+
+std::vector<Part> check_parts(std::vector<Part> parts) {
+  if (parts.empty()) throw support::UserError("merge: no parts given");
+  const Part& first = parts.front();
+  for (const Part& p : parts) {
+    if (p.version != first.version)
+      throw support::UserError("merge: " + p.file + " was written by vgroove " + p.version["version"].dump() +
+                               " (git " + p.version["git"].dump() + "), " + first.file + " by " +
+                               first.version["version"].dump() + " (git " + first.version["git"].dump() +
+                               "): parts of different versions cannot be merged");
+    if (const std::string d = first_difference(first.header.job, p.header.job, ""); !d.empty())
+      throw support::UserError("merge: " + p.file + " belongs to another run: /job" + d + " = " +
+                               value_at(p.header.job, d) + ", " + first.file + " has " + value_at(first.header.job, d) +
+                               " (different suites, options or seeds)");
+    if (p.header.shard.count != first.header.shard.count)
+      throw support::UserError("merge: " + p.file + " is shard " + p.header.shard.text() + ", " + first.file +
+                               " shard " + first.header.shard.text() + ": parts of different splits");
+  }
+  const int n = first.header.shard.count;
+  std::map<int, const Part*> by_index;
+  for (const Part& p : parts) {
+    const auto [it, fresh] = by_index.emplace(p.header.shard.index, &p);
+    if (!fresh)
+      throw support::UserError("merge: shard " + p.header.shard.text() + " is given twice (" + it->second->file + ", " +
+                               p.file + ")");
+  }
+  std::string missing;
+  int missing_count = 0;
+  for (int i = 1; i <= n; ++i)
+    if (!by_index.count(i)) {
+      if (++missing_count <= 8) missing += (missing.empty() ? "" : ", ") + std::to_string(i) + "/" + std::to_string(n);
+    }
+  if (missing_count)
+    throw support::UserError("merge: " + std::to_string(missing_count) + " of " + std::to_string(n) +
+                             " shards missing (" + missing + (missing_count > 8 ? ", ..." : "") +
+                             "): an incomplete set is never merged");
+  const auto items = first.header.job.at("items").get<std::size_t>();
+  std::vector<const Part*> owner(items, nullptr);
+  for (const Part& p : parts)
+    for (std::size_t i : p.header.items) {
+      if (owner[i])
+        throw support::UserError("merge: " + owner[i]->file + " and " + p.file + " both ran work item " +
+                                 std::to_string(i) + ": overlapping parts");
+      owner[i] = &p;
+    }
+  for (std::size_t i = 0; i < items; ++i)
+    if (!owner[i])
+      throw support::UserError("merge: no part ran work item " + std::to_string(i) + " of " + std::to_string(items) +
+                               ": an incomplete set is never merged");
+  std::sort(parts.begin(), parts.end(),
+            [](const Part& a, const Part& b) { return a.header.shard.index < b.header.shard.index; });
+  return parts;
+}
+
+nlohmann::json fates_json(const sim::RayFates& t) {
+  return {{"rays", t.rays},
+          {"escaped", t.escaped},
+          {"blocked", t.blocked},
+          {"vertex_hits", t.vertex_hits},
+          {"bounce_limit", t.bounce_limit},
+          {"not_upward", t.not_upward},
+          {"bounces", t.bounces},
+          {"max_k_seen", t.max_k_seen}};
+}
+
+void fates_from_json(sim::RayFates& t, const nlohmann::json& j) {
+  t.rays = j.at("rays"), t.escaped = j.at("escaped"), t.blocked = j.at("blocked");
+  t.vertex_hits = j.at("vertex_hits"), t.bounce_limit = j.at("bounce_limit"), t.not_upward = j.at("not_upward");
+  t.bounces = j.at("bounces"), t.max_k_seen = j.at("max_k_seen");
+}
+
+}  // namespace vgroove::validation

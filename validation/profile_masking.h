@@ -1,0 +1,72 @@
+// vgroove validation: masking G1(o, m), masking-shadowing G2(i, o, m) and the lit length of one
+// polyline profile, from the traced counts (sim/profile_visibility.h), beside what Smith's and
+// the V-cavity masking functions predict for the same profile.
+//
+// Heitz 2014 ("Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs", JCGT 3(2)):
+//   - G1(o, m) is the fraction of the facets of normal m facing o that o sees (Sec. 2.2);
+//   - Smith's G1 = chi+(o.m) / (1 + Lambda(o)) does not depend on m (Eq. 10): exact under the
+//     independence of normals and masking (Sec. 2.3);
+//   - the V-cavity G1 = chi+(o.m) min(1, 2 (m.n)(o.n) / (o.m)) (Eq. 24) is exact on a profile of
+//     symmetric V-grooves with their rims on one line (Sec. 6.1);
+//   - G2: separable Smith G1(o) G1(i) (Eq. 20), height-correlated 1 / (1 + Lambda(o) +
+//     Lambda(i)) (Eq. 21); the V-cavity's min(G1(o, m), G1(i, m)) (in a 2D groove both the
+//     shadow and the masked part start at the apex);
+//   - the projected-area identity (Eq. 5): sum over front-facing facets of G1 length (o.m) =
+//     period cos theta_o. On any profile the traced visible projected length is the beam's whole
+//     width, so the traced average of G1 over the front-facing facets (projected-area weights)
+//     is 1 / (1 + Lambda_p), Lambda_p from the profile's own normals; that holds whatever the
+//     surface and cannot tell Smith from V-cavity (both satisfy Eq. 5 for their own D). It is
+//     kept as a consistency check: every ray meets a front-facing segment first.
+//
+// Binning: `bins` equal bins of the facet angle theta_m over (-pi/2, pi/2). A bin's G1 is its
+// segments' visible projected length over their front-facing projected length (towards o), so
+// the models are weighted the same way over the profile's own segments: the comparison is free of
+// the difference between the profile's normals and D2.
+//
+// On V-groove profiles the V-cavity prediction is exact, so the traced counts per bin are a
+// multinomial sample of it: chi-square (validation/chi_square.h) against V-cavity's expected
+// counts, for G1 (cells: bins) and G2 (cells: bins seen and lit, and seen but not lit).
+#pragma once
+
+#include "vgroove/analytic/ndf.h"
+#include "vgroove/sim/polyline.h"
+#include "vgroove/sim/profile_visibility.h"
+#include "vgroove/validation/chi_square.h"
+
+#include <vector>
+
+namespace vgroove::validation {
+
+struct MaskingCase {
+  analytic::NdfKind ndf = analytic::NdfKind::beckmann;  // the Lambda of Smith's functions
+  double alpha = 0.5;
+  double theta_i = 0.0;  // light, radians in (-pi/2, pi/2)
+  double theta_o = 0.0;  // view
+  int bins = 18;
+};
+
+struct MaskingMeasure {
+  int bins = 0;
+  // G1 from o per bin: weight = the bin's front-facing projected length towards o per beam
+  // width (sum over its segments of length (o.n)+ / (period cos theta_o)); traced and V-cavity
+  // are NaN where the weight is 0. Smith's is one number.
+  std::vector<double> g1_weight, g1_traced, g1_vcavity;
+  double g1_smith = 0.0;
+  // G2 from o, lit from i, per bin: weight over the segments facing both.
+  std::vector<double> g2_weight, g2_traced, g2_vcavity;
+  double g2_smith_separable = 0.0, g2_smith_correlated = 0.0;
+  // Averages over all front-facing facets, projected-area weights (the identity, Eq. 5).
+  double g1_average_traced = 0.0, g1_identity = 0.0, g1_average_vcavity = 0.0;
+  // The lit fraction of the profile's length from i (traced with its standard deviation).
+  double lit_traced = 0.0, lit_traced_sd = 0.0, lit_vcavity = 0.0, lit_smith = 0.0;
+  // Traced counts against V-cavity's expected counts.
+  OrderedChiSquare g1_chi2, g2_chi2;
+  std::int64_t rays = 0, lost = 0;  // lost: first hits at a vertex or on a back face (view o)
+};
+
+// from_o: the beam from o with shadow rays towards i; from_i: the beam from i (its seen counts
+// give the lit length). Both traced on p with the same ray count.
+MaskingMeasure measure_masking(const sim::Polyline& p, const MaskingCase& c, const sim::VisibilityTally& from_o,
+                               const sim::VisibilityTally& from_i);
+
+}  // namespace vgroove::validation

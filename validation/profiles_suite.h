@@ -1,0 +1,157 @@
+// vgroove validation: the suite of kind "profiles": masking, shadowing and multiple scattering
+// traced exactly on random height profiles and on V-groove profiles of the same NDF, against
+// Smith (Heitz 2014), the V-cavity, the flatland Smith random walk (Heitz et al. 2016,
+// analytic/smith_walk_flatland.h) and this project's V-groove model (analytic/brdf_flatland.h).
+//
+// A case is (ndf, alpha, theta); each surface kind of the suite is traced on `realizations`
+// independent profiles of `segments` segments:
+//   - "random": sim/random_profile.h (Beckmann: Gaussian process, Gaussian autocorrelation; GGX:
+//     GGX slopes), the same realizations for every theta of an (ndf, alpha);
+//   - "vgroove": the procedural V-groove surface of sim/microsurface.h (segments / 2 grooves) as a
+//     polyline.
+// Per realization three beams of `rays` rays (sim/profile_visibility.h, sim/profile_tally.h):
+// the view beam from theta with shadow rays towards the light at -theta (G1(theta, m) and the
+// mirror-configuration G2(-theta, theta, m)), the beam from -theta (lit length), and the beam from
+// theta tallied by bounce count k and exit angle (the per-k lobe). validation/profile_masking.h
+// turns the counts into G1, G2 and the lit length per facet-normal bin beside Smith's and the
+// V-cavity's values on the same facets.
+//
+// What decides pass or fail is only what must hold (the tracer against the model that is exact
+// for the surface):
+//   - every profile: no ray lost, and the projected-area identity (validation/profile_masking.h);
+//   - V-groove profiles: the V-cavity G1 and G2 (chi-square of the counts, summed over the
+//     realizations, p >= p_min / number of such tests), the lit length (|z| <= sigmas), and the
+//     V-groove model's per-k lobe (L1 of the joint (k, bin) fractions within expected + sigmas sd
+//     + model_tolerance of validation/histogram_metrics.h, N = rays x realizations, G = grooves x
+//     realizations).
+// Everything else is a measured result, reported with its statistical error: per bin the mean
+// over realizations and its standard error from their spread; each model's distance from the
+// traced value per bin (in standard errors) and, over the bins, the projected-area-weighted mean
+// |difference| beside the value noise alone would give; per k the L1 distance of the walk's and
+// the V-groove model's lobes from the traced lobe, with the L1 expected from the noise of both
+// (traced: the realizations' spread; walk: its path count) and whether it is within sigmas.
+#pragma once
+
+#include "vgroove/analytic/ndf.h"
+#include "vgroove/support/parallel.h"
+#include "vgroove/validation/chi_square.h"
+
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace vgroove::validation {
+
+enum class ProfileSurface : unsigned char { random, vgroove };
+const char* profile_surface_name(ProfileSurface s);
+
+struct ProfilesCase {
+  analytic::NdfKind ndf = analytic::NdfKind::beckmann;
+  double alpha = 0.5;
+  double theta = 0.0;  // radians, >= 0: view and incidence; the light of G2 at -theta
+};
+
+struct ProfilesSuite {
+  std::string file, name, description;
+  std::vector<analytic::NdfKind> ndfs;
+  std::vector<double> alphas;
+  std::vector<double> theta;  // radians
+  std::vector<ProfileSurface> surfaces;
+  int realizations = 4;
+  int segments = 1 << 16;
+  int samples_per_length = 16;
+  long rays = 200000;         // per beam and realization
+  long walk_paths = 1000000;  // per case
+  int normal_bins = 18;       // facet normal over (-90, 90) deg
+  int lobe_bins = 90;         // exit angle over (-90, 90) deg
+  int max_k = 8;
+  std::uint64_t seed = 1;
+  double p_min = 1e-3;
+  double sigmas = 5.0;
+  double model_tolerance = 1e-5;
+  std::size_t cases() const { return ndfs.size() * alphas.size() * theta.size(); }
+  ProfilesCase case_at(std::size_t c) const;  // order: ndf, alpha, theta (innermost)
+  // Tests that decide the verdict (for the Bonferroni correction of the chi-squares).
+  int verdict_tests() const;
+};
+
+// Mean and standard error over the realizations, per bin (NaN where fewer than two have a value).
+struct BinStat {
+  std::vector<double> mean, se;
+};
+
+// A model against the traced per-bin values: weighted by the bins' mean weight, the mean of
+// |traced - model| and the value noise alone would give (sqrt(2 / pi) se per bin, se the
+// realizations' standard error but at least the rays' binomial one), and the largest
+// |traced - model| / se.
+struct ModelDistance {
+  double mean_abs = 0.0, noise = 0.0, max_abs_z = 0.0;
+};
+
+// A model's lobe against the traced one, per k row and over all rows: L1, the L1 expected from
+// the noise (mean and sd), z = (L1 - mean) / sd (NaN where neither side has any noise but they
+// differ).
+struct LobeDistance {
+  std::vector<double> l1, expected, sd, z;  // per row
+  double l1_total = 0.0, expected_total = 0.0, sd_total = 0.0, z_total = 0.0;
+  double max_z = 0.0;         // the largest row z (NaN if any row's is)
+  bool within_noise = false;  // every row's z and z_total <= sigmas
+};
+
+struct SurfaceOutcome {
+  ProfileSurface surface = ProfileSurface::random;
+  std::int64_t rays = 0, lost = 0, shadow_vertex = 0, bounces = 0;
+  double identity_error = 0.0;                         // largest |traced average G1 - identity| / identity
+  double g1_identity = 0.0, g1_average_vcavity = 0.0;  // means over realizations
+  BinStat g1_weight, g1_traced, g1_vcavity, g2_weight, g2_traced, g2_vcavity;
+  double g1_smith = 0.0, g2_smith_separable = 0.0, g2_smith_correlated = 0.0;
+  ModelDistance g1_d_smith, g1_d_vcavity, g2_d_separable, g2_d_correlated, g2_d_vcavity;
+  double lit_traced = 0.0, lit_se = 0.0, lit_smith = 0.0, lit_vcavity = 0.0;
+  // Against V-cavity, over all realizations (the verdict on V-groove profiles).
+  OrderedChiSquare g1_chi2, g2_chi2;
+  double lit_z_vcavity = 0.0;
+  // The per-k lobe: joint (k row, bin) fractions of the incident flux, mean and se.
+  BinStat lobe;
+  std::vector<double> by_k;
+  double albedo = 0.0;
+  LobeDistance d_walk, d_vgroove;
+  // The V-groove model on this surface against the pooled histogram (fig11's rule).
+  double l1_pooled = 0.0, l1_pooled_threshold = 0.0;
+  bool identity_holds = false;
+  bool pass = false;
+  double wall_s = 0.0;
+};
+
+struct ProfilesOutcome {
+  ProfilesCase c;
+  std::vector<double> walk_lobe, walk_by_k;  // joint fractions, rows k = 0..max_k + 1
+  std::int64_t walk_paths = 0, walk_left = 0;
+  std::vector<double> model_lobe, model_by_k;  // the V-groove model (analytic/brdf_flatland.h)
+  std::vector<SurfaceOutcome> surfaces;
+  double walk_wall_s = 0.0;
+  bool non_finite = false;
+  bool pass = false;
+};
+
+struct ProfilesRun {
+  std::vector<ProfilesOutcome> cases;
+  int threads = 1;
+  double wall_s = 0.0;
+  bool interrupted = false;
+  bool pass = false;
+};
+
+ProfilesSuite parse_profiles_suite(const nlohmann::json& j, const std::string& file);
+// rays > 0 overrides the suite's rays per beam.
+ProfilesRun run_profiles_suite(const ProfilesSuite& suite, long rays, int threads,
+                               const support::ProgressFn& progress = {}, const std::atomic<bool>* cancel = nullptr);
+ProfilesOutcome run_profiles_case(const ProfilesSuite& suite, std::size_t case_index, long rays);
+
+nlohmann::json profiles_report_json(const ProfilesSuite& suite, const ProfilesRun& run);
+void print_profiles_table(std::ostream& os, const ProfilesSuite& suite, const ProfilesRun& run);
+
+}  // namespace vgroove::validation

@@ -1,0 +1,384 @@
+#include "vgroove/validation/sampling_check.h"
+
+#include "vgroove/analytic/quadrature.h"
+#include "vgroove/analytic/sampling_3d.h"
+#include "vgroove/analytic/sampling_flatland.h"
+#include "vgroove/sim/rng.h"
+#include "vgroove/validation/report.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace vgroove::validation {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::array<double, 4> uniforms(sim::Rng& rng) { return {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()}; }
+
+struct Moments {
+  double sum = 0.0, sum2 = 0.0;
+  void add(double w) { sum += w, sum2 += w * w; }
+  void into(Chi2Outcome& out, long n) const {
+    const double N = static_cast<double>(n);
+    out.weight_mean = sum / N;
+    out.weight_variance = N > 1.0 ? std::max(0.0, sum2 / N - out.weight_mean * out.weight_mean) * N / (N - 1.0) : 0.0;
+  }
+};
+
+// Cell integrals: relative kCellRelTol = 1e-4 and absolute 0.05 / N. A relative error e in every cell adds
+// about N e^2 to the statistic (0.01 at N = 10^6), an absolute one d about (N d)^2 / 5 per pooled
+// cell: far below the statistic's spread sqrt(2 dof).
+analytic::AdaptiveOptions cell_options(long samples) {
+  analytic::AdaptiveOptions o;
+  o.rel_tol = kCellRelTol;
+  o.abs_tol = 0.05 / static_cast<double>(samples);
+  o.max_pieces = 400;
+  return o;
+}
+
+// The cells and the histogram of the sampled directions.
+void sample_3d(Chi2Outcome& out) {
+  const Chi2Spec& s = out.spec;
+  Chi2Table& t = out.table;
+  t.rows = s.cos_bins;
+  t.cols = s.phi_bins;
+  for (int r = 0; r <= t.rows; ++r) t.row_edges.push_back(static_cast<double>(r) / t.rows);
+  for (int c = 0; c <= t.cols; ++c) t.col_edges.push_back(-std::numbers::pi + 2.0 * std::numbers::pi * c / t.cols);
+  t.observed.assign(static_cast<std::size_t>(t.rows * t.cols), 0.0);
+  const analytic::Dir3 i = analytic::dir3(s.theta_i, std::numbers::pi);
+  const analytic::SamplerOptions opt{s.strategy, s.max_k};
+  const auto t0 = Clock::now();
+  sim::Rng rng(s.seed, 0x5a3d, 0);
+  Moments w;
+  for (long n = 0; n < s.samples; ++n) {
+    const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(i, uniforms(rng), s.ndf, s.alpha, opt);
+    w.add(x.weight);
+    if (x.k == 0) {
+      t.observed_none += 1.0;
+      continue;
+    }
+    const int r = std::clamp(static_cast<int>(x.o.z * t.rows), 0, t.rows - 1);
+    const double phi = std::atan2(x.o.y, x.o.x);
+    const int c =
+        std::clamp(static_cast<int>((phi + std::numbers::pi) / (2.0 * std::numbers::pi) * t.cols), 0, t.cols - 1);
+    t.observed[static_cast<std::size_t>(r * t.cols + c)] += 1.0;
+  }
+  out.sample_s = seconds_since(t0);
+  w.into(out, s.samples);
+}
+
+// The expected counts: the density integrated over each cell.
+void expect_3d(Chi2Outcome& out, const HeldDensity* held) {
+  const Chi2Spec& s = out.spec;
+  Chi2Table& t = out.table;
+  t.expected.assign(t.observed.size(), 0.0);
+  const analytic::Dir3 i = analytic::dir3(s.theta_i, std::numbers::pi);
+  const analytic::SamplerOptions opt{s.strategy, s.max_k};
+  const auto t1 = Clock::now();
+  auto pdf = [&](const analytic::Dir3& o) {
+    return held ? held->pdf3(o) : analytic::vgroove_pdf_3d(i, o, s.ndf, s.alpha, opt);
+  };
+  const analytic::AdaptiveOptions outer = cell_options(s.samples);
+  const double N = static_cast<double>(s.samples);
+  // The light is in the (x, z) plane: the pdf is symmetric in phi, so the cells with phi >= 0 are
+  // integrated and mirrored (column c and cols - 1 - c). The lobe peaks at the mirror direction
+  // (cos(theta_o) = cos(theta_i), phi = 0; the k >= 2 terms diverge there like 1/sin(theta_h)) and
+  // narrows in phi towards it at grazing light. Gauss-Kronrod's nodes must see a peak to refine
+  // it, so in the cell that holds the mirror direction the pieces are graded geometrically
+  // towards phi = 0 and towards cos(theta_i).
+  const double ci = std::cos(s.theta_i);
+  auto graded = [](std::vector<double>& cuts, double at, double lo, double hi) {
+    for (int j = 1; j <= 12; ++j) {
+      const double d = std::ldexp(hi - lo, -j);
+      for (double x : {at - d, at + d})
+        if (x > lo && x < hi) cuts.push_back(x);
+    }
+    if (at > lo && at < hi) cuts.push_back(at);
+  };
+  for (int r = 0; r < t.rows; ++r)
+    for (int c = t.cols / 2; c < t.cols; ++c) {
+      const double c0 = t.row_edges[r], c1 = t.row_edges[r + 1];
+      const double p0 = t.col_edges[c], p1 = t.col_edges[c + 1];
+      analytic::AdaptiveOptions inner = outer;
+      inner.abs_tol = 0.25 * outer.abs_tol / (c1 - c0);
+      // Near normal incidence the mirror direction is near the pole, which every column touches.
+      const bool mirror_row = ci >= c0 && ci <= c1;
+      const bool mirror_cell = mirror_row && (c == t.cols / 2 || std::sin(s.theta_i) < 0.1);
+      std::vector<double> phi_cuts{p0, p1};
+      if (mirror_row && c == t.cols / 2) graded(phi_cuts, p0, p0, p1);
+      std::sort(phi_cuts.begin(), phi_cuts.end());
+      auto row = [&](double ct) {
+        const double st = std::sqrt(std::max(0.0, 1.0 - ct * ct));
+        return analytic::integrate_adaptive(
+                   [&](double phi) {
+                     return pdf(analytic::Dir3{st * std::cos(phi), st * std::sin(phi), ct});
+                   },
+                   phi_cuts, inner)
+            .value;
+      };
+      std::vector<double> cuts{c0, c1};
+      if (mirror_cell) graded(cuts, ci, c0, c1);
+      if (ci > c0 && ci < c1) cuts.push_back(ci);
+      std::sort(cuts.begin(), cuts.end());
+      const analytic::AdaptiveResult a = analytic::integrate_adaptive(row, cuts, outer);
+      for (int cc : {c, t.cols - 1 - c}) t.expected[static_cast<std::size_t>(r * t.cols + cc)] = N * a.value;
+      out.pdf_integral += 2.0 * a.value;
+      out.quadrature_error += 2.0 * a.error;
+    }
+  out.integrate_s = seconds_since(t1);
+  out.failure_probability = analytic::sampler_failure_probability_3d(i, s.ndf, s.alpha, opt, 1e-9);
+}
+
+void sample_flatland(Chi2Outcome& out) {
+  const Chi2Spec& s = out.spec;
+  Chi2Table& t = out.table;
+  t.rows = 1;
+  t.cols = s.theta_bins;
+  t.row_edges = {0.0, 1.0};
+  for (int c = 0; c <= t.cols; ++c) t.col_edges.push_back(-0.5 * std::numbers::pi + std::numbers::pi * c / t.cols);
+  t.observed.assign(static_cast<std::size_t>(t.cols), 0.0);
+  const analytic::SamplerOptions opt{s.strategy, s.max_k};
+  const auto t0 = Clock::now();
+  sim::Rng rng(s.seed, 0x5a3d, 1);
+  Moments w;
+  for (long n = 0; n < s.samples; ++n) {
+    const analytic::VgrooveSampleFlatland x =
+        analytic::sample_vgroove_flatland(s.theta_i, uniforms(rng), s.ndf, s.alpha, opt);
+    w.add(x.weight);
+    if (x.k == 0) {
+      t.observed_none += 1.0;
+      continue;
+    }
+    const int c =
+        std::clamp(static_cast<int>((x.theta_o + 0.5 * std::numbers::pi) / std::numbers::pi * t.cols), 0, t.cols - 1);
+    t.observed[static_cast<std::size_t>(c)] += 1.0;
+  }
+  out.sample_s = seconds_since(t0);
+  w.into(out, s.samples);
+}
+
+void expect_flatland(Chi2Outcome& out, const HeldDensity* held) {
+  const Chi2Spec& s = out.spec;
+  Chi2Table& t = out.table;
+  t.expected.assign(t.observed.size(), 0.0);
+  const analytic::SamplerOptions opt{s.strategy, s.max_k};
+  const auto t1 = Clock::now();
+  auto pdf = [&](double to) {
+    return held ? held->pdf2(to) : analytic::vgroove_pdf_flatland(s.theta_i, to, s.ndf, s.alpha, opt);
+  };
+  const analytic::AdaptiveOptions o = cell_options(s.samples);
+  for (int c = 0; c < t.cols; ++c) {
+    std::vector<double> cuts{t.col_edges[c], t.col_edges[c + 1]};
+    for (double x : {-s.theta_i, s.theta_i})
+      if (x > cuts.front() && x < cuts.back()) cuts.insert(cuts.end() - 1, x);
+    std::sort(cuts.begin(), cuts.end());
+    const analytic::AdaptiveResult a = analytic::integrate_adaptive(pdf, cuts, o);
+    t.expected[static_cast<std::size_t>(c)] = static_cast<double>(s.samples) * a.value;
+    out.pdf_integral += a.value;
+    out.quadrature_error += a.error;
+  }
+  out.integrate_s = seconds_since(t1);
+  out.failure_probability = analytic::sampler_failure_probability_flatland(s.theta_i, s.ndf, s.alpha, opt);
+}
+
+// The expected counts under the sampler's pdf or the held density, and the test.
+void expect_and_test(Chi2Outcome& out, const HeldDensity* held) {
+  const Chi2Spec& spec = out.spec;
+  out.pdf_integral = out.quadrature_error = 0.0;
+  if (spec.dim == SurfaceDim::three_d)
+    expect_3d(out, held);
+  else
+    expect_flatland(out, held);
+  Chi2Table& t = out.table;
+  t.expected_none = static_cast<double>(spec.samples) * (held ? held->none : out.failure_probability);
+  out.normalization_error = out.pdf_integral + (held ? held->none : out.failure_probability) - 1.0;
+  std::vector<double> observed = t.observed, expected = t.expected;
+  observed.push_back(t.observed_none);
+  expected.push_back(std::max(0.0, t.expected_none));
+  out.test = chi_square_test(observed, expected, spec.level, spec.tests);
+  // The cells' integrals are asked for to kCellRelTol relative, so their sum to kCellRelTol. (Their
+  // error estimates |K15 - G7| are not bounds where the density jumps, which the printed and the
+  // bounded densities do along curves that cross the cells: estimates of 1.5e-5 were seen beside
+  // errors of 4.6e-5.) The failure probability's quadrature adds 1e-9.
+  out.normalization_tolerance = std::max(kCellRelTol, 2.0 * out.quadrature_error) + 1e-9;
+  out.pass = !out.test.reject && std::abs(out.normalization_error) <= out.normalization_tolerance;
+}
+
+}  // namespace
+
+Chi2Outcome run_chi2(const Chi2Spec& spec, const HeldDensity* held) {
+  Chi2Outcome out;
+  out.spec = spec;
+  if (spec.dim == SurfaceDim::three_d)
+    sample_3d(out);
+  else
+    sample_flatland(out);
+  expect_and_test(out, held);
+  return out;
+}
+
+Chi2Outcome retest_chi2(const Chi2Outcome& sampled, const HeldDensity& held) {
+  Chi2Outcome out = sampled;
+  expect_and_test(out, &held);
+  return out;
+}
+
+nlohmann::json chi2_json(const Chi2Outcome& o) {
+  const Chi2Spec& s = o.spec;
+  const Chi2Table& t = o.table;
+  nlohmann::json observed = nlohmann::json::array(), expected = nlohmann::json::array();
+  for (int r = 0; r < t.rows; ++r) {
+    std::vector<double> ob(t.observed.begin() + r * t.cols, t.observed.begin() + (r + 1) * t.cols);
+    std::vector<double> ex(t.expected.begin() + r * t.cols, t.expected.begin() + (r + 1) * t.cols);
+    observed.push_back(ob);
+    expected.push_back(ex);
+  }
+  nlohmann::json j = {{"dimension", surface_dim_name(s.dim)},
+                      {"ndf", analytic::ndf_name(s.ndf)},
+                      {"alpha", s.alpha},
+                      {"theta_i_deg", output_deg(s.theta_i)},
+                      {"strategy", analytic::strategy_name(s.strategy)},
+                      {"max_k", s.max_k},
+                      {"samples", s.samples},
+                      {"seed", s.seed},
+                      {"statistic", o.test.statistic},
+                      {"dof", o.test.dof},
+                      {"p_value", o.test.p_value},
+                      {"level", o.test.level},
+                      {"pooled_in", o.test.pooled_in},
+                      {"pooled_out", o.test.pooled_out},
+                      {"samples_where_none_expected", o.test.samples_where_none_expected},
+                      {"reject", o.test.reject},
+                      {"pdf_integral", o.pdf_integral},
+                      {"quadrature_error", o.quadrature_error},
+                      {"failure_probability", o.failure_probability},
+                      {"normalization_error", o.normalization_error},
+                      {"normalization_tolerance", o.normalization_tolerance},
+                      {"weight_mean", o.weight_mean},
+                      {"weight_variance", o.weight_variance},
+                      {"weight_standard_error", std::sqrt(o.weight_variance / static_cast<double>(s.samples))},
+                      {"ns_per_sample", 1e9 * o.sample_s / static_cast<double>(s.samples)},
+                      {"sample_s", o.sample_s},
+                      {"integrate_s", o.integrate_s},
+                      {"pass", o.pass}};
+  j["table"] = {{"rows", s.dim == SurfaceDim::three_d ? "cos_theta_o" : "one row"},
+                {"cols", s.dim == SurfaceDim::three_d ? "phi_o (rad)" : "theta_o (rad)"},
+                {"row_edges", t.row_edges},
+                {"col_edges", t.col_edges},
+                {"observed", observed},
+                {"expected", expected},
+                {"observed_no_direction", t.observed_none},
+                {"expected_no_direction", t.expected_none}};
+  return j;
+}
+
+// ---- Variance and efficiency ---------------------------------------------------------------------
+
+VarianceOutcome run_variance(const VarianceSpec& spec) {
+  VarianceOutcome out;
+  out.spec = spec;
+  const bool three_d = spec.dim == SurfaceDim::three_d;
+  const analytic::Dir3 i = analytic::dir3(spec.theta_i, std::numbers::pi);
+  analytic::FresnelFn F;
+  if (spec.schlick_f0 < 1.0) {
+    const double f0 = spec.schlick_f0;
+    F = [f0](double c) { return f0 + (1.0 - f0) * std::pow(1.0 - std::clamp(c, 0.0, 1.0), 5.0); };
+  }
+  auto run = [&](const std::string& name, auto&& draw) {
+    sim::Rng rng(spec.seed, 0x7a11, 0);
+    double sum = 0.0, sum2 = 0.0;
+    long none = 0;
+    const auto t0 = Clock::now();
+    for (long n = 0; n < spec.samples; ++n) {
+      const auto [w, returned] = draw(uniforms(rng));
+      sum += w, sum2 += w * w;
+      none += !returned;
+    }
+    const double secs = seconds_since(t0);
+    StrategyStats st;
+    st.strategy = name;
+    const double N = static_cast<double>(spec.samples);
+    st.mean = sum / N;
+    st.variance = std::max(0.0, sum2 / N - st.mean * st.mean) * N / std::max(1.0, N - 1.0);
+    st.standard_error = std::sqrt(st.variance / N);
+    st.no_direction = static_cast<double>(none) / N;
+    st.ns_per_sample = 1e9 * secs / N;
+    st.efficiency = st.variance > 0.0 ? 1.0 / (st.variance * secs / N) : std::numeric_limits<double>::infinity();
+    out.rows.push_back(st);
+  };
+  for (analytic::FacetStrategy s : {analytic::FacetStrategy::printed, analytic::FacetStrategy::vndf,
+                                    analytic::FacetStrategy::smith_vndf, analytic::FacetStrategy::bounded_vndf}) {
+    if (!analytic::strategy_supports(s, spec.ndf, !three_d)) continue;
+    const analytic::SamplerOptions opt{s, spec.max_k};
+    if (three_d)
+      run(analytic::strategy_name(s), [&](const std::array<double, 4>& u) {
+        const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(i, u, spec.ndf, spec.alpha, opt, F);
+        return std::pair<double, bool>{x.weight, x.k > 0};
+      });
+    else
+      run(analytic::strategy_name(s), [&](const std::array<double, 4>& u) {
+        const analytic::VgrooveSampleFlatland x =
+            analytic::sample_vgroove_flatland(spec.theta_i, u, spec.ndf, spec.alpha, opt);
+        return std::pair<double, bool>{x.weight, x.k > 0};
+      });
+  }
+  // Cosine-weighted sampling: weight = rho cos / (cos / pi) = pi rho (flatland: 2 rho2).
+  if (three_d)
+    run("cosine", [&](const std::array<double, 4>& u) {
+      const analytic::Dir3 o = analytic::sample_cosine_hemisphere(u[0], u[1]);
+      const double pdf = analytic::cosine_hemisphere_pdf(o);
+      const double rho = analytic::vgroove_brdf(i, o, spec.ndf, spec.alpha, spec.max_k, F);
+      return std::pair<double, bool>{pdf > 0.0 && std::isfinite(rho) ? rho * o.z / pdf : 0.0, pdf > 0.0};
+    });
+  else
+    run("cosine", [&](const std::array<double, 4>& u) {
+      const double to = analytic::sample_cosine_flatland(u[0]);
+      const double pdf = analytic::cosine_flatland_pdf(to);
+      const analytic::SamplerOptions opt{analytic::FacetStrategy::vndf, spec.max_k};
+      const double rho_cos =
+          analytic::vgroove_pdf_and_brdf_flatland(spec.theta_i, to, spec.ndf, spec.alpha, opt).rho_cos;
+      return std::pair<double, bool>{pdf > 0.0 ? rho_cos / pdf : 0.0, pdf > 0.0};
+    });
+  const auto lowest =
+      std::min_element(out.rows.begin(), out.rows.end(),
+                       [](const StrategyStats& a, const StrategyStats& b) { return a.variance < b.variance; });
+  const auto best =
+      std::max_element(out.rows.begin(), out.rows.end(),
+                       [](const StrategyStats& a, const StrategyStats& b) { return a.efficiency < b.efficiency; });
+  out.lowest_variance = lowest->strategy;
+  out.most_efficient = best->strategy;
+  return out;
+}
+
+nlohmann::json variance_json(const VarianceOutcome& o) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const StrategyStats& s : o.rows) {
+    nlohmann::json r = {{"strategy", s.strategy},         {"mean_weight", s.mean},
+                        {"variance", s.variance},         {"standard_error", s.standard_error},
+                        {"no_direction", s.no_direction}, {"ns_per_sample", s.ns_per_sample}};
+    // Zero variance (the V-cavity strategy with F = 1): infinite efficiency, written as null.
+    r["efficiency"] = std::isfinite(s.efficiency) ? nlohmann::json(s.efficiency) : nlohmann::json(nullptr);
+    rows.push_back(std::move(r));
+  }
+  const VarianceSpec& s = o.spec;
+  return {
+      {"dimension", surface_dim_name(s.dim)},
+      {"ndf", analytic::ndf_name(s.ndf)},
+      {"alpha", s.alpha},
+      {"theta_i_deg", output_deg(s.theta_i)},
+      {"max_k", s.max_k},
+      {"samples", s.samples},
+      {"fresnel", s.schlick_f0 < 1.0 ? "schlick F0 = " + std::to_string(s.schlick_f0) : std::string("none (F = 1)")},
+      {"strategies", rows},
+      {"lowest_variance", o.lowest_variance},
+      {"most_efficient", o.most_efficient}};
+}
+
+}  // namespace vgroove::validation

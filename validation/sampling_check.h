@@ -1,0 +1,113 @@
+// vgroove validation: the checks of a BRDF sampler as the rendering community runs them
+// (analytic/sampling_3d.h, analytic/sampling_flatland.h):
+//   - chi-square goodness of fit of the sampled directions against the sampler's own pdf (or any
+//     density a test holds it to), as Mitsuba 3 and nori do: the directions histogrammed on cells
+//     of (cos theta_o, phi_o) (flatland: theta_o), the pdf integrated over each cell by adaptive
+//     Gauss-Kronrod, plus one cell for the samples that returned no direction (expected: the
+//     failure probability, integrated over the facets); validation/chi_square.h pools and tests;
+//   - the normalization: the cells' integrals plus the failure probability must be 1 (two
+//     independent quadratures, over o and over the facets);
+//   - the variance of the weight rho cos / pdf per strategy and for cosine-weighted sampling, and
+//     the cost per sample: which strategy is the most efficient where.
+#pragma once
+
+#include "vgroove/analytic/brdf_3d.h"
+#include "vgroove/analytic/facet_strategy.h"
+#include "vgroove/analytic/ndf.h"
+#include "vgroove/validation/brdf_suite.h"
+#include "vgroove/validation/chi_square.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace vgroove::validation {
+
+// The relative accuracy asked of each cell's integral: a relative error e in every cell adds about
+// N e^2 to the statistic (0.01 at N = 10^6), far below its spread sqrt(2 dof).
+inline constexpr double kCellRelTol = 1e-4;
+
+struct Chi2Spec {
+  SurfaceDim dim = SurfaceDim::three_d;
+  analytic::NdfKind ndf = analytic::NdfKind::ggx;
+  double alpha = 0.5;
+  double theta_i = 0.0;  // radians; the light at i = dir3(theta_i, pi) (flatland: theta_i)
+  analytic::FacetStrategy strategy = analytic::FacetStrategy::vndf;
+  int max_k = 256;
+  long samples = 100000;
+  std::uint64_t seed = 1;
+  int cos_bins = 8, phi_bins = 16;  // 3D: cos(theta_o) in [0, 1] x phi_o in [-pi, pi), phi_bins even
+  int theta_bins = 36;              // flatland: theta_o in (-pi/2, pi/2)
+  double level = 0.01;              // the family's significance level
+  int tests = 1;                    // tests run together (Sidak)
+};
+
+// The histogram and the expected counts, for plots: [row * cols + col]; 3D rows are cos(theta_o)
+// bins (row_edges ascending) and columns phi_o bins (col_edges from -pi); flatland has one row
+// and theta_o bins as columns.
+struct Chi2Table {
+  int rows = 0, cols = 0;
+  std::vector<double> row_edges, col_edges;
+  std::vector<double> observed, expected;
+  double observed_none = 0.0, expected_none = 0.0;  // samples that returned no direction
+};
+
+struct Chi2Outcome {
+  Chi2Spec spec;
+  Chi2Table table;
+  ChiSquareResult test;
+  double pdf_integral = 0.0;         // the cells' integrals summed
+  double quadrature_error = 0.0;     // their summed error estimates
+  double failure_probability = 0.0;  // over the facets
+  double normalization_error = 0.0;  // pdf_integral + failure_probability - 1
+  double normalization_tolerance = 0.0;
+  double sample_s = 0.0, integrate_s = 0.0;
+  // The weights rho cos / pdf of the same samples (zero-weight returns count 0), F = 1.
+  double weight_mean = 0.0, weight_variance = 0.0;
+  bool pass = false;  // the chi-square accepts and |normalization_error| <= normalization_tolerance
+};
+
+// A density the test holds the sampler to in place of its own pdf (the power tests), with the
+// probability of no direction it claims.
+struct HeldDensity {
+  std::function<double(const analytic::Dir3&)> pdf3;
+  std::function<double(double)> pdf2;
+  double none = 0.0;
+};
+
+Chi2Outcome run_chi2(const Chi2Spec& spec, const HeldDensity* held = nullptr);
+// The same samples held to another density (the histogram is reused, the expected counts redone).
+Chi2Outcome retest_chi2(const Chi2Outcome& sampled, const HeldDensity& held);
+nlohmann::json chi2_json(const Chi2Outcome& o);
+
+// The weight's statistics per strategy.
+struct VarianceSpec {
+  SurfaceDim dim = SurfaceDim::three_d;
+  analytic::NdfKind ndf = analytic::NdfKind::ggx;
+  double alpha = 0.5;
+  double theta_i = 0.0;
+  int max_k = 256;
+  long samples = 20000;
+  std::uint64_t seed = 1;
+  double schlick_f0 = 1.0;  // Fresnel: Schlick with this F0 (1: F = 1, the furnace); 3D only
+};
+struct StrategyStats {
+  std::string strategy;  // a FacetStrategy's name, or "cosine"
+  double mean = 0.0, variance = 0.0, standard_error = 0.0;
+  double no_direction = 0.0;  // fraction of zero-weight returns
+  double ns_per_sample = 0.0;
+  double efficiency = 0.0;  // 1 / (variance x seconds per sample); infinite when the variance is 0
+};
+struct VarianceOutcome {
+  VarianceSpec spec;
+  std::vector<StrategyStats> rows;
+  std::string lowest_variance;  // among the strategies and cosine
+  std::string most_efficient;
+};
+VarianceOutcome run_variance(const VarianceSpec& spec);
+nlohmann::json variance_json(const VarianceOutcome& o);
+
+}  // namespace vgroove::validation
