@@ -7,6 +7,7 @@
 #include "vgroove/support/printable.h"
 #include "vgroove/support/std_streams.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/energy_table.h"
 #include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
 
@@ -170,9 +171,9 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
   add_threads(acc, ac.threads);
   add_text(acc, "--out", ac.out, "report JSON to write");
   acc->add_flag("--force", ac.force, "overwrite an existing report");
-  acc->add_option("--shard", ac.shard,
-                  "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
-                  "report (`vgroove merge` joins them; each run's wall_s is then its summed case time)");
+  add_text(acc, "--shard", ac.shard,
+           "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+           "report (`vgroove merge` joins them; each run's wall_s is then its summed case time)");
 
   ta.dry_run = aa.dry_run = va.dry_run = ac.dry_run = ctx.dry_run;
   ta.cancel = va.cancel = ac.cancel = ctx.cancel;
@@ -198,9 +199,9 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
   add_text(simu, "--out", sa.out, "result JSON to write (refuses to overwrite without --force)");
   add_threads(simu, sa.threads);
   simu->add_flag("--force", sa.force, "overwrite an existing result");
-  simu->add_option("--shard", sa.shard,
-                   "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
-                   "report (`vgroove merge` joins them)");
+  add_text(simu, "--shard", sa.shard,
+           "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+           "report (`vgroove merge` joins them)");
   sa.dry_run = ctx.dry_run;
   sa.cancel = ctx.cancel;
   SampleArgs sma;
@@ -209,24 +210,27 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
       "Importance-sample the symmetric V-groove BRDF (Lee et al. 2018, Sec. 6): draw --n exit directions, hold them "
       "to the sampler's pdf by a chi-square test (cells of (cos theta_o, phi_o), flatland theta_o; pdf integrated per "
       "cell) and report the weights rho cos / pdf; exit 1 if the chi-square rejects.");
-  smp->add_option("--ndf", sma.ndf, "normal distribution: ggx, beckmann or phong")->capture_default_str();
-  smp->add_option("--alpha", sma.alpha, "roughness alpha, (0, 2]")->capture_default_str();
-  smp->add_option("--theta-i-deg", sma.theta_i_deg, "incident angle in degrees, [0, 90)")->capture_default_str();
-  smp->add_option("--n", sma.n, "samples, [1, 1000000000]")->capture_default_str();
-  smp->add_option("--strategy", sma.strategy,
-                  "facet distribution: printed (|s.n| D(s), the paper's), vndf (the V-cavity's visible normals), "
-                  "smith-vndf (Smith-GGX visible normals; ggx only) or bounded-vndf (Tokuyoshi and Eto 2024; ggx, "
-                  "3d only)")
+  add_text(smp, "--ndf", sma.ndf, "normal distribution: ggx, beckmann or phong")->capture_default_str();
+  add_real(smp, "--alpha", sma.alpha, "roughness alpha, " + support::interval_text(kMinAlpha, true, kMaxAlpha, true))
       ->capture_default_str();
-  smp->add_option("--dim", sma.dim, "3d or flatland")->capture_default_str();
-  smp->add_option("--max-k", sma.max_k, "paths with more reflections return zero weight, [1, 100000]")
+  add_real(smp, "--theta-i-deg", sma.theta_i_deg,
+           "incident angle in degrees, " + support::interval_text(0.0, true, kMaxSurfaceThetaIDeg, true))
       ->capture_default_str();
-  smp->add_option("--seed", sma.seed, "seed of the uniform numbers, >= 0")->capture_default_str();
-  smp->add_option("--cos-bins", sma.cos_bins, "3d: cells over cos theta_o in [0, 1], [1, 1000]")->capture_default_str();
-  smp->add_option("--phi-bins", sma.phi_bins, "3d: cells over phi_o, even, [2, 1000]")->capture_default_str();
-  smp->add_option("--theta-bins", sma.theta_bins, "flatland: cells over theta_o in (-90, 90), [1, 10000]")
+  add_integer(smp, "--n", sma.n, "samples", 1, kMaxRays)->capture_default_str();
+  add_text(smp, "--strategy", sma.strategy,
+           "facet distribution: printed (|s.n| D(s), the paper's), vndf (the V-cavity's visible normals), "
+           "smith-vndf (Smith-GGX visible normals; ggx only) or bounded-vndf (Tokuyoshi and Eto 2024; ggx, "
+           "3d only)")
       ->capture_default_str();
-  smp->add_option("--out", sma.out, "result JSON to write (the chi-square table, observed and expected per cell)");
+  add_text(smp, "--dim", sma.dim, "3d or flatland")->capture_default_str();
+  add_integer(smp, "--max-k", sma.max_k, "paths with more reflections return zero weight", 1, 100000)
+      ->capture_default_str();
+  add_seed(smp, sma.seed, "seed of the uniform numbers")->capture_default_str();
+  add_integer(smp, "--cos-bins", sma.cos_bins, "3d: cells over cos theta_o in [0, 1]", 1, 1000)->capture_default_str();
+  add_integer(smp, "--phi-bins", sma.phi_bins, "3d: cells over phi_o, even", 2, 1000)->capture_default_str();
+  add_integer(smp, "--theta-bins", sma.theta_bins, "flatland: cells over theta_o in (-90, 90)", 1, 10000)
+      ->capture_default_str();
+  add_text(smp, "--out", sma.out, "result JSON to write (the chi-square table, observed and expected per cell)");
   smp->add_flag("--force", sma.force, "overwrite an existing result");
   sma.dry_run = ctx.dry_run;
   BinsArgs bi;
@@ -275,26 +279,32 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
       "drawn from the NDF, with standard errors, beside the analytic model (quadrature) and Cook-Torrance.");
   add_list(energy, "--ndf", ea.ndfs, "NDFs, comma-separated: ggx, beckmann, phong");
   add_list(energy, "--dim", ea.dims, "dimensions, comma-separated: flatland, 3d");
-  energy->add_option("--mu", ea.mu, "mu = cos theta_i, comma-separated, each in (0, 1] (default: --mu-points)")
+  add_real(energy, "--mu", ea.mu,
+           "mu = cos theta_i, comma-separated, each in " + support::interval_text(0.0, false, 1.0, true) +
+               " (default: --mu-points)")
       ->delimiter(',');
-  energy->add_option("--mu-points", ea.mu_points, "mu at the midpoints (i + 1/2)/n of (0, 1], n in [1, 4096]")
+  add_integer(energy, "--mu-points", ea.mu_points, "mu at the midpoints (i + 1/2)/n of (0, 1], n", 1,
+              static_cast<long long>(kMaxGridPoints))
       ->capture_default_str();
-  energy->add_option("--alpha", ea.alpha, "roughness, comma-separated, each in (0, 2] (default: --alpha-points)")
+  add_real(energy, "--alpha", ea.alpha,
+           "roughness, comma-separated, each in " + support::interval_text(kMinAlpha, true, kMaxAlpha, true) +
+               " (default: --alpha-points)")
       ->delimiter(',');
-  energy->add_option("--alpha-points", ea.alpha_points, "alpha at the midpoints (j + 1/2)/n of (0, 1], n in [1, 4096]")
+  add_integer(energy, "--alpha-points", ea.alpha_points, "alpha at the midpoints (j + 1/2)/n of (0, 1], n", 1,
+              kMaxAlphaPoints, " (the smallest midpoint 0.5/n stays >= 0.01)")
       ->capture_default_str();
-  energy->add_option("--rays", ea.rays, "rays per cell, [1, 10000000000]")->capture_default_str();
-  energy->add_option("--seed", ea.seed, "seed of the rays' streams, >= 0")->capture_default_str();
-  energy->add_option("--max-k", ea.max_k, "bounce orders tabulated one by one, [1, 1000] (a last row holds k > max-k)")
+  add_integer(energy, "--rays", ea.rays, "rays per cell", 1, kMaxEnergyRays)->capture_default_str();
+  add_seed(energy, ea.seed, "seed of the rays' streams")->capture_default_str();
+  add_integer(energy, "--max-k", ea.max_k, "bounce orders tabulated one by one (a last row holds k > max-k)", 1,
+              kMaxEnergyK)
       ->capture_default_str();
-  energy->add_option("--threads", ea.threads, "worker threads, [0, 1024] (0: all cores); results do not depend on it")
-      ->capture_default_str();
-  energy->add_option("--out", ea.out, "table JSON to write (refuses to overwrite without --force)");
+  add_threads(energy, ea.threads);
+  add_text(energy, "--out", ea.out, "table JSON to write (refuses to overwrite without --force)");
   energy->add_flag("--npy", ea.npy,
                    "write the arrays as .npy files beside the JSON (OUT.E_sim.npy, ...); automatic above 65536 values");
-  energy->add_option("--shard", ea.shard,
-                     "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
-                     "report (`vgroove merge` joins them)");
+  add_text(energy, "--shard", ea.shard,
+           "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+           "report (`vgroove merge` joins them)");
   energy->add_flag("--force", ea.force, "overwrite existing files");
   ea.dry_run = ctx.dry_run;
   ea.cancel = ctx.cancel;
@@ -304,8 +314,8 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
       "Join the partial reports of one sharded run (--shard 1/N ... N/N) into the report the run gives in one "
       "process, bit for bit (timings aside). Refuses parts of different runs, versions or splits, missing or "
       "repeated shards, and damaged files.");
-  merge->add_option("parts", ma.parts, "partial reports, in any order")->required();
-  merge->add_option("--out", ma.out, "report to write (refuses to overwrite without --force)");
+  add_text(merge, "parts", ma.parts, "partial reports, in any order")->required();
+  add_text(merge, "--out", ma.out, "report to write (refuses to overwrite without --force)");
   merge->add_flag("--npy", ma.npy, "energy tables: the arrays as .npy files beside the JSON");
   merge->add_flag("--force", ma.force, "overwrite existing files");
   ma.dry_run = ctx.dry_run;

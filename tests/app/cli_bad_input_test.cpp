@@ -742,5 +742,72 @@ TEST(CliInput, DefaultBounceLimitFitsTheNarrowestGroove) {
   EXPECT_CONTAINS(s.out, "20 of 20 rays were still inside after --max-bounces = 1000 reflections");
 }
 
+// ---------------------------------------------------------------------------------------------
+// The commands and suite kinds added after the issue (sample, energy, merge, --shard, plot
+// --format; furnace, sampling, profiles, nonsymmetric_brdf) read their inputs by the same rules:
+// a message naming the flag or field, its value and range, exit 2, nothing written.
+
+TEST(CliInput, NewCommandsReadOptionsStrictly) {
+  TempDir dir;
+  const std::string out = dir.file("r.json");
+  const std::pair<std::string, std::string> cases[] = {
+      {"sample --alpha ''", "--alpha = \"\" is not a number"},
+      {"sample --alpha 1e-12", "--alpha = 1e-12 is out of range [0.01, 2]"},
+      {"sample --theta-i-deg 89.95", "--theta-i-deg = 89.95 is out of range [0, 89.9]"},
+      {"sample --n 2^63", "--n = \"2^63\" is not an integer"},
+      {"sample --n 1e10", "--n = 1e10 is out of range [1, 1000000000]"},
+      {"sample --seed 18446744073709551616", "--seed = 18446744073709551616 is out of range [0, 9223372036854775807]"},
+      {"sample --phi-bins 3", "--phi-bins = 3 is out of range [2, 1000], even"},
+      {"sample --cos-bins 0x10", "--cos-bins = \"0x10\" is not an integer"},
+      {"sample --ndf ''", "--ndf = \"\" is empty"},
+      {"energy --alpha 0.001", "--alpha = 0.001 is out of range [0.01, 2]"},
+      {"energy --alpha 0.5,nan", "--alpha = \"nan\" is not a number"},
+      {"energy --alpha-points 51", "--alpha-points = 51 is out of range [1, 50]"},
+      {"energy --mu 0", "--mu = 0 is out of range (0, 1]"},
+      {"energy --mu-points 0", "--mu-points = 0 is out of range [1, 4096]"},
+      {"energy --rays ''", "--rays = \"\" is not an integer"},
+      {"energy --max-k 1001", "--max-k = 1001 is out of range [1, 1000]"},
+      {"energy --threads 2000", "--threads = 2000 is out of range [0, 1024]"},
+      {"energy --shard ''", "--shard = \"\" is empty"},
+      {"energy --shard 3/2 --out " + q(out), "--shard = 3/2 is out of range"},
+      {"energy --shard +1/2 --out " + q(out), "--shard = \"+1/2\" is not of the form"},
+      {"merge ''", "parts = \"\" is empty"},
+      {"plot --format jpg r.json", "--format = \"jpg\" is not one of \"png\", \"svg\", \"pdf\""},
+      {"plot r.json --out ''", "--out = \"\" is empty"},
+  };
+  for (const auto& [args, message] : cases) {
+    SCOPED_TRACE(args);
+    expect_refused(vgroove(args), message);
+  }
+  EXPECT_FALSE(fs::exists(out));
+  // The help states the ranges enforced.
+  EXPECT_CONTAINS(vgroove("sample --help").out, "[0.01, 2]");
+  EXPECT_CONTAINS(vgroove("energy --help").out, "[0.01, 2]");
+}
+
+TEST(CliInput, NewSuiteKindsUseTheSameRanges) {
+  TempDir dir;
+  const std::string f = dir.file("a.json");
+  write_text(f, R"({"name": "f", "kind": "furnace", "ndf": ["ggx"], "alpha": [1e-6], "theta_i_deg": [30],
+    "dimensions": ["flatland"], "max_k": 16, "samples": 2000, "strategy": "vndf", "rays": 1000, "grooves": 1000,
+    "thresholds": {"sigmas": 5, "quadrature_tolerance": {"flatland": 1e-9, "3d": 1e-6}}})");
+  expect_refused(vgroove("validate " + q(f)), "/alpha/0 = 1e-06 is out of range [0.01, 2]");
+  write_text(f, R"({"name": "f", "kind": "furnace", "ndf": ["ggx"], "alpha": [0.5], "theta_i_deg": [89.95],
+    "dimensions": ["flatland"], "max_k": 16, "samples": 2000, "strategy": "vndf", "rays": 1000, "grooves": 1000,
+    "thresholds": {"sigmas": 5, "quadrature_tolerance": {"flatland": 1e-9, "3d": 1e-6}}})");
+  expect_refused(vgroove("validate " + q(f)), "/theta_i_deg/0 = 89.95 is out of range [0, 89.9]");
+}
+
+TEST(CliOutput, MergeNeverOverwritesItsParts) {
+  TempDir dir;
+  const std::string scene = small_scene(dir), part = dir.file("part.json");
+  ASSERT_EQ(vgroove("simulate " + q(scene) + " --shard 1/1 --out " + q(part)).status, 0);
+  const std::string before = read_text(part);
+  expect_refused(vgroove("merge " + q(part) + " --out " + q(part) + " --force"), "; the output would replace it");
+  expect_refused(vgroove("merge " + q(part) + " --out " + q(scene) + " --force"), "; the output would replace it");
+  EXPECT_EQ(read_text(part), before);
+  EXPECT_EQ(vgroove("merge " + q(part) + " --out " + q(dir.file("merged.json"))).status, 0);
+}
+
 }  // namespace
 }  // namespace vgroove::validation
