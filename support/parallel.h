@@ -2,8 +2,9 @@
 //
 // Items are handed out in chunks from an atomic counter; each writes only its own result slot,
 // so the results do not depend on the thread count or on which thread ran what. That also makes
-// the loop robust: when the system refuses a thread (a process or address-space limit), the
-// items run on the threads that did start (at least the caller's); an exception thrown by an
+// the loop robust: under an address-space limit it starts no more threads than fit in a quarter
+// of it (threads_that_fit), and when the system refuses a thread (a process limit), the items
+// run on the threads that did start (at least the caller's); an exception thrown by an
 // item (std::bad_alloc) stops the other workers and is rethrown to the caller after all have
 // joined, never escaping a worker thread.
 //
@@ -12,8 +13,11 @@
 // it (support::cancelled) and stops early; its caller then reports the run as interrupted.
 #pragma once
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <atomic>
+#include <climits>
 #include <cstddef>
 #include <exception>
 #include <functional>
@@ -35,6 +39,22 @@ using ProgressFn = std::function<void(std::size_t done, std::size_t total)>;
 inline int resolve_threads(int requested) {
   if (requested > 0) return requested;
   return std::max(1u, std::thread::hardware_concurrency());
+}
+
+// The most threads whose stacks take at most a quarter of the address space this process may
+// use (ulimit -v): threads that start but leave no room for the work's memory would turn a
+// thread limit into an allocation failure. No limit: any number.
+inline int threads_that_fit() {
+  static const int most = [] {
+    struct rlimit as {
+    }, stack{};
+    if (::getrlimit(RLIMIT_AS, &as) != 0 || as.rlim_cur == RLIM_INFINITY) return INT_MAX;
+    double stack_bytes = 8.0 * (1 << 20);  // glibc's default when the stack limit is unlimited
+    if (::getrlimit(RLIMIT_STACK, &stack) == 0 && stack.rlim_cur != RLIM_INFINITY && stack.rlim_cur > 0)
+      stack_bytes = static_cast<double>(stack.rlim_cur);
+    return static_cast<int>(std::clamp(static_cast<double>(as.rlim_cur) / 4.0 / stack_bytes, 1.0, double{INT_MAX}));
+  }();
+  return most;
 }
 
 // Runs fn(i) for i in [0, n). When *cancel becomes true, workers stop at their next chunk and
@@ -64,7 +84,7 @@ bool parallel_for(std::size_t n, int threads, Fn&& fn, const ProgressFn& progres
       failed.store(true);
     }
   };
-  const int t = std::max(1, std::min<int>(threads, static_cast<int>((n + chunk - 1) / chunk)));
+  const int t = std::max(1, std::min({threads, static_cast<int>((n + chunk - 1) / chunk), threads_that_fit()}));
   std::vector<std::thread> pool;
   try {
     pool.reserve(static_cast<std::size_t>(t - 1));

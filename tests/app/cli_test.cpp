@@ -278,9 +278,9 @@ TEST(Cli, TraceAt90And30ByHand) {
 // sample
 
 TEST(Cli, SampleRejectsValuesOutOfRange) {
-  expect_user_error(vgroove("sample --alpha 0"), "--alpha", "(0, 2]");
-  expect_user_error(vgroove("sample --alpha 2.5"), "--alpha", "(0, 2]");
-  expect_user_error(vgroove("sample --theta-i-deg 90"), "--theta-i-deg", "[0, 90)");
+  expect_user_error(vgroove("sample --alpha 0"), "--alpha", "[0.01, 2]");
+  expect_user_error(vgroove("sample --alpha 2.5"), "--alpha", "[0.01, 2]");
+  expect_user_error(vgroove("sample --theta-i-deg 90"), "--theta-i-deg", "[0, 89.9]");
   expect_user_error(vgroove("sample --n 0"), "--n", "[1, 1000000000]");
   expect_user_error(vgroove("sample --max-k 0"), "--max-k", "[1, 100000]");
   expect_user_error(vgroove("sample --phi-bins 7"), "--phi-bins", "even");
