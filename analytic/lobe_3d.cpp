@@ -469,6 +469,7 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
   // The deposits of the grooves at azimuth phi_a (and pi - phi_a) with the quadrature weight
   // dphi, into *r.acc.
   auto node = [&](double phi_a, double dphi) {
+    if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) return;
     // Area fraction 2 D cos sin d theta_m d phi_a = (1/pi) dCDF d phi_a; phi_a in [0, pi/2] and
     // its mirror image pi - phi_a (y -> -y) cover [0, pi).
     const double weight = dphi / std::numbers::pi;

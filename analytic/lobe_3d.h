@@ -8,6 +8,7 @@
 
 #include "vgroove/analytic/brdf_3d.h"
 
+#include <atomic>
 #include <vector>
 
 namespace vgroove::analytic {
@@ -55,6 +56,9 @@ struct Lobe3dOptions {
   // G_kaleidoscopic at each piece): the same integrand at the same nodes, for the tests and the
   // benchmark's side-by-side (lobe_3d.cpp, weight_fast).
   bool reference_kernels = false;
+  // Read before each phi_a node (may be null): once set, the remaining nodes are skipped and the
+  // lobe is incomplete (the caller, stopped by Ctrl-C, discards it).
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 Lobe3d vgroove_lobe_3d(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins, int max_k);

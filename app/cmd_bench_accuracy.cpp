@@ -1,5 +1,6 @@
 #include "vgroove/app/commands.h"
 #include "vgroove/common/angles.h"
+#include "vgroove/support/printable.h"
 
 #include <cstdio>
 #include <numbers>
@@ -9,6 +10,7 @@
 #include "vgroove/app/outputs.h"
 #include "vgroove/app/progress.h"
 #include "vgroove/support/atomic_file.h"
+#include "vgroove/support/memory.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/cost_curve.h"
 #include "vgroove/validation/partial_report.h"
@@ -53,10 +55,16 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
   for (long r : a.rays) check_rays(r, "--rays");
   std::vector<sim::Sampling> samplings;
   for (const auto& s : a.samplings) samplings.push_back(parse_sampling(s, "--sampling", true));
+  for (long r : a.rays) {
+    CaseOptions o = suite.options;
+    o.rays = r;
+    support::check_memory(run_memory_bytes(suite, o, a.threads, false), a.suite + ": the run",
+                          std::to_string(suite.cases()) + " cases");
+  }
   const std::optional<support::Shard> shard = shard_from(a.shard, a.out);
   if (shard && world().distributed())
     throw support::UserError("--shard cannot be combined with mpirun (the ranks split the work among themselves)");
-  if (!a.out.empty()) support::check_writable_target(a.out, a.force);
+  if (!a.out.empty()) support::check_writable_target(a.out, a.force, {a.suite});
   if (a.dry_run) return 0;
   const AccuracyPlan plan = accuracy_plan(suite, samplings, a.rays);
   if (shard) {
@@ -89,8 +97,8 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
 void write_accuracy_report(const Suite& suite, const std::vector<SuiteRun>& all_runs, const std::string& out,
                            bool force) {
   nlohmann::json runs = nlohmann::json::array();
-  std::printf("accuracy against rays: suite %s (%zu cases), vgroove %s (git %s)\n", suite.name.c_str(), suite.cases(),
-              version_string(), git_revision());
+  std::printf("accuracy against rays: suite %s (%zu cases), vgroove %s (git %s)\n",
+              support::printable(suite.name).c_str(), suite.cases(), version_string(), git_revision());
   std::printf("  %-10s %10s %12s %12s %12s %10s %8s\n", "sampling", "rays/facet", "max L1", "mean L1", "rays", "wall s",
               "pass");
   const int threads_used = all_runs.empty() ? 0 : all_runs.front().threads;
@@ -157,7 +165,7 @@ void write_accuracy_report(const Suite& suite, const std::vector<SuiteRun>& all_
     j["soonest_to_thresholds"] = fastest;
     j["cost_vs_theta_v"] = {{"theta_i_deg", 30.0}, {"rays", 20000}, {"threads", 1}, {"points", cost_json}};
     support::write_file_atomically(out, j.dump(1) + "\n", force);
-    std::printf("report: %s\n", out.c_str());
+    std::printf("report: %s\n", support::printable(out).c_str());
   }
 }
 

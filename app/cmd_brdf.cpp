@@ -4,6 +4,7 @@
 #include "vgroove/common/angles.h"
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
 
 #include <cmath>
@@ -113,7 +114,7 @@ void check_nonsymmetric_options(const BrdfArgs& a, analytic::BrdfModel model, Nd
     if (flat) throw support::UserError("--alpha-y applies to --dim 3d only (flatland has one roughness)");
     if (ndf == NdfKind::phong)
       throw support::UserError("--alpha-y applies to --ndf ggx and beckmann only (Phong has no elliptical form)");
-    check_angle(a.alpha_y, 0, false, 2, true, "--alpha-y");
+    check_angle(a.alpha_y, validation::kMinAlpha, true, validation::kMaxAlpha, true, "--alpha-y");
   }
   // Eq. (20)'s partner law exists for Phong below alpha = sqrt(2) only (ERRATA E-NS1).
   if (nonsym && a.partner == "independent" && !analytic::partner_law_exists(ndf, a.alpha))
@@ -135,7 +136,7 @@ int cmd_brdf(const BrdfArgs& a) {
   if (a.dim != "3d" && a.dim != "flatland")
     throw support::UserError("--dim = \"" + a.dim + "\" is not one of \"3d\", \"flatland\"");
   const bool flat = a.dim == "flatland";
-  check_angle(a.alpha, 0, false, 2, true, "--alpha");
+  check_angle(a.alpha, validation::kMinAlpha, true, validation::kMaxAlpha, true, "--alpha");
   check_nonsymmetric_options(a, *model, *ndf, flat);
   const int max_k = orders(a, *model, flat);
   if (a.per_k_max < 1 || a.per_k_max > 1000)

@@ -72,14 +72,16 @@ int cmd_energy(const EnergyArgs& a) {
       throw support::UserError("--dim = \"" + d + "\" is not one of \"flatland\", \"3d\"");
     g.dims.push_back(d == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d);
   }
-  auto points = [](int n, const std::string& flag) {
-    if (n < 1 || n > static_cast<int>(kMaxGridPoints))
-      throw support::UserError(flag + " = " + std::to_string(n) + " is out of range [1, " +
-                               std::to_string(kMaxGridPoints) + "]");
+  auto points = [](int n, const std::string& flag, int most, const std::string& why) {
+    if (n < 1 || n > most)
+      throw support::UserError(flag + " = " + std::to_string(n) + " is out of range [1, " + std::to_string(most) + "]" +
+                               why);
     return midpoints(n);
   };
-  g.mus = a.mu.empty() ? points(a.mu_points, "--mu-points") : a.mu;
-  g.alphas = a.alpha.empty() ? points(a.alpha_points, "--alpha-points") : a.alpha;
+  g.mus = a.mu.empty() ? points(a.mu_points, "--mu-points", static_cast<int>(kMaxGridPoints), "") : a.mu;
+  g.alphas = a.alpha.empty() ? points(a.alpha_points, "--alpha-points", kMaxAlphaPoints,
+                                      " (the smallest midpoint 0.5/n stays >= " + support::number_text(kMinAlpha) + ")")
+                             : a.alpha;
   g.rays = a.rays;
   check_seed(a.seed, "--seed");
   g.seed = static_cast<std::uint64_t>(a.seed);

@@ -18,7 +18,7 @@ namespace {
 int merge_energy(const std::vector<Part>& parts, const MergeArgs& a) {
   const EnergyGrid g = energy_grid_from_json(parts.front().header.job.at("input"), parts.front().file);
   if (!a.out.empty())
-    for (const std::string& f : energy_npy_files(g, a.out, a.npy)) support::check_writable_target(f, a.force);
+    for (const std::string& f : energy_npy_files(g, a.out, a.npy)) support::check_writable_target(f, a.force, a.parts);
   if (a.dry_run) return 0;
   EnergyTable t = energy_table_from(g, merge_job_parts(energy_job(g), parts));
   for (const Part& p : parts) t.threads += p.header.threads, t.wall_s = std::max(t.wall_s, p.header.wall_s);
@@ -45,7 +45,11 @@ int cmd_merge(const MergeArgs& a) {
   std::vector<Part> parts;
   for (const std::string& f : a.parts) parts.push_back(read_part(f));
   parts = check_parts(std::move(parts));
-  if (!a.out.empty()) support::check_writable_target(a.out, a.force);
+  // The parts and the job's input file are never overwritten by the merged report.
+  std::vector<std::string> inputs = a.parts;
+  if (const auto& job = parts.front().header.job; job.contains("input_file") && job["input_file"].is_string())
+    inputs.push_back(job["input_file"].get<std::string>());
+  if (!a.out.empty()) support::check_writable_target(a.out, a.force, inputs);
   const std::string command = parts.front().header.job.value("command", "");
   if (command == "energy") return merge_energy(parts, a);
   if (command == "simulate") return merge_simulate(parts, a);

@@ -4,6 +4,7 @@
 #include "vgroove/app/options.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/support/atomic_file.h"
+#include "vgroove/support/printable.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/sampling_check.h"
@@ -27,8 +28,11 @@ namespace {
 int cmd_sample(const SampleArgs& a) {
   const auto ndf = ndf_from_name(a.ndf);
   if (!ndf) throw support::UserError("--ndf = \"" + a.ndf + "\" is not one of \"ggx\", \"beckmann\", \"phong\"");
-  if (!(a.alpha > 0.0 && a.alpha <= validation::kMaxAlpha)) out_of_range("--alpha", a.alpha, "(0, 2]");
-  if (!(a.theta_i_deg >= 0.0 && a.theta_i_deg < 90.0)) out_of_range("--theta-i-deg", a.theta_i_deg, "[0, 90)");
+  if (!(a.alpha >= validation::kMinAlpha && a.alpha <= validation::kMaxAlpha))
+    out_of_range("--alpha", a.alpha, support::interval_text(validation::kMinAlpha, true, validation::kMaxAlpha, true));
+  if (!(a.theta_i_deg >= 0.0 && a.theta_i_deg <= validation::kMaxSurfaceThetaIDeg))
+    out_of_range("--theta-i-deg", a.theta_i_deg,
+                 support::interval_text(0.0, true, validation::kMaxSurfaceThetaIDeg, true));
   if (a.n < 1 || a.n > validation::kMaxRays) out_of_range("--n", static_cast<double>(a.n), "[1, 1000000000]");
   if (a.dim != "3d" && a.dim != "flatland")
     throw support::UserError("--dim = \"" + a.dim + "\" is not one of \"3d\", \"flatland\"");
@@ -52,7 +56,7 @@ int cmd_sample(const SampleArgs& a) {
   if (a.phi_bins < 2 || a.phi_bins > 1000 || a.phi_bins % 2 != 0)
     out_of_range("--phi-bins", a.phi_bins, "[2, 1000], even");
   if (a.theta_bins < 1 || a.theta_bins > 10000) out_of_range("--theta-bins", a.theta_bins, "[1, 10000]");
-  if (!a.out.empty()) support::check_writable_target(a.out, a.force);
+  if (!a.out.empty()) support::check_writable_target(a.out, a.force);  // fail before the work, not after
   if (a.dry_run) return 0;
 
   validation::Chi2Spec s;
@@ -90,7 +94,7 @@ int cmd_sample(const SampleArgs& a) {
     j["command"] = "sample";
     j["result"] = validation::chi2_json(o);
     support::write_file_atomically(a.out, j.dump(1) + "\n", a.force);
-    std::cout << "result: " << a.out << "\n";
+    std::cout << "result: " << support::printable(a.out) << "\n";
   }
   return o.pass ? 0 : 1;
 }

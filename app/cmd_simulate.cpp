@@ -1,4 +1,5 @@
 #include "vgroove/app/commands.h"
+#include "vgroove/support/printable.h"
 
 #include "vgroove/app/distributed.h"
 #include "vgroove/app/mpi_world.h"
@@ -7,6 +8,7 @@
 #include "vgroove/app/progress.h"
 #include "vgroove/scene/simulate.h"
 #include "vgroove/support/atomic_file.h"
+#include "vgroove/support/memory.h"
 #include "vgroove/validation/partial_report.h"
 
 #include <chrono>
@@ -24,21 +26,30 @@ void write_simulation(const Scene& scene, const SimulationResult& r, const std::
   print_result_table(std::cout, scene, r);
   if (!out.empty()) {
     support::write_file_atomically(out, result_json(scene, r).dump(1) + "\n", force);
-    std::cout << "result: " << out << "\n";
+    std::cout << "result: " << support::printable(out) << "\n";
   }
 }
 
 int cmd_simulate(const SimulateArgs& a) {
   check_threads(a.threads, "--threads");
   const Scene scene = load_scene(a.scene);
+  support::check_memory(simulate_memory_bytes(scene, a.threads, !a.out.empty()), a.scene + ": the run",
+                        std::to_string(scene.light.theta_i.size()) + " incident angles x " +
+                            std::to_string(scene.channels.size()) + " channels, " +
+                            std::to_string(scene.record.theta_o_bins * (scene.record.histogram_max_k + 2)) +
+                            " histogram cells" +
+                            (scene.geometry.kind == GeometryKind::microsurface
+                                 ? ", " + std::to_string(scene.geometry.grooves) + " grooves"
+                                 : std::string()));
   const std::optional<support::Shard> shard = shard_from(a.shard, a.out);
   if (shard && world().distributed())
     throw support::UserError("--shard cannot be combined with mpirun (the ranks split the work among themselves)");
-  if (!a.out.empty()) support::check_writable_target(a.out, a.force);  // fail before the work, not after
+  if (!a.out.empty()) support::check_writable_target(a.out, a.force, {a.scene});  // fail before the work, not after
   if (a.dry_run) return 0;
+  auto job = simulate_job(scene, simulate_descriptor(scene));
+  job.work.cancel = a.cancel;
   if (shard) {
-    const auto part =
-        validation::run_job_part(simulate_job(scene, simulate_descriptor(scene)), *shard, a.threads, {}, a.cancel);
+    const auto part = validation::run_job_part(job, *shard, a.threads, {}, a.cancel);
     if (!part) return interrupted_no_report();
     write_partial(a.out, *part, a.force);
     return 0;
@@ -46,8 +57,7 @@ int cmd_simulate(const SimulateArgs& a) {
   if (world().distributed()) {
     const auto t0 = std::chrono::steady_clock::now();
     int threads = 0;
-    const auto results =
-        run_distributed(simulate_job(scene, simulate_descriptor(scene)), a.threads, {}, a.cancel, &threads);
+    const auto results = run_distributed(job, a.threads, {}, a.cancel, &threads);
     if (!results) return 0;  // not rank 0: its results went there
     SimulationResult r = simulation_from(scene, *results);
     r.threads = threads;

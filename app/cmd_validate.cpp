@@ -1,4 +1,5 @@
 #include "vgroove/app/commands.h"
+#include "vgroove/support/printable.h"
 
 #include <iostream>
 #include "vgroove/app/mpi_world.h"
@@ -6,6 +7,7 @@
 #include "vgroove/app/progress.h"
 #include "vgroove/support/atomic_file.h"
 #include "vgroove/support/json_reader.h"
+#include "vgroove/support/memory.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/model_table.h"
 #include "vgroove/validation/validate.h"
@@ -29,14 +31,14 @@ ValidateOptions validate_options(const ValidateArgs& a) {
 int cmd_validate(const ValidateArgs& a) {
   if (!a.shard.empty() || world().distributed()) return validate_split(a);
   const ValidationPlan plan = plan_validation(validate_options(a));
-  if (!a.out.empty()) support::check_writable_target(a.out, a.force);  // fail before the work, not after
+  if (!a.out.empty()) support::check_writable_target(a.out, a.force, plan.inputs);  // fail before the work, not after
   if (a.dry_run) return 0;
   const ValidationResult res = run_validation(plan, terminal_progress, a.cancel);
   if (res.interrupted) return interrupted_no_report();
   std::cout << res.table;
   if (!a.out.empty()) {
     support::write_file_atomically(a.out, res.report.dump(1) + "\n", a.force);
-    std::cout << "report: " << a.out << "\n";
+    std::cout << "report: " << support::printable(a.out) << "\n";
   }
   return res.pass ? 0 : 1;
 }
@@ -46,7 +48,7 @@ int cmd_bins(const BinsArgs& a) {
   if (!j.is_object() || !j.contains("kind") || j["kind"] != "brdf")
     throw support::UserError(a.suite + ": `vgroove bins` takes a suite of kind \"brdf\" (e.g. data/suites/fig11.json)");
   const BrdfSuite suite = parse_brdf_suite(j, a.suite);
-  if (!a.out.empty()) support::check_writable_target(a.out, a.force);
+  if (!a.out.empty()) support::check_writable_target(a.out, a.force, {a.suite});
   if (a.dry_run) return 0;
   const std::string text = bin_layout_json(suite).dump(1) + "\n";
   if (a.out.empty()) {
@@ -54,7 +56,7 @@ int cmd_bins(const BinsArgs& a) {
     return 0;
   }
   support::write_file_atomically(a.out, text, a.force);
-  std::cout << "layout: " << a.out << " (" << suite.cases() << " cases)\n";
+  std::cout << "layout: " << support::printable(a.out) << " (" << suite.cases() << " cases)\n";
   return 0;
 }
 

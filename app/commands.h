@@ -24,9 +24,10 @@ struct TraceArgs {
   double theta_i_deg = 0.0;
   long rays = 1000;
   std::string sampling = "stratified";
-  long long seed = 1;  // >= 0
-  int max_bounces = 100000;
+  long long seed = 1;   // >= 0
+  int max_bounces = 0;  // 0: the default (validation::default_max_bounces for the groove)
   bool json = false;
+  const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: nothing is printed
 };
 int cmd_trace(const TraceArgs& a);
 

@@ -1,4 +1,5 @@
 #include "vgroove/app/progress.h"
+#include "vgroove/support/printable.h"
 
 #include "vgroove/app/commands.h"
 
@@ -27,7 +28,7 @@ support::ProgressFn terminal_progress(const std::string& label) {
     if (done < total && now - *last < std::chrono::milliseconds(250)) return;
     if (now - start < std::chrono::seconds(1) && done < total) return;
     *last = now;
-    std::fprintf(stderr, "\r%s: %zu/%zu cases (%.0f%%)%s", label.c_str(), done, total,
+    std::fprintf(stderr, "\r%s: %zu/%zu cases (%.0f%%)%s", support::printable(label).c_str(), done, total,
                  100.0 * static_cast<double>(done) / static_cast<double>(total), done == total ? "\n" : "");
   };
 }

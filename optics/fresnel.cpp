@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <complex>
+#include <limits>
 
 namespace vgroove::optics {
 
@@ -11,6 +12,18 @@ namespace {
 // |d . n| of two unit vectors can exceed 1 by a rounding; outside [0, 1] the formulas would
 // describe no physical angle.
 double clamp_cos(double c) { return std::clamp(c, 0.0, 1.0); }
+
+// |a|^2 / |b|^2. The squares underflow when |b| is below 1e-154 (eta = 1e-300 at normal
+// incidence: n^2 c and w = n both tiny), where the quotient of the moduli is still exact; and
+// with b = 0 (n = 0: a perfect conductor) the reflectance is its limit, 1.
+double ratio_of_norms(const std::complex<double>& a, const std::complex<double>& b) {
+  const double nb = std::norm(b);
+  if (nb >= std::numeric_limits<double>::min()) return std::norm(a) / nb;
+  const double mb = std::abs(b);
+  if (mb == 0.0) return 1.0;
+  const double q = std::abs(a) / mb;
+  return q * q;
+}
 }  // namespace
 
 PolarizedReflectance fresnel_conductor_polarized(double cos_theta_i, double eta, double kappa) {
@@ -27,8 +40,8 @@ PolarizedReflectance fresnel_conductor_polarized(double cos_theta_i, double eta,
   const std::complex<double> w = std::sqrt(n2 - sin2);
   // |r|^2 as |numerator|^2 / |denominator|^2: one real division, no complex one.
   PolarizedReflectance r;
-  r.s = std::norm(c - w) / std::norm(c + w);
-  r.p = std::norm(n2 * c - w) / std::norm(n2 * c + w);
+  r.s = ratio_of_norms(c - w, c + w);
+  r.p = ratio_of_norms(n2 * c - w, n2 * c + w);
   return r;
 }
 

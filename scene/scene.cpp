@@ -13,9 +13,6 @@ using namespace validation;
 
 namespace {
 
-constexpr long long kMaxRays = 1'000'000'000;
-constexpr long long kMaxSeed = std::numeric_limits<long long>::max();
-
 std::string at(const support::JsonObject& o, const std::string& key, std::size_t n) {
   return o.file() + ": " + o.path(key) + "/" + std::to_string(n);
 }
@@ -24,7 +21,7 @@ std::string at(const support::JsonObject& o, const std::string& key, std::size_t
 const nlohmann::json& read_list(support::JsonObject& o, const std::string& key, const std::string& what,
                                 std::size_t max_items) {
   const nlohmann::json& v = o.raw(key);
-  if (!v.is_array()) o.fail(key, "= " + v.dump() + " must be a list of " + what);
+  if (!v.is_array()) o.fail(key, "= " + support::value_text(v) + " must be a list of " + what);
   if (v.empty()) o.fail(key, "is an empty list (it needs at least one of " + what + ")");
   if (v.size() > max_items)
     o.fail(key, "has " + std::to_string(v.size()) + " items, more than the " + std::to_string(max_items) + " allowed");
@@ -54,8 +51,8 @@ SceneGeometry read_geometry(support::JsonObject& g) {
     s.kind = GeometryKind::microsurface;
     const std::string ndf = g.one_of("ndf", {"ggx", "beckmann", "phong"});
     s.ndf = *ndf_from_name(ndf);
-    s.alpha = g.number("alpha", 0.01, true, 2.0, true);
-    s.grooves = static_cast<int>(g.integer("grooves", 1, 10'000'000));
+    s.alpha = g.number("alpha", kMinAlpha, true, kMaxAlpha, true);
+    s.grooves = static_cast<int>(g.integer("grooves", 1, kMaxGrooves));
     s.surface_seed = static_cast<std::uint64_t>(g.integer_or("seed", 0, 0, kMaxSeed));
   }
   g.finish();
@@ -64,13 +61,15 @@ SceneGeometry read_geometry(support::JsonObject& g) {
 
 SceneLight read_light(support::JsonObject& l) {
   SceneLight s;
-  const nlohmann::json& list = read_list(l, "theta_i_deg", "incident angles in degrees, each in (-90, 90)", 100000);
+  const std::string range = theta_i_range_text();
+  const nlohmann::json& list = read_list(l, "theta_i_deg", "incident angles in degrees, each in " + range, 100000);
   for (std::size_t n = 0; n < list.size(); ++n) {
     const nlohmann::json& v = list[n];
-    if (!v.is_number()) throw support::UserError(at(l, "theta_i_deg", n) + " = " + v.dump() + " must be a number");
+    if (!v.is_number())
+      throw support::UserError(at(l, "theta_i_deg", n) + " = " + support::value_text(v) + " must be a number");
     const double d = v.get<double>();
-    if (!(std::isfinite(d) && d > -90.0 && d < 90.0))
-      throw support::UserError(at(l, "theta_i_deg", n) + " = " + v.dump() + " is out of range (-90, 90)");
+    if (!(std::isfinite(d) && d >= -kMaxThetaIDeg && d <= kMaxThetaIDeg))
+      throw support::UserError(at(l, "theta_i_deg", n) + " = " + support::value_text(v) + " is out of range " + range);
     s.theta_i.push_back(d * kRadPerDeg);
   }
   s.rays = l.integer("rays", 1, kMaxRays);
@@ -169,7 +168,7 @@ Scene parse_scene(const nlohmann::json& j, const std::string& file) {
       if (r.has("theta_o_histograms")) {
         support::JsonObject h = r.object("theta_o_histograms");
         s.record.theta_o_bins = static_cast<int>(h.integer("bins", 1, 100000));
-        s.record.histogram_max_k = static_cast<int>(h.integer_or("max_k", 16, 0, 1000));
+        s.record.histogram_max_k = static_cast<int>(h.integer_or("max_k", 16, 0, kMaxHistogramK));
         // Each work item holds its own histograms: bound their size (8 MB of counts).
         const long long cells = static_cast<long long>(s.record.theta_o_bins) * (s.record.histogram_max_k + 2);
         if (cells > kMaxHistogramCells)
@@ -184,7 +183,11 @@ Scene parse_scene(const nlohmann::json& j, const std::string& file) {
                "keeps all its energy: the energy per k is the count per k)");
       r.finish();
     }
-    s.max_bounces = static_cast<int>(e.integer_or("max_bounces", 100000, 1, 100'000'000));
+    // By default every ray of a single groove may leave; a microsurface keeps the plain default
+    // (its narrowest grooves are drawn at random: the rays still inside are counted apart).
+    const int max_bounces =
+        s.geometry.kind == GeometryKind::groove ? default_max_bounces(s.geometry.groove.theta_v) : kDefaultMaxBounces;
+    s.max_bounces = static_cast<int>(e.integer_or("max_bounces", max_bounces, 1, kMaxBounces));
     e.finish();
   }
   root.finish();

@@ -6,16 +6,16 @@
 //     "scene": "gold_groove",                       required, non-empty string
 //     "note": "...",                                optional string (where the constants come from)
 //     "geometry":                                   required, one of
-//       {"kind": "groove", "theta_v_deg": 90}                       symmetric, theta_v in [1e-06, 180]
+//       {"kind": "groove", "theta_v_deg": 90}                       symmetric, theta_v in [0.001, 180]
 //       {"kind": "groove", "theta_l_deg": -30, "theta_r_deg": 45}   nonsymmetric (Lee et al. 2018, Fig. 5):
 //                                                   theta_l in [-90, 0], theta_r in [0, 90], aperture
-//                                                   180 + theta_l - theta_r >= 1e-06
+//                                                   180 + theta_l - theta_r >= 0.001
 //       {"kind": "microsurface", "ndf": "ggx" | "beckmann" | "phong", "alpha": 0.5,
 //        "grooves": 10000, "seed": 1}               sim/microsurface.h; alpha in [0.01, 2] (the range the
 //                                                   slope sampler is tested on), grooves in [1, 10000000],
 //                                                   seed in [0, 2^63 - 1] (default 0)
 //     "light": {                                    required
-//       "theta_i_deg": [0, 30, 60],                 non-empty list, each in (-90, 90)
+//       "theta_i_deg": [0, 30, 60],                 non-empty list, each in [-89.999, 89.999]
 //       "rays": 100000,                             per theta_i, [1, 1000000000]: across the groove's
 //                                                   opening, or across the whole microsurface
 //       "sampling": "stratified" | "random",        optional, default "stratified"
@@ -93,7 +93,7 @@ struct SceneRecord {
 };
 
 inline constexpr int kMaxChannels = 64;
-inline constexpr long long kMaxHistogramCells = 1'000'000;
+using validation::kMaxHistogramCells;
 
 struct Scene {
   std::string file;

@@ -1,4 +1,5 @@
 #include "vgroove/scene/simulate.h"
+#include "vgroove/support/printable.h"
 
 #include "vgroove/analytic/kaleidoscope_fresnel.h"
 #include "vgroove/optics/fresnel.h"
@@ -51,6 +52,7 @@ struct Setup {
   const Scene* scene = nullptr;
   std::vector<sim::Groove> grooves;
   int channels = 0;
+  const std::atomic<bool>* cancel = nullptr;  // read before each ray: a chunk of narrow-groove rays is long
 };
 
 template <class Observer>
@@ -95,6 +97,7 @@ ThetaTally run_chunk(const Setup& s, double theta_i, std::int64_t chunk) {
   sim::for_each_landing(
       s.grooves, theta_i, scene.light.sampling, scene.light.rays, scene.light.seed, chunk,
       [&](const sim::Groove& groove, const sim::Ray2& ray) {
+        if (support::cancelled(s.cancel)) return;  // the rest of the chunk is skipped; the run reports it
         if constexpr (kEnergy) obs.reset();
         const sim::TraceResult r = sim::trace(groove, ray, opt, obs);
         if (!t.count(r.how, r.bounces, r.exit_dir.y() > 0.0)) return;
@@ -193,12 +196,9 @@ ModelFigures model_figures(const Scene& s, double theta_i) {
   // G is normalized by each facet's projected width f_a; the beam entering the opening is as wide
   // as the lit facets' unshadowed parts together (as in `vgroove analytic`).
   ModelShares shares[2];
-  double width = 0.0;
-  for (sim::Side side : {sim::Side::left, sim::Side::right}) {
-    ModelShares& sh = shares[static_cast<int>(side)];
-    sh = model_shares(p, theta_i, side, analytic::Eq6Form::corrected);
-    if (sh.lit) width += sh.f_a * (1.0 - sh.shadow);
-  }
+  for (sim::Side side : {sim::Side::left, sim::Side::right})
+    shares[static_cast<int>(side)] = model_shares(p, theta_i, side, analytic::Eq6Form::corrected);
+  const double width = entering_width(shares);
   for (sim::Side side : {sim::Side::left, sim::Side::right}) {
     const ModelShares& sh = shares[static_cast<int>(side)];
     if (!sh.lit) continue;
@@ -221,6 +221,27 @@ ModelFigures model_figures(const Scene& s, double theta_i) {
   return m;
 }
 
+double simulate_memory_bytes(const Scene& scene, int threads, bool result) {
+  constexpr double kNumberBytes = 64;  // a count in the result JSON: its node, vector slot and text
+  constexpr double kVectorBytes = 64;  // a vector's header and its allocation's overhead
+  const double C = static_cast<double>(scene.channels.size());
+  const double rows = std::min<double>(kMaxKRow, scene.max_bounces) + 2.0;
+  const double cells = scene.record.theta_o_bins * (1.0 + scene.record.histogram_max_k + 2.0);
+  const double counts = 8.0 * (rows + cells) + 3 * kVectorBytes;
+  // Each chunk's energies are kept apart until its theta_i is complete (added in chunk order).
+  const double chunk_energy = 8.0 * C * (1.0 + (scene.record.energy_per_k ? rows : 0.0)) + 3 * kVectorBytes;
+  const double chunks = std::ceil(static_cast<double>(scene.light.rays) / sim::kRaysPerChunk);
+  const double T = static_cast<double>(scene.light.theta_i.size());
+  const double P = support::resolve_threads(threads);
+  // Per theta_i: the merged counts and every chunk's energies, held twice while the parts are
+  // merged; per thread an item's tally in flight and a context (the surface's grooves).
+  const double unit = counts + chunks * chunk_energy;
+  const double grooves = scene.geometry.kind == GeometryKind::groove ? 1.0 : 2.0 * scene.geometry.grooves;
+  const double json = result ? T * kNumberBytes * (cells + rows * (1.0 + C)) : 0.0;
+  return 2.0 * T * unit + P * (counts + 64.0 * chunk_energy) + std::min(P, T) * grooves * (sizeof(sim::Groove) + 8.0) +
+         json;
+}
+
 struct SimulateWork::Context {
   Setup setup;
   ChunkFn fn = nullptr;
@@ -231,6 +252,7 @@ std::shared_ptr<const SimulateWork::Context> SimulateWork::prepare(std::size_t) 
   Setup& s = ctx->setup;
   s.scene = &scene;
   s.channels = static_cast<int>(scene.channels.size());
+  s.cancel = cancel;  // the work's flag: a chunk of narrow-groove rays is long
   if (scene.geometry.kind == GeometryKind::groove) {
     s.grooves.push_back(make_groove(scene.geometry.groove));
   } else {
@@ -323,7 +345,9 @@ SimulationResult simulation_from(const Scene& scene, const std::vector<validatio
 
 SimulationResult simulate(const Scene& scene, int threads, const std::atomic<bool>* cancel) {
   const auto start = std::chrono::steady_clock::now();
-  const auto results = validation::run_job(simulate_job(scene, {}), threads, {}, cancel);
+  auto job = simulate_job(scene, {});
+  job.work.cancel = cancel;
+  const auto results = validation::run_job(job, threads, {}, cancel);
   SimulationResult r;
   if (results) {
     r = simulation_from(scene, *results);
@@ -453,7 +477,7 @@ void print_result_table(std::ostream& os, const Scene& scene, const SimulationRe
   std::string fresnel = fresnel_kind_name(scene.fresnel);
   if (!scene.channels.empty()) fresnel += " over " + std::to_string(scene.channels.size()) + " channel(s)";
   std::snprintf(buf, sizeof buf, "simulate %s: %s; fresnel %s; %lld rays per theta_i (%s, seed %llu)\n",
-                scene.name.c_str(), geometry_text(scene).c_str(), fresnel.c_str(),
+                support::printable(scene.name).c_str(), geometry_text(scene).c_str(), fresnel.c_str(),
                 static_cast<long long>(scene.light.rays), sim::sampling_name(scene.light.sampling),
                 static_cast<unsigned long long>(scene.light.seed));
   os << buf;
@@ -461,10 +485,10 @@ void print_result_table(std::ostream& os, const Scene& scene, const SimulationRe
   os << "  theta_i       rays   escaped   mean k";
   if (model) os << "  model k";
   for (const FresnelChannel& c : scene.channels) {
-    std::snprintf(buf, sizeof buf, " %10s", ("E " + c.name).substr(0, 10).c_str());
+    std::snprintf(buf, sizeof buf, " %10s", ("E " + support::printable(c.name)).substr(0, 10).c_str());
     os << buf;
     if (model) {
-      std::snprintf(buf, sizeof buf, " %10s", ("model " + c.name).substr(0, 10).c_str());
+      std::snprintf(buf, sizeof buf, " %10s", ("model " + support::printable(c.name)).substr(0, 10).c_str());
       os << buf;
     }
   }

@@ -83,6 +83,11 @@ struct SimulationResult {
   std::int64_t rays = 0, bounces = 0;
 };
 
+// An upper bound of the memory simulate needs (support/memory.h): the grooves of each context in
+// use, a tally per theta_i (counts per k, histograms, each chunk's energies) and per item in
+// flight, and with `result` its JSON.
+double simulate_memory_bytes(const Scene& scene, int threads, bool result);
+
 // Runs every theta_i of the scene on `threads` threads (0: all cores).
 SimulationResult simulate(const Scene& scene, int threads, const std::atomic<bool>* cancel = nullptr);
 
@@ -103,6 +108,9 @@ struct SimulateWork {
   struct Fixed {};
   using Tally = SimTally;
   Scene scene;
+  // Polled before each ray (a chunk of rays in a narrow groove runs long); a cancelled chunk's
+  // tally is incomplete, and so is the run (validation::run_work_items returns nothing).
+  const std::atomic<bool>* cancel = nullptr;
   std::shared_ptr<const Context> prepare(std::size_t unit) const;
   Tally run_chunks(const Context& ctx, std::size_t unit, std::int64_t begin, std::int64_t end) const;
   Fixed run_fixed(std::size_t) const { return {}; }

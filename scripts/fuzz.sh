@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Fuzzes the suite JSON loader and the command-line parser with libFuzzer (clang, with ASan and
-# UBSan) for SECONDS each (default 60), and the report files `vgroove plot` reads (target
+# Fuzzes the suite and scene JSON loaders and the command-line parser with libFuzzer (clang, with ASan
+# and UBSan) for SECONDS each (default 60), and the report files `vgroove plot` reads (target
 # report_plot: scripts/fuzz_reports.py, a deterministic mutation fuzzer of plot.py's checks and
 # drawing; Debian's python3 with python3-matplotlib). New interesting inputs are kept in tests/fuzz/corpus/TARGET;
 # a finding (crash, hang, sanitizer report, uncaught exception) stops with a non-zero exit and
@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.."
 secs=${1:-60}
 shift || true
 targets=("$@")
-((${#targets[@]})) || targets=(suite_loader_fuzz cli_fuzz)
+((${#targets[@]})) || targets=(suite_loader_fuzz scene_loader_fuzz cli_fuzz)
 
 if [[ " ${targets[*]} " == *" report_plot "* ]]; then
   scripts/install-deps.sh
@@ -31,6 +31,7 @@ for t in "${targets[@]}"; do
   mkdir -p "$corpus"
   seeds=()
   [[ $t == suite_loader_fuzz ]] && seeds=(data/suites)
+  [[ $t == scene_loader_fuzz ]] && seeds=(data/scenes)
   echo "fuzz: $t for $secs s (corpus $corpus)" >&2
   (cd build-fuzz && ./"$t" -max_total_time="$secs" -timeout=10 -rss_limit_mb=4096 -close_fd_mask=3 \
       -print_final_stats=1 "../$corpus" "${seeds[@]/#/../}")

@@ -10,6 +10,7 @@
 #include "vgroove/sim/tracer.h"
 
 #include <algorithm>
+#include <atomic>
 
 namespace vgroove::sim {
 
@@ -47,17 +48,23 @@ inline double sample_position(Sampling sampling, const Interval& iv, long j, lon
 void sample_positions(Sampling sampling, const Interval& iv, long j0, int count, long n, Rng& rng, double* out);
 
 // Traces the n rays of a beam placed over iv (sample_position's rays 0..n-1, in order) with the
-// batch trace, a block at a time, and hands each result to fn(j, result).
+// batch trace, a block at a time, and hands each result to fn(j, result). Before each block of
+// `block` rays (1..kBlock; the results do not depend on it) `cancel` is read, when given: once it
+// is set the beam stops there, and trace_beam returns false (true when all n rays were traced).
 template <class Fn>
-void trace_beam(const BeamTracer& beam, Sampling sampling, const Interval& iv, long n, Rng& rng, Fn&& fn) {
+bool trace_beam(const BeamTracer& beam, Sampling sampling, const Interval& iv, long n, Rng& rng, Fn&& fn,
+                const std::atomic<bool>* cancel = nullptr, int block = BeamTracer::kBlock) {
   double x[BeamTracer::kBlock];
   TraceResult traced[BeamTracer::kBlock];
-  for (long j0 = 0; j0 < n; j0 += BeamTracer::kBlock) {
-    const int m = static_cast<int>(std::min<long>(BeamTracer::kBlock, n - j0));
+  block = std::clamp(block, 1, BeamTracer::kBlock);
+  for (long j0 = 0; j0 < n; j0 += block) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) return false;
+    const int m = static_cast<int>(std::min<long>(block, n - j0));
     sample_positions(sampling, iv, j0, m, n, rng, x);
     beam.trace(x, m, traced);
     for (int j = 0; j < m; ++j) fn(j0 + j, traced[j]);
   }
+  return true;
 }
 
 // The direction the beam's rays travel in: -i.

@@ -29,24 +29,59 @@ struct BounceBin {
   double spread() const { return reversed ? std::numbers::pi : std::asin(std::min(1.0, spread_sin)); }
 };
 
+// The bins of one first facet, by bounce count k. Only the k that hold rays are stored, in
+// ascending order: memory grows with the bounce counts the rays make (a beam in one groove makes
+// two to four), not with the largest (10^8 in the narrowest grooves).
+class BounceBins {
+ public:
+  struct Entry {
+    int k;
+    BounceBin bin;
+  };
+  // The bin of k; an empty one (count 0) when no ray made k bounces.
+  const BounceBin& operator[](int k) const {
+    const Entry* e = find(k);
+    return e ? e->bin : empty_;
+  }
+  // The bin of k, added (empty) if absent. Inline only the common case, the k of the previous
+  // ray (a beam's rays come in runs of one k), so that Tally::add stays small enough to inline.
+  BounceBin& bin(int k) {
+    if (last_ < e_.size() && e_[last_].k == k) [[likely]]
+      return e_[last_].bin;
+    return find_or_insert(k);
+  }
+  std::vector<Entry>::const_iterator begin() const { return e_.begin(); }
+  std::vector<Entry>::const_iterator end() const { return e_.end(); }
+  bool empty() const { return e_.empty(); }
+  int max_k() const { return e_.empty() ? 0 : e_.back().k; }  // largest k with a ray, 0 if none
+
+ private:
+  BounceBin& find_or_insert(int k);
+  const Entry* find(int k) const {
+    const auto it = std::lower_bound(e_.begin(), e_.end(), k, [](const Entry& e, int key) { return e.k < key; });
+    return it != e_.end() && it->k == k ? &*it : nullptr;
+  }
+  std::vector<Entry> e_;
+  std::size_t last_ = 0;
+  static inline const BounceBin empty_{};
+};
+
 // The fates of the rays (sim::RayFates: every ray in one bucket; a single groove's escaped rays
 // all count as upward, so not_upward stays 0), and the escaped ones by (facet hit first, k).
 struct Tally : RayFates {
-  std::vector<BounceBin> bins[2];  // [first facet][k], k = bounce count
+  BounceBins bins[2];  // [first facet], then by k = bounce count
 
   void add(const TraceResult& r) {  // inline: called once per ray in the hot loop
     if (!count(r.how, r.bounces, true)) return;
-    auto& v = bins[static_cast<int>(r.first)];
-    if (static_cast<int>(v.size()) <= r.bounces) {
-      v.resize(r.bounces + 1);
-    } else if (BounceBin& b = v[r.bounces]; b.count > 0) {
+    BounceBin& b = bins[static_cast<int>(r.first)].bin(r.bounces);
+    if (b.count > 0) {
       // The common case: a bin that has rays already.
       b.spread_sin = std::max(b.spread_sin, std::abs(cross(b.exit_dir, r.exit_dir)));
       b.reversed = b.reversed || b.exit_dir.dot(r.exit_dir) <= 0.0;
       ++b.count;
       return;
     }
-    add_first(v[r.bounces], r.exit_dir);
+    add_first(b, r.exit_dir);
   }
   void merge(const Tally& other);
   using RayFates::count;

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstddef>
 #include <set>
 #include <string>
 #include <vector>
@@ -22,7 +23,7 @@ class JsonObject {
 
   bool has(const std::string& key) const;
   const nlohmann::json& raw(const std::string& key);  // marks the key as read
-  std::string path(const std::string& key) const { return pointer_ + "/" + key; }
+  std::string path(const std::string& key) const;     // pointer/key ("~", "/" escaped; long keys cut)
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
 
   JsonObject object(const std::string& key);
@@ -49,7 +50,20 @@ class JsonObject {
   mutable std::set<std::string> known_;  // every key the schema asked about, present or not
 };
 
-// Parses a JSON file; a missing or unreadable file or a syntax error is a UserError naming it.
+// The deepest nesting a spec may have (suites and scenes use five levels), and its largest size.
+inline constexpr int kMaxJsonDepth = 64;
+inline constexpr std::size_t kMaxJsonBytes = 64u << 20;
+
+// Parses JSON text strictly: a syntax error, a number out of the double range (1e400), a key
+// given twice in one object, or nesting deeper than kMaxJsonDepth is a UserError naming `file`
+// (and the JSON path). The last two are not JSON errors, but a strict reader refuses them: the
+// last of two "rays" would otherwise win silently, and deep nesting costs stack in every reader.
+nlohmann::json parse_json_text(const std::string& text, const std::string& file);
+// Reads `file` once (a pipe or /dev/stdin works) and parses it as above; a missing, unreadable or
+// non-regular file (a directory) or one past kMaxJsonBytes is a UserError naming it.
 nlohmann::json read_json_file(const std::string& file);
+
+// A JSON value for a message: compact, on one line, at most about 60 characters ("..." after).
+std::string value_text(const nlohmann::json& v);
 
 }  // namespace vgroove::support

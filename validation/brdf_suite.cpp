@@ -1,4 +1,5 @@
 #include "vgroove/validation/brdf_suite.h"
+#include "vgroove/support/printable.h"
 
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/analytic/brdf_flatland.h"
@@ -220,20 +221,33 @@ BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
   s.description = root.string_or("description", "");
   s.kind = root.one_of("kind", {"brdf"});
   s.ndfs = read_ndfs(root);
-  s.alphas = read_numbers(root, "alpha", 0.0, false, kMaxAlpha, true);
-  for (double d : read_numbers(root, "theta_i_deg", 0.0, true, 90.0, false)) s.theta_i.push_back(d * kRadPerDeg);
+  s.alphas = read_numbers(root, "alpha", kMinAlpha, true, kMaxAlpha, true);
+  for (double d : read_numbers(root, "theta_i_deg", 0.0, true, kMaxSurfaceThetaIDeg, true))
+    s.theta_i.push_back(d * kRadPerDeg);
   for (const auto& d : read_names(root, "dimensions", {"flatland", "3d"}))
     s.dims.push_back(d == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d);
   s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
-  s.grooves = static_cast<int>(root.integer("grooves", 1, 10'000'000));
-  s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
+  s.grooves = static_cast<int>(root.integer("grooves", 1, kMaxGrooves));
+  s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, kMaxSeed));
   s.flatland_bins = static_cast<int>(root.integer_or("flatland_bins", s.flatland_bins, 1, 100000));
   s.theta_bins = static_cast<int>(root.integer_or("theta_bins", s.theta_bins, 1, 10000));
   s.phi_bins = static_cast<int>(root.integer_or("phi_bins", s.phi_bins, 2, 10000));
   if (s.phi_bins % 2 != 0)
     root.fail("phi_bins",
               "= " + std::to_string(s.phi_bins) + " must be even (the plane of incidence runs through two bins)");
-  s.max_k = static_cast<int>(root.integer_or("max_k", s.max_k, 1, 10000));
+  s.max_k = static_cast<int>(root.integer_or("max_k", s.max_k, 0, kMaxHistogramK));
+  // Each worker holds a few arrays of the joint (k, bin) cells (tallies, lobes): bound them, as
+  // scenes do.
+  for (SurfaceDim d : s.dims) {
+    const bool flat = d == SurfaceDim::flatland;
+    const long long cells =
+        (flat ? static_cast<long long>(s.flatland_bins) : static_cast<long long>(s.theta_bins) * s.phi_bins) *
+        (s.max_k + 2);
+    if (cells > kMaxHistogramCells)
+      throw support::UserError(file + ": " + (flat ? "flatland_bins" : "theta_bins x phi_bins") +
+                               " x (max_k + 2) = " + std::to_string(cells) + " histogram cells, out of range [1, " +
+                               std::to_string(kMaxHistogramCells) + "]");
+  }
   {
     support::JsonObject t = root.object("thresholds");
     s.sigmas = t.number("sigmas", 0.0, false, 100.0, true);
@@ -245,6 +259,29 @@ BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
   }
   root.finish();
   return s;
+}
+
+double brdf_run_memory_bytes(const BrdfSuite& suite, int threads, bool report) {
+  constexpr double kNumberBytes = 64;  // a double in the report: its JSON node, vector slot and text
+  const double rows = suite.max_k + 2.0;
+  double cells = 0.0, groove = 0.0, plane = 0.0;
+  for (SurfaceDim d : suite.dims) {
+    const bool flat = d == SurfaceDim::flatland;
+    cells =
+        std::max(cells, rows * (flat ? suite.flatland_bins : static_cast<double>(suite.theta_bins) * suite.phi_bins));
+    groove = std::max(groove, sizeof(sim::Groove) + (flat ? 8.0 : 8.0 + 8.0 + sizeof(sim::GrooveFrame3d)));
+    plane = std::max(plane, (flat ? suite.flatland_bins : 2.0 * suite.theta_bins) * (3.0 + 2.0 * kPlotK));
+  }
+  const double cases = static_cast<double>(suite.cases());
+  const double workers = std::min<double>(support::resolve_threads(threads), cases);
+  // Per worker: the surface; two tallies (a chunk's and the item's); the lobes (multiple scattering
+  // and Cook-Torrance) and the comparison's copies: about ten arrays of the joint (k, bin) cells.
+  // Per case: its merged tally and model (joint cells each), held twice while the parts are
+  // merged, then its outcome.
+  const double per_worker = suite.grooves * groove + 10.0 * cells * 8.0;
+  const double per_case = sizeof(BrdfOutcome) + 4.0 * cells * 8.0 + (2.0 * rows + plane) * 8.0 +
+                          (report ? (2.0 * rows + plane) * kNumberBytes : 0.0);
+  return workers * per_worker + cases * per_case;
 }
 
 std::shared_ptr<const BrdfWork::Context> BrdfWork::prepare(std::size_t n) const {
@@ -266,13 +303,15 @@ BinnedTally BrdfWork::run_chunks(const Context& ctx, std::size_t n, std::int64_t
   if (c.dim == SurfaceDim::flatland) {
     const sim::MicrosurfaceTraceOptions to = flatland_trace(suite, c, rays);
     sim::MicrosurfaceTally t(to.theta_o_bins, to.max_k);
-    for (std::int64_t k = begin; k < end; ++k) t.merge(sim::trace_microsurface_chunk(ctx.flat, to, k));
+    for (std::int64_t k = begin; k < end && !support::cancelled(cancel); ++k)
+      t.merge(sim::trace_microsurface_chunk(ctx.flat, to, k));
     static_cast<sim::RayFates&>(out) = t;
     out.by_k = std::move(t.by_k), out.hist = std::move(t.theta_o), out.hist_by_k = std::move(t.theta_o_by_k);
   } else {
     const sim::Microsurface3dTraceOptions to = trace_3d(suite, c, rays);
     sim::Microsurface3dTally t(to.theta_bins, to.phi_bins, to.max_k);
-    for (std::int64_t k = begin; k < end; ++k) t.merge(sim::trace_microsurface3d_chunk(ctx.three_d, to, k));
+    for (std::int64_t k = begin; k < end && !support::cancelled(cancel); ++k)
+      t.merge(sim::trace_microsurface3d_chunk(ctx.three_d, to, k));
     static_cast<sim::RayFates&>(out) = t;
     out.by_k = std::move(t.by_k), out.hist = std::move(t.hist), out.hist_by_k = std::move(t.hist_by_k);
   }
@@ -290,8 +329,10 @@ BrdfModel BrdfWork::run_fixed(std::size_t n) const {
     m.by_k = std::move(lobe.by_k), m.hist = std::move(lobe.theta_o), m.hist_by_k = std::move(lobe.theta_o_by_k);
     m.albedo = lobe.albedo, m.single_hist = std::move(single.theta_o), m.single_albedo = single.albedo;
   } else {
+    analytic::Lobe3dOptions lo;
+    lo.cancel = cancel;
     analytic::Lobe3d lobe =
-        analytic::vgroove_lobe_3d(c.ndf, c.alpha, c.theta_i, suite.theta_bins, suite.phi_bins, suite.max_k);
+        analytic::vgroove_lobe_3d(c.ndf, c.alpha, c.theta_i, suite.theta_bins, suite.phi_bins, suite.max_k, lo);
     // Cook-Torrance (V-cavity G) is the lobe's k = 1 row (Eq. 25): no second integration.
     analytic::Lobe3d single = analytic::cook_torrance_lobe_3d_from(lobe);
     m.by_k = std::move(lobe.by_k), m.hist = std::move(lobe.hist), m.hist_by_k = std::move(lobe.hist_by_k);
@@ -371,17 +412,26 @@ BrdfRun brdf_run_from(const BrdfSuite& suite, long, const std::vector<UnitResult
   return run;
 }
 
-BrdfOutcome run_brdf_case(const BrdfSuite& suite, const BrdfCase& c, long rays) {
+BrdfOutcome run_brdf_case(const BrdfSuite& suite, const BrdfCase& c, long rays, support::CancelFlag cancel) {
   BrdfSuite one = suite;
   one.ndfs = {c.ndf}, one.alphas = {c.alpha}, one.theta_i = {c.theta_i}, one.dims = {c.dim};
-  const auto results = run_job(brdf_job(one, rays, {}), 1);
+  auto job = brdf_job(one, rays, {});
+  job.work.cancel = cancel;
+  const auto results = run_job(job, 1, {}, cancel);
+  if (!results) {  // cancelled: an empty outcome
+    BrdfOutcome out;
+    out.c = c;
+    return out;
+  }
   return brdf_run_from(one, rays, *results).cases.front();
 }
 
 BrdfRun run_brdf_suite(const BrdfSuite& suite, long rays, int threads, const support::ProgressFn& progress,
                        const std::atomic<bool>* cancel) {
   const auto t0 = Clock::now();
-  const auto results = run_job(brdf_job(suite, rays, {}), threads, progress, cancel);
+  auto job = brdf_job(suite, rays, {});
+  job.work.cancel = cancel;
+  const auto results = run_job(job, threads, progress, cancel);
   BrdfRun run;
   if (results) run = brdf_run_from(suite, rays, *results);
   run.threads = support::resolve_threads(threads);
@@ -468,8 +518,8 @@ nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run) {
 void print_brdf_table(std::ostream& os, const BrdfSuite& suite, const BrdfRun& run) {
   char line[400];
   std::snprintf(line, sizeof line, "%s (%s): %zu cases, %ld rays x %d grooves each, vgroove %s (git %s), %d threads\n",
-                suite.name.c_str(), suite.kind.c_str(), run.cases.size(), suite.rays, suite.grooves, version_string(),
-                git_revision(), run.threads);
+                support::printable(suite.name).c_str(), suite.kind.c_str(), run.cases.size(), suite.rays, suite.grooves,
+                version_string(), git_revision(), run.threads);
   os << line;
   std::snprintf(line, sizeof line, "  %-8s %-8s %5s %7s %9s %9s %9s %9s %10s %9s %8s %5s\n", "dim", "ndf", "alpha",
                 "theta_i", "L1", "L1 thr", "L1 by k", "thr", "albedo", "CT alb", "wall s", "pass");

@@ -103,10 +103,15 @@ struct BrdfRun {
 };
 
 BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file);
+// An upper bound of the memory run_brdf_suite needs (support/memory.h): per worker a surface of
+// `grooves` grooves, its tallies and lobes; per case its outcome, and with `report` its JSON.
+double brdf_run_memory_bytes(const BrdfSuite& suite, int threads, bool report);
 // rays > 0 overrides the suite's.
 BrdfRun run_brdf_suite(const BrdfSuite& suite, long rays, int threads, const support::ProgressFn& progress = {},
                        const std::atomic<bool>* cancel = nullptr);
-BrdfOutcome run_brdf_case(const BrdfSuite& suite, const BrdfCase& c, long rays);
+// `cancel` (may be null) is read between chunks of rays and inside the 3D lobes' quadrature; once
+// set the outcome is incomplete.
+BrdfOutcome run_brdf_case(const BrdfSuite& suite, const BrdfCase& c, long rays, support::CancelFlag cancel = nullptr);
 
 // The suite as work items (work_run.h): a unit per case, its rays in chunks (sim::kRaysPerChunk,
 // the procedural surface's streams), the analytic lobes its fixed part. The traced histograms of
@@ -129,7 +134,8 @@ struct BrdfWork {
   using Tally = BinnedTally;
   using Fixed = BrdfModel;
   BrdfSuite suite;
-  long rays = 0;  // per case
+  long rays = 0;                              // per case
+  const std::atomic<bool>* cancel = nullptr;  // polled between chunks and inside the 3D lobes
   std::shared_ptr<const Context> prepare(std::size_t c) const;
   Tally run_chunks(const Context& ctx, std::size_t c, std::int64_t begin, std::int64_t end) const;
   Fixed run_fixed(std::size_t c) const;

@@ -63,17 +63,18 @@ std::vector<double> midpoints(int n) {
 }
 
 void check_energy_grid(const EnergyGrid& g) {
-  auto list = [](const std::vector<double>& v, const std::string& flag, double hi, const std::string& why) {
+  auto list = [](const std::vector<double>& v, const std::string& flag, double lo, bool lo_closed, double hi,
+                 const std::string& why) {
     if (v.empty() || v.size() > kMaxGridPoints)
       throw support::UserError(flag + " has " + std::to_string(v.size()) + " values, out of range [1, " +
                                std::to_string(kMaxGridPoints) + "]");
     for (double x : v)
-      if (!(x > 0.0 && x <= hi))
+      if (!((lo_closed ? x >= lo : x > lo) && x <= hi))
         throw support::UserError(flag + " = " + support::number_text(x) + " is out of range " +
-                                 support::interval_text(0.0, false, hi, true) + why);
+                                 support::interval_text(lo, lo_closed, hi, true) + why);
   };
-  list(g.mus, "--mu", 1.0, " (mu = cos theta_i; 0 is grazing)");
-  list(g.alphas, "--alpha", kMaxAlpha, "");
+  list(g.mus, "--mu", 0.0, false, 1.0, " (mu = cos theta_i; 0 is grazing)");
+  list(g.alphas, "--alpha", kMinAlpha, true, kMaxAlpha, "");
   if (g.rays < 1 || g.rays > kMaxEnergyRays)
     throw support::UserError("--rays = " + std::to_string(g.rays) + " is out of range [1, " +
                              std::to_string(kMaxEnergyRays) + "]");

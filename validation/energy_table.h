@@ -22,6 +22,7 @@
 #include "vgroove/support/parallel.h"
 #include "vgroove/support/work_plan.h"
 #include "vgroove/validation/brdf_suite.h"
+#include "vgroove/validation/ranges.h"
 #include "vgroove/validation/work_run.h"
 
 #include <nlohmann/json.hpp>
@@ -60,6 +61,8 @@ struct EnergyGrid {
 inline constexpr long long kMaxEnergyRays = 10'000'000'000LL;
 inline constexpr int kMaxEnergyK = 1000;
 inline constexpr std::size_t kMaxGridPoints = 4096;
+// --alpha-points: the midpoints (j + 1/2)/n stay in the alpha range (0.5/n >= kMinAlpha).
+inline constexpr int kMaxAlphaPoints = 50;
 // (i + 1/2) / n for i = 0..n-1: the midpoints of n equal steps of (0, 1].
 std::vector<double> midpoints(int n);
 // A UserError naming the flag for a value out of range: --mu in (0, 1], --alpha in (0, 2], ...

@@ -194,8 +194,9 @@ FurnaceSuite parse_furnace_suite(const nlohmann::json& j, const std::string& fil
   s.description = root.string_or("description", "");
   root.one_of("kind", {"furnace"});
   s.ndfs = read_ndfs(root);
-  s.alphas = read_numbers(root, "alpha", 0.0, false, kMaxAlpha, true);
-  for (double d : read_numbers(root, "theta_i_deg", 0.0, true, 90.0, false)) s.theta_i.push_back(d * kRadPerDeg);
+  s.alphas = read_numbers(root, "alpha", kMinAlpha, true, kMaxAlpha, true);
+  for (double d : read_numbers(root, "theta_i_deg", 0.0, true, kMaxSurfaceThetaIDeg, true))
+    s.theta_i.push_back(d * kRadPerDeg);
   for (const auto& d : read_names(root, "dimensions", {"flatland", "3d"}))
     s.dims.push_back(d == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d);
   s.max_k = static_cast<int>(root.integer("max_k", 1, 100000));

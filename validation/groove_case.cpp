@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <numbers>
 #include <vector>
 
 namespace vgroove::validation {
@@ -14,6 +16,8 @@ namespace {
 // A facet whose projected width is below this fraction of its length receives a beam too thin
 // to place rays in (positions round at 1e-16): it is treated as not lit, by model and tracer alike.
 constexpr double kMinProjectedWidth = 1e-12;
+// Reflections traced between two reads of the cancellation flag, at most (a few milliseconds).
+constexpr double kBouncesPerPoll = 4e6;
 
 }  // namespace
 
@@ -36,6 +40,17 @@ ModelShares model_shares(const GrooveParams& p, double theta_i, sim::Side side, 
   return m;
 }
 
+double entering_width(const ModelShares (&shares)[2]) {
+  double width = 0.0;
+  for (const ModelShares& m : shares) {
+    if (!m.lit) continue;
+    double entering = 0.0;
+    for (int z = 0; z < m.shares; ++z) entering += m.share[z].G;
+    width += m.f_a * entering;
+  }
+  return width;
+}
+
 double model_exit_angle(const GrooveParams& p, double theta_i, int n, sim::Side side) {
   return p.symmetric ? analytic::exit_angle(theta_i, p.theta_v, n, side)
                      : analytic::exit_angle_nonsymmetric(theta_i, p.theta_l, p.theta_r, n, side);
@@ -44,7 +59,7 @@ double model_exit_angle(const GrooveParams& p, double theta_i, int n, sim::Side 
 namespace {
 
 FacetOutcome run_facet(const GrooveParams& params, const sim::Groove& g, double theta_i, sim::Side side,
-                       const CaseOptions& opt, std::uint64_t stream) {
+                       const CaseOptions& opt, std::uint64_t stream, const std::atomic<bool>* cancel) {
   FacetOutcome out;
   const ModelShares pred = model_shares(params, theta_i, side, opt.form);
   // The model's f_a is in units of the longer facet, the tracer's too (unit facets or the longer
@@ -65,7 +80,7 @@ FacetOutcome run_facet(const GrooveParams& params, const sim::Groove& g, double 
   sim::Tally tally;
   const int f = static_cast<int>(side), o = 1 - f;
   double blocked = 0.0, lost = 0.0;  // fractions: shadowed; no bin in the model (vertex, limit, other facet)
-  std::vector<double> traced;        // fractions per k on this facet
+  std::map<int, double> traced;      // fractions per k on this facet (sparse: k reaches 10^8 in narrow grooves)
   if (opt.sampling == sim::Sampling::breakpoints) {
     const sim::ZoneSearch zs =
         sim::find_zones(beam, aim, opt.rays, [&](double, const sim::TraceResult& r) { tally.add(r); });
@@ -73,14 +88,12 @@ FacetOutcome run_facet(const GrooveParams& params, const sim::Groove& g, double 
     for (const sim::Zone& z : zs.zones) {
       const double share = z.width() / width;
       const sim::TraceResult& r = z.ray;
-      if (r.how == sim::Termination::blocked) {
+      if (r.how == sim::Termination::blocked)
         blocked += share;
-      } else if (r.how != sim::Termination::escaped || static_cast<int>(r.first) != f) {
+      else if (r.how != sim::Termination::escaped || static_cast<int>(r.first) != f)
         lost += share;
-      } else {
-        if (static_cast<int>(traced.size()) <= r.bounces) traced.resize(r.bounces + 1, 0.0);
+      else
         traced[r.bounces] += share;
-      }
     }
     // Zones of distinct outcome; a vertex hit between two zones of one outcome (a point, or a few
     // ulps where the rounded s equals a facet's end) does not split it.
@@ -95,48 +108,59 @@ FacetOutcome run_facet(const GrooveParams& params, const sim::Groove& g, double 
     out.missed_bound = zs.missed_bound() / width;
     out.narrowest_zone = zs.narrowest() / width;
   } else {
-    sim::trace_beam(beam, opt.sampling, aim, opt.rays, rng, [&](long, const sim::TraceResult& r) { tally.add(r); });
+    // Blocks of rays small enough that the cancellation flag is read every few million reflections
+    // (a ray in a groove of aperture theta_v makes at most ceil(pi / theta_v) of them).
+    const double per_ray = std::ceil(std::numbers::pi / g.theta_v) + 1.0;
+    const int block = static_cast<int>(std::clamp(kBouncesPerPoll / per_ray, 1.0, double{sim::BeamTracer::kBlock}));
+    sim::trace_beam(
+        beam, opt.sampling, aim, opt.rays, rng, [&](long, const sim::TraceResult& r) { tally.add(r); }, cancel, block);
     const double n = static_cast<double>(opt.rays);
     blocked = static_cast<double>(tally.blocked) / n;
     std::int64_t other = 0;
-    for (const auto& b : tally.bins[o]) other += b.count;
+    for (const auto& e : tally.bins[o]) other += e.bin.count;
     lost = static_cast<double>(tally.vertex_hits + tally.bounce_limit + other) / n;
-    for (const auto& b : tally.bins[f]) traced.push_back(static_cast<double>(b.count) / n);
+    for (const auto& e : tally.bins[f]) traced[e.k] += static_cast<double>(e.bin.count) / n;
   }
   out.rays = tally.rays;
   out.bounces = tally.bounces;
   out.vertex_hits = tally.vertex_hits;
   out.bounce_limit = tally.bounce_limit;
-  for (const auto& b : tally.bins[o]) out.wrong_first += b.count;
+  for (const auto& e : tally.bins[o]) out.wrong_first += e.bin.count;
 
-  // L1 over every bin either side has.
+  // L1 over every bin either side has, in ascending k (the traced bins and the model's shares;
+  // every other k adds |0 - 0|).
   double l1 = std::abs(blocked - pred.shadow) + lost;
-  const auto& bins = tally.bins[f];
+  std::vector<int> ks;
+  for (const auto& [k, fraction] : traced) ks.push_back(k);
   // Shares of the model outside the traced bins (a count below 0 or past the last bin) count too.
-  int kmax = static_cast<int>(traced.size()) - 1;
   for (int z = 0; z < pred.shares; ++z) {
-    kmax = std::max(kmax, pred.share[z].n);
-    if (pred.share[z].n < 0) l1 += std::abs(pred.share[z].G);
+    if (pred.share[z].n < 0)
+      l1 += std::abs(pred.share[z].G);
+    else
+      ks.push_back(pred.share[z].n);
   }
-  for (int k = 0; k <= kmax; ++k) {
-    const double fraction = k < static_cast<int>(traced.size()) ? traced[k] : 0.0;
+  std::sort(ks.begin(), ks.end());
+  ks.erase(std::unique(ks.begin(), ks.end()), ks.end());
+  for (int k : ks) {
+    const auto it = traced.find(k);
+    const double fraction = it == traced.end() ? 0.0 : it->second;
     double model = 0.0;
     for (int z = 0; z < pred.shares; ++z)
       if (pred.share[z].n == k) model += pred.share[z].G;
     l1 += std::abs(fraction - model);
   }
   // Eq. (5) and (8) hold for any bounce count, so every traced bin is checked, predicted or not.
-  for (int k = 0; k < static_cast<int>(bins.size()); ++k) {
-    if (bins[k].count == 0) continue;
-    const double theta_o = model_exit_angle(params, theta_i, k, side);
-    const double err = std::abs(sim::angle_between(sim::direction_at(theta_o), bins[k].exit_dir)) + bins[k].spread();
+  for (const auto& e : tally.bins[f]) {
+    if (e.bin.count == 0) continue;
+    const double theta_o = model_exit_angle(params, theta_i, e.k, side);
+    const double err = std::abs(sim::angle_between(sim::direction_at(theta_o), e.bin.exit_dir)) + e.bin.spread();
     out.theta_o_error = std::max(out.theta_o_error, err);
   }
   out.l1 = l1;
   out.non_finite = !std::isfinite(out.l1) || !std::isfinite(out.theta_o_error);
   for (const auto& side_bins : tally.bins)
-    for (const sim::BounceBin& b : side_bins)
-      if (b.count > 0 && !b.exit_dir.allFinite()) out.non_finite = true;
+    for (const auto& e : side_bins)
+      if (e.bin.count > 0 && !e.bin.exit_dir.allFinite()) out.non_finite = true;
 
   if (opt.probe_vertices) {
     // The line through the apex, the facet's own rim, and both rims of the opening.
@@ -166,7 +190,8 @@ FacetOutcome run_facet(const GrooveParams& params, const sim::Groove& g, double 
 
 }  // namespace
 
-CaseOutcome run_case(const GrooveParams& groove, double theta_i, const CaseOptions& opt, std::uint64_t stream) {
+CaseOutcome run_case(const GrooveParams& groove, double theta_i, const CaseOptions& opt, std::uint64_t stream,
+                     const std::atomic<bool>* cancel) {
   CaseOutcome c;
   c.groove = groove;
   c.theta_i = theta_i;
@@ -174,7 +199,7 @@ CaseOutcome run_case(const GrooveParams& groove, double theta_i, const CaseOptio
   const sim::Groove g = make_groove(groove);
   for (sim::Side s : {sim::Side::left, sim::Side::right}) {
     FacetOutcome& f = c.facet[static_cast<int>(s)];
-    f = run_facet(groove, g, theta_i, s, opt, stream);
+    f = run_facet(groove, g, theta_i, s, opt, stream, cancel);
     if (!f.compared) continue;
     c.l1 = std::max(c.l1, f.l1);
     c.rays += f.rays;

@@ -11,6 +11,7 @@
 
 #include "vgroove/validation/suite.h"
 
+#include <atomic>
 #include <cstdint>
 
 namespace vgroove::validation {
@@ -53,7 +54,10 @@ struct CaseOutcome {
 // `stream` names the case's random stream (its index in the suite): with random sampling, the
 // rays of facet f come from Rng(seed, stream, f), whichever thread runs the case.
 // A degenerate groove (GrooveParams::degenerate) gives an outcome with no facet compared.
-CaseOutcome run_case(const GrooveParams& groove, double theta_i, const CaseOptions& opt, std::uint64_t stream);
+// `cancel` (may be null) is read every few million reflections; once set, the case stops early and
+// its outcome is incomplete (the caller reports the run as interrupted).
+CaseOutcome run_case(const GrooveParams& groove, double theta_i, const CaseOptions& opt, std::uint64_t stream,
+                     const std::atomic<bool>* cancel = nullptr);
 
 // The model's side of a case, whichever groove kind: shares of the rays aimed at `side`.
 struct ModelShares {
@@ -65,6 +69,12 @@ struct ModelShares {
   int shares = 0;
 };
 ModelShares model_shares(const GrooveParams& groove, double theta_i, sim::Side side, analytic::Eq6Form form);
+// The width of the beam that enters the opening, in the units of f_a, from both facets' shares
+// ([left, right]): sum over lit facets of f_a times the G of its entering rays. The fraction of the
+// entering beam with a share's bounce count is then G f_a / width, and these fractions sum to 1 to
+// rounding for every groove and angle (the width is not f_a (1 - shadow): near grazing light the
+// shadow is 1 - 1e-9 and the difference would lose the width to cancellation).
+double entering_width(const ModelShares (&shares)[2]);
 // Eq. (5) or Eq. (8) for n reflections.
 double model_exit_angle(const GrooveParams& groove, double theta_i, int n, sim::Side side);
 sim::Groove make_groove(const GrooveParams& groove);

@@ -118,7 +118,7 @@ ModelTable parse_model_table(const nlohmann::json& j, const std::string& file, c
     for (std::size_t b = 0; b < bins; ++b) {
       const nlohmann::json& v = flux[b];
       if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0.0)
-        throw support::UserError(file + ": " + at + "/flux/" + std::to_string(b) + " = " + v.dump().substr(0, 40) +
+        throw support::UserError(file + ": " + at + "/flux/" + std::to_string(b) + " = " + support::value_text(v) +
                                  " must be a finite number >= 0 (a fraction of the incident flux)");
       t.flux[c].push_back(v.get<double>());
     }

@@ -323,17 +323,19 @@ NonsymmetricSuite parse_nonsymmetric_suite(const nlohmann::json& j, const std::s
   s.description = root.string_or("description", "");
   root.one_of("kind", {"nonsymmetric_brdf"});
   s.ndfs = read_ndfs(root);
-  s.alphas = read_numbers(root, "alpha", 0.0, false, kMaxAlpha, true);
+  s.alphas = read_numbers(root, "alpha", kMinAlpha, true, kMaxAlpha, true);
   check_partner_laws(root, s.ndfs, s.alphas, "alpha");
-  for (double d : read_numbers(root, "theta_i_deg", 0.0, true, 90.0, false)) s.theta_i.push_back(d * kRadPerDeg);
+  for (double d : read_numbers(root, "theta_i_deg", 0.0, true, kMaxSurfaceThetaIDeg, true))
+    s.theta_i.push_back(d * kRadPerDeg);
   for (const auto& d : read_names(root, "dimensions", {"flatland", "3d"}))
     s.dims.push_back(d == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d);
   if (root.has("anisotropic")) {
     support::JsonObject a = root.object("anisotropic");
     for (const auto& n : read_names(a, "ndf", {"beckmann", "ggx"})) s.aniso_ndfs.push_back(*ndf_from_name(n));
-    s.alpha_x = read_numbers(a, "alpha_x", 0.0, false, kMaxAlpha, true);
-    s.alpha_y = read_numbers(a, "alpha_y", 0.0, false, kMaxAlpha, true);
-    for (double d : read_numbers(a, "theta_i_deg", 0.0, true, 90.0, false)) s.aniso_theta_i.push_back(d * kRadPerDeg);
+    s.alpha_x = read_numbers(a, "alpha_x", kMinAlpha, true, kMaxAlpha, true);
+    s.alpha_y = read_numbers(a, "alpha_y", kMinAlpha, true, kMaxAlpha, true);
+    for (double d : read_numbers(a, "theta_i_deg", 0.0, true, kMaxSurfaceThetaIDeg, true))
+      s.aniso_theta_i.push_back(d * kRadPerDeg);
     for (double d : read_numbers(a, "phi_i_deg", -360.0, true, 360.0, true)) s.phi_i.push_back(d * kRadPerDeg);
     s.partners_symmetric = read_partners(a);
     a.finish();

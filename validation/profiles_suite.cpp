@@ -289,7 +289,7 @@ ProfilesSuite parse_profiles_suite(const nlohmann::json& j, const std::string& f
   root.one_of("kind", {"profiles"});
   for (const auto& n : read_names(root, "ndf", {"beckmann", "ggx"}))
     s.ndfs.push_back(n == "ggx" ? analytic::NdfKind::ggx : analytic::NdfKind::beckmann);
-  s.alphas = read_numbers(root, "alpha", 0.0, false, kMaxAlpha, true);
+  s.alphas = read_numbers(root, "alpha", kMinAlpha, true, kMaxAlpha, true);
   for (double d : read_numbers(root, "theta_deg", 0.0, true, 89.0, true)) s.theta.push_back(d * kRadPerDeg);
   for (const auto& n : read_names(root, "surfaces", {"random", "vgroove"}))
     s.surfaces.push_back(n == "random" ? ProfileSurface::random : ProfileSurface::vgroove);

@@ -1,5 +1,6 @@
 #include "vgroove/validation/report.h"
 #include "vgroove/common/angles.h"
+#include "vgroove/support/printable.h"
 
 #include "vgroove_version.h"
 
@@ -164,15 +165,15 @@ nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
 
 void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run) {
   const Summary& s = run.summary;
-  os << "vgroove " << VGROOVE_VERSION << " (git " << VGROOVE_GIT << ")  suite " << suite.name << ": " << s.cases
-     << " cases"
+  os << "vgroove " << VGROOVE_VERSION << " (git " << VGROOVE_GIT << ")  suite " << support::printable(suite.name)
+     << ": " << s.cases << " cases"
      << (s.degenerate_cases ? " (+" + std::to_string(s.degenerate_cases) + " degenerate, not compared)" : "") << ", "
      << run.options.rays << " rays per lit facet, " << sim::sampling_name(run.options.sampling) << ", seed "
      << run.options.seed << ", Eq. 6 " << form_name(run.options.form) << ", " << run.threads << " threads\n";
   os << "                      max L1      mean L1     max |theta_o err|\n";
   if (suite.paper)
     os << "  paper              " << fmt("%10.4g", suite.paper->max_l1) << "  " << fmt("%10.4g", suite.paper->mean_l1)
-       << "   -          (" << suite.paper->source << ")\n";
+       << "   -          (" << support::printable(suite.paper->source) << ")\n";
   os << "  vgroove            " << fmt("%10.4g", s.max_l1) << "  " << fmt("%10.4g", s.mean_l1) << "  "
      << fmt("%10.3g", s.max_theta_o_error) << " rad\n";
   os << "  threshold          " << fmt("%10.4g", suite.thresholds.max_l1) << "  "
@@ -182,7 +183,7 @@ void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run) {
      << "      " << (s.pass_theta_o ? "   ok" : " FAIL") << "\n";
   if (suite.paper && !suite.paper->placement.empty())
     os << "  the paper's figures are consistent with " << suite.paper->placement
-       << " ray placement: " << suite.paper->placement_evidence << "\n";
+       << " ray placement: " << support::printable(suite.paper->placement_evidence) << "\n";
   const CaseOutcome& w = run.cases[s.worst_case];
   os << "  worst case: " << groove_text(w.groove) << ", theta_i " << output_deg(w.theta_i) << " deg (L1 "
      << fmt("%.4g", w.l1) << ")\n";
@@ -238,7 +239,7 @@ void print_set_table(std::ostream& os, const SuiteSet& set, const std::vector<Su
   // The first column as wide as the longest suite name (22 at least).
   int width = 22;
   for (const Suite& su : set.suites) width = std::max(width, static_cast<int>(su.name.size()));
-  os << "\n" << set.name << ": the paper's figures beside ours\n";
+  os << "\n" << support::printable(set.name) << ": the paper's figures beside ours\n";
   os << "  " << std::string("column") + std::string(width - 6, ' ')
      << " paper max L1  ours max L1   paper mean L1  ours mean L1   cases   wall s\n";
   bool pass = true;
@@ -248,9 +249,9 @@ void print_set_table(std::ostream& os, const SuiteSet& set, const std::vector<Su
     pass = pass && s.pass();
     os << "  ";
     char buf[256];
-    std::snprintf(buf, sizeof buf, "%-*s %12.4g %12.4g %14.4g %13.4g %7zu %8.3f\n", width, su.name.c_str(),
-                  su.paper ? su.paper->max_l1 : NAN, s.max_l1, su.paper ? su.paper->mean_l1 : NAN, s.mean_l1, s.cases,
-                  s.wall_s);
+    std::snprintf(buf, sizeof buf, "%-*s %12.4g %12.4g %14.4g %13.4g %7zu %8.3f\n", width,
+                  support::printable(su.name).c_str(), su.paper ? su.paper->max_l1 : NAN, s.max_l1,
+                  su.paper ? su.paper->mean_l1 : NAN, s.mean_l1, s.cases, s.wall_s);
     os << buf;
   }
   os << (pass ? "PASS" : "FAIL") << "\n";

@@ -2,6 +2,7 @@
 
 #include "vgroove/common/angles.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/ranges.h"
 #include "vgroove/validation/spec_lists.h"
 
 #include <limits>
@@ -18,8 +19,8 @@ OptionNames OptionNames::keywords() {
 
 void check_seed(long long seed, const std::string& what) {
   if (seed < 0)
-    throw support::UserError(what + " = " + std::to_string(seed) + " is out of range [0, " +
-                             std::to_string(std::numeric_limits<long long>::max()) + "]");
+    throw support::UserError(what + " = " + std::to_string(seed) + " is out of range [0, " + std::to_string(kMaxSeed) +
+                             "]");
 }
 
 void check_rays(long rays, const std::string& what) {
@@ -29,8 +30,9 @@ void check_rays(long rays, const std::string& what) {
 }
 
 void check_threads(int threads, const std::string& what) {
-  if (threads < 0 || threads > 1024)
-    throw support::UserError(what + " = " + std::to_string(threads) + " is out of range [0, 1024] (0: all cores)");
+  if (threads < 0 || threads > kMaxThreads)
+    throw support::UserError(what + " = " + std::to_string(threads) + " is out of range [0, " +
+                             std::to_string(kMaxThreads) + "] (0: all cores)");
 }
 
 sim::Sampling parse_sampling(const std::string& s, const std::string& what, bool allow_breakpoints) {

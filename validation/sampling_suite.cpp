@@ -22,8 +22,8 @@ BrdfCase read_case(support::JsonObject& o) {
   BrdfCase c;
   c.dim = o.one_of("dimension", {"flatland", "3d"}) == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d;
   c.ndf = *ndf_from_name(o.one_of("ndf", {"ggx", "beckmann", "phong"}));
-  c.alpha = o.number("alpha", 0.0, false, kMaxAlpha, true);
-  c.theta_i = o.number("theta_i_deg", 0.0, true, 90.0, false) * kRadPerDeg;
+  c.alpha = o.number("alpha", kMinAlpha, true, kMaxAlpha, true);
+  c.theta_i = o.number("theta_i_deg", 0.0, true, kMaxSurfaceThetaIDeg, true) * kRadPerDeg;
   return c;
 }
 

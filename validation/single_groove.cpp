@@ -21,12 +21,9 @@ nlohmann::json rows_json(const std::vector<BounceRow>& rows) {
 ModelTable model_table(const GrooveParams& groove, double theta_i, analytic::Eq6Form form) {
   ModelTable t;
   ModelShares m[2];
-  double width = 0.0;
-  for (sim::Side side : {sim::Side::left, sim::Side::right}) {
+  for (sim::Side side : {sim::Side::left, sim::Side::right})
     m[static_cast<int>(side)] = model_shares(groove, theta_i, side, form);
-    const ModelShares& p = m[static_cast<int>(side)];
-    if (p.lit) width += p.f_a * (1.0 - p.shadow);
-  }
+  const double width = entering_width(m);
   for (sim::Side side : {sim::Side::left, sim::Side::right}) {
     const ModelShares& p = m[static_cast<int>(side)];
     ModelFacet& f = t.facet[static_cast<int>(side)];
@@ -91,12 +88,9 @@ std::vector<BounceRow> tally_rows(const sim::Tally& tally, long rays, double* ma
   std::vector<BounceRow> rows;
   double spread = 0.0;
   for (sim::Side side : {sim::Side::left, sim::Side::right}) {
-    const auto& bins = tally.bins[static_cast<int>(side)];
-    for (std::size_t k = 0; k < bins.size(); ++k) {
-      const sim::BounceBin& b = bins[k];
+    for (const auto& [k, b] : tally.bins[static_cast<int>(side)]) {
       if (b.count == 0) continue;
-      rows.push_back(
-          {side, static_cast<int>(k), static_cast<double>(b.count) / static_cast<double>(rays), b.theta_o()});
+      rows.push_back({side, k, static_cast<double>(b.count) / static_cast<double>(rays), b.theta_o()});
       spread = std::max(spread, b.spread());
     }
   }

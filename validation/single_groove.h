@@ -30,7 +30,8 @@ nlohmann::json rows_json(const std::vector<BounceRow>& rows);
 
 // The model (Eq. 4-6 symmetric, Eq. 7-9 nonsymmetric) for the beam from theta_i (radians). G is
 // normalized by each facet's projected width f_a; the beam entering the opening is as wide as the
-// two facets' unshadowed parts together, sum of f_a (1 - shadow). Zones that share a bounce count
+// zones of the two facets together, sum of f_a G (entering_width), so the fractions sum to 1 for
+// every accepted input. Zones that share a bounce count
 // (k_b - 1 = 1 when k_b = 2) are one row; rows with G = 0 are left out.
 struct ModelFacet {
   bool lit = false;

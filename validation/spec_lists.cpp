@@ -8,14 +8,14 @@ namespace vgroove::validation {
 std::vector<std::string> read_names(support::JsonObject& o, const std::string& key,
                                     const std::vector<std::string>& allowed) {
   const nlohmann::json& v = o.raw(key);
-  if (!v.is_array() || v.empty()) o.fail(key, "= " + v.dump() + " must be a non-empty list");
+  if (!v.is_array() || v.empty()) o.fail(key, "= " + support::value_text(v) + " must be a non-empty list");
   std::vector<std::string> out;
   for (std::size_t n = 0; n < v.size(); ++n) {
     const std::string where = o.path(key) + "/" + std::to_string(n);
     std::string list;
     for (const auto& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";
     if (!v[n].is_string() || std::find(allowed.begin(), allowed.end(), v[n].get<std::string>()) == allowed.end())
-      throw support::UserError(o.file() + ": " + where + " = " + v[n].dump() + " is not one of " + list);
+      throw support::UserError(o.file() + ": " + where + " = " + support::value_text(v[n]) + " is not one of " + list);
     out.push_back(v[n].get<std::string>());
   }
   return out;
@@ -24,12 +24,12 @@ std::vector<std::string> read_names(support::JsonObject& o, const std::string& k
 std::vector<double> read_numbers(support::JsonObject& o, const std::string& key, double lo, bool lo_closed, double hi,
                                  bool hi_closed) {
   const nlohmann::json& v = o.raw(key);
-  if (!v.is_array() || v.empty()) o.fail(key, "= " + v.dump() + " must be a non-empty list of numbers");
+  if (!v.is_array() || v.empty()) o.fail(key, "= " + support::value_text(v) + " must be a non-empty list of numbers");
   std::vector<double> out;
   for (std::size_t n = 0; n < v.size(); ++n) {
     const std::string where = o.path(key) + "/" + std::to_string(n);
     if (!v[n].is_number())
-      throw support::UserError(o.file() + ": " + where + " = " + v[n].dump() + " must be a number");
+      throw support::UserError(o.file() + ": " + where + " = " + support::value_text(v[n]) + " must be a number");
     const double x = v[n].get<double>();
     const bool ok = std::isfinite(x) && (lo_closed ? x >= lo : x > lo) && (hi_closed ? x <= hi : x < hi);
     if (!ok)

@@ -4,6 +4,7 @@
 
 #include "vgroove/analytic/ndf.h"
 #include "vgroove/support/json_reader.h"
+#include "vgroove/validation/ranges.h"
 
 #include <string>
 #include <vector>
@@ -18,9 +19,5 @@ std::vector<double> read_numbers(support::JsonObject& o, const std::string& key,
                                  bool hi_closed);
 // "ndf": a non-empty list of "ggx", "beckmann", "phong".
 std::vector<analytic::NdfKind> read_ndfs(support::JsonObject& o);
-
-// The most rays a case may ask for, and the roughest surface (the hard cases reach alpha = 2).
-inline constexpr long kMaxRays = 1'000'000'000;
-inline constexpr double kMaxAlpha = 2.0;
 
 }  // namespace vgroove::validation

@@ -12,7 +12,6 @@ namespace vgroove::validation {
 
 namespace {
 
-constexpr long kMaxRays = 1'000'000'000;
 constexpr std::size_t kMaxValues = 1'000'000;
 
 // A list of degrees, or {"from", "to", "step"} (inclusive of "to" when the steps land on it).
@@ -31,13 +30,14 @@ std::vector<double> read_degrees(support::JsonObject& o, const std::string& key,
     for (std::size_t n = 0; n < v.size(); ++n) {
       const std::string where = o.path(key) + "/" + std::to_string(n);
       if (!v[n].is_number())
-        throw support::UserError(o.file() + ": " + where + " = " + v[n].dump() + " must be a number");
+        throw support::UserError(o.file() + ": " + where + " = " + support::value_text(v[n]) + " must be a number");
       check(v[n].get<double>(), where);
       out.push_back(v[n].get<double>());
     }
     return out;
   }
-  if (!v.is_object()) o.fail(key, "= " + v.dump() + " must be a list of numbers or {\"from\", \"to\", \"step\"}");
+  if (!v.is_object())
+    o.fail(key, "= " + support::value_text(v) + " must be a list of numbers or {\"from\", \"to\", \"step\"}");
   support::JsonObject r(v, o.file(), o.path(key));
   const double inf = std::numeric_limits<double>::infinity();
   const double from = r.number("from", -inf, false, inf, false);
@@ -88,28 +88,39 @@ std::vector<GrooveParams> read_grooves(support::JsonObject& groove) {
 
 }  // namespace
 
-void check_theta_v(double deg, const std::string& what) {
-  if (!(std::isfinite(deg) && deg >= kMinApertureDeg && deg <= 180.0))
-    throw support::UserError(what + " = " + support::number_text(deg) + " is out of range [" +
-                             support::number_text(kMinApertureDeg) +
-                             ", 180] (below 1e-06 deg a groove needs over 1.8e8 reflections)");
+int default_max_bounces(double theta_v) {
+  const double bound = std::ceil(std::numbers::pi / theta_v) + 1.0;
+  return bound > kDefaultMaxBounces ? static_cast<int>(std::min<double>(bound, kMaxBounces)) : kDefaultMaxBounces;
 }
 
+void check_theta_v(double deg, const std::string& what) {
+  if (!(std::isfinite(deg) && deg >= kMinApertureDeg && deg <= 180.0))
+    throw support::UserError(
+        what + " = " + support::number_text(deg) + " is out of range [" + support::number_text(kMinApertureDeg) +
+        ", 180]" +
+        (deg < kMinApertureDeg
+             ? " (below " + support::number_text(kMinApertureDeg) +
+                   " deg the tracer's rounding moves the bounce counts' boundaries: it and the model disagree)"
+             : std::string()));
+}
+
+std::string theta_i_range_text() { return support::interval_text(-kMaxThetaIDeg, true, kMaxThetaIDeg, true); }
+
 void check_theta_i(double deg, const std::string& what) {
-  if (!(std::isfinite(deg) && deg > -90.0 && deg < 90.0))
-    throw support::UserError(what + " = " + support::number_text(deg) + " is out of range (-90, 90)");
+  if (!(std::isfinite(deg) && deg >= -kMaxThetaIDeg && deg <= kMaxThetaIDeg))
+    throw support::UserError(what + " = " + support::number_text(deg) + " is out of range " + theta_i_range_text());
 }
 
 void check_theta_l(double deg, const std::string& what) {
   if (!(std::isfinite(deg) && deg >= -90.0 && deg <= 0.0))
-    throw support::UserError(what + " = " + support::number_text(deg) +
-                             " is out of range [-90, 0] (the left facet's normal leans right: theta_l <= 0)");
+    throw support::UserError(what + " = " + support::number_text(deg) + " is out of range [-90, 0]" +
+                             (deg > 0.0 ? " (the left facet's normal leans right: theta_l <= 0)" : ""));
 }
 
 void check_theta_r(double deg, const std::string& what) {
   if (!(std::isfinite(deg) && deg >= 0.0 && deg <= 90.0))
-    throw support::UserError(what + " = " + support::number_text(deg) +
-                             " is out of range [0, 90] (the right facet's normal leans left: theta_r >= 0)");
+    throw support::UserError(what + " = " + support::number_text(deg) + " is out of range [0, 90]" +
+                             (deg < 0.0 ? " (the right facet's normal leans left: theta_r >= 0)" : ""));
 }
 
 Suite parse_suite(const nlohmann::json& j, const std::string& file) {
@@ -123,7 +134,8 @@ Suite parse_suite(const nlohmann::json& j, const std::string& file) {
     support::JsonObject groove = root.object("groove");
     s.grooves = read_grooves(groove);
     groove.finish();
-    for (double d : read_degrees(root, "theta_i_deg", -90.0, false, 90.0, false)) s.theta_i.push_back(d * kRadPerDeg);
+    for (double d : read_degrees(root, "theta_i_deg", -kMaxThetaIDeg, true, kMaxThetaIDeg, true))
+      s.theta_i.push_back(d * kRadPerDeg);
   }
   if (root.has("cases")) {
     const nlohmann::json& list = root.raw("cases");
@@ -140,7 +152,7 @@ Suite parse_suite(const nlohmann::json& j, const std::string& file) {
         check_aperture(l, r, file + ": " + c.pointer());
         sc.groove = GrooveParams::make_nonsymmetric(l * kRadPerDeg, r * kRadPerDeg);
       }
-      sc.theta_i = c.number("theta_i_deg", -90.0, false, 90.0, false) * kRadPerDeg;
+      sc.theta_i = c.number("theta_i_deg", -kMaxThetaIDeg, true, kMaxThetaIDeg, true) * kRadPerDeg;
       c.string_or("note", "");
       c.finish();
       s.listed.push_back(sc);
@@ -154,7 +166,13 @@ Suite parse_suite(const nlohmann::json& j, const std::string& file) {
                        : sampling == "breakpoints" ? sim::Sampling::breakpoints
                                                    : sim::Sampling::stratified;
   s.options.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
-  s.options.max_bounces = static_cast<int>(root.integer_or("max_bounces", 100000, 1, 100'000'000));
+  // By default every ray of every groove of the suite may leave (default_max_bounces).
+  int max_bounces = kDefaultMaxBounces;
+  for (std::size_t c = 0; c < s.grooves.size() + s.listed.size(); ++c) {
+    const GrooveParams& g = c < s.grooves.size() ? s.grooves[c] : s.listed[c - s.grooves.size()].groove;
+    if (!g.degenerate()) max_bounces = std::max(max_bounces, default_max_bounces(g.theta_v));
+  }
+  s.options.max_bounces = static_cast<int>(root.integer_or("max_bounces", max_bounces, 1, kMaxBounces));
   s.options.probe_vertices = root.boolean_or("probe_vertices", false);
   const std::string corrected = "corrected";
   s.options.form = root.one_of("eq6_form", {"corrected", "printed"}, &corrected) == "printed"
@@ -207,7 +225,7 @@ SuiteSet parse_suite_set(const nlohmann::json& j, const std::string& file) {
   const std::filesystem::path dir = std::filesystem::path(file).parent_path();
   for (std::size_t n = 0; n < list.size(); ++n) {
     if (!list[n].is_string())
-      throw support::UserError(file + ": /suites/" + std::to_string(n) + " = " + list[n].dump() +
+      throw support::UserError(file + ": /suites/" + std::to_string(n) + " = " + support::value_text(list[n]) +
                                " must be a file name");
     const std::string sub = (dir / list[n].get<std::string>()).string();
     set.suites.push_back(load_suite(sub));

@@ -5,6 +5,7 @@
 
 #include "vgroove/analytic/kaleidoscope_nonsymmetric.h"
 #include "vgroove/sim/beam.h"
+#include "vgroove/validation/ranges.h"
 
 #include <nlohmann/json.hpp>
 
@@ -100,14 +101,17 @@ SuiteSet load_suite_set(const std::string& file);
 Suite parse_suite(const nlohmann::json& j, const std::string& file);
 SuiteSet parse_suite_set(const nlohmann::json& j, const std::string& file);
 
-// The narrowest aperture accepted (degrees): pi / theta_v reflections, about 1.8e8 here, must
-// stay far inside int, and the tracer takes about a second per ray at that depth.
-inline constexpr double kMinApertureDeg = 1e-6;
+// The bounce limit a groove of aperture theta_v (radians) gets by default: kDefaultMaxBounces, or
+// more when a narrower groove needs it: a ray in a wedge of aperture theta_v makes at most
+// ceil(pi / theta_v) reflections, so with this limit every ray that can leave does.
+int default_max_bounces(double theta_v);
 
 // Range checks shared by the JSON and the command line (degrees in, UserError naming `what`).
 void check_theta_v(double theta_v_deg, const std::string& what);
 void check_theta_i(double theta_i_deg, const std::string& what);
 void check_theta_l(double theta_l_deg, const std::string& what);
 void check_theta_r(double theta_r_deg, const std::string& what);
+// "[-89.999, 89.999]": the incident angles check_theta_i accepts.
+std::string theta_i_range_text();
 
 }  // namespace vgroove::validation

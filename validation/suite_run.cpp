@@ -4,9 +4,28 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <numbers>
 
 namespace vgroove::validation {
+
+double run_memory_bytes(const Suite& suite, const CaseOptions& options, int threads, bool report) {
+  constexpr double kReportBytesPerCase = 4096;  // measured: 2.5 kB (Table 1's nonsymmetric report)
+  constexpr double kTableEntryBytes = 64;       // a BeamTracer reflection, rounded up
+  const double cases = static_cast<double>(suite.cases());
+  const double workers = std::min(static_cast<double>(support::resolve_threads(threads)), std::ceil(cases / 16.0));
+  // A BeamTracer tabulates the reflections a ray can make, at most ceil(pi / theta_v) + 1.
+  double narrowest = std::numbers::pi;
+  for (std::size_t c = 0; c < suite.grooves.size() + suite.listed.size(); ++c) {
+    const GrooveParams& g = c < suite.grooves.size() ? suite.grooves[c] : suite.listed[c - suite.grooves.size()].groove;
+    if (!g.degenerate()) narrowest = std::min(narrowest, g.theta_v);
+  }
+  const double entries = std::min({std::ceil(std::numbers::pi / narrowest) + 1.0, double{sim::BeamTracer::kMaxTable},
+                                   static_cast<double>(options.max_bounces)});
+  const double tables = 2.0 * entries * kTableEntryBytes;
+  // Every case's outcome is held twice while the parts are merged, then once in the run.
+  return cases * (3.0 * sizeof(CaseOutcome) + (report ? kReportBytesPerCase : 0.0)) + workers * tables;
+}
 
 namespace {
 void summarize(const Suite& suite, SuiteRun& run);
@@ -18,7 +37,7 @@ GrooveCaseTally GrooveCaseWork::run_chunks(const Context&, std::size_t unit, std
       static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), unit) - first.begin()) - 1;
   const std::size_t c = unit - first[n];
   const SuiteCase sc = suites[n].case_at(c);
-  GrooveCaseTally t{run_case(sc.groove, sc.theta_i, options[n], c)};
+  GrooveCaseTally t{run_case(sc.groove, sc.theta_i, options[n], c, cancel)};
   t.thread_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return t;
 }
@@ -122,7 +141,8 @@ std::vector<SuiteRun> suite_runs_from(const GrooveCaseWork& work,
 SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads, const support::ProgressFn& progress,
                    const std::atomic<bool>* cancel) {
   const auto t0 = std::chrono::steady_clock::now();
-  const Job<GrooveCaseWork> job = groove_cases_job({suite}, {options}, {});
+  Job<GrooveCaseWork> job = groove_cases_job({suite}, {options}, {});
+  job.work.cancel = cancel;
   const auto results = run_job(job, threads, progress, cancel);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!results) {

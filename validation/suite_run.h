@@ -50,6 +50,10 @@ struct SuiteRun {
   bool interrupted = false;  // cancelled before every case ran: the summary is not meaningful
 };
 
+// An upper bound of the memory run_suite needs (support/memory.h): every case's outcome, each
+// worker's tables, and with `report` the report's JSON (document and text, ~4 kB per case).
+double run_memory_bytes(const Suite& suite, const CaseOptions& options, int threads, bool report);
+
 // `cancel` (may be null) is polled between chunks of cases: set it from a signal handler to stop.
 SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads,
                    const support::ProgressFn& progress = {}, const std::atomic<bool>* cancel = nullptr);
@@ -66,8 +70,9 @@ struct GrooveCaseWork {
   struct Fixed {};
   using Tally = GrooveCaseTally;
   std::vector<Suite> suites;
-  std::vector<CaseOptions> options;  // per suite
-  std::vector<std::size_t> first;    // the first unit of each suite
+  std::vector<CaseOptions> options;           // per suite
+  std::vector<std::size_t> first;             // the first unit of each suite
+  const std::atomic<bool>* cancel = nullptr;  // polled between a case's rays
   std::shared_ptr<const Context> prepare(std::size_t) const { return std::make_shared<Context>(); }
   Tally run_chunks(const Context&, std::size_t unit, std::int64_t begin, std::int64_t end) const;
   Fixed run_fixed(std::size_t) const { return {}; }

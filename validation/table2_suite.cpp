@@ -1,4 +1,5 @@
 #include "vgroove/validation/table2_suite.h"
+#include "vgroove/support/printable.h"
 
 #include "vgroove/analytic/bounce_percentiles.h"
 #include "vgroove/common/angles.h"
@@ -60,11 +61,11 @@ Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file)
   s.description = root.string_or("description", "");
   root.one_of("kind", {"table2"});
   s.ndfs = read_ndfs(root);
-  s.alphas = read_numbers(root, "alpha", 0.0, false, kMaxAlpha, true);
+  s.alphas = read_numbers(root, "alpha", kMinAlpha, true, kMaxAlpha, true);
   for (double p : read_numbers(root, "percentiles", 0.0, false, 100.0, false)) s.percentiles.push_back(p / 100.0);
   s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
-  s.grooves = static_cast<int>(root.integer("grooves", 1, 10'000'000));
-  s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
+  s.grooves = static_cast<int>(root.integer("grooves", 1, kMaxGrooves));
+  s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, kMaxSeed));
   support::JsonObject paper = root.object("paper");
   s.source = paper.string("source");
   const nlohmann::json& rows = paper.raw("max_bounces");
@@ -79,13 +80,25 @@ Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file)
     for (std::size_t n = 0; n < per_row; ++n) {
       if (!rows[r][n].is_number_integer() || rows[r][n].get<long long>() < 1 || rows[r][n].get<long long>() > 1000000)
         throw support::UserError(file + ": " + paper.path("max_bounces") + "/" + std::to_string(r) + "/" +
-                                 std::to_string(n) + " = " + rows[r][n].dump() + " must be an integer in [1, 1000000]");
+                                 std::to_string(n) + " = " + support::value_text(rows[r][n]) +
+                                 " must be an integer in [1, 1000000]");
       s.paper.push_back(rows[r][n].get<int>());
     }
   }
   paper.finish();
   root.finish();
   return s;
+}
+
+double table2_run_memory_bytes(const Table2Suite& s, int threads) {
+  const double surfaces = static_cast<double>(s.ndfs.size() * s.alphas.size());
+  const double workers = std::min<double>(support::resolve_threads(threads), surfaces);
+  const double groove = sizeof(sim::Groove) + 8.0 + 8.0 + sizeof(sim::GrooveFrame3d);
+  const double entries = static_cast<double>(s.percentiles.size()) * surfaces;
+  // Per worker a surface and an item's counts; per surface its merged counts (held twice while
+  // merged); per table entry its figures.
+  return workers * (s.grooves * groove + 1002.0 * 8.0) + 2.0 * surfaces * 1002.0 * 8.0 +
+         entries * (4.0 * sizeof(int) + 1024.0);
 }
 
 std::shared_ptr<const Table2Work::Context> Table2Work::prepare(std::size_t unit) const {
@@ -106,7 +119,7 @@ sim::BounceCounts Table2Work::run_chunks(const Context& ctx, std::size_t, std::i
   to.phi_bins = 2;
   to.max_k = kTable2MaxK;
   sim::BounceCounts out(kTable2MaxK);
-  for (std::int64_t c = begin; c < end; ++c) {
+  for (std::int64_t c = begin; c < end && !support::cancelled(cancel); ++c) {
     const sim::Microsurface3dTally t = sim::trace_microsurface3d_chunk(ctx.surface, to, c);
     out.merge_fates(t);
     for (std::size_t k = 0; k < out.by_k.size(); ++k) out.by_k[k] += t.by_k[k];
@@ -139,7 +152,8 @@ Job<Table2Work> table2_job(const Table2Suite& s, long rays, nlohmann::json descr
   return make_job(Table2Work{s, n_rays}, std::move(units), std::move(descriptor));
 }
 
-Table2Run table2_run_from(const Table2Suite& s, const std::vector<UnitResult<Table2Work>>& results) {
+Table2Run table2_run_from(const Table2Suite& s, const std::vector<UnitResult<Table2Work>>& results,
+                          const std::atomic<bool>* cancel) {
   Table2Run run;
   const std::size_t na = s.alphas.size(), nn = s.ndfs.size(), nq = s.percentiles.size();
   auto at = [&](std::size_t q, std::size_t n, std::size_t a) { return (q * nn + n) * na + a; };
@@ -149,6 +163,10 @@ Table2Run table2_run_from(const Table2Suite& s, const std::vector<UnitResult<Tab
   for (std::size_t q = 0; q < nq; ++q)
     for (std::size_t n = 0; n < nn; ++n)
       for (std::size_t a = 0; a < na; ++a) {
+        if (support::cancelled(cancel)) {
+          run.interrupted = true;
+          return run;
+        }
         run.ours[at(q, n, a)] = analytic::max_bounces_at_percentile(s.ndfs[n], s.alphas[a], s.percentiles[q],
                                                                     analytic::PercentileMeasure::projected_area);
         for (std::size_t m = 0; m < std::size(kOtherMeasures); ++m)
@@ -163,11 +181,13 @@ Table2Run table2_run_from(const Table2Suite& s, const std::vector<UnitResult<Tab
 
 Table2Run run_table2_suite(const Table2Suite& s, long rays, int threads, const std::atomic<bool>* cancel) {
   const auto t0 = Clock::now();
-  const auto results = run_job(table2_job(s, rays, {}), threads, {}, cancel);
+  auto job = table2_job(s, rays, {});
+  job.work.cancel = cancel;
+  const auto results = run_job(job, threads, {}, cancel);
   Table2Run run;
-  if (results) run = table2_run_from(s, *results);
+  if (results) run = table2_run_from(s, *results, cancel);
   run.threads = support::resolve_threads(threads);
-  run.interrupted = !results;
+  run.interrupted = run.interrupted || !results;
   run.wall_s = seconds_since(t0);
   return run;
 }
@@ -217,7 +237,8 @@ nlohmann::json table2_report_json(const Table2Suite& s, const Table2Run& run) {
 void print_table2(std::ostream& os, const Table2Suite& s, const Table2Run& run) {
   char line[256];
   std::snprintf(line, sizeof line, "%s: maximum bounces at percentiles of D (%s), vgroove %s (git %s)\n",
-                s.name.c_str(), s.source.c_str(), version_string(), git_revision());
+                support::printable(s.name).c_str(), support::printable(s.source).c_str(), version_string(),
+                git_revision());
   os << line;
   os << "  cell: paper / ours (projected-area percentile, Eq. 4 at theta_i = 0) / traced percentile of k\n";
   std::string head = "  perc.  ";

@@ -41,6 +41,8 @@ struct Table2Run {
   bool pass = false;  // all entries agree
 };
 Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file);
+// An upper bound of the memory run_table2_suite needs (support/memory.h): a 3D surface per worker.
+double table2_run_memory_bytes(const Table2Suite& suite, int threads);
 Table2Run run_table2_suite(const Table2Suite& suite, long rays, int threads, const std::atomic<bool>* cancel = nullptr);
 
 // The traced column as work items (work_run.h): a unit per (ndf, alpha) surface (ndf outer), its
@@ -54,6 +56,7 @@ struct Table2Work {
   using Tally = sim::BounceCounts;
   Table2Suite suite;
   long rays = 0;
+  const std::atomic<bool>* cancel = nullptr;  // polled between chunks
   std::shared_ptr<const Context> prepare(std::size_t unit) const;
   Tally run_chunks(const Context& ctx, std::size_t unit, std::int64_t begin, std::int64_t end) const;
   Fixed run_fixed(std::size_t) const { return {}; }
@@ -66,7 +69,9 @@ struct Table2Work {
 // rays > 0 overrides the suite's.
 Job<Table2Work> table2_job(const Table2Suite& suite, long rays, nlohmann::json descriptor);
 // The table (the rule under each reading, and the traced percentiles from the merged counts).
-Table2Run table2_run_from(const Table2Suite& suite, const std::vector<UnitResult<Table2Work>>& results);
+// `cancel` (may be null) is read between the model's entries; once set the run is interrupted.
+Table2Run table2_run_from(const Table2Suite& suite, const std::vector<UnitResult<Table2Work>>& results,
+                          const std::atomic<bool>* cancel = nullptr);
 nlohmann::json table2_report_json(const Table2Suite& suite, const Table2Run& run);
 void print_table2(std::ostream& os, const Table2Suite& suite, const Table2Run& run);
 

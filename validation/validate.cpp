@@ -1,6 +1,7 @@
 #include "vgroove/validation/validate.h"
 
 #include "vgroove/support/json_reader.h"
+#include "vgroove/support/memory.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/suite_run.h"
@@ -28,7 +29,10 @@ ValidationPlan plan_validation(const ValidateOptions& a) {
   check_threads(a.threads, a.names.threads);
   ValidationPlan plan;
   plan.threads = a.threads;
-  if (const nlohmann::json j = support::read_json_file(a.suite); is_microsurface_suite(j)) {
+  plan.inputs = {a.suite};
+  // Read once: the suite may come from a pipe.
+  const nlohmann::json j = support::read_json_file(a.suite);
+  if (is_microsurface_suite(j)) {
     const std::string kind = j["kind"].get<std::string>();
     if (a.sampling)
       throw support::UserError(a.names.sampling + " applies to single-groove suites; " + a.suite + " (kind " + kind +
@@ -69,6 +73,8 @@ ValidationPlan plan_validation(const ValidateOptions& a) {
       plan.kind = ValidationPlan::Kind::table2;
       plan.table2 = parse_table2_suite(j, a.suite);
       if (a.seed) plan.table2.seed = static_cast<std::uint64_t>(*a.seed);
+      support::check_memory(table2_run_memory_bytes(plan.table2, a.threads), a.suite + ": the run",
+                            std::to_string(plan.table2.grooves) + " grooves per surface on each thread");
     } else if (a.model_table) {
       plan.kind = ValidationPlan::Kind::model_table;
       plan.brdf = parse_brdf_suite(j, a.suite);
@@ -78,20 +84,34 @@ ValidationPlan plan_validation(const ValidateOptions& a) {
                                  " is of kind " + kind);
       plan.table = std::make_shared<const ModelTable>(
           parse_model_table(support::read_json_file(*a.model_table), *a.model_table, plan.brdf));
+      plan.inputs.push_back(*a.model_table);
     } else {
       plan.kind = ValidationPlan::Kind::brdf;
       plan.brdf = parse_brdf_suite(j, a.suite);
       if (a.seed) plan.brdf.seed = static_cast<std::uint64_t>(*a.seed);
     }
+    if (plan.kind == ValidationPlan::Kind::brdf || plan.kind == ValidationPlan::Kind::model_table)
+      support::check_memory(brdf_run_memory_bytes(plan.brdf, a.threads, true), a.suite + ": the run",
+                            std::to_string(plan.brdf.cases()) + " cases, " + std::to_string(plan.brdf.grooves) +
+                                " grooves per surface on each thread");
     return plan;
   }
   if (a.model_table)
     throw support::UserError(a.names.model_table +
                              " applies to suites of kind \"brdf\" (e.g. data/suites/fig11.json); " + a.suite +
                              " is a single-groove suite");
-  plan.set = load_suite_set(a.suite);
-  for (const Suite& suite : plan.set.suites)
+  plan.set = parse_suite_set(j, a.suite);
+  for (const Suite& suite : plan.set.suites) {
     plan.opts.push_back(options_with_overrides(suite, a.rays, a.sampling, a.eq6_form, a.seed, a.names));
+    plan.inputs.push_back(suite.file);
+  }
+  double memory = 0.0;
+  std::size_t cases = 0;
+  for (std::size_t n = 0; n < plan.set.suites.size(); ++n) {
+    memory += run_memory_bytes(plan.set.suites[n], plan.opts[n], a.threads, true);
+    cases += plan.set.suites[n].cases();
+  }
+  support::check_memory(memory, a.suite + ": the run", std::to_string(cases) + " cases");
   return plan;
 }
 

@@ -4,8 +4,9 @@
 // the report JSON and the table the command line prints.
 //
 // Two steps, so that a caller can check everything (and its output target) before the work:
-// plan_validation reads and checks (support::UserError naming the file, JSON path or option),
-// run_validation does the work.
+// plan_validation reads and checks (support::UserError naming the file, JSON path or option; the
+// suite file is read once, so it may be a pipe; a run whose memory estimate exceeds what the
+// process may use is refused, support/memory.h), run_validation does the work.
 #pragma once
 
 #include "vgroove/support/parallel.h"
@@ -64,6 +65,7 @@ struct ValidationPlan {
   std::shared_ptr<const ModelTable> table;  // Kind::model_table (with brdf)
   long rays = 0;                            // rough surfaces: the override, 0 for the suite's
   int threads = 0;
+  std::vector<std::string> inputs;  // the files read (suite, the set's suites, model table): never an output
 };
 
 ValidationPlan plan_validation(const ValidateOptions& opt);

@@ -63,7 +63,7 @@ struct UnitResult {
 // Runs the items `mine` (indices into `items`) on `threads` threads: fixed parts first (the
 // costliest first), then the chunk runs in item order, so that the items of one unit follow each
 // other and its context (prepare) is built once per process while they run. Returns nothing when
-// *cancel was set before every item ran.
+// *cancel was set during the run.
 template <class Work>
 std::optional<PartResults<Work>> run_work_items(const Work& work, const std::vector<support::WorkItem>& items,
                                                 std::vector<std::size_t> mine, int threads,
@@ -120,7 +120,9 @@ std::optional<PartResults<Work>> run_work_items(const Work& work, const std::vec
         if (--pending[it.unit] == 0) contexts.erase(it.unit);  // its last item here: free the context
       },
       progress, cancel, 1);
-  if (!complete) return std::nullopt;
+  // A work item that polls the flag inside its chunks returns early with a partial tally: a run
+  // cancelled at any point is incomplete.
+  if (!complete || support::cancelled(cancel)) return std::nullopt;
   for (auto& [unit, part] : out) std::sort(part.runs.begin(), part.runs.end());
   return out;
 }

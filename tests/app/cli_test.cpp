@@ -45,15 +45,15 @@ void expect_user_error(const CliRun& r, const std::string& option, const std::st
 }
 
 TEST(Cli, ThetaVOutOfRange) {
-  expect_user_error(vgroove("trace --theta-v-deg 195"), "--theta-v-deg", "[1e-06, 180]");
-  expect_user_error(vgroove("trace --theta-v-deg 0"), "--theta-v-deg", "[1e-06, 180]");
-  expect_user_error(vgroove("analytic --theta-v-deg 195"), "--theta-v-deg", "[1e-06, 180]");
+  expect_user_error(vgroove("trace --theta-v-deg 195"), "--theta-v-deg", "[0.001, 180]");
+  expect_user_error(vgroove("trace --theta-v-deg 0"), "--theta-v-deg", "[0.001, 180]");
+  expect_user_error(vgroove("analytic --theta-v-deg 195"), "--theta-v-deg", "[0.001, 180]");
 }
 
 TEST(Cli, ThetaIOutOfRange) {
-  expect_user_error(vgroove("trace --theta-i-deg 90"), "--theta-i-deg", "(-90, 90)");
-  expect_user_error(vgroove("trace --theta-i-deg=-90"), "--theta-i-deg", "(-90, 90)");
-  expect_user_error(vgroove("analytic --theta-i-deg 90"), "--theta-i-deg", "(-90, 90)");
+  expect_user_error(vgroove("trace --theta-i-deg 90"), "--theta-i-deg", "[-89.999, 89.999]");
+  expect_user_error(vgroove("trace --theta-i-deg=-90"), "--theta-i-deg", "[-89.999, 89.999]");
+  expect_user_error(vgroove("analytic --theta-i-deg 90"), "--theta-i-deg", "[-89.999, 89.999]");
 }
 
 TEST(Cli, TooFewRays) {
@@ -168,7 +168,7 @@ TEST(Cli, ValidateSpecErrorIsNamed) {
   const CliRun r = vgroove("validate " + quoted(f));
   EXPECT_EQ(r.status, 2) << r;
   EXPECT_EQ(lines(r.err), 1) << r;
-  EXPECT_CONTAINS(r.err, f + ": /groove/theta_v_deg/0 = 195 is out of range [1e-06, 180]");
+  EXPECT_CONTAINS(r.err, f + ": /groove/theta_v_deg/0 = 195 is out of range [0.001, 180]");
 }
 
 TEST(Cli, ValidateRefusesToOverwriteWithoutForce) {
@@ -295,9 +295,9 @@ TEST(Cli, TraceAt90And30ByHand) {
 // sample
 
 TEST(Cli, SampleRejectsValuesOutOfRange) {
-  expect_user_error(vgroove("sample --alpha 0"), "--alpha", "(0, 2]");
-  expect_user_error(vgroove("sample --alpha 2.5"), "--alpha", "(0, 2]");
-  expect_user_error(vgroove("sample --theta-i-deg 90"), "--theta-i-deg", "[0, 90)");
+  expect_user_error(vgroove("sample --alpha 0"), "--alpha", "[0.01, 2]");
+  expect_user_error(vgroove("sample --alpha 2.5"), "--alpha", "[0.01, 2]");
+  expect_user_error(vgroove("sample --theta-i-deg 90"), "--theta-i-deg", "[0, 89.9]");
   expect_user_error(vgroove("sample --n 0"), "--n", "[1, 1000000000]");
   expect_user_error(vgroove("sample --max-k 0"), "--max-k", "[1, 100000]");
   expect_user_error(vgroove("sample --phi-bins 7"), "--phi-bins", "even");

@@ -99,8 +99,8 @@ TEST(CmdBrdf, BadInput) {
     const char* message;
   } cases[] = {
       {"brdf --theta-i-deg 30", "--theta-o-deg is required"},
-      {"brdf --theta-o-deg 10 --alpha 0", "--alpha = 0 is out of range (0, 2]"},
-      {"brdf --theta-o-deg 10 --alpha 2.5", "--alpha = 2.5 is out of range (0, 2]"},
+      {"brdf --theta-o-deg 10 --alpha 0", "--alpha = 0 is out of range [0.01, 2]"},
+      {"brdf --theta-o-deg 10 --alpha 2.5", "--alpha = 2.5 is out of range [0.01, 2]"},
       {"brdf --theta-o-deg 10 --theta-i-deg 90", "--theta-i-deg = 90 is out of range [0, 90)"},
       {"brdf --theta-o-deg 91", "--theta-o-deg = 91 is out of range [0, 90]"},
       {"brdf --theta-o-deg 10 --phi-o-deg 400", "--phi-o-deg = 400 is out of range [-360, 360]"},

@@ -2,8 +2,12 @@
 // through the same entry points, without libFuzzer: each must end in a result or a UserError
 // (loader), or in exit status 0, 1 or 2 (command line), never in a crash or another exception.
 #include "vgroove/app/cli.h"
+#include "vgroove/scene/scene.h"
+#include "vgroove/support/json_reader.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/brdf_suite.h"
 #include "vgroove/validation/suite.h"
+#include "vgroove/validation/table2_suite.h"
 
 #include <gtest/gtest.h>
 
@@ -35,19 +39,37 @@ std::string read_all(const fs::path& p) {
   return ss.str();
 }
 
-TEST(FuzzCorpus, SuiteLoaderInputsEndInASuiteOrAUserError) {
-  const auto files = corpus("suite_loader_fuzz");
+// Each input through the strict reader and the loader; only UserError may come out.
+template <class Load>
+void replay(const std::string& target, Load&& load) {
+  const auto files = corpus(target);
   for (const auto& f : files) {
-    const nlohmann::json j = nlohmann::json::parse(read_all(f), nullptr, false);
-    if (j.is_discarded()) continue;
     try {
-      (void)parse_suite_set(j, "/nonexistent-fuzz-dir/fuzz.json");
+      load(support::parse_json_text(read_all(f), "fuzz.json"));
     } catch (const support::UserError&) {
     } catch (const std::exception& e) {
       ADD_FAILURE() << f << ": " << e.what();
     }
   }
   SUCCEED() << files.size() << " inputs";
+}
+
+TEST(FuzzCorpus, SuiteLoaderInputsEndInASuiteOrAUserError) {
+  replay("suite_loader_fuzz", [](const nlohmann::json& j) {
+    const std::string kind =
+        j.is_object() && j.contains("kind") && j["kind"].is_string() ? j["kind"].get<std::string>() : std::string();
+    const std::string file = "/nonexistent-fuzz-dir/fuzz.json";
+    if (kind == "brdf" || kind == "furnace")
+      (void)parse_brdf_suite(j, file);
+    else if (kind == "table2")
+      (void)parse_table2_suite(j, file);
+    else
+      (void)parse_suite_set(j, file);
+  });
+}
+
+TEST(FuzzCorpus, SceneLoaderInputsEndInASceneOrAUserError) {
+  replay("scene_loader_fuzz", [](const nlohmann::json& j) { (void)scene::parse_scene(j, "fuzz.json"); });
 }
 
 TEST(FuzzCorpus, CommandLinesEndInADocumentedStatus) {

@@ -227,6 +227,25 @@ TEST(Fresnel, ReflectanceIsAFraction) {
   EXPECT_EQ(fresnel_dielectric(-1e-17, 1.5), 1.0);
 }
 
+// The accepted extremes of a scene's conductor (eta in (0, 1000], kappa in [0, 1000]): every
+// reflectance finite and a fraction. At eta = 1e-300 the squares of the tiny moduli underflow
+// (0/0 gave NaN at normal incidence); the limit n -> 0 is the perfect conductor,
+// |(n - 1)/(n + 1)|^2 -> 1, at normal incidence and, for kappa = 0, at every angle.
+TEST(Fresnel, ExtremeIndicesGiveFiniteFractions) {
+  for (double eta : {1e-300, 1e-200, 1e-160, 1e-12, 1e-3, 1000.0})
+    for (double kappa : {0.0, 1e-300, 1e-160, 1e-3, 1000.0})
+      for (double c : {0.0, 1e-300, 1e-9, 0.5, 1.0 - 1e-16, 1.0}) {
+        const PolarizedReflectance r = fresnel_conductor_polarized(c, eta, kappa);
+        EXPECT_TRUE(std::isfinite(r.s) && std::isfinite(r.p)) << "eta=" << eta << " kappa=" << kappa << " cos=" << c;
+        EXPECT_GE(r.s, 0.0);
+        EXPECT_LE(r.s, 1.0 + 1e-15) << "eta=" << eta << " kappa=" << kappa << " cos=" << c;
+        EXPECT_GE(r.p, 0.0);
+        EXPECT_LE(r.p, 1.0 + 1e-15) << "eta=" << eta << " kappa=" << kappa << " cos=" << c;
+      }
+  for (double c : {0.0, 0.3, 1.0}) EXPECT_NEAR(fresnel_conductor(c, 1e-300, 0.0), 1.0, 1e-15) << "cos=" << c;
+  EXPECT_NEAR(fresnel_conductor(1.0, 1e-3, 0.0), fresnel_normal_incidence(1e-3, 0.0), 1e-15);
+}
+
 TEST(Fresnel, SchlickIsExactAtNormalIncidence) {
   for (double eta : kEtas)
     for (double kappa : kKappas) {

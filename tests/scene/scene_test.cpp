@@ -112,7 +112,7 @@ TEST(SceneSpec, WrongType) {
   j = base_scene();
   j["light"]["theta_i_deg"] = 30;
   EXPECT_EQ(error_of(j),
-            "s.json: /light/theta_i_deg = 30 must be a list of incident angles in degrees, each in (-90, 90)");
+            "s.json: /light/theta_i_deg = 30 must be a list of incident angles in degrees, each in [-89.999, 89.999]");
   j["light"]["theta_i_deg"] = json::parse(R"([0, "45"])");
   EXPECT_EQ(error_of(j), "s.json: /light/theta_i_deg/1 = \"45\" must be a number");
   j = base_scene();
@@ -129,10 +129,10 @@ TEST(SceneSpec, WrongType) {
 TEST(SceneSpec, OutOfRange) {
   json j = base_scene();
   j["geometry"]["theta_v_deg"] = 195;
-  EXPECT_EQ(error_of(j), "s.json: /geometry/theta_v_deg = 195 is out of range [1e-06, 180]");
+  EXPECT_EQ(error_of(j), "s.json: /geometry/theta_v_deg = 195 is out of range [0.001, 180]");
   j = base_scene();
   j["light"]["theta_i_deg"] = {0, 90};
-  EXPECT_EQ(error_of(j), "s.json: /light/theta_i_deg/1 = 90 is out of range (-90, 90)");
+  EXPECT_EQ(error_of(j), "s.json: /light/theta_i_deg/1 = 90 is out of range [-89.999, 89.999]");
   j = base_scene();
   j["light"]["rays"] = 0;
   EXPECT_EQ(error_of(j), "s.json: /light/rays = 0 is out of range [1, 1000000000]");
@@ -165,7 +165,7 @@ TEST(SceneSpec, OutOfRange) {
   j["geometry"] = json::parse(R"({"kind": "groove", "theta_l_deg": -90, "theta_r_deg": 90})");
   EXPECT_EQ(error_of(j),
             "s.json: /geometry: theta_l_deg = -90, theta_r_deg = 90 give the aperture 180 + theta_l - "
-            "theta_r = 0 deg, out of range [1e-06, 180]");
+            "theta_r = 0 deg, out of range [0.001, 180]");
 }
 
 TEST(SceneSpec, NotOneOfTheChoices) {
@@ -206,7 +206,7 @@ TEST(SceneSpec, EmptyList) {
   j["light"]["theta_i_deg"] = json::array();
   EXPECT_EQ(error_of(j),
             "s.json: /light/theta_i_deg is an empty list (it needs at least one of incident angles in degrees, each in "
-            "(-90, 90))");
+            "[-89.999, 89.999])");
   j = base_scene();
   j["effects"]["fresnel"]["channels"] = json::array();
   EXPECT_EQ(

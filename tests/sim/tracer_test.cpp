@@ -51,9 +51,9 @@ void expect_conserved(const Tally& t, long n, const std::string& where) {
   EXPECT_EQ(t.escaped + t.blocked + t.vertex_hits + t.bounce_limit, t.rays) << where;
   std::int64_t in_bins = 0, bounces = 0;
   for (const auto& side : t.bins)
-    for (std::size_t k = 0; k < side.size(); ++k) {
-      in_bins += side[k].count;
-      bounces += static_cast<std::int64_t>(k) * side[k].count;
+    for (const auto& [k, b] : side) {
+      in_bins += b.count;
+      bounces += static_cast<std::int64_t>(k) * b.count;
     }
   EXPECT_EQ(in_bins, t.escaped) << where;
   EXPECT_EQ(bounces, t.bounces) << where;
@@ -143,7 +143,7 @@ TEST(TracerHandCases, RightAngleGrooveAt30DegreesBouncesOnceForTan30OfTheBeam) {
   EXPECT_NEAR(t.bins[0][2].theta_o(), deg(30), 1e-12);
   EXPECT_NEAR(t.bins[1][2].theta_o(), deg(30), 1e-12);
   for (const auto& side : t.bins)
-    for (const BounceBin& b : side) EXPECT_LT(b.spread(), 1e-12);
+    for (const auto& e : side) EXPECT_LT(e.bin.spread(), 1e-12);
 }
 
 class FlatGroove : public testing::TestWithParam<double> {};

@@ -7,7 +7,12 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <filesystem>
 #include <string>
+#include <thread>
 
 namespace vgroove::support {
 namespace {
@@ -16,9 +21,28 @@ using testing_files::read_text;
 using testing_files::TempDir;
 using testing_files::write_text;
 
-// No "<name>.tmp.<pid>" file may survive a write, successful or not.
+// No "<name>.vgroove-tmp.<pid>" file may survive a write, successful or not.
 void expect_no_temporaries(const TempDir& dir) {
-  for (const std::string& e : dir.entries()) EXPECT_EQ(e.find(".tmp."), std::string::npos) << "left behind: " << e;
+  for (const std::string& e : dir.entries())
+    EXPECT_EQ(e.find("vgroove-tmp"), std::string::npos) << "left behind: " << e;
+}
+
+template <class F>
+std::string user_error_of(F&& f) {
+  try {
+    f();
+  } catch (const UserError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no UserError thrown";
+  return "";
+}
+
+#define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << "in: " << (text)
+
+mode_t type_of(const std::string& p) {
+  struct stat s {};
+  return ::lstat(p.c_str(), &s) == 0 ? (s.st_mode & S_IFMT) : 0;
 }
 
 TEST(AtomicFile, WritesANewFile) {
@@ -70,15 +94,112 @@ TEST(AtomicFile, MissingDirectoryIsNamed) {
   EXPECT_TRUE(dir.entries().empty());
 }
 
-TEST(AtomicFile, FailedRenameLeavesNoTemporary) {
-  // The target is a non-empty directory: with overwrite the rename must fail, and clean up.
+TEST(AtomicFile, DirectoriesAreRefusedAndLeftAlone) {
   TempDir dir;
   const std::string f = dir.file("taken");
   std::filesystem::create_directory(f);
   write_text(f + "/inside", "x");
-  EXPECT_THROW(write_file_atomically(f, "text", true), UserError);
+  EXPECT_CONTAINS(user_error_of([&] { write_file_atomically(f, "text", true); }), "is a directory");
   expect_no_temporaries(dir);
   EXPECT_EQ(read_text(f + "/inside"), "x");
+}
+
+TEST(AtomicFile, CharacterDevicesAreWrittenThrough) {
+  // /dev/null: written, never replaced (with or without overwrite: nothing is lost).
+  EXPECT_NO_THROW(check_writable_target("/dev/null", false));
+  EXPECT_NO_THROW(write_file_atomically("/dev/null", "text", false));
+  EXPECT_EQ(type_of("/dev/null"), static_cast<mode_t>(S_IFCHR));
+  // /dev/full: the write error is reported.
+  EXPECT_CONTAINS(user_error_of([] { write_file_atomically("/dev/full", std::string(100000, 'x'), true); }),
+                  "/dev/full: writing failed (No space left on device)");
+  EXPECT_EQ(type_of("/dev/full"), static_cast<mode_t>(S_IFCHR));
+}
+
+TEST(AtomicFile, FifosAreWrittenThrough) {
+  TempDir dir;
+  const std::string f = dir.file("fifo");
+  ASSERT_EQ(::mkfifo(f.c_str(), 0600), 0);
+  std::string got;
+  std::thread reader([&] { got = read_text(f); });
+  write_file_atomically(f, "through the pipe", false);
+  reader.join();
+  EXPECT_EQ(got, "through the pipe");
+  EXPECT_EQ(type_of(f), static_cast<mode_t>(S_IFIFO));
+}
+
+TEST(AtomicFile, SymbolicLinksAreFollowed) {
+  TempDir dir;
+  const std::string target = dir.file("target.json"), link = dir.file("link.json");
+  write_text(target, "old");
+  std::filesystem::create_symlink(target, link);
+  EXPECT_CONTAINS(user_error_of([&] { write_file_atomically(link, "new", false); }), "--force");
+  write_file_atomically(link, "new", true);
+  EXPECT_EQ(type_of(link), static_cast<mode_t>(S_IFLNK));
+  EXPECT_EQ(read_text(target), "new");
+  // A relative link, resolved from its own directory.
+  const std::string rel = dir.file("rel.json");
+  std::filesystem::create_symlink("target.json", rel);
+  write_file_atomically(rel, "newer", true);
+  EXPECT_EQ(read_text(target), "newer");
+  EXPECT_EQ(type_of(rel), static_cast<mode_t>(S_IFLNK));
+  expect_no_temporaries(dir);
+}
+
+TEST(AtomicFile, DanglingLinksAreRefused) {
+  TempDir dir;
+  const std::string link = dir.file("link.json"), nowhere = dir.file("nowhere.json");
+  std::filesystem::create_symlink(nowhere, link);
+  for (bool overwrite : {false, true})
+    EXPECT_CONTAINS(user_error_of([&] { write_file_atomically(link, "x", overwrite); }),
+                    "is a symbolic link to " + nowhere + ", which does not exist");
+  EXPECT_FALSE(std::filesystem::exists(nowhere));
+  EXPECT_EQ(type_of(link), static_cast<mode_t>(S_IFLNK));
+}
+
+TEST(AtomicFile, InputsAreNotOverwritten) {
+  TempDir dir;
+  const std::string in = dir.file("suite.json"), link = dir.file("alias.json");
+  write_text(in, "spec");
+  std::filesystem::create_symlink(in, link);
+  for (const std::string& out : {in, link})
+    EXPECT_CONTAINS(user_error_of([&] { check_writable_target(out, true, {in}); }), "is the input file");
+  EXPECT_NO_THROW(check_writable_target(dir.file("other.json"), true, {in}));
+}
+
+TEST(AtomicFile, UncreatableTargetsAreFoundByTheCheck) {
+  EXPECT_CONTAINS(user_error_of([] { check_writable_target("/proc/vgroove-probe.json", true); }),
+                  "cannot create a file in the directory /proc");
+  expect_no_temporaries(TempDir{});
+}
+
+TEST(AtomicFile, ReplacedFilesKeepTheirPermissions) {
+  TempDir dir;
+  const std::string f = dir.file("private.json");
+  write_text(f, "old");
+  std::filesystem::permissions(f, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
+  write_file_atomically(f, "new", true);
+  EXPECT_EQ(std::filesystem::status(f).permissions() & std::filesystem::perms::all,
+            std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
+}
+
+TEST(AtomicFile, TemporariesOfDeadProcessesAreRemoved) {
+  TempDir dir;
+  const std::string f = dir.file("report.json");
+  const pid_t dead = ::fork();
+  if (dead == 0) ::_exit(0);
+  ::waitpid(dead, nullptr, 0);
+  const std::string stale = temporary_name(f, dead), live = temporary_name(f, ::getppid());
+  EXPECT_EQ(stale, f + ".vgroove-tmp." + std::to_string(dead));
+  write_text(stale, "partial");
+  write_text(live, "another run, still going");
+  write_file_atomically(f, "whole", false);
+  EXPECT_FALSE(std::filesystem::exists(stale));
+  EXPECT_TRUE(std::filesystem::exists(live));
+  EXPECT_EQ(read_text(f), "whole");
+  // A target name too long for the suffix still gets a temporary of a legal length.
+  const std::string longname = dir.file(std::string(250, 'n'));
+  write_file_atomically(longname, "long", false);
+  EXPECT_EQ(read_text(longname), "long");
 }
 
 }  // namespace

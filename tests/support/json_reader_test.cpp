@@ -136,6 +136,56 @@ TEST(ReadJsonFile, InvalidJsonIsNamed) {
   EXPECT_CONTAINS(m, f + ": not valid JSON");
 }
 
+TEST(ParseJsonText, DuplicateKeysAreNamedWithTheirPath) {
+  EXPECT_CONTAINS(user_error_of([] { parse_json_text(R"({"rays": 1000, "x": 1, "rays": 5})", "f.json"); }),
+                  "f.json: /rays is given twice");
+  EXPECT_CONTAINS(user_error_of([] { parse_json_text(R"({"a": [0, {"b": {"c": 1, "c": 1}}]})", "f.json"); }),
+                  "f.json: /a/1/b/c is given twice");
+  EXPECT_CONTAINS(user_error_of([] { parse_json_text(R"({"a/b~": {"k": 1, "k": 2}})", "f.json"); }),
+                  "/a~1b~0/k is given twice");
+  // The same key in different objects is fine.
+  EXPECT_EQ(parse_json_text(R"({"a": {"k": 1}, "b": {"k": 2}, "c": [{"k": 3}, {"k": 4}]})", "f.json")["c"][1]["k"], 4);
+}
+
+TEST(ParseJsonText, NestingIsBounded) {
+  const auto deep = [](int n) {
+    return std::string(static_cast<std::size_t>(n), '[') + std::string(static_cast<std::size_t>(n), ']');
+  };
+  EXPECT_NO_THROW(parse_json_text(deep(kMaxJsonDepth), "f.json"));
+  const std::string m = user_error_of([&] { parse_json_text(deep(kMaxJsonDepth + 1), "f.json"); });
+  EXPECT_CONTAINS(m, "is nested more than 64 levels deep");
+  EXPECT_LT(m.size(), 400u);
+  // 10^5 levels (the crash of the issue): refused quickly, a short message.
+  const std::string m2 = user_error_of([&] { parse_json_text("{\"rays\": " + deep(100000) + "}", "f.json"); });
+  EXPECT_CONTAINS(m2, "f.json: /rays/0/0/0");
+  EXPECT_LT(m2.size(), 400u);
+}
+
+TEST(ParseJsonText, NumbersPastTheDoubleRangeAreNotJson) {
+  EXPECT_CONTAINS(user_error_of([] { parse_json_text(R"({"rays": 1e400})", "f.json"); }), "f.json: not valid JSON");
+  EXPECT_CONTAINS(user_error_of([] { parse_json_text(R"([-1e400])", "f.json"); }), "not valid JSON");
+}
+
+TEST(ReadJsonFile, DirectoriesAndHugeFilesAreRefused) {
+  TempDir dir;
+  EXPECT_CONTAINS(user_error_of([&] { read_json_file(dir.path().string()); }), "is a directory");
+  // /dev/zero never ends: the read stops at the limit.
+  EXPECT_CONTAINS(user_error_of([] { read_json_file("/dev/zero"); }), "is larger than 64 MB");
+}
+
+TEST(ValueText, IsShortAndOnOneLine) {
+  EXPECT_EQ(value_text(json(5)), "5");
+  EXPECT_EQ(value_text(json("a\nb")), "\"a\\nb\"");
+  EXPECT_EQ(value_text(json::parse(R"({"a": [1, 2]})")), R"({"a": [1, 2]})");
+  json big = json::array();
+  for (int i = 0; i < 100000; ++i) big.push_back(i);
+  EXPECT_LE(value_text(big).size(), 63u);
+  EXPECT_EQ(value_text(json(std::string(1000, 'x'))).size(), 63u);
+  json deep = json::array();
+  for (int i = 0; i < 10000; ++i) deep = json::array({deep});
+  EXPECT_LE(value_text(deep).size(), 63u);  // bounded recursion: stops with the budget
+}
+
 TEST(NumberText, ShortestRoundTrip) {
   EXPECT_EQ(number_text(195.0), "195");
   EXPECT_EQ(number_text(0.1), "0.1");

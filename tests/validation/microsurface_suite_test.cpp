@@ -61,14 +61,14 @@ TEST(MicrosurfaceSuite, BadSpecsNameTheFieldAndRange) {
   EXPECT_USER_ERROR(parse_brdf_suite(j, "f.json"), "f.json: /phi_bins = 25 must be even");
   j = fig11_spec();
   j["alpha"] = {0.5, 0.0};
-  EXPECT_USER_ERROR(parse_brdf_suite(j, "f.json"), "f.json: /alpha/1 = 0 is out of range (0, 2]");
+  EXPECT_USER_ERROR(parse_brdf_suite(j, "f.json"), "f.json: /alpha/1 = 0 is out of range [0.01, 2]");
   j = fig11_spec();
   j["ndf"] = {"ggx", "trowbridge"};
   EXPECT_USER_ERROR(parse_brdf_suite(j, "f.json"),
                     "f.json: /ndf/1 = \"trowbridge\" is not one of \"ggx\", \"beckmann\", \"phong\"");
   j = fig11_spec();
   j["theta_i_deg"] = {0, 90};
-  EXPECT_USER_ERROR(parse_brdf_suite(j, "f.json"), "f.json: /theta_i_deg/1 = 90 is out of range [0, 90)");
+  EXPECT_USER_ERROR(parse_brdf_suite(j, "f.json"), "f.json: /theta_i_deg/1 = 90 is out of range [0, 89.9]");
   j = fig11_spec();
   j["dimensions"] = json::array();
   EXPECT_USER_ERROR(parse_brdf_suite(j, "f.json"), "f.json: /dimensions = [] must be a non-empty list");

@@ -1,0 +1,45 @@
+// vgroove validation: the one range of each quantity, shared by suite files, scene files and the
+// command line (every reader checks against these constants, so a value accepted in one place is
+// accepted in all, and each range is one where the model and the tracer are tested to agree).
+#pragma once
+
+#include <limits>
+
+namespace vgroove::validation {
+
+// The narrowest aperture accepted (degrees). The tracer's rounding shifts the boundaries between
+// bounce counts by about 2.6e-9 (0.01 deg / theta_v)^2 of the opening (its reflections are not
+// exactly orthogonal, and over pi / theta_v of them the error grows): at 1e-3 deg by 3e-7, so the
+// trace agrees with the model within the stratified bound 1/N up to N ~ 10^6 rays per facet
+// (already 2 x 10^11 reflections); at 1e-6 deg by 0.3, which no N can hide.
+inline constexpr double kMinApertureDeg = 1e-3;
+// The most grazing light on a single groove (degrees; symmetric range [-89.999, 89.999]). The
+// opening's projected width is w = 2 sin(theta_v/2) cos(theta_i): at 89.999 deg the N <= 10^9
+// stratified positions across it stay 150 ulps apart, and the traced zone widths agree with the
+// model's to 6e-7 of w at the narrowest aperture (7e-6 at 89.9999 deg). Closer to 90 deg both lose
+// the opening to rounding (at 89.99999999999999 deg 30 % of the rays hit a rim).
+inline constexpr double kMaxThetaIDeg = 89.999;
+// The most grazing light on a rough surface (brdf and furnace suites, polar angle in [0, 89.9]):
+// the BRDF lobes conserve energy to their tolerance there for every NDF and alpha (at 89.99 deg the
+// flatland Phong lobe of alpha 2 loses 4e-7 of it).
+inline constexpr double kMaxSurfaceThetaIDeg = 89.9;
+// Rays per case, facet or incident angle.
+inline constexpr long kMaxRays = 1'000'000'000;
+// Seeds: every non-negative 64-bit signed value.
+inline constexpr long long kMaxSeed = std::numeric_limits<long long>::max();
+// Roughness of procedural surfaces: the range the slope samplers and the BRDFs are tested on.
+inline constexpr double kMinAlpha = 0.01;
+inline constexpr double kMaxAlpha = 2.0;
+// Grooves of a procedural surface.
+inline constexpr int kMaxGrooves = 10'000'000;
+// The tracer's bounce limit: its default, and the largest a file or option may set.
+inline constexpr int kDefaultMaxBounces = 100'000;
+inline constexpr int kMaxBounces = 100'000'000;
+// Worker threads (0: all cores).
+inline constexpr int kMaxThreads = 1024;
+// Histogram cells (bins x bounce-count rows) of one tally: each work item holds its own. Rows
+// k = 0..max_k (and one for larger k), max_k at most kMaxHistogramK.
+inline constexpr long long kMaxHistogramCells = 1'000'000;
+inline constexpr int kMaxHistogramK = 1000;
+
+}  // namespace vgroove::validation
