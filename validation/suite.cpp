@@ -107,6 +107,8 @@ void check_theta_v(double deg, const std::string& what) {
 std::string theta_i_range_text() { return support::interval_text(-kMaxThetaIDeg, true, kMaxThetaIDeg, true); }
 
 void check_theta_i(double deg, const std::string& what) {
+  // NaN as the command line reads it (a float argument of the Python module can hold it).
+  if (std::isnan(deg)) throw support::UserError(what + " = \"nan\" is not a number");
   if (!(std::isfinite(deg) && deg >= -kMaxThetaIDeg && deg <= kMaxThetaIDeg))
     throw support::UserError(what + " = " + support::number_text(deg) + " is out of range " + theta_i_range_text());
 }

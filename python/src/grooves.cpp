@@ -6,6 +6,7 @@
 
 #include "vgroove/analytic/kaleidoscope_nonsymmetric.h"
 #include "vgroove/common/angles.h"
+#include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/run_options.h"
 #include "vgroove/validation/single_groove.h"
@@ -78,11 +79,10 @@ py::dict kaleidoscope(DoubleArray theta_i_deg, std::optional<DoubleArray> theta_
           if ((j & 0xffff) == 0 && cancel.load(std::memory_order_relaxed)) break;
           const double theta_i = ti[j] * kRadPerDeg;
           validation::ModelShares m[2];
-          double width = 0.0;
-          for (int f = 0; f < 2; ++f) {
+          for (int f = 0; f < 2; ++f)
             m[f] = validation::model_shares(grooves[j], theta_i, static_cast<sim::Side>(f), form);
-            if (m[f].lit) width += m[f].f_a * (1.0 - m[f].shadow);
-          }
+          // The fractions of the beam entering the opening, as `analytic` gives them (sum to 1).
+          const double width = validation::entering_width(m);
           for (int f = 0; f < 2; ++f) {
             const std::size_t a = 2 * j + static_cast<std::size_t>(f);
             plit[a] = m[f].lit, pk[a] = m[f].lit ? m[f].k : 0;
@@ -118,7 +118,9 @@ py::object analytic_json(double theta_i_deg, std::optional<double> v, std::optio
   return to_python(validation::analytic_json(g, theta_i_deg, form));
 }
 
-int check_max_bounces(const py::handle& v) { return static_cast<int>(to_count(v, "max_bounces", 1, 2147483647)); }
+int check_max_bounces(const py::handle& v) {
+  return static_cast<int>(to_count(v, "max_bounces", 1, validation::kMaxBounces));
+}
 
 // Every ray of one beam: landing point x on the rim line, facet hit first (0 left, 1 right, -1
 // none), bounce count, fate (0 escaped, 1 blocked, 2 vertex hit, 3 bounce limit), exit direction

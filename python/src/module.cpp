@@ -2,6 +2,8 @@
 #include "common.h"
 
 #include "vgroove/common/angles.h"
+#include "vgroove/support/user_error.h"
+#include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
 
@@ -82,8 +84,9 @@ void check_directions(const double* w, std::size_t n, const char* what, bool fla
 }
 
 void check_alpha(double alpha) {
-  if (!(alpha > 0.0 && alpha <= validation::kMaxAlpha))
-    throw support::UserError("alpha = " + support::number_text(alpha) + " is out of range (0, 2]");
+  if (!(alpha >= validation::kMinAlpha && alpha <= validation::kMaxAlpha))
+    throw support::UserError("alpha = " + support::number_text(alpha) + " is out of range " +
+                             support::interval_text(validation::kMinAlpha, true, validation::kMaxAlpha, true));
 }
 
 }  // namespace vgroove::python

@@ -86,7 +86,7 @@ def test_kaleidoscope_vectorized_equals_scalar_and_the_rows(vg):
             for f in range(2):
                 if not one["lit"][f]:
                     continue
-                width = sum(one["f_a"][g] * (1 - one["shadow"][g]) for g in range(2) if one["lit"][g])
+                width = sum(one["f_a"][g] * one["G"][g].sum() for g in range(2) if one["lit"][g])
                 assert one["fraction"][f].sum() == pytest.approx(one["G"][f].sum() * one["f_a"][f] / width, rel=1e-15)
                 for z in range(2):
                     if one["G"][f, z] != 0:
@@ -102,7 +102,7 @@ def test_kaleidoscope_vectorized_equals_scalar_and_the_rows(vg):
 
 def test_kaleidoscope_is_finite_and_sums_to_one_at_the_hard_cases(vg):
     ti = np.linspace(-89.99, 89.99, 181)
-    for v in (1e-4, 0.01, 1.0, 60.0, 179.99, 180.0):
+    for v in (1e-3, 0.01, 1.0, 60.0, 179.99, 180.0):
         k = vg.kaleidoscope(ti, v)
         for key, a in k.items():
             assert np.all(np.isfinite(a)), (v, key)
