@@ -182,6 +182,26 @@ double nonsymmetric_pdf_3d(const NonsymmetricSampler& S, const Dir3& i, const Di
   return nonsymmetric_pdf_3d_k(S, i, o, 1, S.opt.max_k);
 }
 
+namespace {
+
+// Eq. (9)'s roulette over the zones of the facet hit first: the zone whose cumulative share G
+// passes u times the total (the lit fraction, or 1 with the printed strategy, whose facets include
+// the shadowed ones); null when no path of 1..max_k reflections is drawn.
+const BounceShare* roulette(const NonsymmetricPrediction& g, const SamplerOptions& opt, double u) {
+  const double total = opt.strategy == FacetStrategy::printed ? 1.0 : 1.0 - g.shadow;
+  if (!(total > 0.0)) return nullptr;
+  const double xu = u * total;
+  double acc = 0.0;
+  for (const BounceShare& z : g.share) {
+    if (!(z.G > 0.0)) continue;
+    acc += z.G;
+    if (xu < acc) return z.n >= 1 && z.n <= opt.max_k ? &z : nullptr;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
 NonsymmetricDraw3d draw_nonsymmetric_3d(const NonsymmetricSampler& S, const Dir3& i, const std::array<double, 5>& u) {
   const NonsymmetricDraw3d none{{-i.x, -i.y, i.z}, 0};
   if (!(i.z > 0.0)) return none;
@@ -198,21 +218,8 @@ NonsymmetricDraw3d draw_nonsymmetric_3d(const NonsymmetricSampler& S, const Dir3
   const double t_i = std::atan2(-ia, i.z);
   const NonsymmetricPrediction g = G_nonsymmetric(t_i, -A, B, FacetSide::left);
   if (!g.lit) return none;
-  const bool printed = S.opt.strategy == FacetStrategy::printed;
-  const double total = printed ? 1.0 : 1.0 - g.shadow;
-  if (!(total > 0.0)) return none;
-  const double xu = u[4] * total;
-  double acc = 0.0;
-  const BounceShare* out = nullptr;
-  for (const BounceShare& z : g.share) {
-    if (!(z.G > 0.0)) continue;
-    acc += z.G;
-    if (xu < acc) {
-      out = &z;
-      break;
-    }
-  }
-  if (out == nullptr || out->n < 1 || out->n > S.opt.max_k) return none;
+  const BounceShare* out = roulette(g, S.opt, u[4]);
+  if (out == nullptr) return none;
   // Step 4: Eq. (8) in the cross-section, lifted back.
   const double st = std::sin(out->theta_o), ct = std::cos(out->theta_o);
   const Dir3 o{-c * st * ax + iu * ay, -c * st * ay - iu * ax, c * ct};
@@ -316,21 +323,8 @@ NonsymmetricDrawFlatland draw_nonsymmetric_flatland(const NonsymmetricSampler& S
   const double B = sample_partner(S.partner, u[3]);
   const NonsymmetricPrediction g = G_nonsymmetric(ti, -A, B, FacetSide::left);
   if (!g.lit) return none;
-  const bool printed = S.opt.strategy == FacetStrategy::printed;
-  const double total = printed ? 1.0 : 1.0 - g.shadow;
-  if (!(total > 0.0)) return none;
-  const double xu = u[4] * total;
-  double acc = 0.0;
-  const BounceShare* out = nullptr;
-  for (const BounceShare& z : g.share) {
-    if (!(z.G > 0.0)) continue;
-    acc += z.G;
-    if (xu < acc) {
-      out = &z;
-      break;
-    }
-  }
-  if (out == nullptr || out->n < 1 || out->n > S.opt.max_k) return none;
+  const BounceShare* out = roulette(g, S.opt, u[4]);
+  if (out == nullptr) return none;
   const double theta_o = sgn * out->theta_o;
   if (!(std::abs(theta_o) < kHalfPi)) return none;
   return {theta_o, out->n};

@@ -7,7 +7,7 @@
 // iteration traces one chunk of kRaysPerChunk rays with default bins (90; 90 x 72 in 3D). Rougher
 // surfaces have deeper grooves: bounces_per_ray says how much of the time is the reflection loop.
 // BM_microsurface_*: the batch trace (sim/symmetric_block.h, bins by comparisons); *_reference:
-// the path before it (sim::trace per ray, atan2/acos bins). Both give the same tallies.
+// the plain path (sim::trace per ray, atan2/acos bins). Both give the same tallies.
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/microsurface3d.h"
 
@@ -31,73 +31,49 @@ void report(benchmark::State& state, std::int64_t rays, std::int64_t bounces) {
       benchmark::Counter(rays ? static_cast<double>(bounces) / static_cast<double>(rays) : 0.0);
 }
 
-// Arguments: alpha in hundredths, theta_i in degrees.
-void BM_microsurface_flatland(benchmark::State& state) {
+// One chunk of rays per iteration on a surface built once. Arguments: alpha in hundredths,
+// theta_i in degrees.
+template <class Options, class Make, class Trace>
+void run(benchmark::State& state, Make make, Trace trace) {
   const double alpha = static_cast<double>(state.range(0)) / 100.0;
-  const sim::Microsurface m = sim::make_microsurface({sim::NdfKind::ggx, alpha, kGrooves, 1});
-  sim::MicrosurfaceTraceOptions opt;
+  const auto m = make({sim::NdfKind::ggx, alpha, kGrooves, 1});
+  Options opt;
   opt.theta_i = deg(static_cast<double>(state.range(1)));
   opt.rays = sim::kRaysPerChunk;
   std::int64_t rays = 0, bounces = 0;
   for (auto _ : state) {
-    const sim::MicrosurfaceTally t = sim::trace_microsurface(m, opt);
+    const auto t = trace(m, opt);
     benchmark::DoNotOptimize(t.escaped);
     rays += t.rays;
     bounces += t.bounces;
   }
   report(state, rays, bounces);
 }
+
+void BM_microsurface_flatland(benchmark::State& state) {
+  run<sim::MicrosurfaceTraceOptions>(state, sim::make_microsurface,
+                                     [](const auto& m, const auto& o) { return sim::trace_microsurface(m, o); });
+}
 BENCHMARK(BM_microsurface_flatland)->ArgsProduct({{30, 100}, {0, 60}})->Unit(benchmark::kMillisecond);
 
-// The path before the blocks: one ray at a time with sim::trace, bins by atan2 (same tallies).
+// One ray at a time with sim::trace, bins by atan2 (same tallies).
 void BM_microsurface_flatland_reference(benchmark::State& state) {
-  const double alpha = static_cast<double>(state.range(0)) / 100.0;
-  const sim::Microsurface m = sim::make_microsurface({sim::NdfKind::ggx, alpha, kGrooves, 1});
-  sim::MicrosurfaceTraceOptions opt;
-  opt.theta_i = deg(static_cast<double>(state.range(1)));
-  opt.rays = sim::kRaysPerChunk;
-  std::int64_t rays = 0, bounces = 0;
-  for (auto _ : state) {
-    const sim::MicrosurfaceTally t = sim::trace_microsurface_chunk_reference(m, opt, 0);
-    benchmark::DoNotOptimize(t.escaped);
-    rays += t.rays;
-    bounces += t.bounces;
-  }
-  report(state, rays, bounces);
+  run<sim::MicrosurfaceTraceOptions>(state, sim::make_microsurface, [](const auto& m, const auto& o) {
+    return sim::trace_microsurface_chunk_reference(m, o, 0);
+  });
 }
 BENCHMARK(BM_microsurface_flatland_reference)->ArgsProduct({{30, 100}, {0, 60}})->Unit(benchmark::kMillisecond);
 
 void BM_microsurface_3d(benchmark::State& state) {
-  const double alpha = static_cast<double>(state.range(0)) / 100.0;
-  const sim::Microsurface3d m = sim::make_microsurface3d({sim::NdfKind::ggx, alpha, kGrooves, 1});
-  sim::Microsurface3dTraceOptions opt;
-  opt.theta_i = deg(static_cast<double>(state.range(1)));
-  opt.rays = sim::kRaysPerChunk;
-  std::int64_t rays = 0, bounces = 0;
-  for (auto _ : state) {
-    const sim::Microsurface3dTally t = sim::trace_microsurface3d(m, opt);
-    benchmark::DoNotOptimize(t.escaped);
-    rays += t.rays;
-    bounces += t.bounces;
-  }
-  report(state, rays, bounces);
+  run<sim::Microsurface3dTraceOptions>(state, sim::make_microsurface3d,
+                                       [](const auto& m, const auto& o) { return sim::trace_microsurface3d(m, o); });
 }
 BENCHMARK(BM_microsurface_3d)->ArgsProduct({{30, 100}, {0, 60}})->Unit(benchmark::kMillisecond);
 
 void BM_microsurface_3d_reference(benchmark::State& state) {
-  const double alpha = static_cast<double>(state.range(0)) / 100.0;
-  const sim::Microsurface3d m = sim::make_microsurface3d({sim::NdfKind::ggx, alpha, kGrooves, 1});
-  sim::Microsurface3dTraceOptions opt;
-  opt.theta_i = deg(static_cast<double>(state.range(1)));
-  opt.rays = sim::kRaysPerChunk;
-  std::int64_t rays = 0, bounces = 0;
-  for (auto _ : state) {
-    const sim::Microsurface3dTally t = sim::trace_microsurface3d_chunk_reference(m, opt, 0);
-    benchmark::DoNotOptimize(t.escaped);
-    rays += t.rays;
-    bounces += t.bounces;
-  }
-  report(state, rays, bounces);
+  run<sim::Microsurface3dTraceOptions>(state, sim::make_microsurface3d, [](const auto& m, const auto& o) {
+    return sim::trace_microsurface3d_chunk_reference(m, o, 0);
+  });
 }
 BENCHMARK(BM_microsurface_3d_reference)->ArgsProduct({{30, 100}, {0, 60}})->Unit(benchmark::kMillisecond);
 

@@ -203,7 +203,8 @@ nlohmann::json suite_inputs(const BrdfSuite& s) {
 
 const char* surface_dim_name(SurfaceDim d) { return d == SurfaceDim::flatland ? "flatland" : "3d"; }
 
-BrdfCase BrdfSuite::case_at(std::size_t c) const {
+BrdfCase grid_case(const std::vector<analytic::NdfKind>& ndfs, const std::vector<double>& alphas,
+                   const std::vector<double>& theta_i, const std::vector<SurfaceDim>& dims, std::size_t c) {
   BrdfCase out;
   const std::size_t nt = theta_i.size(), na = alphas.size(), nn = ndfs.size();
   out.theta_i = theta_i[c % nt];
@@ -212,6 +213,8 @@ BrdfCase BrdfSuite::case_at(std::size_t c) const {
   out.dim = dims[c / (nt * na * nn)];
   return out;
 }
+
+BrdfCase BrdfSuite::case_at(std::size_t c) const { return grid_case(ndfs, alphas, theta_i, dims, c); }
 
 BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
   support::JsonObject root(j, file, "");

@@ -47,6 +47,11 @@ struct BrdfCase {
   SurfaceDim dim = SurfaceDim::flatland;
 };
 
+// Case c of the grid dimension x ndf x alpha x theta_i (theta_i innermost), as the "brdf" and
+// "furnace" suites number their cases.
+BrdfCase grid_case(const std::vector<analytic::NdfKind>& ndfs, const std::vector<double>& alphas,
+                   const std::vector<double>& theta_i, const std::vector<SurfaceDim>& dims, std::size_t c);
+
 struct BrdfSuite {
   std::string file, name, description;
   std::string kind;  // "brdf" (Fig. 11: lobes and albedo)

@@ -176,15 +176,7 @@ nlohmann::json suite_inputs(const FurnaceSuite& s) {
 
 }  // namespace
 
-BrdfCase FurnaceSuite::case_at(std::size_t c) const {
-  BrdfCase out;
-  const std::size_t nt = theta_i.size(), na = alphas.size(), nn = ndfs.size();
-  out.theta_i = theta_i[c % nt];
-  out.alpha = alphas[(c / nt) % na];
-  out.ndf = ndfs[(c / (nt * na)) % nn];
-  out.dim = dims[c / (nt * na * nn)];
-  return out;
-}
+BrdfCase FurnaceSuite::case_at(std::size_t c) const { return grid_case(ndfs, alphas, theta_i, dims, c); }
 
 FurnaceSuite parse_furnace_suite(const nlohmann::json& j, const std::string& file) {
   support::JsonObject root(j, file, "");
