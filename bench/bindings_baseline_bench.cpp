@@ -1,9 +1,11 @@
 // The C++ side of the Python module's throughput check: the library calls that vgroove.trace,
-// vgroove.brdf and vgroove.kaleidoscope make, on 10^6 rays or directions, one thread, written
-// into arrays as the bindings write them. scripts/bench_python.py times the Python calls on the
-// same inputs; the two are compared in the README (Python within 10 % of these). Like the Python
-// calls, each iteration allocates its output arrays (uninitialized, as numpy.empty).
+// vgroove.brdf, vgroove.kaleidoscope, vgroove.sample and vgroove.pdf make, on 10^6 rays or
+// directions, one thread, written into arrays as the bindings write them.
+// scripts/bench_python.py times the Python calls on the same inputs; the two are compared in the
+// README (Python within 10 % of these). Like the Python calls, each iteration allocates its output
+// arrays (uninitialized, as numpy.empty).
 #include "vgroove/analytic/brdf_3d.h"
+#include "vgroove/analytic/sampling_3d.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/sim/rng.h"
 #include "vgroove/validation/run_options.h"
@@ -11,6 +13,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -126,5 +129,42 @@ void BM_baseline_kaleidoscope_1e6(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * kN);
 }
 BENCHMARK(BM_baseline_kaleidoscope_1e6)->Unit(benchmark::kMillisecond);
+
+// vgroove.sample("ggx", 0.5, u, theta_i_deg=30, threads=1) on 10^6 rows of four uniform numbers
+// (the defaults: V-cavity VNDF, max_k 256): o, k, pdf and weight into arrays.
+void BM_baseline_sample_1e6(benchmark::State& state) {
+  sim::Rng rng(4, 0, 0);
+  std::vector<std::array<double, 4>> u(kN);
+  for (auto& r : u)
+    for (double& x : r) x = rng.uniform();
+  const analytic::Dir3 i = analytic::dir3(30.0 * kRadPerDeg, std::numbers::pi);
+  const analytic::SamplerOptions opt;
+  for (auto _ : state) {
+    auto o = out<double>(3 * kN), pdf = out<double>(kN), weight = out<double>(kN);
+    auto k = out<std::int32_t>(kN);
+    for (long j = 0; j < kN; ++j) {
+      const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(i, u[j], NdfKind::ggx, 0.5, opt);
+      o[3 * j] = x.o.x, o[3 * j + 1] = x.o.y, o[3 * j + 2] = x.o.z;
+      k[j] = x.k, pdf[j] = x.pdf, weight[j] = x.weight;
+    }
+    benchmark::DoNotOptimize(weight.get());
+  }
+  state.SetItemsProcessed(state.iterations() * kN);
+}
+BENCHMARK(BM_baseline_sample_1e6)->Unit(benchmark::kMillisecond);
+
+// vgroove.pdf("ggx", 0.5, wo, theta_i_deg=30, threads=1) on 10^6 directions of the hemisphere.
+void BM_baseline_pdf_1e6(benchmark::State& state) {
+  const auto wo = hemisphere(2);
+  const analytic::Dir3 i = analytic::dir3(30.0 * kRadPerDeg, std::numbers::pi);
+  const analytic::SamplerOptions opt;
+  for (auto _ : state) {
+    auto p = out<double>(kN);
+    for (long j = 0; j < kN; ++j) p[j] = analytic::vgroove_pdf_3d(i, wo[j], NdfKind::ggx, 0.5, opt);
+    benchmark::DoNotOptimize(p.get());
+  }
+  state.SetItemsProcessed(state.iterations() * kN);
+}
+BENCHMARK(BM_baseline_pdf_1e6)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""Times the Python module's calls on 10^6 rays or directions, one thread, against the same
-library calls in C++ (vgroove_bench --benchmark_filter=BM_baseline_, bench/bindings_baseline_bench.cpp),
-alternating the two ROUNDS times (the host may be shared: medians of alternated runs). Both
-wall time and the process's CPU time are reported (on a shared host CPU time is the steadier
-measure of a one-thread call).
+"""Times the Python module's calls (trace, brdf, kaleidoscope, sample, pdf) on 10^6 rays or
+directions, one thread, against the same library calls in C++ (vgroove_bench
+--benchmark_filter=BM_baseline_, bench/bindings_baseline_bench.cpp), alternating the two ROUNDS
+times (the host may be shared: medians of alternated runs). Both wall time and the process's CPU
+time are reported (on a shared host CPU time is the steadier measure of a one-thread call).
 
     PYTHONPATH=build/python /usr/bin/python3 scripts/bench_python.py [ROUNDS] [BUILD_DIR]
 """
@@ -35,10 +35,13 @@ def main():
     rng = np.random.default_rng(1)
     wi, wo = hemisphere(rng), hemisphere(rng)
     ti = rng.uniform(-89, 89, N)
+    u = rng.uniform(size=(N, 4))
     calls = {
         "trace": lambda: vg.trace(30.0, N, 60.0),
         "brdf": lambda: vg.brdf("vgroove", "ggx", 0.5, wi, wo, threads=1),
         "kaleidoscope": lambda: vg.kaleidoscope(ti, 60.0),
+        "sample": lambda: vg.sample("ggx", 0.5, u, theta_i_deg=30.0, threads=1),
+        "pdf": lambda: vg.pdf("ggx", 0.5, wo, theta_i_deg=30.0, threads=1),
     }
     py = {k: [] for k in calls}
     cpp = {k: [] for k in calls}

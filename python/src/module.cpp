@@ -70,6 +70,16 @@ long long to_seed(const py::handle& v, const std::string& what) {
 }
 
 void check_directions(const double* w, std::size_t n, const char* what, bool flatland) {
+  // A first pass without branches or square roots: |len - 1| < 0.999e-9 for certain when len^2
+  // lies within these bounds. Only when some direction falls outside does the exact check below
+  // run (and name the first one that fails it).
+  constexpr double lo = (1.0 - 0.999e-9) * (1.0 - 0.999e-9), hi = (1.0 + 0.999e-9) * (1.0 + 0.999e-9);
+  bool inside = true;
+  for (std::size_t j = 0; j < n; ++j) {
+    const double x = w[3 * j], y = w[3 * j + 1], z = w[3 * j + 2], len2 = x * x + y * y + z * z;
+    inside &= (len2 >= lo) & (len2 <= hi) & (!flatland | (std::abs(y) <= 1e-9));
+  }
+  if (inside) return;
   for (std::size_t j = 0; j < n; ++j) {
     const double x = w[3 * j], y = w[3 * j + 1], z = w[3 * j + 2];
     const double len = std::sqrt(x * x + y * y + z * z);

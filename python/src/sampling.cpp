@@ -16,6 +16,7 @@
 #include "vgroove/validation/spec_lists.h"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace vgroove::python {
@@ -49,6 +50,9 @@ analytic::SamplerOptions sampler_options(const std::string& strategy, NdfKind nd
 
 // Rows of u in [0, 1)^m.
 void check_uniforms(const double* u, std::size_t n, std::size_t m) {
+  bool inside = true;  // a first pass without branches; the loop below names the first bad number
+  for (std::size_t j = 0; j < m * n; ++j) inside &= (u[j] >= 0.0) & (u[j] < 1.0);
+  if (inside) return;
   for (std::size_t j = 0; j < m * n; ++j)
     if (!(u[j] >= 0.0 && u[j] < 1.0))
       throw support::UserError("u[" + std::to_string(j / m) + "][" + std::to_string(j % m) +
@@ -86,11 +90,25 @@ analytic::NonsymmetricSampler nonsymmetric_sampler(NdfKind ndf, double alpha, co
 struct Light {
   const double* wi = nullptr;
   const double* theta_i_deg = nullptr;
-  analytic::Dir3 dir(std::size_t j) const {
-    if (wi) return {wi[3 * j], wi[3 * j + 1], wi[3 * j + 2]};
-    return analytic::dir3(theta_i_deg[j] * kRadPerDeg, std::numbers::pi);
-  }
   double angle(std::size_t j) const { return wi ? flat_angle(wi + 3 * j) : theta_i_deg[j] * kRadPerDeg; }
+};
+
+// Row j's light direction in 3D, read by one thread row after row: a run of equal angles (a scalar
+// theta_i_deg broadcast to every row) gives its direction once, the same bits as each row's.
+class LightCursor {
+ public:
+  explicit LightCursor(const Light& l) : l_(l) {}
+  analytic::Dir3 dir(std::size_t j) {
+    if (l_.wi) return {l_.wi[3 * j], l_.wi[3 * j + 1], l_.wi[3 * j + 2]};
+    const double t = l_.theta_i_deg[j];
+    if (!(t == t_)) t_ = t, d_ = analytic::dir3(t * kRadPerDeg, std::numbers::pi);
+    return d_;
+  }
+
+ private:
+  const Light& l_;
+  double t_ = std::numeric_limits<double>::quiet_NaN();
+  analytic::Dir3 d_;
 };
 
 Light light_of(const std::optional<DoubleArray>& wi, const std::optional<DoubleArray>& theta_i_deg, std::size_t n,
@@ -117,16 +135,18 @@ Light light_of(const std::optional<DoubleArray>& wi, const std::optional<DoubleA
   return l;
 }
 
-// Runs row(j) for j < n in chunks of 4096 on `threads` threads, without the GIL (Ctrl-C stops it).
+// Runs row(j, cursor) for j < n in chunks of 4096 on `threads` threads, without the GIL (Ctrl-C
+// stops it); each chunk reads the light with its own cursor.
 template <class Row>
-void for_rows(std::size_t n, int threads, Row&& row) {
+void for_rows(std::size_t n, int threads, const Light& light, Row&& row) {
   run_interruptible(
       [&](std::atomic<bool>& cancel) {
         const std::size_t chunk = 4096;
         support::parallel_for((n + chunk - 1) / chunk, support::resolve_threads(threads),
                               [&](std::size_t c) {
+                                LightCursor cursor(light);
                                 const std::size_t end = std::min(n, (c + 1) * chunk);
-                                for (std::size_t j = c * chunk; j < end; ++j) row(j);
+                                for (std::size_t j = c * chunk; j < end; ++j) row(j, cursor);
                               },
                               {}, &cancel, 1);
         return 0;
@@ -162,7 +182,7 @@ py::dict sample(const std::string& model, const std::string& ndf_name, double al
   std::int32_t* pk = k.mutable_data();
   double *pp = pdf.mutable_data(), *pw = weight.mutable_data();
   const double* pu = u.data();
-  for_rows(n, threads, [&](std::size_t j) {
+  for_rows(n, threads, light, [&](std::size_t j, LightCursor& cursor) {
     if (nonsym) {
       const double* v = pu + 5 * j;
       const std::array<double, 5> uj{v[0], v[1], v[2], v[3], v[4]};
@@ -171,7 +191,7 @@ py::dict sample(const std::string& model, const std::string& ndf_name, double al
         po[3 * j] = -std::sin(x.theta_o), po[3 * j + 1] = 0.0, po[3 * j + 2] = std::cos(x.theta_o);
         pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight;
       } else {
-        const analytic::VgrooveSample3d x = analytic::sample_nonsymmetric_3d(ns, light.dir(j), uj);
+        const analytic::VgrooveSample3d x = analytic::sample_nonsymmetric_3d(ns, cursor.dir(j), uj);
         po[3 * j] = x.o.x, po[3 * j + 1] = x.o.y, po[3 * j + 2] = x.o.z;
         pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight;
       }
@@ -183,7 +203,7 @@ py::dict sample(const std::string& model, const std::string& ndf_name, double al
       po[3 * j] = -std::sin(x.theta_o), po[3 * j + 1] = 0.0, po[3 * j + 2] = std::cos(x.theta_o);
       pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight;
     } else {
-      const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(light.dir(j), uj, ndf, alpha, opt);
+      const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(cursor.dir(j), uj, ndf, alpha, opt);
       po[3 * j] = x.o.x, po[3 * j + 1] = x.o.y, po[3 * j + 2] = x.o.z;
       pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight;
     }
@@ -216,15 +236,15 @@ py::array_t<double> pdf(const std::string& model, const std::string& ndf_name, d
   auto out = new_array<double>({static_cast<py::ssize_t>(n)});
   double* po = out.mutable_data();
   const double* pw = wo.data();
-  for_rows(n, threads, [&](std::size_t j) {
+  for_rows(n, threads, light, [&](std::size_t j, LightCursor& cursor) {
     const double* o = pw + 3 * j;
     if (nonsym) {
       po[j] = flat ? analytic::nonsymmetric_pdf_flatland(ns, light.angle(j), flat_angle(o))
-                   : analytic::nonsymmetric_pdf_3d(ns, light.dir(j), analytic::Dir3{o[0], o[1], o[2]});
+                   : analytic::nonsymmetric_pdf_3d(ns, cursor.dir(j), analytic::Dir3{o[0], o[1], o[2]});
       return;
     }
     po[j] = flat ? analytic::vgroove_pdf_flatland(light.angle(j), flat_angle(o), ndf, alpha, opt)
-                 : analytic::vgroove_pdf_3d(light.dir(j), analytic::Dir3{o[0], o[1], o[2]}, ndf, alpha, opt);
+                 : analytic::vgroove_pdf_3d(cursor.dir(j), analytic::Dir3{o[0], o[1], o[2]}, ndf, alpha, opt);
   });
   return out;
 }

@@ -218,6 +218,10 @@ def test_bad_input_gives_the_command_lines_message(vg, kwargs, flags):
 
 
 def test_bad_arrays_are_value_errors(vg):
+    u = np.full((50000, 4), 0.5)
+    u[43210, 3] = -0.0 - 1e-300
+    with pytest.raises(ValueError, match=r"u\[43210\]\[3\] = -1e-300 is out of range \[0, 1\)"):
+        vg.sample("ggx", 0.5, u, theta_i_deg=30)
     with pytest.raises(ValueError, match=r"u\[0\]\[2\] = 1 is out of range \[0, 1\)"):
         vg.sample("ggx", 0.5, [[0.1, 0.2, 1.0, 0.3]], theta_i_deg=30)
     with pytest.raises(ValueError, match=r"u\[1\]\[0\] = nan"):

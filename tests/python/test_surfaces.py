@@ -95,6 +95,20 @@ def test_brdf_hard_cases_are_finite(vg):
                 assert np.all(np.isfinite(v[off_mirror])), (model, ndf, alpha)
 
 
+def test_unit_vector_rule_at_its_boundary(vg):
+    # |len - 1| <= 1e-9 is the rule; lengths between the quick pass's bound (0.999e-9) and 1e-9 are
+    # decided by the exact check, and the first bad row of a large array is the one named.
+    wi = vg.direction(30, 180)
+    ok = np.array([0.0, 0.0, 1.0 + 0.9995e-9])
+    assert np.isfinite(vg.brdf("vgroove", "ggx", 0.5, wi, ok))
+    with pytest.raises(ValueError, match=r"^wo\[0\] = .* is not a unit vector$"):
+        vg.brdf("vgroove", "ggx", 0.5, wi, np.array([0.0, 0.0, 1.0 + 1.001e-9]))
+    wo = np.tile(vg.direction(20, 0), (100000, 1))
+    wo[77777] = [0.0, 0.0, 1.0 - 2e-9]
+    with pytest.raises(ValueError, match=r"^wo\[77777\] = .* is not a unit vector$"):
+        vg.brdf("vgroove", "ggx", 0.5, wi, wo)
+
+
 def test_bad_brdf_input(vg):
     wi, wo = vg.direction(30, 180), vg.direction(20, 0)
     with pytest.raises(ValueError, match=r"^wo\[0\] = \(0\.5, 0, 0\.5\) is not a unit vector$"):
