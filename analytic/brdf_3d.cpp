@@ -41,7 +41,6 @@ bool groove_frame(const Dir3& i, const Dir3& o, GrooveFrame& p) {
   const double ia = dot(i, a), oa = dot(o, a);
   p.x.t_i = std::atan2(-ia, i.z);
   p.x.t_o = std::atan2(-oa, o.z);
-  p.t_h = -std::atan2(rho, h.z);
   const double c_i = std::sqrt(ia * ia + i.z * i.z), c_o = std::sqrt(oa * oa + o.z * o.z);
   p.c = 0.5 * (c_i + c_o);
   p.x.sin_ti = -ia / c_i;

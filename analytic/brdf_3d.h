@@ -93,7 +93,6 @@ Dir3 dir3(double theta, double phi);
 // to the last bit.
 struct GrooveFrame {
   CrossSection x;
-  double t_h = 0.0;
   double c = 1.0;      // sqrt(1 - (i.u)^2) = sqrt(1 - (o.u)^2): the length of i's projection
   double sin_h = 0.0;  // sin(theta_h)
   double cos_d = 1.0;  // i.h = o.h
