@@ -168,6 +168,15 @@ def test_vectorized_equals_row_by_row_and_any_thread_count(vg):
     p = vg.pdf("ggx", 0.7, batch["wo"], theta_i_deg=ti, strategy="printed", threads=2)
     assert np.array_equal(p, vg.pdf("ggx", 0.7, batch["wo"], theta_i_deg=ti, strategy="printed", threads=1))
     assert p[7] == vg.pdf("ggx", 0.7, batch["wo"][7], theta_i_deg=ti[7], strategy="printed")
+    # Runs of equal angles (a light direction computed once per run) against row by row.
+    runs = np.array([20.0] * 5 + [60.0] * 5 + [20.0] * 5 + [0.0])
+    batch = vg.sample("ggx", 0.7, u[:16], theta_i_deg=runs, threads=1)
+    for j in range(16):
+        one = vg.sample("ggx", 0.7, u[j], theta_i_deg=runs[j])
+        for key in batch:
+            assert np.array_equal(one[key], batch[key][j]), (key, j)
+    assert np.array_equal(vg.pdf("ggx", 0.7, batch["wo"], theta_i_deg=runs),
+                          [vg.pdf("ggx", 0.7, batch["wo"][j], theta_i_deg=runs[j]) for j in range(16)])
     # Broadcasting: one light, many u (shape S + (4,)).
     grid = vg.sample("beckmann", 0.4, u.reshape(20, 15, 4), wi=vg.direction(40, 180))
     assert grid["wo"].shape == (20, 15, 3) and grid["k"].shape == (20, 15)
