@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -45,6 +47,15 @@ inline void write_text(const std::string& path, const std::string& text) {
   out << text;
 }
 
+// A path or argument in single quotes, for a shell command line.
+inline std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+// The file type bits of p (S_IFREG, S_IFCHR, ...) without following a link; 0 if p does not exist.
+inline mode_t type_of(const std::string& p) {
+  struct stat s {};
+  return ::lstat(p.c_str(), &s) == 0 ? (s.st_mode & S_IFMT) : 0;
+}
+
 inline std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream os;
@@ -53,3 +64,6 @@ inline std::string read_text(const std::string& path) {
 }
 
 }  // namespace vgroove::testing_files
+
+// text holds part (the text is printed when it does not).
+#define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << "in: " << (text)

@@ -31,30 +31,10 @@ using testing_files::TempDir;
 using testing_files::vgroove;
 using testing_files::write_text;
 
-#define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << "in: " << (text)
-
-std::string q(const std::string& s) { return "'" + s + "'"; }
-
-int lines(const std::string& s) {
-  int n = 0;
-  for (char c : s) n += c == '\n';
-  return n + (!s.empty() && s.back() != '\n');
-}
-
-// Runs a shell command line (VGROOVE_BIN spelled out where needed), as vgroove() does.
-CliRun sh(const std::string& cmd) {
-  TempDir dir;
-  const std::string err = dir.file("stderr");
-  CliRun r;
-  FILE* p = ::popen(("{ " + cmd + "; } 2>" + q(err)).c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) r.out.append(buf, n);
-  const int st = ::pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  r.err = read_text(err);
-  return r;
-}
+using testing_files::lines;
+using testing_files::quoted;
+using testing_files::run_shell;
+using testing_files::type_of;
 const std::string kBin = std::string("'") + VGROOVE_BIN + "'";
 
 // AddressSanitizer reserves terabytes of address space at start-up: under `ulimit -v` a sanitized
@@ -76,11 +56,6 @@ void expect_refused(const CliRun& r, const std::string& part) {
   EXPECT_EQ(r.status, 2) << r;
   EXPECT_EQ(lines(r.err), 1) << r;
   EXPECT_CONTAINS(r.err, part);
-}
-
-mode_t type_of(const std::string& p) {
-  struct stat s {};
-  return ::lstat(p.c_str(), &s) == 0 ? (s.st_mode & S_IFMT) : 0;
 }
 
 bool no_temporaries(const TempDir& dir) {
@@ -113,21 +88,21 @@ TEST(CliOutput, CharacterDevicesAreWrittenThroughNeverReplaced) {
   TempDir dir;
   const std::string suite = small_suite(dir);
   // /dev/null itself: written through (as root a replaced /dev/null would break the system).
-  const CliRun r = vgroove("validate " + q(suite) + " --out /dev/null --force");
+  const CliRun r = vgroove("validate " + quoted(suite) + " --out /dev/null --force");
   EXPECT_EQ(r.status, 0) << r;
   EXPECT_EQ(type_of("/dev/null"), static_cast<mode_t>(S_IFCHR));
   if (::geteuid() != 0) GTEST_SKIP() << "copies of /dev/null and /dev/full need mknod (root)";
   const std::string null_copy = dir.file("null"), full_copy = dir.file("full");
   ASSERT_EQ(::mknod(null_copy.c_str(), S_IFCHR | 0666, makedev(1, 3)), 0);
   ASSERT_EQ(::mknod(full_copy.c_str(), S_IFCHR | 0666, makedev(1, 7)), 0);
-  EXPECT_EQ(vgroove("validate " + q(suite) + " --out " + q(null_copy) + " --force").status, 0);
+  EXPECT_EQ(vgroove("validate " + quoted(suite) + " --out " + quoted(null_copy) + " --force").status, 0);
   EXPECT_EQ(type_of(null_copy), static_cast<mode_t>(S_IFCHR));
   // A write error on the device is reported, and the node stays.
-  const CliRun f = vgroove("validate " + q(suite) + " --out " + q(full_copy) + " --force");
+  const CliRun f = vgroove("validate " + quoted(suite) + " --out " + quoted(full_copy) + " --force");
   expect_refused(f, "No space left on device");
   EXPECT_EQ(type_of(full_copy), static_cast<mode_t>(S_IFCHR));
   // The same for `simulate`.
-  const CliRun s = vgroove("simulate " + q(small_scene(dir)) + " --out " + q(full_copy));
+  const CliRun s = vgroove("simulate " + quoted(small_scene(dir)) + " --out " + quoted(full_copy));
   expect_refused(s, "No space left on device");
   EXPECT_EQ(type_of(full_copy), static_cast<mode_t>(S_IFCHR));
   EXPECT_TRUE(no_temporaries(dir));
@@ -137,8 +112,8 @@ TEST(CliOutput, FifosAreWrittenThrough) {
   TempDir dir;
   const std::string fifo = dir.file("pipe"), got = dir.file("got.json");
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-  const CliRun r = sh(kBin + " validate " + q(small_suite(dir)) + " --out " + q(fifo) + " & cat " + q(fifo) + " > " +
-                      q(got) + "; wait $!");
+  const CliRun r = run_shell(kBin + " validate " + quoted(small_suite(dir)) + " --out " + quoted(fifo) + " & cat " +
+                             quoted(fifo) + " > " + quoted(got) + "; wait $!");
   EXPECT_EQ(type_of(fifo), static_cast<mode_t>(S_IFIFO));
   EXPECT_EQ(json::parse(read_text(got)).at("suite"), "small") << r;
 }
@@ -148,12 +123,12 @@ TEST(CliOutput, BlockDevicesAndDirectoriesAreRefused) {
   const std::string suite = small_suite(dir);
   const std::string sub = dir.file("sub");
   fs::create_directory(sub);
-  expect_refused(vgroove("validate " + q(suite) + " --out " + q(sub) + " --force"), "is a directory");
+  expect_refused(vgroove("validate " + quoted(suite) + " --out " + quoted(sub) + " --force"), "is a directory");
   if (::geteuid() != 0) GTEST_SKIP() << "a block device node needs mknod (root)";
   // Device 0:0 is never a real disk: even a wrong write would fail to open.
   const std::string blk = dir.file("blk");
   ASSERT_EQ(::mknod(blk.c_str(), S_IFBLK | 0600, makedev(0, 0)), 0);
-  expect_refused(vgroove("validate " + q(suite) + " --out " + q(blk) + " --force"), "is a block device");
+  expect_refused(vgroove("validate " + quoted(suite) + " --out " + quoted(blk) + " --force"), "is a block device");
   EXPECT_EQ(type_of(blk), static_cast<mode_t>(S_IFBLK));
 }
 
@@ -164,22 +139,22 @@ TEST(CliOutput, SymbolicLinksAreFollowedAndDanglingOnesRefused) {
   const std::string target = dir.file("target.json"), link = dir.file("link.json");
   write_text(target, "old");
   fs::create_symlink(target, link);
-  expect_refused(vgroove("validate " + q(suite) + " --out " + q(link)), "--force");
+  expect_refused(vgroove("validate " + quoted(suite) + " --out " + quoted(link)), "--force");
   EXPECT_EQ(read_text(target), "old");
-  EXPECT_EQ(vgroove("validate " + q(suite) + " --out " + q(link) + " --force").status, 0);
+  EXPECT_EQ(vgroove("validate " + quoted(suite) + " --out " + quoted(link) + " --force").status, 0);
   EXPECT_EQ(type_of(link), static_cast<mode_t>(S_IFLNK));
   EXPECT_EQ(json::parse(read_text(target)).at("suite"), "small");
   // A link to a directory, even with --force: refused, the link and the directory untouched.
   const std::string sub = dir.file("sub"), to_dir = dir.file("to_dir");
   fs::create_directory(sub);
   fs::create_directory_symlink(sub, to_dir);
-  expect_refused(vgroove("validate " + q(suite) + " --out " + q(to_dir) + " --force"), "is a directory");
+  expect_refused(vgroove("validate " + quoted(suite) + " --out " + quoted(to_dir) + " --force"), "is a directory");
   EXPECT_EQ(type_of(to_dir), static_cast<mode_t>(S_IFLNK));
   // A dangling link: refused with or without --force, and nothing created where it points.
   const std::string dangling = dir.file("dangling.json"), nowhere = dir.file("nowhere.json");
   fs::create_symlink(nowhere, dangling);
   for (const char* force : {"", " --force"})
-    expect_refused(vgroove("simulate " + q(small_scene(dir)) + " --out " + q(dangling) + force), "dangling");
+    expect_refused(vgroove("simulate " + quoted(small_scene(dir)) + " --out " + quoted(dangling) + force), "dangling");
   EXPECT_FALSE(fs::exists(nowhere));
   EXPECT_EQ(type_of(dangling), static_cast<mode_t>(S_IFLNK));
   EXPECT_TRUE(no_temporaries(dir));
@@ -197,7 +172,7 @@ struct Interrupted {
 // Starts `vgroove args` (output files in dir), sends SIGINT after `after` s, waits for the exit.
 Interrupted interrupt_after(const std::string& args, double after, const TempDir& dir) {
   const std::string out = dir.file("int.out"), err = dir.file("int.err");
-  const std::string cmd = std::string("exec '") + VGROOVE_BIN + "' " + args + " >" + q(out) + " 2>" + q(err);
+  const std::string cmd = std::string("exec '") + VGROOVE_BIN + "' " + args + " >" + quoted(out) + " 2>" + quoted(err);
   const pid_t pid = ::fork();
   if (pid == 0) {
     ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
@@ -242,7 +217,7 @@ TEST(CliInterrupt, InsideOneCaseOfABillionRays) {
   const std::string suite = dir.file("big.json"), report = dir.file("r.json");
   write_text(suite, R"({"name": "big", "kind": "table1", "cases": [{"theta_v_deg": 1, "theta_i_deg": 30}],
     "rays": 1000000000, "thresholds": {"max_l1": 1, "mean_l1": 1, "max_theta_o_error_rad": 1}})");
-  expect_prompt_stop("validate " + q(suite) + " --out " + q(report), dir, report);
+  expect_prompt_stop("validate " + quoted(suite) + " --out " + quoted(report), dir, report);
 }
 
 TEST(CliInterrupt, InsideTheTraceOfOneHugeBeam) {
@@ -257,16 +232,17 @@ TEST(CliInterrupt, InsideASimulateChunkOfANarrowGroove) {
   // 32768 rays of 180,000 reflections each per chunk: tens of seconds without the per-ray check.
   write_text(scene, R"({"scene": "narrow", "geometry": {"kind": "groove", "theta_v_deg": 0.001},
     "light": {"theta_i_deg": [10], "rays": 1000000000}, "effects": {"fresnel": {"kind": "none"}}})");
-  expect_prompt_stop("simulate " + q(scene) + " --out " + q(report), dir, report);
+  expect_prompt_stop("simulate " + quoted(scene) + " --out " + quoted(report), dir, report);
 }
 
 TEST(CliInterrupt, InsideRoughSurfaceCases) {
   TempDir dir;
   const std::string report = dir.file("r.json");
   const std::string fig11 = std::string(VGROOVE_SOURCE_DIR) + "/data/suites/fig11.json";
-  expect_prompt_stop("validate " + q(fig11) + " --rays 1000000000 --out " + q(report), dir, report);
+  expect_prompt_stop("validate " + quoted(fig11) + " --rays 1000000000 --out " + quoted(report), dir, report);
   const std::string table2 = std::string(VGROOVE_SOURCE_DIR) + "/data/suites/table2.json";
-  expect_prompt_stop("validate " + q(table2) + " --rays 1000000000 --threads 1 --out " + q(report), dir, report);
+  expect_prompt_stop("validate " + quoted(table2) + " --rays 1000000000 --threads 1 --out " + quoted(report), dir,
+                     report);
 }
 
 TEST(CliInterrupt, InsideTheLobeIntegration) {
@@ -276,13 +252,14 @@ TEST(CliInterrupt, InsideTheLobeIntegration) {
   write_text(suite, R"({"name": "g", "kind": "brdf", "ndf": ["ggx"], "alpha": [0.5], "theta_i_deg": [30],
     "dimensions": ["3d"], "rays": 1000, "grooves": 1000, "theta_bins": 200, "phi_bins": 200, "max_k": 23,
     "thresholds": {"sigmas": 5, "model_tolerance": {"flatland": 1e-5, "3d": 1e-4}}})");
-  expect_prompt_stop("validate " + q(suite) + " --out " + q(report), dir, report);
+  expect_prompt_stop("validate " + quoted(suite) + " --out " + quoted(report), dir, report);
 }
 
 TEST(CliInterrupt, InsideABenchmarkRun) {
   TempDir dir;
   const std::string report = dir.file("r.json");
-  expect_prompt_stop("bench accuracy " + q(small_suite(dir)) + " --rays 1000000000 --out " + q(report), dir, report);
+  expect_prompt_stop("bench accuracy " + quoted(small_suite(dir)) + " --rays 1000000000 --out " + quoted(report), dir,
+                     report);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -298,21 +275,21 @@ TEST(CliJson, DeepNestingIsRefusedInOneLine) {
   const std::string f = dir.file("deep.json");
   // The example: "rays" an array nested 10^5 deep (the message used to print it recursively).
   write_text(f, R"({"name": "x", "kind": "table1", "rays": )" + nested(100000, '[', ']', "1") + "}");
-  expect_refused(vgroove("validate " + q(f)), "nested more than 64 levels");
+  expect_refused(vgroove("validate " + quoted(f)), "nested more than 64 levels");
   // Another member: "name" an object nested 10^5 deep, in a scene.
   std::string deep;
   for (int i = 0; i < 100000; ++i) deep += "{\"a\": ";
   deep += "1" + std::string(100000, '}');
   write_text(f, R"({"scene": )" + deep + "}");
-  expect_refused(vgroove("simulate " + q(f)), "nested more than 64 levels");
+  expect_refused(vgroove("simulate " + quoted(f)), "nested more than 64 levels");
   // A wrong value at a known key is printed briefly, whatever its size; so is a parser's message.
   write_text(f, R"({"name": "x", "kind": "table1", "cases": [{"theta_v_deg": 60, "theta_i_deg": 0}], "rays": [")" +
                     std::string(200000, '7') + "\"]}");
-  const CliRun r = vgroove("validate " + q(f));
+  const CliRun r = vgroove("validate " + quoted(f));
   expect_refused(r, "/rays = [\"7777");
   EXPECT_LT(r.err.size(), 400u) << r;
   write_text(f, R"({"name": "x", "kind": "table1", "rays": [)" + std::string(200000, '7') + "]}");
-  const CliRun p = vgroove("validate " + q(f));
+  const CliRun p = vgroove("validate " + quoted(f));
   expect_refused(p, "not valid JSON");
   EXPECT_LT(p.err.size(), 400u) << p;
 }
@@ -324,7 +301,7 @@ TEST(CliOutput, FullDiskAndClosedStdoutAreFailures) {
   TempDir dir;
   for (const std::string& args :
        {std::string("trace --json"), std::string("analytic"), std::string("analytic --json"),
-        "validate " + q(small_suite(dir)), "simulate " + q(small_scene(dir)), std::string("--help")}) {
+        "validate " + quoted(small_suite(dir)), "simulate " + quoted(small_scene(dir)), std::string("--help")}) {
     const CliRun full = vgroove(args + " > /dev/full");
     expect_refused(full, "standard output: write failed (No space left on device)");
     const CliRun closed = vgroove(args + " >&-");
@@ -332,7 +309,7 @@ TEST(CliOutput, FullDiskAndClosedStdoutAreFailures) {
   }
   // A report written while stdout is closed does not take descriptor 1: it holds only the report.
   const std::string report = dir.file("r.json");
-  const CliRun r = vgroove("validate " + q(small_suite(dir)) + " --out " + q(report) + " >&-");
+  const CliRun r = vgroove("validate " + quoted(small_suite(dir)) + " --out " + quoted(report) + " >&-");
   EXPECT_EQ(r.status, 2) << r;
   EXPECT_EQ(json::parse(read_text(report)).at("suite"), "small");
 }
@@ -343,11 +320,12 @@ TEST(CliOutput, FullFileSystemIsAFailure) {
   TempDir dir;
   const std::string mnt = dir.file("small");
   fs::create_directory(mnt);
-  if (sh("mount -t tmpfs -o size=16k tmpfs " + q(mnt)).status != 0) GTEST_SKIP() << "mount not permitted here";
+  if (run_shell("mount -t tmpfs -o size=16k tmpfs " + quoted(mnt)).status != 0)
+    GTEST_SKIP() << "mount not permitted here";
   const std::string sym = std::string(VGROOVE_SOURCE_DIR) + "/data/suites/table1_symmetric.json";
-  const CliRun r = vgroove("validate " + q(sym) + " --out " + q(mnt + "/r.json"));  // a 3 MB report
+  const CliRun r = vgroove("validate " + quoted(sym) + " --out " + quoted(mnt + "/r.json"));  // a 3 MB report
   const bool empty = fs::is_empty(mnt);
-  sh("umount " + q(mnt));
+  run_shell("umount " + quoted(mnt));
   expect_refused(r, "r.json: writing failed (No space left on device)");
   EXPECT_TRUE(empty) << "a partial report or temporary was left";
 }
@@ -359,12 +337,12 @@ TEST(CliLimits, ThreadsThatCannotStartAreNotACrash) {
   if (kSanitized) GTEST_SKIP() << "ulimit -v stops a sanitized binary from starting";
   const std::string nonsym = std::string(VGROOVE_SOURCE_DIR) + "/data/suites/table1_nonsymmetric.json";
   // 1024 threads of 8 MB stacks do not fit in 4 GB of address space.
-  const CliRun r =
-      sh("ulimit -v 4000000; exec " + kBin + " validate " + q(nonsym) + " --threads 1024 --rays 10 > /dev/null");
+  const CliRun r = run_shell("ulimit -v 4000000; exec " + kBin + " validate " + quoted(nonsym) +
+                             " --threads 1024 --rays 10 > /dev/null");
   EXPECT_TRUE(r.status == 0 || r.status == 1) << r;
   TempDir dir;
-  const CliRun s =
-      sh("ulimit -v 3000000; exec " + kBin + " simulate " + q(small_scene(dir)) + " --threads 1024 > /dev/null");
+  const CliRun s = run_shell("ulimit -v 3000000; exec " + kBin + " simulate " + quoted(small_scene(dir)) +
+                             " --threads 1024 > /dev/null");
   EXPECT_EQ(s.status, 0) << s;
 }
 
@@ -379,7 +357,7 @@ TEST(CliLimits, SpecsThatCannotFitAreRefusedWithTheEstimate) {
     "dimensions": ["3d"], "rays": 1000, "grooves": 10000000,
     "thresholds": {"sigmas": 5, "model_tolerance": {"flatland": 1e-5, "3d": 1e-4}}})");
   if (!kSanitized) {  // ulimit -v stops a sanitized binary from starting
-    const CliRun g = sh("ulimit -v 4000000; exec " + kBin + " validate " + q(f) + " --threads 2");
+    const CliRun g = run_shell("ulimit -v 4000000; exec " + kBin + " validate " + quoted(f) + " --threads 2");
     expect_refused(g, "of memory (");
     EXPECT_CONTAINS(g.err, "this process may use");
   }
@@ -388,7 +366,7 @@ TEST(CliLimits, SpecsThatCannotFitAreRefusedWithTheEstimate) {
     "groove": {"type": "symmetric", "theta_v_deg": {"from": 1, "to": 180, "step": 0.0002}},
     "theta_i_deg": {"from": -89, "to": 89, "step": 0.0002}, "rays": 10,
     "thresholds": {"max_l1": 1, "mean_l1": 1, "max_theta_o_error_rad": 1}})");
-  expect_refused(vgroove("validate " + q(f)), "cases), more than");
+  expect_refused(vgroove("validate " + quoted(f)), "cases), more than");
   // A scene of 10^5 angles x 64 channels x 10^6 histogram cells.
   std::string angles = "0";
   for (int n = 1; n < 100000; ++n) angles += ", " + std::to_string((n % 1700) * 0.05);
@@ -399,7 +377,7 @@ TEST(CliLimits, SpecsThatCannotFitAreRefusedWithTheEstimate) {
     "light": {"theta_i_deg": [)" +
                     angles + R"(], "rays": 10}, "effects": {"fresnel": {"kind": "schlick", "channels": [)" + channels +
                     R"(]}, "record": {"theta_o_histograms": {"bins": 10000, "max_k": 98}, "energy_per_k": true}}})");
-  const CliRun sc = vgroove("simulate " + q(f));
+  const CliRun sc = vgroove("simulate " + quoted(f));
   expect_refused(sc, "100000 incident angles x 64 channels, 1000000 histogram cells");
 }
 
@@ -408,8 +386,8 @@ TEST(CliLimits, SpecsThatCannotFitAreRefusedWithTheEstimate) {
 
 TEST(CliLimits, TallyMemoryDoesNotGrowWithTheBounceLimit) {
   if (kSanitized) GTEST_SKIP() << "ulimit -v stops a sanitized binary from starting";
-  const CliRun r = sh("ulimit -v 150000; exec " + kBin +
-                      " trace --theta-v-deg 0.001 --theta-i-deg 10 --rays 4 --max-bounces 100000000 --json");
+  const CliRun r = run_shell("ulimit -v 150000; exec " + kBin +
+                             " trace --theta-v-deg 0.001 --theta-i-deg 10 --rays 4 --max-bounces 100000000 --json");
   ASSERT_EQ(r.status, 0) << r;
   EXPECT_EQ(json::parse(r.out).at("buckets").at("escaped"), 4);
 }
@@ -429,10 +407,10 @@ TEST(CliNumerics, InputsBeyondTheAccurateRangeAreRefused) {
   const std::string f = dir.file("s.json");
   write_text(f, R"({"name": "x", "kind": "table1", "cases": [{"theta_v_deg": 0.0005, "theta_i_deg": 0}], "rays": 10,
     "thresholds": {"max_l1": 1, "mean_l1": 1, "max_theta_o_error_rad": 1}})");
-  expect_refused(vgroove("validate " + q(f)), "/cases/0/theta_v_deg = 0.0005 is out of range [0.001, 180]");
+  expect_refused(vgroove("validate " + quoted(f)), "/cases/0/theta_v_deg = 0.0005 is out of range [0.001, 180]");
   write_text(f, R"({"scene": "s", "geometry": {"kind": "groove", "theta_v_deg": 60},
     "light": {"theta_i_deg": [89.9995], "rays": 10}, "effects": {"fresnel": {"kind": "none"}}})");
-  expect_refused(vgroove("simulate " + q(f)), "/light/theta_i_deg/0 = 89.9995 is out of range [-89.999, 89.999]");
+  expect_refused(vgroove("simulate " + quoted(f)), "/light/theta_i_deg/0 = 89.9995 is out of range [-89.999, 89.999]");
 }
 
 // The model's fractions of the entering beam sum to 1 at every corner of the accepted range
@@ -484,17 +462,18 @@ TEST(CliNumerics, TraceAgreesWithTheModelAtTheNarrowestAperture) {
 TEST(CliOutput, UnwritableOutIsFoundBeforeTheRun) {
   const std::string furnace = std::string(VGROOVE_SOURCE_DIR) + "/data/suites/furnace.json";
   const auto t0 = std::chrono::steady_clock::now();
-  const CliRun r = vgroove("validate " + q(furnace) + " --out /proc/vgroove-report.json");
+  const CliRun r = vgroove("validate " + quoted(furnace) + " --out /proc/vgroove-report.json");
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
   expect_refused(r, "/proc/vgroove-report.json: cannot create a file in the directory /proc");
   TempDir dir;
-  const CliRun s = vgroove("simulate " + q(small_scene(dir)) + " --out /sys/vgroove.json");
+  const CliRun s = vgroove("simulate " + quoted(small_scene(dir)) + " --out /sys/vgroove.json");
   expect_refused(s, "cannot create a file in the directory /sys");
   if (::geteuid() != 0) {
     const std::string ro = dir.file("ro");
     fs::create_directory(ro);
     fs::permissions(ro, fs::perms::owner_read | fs::perms::owner_exec);
-    expect_refused(vgroove("simulate " + q(small_scene(dir)) + " --out " + q(ro + "/r.json")), "Permission denied");
+    expect_refused(vgroove("simulate " + quoted(small_scene(dir)) + " --out " + quoted(ro + "/r.json")),
+                   "Permission denied");
   }
 }
 
@@ -504,18 +483,18 @@ TEST(CliOutput, UnwritableOutIsFoundBeforeTheRun) {
 TEST(CliInput, SuitesAndScenesFromPipes) {
   TempDir dir;
   const std::string suite = small_suite(dir);
-  const CliRun a = sh("cat " + q(suite) + " | " + kBin + " validate /dev/stdin");
+  const CliRun a = run_shell("cat " + quoted(suite) + " | " + kBin + " validate /dev/stdin");
   EXPECT_EQ(a.status, 0) << a;
-  const CliRun b = sh("bash -c \"" + kBin + " validate <(cat " + q(suite) + ")\"");
+  const CliRun b = run_shell("bash -c \"" + kBin + " validate <(cat " + quoted(suite) + ")\"");
   EXPECT_EQ(b.status, 0) << b;
-  const CliRun c = sh("cat " + q(small_scene(dir)) + " | " + kBin + " simulate /dev/stdin");
+  const CliRun c = run_shell("cat " + quoted(small_scene(dir)) + " | " + kBin + " simulate /dev/stdin");
   EXPECT_EQ(c.status, 0) << c;
   // A rough-surface suite: dispatched by its kind after the one read.
   const std::string furnace = dir.file("furnace.json");
   write_text(furnace, R"({"name": "f", "kind": "furnace", "ndf": ["ggx"], "alpha": [0.5], "theta_i_deg": [30],
     "dimensions": ["flatland"], "max_k": 16, "samples": 2000, "strategy": "vndf", "rays": 1000, "grooves": 1000,
     "thresholds": {"sigmas": 5, "quadrature_tolerance": {"flatland": 1e-9, "3d": 1e-6}}})");
-  const CliRun d = sh("cat " + q(furnace) + " | " + kBin + " validate /dev/stdin");
+  const CliRun d = run_shell("cat " + quoted(furnace) + " | " + kBin + " validate /dev/stdin");
   EXPECT_EQ(d.status, 0) << d;
 }
 
@@ -526,21 +505,22 @@ TEST(CliOutput, OutputOntoAnInputIsRefused) {
   TempDir dir;
   const std::string suite = small_suite(dir);
   const std::string before = read_text(suite);
-  expect_refused(vgroove("validate " + q(suite) + " --out " + q(suite) + " --force"), "is the input file");
+  expect_refused(vgroove("validate " + quoted(suite) + " --out " + quoted(suite) + " --force"), "is the input file");
   // Through a link, a member of a set, and a scene.
   const std::string link = dir.file("link.json");
   fs::create_symlink(suite, link);
-  expect_refused(vgroove("validate " + q(suite) + " --out " + q(link) + " --force"), "is the input file");
+  expect_refused(vgroove("validate " + quoted(suite) + " --out " + quoted(link) + " --force"), "is the input file");
   const std::string set = dir.file("set.json");
   small_suite(dir, "b.json");
   write_text(set, R"({"name": "set", "suites": ["small.json", "b.json"]})");
-  expect_refused(vgroove("validate " + q(set) + " --out " + q(dir.file("b.json")) + " --force"), "is the input file");
+  expect_refused(vgroove("validate " + quoted(set) + " --out " + quoted(dir.file("b.json")) + " --force"),
+                 "is the input file");
   const std::string scene = small_scene(dir);
-  expect_refused(vgroove("simulate " + q(scene) + " --out " + q(scene) + " --force"), "is the input file");
+  expect_refused(vgroove("simulate " + quoted(scene) + " --out " + quoted(scene) + " --force"), "is the input file");
   EXPECT_EQ(read_text(suite), before);
   // The file standard output goes to is not replaced either.
   const std::string out = dir.file("out.txt");
-  const CliRun r = vgroove("validate " + q(suite) + " --out " + q(out) + " --force > " + q(out));
+  const CliRun r = vgroove("validate " + quoted(suite) + " --out " + quoted(out) + " --force > " + quoted(out));
   expect_refused(r, "standard output goes to");
 }
 
@@ -552,12 +532,12 @@ TEST(CliJson, DuplicateKeysAreRefused) {
   const std::string f = dir.file("dup.json");
   write_text(f, R"({"name": "x", "kind": "table1", "rays": 1000, "cases": [{"theta_v_deg": 60, "theta_i_deg": 0}],
     "thresholds": {"max_l1": 1, "mean_l1": 1, "max_theta_o_error_rad": 1}, "rays": 5})");
-  expect_refused(vgroove("validate " + q(f)), "/rays is given twice");
+  expect_refused(vgroove("validate " + quoted(f)), "/rays is given twice");
   write_text(f, R"({"scene": "s", "geometry": {"kind": "groove", "theta_v_deg": 60, "theta_v_deg": 90},
     "light": {"theta_i_deg": [0], "rays": 10}, "effects": {"fresnel": {"kind": "none"}}})");
-  expect_refused(vgroove("simulate " + q(f)), "/geometry/theta_v_deg is given twice");
+  expect_refused(vgroove("simulate " + quoted(f)), "/geometry/theta_v_deg is given twice");
   write_text(f, R"({"a": [{"b": 1}, {"c": 1, "c": 2}]})");
-  expect_refused(vgroove("validate " + q(f)), "/a/1/c is given twice");
+  expect_refused(vgroove("validate " + quoted(f)), "/a/1/c is given twice");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -570,23 +550,23 @@ TEST(CliInput, OneRangePerQuantity) {
   write_text(f, R"({"name": "g", "kind": "brdf", "ndf": ["ggx"], "alpha": [1e-12], "theta_i_deg": [0],
     "dimensions": ["3d"], "rays": 1000, "grooves": 1000,
     "thresholds": {"sigmas": 5, "model_tolerance": {"flatland": 1e-5, "3d": 1e-4}}})");
-  expect_refused(vgroove("validate " + q(f)), "/alpha/0 = 1e-12 is out of range [0.01, 2]");
+  expect_refused(vgroove("validate " + quoted(f)), "/alpha/0 = 1e-12 is out of range [0.01, 2]");
   write_text(f, R"({"name": "t", "kind": "table2", "ndf": ["ggx"], "alpha": [0.005], "percentiles": [90],
     "rays": 10, "grooves": 10, "paper": {"source": "x", "max_bounces": [[1]]}})");
-  expect_refused(vgroove("validate " + q(f)), "/alpha/0 = 0.005 is out of range [0.01, 2]");
+  expect_refused(vgroove("validate " + quoted(f)), "/alpha/0 = 0.005 is out of range [0.01, 2]");
   write_text(f, R"({"scene": "s", "geometry": {"kind": "microsurface", "ndf": "ggx", "alpha": 0.001, "grooves": 10},
     "light": {"theta_i_deg": [0], "rays": 10}, "effects": {"fresnel": {"kind": "none"}}})");
-  expect_refused(vgroove("simulate " + q(f)), "/geometry/alpha = 0.001 is out of range [0.01, 2]");
+  expect_refused(vgroove("simulate " + quoted(f)), "/geometry/alpha = 0.001 is out of range [0.01, 2]");
   // The bounce limit: [1, 100000000] in suites, scenes and on the command line.
   expect_refused(vgroove("trace --max-bounces 200000000"), "--max-bounces = 200000000 is out of range [1, 100000000]");
   write_text(f, R"({"scene": "s", "geometry": {"kind": "groove", "theta_v_deg": 60}, "light": {"theta_i_deg": [0],
     "rays": 10}, "effects": {"fresnel": {"kind": "none"}, "max_bounces": 200000000}})");
-  expect_refused(vgroove("simulate " + q(f)), "/effects/max_bounces = 200000000 is out of range [1, 100000000]");
+  expect_refused(vgroove("simulate " + quoted(f)), "/effects/max_bounces = 200000000 is out of range [1, 100000000]");
   // Histogram cells: bounded in brdf suites as in scenes.
   write_text(f, R"({"name": "g", "kind": "brdf", "ndf": ["ggx"], "alpha": [0.5], "theta_i_deg": [0],
     "dimensions": ["3d"], "rays": 1000, "grooves": 1000, "theta_bins": 1000, "phi_bins": 1000, "max_k": 16,
     "thresholds": {"sigmas": 5, "model_tolerance": {"flatland": 1e-5, "3d": 1e-4}}})");
-  expect_refused(vgroove("validate " + q(f)), "histogram cells, out of range [1, 1000000]");
+  expect_refused(vgroove("validate " + quoted(f)), "histogram cells, out of range [1, 1000000]");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -603,7 +583,7 @@ TEST(CliNumerics, ConductorExtremesAreFinite) {
       "channels": [)") +
                       ch + R"(]}, "record": {"energy_per_k": true}}})");
     const std::string out = dir.file("r.json");
-    const CliRun r = vgroove("simulate " + q(f) + " --out " + q(out) + " --force");
+    const CliRun r = vgroove("simulate " + quoted(f) + " --out " + quoted(out) + " --force");
     ASSERT_EQ(r.status, 0) << r;
     EXPECT_EQ(r.out.find("nan"), std::string::npos) << r;
     const std::string text = read_text(out);
@@ -655,13 +635,13 @@ TEST(CliInput, NumbersAreReadStrictly) {
 
 TEST(CliInput, DirectoriesAndOverflowingNumbersAreBadInput) {
   TempDir dir;
-  expect_refused(vgroove("validate " + q(dir.path().string())), "is a directory");
-  expect_refused(vgroove("simulate " + q(dir.path().string())), "is a directory");
+  expect_refused(vgroove("validate " + quoted(dir.path().string())), "is a directory");
+  expect_refused(vgroove("simulate " + quoted(dir.path().string())), "is a directory");
   const std::string f = dir.file("o.json");
   write_text(f, R"({"name": "x", "kind": "table1", "rays": 1e400})");
-  expect_refused(vgroove("validate " + q(f)), "not valid JSON");
+  expect_refused(vgroove("validate " + quoted(f)), "not valid JSON");
   write_text(f, R"({"scene": "s", "light": {"rays": -1e400}})");
-  expect_refused(vgroove("simulate " + q(f)), "not valid JSON");
+  expect_refused(vgroove("simulate " + quoted(f)), "not valid JSON");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -673,7 +653,7 @@ TEST(CliOutput, ControlCharactersAreEscaped) {
   // A name with a newline, ESC, a right-to-left override and a C1 control (JSON escapes).
   write_text(f, R"({"name": "a\nb\u001b[31m\u202ec\u0085", "kind": "table1", "cases": [{"theta_v_deg": 60,
     "theta_i_deg": 0}], "rays": 10, "thresholds": {"max_l1": 1, "mean_l1": 1, "max_theta_o_error_rad": 1}})");
-  const CliRun r = vgroove("validate " + q(f));
+  const CliRun r = vgroove("validate " + quoted(f));
   ASSERT_EQ(r.status, 0) << r;
   EXPECT_CONTAINS(r.out, "a\\nb\\x1b[31m\\u{202E}c\\u{0085}");
   EXPECT_EQ(r.out.find('\x1b'), std::string::npos);
@@ -681,10 +661,10 @@ TEST(CliOutput, ControlCharactersAreEscaped) {
   // Error lines: an unknown key and an option value with the same characters stay on one line.
   write_text(f, R"({"name": "x", "kind": "table1", "cases": [{"theta_v_deg": 60, "theta_i_deg": 0}], "rays": 10,
     "thresholds": {"max_l1": 1, "mean_l1": 1, "max_theta_o_error_rad": 1}, "bad\nkey\u202e": 1})");
-  expect_refused(vgroove("validate " + q(f)), "/bad\\nkey\\u{202E} is not a known key");
+  expect_refused(vgroove("validate " + quoted(f)), "/bad\\nkey\\u{202E} is not a known key");
   const CliRun o = vgroove("trace --sampling \"$(printf 'a\\nb\\033c')\"");
   expect_refused(o, "--sampling = \"a\\nb\\x1bc\" is not one of");
-  const CliRun s = vgroove("validate " + q(dir.file("new\nline\x1b.json")));
+  const CliRun s = vgroove("validate " + quoted(dir.file("new\nline\x1b.json")));
   expect_refused(s, "new\\nline\\x1b.json: cannot open the file");
 }
 
@@ -702,14 +682,14 @@ TEST(CliOutput, LeftoverTemporariesOfDeadRunsAreRemoved) {
   const std::string other = dir.file("other.json.vgroove-tmp." + std::to_string(dead));
   write_text(leftover, "partial");
   write_text(other, "partial");
-  EXPECT_EQ(vgroove("validate " + q(small_suite(dir)) + " --out " + q(report)).status, 0);
+  EXPECT_EQ(vgroove("validate " + quoted(small_suite(dir)) + " --out " + quoted(report)).status, 0);
   EXPECT_FALSE(fs::exists(leftover));
   EXPECT_TRUE(fs::exists(other));  // another target's: left to its own next run
   // Also with --force, and a live process's temporary (our own test process) is kept.
   const std::string live = report + ".vgroove-tmp." + std::to_string(::getpid());
   write_text(leftover, "partial");
   write_text(live, "in progress");
-  EXPECT_EQ(vgroove("simulate " + q(small_scene(dir)) + " --out " + q(report) + " --force").status, 0);
+  EXPECT_EQ(vgroove("simulate " + quoted(small_scene(dir)) + " --out " + quoted(report) + " --force").status, 0);
   EXPECT_FALSE(fs::exists(leftover));
   EXPECT_TRUE(fs::exists(live));
 }
@@ -769,8 +749,8 @@ TEST(CliInput, NewCommandsReadOptionsStrictly) {
       {"energy --max-k 1001", "--max-k = 1001 is out of range [1, 1000]"},
       {"energy --threads 2000", "--threads = 2000 is out of range [0, 1024]"},
       {"energy --shard ''", "--shard = \"\" is empty"},
-      {"energy --shard 3/2 --out " + q(out), "--shard = 3/2 is out of range"},
-      {"energy --shard +1/2 --out " + q(out), "--shard = \"+1/2\" is not of the form"},
+      {"energy --shard 3/2 --out " + quoted(out), "--shard = 3/2 is out of range"},
+      {"energy --shard +1/2 --out " + quoted(out), "--shard = \"+1/2\" is not of the form"},
       {"merge ''", "parts = \"\" is empty"},
       {"plot --format jpg r.json", "--format = \"jpg\" is not one of \"png\", \"svg\", \"pdf\""},
       {"plot r.json --out ''", "--out = \"\" is empty"},
@@ -791,22 +771,24 @@ TEST(CliInput, NewSuiteKindsUseTheSameRanges) {
   write_text(f, R"({"name": "f", "kind": "furnace", "ndf": ["ggx"], "alpha": [1e-6], "theta_i_deg": [30],
     "dimensions": ["flatland"], "max_k": 16, "samples": 2000, "strategy": "vndf", "rays": 1000, "grooves": 1000,
     "thresholds": {"sigmas": 5, "quadrature_tolerance": {"flatland": 1e-9, "3d": 1e-6}}})");
-  expect_refused(vgroove("validate " + q(f)), "/alpha/0 = 1e-06 is out of range [0.01, 2]");
+  expect_refused(vgroove("validate " + quoted(f)), "/alpha/0 = 1e-06 is out of range [0.01, 2]");
   write_text(f, R"({"name": "f", "kind": "furnace", "ndf": ["ggx"], "alpha": [0.5], "theta_i_deg": [89.95],
     "dimensions": ["flatland"], "max_k": 16, "samples": 2000, "strategy": "vndf", "rays": 1000, "grooves": 1000,
     "thresholds": {"sigmas": 5, "quadrature_tolerance": {"flatland": 1e-9, "3d": 1e-6}}})");
-  expect_refused(vgroove("validate " + q(f)), "/theta_i_deg/0 = 89.95 is out of range [0, 89.9]");
+  expect_refused(vgroove("validate " + quoted(f)), "/theta_i_deg/0 = 89.95 is out of range [0, 89.9]");
 }
 
 TEST(CliOutput, MergeNeverOverwritesItsParts) {
   TempDir dir;
   const std::string scene = small_scene(dir), part = dir.file("part.json");
-  ASSERT_EQ(vgroove("simulate " + q(scene) + " --shard 1/1 --out " + q(part)).status, 0);
+  ASSERT_EQ(vgroove("simulate " + quoted(scene) + " --shard 1/1 --out " + quoted(part)).status, 0);
   const std::string before = read_text(part);
-  expect_refused(vgroove("merge " + q(part) + " --out " + q(part) + " --force"), "; the output would replace it");
-  expect_refused(vgroove("merge " + q(part) + " --out " + q(scene) + " --force"), "; the output would replace it");
+  expect_refused(vgroove("merge " + quoted(part) + " --out " + quoted(part) + " --force"),
+                 "; the output would replace it");
+  expect_refused(vgroove("merge " + quoted(part) + " --out " + quoted(scene) + " --force"),
+                 "; the output would replace it");
   EXPECT_EQ(read_text(part), before);
-  EXPECT_EQ(vgroove("merge " + q(part) + " --out " + q(dir.file("merged.json"))).status, 0);
+  EXPECT_EQ(vgroove("merge " + quoted(part) + " --out " + quoted(dir.file("merged.json"))).status, 0);
 }
 
 }  // namespace

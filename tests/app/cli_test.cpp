@@ -25,15 +25,8 @@ using testing_files::TempDir;
 using testing_files::vgroove;
 using testing_files::write_text;
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
-
-int lines(const std::string& s) {
-  int n = 0;
-  for (char c : s) n += c == '\n';
-  return n + (!s.empty() && s.back() != '\n');
-}
-
-#define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << "in: " << (text)
+using testing_files::lines;
+using testing_files::quoted;
 
 // A bad value: exit 2, nothing on stdout, one line on stderr naming the option and its range.
 void expect_user_error(const CliRun& r, const std::string& option, const std::string& range) {

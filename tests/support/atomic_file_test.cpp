@@ -4,6 +4,7 @@
 #include "vgroove/support/user_error.h"
 
 #include "tests/test_files.h"
+#include "tests/user_error_of.h"
 
 #include <gtest/gtest.h>
 
@@ -19,30 +20,14 @@ namespace {
 
 using testing_files::read_text;
 using testing_files::TempDir;
+using testing_files::type_of;
+using testing_files::user_error_of;
 using testing_files::write_text;
 
 // No "<name>.vgroove-tmp.<pid>" file may survive a write, successful or not.
 void expect_no_temporaries(const TempDir& dir) {
   for (const std::string& e : dir.entries())
     EXPECT_EQ(e.find("vgroove-tmp"), std::string::npos) << "left behind: " << e;
-}
-
-template <class F>
-std::string user_error_of(F&& f) {
-  try {
-    f();
-  } catch (const UserError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no UserError thrown";
-  return "";
-}
-
-#define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << "in: " << (text)
-
-mode_t type_of(const std::string& p) {
-  struct stat s {};
-  return ::lstat(p.c_str(), &s) == 0 ? (s.st_mode & S_IFMT) : 0;
 }
 
 TEST(AtomicFile, WritesANewFile) {

@@ -3,6 +3,7 @@
 #include "vgroove/support/json_reader.h"
 
 #include "tests/test_files.h"
+#include "tests/user_error_of.h"
 
 #include <gtest/gtest.h>
 
@@ -15,21 +16,8 @@ namespace {
 
 using nlohmann::json;
 using testing_files::TempDir;
+using testing_files::user_error_of;
 using testing_files::write_text;
-
-// The message of the UserError that f throws ("" and a test failure if it throws none).
-template <class F>
-std::string user_error_of(F&& f) {
-  try {
-    f();
-  } catch (const UserError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no UserError thrown";
-  return "";
-}
-
-#define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << "in: " << (text)
 
 TEST(JsonObject, ReadsRequiredAndOptionalValues) {
   const json j = json::parse(R"({"name": "x", "n": 3, "v": 0.5, "sub": {"a": 1}, "pick": "b"})");

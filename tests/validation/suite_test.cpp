@@ -21,8 +21,6 @@ using nlohmann::json;
 using testing_files::TempDir;
 using testing_files::write_text;
 
-#define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << "in: " << (text)
-
 double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 // A small valid suite; each error test breaks one thing in it.
