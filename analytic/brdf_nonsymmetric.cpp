@@ -28,6 +28,8 @@ CountWidth count_width(double t_i, double theta_l, double theta_r, int k) {
   const double fa = f_vertex(0);
   if (!(fa > 0.0)) return out;
   const double fb = std::max(0.0, len_r * std::sin(phi_a - theta_v - t_i));
+  out.f_a = fa;
+  out.f_b = fb;
   const int kb = bounce_count_kb(t_i, theta_l, theta_r);
   const int counts[4] = {1, kb - 1, kb, kb + 1};
   if (k != 1 && k != kb - 1 && k != kb && k != kb + 1) return out;

@@ -102,10 +102,13 @@ double flatland_nonsymmetric_brdf(double theta_i, double theta_o, int max_k, con
 
 // The width of Eq. (9)'s zones with exactly k reflections (summed), for light at t_i aimed at the
 // left facet of the groove (theta_l, theta_r), and the left facet's length, both with the longer
-// facet of unit length. Exposed for the tests (checked against G_nonsymmetric).
+// facet of unit length; with f_a (the lit width, 0 when unlit) and f_b (the part that meets the
+// partner first), so that width / f_a is Eq. (9)'s G of count k. Exposed for the tests (checked
+// against G_nonsymmetric) and for the sampler's pdf (sampling_nonsymmetric.cpp).
 struct CountWidth {
   double width = 0.0;
   double len_left = 0.0;
+  double f_a = 0.0, f_b = 0.0;
 };
 CountWidth count_width(double t_i, double theta_l, double theta_r, int k);
 

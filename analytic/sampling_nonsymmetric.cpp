@@ -86,27 +86,27 @@ double facet_pdf2(const NonsymmetricSampler& S, double theta_i, double theta_s) 
   return 0.0;
 }
 
-// ---- The outcome: P(k | s, B) ---------------------------------------------------------------------
+// ---- The outcome: P(k | s, B) and the probability of no direction -------------------------------
 
 // Eq. (9) for light at t_i aimed at the left facet (theta_l = -A) of the groove with partner B: the
-// probability of the k-reflection outcome under the strategy's roulette (sampling_nonsymmetric.h,
-// step 3), and the probability of no direction.
-struct Outcome {
-  double p_k = 0.0, fail = 1.0;
-};
-Outcome outcome(const NonsymmetricPrediction& g, bool printed, int k, int max_k) {
-  Outcome r;
-  if (!g.lit) return r;
+// probability that the strategy's roulette (sampling_nonsymmetric.h, step 3) gives no direction.
+double no_direction(const NonsymmetricPrediction& g, bool printed, int max_k) {
+  if (!g.lit) return 1.0;
   const double total = printed ? 1.0 : 1.0 - g.shadow;
-  if (!(total > 0.0)) return r;
-  double valid = 0.0, at_k = 0.0;
-  for (const BounceShare& z : g.share) {
+  if (!(total > 0.0)) return 1.0;
+  double valid = 0.0;
+  for (const BounceShare& z : g.share)
     if (z.n >= 1 && z.n <= max_k) valid += z.G;
-    if (z.n == k) at_k += z.G;
-  }
-  r.p_k = k >= 1 && k <= max_k ? at_k / total : 0.0;
-  r.fail = std::clamp(1.0 - valid / total, 0.0, 1.0);
-  return r;
+  return std::clamp(1.0 - valid / total, 0.0, 1.0);
+}
+
+// The probability of the k-reflection outcome under the same roulette, from the zone widths alone (count_width: no exit
+// angles, which the pdf does not need): width / f_a under the printed roulette, width / (f_a - f_b) under the others.
+double p_count(double t_i, double theta_l, double B, int k, bool printed) {
+  const CountWidth w = count_width(t_i, theta_l, B, k);
+  if (!(w.width > 0.0)) return 0.0;
+  const double total = printed ? w.f_a : w.f_a - w.f_b;
+  return total > 0.0 ? w.width / total : 0.0;
 }
 
 // |d t_h / d theta_l| (Eq. 8): k/2 (k even), (k+1)/2 (k odd).
@@ -169,12 +169,12 @@ double nonsymmetric_pdf_3d_k(const NonsymmetricSampler& S, const Dir3& i, const 
         auto f = [&](double B) {
           const double theta_l = piece.C + piece.beta * B, A = -theta_l;
           if (!inside_groove(A, B)) return 0.0;
-          const Outcome oc = outcome(G_nonsymmetric(ti, theta_l, B, FacetSide::left), printed, k, S.opt.max_k);
-          if (!(oc.p_k > 0.0)) return 0.0;
+          const double p_k = p_count(ti, theta_l, B, k, printed);
+          if (!(p_k > 0.0)) return 0.0;
           const double pB = P_theta_r(S.ndf, B, S.alpha);
           const double sa = std::sin(A);
           const double q = facet_pdf(S, i, Dir3{sa * cp, sa * sp, std::cos(A)});
-          return q * pB * oc.p_k * (k == 1 ? 1.0 : sa / x.sin_h);
+          return q * pB * p_k * (k == 1 ? 1.0 : sa / x.sin_h);
         };
         sum += jac * integrate_adaptive(f, piece.lo, piece.hi, S.tolerance, kAbsPerRel * S.tolerance, kPieceParts, 512);
       }
@@ -266,7 +266,7 @@ double nonsymmetric_failure_probability_3d(const NonsymmetricSampler& S, const D
       const double B = mapped(w, dB);
       const double pB = S.flatland ? P2_theta_r(S.ndf, B, S.alpha) : P_theta_r(S.ndf, B, S.alpha);
       if (!(pB > 0.0)) return 0.0;
-      return pB * dB * outcome(G_nonsymmetric(t_i, -A, B, FacetSide::left), printed, 0, S.opt.max_k).fail;
+      return pB * dB * no_direction(G_nonsymmetric(t_i, -A, B, FacetSide::left), printed, S.opt.max_k);
     };
     return integrate_adaptive(f, 0.0, 1.0, 0.0, 0.1 * tol, 8, 128);
   };
@@ -301,10 +301,10 @@ double nonsymmetric_pdf_flatland_k(const NonsymmetricSampler& S, double theta_i,
         auto f = [&](double B) {
           const double theta_l = piece.C + piece.beta * B, A = -theta_l;
           if (!inside_groove(A, B)) return 0.0;
-          const Outcome oc = outcome(G_nonsymmetric(ti, theta_l, B, FacetSide::left), printed, k, S.opt.max_k);
-          if (!(oc.p_k > 0.0)) return 0.0;
+          const double p_k = p_count(ti, theta_l, B, k, printed);
+          if (!(p_k > 0.0)) return 0.0;
           const double pB = P2_theta_r(S.ndf, B, S.alpha);
-          return facet_pdf2(S, theta_i, -sgn * A) * pB * oc.p_k;
+          return facet_pdf2(S, theta_i, -sgn * A) * pB * p_k;
         };
         sum += jac * integrate_adaptive(f, piece.lo, piece.hi, S.tolerance, kAbsPerRel * S.tolerance, kPieceParts, 512);
       }
@@ -374,7 +374,7 @@ double nonsymmetric_failure_probability_flatland(const NonsymmetricSampler& S, d
         const double B = mapped(w, dB);
         const double pB = S.flatland ? P2_theta_r(S.ndf, B, S.alpha) : P_theta_r(S.ndf, B, S.alpha);
         if (!(pB > 0.0)) return 0.0;
-        return pB * dB * outcome(G_nonsymmetric(ti, -A, B, FacetSide::left), printed, 0, S.opt.max_k).fail;
+        return pB * dB * no_direction(G_nonsymmetric(ti, -A, B, FacetSide::left), printed, S.opt.max_k);
       };
       return q * dA * integrate_adaptive(f, 0.0, 1.0, 0.0, 0.1 * tol, 8, 256);
     };

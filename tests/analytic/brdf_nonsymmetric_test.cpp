@@ -65,6 +65,10 @@ TEST(NonsymmetricBrdf, CountWidthsAreEq9) {
           if (s.n == k) expect += s.G * p.f_a;
       const va::CountWidth w = va::count_width(ti, tl, tr, k);
       EXPECT_NEAR(w.width, expect, 1e-14) << "ti=" << ti << " tl=" << tl << " tr=" << tr << " k=" << k;
+      EXPECT_EQ(w.f_a, p.lit ? p.f_a : 0.0) << "ti=" << ti << " tl=" << tl << " tr=" << tr;
+      if (p.lit) {
+        EXPECT_EQ(w.f_b, p.f_b) << "ti=" << ti << " tl=" << tl << " tr=" << tr;
+      }
     }
   }
 }
