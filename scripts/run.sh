@@ -3,6 +3,8 @@
 # the paper's figures, write the report JSONs to results/ and the plots next to them (matplotlib,
 # `vgroove plot`):
 #   table1   Table 1, symmetric and nonsymmetric single grooves       results/table1.json, table1.png (L1 heatmaps)
+#   table1_breakpoints  the same, traced fractions exact by breakpoint  results/table1_breakpoints.json,
+#            search (thresholds 10^6 times tighter)                     table1_breakpoints.png
 #   fig11    Fig. 11: BRDF vs traced procedural surfaces (2D and 3D)  results/fig11.json, fig11-NDF-DIM.png (6 grids)
 #   table2   Table 2: bounce counts at percentiles of D               results/table2.json, table2.png
 #   furnace  white furnace of the BRDF: Eq. 17 by quadrature and by   results/furnace.json, furnace.png (albedo),
@@ -19,12 +21,12 @@ cd "$(dirname "$0")/.."
 scripts/setup.sh vgroove
 mkdir -p results
 status=0
-for suite in table1 fig11 table2 furnace sampling nonsymmetric_brdf; do
+for suite in table1 table1_breakpoints fig11 table2 furnace sampling nonsymmetric_brdf; do
   build/vgroove validate "data/suites/$suite.json" --out "results/$suite.json" --force "$@" || status=$?
   [[ $status -eq 0 || $status -eq 1 ]] || exit "$status"
   echo
 done
-for suite in table1 fig11 table2 furnace sampling nonsymmetric_brdf; do
+for suite in table1 table1_breakpoints fig11 table2 furnace sampling nonsymmetric_brdf; do
   build/vgroove plot "results/$suite.json" --force
 done
 exit "$status"

@@ -250,7 +250,7 @@ def single_groove_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
 
     def draw() -> Figure:
         import numpy as np
-        from matplotlib.colors import Normalize
+        from matplotlib.colors import LogNorm, Normalize
         fig = _figure(6.0 * len(data) + 1.0, 5.2)
         axes = fig.subplots(1, len(data), squeeze=False)[0]
         for ax, d in zip(axes, data):
@@ -258,7 +258,18 @@ def single_groove_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
             thr = d["max_l1"]
             marks = [x for x in (thr, d["paper"]) if x is not None and x > 0]
             vmax = max([float(l1.max())] + marks) or 1.0
-            norm = Normalize(0.0, vmax)
+            # Thresholds far below the paper's (exact fractions, e.g. by breakpoint search): a
+            # logarithmic scale from a tenth of the smallest nonzero L1 (zeros drawn at its floor).
+            log = 0.0 < thr < 1e-3 * vmax
+            if log:
+                positive = l1[l1 > 0.0]
+                floor = max(1e-20, 0.1 * min(thr, float(positive.min())) if positive.size else 1e-6 * thr)
+                norm = LogNorm(floor, vmax, clip=True)
+                l1 = np.maximum(l1, floor)
+                at = float(np.log(thr / floor) / np.log(vmax / floor))
+            else:
+                norm = Normalize(0.0, vmax)
+                at = thr / vmax
             vs, is_ = np.unique(v), np.unique(i)
             over = l1 > thr
             if len(vs) * len(is_) <= 4 * len(l1) and len(vs) > 1 and len(is_) > 1:
@@ -279,9 +290,9 @@ def single_groove_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
                 ax.plot([], [], color="red", lw=1, label=f"L1 > threshold: {int(over.sum())} of {len(l1)} cases")
                 ax.legend(loc="upper right", fontsize=7)
             cb = fig.colorbar(mesh, ax=ax)
-            cb.set_label("L1 error of the model (fraction of the rays)")
+            cb.set_label("L1 error of the model (fraction of the rays)" + (", log scale" if log else ""))
             cb.ax.axhline(thr, color="red", lw=2)
-            cb.ax.text(1.05, thr / vmax, " threshold", transform=cb.ax.transAxes, color="red", fontsize=7,
+            cb.ax.text(1.05, at, " threshold", transform=cb.ax.transAxes, color="red", fontsize=7,
                        va="center", clip_on=False)
             if d["paper"] is not None:
                 cb.ax.axhline(d["paper"], color="white", lw=1.5, ls="--")

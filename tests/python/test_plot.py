@@ -324,3 +324,28 @@ def test_the_main_job_plots_every_report_it_writes():
         kind = {"table1": "single_grooves", "stress": "single_grooves"}.get(kind, kind)
         assert kind in m.KINDS, (suite, kind)
         assert kind == "single_grooves" or kind in EXPECTED, (suite, kind)
+
+
+def test_exact_table1_errors_are_drawn_on_a_log_scale(reports):
+    # Breakpoint search gives L1 of 1e-13 and zeros against thresholds of 1e-9: a linear scale up to
+    # the paper's 0.003 would draw every cell alike. Far below the paper, the scale is logarithmic,
+    # zeros drawn at its floor; at the paper's scale it stays linear.
+    from matplotlib.colors import LogNorm, Normalize
+    m = plot_module()
+    with open(reports["table1"]) as f:
+        r = json.load(f)
+    [(_, draw)] = m.figures_for(r, "r.json")
+    def maps(fig):  # the heatmaps' normalizations (the panels, not their colorbars)
+        return [c.norm for ax in fig.axes if ax.get_ylabel() == "theta_v (deg)" for c in ax.collections]
+
+    norms = maps(draw())
+    assert norms and all(type(n) is Normalize for n in norms)
+    r["thresholds"]["max_l1"] = 3e-9
+    for n, c in enumerate(r["cases"]):
+        c["l1"] = [0.0, 1e-16, 3.6e-14][n % 3]
+    [(_, draw)] = m.figures_for(r, "r.json")
+    fig = draw()
+    norms = maps(fig)
+    assert norms and all(isinstance(n, LogNorm) for n in norms)
+    assert all(n.vmin == pytest.approx(1e-17) and n.vmax >= 3.6e-14 for n in norms)
+    assert any("log scale" in ax.get_ylabel() for ax in fig.axes)
