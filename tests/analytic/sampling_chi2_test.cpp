@@ -116,17 +116,25 @@ int grid_family() {
   return n;
 }
 
+// Runs the cases on all cores (each case on one thread) and checks the outcomes in order.
+void run_cases(const std::vector<Chi2Spec>& specs) {
+  std::vector<Chi2Outcome> outcomes(specs.size());
+  support::parallel_for(
+      specs.size(), support::resolve_threads(0), [&](std::size_t n) { outcomes[n] = run_chi2(specs[n]); }, {}, nullptr,
+      1);
+  for (const Chi2Outcome& o : outcomes) EXPECT_TRUE(o.pass) << describe(o);
+}
+
 void run_grid(SurfaceDim dim, long samples) {
   const int family = grid_family();
+  std::vector<Chi2Spec> specs;
   for (NdfKind ndf : kNdfs)
     for (FacetStrategy st : kStrategies) {
       if (!analytic::strategy_supports(st, ndf, dim == SurfaceDim::flatland)) continue;
       for (double alpha : kAlphas)
-        for (double deg : kThetas) {
-          const Chi2Outcome o = run_chi2(spec(dim, ndf, alpha, deg, st, samples, family));
-          EXPECT_TRUE(o.pass) << describe(o);
-        }
+        for (double deg : kThetas) specs.push_back(spec(dim, ndf, alpha, deg, st, samples, family));
     }
+  run_cases(specs);
 }
 
 TEST(SamplingChi2Long, ThreeDGrid) { run_grid(SurfaceDim::three_d, 200000); }
@@ -271,11 +279,10 @@ TEST(SamplingChi2NonsymmetricLong, ThreeD) {
   EXPECT_TRUE(o.pass) << describe(o);
 }
 
-// The grid: every NDF, alpha 0.1 to 1.5 (Phong to 1.0), theta_i 0 to 85 deg, run on all cores (each
-// case on one thread, the outcomes checked in order). Flatland: printed and vndf at every point (66
-// cases). 3D: a case's 16 cells (mirrored to 32) cost ~10^5 pdf evaluations at 0.5-3 ms each
-// (1-4 minutes), so each point has one of the two strategies, alternating along alpha and theta
-// so that every NDF, alpha and theta_i meets both (33 cases, about 40 minutes on two cores).
+// The grid: every NDF, alpha 0.1 to 1.5 (Phong to 1.0), theta_i 0 to 85 deg. Flatland: printed and vndf at every point
+// (66 cases). 3D: a case's 16 cells (mirrored to 32) cost ~10^5 pdf evaluations at 0.5-3 ms each (1-4 minutes), so each
+// point has one of the two strategies, alternating along alpha and theta so that every NDF, alpha and theta_i meets
+// both (33 cases, about 40 minutes on two cores).
 void run_nonsymmetric_grid(SurfaceDim dim, long samples) {
   constexpr double alphas[] = {0.1, 0.5, 1.0, 1.5};
   constexpr double thetas[] = {0.0, 45.0, 85.0};
@@ -290,11 +297,7 @@ void run_nonsymmetric_grid(SurfaceDim dim, long samples) {
             specs.push_back(nonsym(dim, ndf, alphas[a], thetas[t], strategies[st], samples, 0));
     }
   for (Chi2Spec& s : specs) s.tests = static_cast<int>(specs.size());
-  std::vector<Chi2Outcome> outcomes(specs.size());
-  support::parallel_for(
-      specs.size(), support::resolve_threads(0), [&](std::size_t n) { outcomes[n] = run_chi2(specs[n]); }, {}, nullptr,
-      1);
-  for (const Chi2Outcome& o : outcomes) EXPECT_TRUE(o.pass) << describe(o);
+  run_cases(specs);
 }
 TEST(SamplingChi2NonsymmetricLong, FlatlandGrid) { run_nonsymmetric_grid(SurfaceDim::flatland, 200000); }
 TEST(SamplingChi2NonsymmetricLong, ThreeDGrid) { run_nonsymmetric_grid(SurfaceDim::three_d, 50000); }
