@@ -23,7 +23,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -122,7 +124,18 @@ void run_cases(const std::vector<Chi2Spec>& specs) {
   support::parallel_for(
       specs.size(), support::resolve_threads(0), [&](std::size_t n) { outcomes[n] = run_chi2(specs[n]); }, {}, nullptr,
       1);
-  for (const Chi2Outcome& o : outcomes) EXPECT_TRUE(o.pass) << describe(o);
+  double p_min = 1.0, p_max = 0.0, norm = 0.0, seconds = 0.0;
+  for (const Chi2Outcome& o : outcomes) {
+    EXPECT_TRUE(o.pass) << describe(o);
+    p_min = std::min(p_min, o.test.p_value);
+    p_max = std::max(p_max, o.test.p_value);
+    norm = std::max(norm, std::abs(o.normalization_error) / o.normalization_tolerance);
+    seconds += o.sample_s + o.integrate_s;
+  }
+  std::printf(
+      "%zu cases (level %.3g each): p from %.3g to %.3g; largest |normalization error| / tolerance %.3g; %.0f s "
+      "of sampling and integration\n",
+      specs.size(), outcomes.empty() ? 0.0 : outcomes[0].test.level, p_min, p_max, norm, seconds);
 }
 
 void run_grid(SurfaceDim dim, long samples) {
