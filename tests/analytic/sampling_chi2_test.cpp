@@ -295,7 +295,7 @@ TEST(SamplingChi2NonsymmetricLong, ThreeD) {
 // The grid: every NDF, alpha 0.1 to 1.5 (Phong to 1.0), theta_i 0 to 85 deg. Flatland: printed and vndf at every point
 // (66 cases). 3D: a case's 16 cells (mirrored to 32) cost ~10^5 pdf evaluations at 0.5-3 ms each (1-4 minutes), so each
 // point has one of the two strategies, alternating along alpha and theta so that every NDF, alpha and theta_i meets
-// both (33 cases, about 40 minutes on two cores).
+// both (33 cases, 31-36 minutes on two cores).
 void run_nonsymmetric_grid(SurfaceDim dim, long samples) {
   constexpr double alphas[] = {0.1, 0.5, 1.0, 1.5};
   constexpr double thetas[] = {0.0, 45.0, 85.0};
