@@ -30,7 +30,8 @@ ValidateOptions validate_options(const ValidateArgs& a) {
 
 int cmd_validate(const ValidateArgs& a) {
   if (!a.shard.empty() || world().distributed()) return validate_split(a);
-  const ValidationPlan plan = plan_validation(validate_options(a));
+  ValidationPlan plan = plan_validation(validate_options(a));
+  plan.report = !a.out.empty();  // the report is only written, never printed
   if (!a.out.empty()) support::check_writable_target(a.out, a.force, plan.inputs);  // fail before the work, not after
   if (a.dry_run) return 0;
   const ValidationResult res = run_validation(plan, terminal_progress, a.cancel);

@@ -124,7 +124,7 @@ ValidationResult run_validation(const ValidationPlan& plan, const ProgressFactor
       const Table2Run run = run_table2_suite(plan.table2, plan.rays, plan.threads, cancel);
       if (run.interrupted) return res.interrupted = true, res;
       print_table2(table, plan.table2, run);
-      res.report = table2_report_json(plan.table2, run);
+      if (plan.report) res.report = table2_report_json(plan.table2, run);
       res.pass = run.pass;
       break;
     }
@@ -133,7 +133,7 @@ ValidationResult run_validation(const ValidationPlan& plan, const ProgressFactor
                                                  progress_for(progress, plan.profiles.name), cancel);
       if (run.interrupted) return res.interrupted = true, res;
       print_profiles_table(table, plan.profiles, run);
-      res.report = profiles_report_json(plan.profiles, run);
+      if (plan.report) res.report = profiles_report_json(plan.profiles, run);
       res.pass = run.pass;
       break;
     }
@@ -142,7 +142,7 @@ ValidationResult run_validation(const ValidationPlan& plan, const ProgressFactor
           run_sampling_suite(plan.sampling, plan.threads, progress_for(progress, plan.sampling.name), cancel);
       if (run.interrupted) return res.interrupted = true, res;
       print_sampling_table(table, plan.sampling, run);
-      res.report = sampling_report_json(plan.sampling, run);
+      if (plan.report) res.report = sampling_report_json(plan.sampling, run);
       res.pass = run.pass;
       break;
     }
@@ -151,7 +151,7 @@ ValidationResult run_validation(const ValidationPlan& plan, const ProgressFactor
           run_furnace_suite(plan.furnace, 0, plan.threads, progress_for(progress, plan.furnace.name), cancel);
       if (run.interrupted) return res.interrupted = true, res;
       print_furnace_table(table, plan.furnace, run);
-      res.report = furnace_report_json(plan.furnace, run);
+      if (plan.report) res.report = furnace_report_json(plan.furnace, run);
       res.pass = run.pass;
       break;
     }
@@ -160,7 +160,7 @@ ValidationResult run_validation(const ValidationPlan& plan, const ProgressFactor
                                                          progress_for(progress, plan.nonsymmetric.name), cancel);
       if (run.interrupted) return res.interrupted = true, res;
       print_nonsymmetric_table(table, plan.nonsymmetric, run);
-      res.report = nonsymmetric_report_json(plan.nonsymmetric, run);
+      if (plan.report) res.report = nonsymmetric_report_json(plan.nonsymmetric, run);
       res.pass = run.pass;
       break;
     }
@@ -168,7 +168,7 @@ ValidationResult run_validation(const ValidationPlan& plan, const ProgressFactor
       const ModelTableRun run = run_model_table(plan.brdf, *plan.table, plan.rays, plan.threads, cancel);
       if (run.interrupted) return res.interrupted = true, res;
       print_model_table(table, plan.brdf, *plan.table, run);
-      res.report = model_table_report_json(plan.brdf, *plan.table, run);
+      if (plan.report) res.report = model_table_report_json(plan.brdf, *plan.table, run);
       res.pass = run.pass;
       break;
     }
@@ -177,7 +177,7 @@ ValidationResult run_validation(const ValidationPlan& plan, const ProgressFactor
           run_brdf_suite(plan.brdf, plan.rays, plan.threads, progress_for(progress, plan.brdf.name), cancel);
       if (run.interrupted) return res.interrupted = true, res;
       print_brdf_table(table, plan.brdf, run);
-      res.report = brdf_report_json(plan.brdf, run);
+      if (plan.report) res.report = brdf_report_json(plan.brdf, run);
       res.pass = run.pass;
       break;
     }
@@ -191,7 +191,7 @@ ValidationResult run_validation(const ValidationPlan& plan, const ProgressFactor
         pass = pass && runs.back().summary.pass();
       }
       print_set_table(table, plan.set, runs);
-      res.report = report_json(plan.set, runs);
+      if (plan.report) res.report = report_json(plan.set, runs);
       res.pass = pass;
       break;
     }

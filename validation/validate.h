@@ -66,6 +66,7 @@ struct ValidationPlan {
   long rays = 0;                            // rough surfaces: the override, 0 for the suite's
   int threads = 0;
   std::vector<std::string> inputs;  // the files read (suite, the set's suites, model table): never an output
+  bool report = true;               // build ValidationResult::report (the command line without --out does not)
 };
 
 ValidationPlan plan_validation(const ValidateOptions& opt);

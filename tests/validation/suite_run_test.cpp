@@ -1,12 +1,15 @@
 // Tests of validation/suite_run.h: results do not depend on the thread count, and the summary
 // is what its cases say.
 #include "vgroove/validation/suite_run.h"
+#include "vgroove/validation/validate.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 #include <numbers>
+#include <sstream>
+#include <string>
 
 namespace vgroove::validation {
 namespace {
@@ -119,6 +122,34 @@ TEST(RunSuite, CancelledRunSaysSo) {
   EXPECT_TRUE(run.interrupted);
   const SuiteRun full = run_suite(s, s.options, 2);
   EXPECT_FALSE(full.interrupted);
+}
+
+// The table without its timing line.
+std::string without_times(const std::string& table) {
+  std::istringstream in(table);
+  std::string out, line;
+  while (std::getline(in, line))
+    if (line.find("wall") == std::string::npos && line.find("threads") == std::string::npos) out += line + "\n";
+  return out;
+}
+
+// The command line without --out asks for no report (ValidationPlan::report): the same table and
+// verdict, no JSON built (for Table 1 by breakpoints the report is most of the command's time).
+TEST(Validate, ReportOnlyWhenAsked) {
+  ValidateOptions o;
+  o.suite = std::string(VGROOVE_SOURCE_DIR) + "/data/suites/table1_symmetric_breakpoints.json";
+  o.threads = 2;
+  ValidationPlan plan = plan_validation(o);
+  const ValidationResult with = run_validation(plan);
+  plan.report = false;
+  const ValidationResult without = run_validation(plan);
+  ASSERT_TRUE(with.report.is_object());
+  EXPECT_EQ(with.report["cases"].size(), 6444u);
+  EXPECT_TRUE(without.report.is_null());
+  EXPECT_TRUE(with.pass);
+  EXPECT_EQ(without.pass, with.pass);
+  EXPECT_EQ(without_times(without.table), without_times(with.table));
+  EXPECT_NE(without_times(with.table).find("3.592e-14"), std::string::npos) << with.table;
 }
 
 }  // namespace
