@@ -6,7 +6,8 @@
 // 1.0, theta_i 0 and 60 deg, 10^4 grooves (the surface is built once, outside the timing). One
 // iteration traces one chunk of kRaysPerChunk rays with default bins (90; 90 x 72 in 3D). Rougher
 // surfaces have deeper grooves: bounces_per_ray says how much of the time is the reflection loop.
-// BM_microsurface_*: the batch trace (sim/symmetric_block.h, bins by comparisons); *_reference:
+// BM_microsurface_*: the batch trace (sim/symmetric_block.h, bins from vectorized arctangent guesses,
+// sim/exit_bins.h); *_reference:
 // the plain path (sim::trace per ray, atan2/acos bins). Both give the same tallies.
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/microsurface3d.h"

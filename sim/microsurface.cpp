@@ -54,12 +54,9 @@ void MicrosurfaceTally::add(Termination how, int k, const Vec2& exit_dir) {
   ++theta_o_by_k[static_cast<std::size_t>(row) * bins + bin];
 }
 
-void MicrosurfaceTally::add(const TraceResult& r, const AngleEdges& edges) {
-  if (!count(r.how, r.bounces, r.exit_dir.y() > 0.0)) return;
-  const int row = row_of(r.bounces);
-  // angle_from_normal(e) = atan2(-e.x, e.y): the angle of (e.y, -e.x).
-  const double x = r.exit_dir.y(), y = -r.exit_dir.x();
-  const int bin = edges.bin(x, y, atan2_guess(y, x));
+void MicrosurfaceTally::add_binned(Termination how, int k, bool upward, int bin) {
+  if (!count(how, k, upward)) return;
+  const int row = row_of(k);
   ++by_k[static_cast<std::size_t>(row)];
   ++theta_o[static_cast<std::size_t>(bin)];
   ++theta_o_by_k[static_cast<std::size_t>(row) * bins + bin];
@@ -96,6 +93,9 @@ trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOpt
   const AngleEdges edges(-0.5 * std::numbers::pi, std::numbers::pi / opt.theta_o_bins, opt.theta_o_bins);
   SymmetricBlock in;
   SymmetricHits hits;
+  Termination how[kSymmetricBlock];
+  int k_of[kSymmetricBlock];
+  double ex[kSymmetricBlock], ey[kSymmetricBlock], g_of[kSymmetricBlock], b_of[kSymmetricBlock];
   for (std::int64_t j0 = begin; j0 < end; j0 += kSymmetricBlock) {
     const int m = static_cast<int>(std::min<std::int64_t>(kSymmetricBlock, end - j0));
     for (int q = 0; q < m; ++q) {
@@ -115,7 +115,21 @@ trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOpt
       in.dy[q] = dir.y();
     }
     block_reflections(in, m, opt.trace.max_bounces, kBlockRounds, hits);
-    for (int q = 0; q < m; ++q) tally.add(finish_lane(in, hits, q, opt.trace), edges);
+    for (int q = 0; q < m; ++q) {
+      const TraceResult r = finish_lane(in, hits, q, opt.trace);
+      how[q] = r.how, k_of[q] = r.bounces, ex[q] = r.exit_dir.x(), ey[q] = r.exit_dir.y();
+    }
+    // The bins (angle_from_normal(e) = atan2(-e.x, e.y), the angle of (e.y, -e.x)) from the
+    // guesses where they are far from every edge (vectorized), the edge tests for the rest.
+    for (int q = 0; q < m; ++q) {
+      g_of[q] = atan2_guess(-ex[q], ey[q]);
+      b_of[q] = edges.bin_if_far(g_of[q]);
+    }
+    for (int q = 0; q < m; ++q) {
+      if (b_of[q] < 0.0) [[unlikely]]
+        b_of[q] = edges.bin(ey[q], -ex[q], g_of[q]);
+      tally.add_binned(how[q], k_of[q], ey[q] > 0.0, static_cast<int>(b_of[q]));
+    }
   }
   return tally;
 }

@@ -84,7 +84,6 @@ struct MicrosurfaceTraceOptions {
 
 // What happened to the rays. Every ray is in exactly one of escaped, blocked, vertex_hits,
 // bounce_limit, not_upward; every escaped ray in one k row and one theta_o bin.
-struct AngleEdges;
 
 struct MicrosurfaceTally : RayFates {
   int bins = 0;
@@ -105,8 +104,8 @@ struct MicrosurfaceTally : RayFates {
 
   void add(const TraceResult& r) { add(r.how, r.bounces, r.exit_dir); }
   void add(Termination how, int k, const Vec2& exit_dir);
-  // The same, the bin found among the edges (sim/exit_bins.h) instead of by atan2.
-  void add(const TraceResult& r, const AngleEdges& edges);
+  // A ray whose bin is known (the chunks find it among the edges, sim/exit_bins.h).
+  void add_binned(Termination how, int k, bool upward, int bin);
   void merge(const MicrosurfaceTally& other);  // same bins and max_k
 };
 
@@ -143,8 +142,8 @@ void for_each_landing(const std::vector<Groove>& grooves, double theta_i, Sampli
 
 // The rays of chunk c (kRaysPerChunk of them; the last chunk holds the rest): the landing points of
 // for_each_landing, traced in blocks (symmetric_block.h: each ray's first reflection computed
-// with the block's, without branches; bit for bit sim::trace) and binned by comparisons
-// (sim/exit_bins.h).
+// with the block's, without branches; bit for bit sim::trace) and binned from an arctangent
+// guess, by the edge tests where it lies near an edge (sim/exit_bins.h; the same bins).
 MicrosurfaceTally trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOptions& opt,
                                            std::int64_t chunk);
 // The same one ray at a time with sim::trace on surface.grooves, binned by atan2: the path before

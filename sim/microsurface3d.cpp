@@ -152,20 +152,6 @@ void Microsurface3dTally::add(const Trace3dResult& r) {
   ++hist_by_k[index(row, t, p)];
 }
 
-void Microsurface3dTally::add(const Trace3dResult& r, const AngleEdges& theta_edges, const AngleEdges& phi_edges) {
-  const int k = r.trace.bounces;
-  if (!count(r.trace.how, k, r.o.z() > 0.0)) return;
-  const int row = row_of(k);
-  // theta_o = atan2(|o_xy|, o_z) (acos(o_z) for the unit o); phi_o = atan2(o_y, o_x).
-  const double rho = std::sqrt(r.o.x() * r.o.x() + r.o.y() * r.o.y());
-  const int t = theta_edges.bin(r.o.z(), rho, atan2_guess(rho, r.o.z()));
-  int p = phi_edges.bin(r.o.x(), r.o.y(), atan2_guess(r.o.y(), r.o.x())) - phi_bins / 2;
-  p = p < 0 ? p + phi_bins : (p >= phi_bins ? p - phi_bins : p);
-  ++by_k[static_cast<std::size_t>(row)];
-  ++hist[static_cast<std::size_t>(t) * phi_bins + p];
-  ++hist_by_k[index(row, t, p)];
-}
-
 void Microsurface3dTally::add_binned(Termination how, int k, bool upward, int t, int p) {
   if (!count(how, k, upward)) return;
   const int row = row_of(k);
@@ -211,6 +197,8 @@ trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTr
   SymmetricHits hits;
   double iu_of[kSymmetricBlock], r_of[kSymmetricBlock], ca_of[kSymmetricBlock], sa_of[kSymmetricBlock];
   double ex[kSymmetricBlock], ey[kSymmetricBlock], oz[kSymmetricBlock], t_of[kSymmetricBlock], p_of[kSymmetricBlock];
+  double ox_of[kSymmetricBlock], oy_of[kSymmetricBlock], rho_of[kSymmetricBlock], gt_of[kSymmetricBlock],
+      gp_of[kSymmetricBlock];
   Termination how[kSymmetricBlock];
   int k_of[kSymmetricBlock];
   for (std::int64_t j0 = begin; j0 < end; j0 += kSymmetricBlock) {
@@ -248,18 +236,28 @@ trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTr
       const TraceResult tr = finish_lane(in, hits, q, opt.trace);
       how[q] = tr.how, k_of[q] = tr.bounces, ex[q] = tr.exit_dir.x(), ey[q] = tr.exit_dir.y();
     }
-    // Lift and bin, every lane (o = r (e_x a + e_y n) - (i.u) u, as trace_groove3d).
+    // Lift and bin, every lane (o = r (e_x a + e_y n) - (i.u) u, as trace_groove3d): the bins
+    // from the guesses where they are far from every edge (vectorized: no memory read but the
+    // lanes'), the edge tests for the rest (about 1 lane in 10^5 at 1 deg bins).
     for (int q = 0; q < m; ++q) {
       const double oa = r_of[q] * ex[q], iu = iu_of[q];
       const double ox = oa * ca_of[q] + iu * sa_of[q], oy = oa * sa_of[q] - iu * ca_of[q];
       oz[q] = r_of[q] * ey[q];
-      const double rho = std::sqrt(ox * ox + oy * oy);
-      t_of[q] = theta_edges.bin_branchless(oz[q], rho, atan2_guess(rho, oz[q]));
-      p_of[q] = phi_edges.bin_branchless(ox, oy, atan2_guess(oy, ox));
+      ox_of[q] = ox, oy_of[q] = oy;
+      rho_of[q] = std::sqrt(ox * ox + oy * oy);
+      gt_of[q] = atan2_guess(rho_of[q], oz[q]);
+      gp_of[q] = atan2_guess(oy, ox);
+      t_of[q] = theta_edges.bin_if_far(gt_of[q]);
+      p_of[q] = phi_edges.bin_if_far(gp_of[q]);
     }
-    for (int q = 0; q < m; ++q)
+    for (int q = 0; q < m; ++q) {
+      if (t_of[q] < 0.0) [[unlikely]]
+        t_of[q] = theta_edges.bin_branchless(oz[q], rho_of[q], gt_of[q]);
+      if (p_of[q] < 0.0) [[unlikely]]
+        p_of[q] = phi_edges.bin_branchless(ox_of[q], oy_of[q], gp_of[q]);
       tally.add_binned(how[q], k_of[q], oz[q] > 0.0, static_cast<int>(t_of[q]),
                        static_cast<int>(p_of[q]) - opt.phi_bins / 2);
+    }
   }
   return tally;
 }

@@ -151,10 +151,6 @@ struct Microsurface3dTally : RayFates {
   }
 
   void add(const Trace3dResult& r);
-  // The same, the bins found among the edges (sim/exit_bins.h) instead of by acos and atan2:
-  // theta_edges over [0, pi/2), phi_edges the phi_bins + 1 edges from -pi - d/2 (the bin centred
-  // on pi counted at both ends).
-  void add(const Trace3dResult& r, const AngleEdges& theta_edges, const AngleEdges& phi_edges);
   // A ray whose bins are known: theta bin t, phi bin p (taken modulo phi_bins).
   void add_binned(Termination how, int k, bool upward, int t, int p);
   void merge(const Microsurface3dTally& other);  // same bins and max_k
@@ -164,7 +160,8 @@ std::int64_t chunk_count(const Microsurface3dTraceOptions& opt);
 
 // The rays of chunk c (kRaysPerChunk of them; the last chunk holds the rest): the grooves and
 // landing points in the order of the stream, traced in blocks (symmetric_block.h, bit for bit
-// trace_groove3d's 2D trace) and binned by comparisons (sim/exit_bins.h).
+// trace_groove3d's 2D trace), lifted and binned from arctangent guesses, by the edge tests where
+// a guess lies near an edge (sim/exit_bins.h; the same bins).
 Microsurface3dTally trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt,
                                                std::int64_t chunk);
 // The same one ray at a time with trace_groove3d on surface.grooves, binned by acos and atan2:
