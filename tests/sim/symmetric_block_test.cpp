@@ -9,8 +9,8 @@
 #include <cmath>
 #include <cstring>
 #include <numbers>
-#include <utility>
 #include <random>
+#include <utility>
 
 namespace vgroove::sim {
 namespace {
