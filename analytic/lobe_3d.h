@@ -37,8 +37,10 @@ namespace vgroove::analytic {
 // deposits by a midpoint rule in the CDF, scaled to the tail's exact total; its bins carry the
 // rule's error, the same at any phi_a panel count: at 30 x 24 bins, max_k 16, the default 512
 // strata against 4096 differ per bin by up to 5.7e-7 (GGX 0.5 at 40 deg), 2.2e-7 (GGX 1.0 at 80),
-// 2.1e-7 (GGX 1.5 at 85), 2.5e-8 (GGX 0.1 at 60), 1.7e-8 (GGX 0.3 at 0); Beckmann and Phong have
-// no tail at k_bands 32 (their mass beyond it is below 1e-16). Cost at 30 x 24 bins,
+// 2.1e-7 (GGX 1.5 at 85), 2.5e-8 (GGX 0.1 at 60), 1.7e-8 (GGX 0.3 at 0); Phong 1.0 at 40 deg
+// 1.6e-6, and Phong 1.3, whose grooves beyond k = 32 hold 3 % of the flux (cos^(p+2) falls slowly
+// for p + 2 = 2 / alpha^2 near 1), 2.7e-4 at 40 deg, 1.2e-6 at 0: the lobe is not accurate to
+// 1e-6 there. Beckmann's tail (and Phong's at alpha 0.5) is below 1e-14. Cost at 30 x 24 bins,
 // max_k 16: 0.3-0.9 s per case (2 loaded cores; 0.25-0.75 s without the corner cuts); 45 x 36: ~1 s.
 struct Lobe3d {
   int theta_bins = 0;
