@@ -65,9 +65,9 @@ struct AngleEdges {
   // > 1e-7 (the suites' finest, 10,000 over 90 deg, are 1.6e-4 wide).
   double bin_branchless(double x, double y, double angle_guess) const {
     const double last = static_cast<double>(n - 1);
-    // The guess's bin: clamped at 0 first, so truncation is the floor.
+    // The guess's bin: clamped at 0 first, so truncation is the floor (a NaN guess gives 0).
     double j = (angle_guess - lo) * inv_w;
-    j = j < 0.0 ? 0.0 : (j > last ? last : j);
+    j = j >= 0.0 ? (j > last ? last : j) : 0.0;
     const int b = static_cast<int>(j);
     j = static_cast<double>(b);
     const int b1 = b + 1 > n ? n : b + 1;
@@ -82,7 +82,7 @@ struct AngleEdges {
   double bin_if_far(double angle_guess) const {
     const double last = static_cast<double>(n - 1), margin = 2.0 * kAtan2GuessError * inv_w;
     const double j = (angle_guess - lo) * inv_w;
-    const double jc = j < 0.0 ? 0.0 : (j > last + 1.0 ? last + 1.0 : j);
+    const double jc = j >= 0.0 ? (j > last + 1.0 ? last + 1.0 : j) : 0.0;  // NaN: 0, declined below
     const double b = static_cast<double>(static_cast<int>(jc));
     const double frac = jc - b;
     const bool far = (frac > margin) & (frac < 1.0 - margin) & (b <= last);

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -76,6 +77,12 @@ TEST(ExitBins, BinsFromTheGuessAreTheEdgeTestsBins) {
     }
     EXPECT_GT(compared, 399000);
     EXPECT_LT(declined, 4000) << "n " << L.n;
+    // A NaN guess is declined, and the edge tests then answer a bin in range (no cast of a NaN).
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_EQ(e.bin_if_far(nan), -1.0);
+    const double b = e.bin_branchless(1.0, 0.0, nan);
+    EXPECT_GE(b, 0.0);
+    EXPECT_LE(b, L.n - 1.0);
   }
 }
 
