@@ -84,7 +84,6 @@ struct MicrosurfaceTraceOptions {
 
 // What happened to the rays. Every ray is in exactly one of escaped, blocked, vertex_hits,
 // bounce_limit, not_upward; every escaped ray in one k row and one theta_o bin.
-
 struct MicrosurfaceTally : RayFates {
   int bins = 0;
   int max_k = 0;

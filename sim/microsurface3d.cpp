@@ -238,7 +238,8 @@ trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTr
     }
     // Lift and bin, every lane (o = r (e_x a + e_y n) - (i.u) u, as trace_groove3d): the bins
     // from the guesses where they are far from every edge (vectorized: no memory read but the
-    // lanes'), the edge tests for the rest (about 1 lane in 10^5 at 1 deg bins).
+    // lanes'), the edge tests for the rest (within 2e-7 rad of an edge: about 1 lane in 4 x 10^4
+    // at 1 deg bins; and exits past the theta range).
     for (int q = 0; q < m; ++q) {
       const double oa = r_of[q] * ex[q], iu = iu_of[q];
       const double ox = oa * ca_of[q] + iu * sa_of[q], oy = oa * sa_of[q] - iu * ca_of[q];
