@@ -190,26 +190,42 @@ double exit_angle_fast(double tau, double theta_v, int n, FacetSide side) {
 // are the tests on f_a and f_b): no angle is needed at all. With z = e^{i h} = sin_m + i cos_m
 // (h = theta_v / 2), f_k = sin((2K - 1) h - tf) = Im(z^(2K-1)) cos tf - Re(z^(2K-1)) sin tf, the
 // power by squaring (its rounding grows like (2K - 1) ulp: far below the quadrature's error).
-double weight_piece(const Azimuth& az, FacetSide side, int k, int K, double cos_m, double sin_m) {
+// N nodes at once (a piece's Gauss-Legendre nodes): the nodes' squarings are independent chains,
+// run side by side; each node's value is the same arithmetic as on its own.
+template <int N>
+void weight_piece(const Azimuth& az, FacetSide side, int k, int K, const double (&cos_m)[N], const double (&sin_m)[N],
+                  double (&out)[N]) {
   const double st = side == FacetSide::left ? az.sin_tau : -az.sin_tau, ct = az.cos_tau;
-  const double f_a = cos_m * ct - sin_m * st;
-  if (!(f_a > 0.0)) return 0.0;
-  const double f_b = std::max(0.0, -(cos_m * ct + sin_m * st));
-  double re = 1.0, im = 0.0, br = sin_m, bi = cos_m;
+  double re[N], im[N], br[N], bi[N];
+  for (int q = 0; q < N; ++q) {
+    re[q] = 1.0;
+    im[q] = 0.0;
+    br[q] = sin_m[q];
+    bi[q] = cos_m[q];
+  }
   for (unsigned n = static_cast<unsigned>(2 * K - 1);; n >>= 1) {
     if (n & 1u) {
-      const double t = re * br - im * bi;
-      im = re * bi + im * br;
-      re = t;
+      for (int q = 0; q < N; ++q) {
+        const double t = re[q] * br[q] - im[q] * bi[q];
+        im[q] = re[q] * bi[q] + im[q] * br[q];
+        re[q] = t;
+      }
     }
     if (n <= 1u) break;
-    const double t = br * br - bi * bi;
-    bi = 2.0 * br * bi;
-    br = t;
+    for (int q = 0; q < N; ++q) {
+      const double t = br[q] * br[q] - bi[q] * bi[q];
+      bi[q] = 2.0 * br[q] * bi[q];
+      br[q] = t;
+    }
   }
-  const double f_k = std::clamp(im * ct - re * st, f_b, f_a);
-  const double Gf = K == k ? f_k - f_b : f_a - f_k;
-  return Gf / (2.0 * cos_m * az.cos_tau);
+  for (int q = 0; q < N; ++q) {
+    const double f_a = cos_m[q] * ct - sin_m[q] * st;
+    const double f_b = std::max(0.0, -(cos_m[q] * ct + sin_m[q] * st));
+    const double f_k = std::clamp(im[q] * ct - re[q] * st, f_b, f_a);
+    const double Gf = K == k ? f_k - f_b : f_a - f_k;
+    const double w = Gf / (2.0 * cos_m[q] * az.cos_tau);
+    out[q] = f_a > 0.0 ? w : 0.0;
+  }
 }
 
 // weight_k with theta_m's cosine and sine given.
@@ -240,6 +256,31 @@ int bin_fast(const LobeRun& r, const Azimuth& az, double t) {
   int p = static_cast<int>(std::floor((std::atan2(oy, ox) + 0.5 * dphi) / dphi));
   p = ((p % r.pb) + r.pb) % r.pb;
   return tb * r.pb + p;
+}
+
+// The Gauss-Legendre sum of the weight times the density over one piece [b0, b1] of w (in_w) or
+// theta_m, N nodes (LobeRun::fast).
+template <int N>
+double piece_sum(const LobeRun& r, const Azimuth& az, FacetSide side, int k, int K, const GaussLegendre& rule,
+                 double b0, double b1, bool in_w) {
+  double v[N], cos_m[N], sin_m[N], w[N];
+  for (int q = 0; q < N; ++q) v[q] = 0.5 * (b0 + b1) + 0.5 * (b1 - b0) * rule.x[q];
+  for (int q = 0; q < N; ++q) {
+    if (in_w) {
+      groove_cdf_inverse_cos_sin(r.ndf, r.alpha, v[q] * v[q], cos_m[q], sin_m[q]);
+    } else {
+      sin_cos_quadrant(v[q], sin_m[q], cos_m[q]);
+    }
+  }
+  weight_piece<N>(az, side, k, K, cos_m, sin_m, w);
+  double sum = 0.0;
+  for (int q = 0; q < N; ++q) {
+    // The density: du = 2 w dw in w, 2 pi D cos sin d theta_m in theta_m (D_cs of ndf.h).
+    const double density =
+        in_w ? 2.0 * v[q] : 2.0 * std::numbers::pi * D_cs(r.ndf, cos_m[q], sin_m[q], r.alpha) * cos_m[q] * sin_m[q];
+    sum += rule.w[q] * w[q] * density;
+  }
+  return sum;
 }
 
 struct Scratch {
@@ -359,23 +400,23 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
         const double b0 = a0 + (a1 - a0) * pc / pieces, b1 = a0 + (a1 - a0) * (pc + 1) / pieces;
         const double mass_est = in_w ? (b1 - b0) * (b1 + b0) : 1.0;
         // Order by the piece's mass: pieces lighter than 1e-9 (narrow bands of high k) are short.
-        const GaussLegendre& rule = gauss_legendre_cached(mass_est < 1e-9 ? 2 : (mass_est < 1e-6 ? 4 : 8));
+        const int order = mass_est < 1e-9 ? 2 : (mass_est < 1e-6 ? 4 : 8);
+        const GaussLegendre& rule = gauss_legendre_cached(order);
         double sum = 0.0;
+        if (fast) {
+          if (order == 8) {
+            sum = piece_sum<8>(r, az, side, k, K_piece, rule, b0, b1, in_w);
+          } else if (order == 4) {
+            sum = piece_sum<4>(r, az, side, k, K_piece, rule, b0, b1, in_w);
+          } else {
+            sum = piece_sum<2>(r, az, side, k, K_piece, rule, b0, b1, in_w);
+          }
+          val += 0.5 * (b1 - b0) * sum;
+          continue;
+        }
         for (size_t q = 0; q < rule.x.size(); ++q) {
           const double v = 0.5 * (b0 + b1) + 0.5 * (b1 - b0) * rule.x[q];
-          if (fast) {
-            double cos_m, sin_m;
-            if (in_w) {
-              groove_cdf_inverse_cos_sin(r.ndf, r.alpha, v * v, cos_m, sin_m);
-            } else {
-              sin_cos_quadrant(v, sin_m, cos_m);
-            }
-            const double w = weight_piece(az, side, k, K_piece, cos_m, sin_m);
-            // The density: du = 2 w dw in w, 2 pi D cos sin d theta_m in theta_m (D_cs of ndf.h).
-            const double density =
-                in_w ? 2.0 * v : 2.0 * std::numbers::pi * D_cs(r.ndf, cos_m, sin_m, r.alpha) * cos_m * sin_m;
-            sum += rule.w[q] * w * density;
-          } else if (in_w) {
+          if (in_w) {
             const double theta_v = std::numbers::pi - 2.0 * groove_cdf_inverse(r.ndf, r.alpha, v * v);
             sum += rule.w[q] * weight_k(r, az, side, k, theta_v) * 2.0 * v;
           } else {
@@ -402,11 +443,16 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
 
 // The tail beyond the explicit bands: midpoint rule in the CDF.
 // The outcomes of more than k_cap reflections come from theta_v < span / k_cap (Eq. 4).
-void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_cap, int n, double weight, Scratch& sc) {
+void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_cap, int n, int n_light, double weight,
+                    Scratch& sc) {
   const double tf = side == FacetSide::left ? az.tau : -az.tau;
   const double u0 = groove_cdf(r.ndf, r.alpha, 0.5 * (std::numbers::pi - (std::numbers::pi + 2.0 * tf) / k_cap));
   const double mass = 1.0 - u0;
   if (!(mass > 0.0)) return;
+  // Whatever the strata, the tail's deposits sum to its exact total (run_lobe), so a bin's error
+  // from this node is at most twice the tail's mass times the node's weight, and over all nodes at
+  // most twice the largest mass: a tail lighter than kLightTail (lobe_3d.h) takes n_light strata.
+  if (mass < kLightTail) n = std::min(n, n_light);
   auto deposit = [&](int k, double Gf_over_w, double theta_o) {
     const int bin = r.fast ? bin_by_segment(r, az, sc, theta_o) : bin_of(r, az, theta_o);
     if (bin < 0) return;
@@ -502,7 +548,7 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
         // Stop once the grooves with outcomes beyond k (theta_v < span / k) weigh nothing.
         if (k >= max_k + 1 && 1.0 - groove_cdf(ndf, alpha, 0.5 * (std::numbers::pi - span / k)) < 1e-16) break;
       }
-      if (k >= k_cap) integrate_tail(r, az, side, k_cap, opt.tail_strata, weight, sc);
+      if (k >= k_cap) integrate_tail(r, az, side, k_cap, opt.tail_strata, opt.light_tail_strata, weight, sc);
     }
     // The tail's total is known exactly: each groove sends all its flux somewhere (Eq. 6 over both
     // facets sums to 1), so the tail carries 2 weight - band_total. The midpoint rule only

@@ -52,11 +52,17 @@ struct Lobe3d {
   double albedo = 0.0;
 };
 
+// The tail's mass below which it is spread with Lobe3dOptions::light_tail_strata.
+inline constexpr double kLightTail = 1e-9;
+
 struct Lobe3dOptions {
   int phi_panels = 384;  // panels over phi_a in [0, pi/2], shared among the pieces between cuts by length
   int phi_order = 2;     // nodes per panel (the integrands have kinks: many low-order panels win)
   int k_bands = 32;      // k beyond which a midpoint rule in the CDF replaces the exact bands
   int tail_strata = 512;
+  // Strata for a tail lighter than kLightTail per groove azimuth (of the grooves' area, per facet):
+  // it moves no bin by more than 2 kLightTail whatever the strata (the tail's total is exact).
+  int light_tail_strata = 16;
   bool corner_cuts = true;  // cut the phi_a range where arcs pass through bin corners (kinks)
   // The plain per-node kernels in place of the algebraic ones (trigonometry per node, Eq. 6 via
   // G_kaleidoscopic at each piece): the same integrand at the same nodes, for the tests and the
