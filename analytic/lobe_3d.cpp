@@ -491,6 +491,21 @@ void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_c
   }
 }
 
+// by_k, hist and the albedo from hist_by_k.
+void add_up(Lobe3d& L) {
+  const int rows = L.max_k + 2;
+  for (int row = 0; row < rows; ++row) {
+    for (int t = 0; t < L.theta_bins; ++t) {
+      for (int p = 0; p < L.phi_bins; ++p) {
+        const double v = L.hist_by_k[(static_cast<size_t>(row) * L.theta_bins + t) * L.phi_bins + p];
+        L.by_k[row] += v;
+        L.hist[static_cast<size_t>(t) * L.phi_bins + p] += v;
+      }
+    }
+    L.albedo += L.by_k[row];
+  }
+}
+
 Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int phi_bins, int max_k, LobeModel model,
                 const Lobe3dOptions& opt) {
   Lobe3d L;
@@ -501,6 +516,29 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
   L.by_k.assign(rows, 0.0);
   L.hist.assign(static_cast<size_t>(theta_bins) * phi_bins, 0.0);
   L.hist_by_k.assign(static_cast<size_t>(rows) * theta_bins * phi_bins, 0.0);
+  if (theta_i == 0.0 && phi_bins > 2 && opt.rotational_symmetry) {
+    // Normal incidence: the grooves at every azimuth phi_a show the same cross-section (t_i = 0,
+    // i.u = 0) turned by phi_a, whose exits o = -sin t a + cos t n lie at theta_o = |t|,
+    // phi_o = phi_a or phi_a + pi. With phi_a uniform the lobe is uniform in phi_o: each (k,
+    // theta_o) bin's flux, from one cross-section integrated exactly in theta_v, is shared equally
+    // among the phi_o bins. No phi_a quadrature: the bins are exact but for the tail's midpoint
+    // rule, given 16 times the strata (two nodes instead of hundreds).
+    Lobe3dOptions one_opt = opt;
+    one_opt.phi_panels = 1;
+    one_opt.corner_cuts = false;
+    one_opt.tail_strata = 16 * opt.tail_strata;
+    const Lobe3d one = run_lobe(ndf, alpha, theta_i, theta_bins, 2, max_k, model, one_opt);
+    for (int row = 0; row < rows; ++row) {
+      for (int t = 0; t < theta_bins; ++t) {
+        const std::size_t b = (static_cast<size_t>(row) * theta_bins + t) * 2;
+        const double share = (one.hist_by_k[b] + one.hist_by_k[b + 1]) / phi_bins;
+        for (int p = 0; p < phi_bins; ++p)
+          L.hist_by_k[(static_cast<size_t>(row) * theta_bins + t) * phi_bins + p] = share;
+      }
+    }
+    add_up(L);
+    return L;
+  }
   LobeRun r{ndf, alpha, theta_i, theta_bins, phi_bins, max_k, model, &L.hist_by_k, true, 0.0, {}};
   r.fast = !opt.reference_kernels;
   r.m_half = groove_cdf_inverse(ndf, alpha, 0.5);
@@ -637,16 +675,7 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
       }
     }
   }
-  for (int row = 0; row < rows; ++row) {
-    for (int t = 0; t < theta_bins; ++t) {
-      for (int p = 0; p < phi_bins; ++p) {
-        const double v = L.hist_by_k[(static_cast<size_t>(row) * theta_bins + t) * phi_bins + p];
-        L.by_k[row] += v;
-        L.hist[static_cast<size_t>(t) * phi_bins + p] += v;
-      }
-    }
-    L.albedo += L.by_k[row];
-  }
+  add_up(L);
   return L;
 }
 

@@ -64,6 +64,9 @@ struct Lobe3dOptions {
   // it moves no bin by more than 2 kLightTail whatever the strata (the tail's total is exact).
   int light_tail_strata = 16;
   bool corner_cuts = true;  // cut the phi_a range where arcs pass through bin corners (kinks)
+  // At normal incidence (theta_i == 0) the lobe from one cross-section, spread uniformly over phi_o
+  // (rotational symmetry, lobe_3d.cpp); false: the phi_a quadrature as at any other theta_i.
+  bool rotational_symmetry = true;
   // The plain per-node kernels in place of the algebraic ones (trigonometry per node, Eq. 6 via
   // G_kaleidoscopic at each piece): the same integrand at the same nodes, for the tests and the
   // benchmark's side-by-side (lobe_3d.cpp, weight_fast).

@@ -75,6 +75,25 @@ TEST(LobeTail, LightTailMovesNoBinBeyondItsMass) {
   EXPECT_EQ(max_bin_difference(ggx, ggx_full), 0.0);
 }
 
+// At normal incidence the lobe comes from one cross-section spread uniformly over phi_o
+// (rotational_symmetry): it equals the phi_a quadrature that every other theta_i runs, per bin and
+// k, within that quadrature's error (measured at 30 x 24 bins: 1.8e-8 for GGX 0.3, whose tail's
+// midpoint rule the single cross-section runs with 16 times the strata; against 3072 panels and
+// 8192 strata the shortcut is within 2e-14). Cook-Torrance alike.
+TEST(LobeSymmetry, NormalIncidenceEqualsThePhiQuadrature) {
+  va::Lobe3dOptions general;
+  general.rotational_symmetry = false;
+  for (va::NdfKind ndf : {va::NdfKind::ggx, va::NdfKind::phong}) {
+    const va::Lobe3d sym = va::vgroove_lobe_3d(ndf, 0.7, 0.0, 12, 8, 16);
+    const va::Lobe3d quad = va::vgroove_lobe_3d(ndf, 0.7, 0.0, 12, 8, 16, general);
+    EXPECT_LE(max_bin_difference(sym, quad), 1e-7) << va::ndf_name(ndf);
+    EXPECT_NEAR(sym.albedo, 1.0, 1e-13);
+    const va::Lobe3d ct = va::cook_torrance_lobe_3d(ndf, 0.7, 0.0, 12, 8);
+    const va::Lobe3d ct_quad = va::cook_torrance_lobe_3d(ndf, 0.7, 0.0, 12, 8, general);
+    EXPECT_LE(max_bin_difference(ct, ct_quad), 1e-7) << va::ndf_name(ndf);
+  }
+}
+
 // Cook-Torrance with the V-cavity G integrated on its own (cook_torrance_lobe_3d: one reflection,
 // G = min(G1(i), G1(o)) in the cross-section) equals the vgroove lobe's k = 1 row
 // (cook_torrance_lobe_3d_from): per bin within 1e-15 (measured below 1e-16).
