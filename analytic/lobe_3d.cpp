@@ -260,24 +260,41 @@ int bin_fast(const LobeRun& r, const Azimuth& az, double t) {
 
 // The Gauss-Legendre sum of the weight times the density over one piece [b0, b1] of w (in_w) or
 // theta_m, N nodes (LobeRun::fast).
-template <int N>
+template <int N, bool kGgx>
 double piece_sum(const LobeRun& r, const Azimuth& az, FacetSide side, int k, int K, const GaussLegendre& rule,
                  double b0, double b1, bool in_w) {
   double v[N], cos_m[N], sin_m[N], w[N];
   for (int q = 0; q < N; ++q) v[q] = 0.5 * (b0 + b1) + 0.5 * (b1 - b0) * rule.x[q];
-  for (int q = 0; q < N; ++q) {
-    if (in_w) {
-      groove_cdf_inverse_cos_sin(r.ndf, r.alpha, v[q] * v[q], cos_m[q], sin_m[q]);
+  if (in_w) {
+    if constexpr (kGgx) {
+      // groove_cdf_inverse_cos_sin for GGX, inlined: tan theta_m = alpha sqrt(u / (1 - u)).
+      for (int q = 0; q < N; ++q) {
+        const double u = v[q] * v[q];
+        const double t = r.alpha * std::sqrt(u / (1.0 - u)), rt = 1.0 / t;
+        const double x = t <= 1.0 ? t : rt, inv = 1.0 / std::sqrt(1.0 + x * x);
+        cos_m[q] = !(u > 0.0) ? 1.0 : (!(u < 1.0) ? 0.0 : (t <= 1.0 ? inv : rt * inv));
+        sin_m[q] = !(u > 0.0) ? 0.0 : (!(u < 1.0) ? 1.0 : (t <= 1.0 ? t * inv : inv));
+      }
     } else {
-      sin_cos_quadrant(v[q], sin_m[q], cos_m[q]);
+      for (int q = 0; q < N; ++q) groove_cdf_inverse_cos_sin(r.ndf, r.alpha, v[q] * v[q], cos_m[q], sin_m[q]);
     }
+  } else {
+    for (int q = 0; q < N; ++q) sin_cos_quadrant(v[q], sin_m[q], cos_m[q]);
   }
   weight_piece<N>(az, side, k, K, cos_m, sin_m, w);
   double sum = 0.0;
   for (int q = 0; q < N; ++q) {
     // The density: du = 2 w dw in w, 2 pi D cos sin d theta_m in theta_m (D_cs of ndf.h).
-    const double density =
-        in_w ? 2.0 * v[q] : 2.0 * std::numbers::pi * D_cs(r.ndf, cos_m[q], sin_m[q], r.alpha) * cos_m[q] * sin_m[q];
+    double D = 0.0;
+    if (!in_w) {
+      if constexpr (kGgx) {
+        const double qd = r.alpha * r.alpha * cos_m[q] * cos_m[q] + sin_m[q] * sin_m[q];
+        D = r.alpha * r.alpha / (std::numbers::pi * qd * qd);
+      } else {
+        D = D_cs(r.ndf, cos_m[q], sin_m[q], r.alpha);
+      }
+    }
+    const double density = in_w ? 2.0 * v[q] : 2.0 * std::numbers::pi * D * cos_m[q] * sin_m[q];
     sum += rule.w[q] * w[q] * density;
   }
   return sum;
@@ -404,12 +421,16 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
         const GaussLegendre& rule = gauss_legendre_cached(order);
         double sum = 0.0;
         if (fast) {
+          const bool ggx = r.ndf == NdfKind::ggx;
           if (order == 8) {
-            sum = piece_sum<8>(r, az, side, k, K_piece, rule, b0, b1, in_w);
+            sum = ggx ? piece_sum<8, true>(r, az, side, k, K_piece, rule, b0, b1, in_w)
+                      : piece_sum<8, false>(r, az, side, k, K_piece, rule, b0, b1, in_w);
           } else if (order == 4) {
-            sum = piece_sum<4>(r, az, side, k, K_piece, rule, b0, b1, in_w);
+            sum = ggx ? piece_sum<4, true>(r, az, side, k, K_piece, rule, b0, b1, in_w)
+                      : piece_sum<4, false>(r, az, side, k, K_piece, rule, b0, b1, in_w);
           } else {
-            sum = piece_sum<2>(r, az, side, k, K_piece, rule, b0, b1, in_w);
+            sum = ggx ? piece_sum<2, true>(r, az, side, k, K_piece, rule, b0, b1, in_w)
+                      : piece_sum<2, false>(r, az, side, k, K_piece, rule, b0, b1, in_w);
           }
           val += 0.5 * (b1 - b0) * sum;
           continue;
