@@ -547,6 +547,7 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
     Lobe3dOptions one_opt = opt;
     one_opt.phi_panels = 1;
     one_opt.corner_cuts = false;
+    one_opt.high_k_coarsening = 1;
     one_opt.tail_strata = 16 * opt.tail_strata;
     const Lobe3d one = run_lobe(ndf, alpha, theta_i, theta_bins, 2, max_k, model, one_opt);
     for (int row = 0; row < rows; ++row) {
@@ -571,9 +572,19 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
   const double si = std::sin(theta_i), ci = std::cos(theta_i);
   // k beyond which the bands stop and the tail takes over.
   const int k_cap = std::max(opt.k_bands, max_k + 1);
+  // The bands a node integrates (Part): every k; or, with the high k coarsened, k <= k_split and
+  // the flux of the rest at the node (exact: what those bands leave of the node's 2 weight); or
+  // the bands k > k_split and the tail alone. Every k > k_split lies in the last row (k_split >=
+  // max_k).
+  enum class Part { all, low_k, high_k };
+  const bool coarsen = model == LobeModel::vgroove && opt.high_k_coarsening > 1;
+  const int k_split = std::max(max_k, opt.high_k_from);
+  double high_k_flux = 0.0;  // Part::low_k: the exact flux of k > k_split, summed over the nodes
+  std::vector<double> high_k_acc;
+  if (coarsen) high_k_acc.assign(L.hist_by_k.size(), 0.0);
   // The deposits of the grooves at azimuth phi_a (and pi - phi_a) with the quadrature weight
   // dphi, into *r.acc.
-  auto node = [&](double phi_a, double dphi) {
+  auto node = [&](double phi_a, double dphi, Part part) {
     if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) return;
     // Area fraction 2 D cos sin d theta_m d phi_a = (1/pi) dCDF d phi_a; phi_a in [0, pi/2] and
     // its mirror image pi - phi_a (y -> -y) cover [0, pi).
@@ -597,8 +608,9 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
         integrate_band(r, az, side, 1, 0.0, std::numbers::pi, weight, sc);
         continue;
       }
-      int k = 1;
+      int k = part == Part::high_k ? k_split + 1 : 1;
       for (;; ++k) {
+        if (part == Part::low_k && k > k_split) break;
         // K in {k, k + 1} <=> theta_v in [span / (k + 1), span / (k - 1)).
         const double x_lo = span / (k + 1),
                      x_hi = k == 1 ? std::numbers::pi : std::min(std::numbers::pi, span / (k - 1));
@@ -612,9 +624,16 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
     // The tail's total is known exactly: each groove sends all its flux somewhere (Eq. 6 over both
     // facets sums to 1), so the tail carries 2 weight - band_total. The midpoint rule only
     // distributes it.
+    if (part == Part::low_k) {
+      high_k_flux += 2.0 * weight - sc.band_total;
+      return;
+    }
     double tail_total = 0.0;
     for (const auto& d : sc.tail) tail_total += d.second;
-    const double scale = tail_total > 0.0 ? (2.0 * weight - sc.band_total) / tail_total : 0.0;
+    // Part::high_k knows only its own bands: the tail keeps its midpoint total (the high k are
+    // scaled to their exact flux at the end).
+    const double scale =
+        part == Part::high_k ? 1.0 : (tail_total > 0.0 ? (2.0 * weight - sc.band_total) / tail_total : 0.0);
     std::vector<double>& acc = *r.acc;
     for (const auto& d : sc.tail) acc[d.first] += scale * d.second;
   };
@@ -659,42 +678,58 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
       merged.push_back(c);
     }
   }
-  for (size_t c = 0; c + 1 < merged.size(); ++c) {
-    const double p0 = merged[c].first, p1 = merged[c + 1].first;
-    const bool sq0 = merged[c].second, sq1 = merged[c + 1].second;
-    if (!(p1 > p0)) continue;
-    // The map g(s) and g'(s) of the piece.
-    auto map = [&](double sv, double& g, double& dg) {
-      if (sq0 && sq1) {
-        g = sv * sv * (3.0 - 2.0 * sv);
-        dg = 6.0 * sv * (1.0 - sv);
-      } else if (sq0) {
-        g = sv * sv;
-        dg = 2.0 * sv;
-      } else if (sq1) {
-        g = 1.0 - (1.0 - sv) * (1.0 - sv);
-        dg = 2.0 * (1.0 - sv);
-      } else {
-        g = sv;
-        dg = 1.0;
+  auto integrate_phi = [&](int panels, Part part) {
+    for (size_t c = 0; c + 1 < merged.size(); ++c) {
+      const double p0 = merged[c].first, p1 = merged[c + 1].first;
+      const bool sq0 = merged[c].second, sq1 = merged[c + 1].second;
+      if (!(p1 > p0)) continue;
+      // The map g(s) and g'(s) of the piece.
+      auto map = [&](double sv, double& g, double& dg) {
+        if (sq0 && sq1) {
+          g = sv * sv * (3.0 - 2.0 * sv);
+          dg = 6.0 * sv * (1.0 - sv);
+        } else if (sq0) {
+          g = sv * sv;
+          dg = 2.0 * sv;
+        } else if (sq1) {
+          g = 1.0 - (1.0 - sv) * (1.0 - sv);
+          dg = 2.0 * (1.0 - sv);
+        } else {
+          g = sv;
+          dg = 1.0;
+        }
+      };
+      const int np_rounded = static_cast<int>(std::lround(panels * (p1 - p0) / (0.5 * std::numbers::pi)));
+      if (np_rounded == 0 && !sq0 && !sq1) {
+        // A piece shorter than half a panel (between close corner cuts): the midpoint rule; its
+        // O(len^3 f'') is far below the kinks' errors at these lengths.
+        node(0.5 * (p0 + p1), p1 - p0, part);
+        continue;
       }
-    };
-    const int np_rounded = static_cast<int>(std::lround(opt.phi_panels * (p1 - p0) / (0.5 * std::numbers::pi)));
-    if (np_rounded == 0 && !sq0 && !sq1) {
-      // A piece shorter than half a panel (between close corner cuts): the midpoint rule; its
-      // O(len^3 f'') is far below the kinks' errors at these lengths.
-      node(0.5 * (p0 + p1), p1 - p0);
-      continue;
-    }
-    const int np = std::max(1, np_rounded);
-    for (int pn = 0; pn < np; ++pn) {
-      for (int q = 0; q < opt.phi_order; ++q) {
-        const double sv = (pn + 0.5 + 0.5 * gx[q]) / np;
-        double g, dg;
-        map(sv, g, dg);
-        node(p0 + (p1 - p0) * g, (p1 - p0) * dg * 0.5 * gw[q] / np);
+      const int np = std::max(1, np_rounded);
+      for (int pn = 0; pn < np; ++pn) {
+        for (int q = 0; q < opt.phi_order; ++q) {
+          const double sv = (pn + 0.5 + 0.5 * gx[q]) / np;
+          double g, dg;
+          map(sv, g, dg);
+          node(p0 + (p1 - p0) * g, (p1 - p0) * dg * 0.5 * gw[q] / np, part);
+        }
       }
     }
+  };
+  if (!coarsen) {
+    integrate_phi(opt.phi_panels, Part::all);
+  } else {
+    integrate_phi(opt.phi_panels, Part::low_k);
+    r.acc = &high_k_acc;
+    integrate_phi(std::max(1, opt.phi_panels / opt.high_k_coarsening), Part::high_k);
+    r.acc = &L.hist_by_k;
+    // The high k: the shape of their coarse bins (all in the last row), scaled to their exact flux.
+    const std::size_t bins = static_cast<std::size_t>(theta_bins) * phi_bins, last = (rows - 1) * bins;
+    double coarse_flux = 0.0;
+    for (std::size_t b = 0; b < bins; ++b) coarse_flux += high_k_acc[last + b];
+    const double scale = coarse_flux > 0.0 ? high_k_flux / coarse_flux : 0.0;
+    for (std::size_t b = 0; b < bins; ++b) L.hist_by_k[last + b] += scale * high_k_acc[last + b];
   }
   add_up(L);
   return L;

@@ -64,6 +64,11 @@ struct Lobe3dOptions {
   // it moves no bin by more than 2 kLightTail whatever the strata (the tail's total is exact).
   int light_tail_strata = 16;
   bool corner_cuts = true;  // cut the phi_a range where arcs pass through bin corners (kinks)
+  // The bands k > max(max_k, high_k_from) and the tail (all in the last row) on phi_panels /
+  // high_k_coarsening panels, scaled to their exact flux from the full ones (lobe_3d.cpp); 1: every
+  // k on the same panels.
+  int high_k_coarsening = 2;
+  int high_k_from = 16;
   // At normal incidence (theta_i == 0) the lobe from one cross-section, spread uniformly over phi_o
   // (rotational symmetry, lobe_3d.cpp); false: the phi_a quadrature as at any other theta_i.
   bool rotational_symmetry = true;

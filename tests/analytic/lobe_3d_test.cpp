@@ -94,6 +94,29 @@ TEST(LobeSymmetry, NormalIncidenceEqualsThePhiQuadrature) {
   }
 }
 
+// The bands k > 16 and the tail (all in the last row at max_k 16) on half the phi_a panels
+// (high_k_coarsening): the rows k <= max_k are the same to the bit, the last row's flux and the
+// albedo the same to rounding (the high k are scaled to the exact flux the other bands leave at
+// each full node), its bins within the phi_a quadrature's error. Per bin against 6144 panels at
+// 30 x 24 bins, with and without it: GGX 0.5 at 30 deg 1.46e-7 both, GGX 0.3 at 60 2.10e-7,
+// GGX 0.7 at 75 9.64e-7, GGX 1.0 at 80 3.09e-7, Phong 1.0 at 20 1.10e-7, Phong 0.7 at 40
+// 1.25e-7; with 4 times fewer panels GGX 1.0 at 80 would be 1.35e-6.
+TEST(LobeCoarsening, HighKOnFewerPanelsKeepsTheRowsAndTheFlux) {
+  va::Lobe3dOptions full;
+  full.high_k_coarsening = 1;
+  const va::Lobe3d c = va::vgroove_lobe_3d(va::NdfKind::ggx, 1.0, deg(40.0), 12, 8, 16);
+  const va::Lobe3d f = va::vgroove_lobe_3d(va::NdfKind::ggx, 1.0, deg(40.0), 12, 8, 16, full);
+  const std::size_t last = 17 * 12 * 8;
+  for (std::size_t n = 0; n < last; ++n) ASSERT_EQ(c.hist_by_k[n], f.hist_by_k[n]) << n;
+  double worst = 0.0;
+  for (std::size_t n = last; n < c.hist_by_k.size(); ++n)
+    worst = std::max(worst, std::abs(c.hist_by_k[n] - f.hist_by_k[n]));
+  EXPECT_LE(worst, 1e-7);
+  EXPECT_GT(f.by_k[17], 1e-3);
+  EXPECT_NEAR(c.by_k[17], f.by_k[17], 1e-15);
+  EXPECT_NEAR(c.albedo, 1.0, 1e-14);
+}
+
 // Cook-Torrance with the V-cavity G integrated on its own (cook_torrance_lobe_3d: one reflection,
 // G = min(G1(i), G1(o)) in the cross-section) equals the vgroove lobe's k = 1 row
 // (cook_torrance_lobe_3d_from): per bin within 1e-15 (measured below 1e-16).
