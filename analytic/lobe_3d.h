@@ -64,6 +64,9 @@ struct Lobe3dOptions {
   // it moves no bin by more than 2 kLightTail whatever the strata (the tail's total is exact).
   int light_tail_strata = 16;
   bool corner_cuts = true;  // cut the phi_a range where arcs pass through bin corners (kinks)
+  // Four Gauss-Legendre nodes instead of eight on the pieces of theta_m smooth enough for them to
+  // agree to rounding (lobe_3d.cpp, integrate_band); false: eight on every piece above 1e-6.
+  bool four_node_pieces = true;
   // The bands k > max(max_k, high_k_from) and the tail (all in the last row) on phi_panels /
   // high_k_coarsening panels, scaled to their exact flux from the full ones (lobe_3d.cpp); 1: every
   // k on the same panels.
