@@ -303,6 +303,7 @@ double piece_sum(const LobeRun& r, const Azimuth& az, FacetSide side, int k, int
 
 struct Scratch {
   std::vector<double> T, X;
+  std::vector<double> wX;                       // integrate_band: sqrt(CDF) at the crossings X, -1 not yet known
   double band_total = 0.0;                      // flux deposited by the bands at this node
   std::vector<std::pair<size_t, double>> tail;  // the tail's deposits at this node
   // The bin of each segment between consecutive crossings T (constant there: T holds every exit
@@ -378,6 +379,14 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
   }
   const int row = std::min(k, r.max_k + 1);
   std::vector<double>& acc = *r.acc;
+  // sqrt(CDF) at the crossing X[j] (theta_m = m), or at the median (j = X.size()): neighbouring
+  // segments share their ends.
+  std::vector<double>& wX = sc.wX;
+  wX.assign(X.size() + 1, -1.0);
+  auto w_at = [&](std::size_t j, double m) {
+    if (wX[j] < 0.0) wX[j] = std::sqrt(groove_cdf(r.ndf, r.alpha, m));
+    return wX[j];
+  };
   for (size_t s = 0; s + 1 < X.size(); ++s) {
     const double x0 = X[s], x1 = X[s + 1];
     if (!(x1 > x0)) continue;
@@ -459,10 +468,7 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
         val += 0.5 * (b1 - b0) * sum;
       }
     };
-    if (m0 < m_half) {
-      gl_pieces(std::sqrt(groove_cdf(r.ndf, r.alpha, m0)), std::sqrt(groove_cdf(r.ndf, r.alpha, std::min(m1, m_half))),
-                true);
-    }
+    if (m0 < m_half) gl_pieces(w_at(s + 1, m0), m1 < m_half ? w_at(s, m1) : w_at(X.size(), m_half), true);
     if (m1 > m_half) gl_pieces(std::max(m0, m_half), m1, false);
     val *= weight;
     const int t = bin / r.pb, p = bin % r.pb;
