@@ -303,8 +303,10 @@ double piece_sum(const LobeRun& r, const Azimuth& az, FacetSide side, int k, int
 
 struct Scratch {
   std::vector<double> T, X;
-  std::vector<double> wX;                       // integrate_band: sqrt(CDF) at the crossings X, -1 not yet known
-  double band_total = 0.0;                      // flux deposited by the bands at this node
+  std::vector<double> F;    // integrate_band: where the outcome changes form (X without the crossings)
+  std::vector<char> live;   // integrate_band: whether the outcome's weight is positive from F[f] to F[f + 1]
+  std::vector<double> wX;   // integrate_band: sqrt(CDF) at the crossings X, -1 not yet known
+  double band_total = 0.0;  // flux deposited by the bands at this node
   std::vector<std::pair<size_t, double>> tail;  // the tail's deposits at this node
   // The bin of each segment between consecutive crossings T (constant there: T holds every exit
   // angle where a bin edge or the horizon is crossed), found at the segment's middle when first
@@ -343,6 +345,23 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
     add((std::numbers::pi + 2.0 * tf) / j);
     add((std::numbers::pi + tf) / (j - 0.5));
   }
+  // Between these the outcome's weight is either zero throughout or positive (the fast kernels ask
+  // once per form, at its middle, instead of once per segment).
+  const bool by_form = r.fast && r.model == LobeModel::vgroove;
+  std::vector<double>& F = sc.F;
+  std::vector<char>& live = sc.live;
+  if (by_form) {
+    F = X;
+    std::sort(F.begin(), F.end());
+    live.assign(F.size(), 0);
+    for (std::size_t f = 0; f + 1 < F.size(); ++f) {
+      const double x_mid = 0.5 * (F[f] + F[f + 1]);
+      double cos_m, sin_m;
+      sin_cos_quadrant(0.5 * (std::numbers::pi - x_mid), sin_m, cos_m);
+      live[f] = F[f + 1] > F[f] && weight_fast(az, side, k, x_mid, cos_m, sin_m) > 0.0;
+    }
+  }
+  std::size_t form = 0;
   // Where the exit crosses a bin edge: t = sigma (-1)^k (tf + pi - k theta_v) (mod 2 pi),
   // sigma = +1 for the left facet, -1 for the right (its mirror image).
   const int kk = r.model == LobeModel::vgroove ? k : 1;
@@ -392,11 +411,10 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
     if (!(x1 > x0)) continue;
     int bin;
     const double x_mid = 0.5 * (x0 + x1);
-    if (r.fast && r.model == LobeModel::vgroove) {
+    if (by_form) {
       // weight_fast > 0 is outcome's P > 0 (the same width over the same opening); the exit is Eq. (5).
-      double cos_m, sin_m;
-      sin_cos_quadrant(0.5 * (std::numbers::pi - x_mid), sin_m, cos_m);
-      if (!(weight_fast(az, side, k, x_mid, cos_m, sin_m) > 0.0)) continue;
+      while (form + 2 < F.size() && F[form + 1] <= x_mid) ++form;
+      if (!live[form]) continue;
       bin = bin_by_segment(r, az, sc, exit_angle_fast(az.tau, x_mid, k, side));
     } else {
       const Outcome mid = outcome(r, az, side, k, x_mid);
