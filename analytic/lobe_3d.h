@@ -34,14 +34,25 @@ namespace vgroove::analytic {
 // 1.0 at 10): per bin within 1.4e-7..9.6e-7 of 6144 panels, the 384 -> 768 change <= 2.7e-7
 // (GGX 0.5 at 30 deg); against Eq. (16) integrated over single bins, < 3.1e-9 at and beside the
 // specular peak and 2.5e-8 in the back-scattering bin (45 x 36 bins). Beyond k = k_bands the lobe
-// deposits by a midpoint rule in the CDF, scaled to the tail's exact total; its bins carry the
+// deposits by a midpoint rule in the CDF, scaled to the exact total (per node, or with the bands
+// beyond 16 over all nodes, high_k_coarsening); its bins carry the
 // rule's error, the same at any phi_a panel count: at 30 x 24 bins, max_k 16, the default 512
 // strata against 4096 differ per bin by up to 5.7e-7 (GGX 0.5 at 40 deg), 2.2e-7 (GGX 1.0 at 80),
-// 2.1e-7 (GGX 1.5 at 85), 2.5e-8 (GGX 0.1 at 60), 1.7e-8 (GGX 0.3 at 0); Phong 1.0 at 40 deg
-// 1.6e-6, and Phong 1.3, whose grooves beyond k = 32 hold 3 % of the flux (cos^(p+2) falls slowly
-// for p + 2 = 2 / alpha^2 near 1), 2.7e-4 at 40 deg, 1.2e-6 at 0: the lobe is not accurate to
-// 1e-6 there. Beckmann's tail (and Phong's at alpha 0.5) is below 1e-14. Cost at 30 x 24 bins,
-// max_k 16: 0.3-0.9 s per case (2 loaded cores; 0.25-0.75 s without the corner cuts); 45 x 36: ~1 s.
+// 2.1e-7 (GGX 1.5 at 85), 2.5e-8 (GGX 0.1 at 60); Phong 1.0 at 40 deg 1.6e-6, and Phong 1.3, whose
+// grooves beyond k = 32 hold 3 % of the flux (cos^(p+2) falls slowly for p + 2 = 2 / alpha^2 near
+// 1), 2.7e-4 at 40 deg: the lobe is not accurate to 1e-6 there. Beckmann's tail (and Phong's at
+// alpha 0.5) is below 1e-14.
+// What makes it cheaper without moving a bin beyond these errors (tests/analytic/lobe_3d_test.cpp):
+//  - normal incidence: one cross-section, spread uniformly over phi_o (rotational symmetry): no
+//    phi_a quadrature error, the tail with 16 times the strata (GGX 0.3 at 0 deg 4e-10 per bin
+//    from 8 times more, Phong 1.3 9.8e-8);
+//  - the bands k > max(max_k, 16) and the tail on half the phi_a panels, scaled to their exact
+//    flux at the full ones (high_k_coarsening): rows k <= max_k unchanged to the bit;
+//  - four Gauss-Legendre nodes where a piece is far from the integrand's singularities
+//    (four_node_pieces: bins within 5.3e-15 of eight), a tail lighter than 1e-9 with 16 strata.
+// Cost at 30 x 24 bins, max_k 16, over the 60 3D cases of Fig. 11 (one core): median 90 ms, from
+// under 1 ms (normal incidence) to 212 ms (Phong 0.7 at 20 deg); before these, in the same run,
+// median 184 ms, 63-383 ms. The two differ per bin by up to 1.1e-7, per row by 6e-15.
 struct Lobe3d {
   int theta_bins = 0;
   int phi_bins = 0;
