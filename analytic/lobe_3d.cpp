@@ -719,22 +719,6 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
       const double p0 = merged[c].first, p1 = merged[c + 1].first;
       const bool sq0 = merged[c].second, sq1 = merged[c + 1].second;
       if (!(p1 > p0)) continue;
-      // The map g(s) and g'(s) of the piece.
-      auto map = [&](double sv, double& g, double& dg) {
-        if (sq0 && sq1) {
-          g = sv * sv * (3.0 - 2.0 * sv);
-          dg = 6.0 * sv * (1.0 - sv);
-        } else if (sq0) {
-          g = sv * sv;
-          dg = 2.0 * sv;
-        } else if (sq1) {
-          g = 1.0 - (1.0 - sv) * (1.0 - sv);
-          dg = 2.0 * (1.0 - sv);
-        } else {
-          g = sv;
-          dg = 1.0;
-        }
-      };
       const int np_rounded = static_cast<int>(std::lround(panels * (p1 - p0) / (0.5 * std::numbers::pi)));
       if (np_rounded == 0 && !sq0 && !sq1) {
         // A piece shorter than half a panel (between close corner cuts): the midpoint rule; its
@@ -747,7 +731,7 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
         for (int q = 0; q < opt.phi_order; ++q) {
           const double sv = (pn + 0.5 + 0.5 * gx[q]) / np;
           double g, dg;
-          map(sv, g, dg);
+          flat_end_map(sq0, sq1, sv, g, dg);
           node(p0 + (p1 - p0) * g, (p1 - p0) * dg * 0.5 * gw[q] / np, part);
         }
       }

@@ -524,21 +524,6 @@ Lobe3d nonsymmetric_lobe_3d(const NonsymmetricModel& m, double theta_i, double a
     const double p0 = psi_of(merged[c].first), p1 = psi_of(merged[c + 1].first);
     const bool sq0 = merged[c].second, sq1 = merged[c + 1].second;
     if (!(p1 > p0)) continue;
-    auto map = [&](double sv, double& g, double& dg) {
-      if (sq0 && sq1) {
-        g = sv * sv * (3.0 - 2.0 * sv);
-        dg = 6.0 * sv * (1.0 - sv);
-      } else if (sq0) {
-        g = sv * sv;
-        dg = 2.0 * sv;
-      } else if (sq1) {
-        g = 1.0 - (1.0 - sv) * (1.0 - sv);
-        dg = 2.0 * (1.0 - sv);
-      } else {
-        g = sv;
-        dg = 1.0;
-      }
-    };
     const int np_rounded = static_cast<int>(std::lround(panels * (p1 - p0) / psi_span));
     if (np_rounded == 0 && !sq0 && !sq1) {
       node(0.5 * (p0 + p1), p1 - p0);  // a short piece between close cuts: the midpoint rule
@@ -549,7 +534,7 @@ Lobe3d nonsymmetric_lobe_3d(const NonsymmetricModel& m, double theta_i, double a
       for (std::size_t q = 0; q < gl.size(); ++q) {
         const double sv = (pn + 0.5 + 0.5 * gl.x[q]) / np;
         double g, dg;
-        map(sv, g, dg);
+        flat_end_map(sq0, sq1, sv, g, dg);
         node(p0 + (p1 - p0) * g, (p1 - p0) * dg * 0.5 * gl.w[q] / np);
       }
   }

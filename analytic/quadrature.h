@@ -25,6 +25,26 @@ GaussLegendre gauss_legendre(int n);
 // The rule of order 2, 4 or 8, computed once (the lobes pick one per piece by its mass).
 const GaussLegendre& gauss_legendre_cached(int n);
 
+// A map s -> g(s) of [0, 1] onto itself and its slope g'(s), flat (g' = 0) at each end marked: s^2,
+// 1 - (1 - s)^2, or the smoothstep s^2 (3 - 2 s) for both. A panel whose integrand has a
+// square-root point at a marked end is smooth in s (the lobes' phi_a panels next to where a bin
+// edge starts to cut the arcs of exits).
+inline void flat_end_map(bool flat_0, bool flat_1, double s, double& g, double& dg) {
+  if (flat_0 && flat_1) {
+    g = s * s * (3.0 - 2.0 * s);
+    dg = 6.0 * s * (1.0 - s);
+  } else if (flat_0) {
+    g = s * s;
+    dg = 2.0 * s;
+  } else if (flat_1) {
+    g = 1.0 - (1.0 - s) * (1.0 - s);
+    dg = 2.0 * (1.0 - s);
+  } else {
+    g = s;
+    dg = 1.0;
+  }
+}
+
 // int_a^b f by the rule mapped onto [a, b].
 template <class F>
 double integrate(const GaussLegendre& g, F&& f, double a, double b) {
