@@ -197,20 +197,6 @@ double groove_cdf(NdfKind ndf, double alpha, double theta_m) {
   return 0.0;
 }
 
-namespace {
-// cos and sin of atan(t), t >= 0, without overflow.
-void cos_sin_of_atan(double t, double& c, double& s) {
-  if (t <= 1.0) {
-    c = 1.0 / std::sqrt(1.0 + t * t);
-    s = t * c;
-  } else {
-    const double r = 1.0 / t;
-    s = 1.0 / std::sqrt(1.0 + r * r);
-    c = r * s;
-  }
-}
-}  // namespace
-
 void groove_cdf_inverse_cos_sin(NdfKind ndf, double alpha, double u, double& cos_m, double& sin_m) {
   if (!(u > 0.0)) {
     cos_m = 1.0, sin_m = 0.0;

@@ -268,13 +268,11 @@ double piece_sum(const LobeRun& r, const Azimuth& az, FacetSide side, int k, int
   for (int q = 0; q < N; ++q) v[q] = 0.5 * (b0 + b1) + 0.5 * (b1 - b0) * rule.x[q];
   if (in_w) {
     if constexpr (kGgx) {
-      // groove_cdf_inverse_cos_sin for GGX, inlined: tan theta_m = alpha sqrt(u / (1 - u)).
+      // groove_cdf_inverse_cos_sin for GGX, inlined: tan theta_m = alpha sqrt(u / (1 - u)), u in
+      // (0, 1) at the nodes (w < sqrt(CDF(median))).
       for (int q = 0; q < N; ++q) {
         const double u = v[q] * v[q];
-        const double t = r.alpha * std::sqrt(u / (1.0 - u)), rt = 1.0 / t;
-        const double x = t <= 1.0 ? t : rt, inv = 1.0 / std::sqrt(1.0 + x * x);
-        cos_m[q] = !(u > 0.0) ? 1.0 : (!(u < 1.0) ? 0.0 : (t <= 1.0 ? inv : rt * inv));
-        sin_m[q] = !(u > 0.0) ? 0.0 : (!(u < 1.0) ? 1.0 : (t <= 1.0 ? t * inv : inv));
+        cos_sin_of_atan(r.alpha * std::sqrt(u / (1.0 - u)), cos_m[q], sin_m[q]);
       }
     } else {
       for (int q = 0; q < N; ++q) groove_cdf_inverse_cos_sin(r.ndf, r.alpha, v[q] * v[q], cos_m[q], sin_m[q]);
@@ -288,12 +286,7 @@ double piece_sum(const LobeRun& r, const Azimuth& az, FacetSide side, int k, int
     // The density: du = 2 w dw in w, 2 pi D cos sin d theta_m in theta_m (D_cs of ndf.h).
     double D = 0.0;
     if (!in_w) {
-      if constexpr (kGgx) {
-        const double qd = r.alpha * r.alpha * cos_m[q] * cos_m[q] + sin_m[q] * sin_m[q];
-        D = r.alpha * r.alpha / (std::numbers::pi * qd * qd);
-      } else {
-        D = D_cs(r.ndf, cos_m[q], sin_m[q], r.alpha);
-      }
+      D = kGgx ? D_cs_ggx(cos_m[q], sin_m[q], r.alpha) : D_cs(r.ndf, cos_m[q], sin_m[q], r.alpha);
     }
     const double density = in_w ? 2.0 * v[q] : 2.0 * std::numbers::pi * D * cos_m[q] * sin_m[q];
     sum += rule.w[q] * w[q] * density;
@@ -362,6 +355,9 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
     }
   }
   std::size_t form = 0;
+  // Four nodes where a piece is smooth enough (gl_pieces, below); not for Cook-Torrance, whose
+  // V-cavity G has poles near grazing directions.
+  const bool smooth_4 = r.model == LobeModel::vgroove && r.four_node_pieces;
   // Where the exit crosses a bin edge: t = sigma (-1)^k (tf + pi - k theta_v) (mod 2 pi),
   // sigma = +1 for the left facet, -1 for the right (its mirror image).
   const int kk = r.model == LobeModel::vgroove ? k : 1;
@@ -435,9 +431,6 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
     const int K_piece = saturate_to_int(std::floor((std::numbers::pi + 2.0 * tf_piece) / x_mid) + 1.0);
     if (fast && K_piece != k && K_piece != k + 1) continue;
     double val = 0.0;
-    // Four nodes where the piece is smooth enough (below); not for Cook-Torrance, whose V-cavity
-    // G has poles near grazing directions.
-    const bool smooth_4 = r.model == LobeModel::vgroove && r.four_node_pieces;
     auto gl_pieces = [&](double a0, double a1, bool in_w) {
       if (!(a1 > a0)) return;
       // In theta_m also at most a ratio 1.25 per piece: D's tail above the median falls off on the
@@ -657,9 +650,9 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
       }
       if (k >= k_cap) integrate_tail(r, az, side, k_cap, opt.tail_strata, opt.light_tail_strata, weight, sc);
     }
-    // The tail's total is known exactly: each groove sends all its flux somewhere (Eq. 6 over both
-    // facets sums to 1), so the tail carries 2 weight - band_total. The midpoint rule only
-    // distributes it.
+    // What the bands leave of the node's flux is exact: each groove sends all its flux somewhere
+    // (Eq. 6 over both facets sums to 1), so k > k_split (Part::low_k), or the tail, carries
+    // 2 weight - band_total. The midpoint rule only distributes the tail's.
     if (part == Part::low_k) {
       high_k_flux += 2.0 * weight - sc.band_total;
       return;

@@ -62,10 +62,8 @@ double D(NdfKind kind, double theta_m, double alpha) {
 double D_cs(NdfKind kind, double c, double s, double alpha) {
   // The formulas of D_beckmann, D_ggx and D_phong.
   switch (kind) {
-    case NdfKind::ggx: {
-      const double q = alpha * alpha * c * c + s * s;
-      return alpha * alpha / (std::numbers::pi * q * q);
-    }
+    case NdfKind::ggx:
+      return D_cs_ggx(c, s, alpha);
     case NdfKind::beckmann: {
       const double t = s / c, c2 = c * c;
       return std::exp(-(t * t) / (alpha * alpha)) / (std::numbers::pi * alpha * alpha * c2 * c2);

@@ -62,6 +62,8 @@
 
 #include "vgroove/common/ndf_kind.h"
 
+#include <numbers>
+
 namespace vgroove::analytic {
 
 using vgroove::ndf_name;
@@ -81,6 +83,11 @@ double D(NdfKind kind, double theta_m, double alpha);
 // The same from cos(theta_m) and sin(theta_m), theta_m in [0, pi/2) (no chi+ test): saves the
 // transcendental calls where the caller has both (the BRDF's and the samplers' sums).
 double D_cs(NdfKind kind, double cos_m, double sin_m, double alpha);
+// D_cs for GGX, inline (the lobes' quadrature nodes): alpha^2 / (pi (alpha^2 cos^2 + sin^2)^2).
+inline double D_cs_ggx(double cos_m, double sin_m, double alpha) {
+  const double q = alpha * alpha * cos_m * cos_m + sin_m * sin_m;
+  return alpha * alpha / (std::numbers::pi * q * q);
+}
 
 // Flatland NDFs, D2(theta_m; alpha) over (-pi/2, pi/2), zero outside (see the header comment).
 double D2_beckmann(double theta_m, double alpha);
