@@ -4,6 +4,7 @@
 #include "vgroove/sim/symmetric_block.h"
 
 #include <cmath>
+#include <cstring>
 
 namespace vgroove::sim {
 
@@ -27,49 +28,109 @@ Groove symmetric_groove_from(const SymmetricGrooveData& d) {
   return g;
 }
 
+namespace {
+
+// Four lanes (GCC and clang vector extensions): comparisons give masks of 64-bit integers, 0 or -1.
+typedef double V __attribute__((vector_size(32)));
+typedef std::int64_t VI __attribute__((vector_size(32)));
+
+// The helpers are always inlined: the kernel is compiled twice (AVX2 and generic), and an
+// out-of-line helper shared by both would pass its vectors by two conventions.
+[[gnu::always_inline]] inline V load(const double* p) {
+  V v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+[[gnu::always_inline]] inline V vabs(V a) {
+  return reinterpret_cast<V>(reinterpret_cast<VI>(a) & VI{~(1LL << 63), ~(1LL << 63), ~(1LL << 63), ~(1LL << 63)});
+}
+[[gnu::always_inline]] inline V splat(double x) { return V{x, x, x, x}; }
+
+}  // namespace
+
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 // One copy for AVX2 (four rays per instruction) and one for any x86-64, picked when the program
 // starts. AVX2 without FMA: no product is fused, so every lane rounds as trace() does.
 [[gnu::target_clones("avx2", "default")]]
 #endif
 void first_reflections(const SymmetricBlock& in, int n, SymmetricHits& out) {
-  for (int j = 0; j < n; ++j) {
-    const double x = in.x[j], dx = in.dx[j], dy = in.dy[j];
-    const double lx = in.left_x[j], rx = in.right_x[j], c = in.rim_height[j];
-    const double s_half = -lx;  // sin(half): the normals' y
+  const V zero = splat(0.0), one = splat(1.0), minus_one = splat(-1.0);
+  // Lanes [j, j + 4): full groups from the block, the last partial one from copies padded with
+  // its first lane (whose results are not stored twice).
+  for (int j = 0; j < n; j += 4) {
+    const int count = n - j < 4 ? n - j : 4;
+    double pad[6][4];
+    const double* src[6] = {in.x + j, in.dx + j, in.dy + j, in.left_x + j, in.right_x + j, in.rim_height + j};
+    if (count < 4) {
+      for (int a = 0; a < 6; ++a) {
+        for (int l = 0; l < 4; ++l) pad[a][l] = src[a][l < count ? l : 0];
+        src[a] = pad[a];
+      }
+    }
+    const V x = load(src[0]), dx = load(src[1]), dy = load(src[2]);
+    const V lx = load(src[3]), rx = load(src[4]), c = load(src[5]);
+    const V s_half = -lx;  // sin(half): the normals' y
     // trace(): inside the opening (the rims' x are the edges' x times the unit length).
-    const std::int64_t inside = (x > lx) & (x < rx);
+    const VI inside = (x > lx) & (x < rx);
     // sn = cross(origin, d), origin = (x, rim_height); den_f = cross(e_f, d).
-    const double sn = x * dy - c * dx;
-    const double den_l = lx * dy - c * dx, den_r = rx * dy - c * dx;
-    const std::int64_t away_l = sn * den_l < 0.0, away_r = sn * den_r < 0.0;
-    // One facet excluded by the numerator's sign; otherwise trace() tests both (path 2).
-    const std::int64_t right = away_l;
-    const double ex = right ? rx : lx;  // the hit facet's edge (ex, c)
-    const double den = right ? den_r : den_l;
-    // hit_facet_with: den != 0, cross(p, e) den >= 0, |sn| <= length |den|; s = sn / den.
-    const double tn = x * c - c * ex;
-    const std::int64_t hit =
-        (away_l ^ away_r) & (den != 0.0) & !(tn * den < 0.0) & !(std::abs(sn) > 1.0 * std::abs(den));
-    const double s = sn / (den != 0.0 ? den : 1.0);
+    const V sn = x * dy - c * dx;
+    const V den_l = lx * dy - c * dx, den_r = rx * dy - c * dx;
+    // trace(): one facet excluded by the numerator's sign (sn den < 0), and hit_facet_with on the
+    // other; otherwise (rays more grazing than a facet) hit_facet_from_rim_line on both, the left
+    // taken if met and not farther than the right. A missed facet gives s = -1.
+    const V tn_l = x * c - c * lx, tn_r = x * c - c * rx;
+    const VI away_l = sn * den_l < 0.0, away_r = sn * den_r < 0.0;
+    const VI both = ~(away_l ^ away_r);
+    VI right;
+    V s;
+    if (!(both[0] | both[1] | both[2] | both[3])) {
+      right = away_l;
+      const V den = right ? den_r : den_l, tn = right ? tn_r : tn_l;
+      const VI miss = (den == 0.0) | (tn * den < 0.0) | (vabs(sn) > 1.0 * vabs(den));
+      s = miss ? minus_one : sn / (den != 0.0 ? den : one);
+    } else {
+      // hit_facet_from_rim_line on each facet: missed (s = -1, t = 0) when den = 0, cross(p, e)
+      // den < 0, sn den < 0 or |sn| > length |den|; else s = sn / den, t = cross(p, e) / den.
+      const VI miss_l = (den_l == 0.0) | (tn_l * den_l < 0.0) | away_l | (vabs(sn) > 1.0 * vabs(den_l));
+      const VI miss_r = (den_r == 0.0) | (tn_r * den_r < 0.0) | away_r | (vabs(sn) > 1.0 * vabs(den_r));
+      const V q_l = den_l != 0.0 ? den_l : one, q_r = den_r != 0.0 ? den_r : one;
+      const V s_l = miss_l ? minus_one : sn / q_l, s_r = miss_r ? minus_one : sn / q_r;
+      const V t_l = miss_l ? zero : tn_l / q_l, t_r = miss_r ? zero : tn_r / q_r;
+      // Both cases in one flag: the left excluded gives the right; else the left unless missed or
+      // farther (with the right excluded, s_r = -1: the left if met, else s = -1 either way).
+      right = away_l | ~(s_l >= 0.0) | ~((s_r < 0.0) | (t_l <= t_r));
+      s = right ? s_r : s_l;
+    }
+    const V ex = right ? rx : lx;  // the hit facet's edge (ex, c)
+    // s < 0 (no facet met) or NaN: path 2, as the apex and the rims (s = 0, 1).
     // bounce(): not on the apex or the rim; reflect with I - 2 n n^T (finish_groove's products).
-    const std::int64_t ok = inside & hit & (s > 0.0) & (s != 1.0);
-    const double nx = right ? -c : c;
-    const double r_xx = 1.0 - 2.0 * nx * nx, r_xy = -2.0 * nx * s_half, r_yy = 1.0 - 2.0 * s_half * s_half;
-    const double d1x = r_xx * dx + r_xy * dy, d1y = r_xy * dx + r_yy * dy;
+    const VI ok = inside & (s > 0.0) & (s != 1.0);
+    const V nx = right ? -c : c;
+    const V r_xx = 1.0 - 2.0 * nx * nx, r_xy = -2.0 * nx * s_half, r_yy = 1.0 - 2.0 * s_half * s_half;
+    const V d1x = r_xx * dx + r_xy * dy, d1y = r_xy * dx + r_yy * dy;
     // The other facet o: den' = cross(e_o, d'); it leaves unless den' turn > 0, turn = cross(e_f, e_o).
-    const double ox = right ? lx : rx;
-    const double den1 = ox * d1y - c * d1x;
-    const double turn = ex * c - c * ox;
-    const double cf = ex * d1y - c * d1x;  // cross(e_f, d')
-    const std::int64_t leaves = !(den1 * turn > 0.0) | (cf * den1 < 0.0) | (s * std::abs(cf) > 1.0 * std::abs(den1));
-    out.s[j] = s * (cf / (den1 != 0.0 ? den1 : 1.0));
-    out.d1x[j] = d1x;
-    out.d1y[j] = d1y;
-    out.f[j] = right;
-    out.on[j] = 1 - right;
-    out.k[j] = 1;
-    out.path[j] = ok ? (leaves ? 0 : 1) : 2;
+    const V ox = right ? lx : rx;
+    const V den1 = ox * d1y - c * d1x;
+    const V turn = ex * c - c * ox;
+    const V cf = ex * d1y - c * d1x;  // cross(e_f, d')
+    const VI leaves = ~(den1 * turn > 0.0) | (cf * den1 < 0.0) | (s * vabs(cf) > 1.0 * vabs(den1));
+    const V s1 = s * (cf / (den1 != 0.0 ? den1 : one));
+    const VI path = ok ? (leaves ? VI{0, 0, 0, 0} : VI{1, 1, 1, 1}) : VI{2, 2, 2, 2};
+    const VI f = -right, on = 1 + right, k = VI{1, 1, 1, 1};
+    if (count == 4) {
+      std::memcpy(out.s + j, &s1, sizeof s1);
+      std::memcpy(out.d1x + j, &d1x, sizeof d1x);
+      std::memcpy(out.d1y + j, &d1y, sizeof d1y);
+      std::memcpy(out.f + j, &f, sizeof f);
+      std::memcpy(out.on + j, &on, sizeof on);
+      std::memcpy(out.k + j, &k, sizeof k);
+      std::memcpy(out.path + j, &path, sizeof path);
+      continue;
+    }
+    for (int l = 0; l < count; ++l) {
+      out.s[j + l] = s1[l], out.d1x[j + l] = d1x[l], out.d1y[j + l] = d1y[l];
+      out.f[j + l] = f[l], out.on[j + l] = on[l], out.k[j + l] = 1, out.path[j + l] = path[l];
+    }
   }
 }
 
@@ -104,9 +165,56 @@ int next_reflections(const SymmetricBlock& in, int n, int max_bounces, Symmetric
     h.k[j] = moved ? k + 1 : k;
     h.on[j] = moved ? 1 - right : right;
     h.path[j] = live ? path : h.path[j];
-    active += static_cast<int>(live & (path == 1));
+    active += (live & (path == 1)) ? 1 : 0;  // a conditional sum: the form the vectorizer takes
   }
   return active;
+}
+
+void block_reflections(const SymmetricBlock& in, int n, int max_bounces, int rounds, SymmetricHits& h) {
+  first_reflections(in, n, h);
+  int active = 0;
+  for (int j = 0; j < n; ++j) active += h.path[j] == 1;
+  int r = 0;
+  for (; r < rounds && 4 * active >= n; ++r) active = next_reflections(in, n, max_bounces, h);
+  if (r == rounds || active < kBlockMinLanes) return;
+  // The lanes on path 1, gathered: packed lane q is the block's lane lane[q], its groove in pin
+  // and its state in ph (what next_reflections reads and writes).
+  SymmetricBlock pin;
+  SymmetricHits ph;
+  int lane[kSymmetricBlock];
+  int m = 0;
+  auto pack = [&](int to, int j, const SymmetricBlock& gi, const SymmetricHits& gh) {
+    lane[to] = j;
+    pin.left_x[to] = gi.left_x[j], pin.right_x[to] = gi.right_x[j], pin.rim_height[to] = gi.rim_height[j];
+    ph.s[to] = gh.s[j], ph.d1x[to] = gh.d1x[j], ph.d1y[to] = gh.d1y[j];
+    ph.on[to] = gh.on[j], ph.k[to] = gh.k[j], ph.path[to] = 1;
+  };
+  for (int j = 0; j < n; ++j) {
+    if (h.path[j] == 1) pack(m++, j, in, h);
+  }
+  auto put_back = [&](int q) {
+    const int j = lane[q];
+    h.s[j] = ph.s[q], h.d1x[j] = ph.d1x[q], h.d1y[j] = ph.d1y[q];
+    h.on[j] = ph.on[q], h.k[j] = ph.k[q], h.path[j] = ph.path[q];
+  };
+  for (; r < rounds && active >= kBlockMinLanes; ++r) {
+    if (4 * active < m) {
+      // The lanes that settled go back to the block; the others are gathered again, in order.
+      int w = 0;
+      for (int q = 0; q < m; ++q) {
+        if (ph.path[q] != 1) {
+          put_back(q);
+        } else {
+          const int j = lane[q];
+          pack(w++, q, pin, ph);
+          lane[w - 1] = j;
+        }
+      }
+      m = w;
+    }
+    active = next_reflections(pin, m, max_bounces, ph);
+  }
+  for (int q = 0; q < m; ++q) put_back(q);
 }
 
 }  // namespace vgroove::sim

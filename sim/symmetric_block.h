@@ -1,4 +1,4 @@
-// vgroove sim: the first reflection of a block of rays, each in its own symmetric groove and with
+// vgroove sim: the reflections of a block of rays, each in its own symmetric groove and with
 // its own direction, without branches (the procedural surfaces' batch trace).
 //
 // sim::BeamTracer's batch trace (beam_block.cpp) shares one groove and one direction over a block;
@@ -8,13 +8,16 @@
 // surface of 250,000 grooves stays in cache), from which everything sim::trace reads is formed by
 // the same operations as make_symmetric_groove and finish_groove, bit for bit
 // (symmetric_groove_from). first_reflections computes, lane by lane, what sim::trace computes up
-// to its first reflection and the test that follows it: the same products, comparisons and the
-// one division, in the same order, every comparison made and the facet's quantities picked by
-// selects, so each lane's values are trace()'s bit for bit and the loop vectorizes (an AVX2 copy
-// without FMA is picked at start-up; compiled with -fno-trapping-math, which changes no value).
-// Rays the block does not settle (outside the opening, both facets to be tested, the apex or a
-// rim hit) go to sim::trace; rays that reflect again go on with its reflection loop from the
-// state the block leaves (tests/sim/microsurface_test.cpp checks the results against sim::trace).
+// to its first reflection and the test that follows it: the first hit whether the numerator's
+// sign excludes a facet or both are tested (rays more grazing than a facet, most rays at oblique
+// incidence on rough surfaces), the same products, comparisons and divisions in the same order,
+// every comparison made and the facet's quantities picked by selects, four lanes per vector (GCC
+// vector extensions); next_reflections, one more reflection per round, is a loop the compiler
+// vectorizes. So each lane's values are trace()'s bit for bit (an AVX2 copy without FMA is picked
+// at start-up; compiled with -fno-trapping-math, which changes no value).
+// Rays the block does not settle (outside the opening, no facet met, the apex or a rim hit) go
+// to sim::trace; rays that reflect again go on with its reflection loop from the state the
+// block leaves (tests/sim/symmetric_block_test.cpp checks every lane against sim::trace).
 #pragma once
 
 #include "vgroove/sim/groove.h"
@@ -57,17 +60,16 @@ void first_reflections(const SymmetricBlock& in, int n, SymmetricHits& out);
 // One more reflection of every lane on path 1 (trace()'s bounce(), every comparison made); the
 // number of lanes still on path 1 after it.
 int next_reflections(const SymmetricBlock& in, int n, int max_bounces, SymmetricHits& h);
-// first_reflections, then next_reflections while at least a quarter of the lanes is on path 1 (a
-// round costs every lane), at most `rounds` times.
-inline void block_reflections(const SymmetricBlock& in, int n, int max_bounces, int rounds, SymmetricHits& h) {
-  first_reflections(in, n, h);
-  int active = 0;
-  for (int j = 0; j < n; ++j) active += h.path[j] == 1;
-  for (int r = 0; r < rounds && 4 * active >= n; ++r) active = next_reflections(in, n, max_bounces, h);
-}
+// first_reflections, then rounds of next_reflections while at least kBlockMinLanes lanes are on
+// path 1, at most `rounds` times: on the whole block while at least a quarter of its lanes is on
+// path 1 (a round costs every lane it is given), then on those lanes gathered, gathered again
+// whenever fewer than a quarter of them remain. Every lane's values are next_reflections' on the
+// whole block, bit for bit.
+void block_reflections(const SymmetricBlock& in, int n, int max_bounces, int rounds, SymmetricHits& h);
 // Rounds of next_reflections: most rays of rough surfaces settle within a few reflections; the
-// rest (narrow grooves) go on one by one.
-inline constexpr int kBlockRounds = 6;
+// rest (narrow grooves) go on one by one once fewer than kBlockMinLanes are left.
+inline constexpr int kBlockRounds = 32;
+inline constexpr int kBlockMinLanes = 8;
 
 // The whole trace of lane j, bit for bit sim::trace(symmetric_groove_from(...), the lane's ray, opt).
 inline TraceResult finish_lane(const SymmetricBlock& in, const SymmetricHits& h, int j, const TraceOptions& opt) {

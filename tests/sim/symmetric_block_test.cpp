@@ -52,20 +52,26 @@ TEST(SymmetricBlock, GrooveDataRebuildsTheGroove) {
 // Ray by ray against sim::trace: random grooves (apertures 1e-6 rad to pi), directions (to 1e-9
 // of grazing) and landing points, rays exactly on the rims and the apex line and one ulp inside,
 // bounce limits 1 to 3 and the default; the block's paths (settled at once or after further
-// reflections, at the bounce limit, one by one, by sim::trace from the start) are all taken.
+// reflections, at the bounce limit, one by one, by sim::trace from the start) are all taken, and
+// the first hit both ways (one facet excluded by the numerator's sign, or both tested). Blocks of
+// 256 lanes and of fewer, not a multiple of the vector width; every round of next_reflections on
+// the whole block, and block_reflections (rounds on the lanes still reflecting, gathered).
 TEST(SymmetricBlock, EveryRayIsTracesBitForBit) {
   std::mt19937_64 g(11);
   std::uniform_real_distribution<double> U(0.0, 1.0);
   int paths[5] = {};
+  long first_hit[2][2] = {};  // [both facets tested][left to sim::trace]
   for (int max_bounces : {1, 2, 3, 100000}) {
     const TraceOptions opt{max_bounces};
     for (int block = 0; block < 60; ++block) {
       SymmetricBlock in;
-      const int n = kSymmetricBlock;
+      const int n = block % 3 == 0 ? kSymmetricBlock - 1 - block % 7 : kSymmetricBlock;
       for (int q = 0; q < n; ++q) {
         const double u = U(g);
-        const double theta_v =
-            u < 0.1 ? 1e-6 + 1e-3 * U(g) : (u < 0.2 ? std::numbers::pi * (1.0 - 1e-9 * U(g)) : std::numbers::pi * U(g));
+        // Narrow (more reflections than the rounds), nearly flat, 10 to 100 reflections, any.
+        const double theta_v = u < 0.1 ? 1e-6 + 1e-3 * U(g)
+                                       : (u < 0.2 ? std::numbers::pi * (1.0 - 1e-9 * U(g))
+                                                  : (u < 0.3 ? 0.03 + 0.3 * U(g) : std::numbers::pi * U(g)));
         const SymmetricGrooveData d = symmetric_groove_data(make_symmetric_groove(std::max(theta_v, 1e-6)));
         in.left_x[q] = d.left_x, in.right_x[q] = d.right_x, in.rim_height[q] = d.rim_height;
         const double t = (U(g) < 0.1 ? 1.0 - 1e-9 * U(g) : U(g)) * (U(g) < 0.5 ? -1.0 : 1.0) * 0.5 * std::numbers::pi;
@@ -85,20 +91,31 @@ TEST(SymmetricBlock, EveryRayIsTracesBitForBit) {
       }
       // The block's reflections, every round taken (block_reflections stops early when few lanes
       // remain; TalliesEqualThePathBefore runs it as the surfaces do).
-      SymmetricHits h;
+      SymmetricHits h, hb;
       first_reflections(in, n, h);
       for (int r = 0; r < kBlockRounds; ++r) next_reflections(in, n, max_bounces, h);
+      block_reflections(in, n, max_bounces, kBlockRounds, hb);
       for (int q = 0; q < n; ++q) {
         ++paths[h.path[q]];
         const Groove gr = symmetric_groove_from({in.left_x[q], in.right_x[q], in.rim_height[q]});
         const TraceResult ref = trace(gr, Ray2{Vec2(in.x[q], in.rim_height[q]), Vec2(in.dx[q], in.dy[q])}, opt);
         expect_same(finish_lane(in, h, q, opt), ref, "lane", q);
+        expect_same(finish_lane(in, hb, q, opt), ref, "block_reflections, lane", q);
+        // The first hit: trace() tests both facets unless the numerator's sign excludes one.
+        const double sn = in.x[q] * in.dy[q] - in.rim_height[q] * in.dx[q];
+        const double den_l = in.left_x[q] * in.dy[q] - in.rim_height[q] * in.dx[q];
+        const double den_r = in.right_x[q] * in.dy[q] - in.rim_height[q] * in.dx[q];
+        ++first_hit[(sn * den_l < 0.0) == (sn * den_r < 0.0) ? 1 : 0][h.path[q] == 2 ? 1 : 0];
       }
     }
   }
   // Path 3 (a vertex met after a reflection) needs a rounded position exactly on a rim: rare, and
   // checked whenever it occurs.
   for (int p : {0, 1, 2, 4}) EXPECT_GT(paths[p], 0) << "path " << p << " never taken";
+  // Both first-hit cases taken, and the block settles most rays of each itself.
+  for (int both = 0; both < 2; ++both) {
+    EXPECT_GT(first_hit[both][0], 4 * first_hit[both][1]) << (both ? "both facets tested" : "one facet");
+  }
 }
 
 // Whole tallies: the batch trace against the path before it (one ray at a time with sim::trace,
