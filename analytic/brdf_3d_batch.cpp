@@ -18,7 +18,9 @@
 //     half-aperture by polynomials (sin_batch.h, within 2 ulp); the width's ends and form by
 //     selects; its one remaining sine (where the outcome's lower end is 0 or its two ends come
 //     from different offsets) by the polynomial at the same argument; for GGX, D and the term;
-//   - Beckmann's exp, Phong's power and the Fresnel product run over the live lanes only;
+//   - Beckmann's exp by a polynomial (exp_nonpositive) in the lanes where
+//     tan^2 / alpha^2 <= 32 (below); Beckmann's other lanes, Phong's power and the Fresnel
+//     product run over the live lanes one at a time;
 //   - the factors common to every term, c / (4 (i.h) cos_i cos_o) and 1 / sin(theta_h), are
 //     formed once, off the terms' path;
 //   - only j = 0 of Eq. (5) is enumerated: for j = +-1, |X - span| = |2 pi j - (a + b)| > pi
@@ -41,6 +43,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <numbers>
 
@@ -58,6 +61,32 @@ typedef double V __attribute__((vector_size(32)));
 template <typename Mask>
 [[gnu::always_inline]] inline V select(Mask m, V a, V b) {
   return m ? a : b;
+}
+
+// e^z for z in [-40, 0] lane by lane: z = k ln 2 + r, |r| <= ln 2 / 2 (Cody-Waite, ln 2 in two
+// parts), e^r = 1 + r + r^2 (1/2! + r/3! + ... + r^11/13!) (truncation below 1.2e-17 relative),
+// times 2^k formed in the exponent bits. Checked through the terms: Beckmann's batched values
+// agree with the per-solution pass's std::exp to 2.5e-14 relative at worst, where the exponent
+// multiplies a sine's 2 ulp by up to 64 (tests/analytic/brdf_3d_test.cpp; dropping ln 2's low part
+// fails it).
+[[gnu::always_inline]] inline V exp_nonpositive(V z) {
+  typedef std::int64_t VI __attribute__((vector_size(32)));
+  constexpr double round_const = 6755399441055744.0;  // 1.5 2^52: (x + c) - c rounds x to an integer
+  const V shifted = z * 1.44269504088896338700e+00 + round_const;
+  const V kd = shifted - round_const;
+  const V r = (z - kd * 6.93147180369123816490e-01) - kd * 1.90821492927058770002e-10;
+  const V r2 = r * r, r4 = r2 * r2, r8 = r4 * r4;
+  const V b0 = 5.000000000000000000000000e-01 + 1.666666666666666666666667e-01 * r;
+  const V b1 = 4.166666666666666666666667e-02 + 8.333333333333333333333333e-03 * r;
+  const V b2 = 1.388888888888888888888889e-03 + 1.984126984126984126984127e-04 * r;
+  const V b3 = 2.480158730158730158730159e-05 + 2.755731922398589065255732e-06 * r;
+  const V b4 = 2.755731922398589065255732e-07 + 2.505210838544171877505211e-08 * r;
+  const V b5 = 2.087675698786809897921009e-09 + 1.605904383682161459939238e-10 * r;
+  const V P = ((b0 + b1 * r2) + (b2 + b3 * r2) * r4) + (b4 + b5 * r2) * r8;
+  const V e = 1.0 + (r + r2 * P);
+  // k from the bits of k + 1.5 2^52 (same exponent as the constant), then 2^k = (k + 1023) << 52.
+  const VI k = reinterpret_cast<VI>(shifted) - reinterpret_cast<VI>(splat(round_const));
+  return e * reinterpret_cast<V>((k + 1023) << 52);
 }
 
 // The packing of up to eight candidates into lanes: candidate c = 4 w + f is family f's
@@ -167,6 +196,8 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
   const bool more = (keep_4[0] | keep_4[1] | keep_4[2] | keep_4[3]) != 0;
   const V kf0 = splat(k_first[0]), kf1 = splat(k_first[1]), kf2 = splat(k_first[2]), kf3 = splat(k_first[3]);
   const bool ggx = ndf == NdfKind::ggx && !F;
+  const bool beckmann = ndf == NdfKind::beckmann && !F;
+  const double beckmann_norm = std::numbers::pi * alpha * alpha;  // D_cs's pi alpha^2, for Beckmann
   V t_1 = zero, t_k = zero;  // GGX: the terms without the common factors (k = 1, k >= 2)
   double sum_1 = 0.0;        // k = 1: W D (F)
   double sum_k = 0.0;        // k >= 2: sin(theta_m) / k W D (F)
@@ -227,12 +258,28 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
       t_k += select(k1, zero, t);
       return;
     }
+    V W_scalar = W;  // the lanes add_terms takes
+    if (beckmann) {
+      // D_cs (ndf.h) with exp from the polynomial above, where tan^2 / alpha^2 <= 32; the other
+      // lanes (add_terms' exact sines) one at a time. t = tan theta_m, D = exp(-t^2 / alpha^2) /
+      // (pi alpha^2 cos^4).
+      const auto exact = C * C > 32.0 * alpha * alpha * (S * S);
+      const auto here = live & ~exact;
+      const V S_here = select(here, S, one);  // other lanes' exponents stay in range
+      const V t = C / S_here, c2 = S_here * S_here;
+      const V D = exp_nonpositive(select(here, -(t * t) / (alpha * alpha), zero)) / (beckmann_norm * c2 * c2);
+      const V w_d = select(here, W, zero) * D;
+      t_1 += select(k1, w_d, zero);
+      t_k += select(k1, zero, C * w_d / k);
+      W_scalar = select(exact, W, zero);
+      if (!(W_scalar[0] > 0.0 || W_scalar[1] > 0.0 || W_scalar[2] > 0.0 || W_scalar[3] > 0.0)) return;
+    }
     for (int l = 0; l < 4; ++l) {
       sl.k[l] = k[l];
       sl.half[l] = half[l];
       sl.S[l] = S[l];
       sl.C[l] = C[l];
-      sl.W[l] = W[l];
+      sl.W[l] = W_scalar[l];
       sl.left[l] = f[l] < 1.5;
     }
     add_terms(p, sl, ndf, alpha, F, sum_1, sum_k);
@@ -263,6 +310,9 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
   if (ggx) {
     sum_1 = ((t_1[0] + t_1[1]) + (t_1[2] + t_1[3])) * ggx_norm;
     sum_k = ((t_k[0] + t_k[1]) + (t_k[2] + t_k[3])) * ggx_norm;
+  } else if (beckmann) {
+    sum_1 += (t_1[0] + t_1[1]) + (t_1[2] + t_1[3]);
+    sum_k += (t_k[0] + t_k[1]) + (t_k[2] + t_k[3]);
   }
   return (sum_1 + sum_k * inv_sin_h) * common;
 }
