@@ -208,23 +208,25 @@ trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTr
       const int g = std::min(last, static_cast<int>(uniform_open(rng) * g_count));
       const double f = uniform_open(rng);
       const auto gi = static_cast<std::size_t>(g);
-      const GrooveFrame3d& frame = surface.frames[gi];
       const SymmetricGrooveData& d = surface.data[gi];
-      // trace_groove3d's cross-section, operation for operation.
-      const double ia = i.x() * frame.cos_phi_a + i.y() * frame.sin_phi_a;
-      const double iu = -i.x() * frame.sin_phi_a + i.y() * frame.cos_phi_a;
-      const double in_ = i.z();
-      const double r = std::sqrt(ia * ia + in_ * in_);
-      in.dx[q] = -ia / r;
-      in.dy[q] = -in_ / r;
       in.left_x[q] = d.left_x;
       in.right_x[q] = d.right_x;
       in.rim_height[q] = d.rim_height;
       in.x[q] = d.left_x + f * (d.right_x - d.left_x);
+      ca_of[q] = surface.frames[gi].cos_phi_a;
+      sa_of[q] = surface.frames[gi].sin_phi_a;
+    }
+    // trace_groove3d's cross-section, operation for operation (a loop apart from the draws and
+    // the grooves' scattered reads, which the compiler vectorizes).
+    for (int q = 0; q < m; ++q) {
+      const double ia = i.x() * ca_of[q] + i.y() * sa_of[q];
+      const double iu = -i.x() * sa_of[q] + i.y() * ca_of[q];
+      const double in_ = i.z();
+      const double r = std::sqrt(ia * ia + in_ * in_);
+      in.dx[q] = -ia / r;
+      in.dy[q] = -in_ / r;
       iu_of[q] = iu;
       r_of[q] = r;
-      ca_of[q] = frame.cos_phi_a;
-      sa_of[q] = frame.sin_phi_a;
     }
     block_reflections(in, m, opt.trace.max_bounces, kBlockRounds, hits);
     // The rays the block did not settle, one by one.
