@@ -84,6 +84,8 @@ void first_reflections(const SymmetricBlock& in, int n, SymmetricHits& out) {
     VI right;
     V s;
     if (!(both[0] | both[1] | both[2] | both[3])) {
+      // Every lane with one facet excluded (all rays at normal incidence): one division.
+      // The general form below gives these lanes the same s, and the same facet where one is met.
       right = away_l;
       const V den = right ? den_r : den_l, tn = right ? tn_r : tn_l;
       const VI miss = (den == 0.0) | (tn * den < 0.0) | (vabs(sn) > 1.0 * vabs(den));
@@ -183,14 +185,15 @@ void block_reflections(const SymmetricBlock& in, int n, int max_bounces, int rou
   SymmetricHits ph;
   int lane[kSymmetricBlock];
   int m = 0;
-  auto pack = [&](int to, int j, const SymmetricBlock& gi, const SymmetricHits& gh) {
-    lane[to] = j;
+  // Packed lane `to` from lane j of (gi, gh), which is the block's lane `block_lane`.
+  auto pack = [&](int to, int j, int block_lane, const SymmetricBlock& gi, const SymmetricHits& gh) {
+    lane[to] = block_lane;
     pin.left_x[to] = gi.left_x[j], pin.right_x[to] = gi.right_x[j], pin.rim_height[to] = gi.rim_height[j];
     ph.s[to] = gh.s[j], ph.d1x[to] = gh.d1x[j], ph.d1y[to] = gh.d1y[j];
     ph.on[to] = gh.on[j], ph.k[to] = gh.k[j], ph.path[to] = 1;
   };
   for (int j = 0; j < n; ++j) {
-    if (h.path[j] == 1) pack(m++, j, in, h);
+    if (h.path[j] == 1) pack(m++, j, j, in, h);
   }
   auto put_back = [&](int q) {
     const int j = lane[q];
@@ -205,9 +208,7 @@ void block_reflections(const SymmetricBlock& in, int n, int max_bounces, int rou
         if (ph.path[q] != 1) {
           put_back(q);
         } else {
-          const int j = lane[q];
-          pack(w++, q, pin, ph);
-          lane[w - 1] = j;
+          pack(w++, q, lane[q], pin, ph);  // w <= q: nothing unread is overwritten
         }
       }
       m = w;
