@@ -115,7 +115,12 @@ trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOpt
       in.dy[q] = dir.y();
     }
     block_reflections(in, m, opt.trace.max_bounces, kBlockRounds, hits);
+    // The rays the block did not settle, one by one.
     for (int q = 0; q < m; ++q) {
+      if (hits.path[q] == 0) [[likely]] {
+        how[q] = Termination::escaped, k_of[q] = static_cast<int>(hits.k[q]), ex[q] = hits.d1x[q], ey[q] = hits.d1y[q];
+        continue;
+      }
       const TraceResult r = finish_lane(in, hits, q, opt.trace);
       how[q] = r.how, k_of[q] = r.bounces, ex[q] = r.exit_dir.x(), ey[q] = r.exit_dir.y();
     }
