@@ -76,15 +76,17 @@ std::int64_t chunk_count(const MicrosurfaceTraceOptions& opt) { return (opt.rays
 // An AVX2 copy beside the x86-64 one, picked at start-up (no FMA: both round alike).
 [[gnu::target_clones("avx2", "default")]]
 #endif
-MicrosurfaceTally
-trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOptions& opt, std::int64_t chunk) {
+void trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOptions& opt, std::int64_t chunk,
+                              MicrosurfaceTally& tally) {
   assert(std::abs(opt.theta_i) < 0.5 * std::numbers::pi && opt.rays >= 0);
-  if (surface.data.size() != surface.grooves.size() || opt.trace.max_bounces < 1)
-    return trace_microsurface_chunk_reference(surface, opt, chunk);
-  MicrosurfaceTally tally(opt.theta_o_bins, opt.max_k);
+  assert(tally.bins == opt.theta_o_bins && tally.max_k == opt.max_k);
+  if (surface.data.size() != surface.grooves.size() || opt.trace.max_bounces < 1) {
+    tally.merge(trace_microsurface_chunk_reference(surface, opt, chunk));
+    return;
+  }
   const std::int64_t begin = chunk * kRaysPerChunk;
   const std::int64_t end = std::min(opt.rays, begin + kRaysPerChunk);
-  if (begin >= end || surface.grooves.empty()) return tally;
+  if (begin >= end || surface.grooves.empty()) return;
   // for_each_landing's landing points, in the same order from the same stream.
   Rng rng(opt.seed, kRayStream, static_cast<std::uint64_t>(chunk));
   const Vec2 dir = beam_direction(opt.theta_i);
@@ -96,14 +98,18 @@ trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOpt
   Termination how[kSymmetricBlock];
   int k_of[kSymmetricBlock];
   double ex[kSymmetricBlock], ey[kSymmetricBlock], g_of[kSymmetricBlock], b_of[kSymmetricBlock];
+  double u_of[kSymmetricBlock];
+  std::uint64_t bits[kSymmetricBlock];
   for (std::int64_t j0 = begin; j0 < end; j0 += kSymmetricBlock) {
     const int m = static_cast<int>(std::min<std::int64_t>(kSymmetricBlock, end - j0));
+    if (opt.sampling == Sampling::stratified) {
+      for (int q = 0; q < m; ++q) u_of[q] = (static_cast<double>(j0 + q) + 0.5) / static_cast<double>(opt.rays);
+    } else {
+      rng.next_u64s(bits, m);
+      uniform_open_of(bits, u_of, m);
+    }
     for (int q = 0; q < m; ++q) {
-      const std::int64_t j = j0 + q;
-      const double u = opt.sampling == Sampling::stratified
-                           ? (static_cast<double>(j) + 0.5) / static_cast<double>(opt.rays)
-                           : uniform_open(rng);
-      const double x = u * g_count;
+      const double x = u_of[q] * g_count;
       const int g = std::min(last, static_cast<int>(x));
       const double f = x - g;
       const SymmetricGrooveData& d = surface.data[static_cast<std::size_t>(g)];
@@ -136,6 +142,12 @@ trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOpt
       tally.add_binned(how[q], k_of[q], ey[q] > 0.0, static_cast<int>(b_of[q]));
     }
   }
+}
+
+MicrosurfaceTally trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOptions& opt,
+                                           std::int64_t chunk) {
+  MicrosurfaceTally tally(opt.theta_o_bins, opt.max_k);
+  trace_microsurface_chunk(surface, opt, chunk, tally);
   return tally;
 }
 
@@ -151,7 +163,7 @@ MicrosurfaceTally trace_microsurface_chunk_reference(const Microsurface& surface
 MicrosurfaceTally trace_microsurface(const Microsurface& surface, const MicrosurfaceTraceOptions& opt) {
   MicrosurfaceTally total(opt.theta_o_bins, opt.max_k);
   const std::int64_t n = chunk_count(opt);
-  for (std::int64_t c = 0; c < n; ++c) total.merge(trace_microsurface_chunk(surface, opt, c));
+  for (std::int64_t c = 0; c < n; ++c) trace_microsurface_chunk(surface, opt, c, total);
   return total;
 }
 

@@ -40,6 +40,7 @@
 #include "vgroove/sim/tracer.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <numbers>
 #include <vector>
@@ -66,9 +67,28 @@ inline constexpr std::uint64_t kGrooveStream = 0x67726f6f7665ULL;  // "groove"
 inline constexpr std::uint64_t kRayStream = 0x72617973ULL;         // "rays"
 inline constexpr std::int64_t kRaysPerChunk = 1 << 15;
 
-// Uniform in the open interval (0, 1): the midpoints of 2^53 equal strata, never 0 or 1 (an
-// endpoint would put a facet at exactly +-pi/2, or a ray exactly on a peak).
-inline double uniform_open(Rng& rng) { return (static_cast<double>(rng.next_u64() >> 11) + 0.5) * 0x1.0p-53; }
+// Uniform in the open interval (0, 1), never 0 or 1 (an endpoint would put a facet at exactly
+// +-pi/2, or a ray exactly on a peak): (v + 1/2) 2^-53 for the top 53 bits v of a draw, the
+// midpoints of 2^53 equal strata below 1/2; above, v + 1/2 rounds to an even neighbour (doubles
+// there are 1 apart), and for v = 2^53 - 1 it would round to 2^53, so u = 1: that one value is
+// taken to the largest double below 1.
+inline constexpr double kBelowOne = 1.0 - 0x1.0p-53;
+inline double uniform_open(Rng& rng) {
+  return std::min(kBelowOne, (static_cast<double>(rng.next_u64() >> 11) + 0.5) * 0x1.0p-53);
+}
+// uniform_open of the values next_u64s gave, bit for bit, in a loop that vectorizes: v = b >> 11
+// (< 2^53) converted exactly as its low 52 bits (the exponent of 2^52 put above them, 2^52
+// subtracted) plus its top bit times 2^52.
+inline void uniform_open_of(const std::uint64_t* bits, double* u, int n) {
+  constexpr std::uint64_t two52 = 0x4330000000000000ULL;  // the bits of 2^52
+  for (int q = 0; q < n; ++q) {
+    const std::uint64_t v = bits[q] >> 11;
+    const double lo = std::bit_cast<double>(two52 | (v & 0xfffffffffffffULL)) - 0x1.0p52;
+    const double hi = std::bit_cast<double>(two52 | (v >> 52)) - 0x1.0p52;
+    const double w = (lo + hi * 0x1.0p52 + 0.5) * 0x1.0p-53;
+    u[q] = w < kBelowOne ? w : kBelowOne;
+  }
+}
 
 Microsurface make_microsurface(const MicrosurfaceOptions& opt);
 
@@ -145,6 +165,9 @@ void for_each_landing(const std::vector<Groove>& grooves, double theta_i, Sampli
 // guess, by the edge tests where it lies near an edge (sim/exit_bins.h; the same bins).
 MicrosurfaceTally trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOptions& opt,
                                            std::int64_t chunk);
+// The same rays added to `tally` (bins and max_k of opt), for callers that sum chunks.
+void trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOptions& opt, std::int64_t chunk,
+                              MicrosurfaceTally& tally);
 // The same one ray at a time with sim::trace on surface.grooves, binned by atan2: the path before
 // the blocks, kept for the tests and the benchmarks' side-by-side.
 MicrosurfaceTally trace_microsurface_chunk_reference(const Microsurface& surface, const MicrosurfaceTraceOptions& opt,

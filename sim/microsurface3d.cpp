@@ -177,15 +177,17 @@ std::int64_t chunk_count(const Microsurface3dTraceOptions& opt) {
 // An AVX2 copy beside the x86-64 one, picked at start-up (no FMA: both round alike).
 [[gnu::target_clones("avx2", "default")]]
 #endif
-Microsurface3dTally
-trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt, std::int64_t chunk) {
+void trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt,
+                                std::int64_t chunk, Microsurface3dTally& tally) {
   assert(opt.theta_i >= 0.0 && opt.theta_i < 0.5 * std::numbers::pi && opt.rays >= 0);
-  if (surface.data.size() != surface.grooves.size() || opt.trace.max_bounces < 1)
-    return trace_microsurface3d_chunk_reference(surface, opt, chunk);
-  Microsurface3dTally tally(opt.theta_bins, opt.phi_bins, opt.max_k);
+  assert(tally.theta_bins == opt.theta_bins && tally.phi_bins == opt.phi_bins && tally.max_k == opt.max_k);
+  if (surface.data.size() != surface.grooves.size() || opt.trace.max_bounces < 1) {
+    tally.merge(trace_microsurface3d_chunk_reference(surface, opt, chunk));
+    return;
+  }
   const std::int64_t begin = chunk * kRaysPerChunk;
   const std::int64_t end = std::min(opt.rays, begin + kRaysPerChunk);
-  if (begin >= end || surface.grooves.empty()) return tally;
+  if (begin >= end || surface.grooves.empty()) return;
   Rng rng(opt.seed, kRay3dStream, static_cast<std::uint64_t>(chunk));
   const Vec3 i(-std::sin(opt.theta_i), 0.0, std::cos(opt.theta_i));  // as the reference
   const double g_count = static_cast<double>(surface.grooves.size());
@@ -201,12 +203,17 @@ trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTr
       gp_of[kSymmetricBlock];
   Termination how[kSymmetricBlock];
   int k_of[kSymmetricBlock];
+  double u_of[2 * kSymmetricBlock];
+  std::uint64_t bits[2 * kSymmetricBlock];
   for (std::int64_t j0 = begin; j0 < end; j0 += kSymmetricBlock) {
     const int m = static_cast<int>(std::min<std::int64_t>(kSymmetricBlock, end - j0));
+    // The stream's next 2m numbers, two per ray in the reference's order.
+    rng.next_u64s(bits, 2 * m);
+    uniform_open_of(bits, u_of, 2 * m);
     for (int q = 0; q < m; ++q) {
       // Equal macro areas: the groove uniformly; then the landing point uniformly across it.
-      const int g = std::min(last, static_cast<int>(uniform_open(rng) * g_count));
-      const double f = uniform_open(rng);
+      const int g = std::min(last, static_cast<int>(u_of[2 * q] * g_count));
+      const double f = u_of[2 * q + 1];
       const auto gi = static_cast<std::size_t>(g);
       const SymmetricGrooveData& d = surface.data[gi];
       in.left_x[q] = d.left_x;
@@ -262,6 +269,12 @@ trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTr
                        static_cast<int>(p_of[q]) - opt.phi_bins / 2);
     }
   }
+}
+
+Microsurface3dTally trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt,
+                                               std::int64_t chunk) {
+  Microsurface3dTally tally(opt.theta_bins, opt.phi_bins, opt.max_k);
+  trace_microsurface3d_chunk(surface, opt, chunk, tally);
   return tally;
 }
 
@@ -290,7 +303,7 @@ Microsurface3dTally trace_microsurface3d_chunk_reference(const Microsurface3d& s
 Microsurface3dTally trace_microsurface3d(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt) {
   Microsurface3dTally total(opt.theta_bins, opt.phi_bins, opt.max_k);
   const std::int64_t n = chunk_count(opt);
-  for (std::int64_t c = 0; c < n; ++c) total.merge(trace_microsurface3d_chunk(surface, opt, c));
+  for (std::int64_t c = 0; c < n; ++c) trace_microsurface3d_chunk(surface, opt, c, total);
   return total;
 }
 

@@ -164,6 +164,10 @@ std::int64_t chunk_count(const Microsurface3dTraceOptions& opt);
 // a guess lies near an edge (sim/exit_bins.h; the same bins).
 Microsurface3dTally trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt,
                                                std::int64_t chunk);
+// The same rays added to `tally` (bins and max_k of opt): a caller that sums chunks keeps one
+// tally instead of clearing and merging one per chunk (the 3D per-k histograms are ~1 MB).
+void trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt,
+                                std::int64_t chunk, Microsurface3dTally& tally);
 // The same one ray at a time with trace_groove3d on surface.grooves, binned by acos and atan2:
 // the path before the blocks, kept for the tests and the benchmarks' side-by-side.
 Microsurface3dTally trace_microsurface3d_chunk_reference(const Microsurface3d& surface,

@@ -307,14 +307,14 @@ BinnedTally BrdfWork::run_chunks(const Context& ctx, std::size_t n, std::int64_t
     const sim::MicrosurfaceTraceOptions to = flatland_trace(suite, c, rays);
     sim::MicrosurfaceTally t(to.theta_o_bins, to.max_k);
     for (std::int64_t k = begin; k < end && !support::cancelled(cancel); ++k)
-      t.merge(sim::trace_microsurface_chunk(ctx.flat, to, k));
+      sim::trace_microsurface_chunk(ctx.flat, to, k, t);
     static_cast<sim::RayFates&>(out) = t;
     out.by_k = std::move(t.by_k), out.hist = std::move(t.theta_o), out.hist_by_k = std::move(t.theta_o_by_k);
   } else {
     const sim::Microsurface3dTraceOptions to = trace_3d(suite, c, rays);
     sim::Microsurface3dTally t(to.theta_bins, to.phi_bins, to.max_k);
     for (std::int64_t k = begin; k < end && !support::cancelled(cancel); ++k)
-      t.merge(sim::trace_microsurface3d_chunk(ctx.three_d, to, k));
+      sim::trace_microsurface3d_chunk(ctx.three_d, to, k, t);
     static_cast<sim::RayFates&>(out) = t;
     out.by_k = std::move(t.by_k), out.hist = std::move(t.hist), out.hist_by_k = std::move(t.hist_by_k);
   }

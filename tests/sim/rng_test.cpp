@@ -1,6 +1,8 @@
 // Tests of sim/rng.h: streams keyed by (seed, a, b), reproducible and distinct; uniform() in [0, 1).
 #include "vgroove/sim/rng.h"
 
+#include "vgroove/sim/microsurface.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -56,6 +58,44 @@ TEST(Rng, UniformIsInTheUnitIntervalWithMeanOneHalf) {
   // The extremes of 10^6 draws lie within ~1e-5 of the ends (probability of more: e^-10).
   EXPECT_LT(lo, 1e-5);
   EXPECT_GT(hi, 1.0 - 1e-5);
+}
+
+// The block draws are the stream's own: next_u64s(n) gives the next n values of next_u64() and
+// leaves the stream where n calls would (blocks of every length up to past a vector's width,
+// then single draws again).
+TEST(Rng, BlockDrawsAreTheSequentialDraws) {
+  Rng seq(2018, 3, 7), blk(2018, 3, 7);
+  std::uint64_t buf[600];
+  for (int n : {0, 1, 2, 3, 4, 5, 7, 8, 255, 256, 512, 513}) {
+    blk.next_u64s(buf, n);
+    for (int q = 0; q < n; ++q) ASSERT_EQ(buf[q], seq.next_u64()) << "block of " << n << ", value " << q;
+    ASSERT_EQ(blk.next_u64(), seq.next_u64()) << "the draw after a block of " << n;
+  }
+}
+
+// uniform_open_of converts without an integer-to-double instruction: it must be uniform_open bit
+// for bit, at the ends (v = 0, v = 2^53 - 1, where v + 1/2 rounds to 2^53: without the clamp to
+// the double below 1 the draw would be 1), on both sides of v's top bit (2^52) and at random.
+TEST(Rng, BlockUniformsAreUniformOpenBitForBit) {
+  std::vector<std::uint64_t> bits = {0,
+                                     ~0ULL,
+                                     1ULL << 63,
+                                     (1ULL << 63) - 1,
+                                     (1ULL << 63) | (1ULL << 11),
+                                     ((1ULL << 52) - 1) << 11,
+                                     (1ULL << 52) << 11,
+                                     2047,
+                                     2048};
+  Rng rng(5, 0, 0);
+  for (int j = 0; j < 100000; ++j) bits.push_back(rng.next_u64());
+  std::vector<double> u(bits.size());
+  uniform_open_of(bits.data(), u.data(), static_cast<int>(bits.size()));
+  for (std::size_t q = 0; q < bits.size(); ++q) {
+    const double want = std::min(kBelowOne, (static_cast<double>(bits[q] >> 11) + 0.5) * 0x1.0p-53);
+    ASSERT_EQ(u[q], want) << "bits " << bits[q];
+    ASSERT_GT(u[q], 0.0);
+    ASSERT_LT(u[q], 1.0);
+  }
 }
 
 }  // namespace

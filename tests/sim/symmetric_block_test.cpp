@@ -160,6 +160,42 @@ TEST(SymmetricBlock, TalliesEqualThePathBefore) {
   }
 }
 
+// Chunks added into one tally (as trace_microsurface and the suites sum them) equal the chunks'
+// own tallies merged, for the batch trace and for a surface built without the batch data (the
+// one-ray path), in flatland and 3D.
+TEST(SymmetricBlock, ChunksAddedIntoOneTallyEqualTheMergedChunks) {
+  Microsurface m = make_microsurface({NdfKind::ggx, 0.7, 2000, 5});
+  MicrosurfaceTraceOptions o;
+  o.theta_i = 0.4, o.rays = 3 * kRaysPerChunk + 1000, o.seed = 2, o.max_k = 6;
+  Microsurface3d m3 = make_microsurface3d({NdfKind::beckmann, 0.7, 2000, 5});
+  Microsurface3dTraceOptions o3;
+  o3.theta_i = 0.9, o3.rays = 2 * kRaysPerChunk + 77, o3.seed = 2, o3.theta_bins = 20, o3.phi_bins = 16, o3.max_k = 6;
+  for (bool batch : {true, false}) {
+    if (!batch) m.data.clear(), m3.data.clear();
+    MicrosurfaceTally into(o.theta_o_bins, o.max_k), merged(o.theta_o_bins, o.max_k);
+    for (std::int64_t c = 0; c < chunk_count(o); ++c) {
+      trace_microsurface_chunk(m, o, c, into);
+      merged.merge(trace_microsurface_chunk(m, o, c));
+    }
+    EXPECT_EQ(into.theta_o_by_k, merged.theta_o_by_k) << batch;
+    EXPECT_EQ(into.theta_o, merged.theta_o) << batch;
+    EXPECT_EQ(into.by_k, merged.by_k) << batch;
+    EXPECT_EQ(into.rays, o.rays) << batch;
+    EXPECT_EQ(into.escaped, merged.escaped) << batch;
+    EXPECT_EQ(into.bounces, merged.bounces) << batch;
+    Microsurface3dTally into3(o3.theta_bins, o3.phi_bins, o3.max_k), merged3(o3.theta_bins, o3.phi_bins, o3.max_k);
+    for (std::int64_t c = 0; c < chunk_count(o3); ++c) {
+      trace_microsurface3d_chunk(m3, o3, c, into3);
+      merged3.merge(trace_microsurface3d_chunk(m3, o3, c));
+    }
+    EXPECT_EQ(into3.hist_by_k, merged3.hist_by_k) << batch;
+    EXPECT_EQ(into3.hist, merged3.hist) << batch;
+    EXPECT_EQ(into3.rays, o3.rays) << batch;
+    EXPECT_EQ(into3.escaped, merged3.escaped) << batch;
+    EXPECT_EQ(into3.bounces, merged3.bounces) << batch;
+  }
+}
+
 // The same at the suites' finest bins: 3D theta 10,000 over 90 deg (1.6e-4 rad wide), 3D phi
 // 10,000 (6.3e-4 rad; each with the other coarse, to keep the tallies small) and flatland 100,000
 // over 180 deg: where the bins are narrowest, the guesses lie nearest to edges and the edge tests
