@@ -62,6 +62,25 @@ void MicrosurfaceTally::add_binned(Termination how, int k, bool upward, int bin)
   ++theta_o_by_k[static_cast<std::size_t>(row) * bins + bin];
 }
 
+void MicrosurfaceTally::add_binned_block(const Termination* how, const int* k, const double* exit_y, const double* bin,
+                                         int n) {
+  std::int64_t up = 0, sum_k = 0;
+  int k_max = max_k_seen;
+  for (int q = 0; q < n; ++q) {
+    if (how[q] != Termination::escaped || !(exit_y[q] > 0.0)) [[unlikely]] {
+      count(how[q], k[q], exit_y[q] > 0.0);  // a lost ray: counted, not binned
+      continue;
+    }
+    ++up, sum_k += k[q], k_max = std::max(k_max, k[q]);
+    const auto row = static_cast<std::size_t>(row_of(k[q]));
+    const int b = static_cast<int>(bin[q]);
+    ++by_k[row];
+    ++theta_o[static_cast<std::size_t>(b)];
+    ++theta_o_by_k[row * bins + b];
+  }
+  rays += up, escaped += up, bounces += sum_k, max_k_seen = k_max;
+}
+
 void MicrosurfaceTally::merge(const MicrosurfaceTally& o) {
   assert(o.bins == bins && o.max_k == max_k);
   merge_fates(o);
@@ -139,8 +158,8 @@ void trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTra
     for (int q = 0; q < m; ++q) {
       if (b_of[q] < 0.0) [[unlikely]]
         b_of[q] = edges.bin(ey[q], -ex[q], g_of[q]);
-      tally.add_binned(how[q], k_of[q], ey[q] > 0.0, static_cast<int>(b_of[q]));
     }
+    tally.add_binned_block(how, k_of, ey, b_of, m);
   }
 }
 

@@ -125,6 +125,9 @@ struct MicrosurfaceTally : RayFates {
   void add(Termination how, int k, const Vec2& exit_dir);
   // A ray whose bin is known (the chunks find it among the edges, sim/exit_bins.h).
   void add_binned(Termination how, int k, bool upward, int bin);
+  // add_binned for n rays (bin[q] a whole number; exit_y[q] > 0: upward), the same counts: the
+  // fates' totals kept in registers over the block instead of in memory ray by ray.
+  void add_binned_block(const Termination* how, const int* k, const double* exit_y, const double* bin, int n);
   void merge(const MicrosurfaceTally& other);  // same bins and max_k
 };
 

@@ -161,6 +161,27 @@ void Microsurface3dTally::add_binned(Termination how, int k, bool upward, int t,
   ++hist_by_k[index(row, t, p)];
 }
 
+void Microsurface3dTally::add_binned_block(const Termination* how, const int* k, const double* o_z, const double* t,
+                                           const double* p, int n) {
+  std::int64_t up = 0, sum_k = 0;
+  int k_max = max_k_seen;
+  for (int q = 0; q < n; ++q) {
+    if (how[q] != Termination::escaped || !(o_z[q] > 0.0)) [[unlikely]] {
+      count(how[q], k[q], o_z[q] > 0.0);  // a lost ray: counted, not binned
+      continue;
+    }
+    ++up, sum_k += k[q], k_max = std::max(k_max, k[q]);
+    const int row = row_of(k[q]);
+    const int tb = static_cast<int>(t[q]);
+    int pb = static_cast<int>(p[q]);
+    pb = pb < 0 ? pb + phi_bins : (pb >= phi_bins ? pb - phi_bins : pb);
+    ++by_k[static_cast<std::size_t>(row)];
+    ++hist[static_cast<std::size_t>(tb) * phi_bins + pb];
+    ++hist_by_k[index(row, tb, pb)];
+  }
+  rays += up, escaped += up, bounces += sum_k, max_k_seen = k_max;
+}
+
 void Microsurface3dTally::merge(const Microsurface3dTally& o) {
   assert(o.theta_bins == theta_bins && o.phi_bins == phi_bins && o.max_k == max_k);
   merge_fates(o);
@@ -265,9 +286,9 @@ void trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurfac
         t_of[q] = theta_edges.bin_branchless(oz[q], rho_of[q], gt_of[q]);
       if (p_of[q] < 0.0) [[unlikely]]
         p_of[q] = phi_edges.bin_branchless(ox_of[q], oy_of[q], gp_of[q]);
-      tally.add_binned(how[q], k_of[q], oz[q] > 0.0, static_cast<int>(t_of[q]),
-                       static_cast<int>(p_of[q]) - opt.phi_bins / 2);
+      p_of[q] -= static_cast<double>(opt.phi_bins / 2);
     }
+    tally.add_binned_block(how, k_of, oz, t_of, p_of, m);
   }
 }
 
