@@ -15,6 +15,7 @@ Microsurface make_microsurface(const MicrosurfaceOptions& opt) {
   m.options = opt;
   m.theta_m.reserve(static_cast<std::size_t>(opt.grooves));
   m.grooves.reserve(static_cast<std::size_t>(opt.grooves));
+  m.data.reserve(static_cast<std::size_t>(opt.grooves));
   // The steepest facet that still leaves an opening: a slope that rounds to +-pi/2 would close the
   // groove (aperture 0); the next angle down gives an aperture of ~4e-16 rad, whose rays end in
   // the bounce-limit bucket instead of being lost to an invalid groove.

@@ -85,6 +85,7 @@ Microsurface3d make_microsurface3d(const Microsurface3dOptions& opt) {
   m.phi_a.reserve(n);
   m.frames.reserve(n);
   m.grooves.reserve(n);
+  m.data.reserve(n);
   for (int j = 0; j < opt.grooves; ++j) {
     Rng rng(opt.seed, kGroove3dStream, static_cast<std::uint64_t>(j));
     const double t = sample_theta_m_3d(opt.ndf, opt.alpha, uniform_open(rng));
