@@ -67,18 +67,16 @@ inline constexpr std::uint64_t kGrooveStream = 0x67726f6f7665ULL;  // "groove"
 inline constexpr std::uint64_t kRayStream = 0x72617973ULL;         // "rays"
 inline constexpr std::int64_t kRaysPerChunk = 1 << 15;
 
-// Uniform in the open interval (0, 1), never 0 or 1 (an endpoint would put a facet at exactly
+// uniform_open: uniform in the open interval (0, 1), never 0 or 1 (an endpoint would put a facet at exactly
 // +-pi/2, or a ray exactly on a peak): (v + 1/2) 2^-53 for the top 53 bits v of a draw, the
 // midpoints of 2^53 equal strata below 1/2; above, v + 1/2 rounds to an even neighbour (doubles
 // there are 1 apart), and for v = 2^53 - 1 it would round to 2^53, so u = 1: that one value is
 // taken to the largest double below 1.
 inline constexpr double kBelowOne = 1.0 - 0x1.0p-53;
-inline double uniform_open(Rng& rng) {
-  return std::min(kBelowOne, (static_cast<double>(rng.next_u64() >> 11) + 0.5) * 0x1.0p-53);
-}
-// uniform_open of the values next_u64s gave, bit for bit, in a loop that vectorizes: v = b >> 11
+// The uniforms of n values of next_u64 (or next_u64s), in a loop that vectorizes: v = b >> 11
 // (< 2^53) converted exactly as its low 52 bits (the exponent of 2^52 put above them, 2^52
-// subtracted) plus its top bit times 2^52.
+// subtracted) plus its top bit times 2^52, which is static_cast<double>(v) without a 64-bit
+// integer conversion (AVX2 has none).
 inline void uniform_open_of(const std::uint64_t* bits, double* u, int n) {
   constexpr std::uint64_t two52 = 0x4330000000000000ULL;  // the bits of 2^52
   for (int q = 0; q < n; ++q) {
@@ -88,6 +86,13 @@ inline void uniform_open_of(const std::uint64_t* bits, double* u, int n) {
     const double w = (lo + hi * 0x1.0p52 + 0.5) * 0x1.0p-53;
     u[q] = w < kBelowOne ? w : kBelowOne;
   }
+}
+// The stream's next uniform.
+inline double uniform_open(Rng& rng) {
+  const std::uint64_t b = rng.next_u64();
+  double u;
+  uniform_open_of(&b, &u, 1);
+  return u;
 }
 
 Microsurface make_microsurface(const MicrosurfaceOptions& opt);

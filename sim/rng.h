@@ -21,25 +21,22 @@ class Rng {
   Rng(std::uint64_t seed, std::uint64_t a, std::uint64_t b)
       : state_(splitmix64(splitmix64(splitmix64(seed) ^ a) ^ (b * 0xd1b54a32d192ed03ULL))) {}
   std::uint64_t next_u64() {
-    state_ += 0x9e3779b97f4a7c15ULL;
-    return mix(state_);
+    const std::uint64_t s = state_;
+    state_ += kStep;
+    return splitmix64(s);
   }
   // Uniform in [0, 1) with 53 random bits.
   double uniform() { return static_cast<double>(next_u64() >> 11) * 0x1.0p-53; }
-  // The next n values of next_u64(), in order. The state is a counter, so value q is the mixer
-  // of state + (q + 1) times the step: a loop without a carried dependence, which vectorizes.
+  // The next n values of next_u64(), in order. The state is a counter, so value q is
+  // splitmix64(state + q step): a loop without a carried dependence, which vectorizes.
   void next_u64s(std::uint64_t* out, int n) {
     const std::uint64_t s0 = state_;
-    for (int q = 0; q < n; ++q) out[q] = mix(s0 + static_cast<std::uint64_t>(q + 1) * 0x9e3779b97f4a7c15ULL);
-    state_ = s0 + static_cast<std::uint64_t>(n) * 0x9e3779b97f4a7c15ULL;
+    for (int q = 0; q < n; ++q) out[q] = splitmix64(s0 + static_cast<std::uint64_t>(q) * kStep);
+    state_ = s0 + static_cast<std::uint64_t>(n) * kStep;
   }
 
  private:
-  static std::uint64_t mix(std::uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  }
+  static constexpr std::uint64_t kStep = 0x9e3779b97f4a7c15ULL;  // splitmix64's own increment
   std::uint64_t state_;
 };
 
