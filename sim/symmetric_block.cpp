@@ -136,40 +136,84 @@ void first_reflections(const SymmetricBlock& in, int n, SymmetricHits& out) {
   }
 }
 
+namespace {
+
+[[gnu::always_inline]] inline VI load_i(const std::int64_t* p) {
+  VI v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// One reflection of lanes [j, j + 4) of (in, h) on path 1 (next_reflections); the lanes still on
+// path 1 after it, as -1 per lane.
+[[gnu::always_inline]] inline VI reflect_four(const double* lx_p, const double* rx_p, const double* c_p, double* s_p,
+                                              double* dx_p, double* dy_p, std::int64_t* k_p, std::int64_t* on_p,
+                                              std::int64_t* path_p, std::int64_t max_bounces) {
+  const V one = splat(1.0);
+  const VI old_path = load_i(path_p);
+  const VI live = old_path == 1;
+  const V lx = load(lx_p), rx = load(rx_p), c = load(c_p);
+  const V s_half = -lx;
+  const VI on = load_i(on_p);
+  const VI right = on != 0;
+  const V ex = right ? rx : lx, ox = right ? lx : rx;  // the facet's edge, the other's
+  const V s = load(s_p), dx = load(dx_p), dy = load(dy_p);
+  const VI k = load_i(k_p);
+  // bounce(): the apex or the rim exactly; the bounce limit; reflect; the other facet's tests.
+  const VI vertex = (s == 0.0) | (s == 1.0);
+  const VI limit = k == max_bounces;
+  const V nx = right ? -c : c;
+  const V r_xx = 1.0 - 2.0 * nx * nx, r_xy = -2.0 * nx * s_half, r_yy = 1.0 - 2.0 * s_half * s_half;
+  const V d1x = r_xx * dx + r_xy * dy, d1y = r_xy * dx + r_yy * dy;
+  const V den1 = ox * d1y - c * d1x;
+  const V turn = ex * c - c * ox;
+  const V cf = ex * d1y - c * d1x;
+  const VI leaves = ~(den1 * turn > 0.0) | (cf * den1 < 0.0) | (s * vabs(cf) > 1.0 * vabs(den1));
+  const VI path = vertex ? VI{3, 3, 3, 3} : (limit ? VI{4, 4, 4, 4} : (leaves ? VI{0, 0, 0, 0} : VI{1, 1, 1, 1}));
+  const VI moved = live & ~vertex & ~limit;  // reflected this round (-1)
+  const V s1 = (moved & ~leaves) ? s * (cf / (den1 != 0.0 ? den1 : one)) : s;
+  const V x1 = moved ? d1x : dx, y1 = moved ? d1y : dy;
+  const VI k1 = k - moved, on1 = moved ? 1 - on : on, path1 = live ? path : old_path;
+  std::memcpy(s_p, &s1, sizeof s1);
+  std::memcpy(dx_p, &x1, sizeof x1);
+  std::memcpy(dy_p, &y1, sizeof y1);
+  std::memcpy(k_p, &k1, sizeof k1);
+  std::memcpy(on_p, &on1, sizeof on1);
+  std::memcpy(path_p, &path1, sizeof path1);
+  return live & (path == 1);
+}
+
+}  // namespace
+
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 [[gnu::target_clones("avx2", "default")]]
 #endif
 int next_reflections(const SymmetricBlock& in, int n, int max_bounces, SymmetricHits& h) {
-  int active = 0;
-  for (int j = 0; j < n; ++j) {
-    const std::int64_t live = h.path[j] == 1;
-    const double lx = in.left_x[j], rx = in.right_x[j], c = in.rim_height[j];
-    const double s_half = -lx;
-    const std::int64_t right = h.on[j];
-    const double ex = right ? rx : lx, ox = right ? lx : rx;  // the facet's edge, the other's
-    const double s = h.s[j], dx = h.d1x[j], dy = h.d1y[j];
-    const std::int64_t k = h.k[j];
-    // bounce(): the apex or the rim exactly; the bounce limit; reflect; the other facet's tests.
-    const std::int64_t vertex = (s == 0.0) | (s == 1.0);
-    const std::int64_t limit = k == max_bounces;
-    const double nx = right ? -c : c;
-    const double r_xx = 1.0 - 2.0 * nx * nx, r_xy = -2.0 * nx * s_half, r_yy = 1.0 - 2.0 * s_half * s_half;
-    const double d1x = r_xx * dx + r_xy * dy, d1y = r_xy * dx + r_yy * dy;
-    const double den1 = ox * d1y - c * d1x;
-    const double turn = ex * c - c * ox;
-    const double cf = ex * d1y - c * d1x;
-    const std::int64_t leaves = !(den1 * turn > 0.0) | (cf * den1 < 0.0) | (s * std::abs(cf) > 1.0 * std::abs(den1));
-    const std::int64_t path = vertex ? 3 : (limit ? 4 : (leaves ? 0 : 1));
-    const std::int64_t moved = live & !vertex & !limit;  // reflected this round
-    h.s[j] = moved & !leaves ? s * (cf / (den1 != 0.0 ? den1 : 1.0)) : s;
-    h.d1x[j] = moved ? d1x : dx;
-    h.d1y[j] = moved ? d1y : dy;
-    h.k[j] = moved ? k + 1 : k;
-    h.on[j] = moved ? 1 - right : right;
-    h.path[j] = live ? path : h.path[j];
-    active += (live & (path == 1)) ? 1 : 0;  // a conditional sum: the form the vectorizer takes
+  // Four lanes at a time, every comparison made and the results picked by selects; the last
+  // partial group from copies padded with lanes on no path (-1), whose values are not stored.
+  VI still = {0, 0, 0, 0};
+  int j = 0;
+  for (; j + 4 <= n; j += 4) {
+    still -= reflect_four(in.left_x + j, in.right_x + j, in.rim_height + j, h.s + j, h.d1x + j, h.d1y + j, h.k + j,
+                          h.on + j, h.path + j, max_bounces);
   }
-  return active;
+  if (j < n) {
+    const int count = n - j;
+    double lx[4] = {0, 0, 0, 0}, rx[4] = {1, 1, 1, 1}, c[4] = {1, 1, 1, 1}, s[4] = {0.5, 0.5, 0.5, 0.5};
+    double dx[4] = {0, 0, 0, 0}, dy[4] = {1, 1, 1, 1};
+    std::int64_t k[4] = {1, 1, 1, 1}, on[4] = {0, 0, 0, 0}, path[4] = {-1, -1, -1, -1};
+    for (int l = 0; l < count; ++l) {
+      lx[l] = in.left_x[j + l], rx[l] = in.right_x[j + l], c[l] = in.rim_height[j + l];
+      s[l] = h.s[j + l], dx[l] = h.d1x[j + l], dy[l] = h.d1y[j + l];
+      k[l] = h.k[j + l], on[l] = h.on[j + l], path[l] = h.path[j + l];
+    }
+    still -= reflect_four(lx, rx, c, s, dx, dy, k, on, path, max_bounces);
+    for (int l = 0; l < count; ++l) {
+      h.s[j + l] = s[l], h.d1x[j + l] = dx[l], h.d1y[j + l] = dy[l];
+      h.k[j + l] = k[l], h.on[j + l] = on[l], h.path[j + l] = path[l];
+    }
+  }
+  return static_cast<int>(still[0] + still[1] + still[2] + still[3]);
 }
 
 void block_reflections(const SymmetricBlock& in, int n, int max_bounces, int rounds, SymmetricHits& h) {

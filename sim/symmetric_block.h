@@ -12,8 +12,8 @@
 // sign excludes a facet or both are tested (rays more grazing than a facet, most rays at oblique
 // incidence on rough surfaces), the same products, comparisons and divisions in the same order,
 // every comparison made and the facet's quantities picked by selects, four lanes per vector (GCC
-// vector extensions); next_reflections, one more reflection per round, is a loop the compiler
-// vectorizes. So each lane's values are trace()'s bit for bit (an AVX2 copy without FMA is picked
+// vector extensions); next_reflections, one more reflection per round, likewise (every lane's
+// results stored, none skipped by a branch). So each lane's values are trace()'s bit for bit (an AVX2 copy without FMA is picked
 // at start-up; compiled with -fno-trapping-math, which changes no value).
 // Rays the block does not settle (outside the opening, no facet met, the apex or a rim hit) go
 // to sim::trace; rays that reflect again go on with its reflection loop from the state the
