@@ -13,8 +13,9 @@
 // incidence on rough surfaces), the same products, comparisons and divisions in the same order,
 // every comparison made and the facet's quantities picked by selects, four lanes per vector (GCC
 // vector extensions); next_reflections, one more reflection per round, likewise (every lane's
-// results stored, none skipped by a branch). So each lane's values are trace()'s bit for bit (an AVX2 copy without FMA is picked
-// at start-up; compiled with -fno-trapping-math, which changes no value).
+// results stored, none skipped by a branch). So each lane's values are trace()'s bit for bit (an
+// AVX2 copy without FMA is picked at start-up; compiled with -fno-trapping-math, which changes no
+// value).
 // Rays the block does not settle (outside the opening, no facet met, the apex or a rim hit) go
 // to sim::trace; rays that reflect again go on with its reflection loop from the state the
 // block leaves (tests/sim/symmetric_block_test.cpp checks every lane against sim::trace).
