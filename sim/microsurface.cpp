@@ -67,17 +67,25 @@ void MicrosurfaceTally::add_binned_block(const Termination* how, const int* k, c
                                          int n) {
   std::int64_t up = 0, sum_k = 0;
   int k_max = max_k_seen;
+  // The arrays' addresses in registers (a count written through a pointer could otherwise be
+  // any of them).
+  std::int64_t* const rows = by_k.data();
+  std::int64_t* const cells = theta_o.data();
+  std::int64_t* const row_cells = theta_o_by_k.data();
+  const int last_row = max_k + 1;
+  const std::ptrdiff_t per_row = bins;
   for (int q = 0; q < n; ++q) {
+    const int kq = k[q];
     if (how[q] != Termination::escaped || !(exit_y[q] > 0.0)) [[unlikely]] {
-      count(how[q], k[q], exit_y[q] > 0.0);  // a lost ray: counted, not binned
+      count(how[q], kq, exit_y[q] > 0.0);  // a lost ray: counted, not binned
       continue;
     }
-    ++up, sum_k += k[q], k_max = std::max(k_max, k[q]);
-    const auto row = static_cast<std::size_t>(row_of(k[q]));
-    const int b = static_cast<int>(bin[q]);
-    ++by_k[row];
-    ++theta_o[static_cast<std::size_t>(b)];
-    ++theta_o_by_k[row * bins + b];
+    ++up, sum_k += kq, k_max = std::max(k_max, kq);
+    const int row = kq > last_row - 1 ? last_row : kq;
+    const auto b = static_cast<std::ptrdiff_t>(static_cast<int>(bin[q]));
+    ++rows[row];
+    ++cells[b];
+    ++row_cells[row * per_row + b];
   }
   rays += up, escaped += up, bounces += sum_k, max_k_seen = k_max;
 }

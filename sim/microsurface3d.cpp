@@ -166,19 +166,27 @@ void Microsurface3dTally::add_binned_block(const Termination* how, const int* k,
                                            const double* p, int n) {
   std::int64_t up = 0, sum_k = 0;
   int k_max = max_k_seen;
+  // The arrays' addresses and sizes in registers (a count written through a pointer could
+  // otherwise be any of them).
+  std::int64_t* const rows = by_k.data();
+  std::int64_t* const cells = hist.data();
+  std::int64_t* const row_cells = hist_by_k.data();
+  const int nphi = phi_bins, last_row = max_k + 1;
+  const std::ptrdiff_t per_row = static_cast<std::ptrdiff_t>(theta_bins) * nphi;
   for (int q = 0; q < n; ++q) {
+    const int kq = k[q];
     if (how[q] != Termination::escaped || !(o_z[q] > 0.0)) [[unlikely]] {
-      count(how[q], k[q], o_z[q] > 0.0);  // a lost ray: counted, not binned
+      count(how[q], kq, o_z[q] > 0.0);  // a lost ray: counted, not binned
       continue;
     }
-    ++up, sum_k += k[q], k_max = std::max(k_max, k[q]);
-    const int row = row_of(k[q]);
-    const int tb = static_cast<int>(t[q]);
+    ++up, sum_k += kq, k_max = std::max(k_max, kq);
+    const int row = kq > last_row - 1 ? last_row : kq;
     int pb = static_cast<int>(p[q]);
-    pb = pb < 0 ? pb + phi_bins : (pb >= phi_bins ? pb - phi_bins : pb);
-    ++by_k[static_cast<std::size_t>(row)];
-    ++hist[static_cast<std::size_t>(tb) * phi_bins + pb];
-    ++hist_by_k[index(row, tb, pb)];
+    pb = pb < 0 ? pb + nphi : (pb >= nphi ? pb - nphi : pb);
+    const std::ptrdiff_t cell = static_cast<std::ptrdiff_t>(static_cast<int>(t[q]) * nphi + pb);
+    ++rows[row];
+    ++cells[cell];
+    ++row_cells[row * per_row + cell];
   }
   rays += up, escaped += up, bounces += sum_k, max_k_seen = k_max;
 }
