@@ -122,6 +122,7 @@ void trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTra
   const int last = static_cast<int>(surface.grooves.size()) - 1;
   const AngleEdges edges(-0.5 * std::numbers::pi, std::numbers::pi / opt.theta_o_bins, opt.theta_o_bins);
   SymmetricBlock in;
+  for (int q = 0; q < kSymmetricBlock; ++q) in.dx[q] = dir.x(), in.dy[q] = dir.y();  // one beam
   SymmetricHits hits;
   Termination how[kSymmetricBlock];
   int k_of[kSymmetricBlock];
@@ -145,16 +146,15 @@ void trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTra
       in.right_x[q] = d.right_x;
       in.rim_height[q] = d.rim_height;
       in.x[q] = d.left_x + f * (d.right_x - d.left_x);
-      in.dx[q] = dir.x();
-      in.dy[q] = dir.y();
     }
     block_reflections(in, m, opt.trace.max_bounces, kBlockRounds, hits);
     // The rays the block did not settle, one by one.
     for (int q = 0; q < m; ++q) {
-      if (hits.path[q] == 0) [[likely]] {
-        how[q] = Termination::escaped, k_of[q] = static_cast<int>(hits.k[q]), ex[q] = hits.d1x[q], ey[q] = hits.d1y[q];
+      how[q] = Termination::escaped, k_of[q] = static_cast<int>(hits.k[q]), ex[q] = hits.d1x[q], ey[q] = hits.d1y[q];
+    }
+    for (int q = 0; q < m; ++q) {
+      if (hits.path[q] == 0) [[likely]]
         continue;
-      }
       const TraceResult r = finish_lane(in, hits, q, opt.trace);
       how[q] = r.how, k_of[q] = r.bounces, ex[q] = r.exit_dir.x(), ey[q] = r.exit_dir.y();
     }

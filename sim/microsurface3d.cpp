@@ -268,10 +268,11 @@ void trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurfac
     block_reflections(in, m, opt.trace.max_bounces, kBlockRounds, hits);
     // The rays the block did not settle, one by one.
     for (int q = 0; q < m; ++q) {
-      if (hits.path[q] == 0) [[likely]] {
-        how[q] = Termination::escaped, k_of[q] = static_cast<int>(hits.k[q]), ex[q] = hits.d1x[q], ey[q] = hits.d1y[q];
+      how[q] = Termination::escaped, k_of[q] = static_cast<int>(hits.k[q]), ex[q] = hits.d1x[q], ey[q] = hits.d1y[q];
+    }
+    for (int q = 0; q < m; ++q) {
+      if (hits.path[q] == 0) [[likely]]
         continue;
-      }
       const TraceResult tr = finish_lane(in, hits, q, opt.trace);
       how[q] = tr.how, k_of[q] = tr.bounces, ex[q] = tr.exit_dir.x(), ey[q] = tr.exit_dir.y();
     }
