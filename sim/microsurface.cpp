@@ -66,7 +66,7 @@ void MicrosurfaceTally::add_binned(Termination how, int k, bool upward, int bin)
 void MicrosurfaceTally::add_binned_block(const Termination* how, const int* k, const double* exit_y, const double* bin,
                                          int n) {
   std::int64_t up = 0, sum_k = 0;
-  int k_max = max_k_seen;
+  int k_max = 0;
   // The arrays' addresses in registers (a count written through a pointer could otherwise be
   // any of them).
   std::int64_t* const rows = by_k.data();
@@ -87,7 +87,7 @@ void MicrosurfaceTally::add_binned_block(const Termination* how, const int* k, c
     ++cells[b];
     ++row_cells[row * per_row + b];
   }
-  rays += up, escaped += up, bounces += sum_k, max_k_seen = k_max;
+  add_escaped(up, sum_k, k_max);
 }
 
 void MicrosurfaceTally::merge(const MicrosurfaceTally& o) {

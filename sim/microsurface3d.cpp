@@ -165,7 +165,7 @@ void Microsurface3dTally::add_binned(Termination how, int k, bool upward, int t,
 void Microsurface3dTally::add_binned_block(const Termination* how, const int* k, const double* o_z, const double* t,
                                            const double* p, int n) {
   std::int64_t up = 0, sum_k = 0;
-  int k_max = max_k_seen;
+  int k_max = 0;
   // The arrays' addresses and sizes in registers (a count written through a pointer could
   // otherwise be any of them).
   std::int64_t* const rows = by_k.data();
@@ -188,7 +188,7 @@ void Microsurface3dTally::add_binned_block(const Termination* how, const int* k,
     ++cells[cell];
     ++row_cells[row * per_row + cell];
   }
-  rays += up, escaped += up, bounces += sum_k, max_k_seen = k_max;
+  add_escaped(up, sum_k, k_max);
 }
 
 void Microsurface3dTally::merge(const Microsurface3dTally& o) {

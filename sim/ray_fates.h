@@ -50,6 +50,15 @@ struct RayFates {
     return true;
   }
 
+  // count() for n rays that escaped going up, with sum_k reflections in all and k_max the most
+  // of any (the block tallies keep these in registers over a block).
+  void add_escaped(std::int64_t n, std::int64_t sum_k, int k_max) {
+    rays += n;
+    escaped += n;
+    bounces += sum_k;
+    max_k_seen = std::max(max_k_seen, k_max);
+  }
+
   void merge_fates(const RayFates& o) {
     rays += o.rays;
     escaped += o.escaped;
