@@ -81,7 +81,7 @@ void MicrosurfaceTally::add_binned_block(const Termination* how, const int* k, c
       continue;
     }
     ++up, sum_k += kq, k_max = std::max(k_max, kq);
-    const int row = kq > last_row - 1 ? last_row : kq;
+    const int row = std::min(kq, last_row);  // row_of(kq)
     const auto b = static_cast<std::ptrdiff_t>(static_cast<int>(bin[q]));
     ++rows[row];
     ++cells[b];
@@ -148,7 +148,7 @@ void trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTra
       in.x[q] = d.left_x + f * (d.right_x - d.left_x);
     }
     block_reflections(in, m, opt.trace.max_bounces, kBlockRounds, hits);
-    // The rays the block did not settle, one by one.
+    // Every lane as the block settled it; then the lanes it did not settle, one by one.
     for (int q = 0; q < m; ++q) {
       how[q] = Termination::escaped, k_of[q] = static_cast<int>(hits.k[q]), ex[q] = hits.d1x[q], ey[q] = hits.d1y[q];
     }

@@ -180,7 +180,7 @@ void Microsurface3dTally::add_binned_block(const Termination* how, const int* k,
       continue;
     }
     ++up, sum_k += kq, k_max = std::max(k_max, kq);
-    const int row = kq > last_row - 1 ? last_row : kq;
+    const int row = std::min(kq, last_row);  // row_of(kq)
     int pb = static_cast<int>(p[q]);
     pb = pb < 0 ? pb + nphi : (pb >= nphi ? pb - nphi : pb);
     const std::ptrdiff_t cell = static_cast<std::ptrdiff_t>(static_cast<int>(t[q]) * nphi + pb);
@@ -266,7 +266,7 @@ void trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurfac
       r_of[q] = r;
     }
     block_reflections(in, m, opt.trace.max_bounces, kBlockRounds, hits);
-    // The rays the block did not settle, one by one.
+    // Every lane as the block settled it; then the lanes it did not settle, one by one.
     for (int q = 0; q < m; ++q) {
       how[q] = Termination::escaped, k_of[q] = static_cast<int>(hits.k[q]), ex[q] = hits.d1x[q], ey[q] = hits.d1y[q];
     }
