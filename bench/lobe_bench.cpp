@@ -41,7 +41,13 @@ void BM_lobe_3d_reference(benchmark::State& state) {
 }
 
 void lobe_args(benchmark::internal::Benchmark* b) {
-  b->Args({0, 5, 40})->Args({1, 5, 40})->Args({2, 5, 40})->Args({0, 3, 0})->Args({0, 10, 80})->Args({2, 7, 20})->Args({0, 3, 20});
+  b->Args({0, 5, 40})
+      ->Args({1, 5, 40})
+      ->Args({2, 5, 40})
+      ->Args({0, 3, 0})
+      ->Args({0, 10, 80})
+      ->Args({2, 7, 20})
+      ->Args({0, 3, 20});
   b->Unit(benchmark::kMillisecond)->Iterations(1);
 }
 

@@ -1,6 +1,8 @@
 // Tests of atan2_pair (analytic/atan_pair.h), the groove frame's two angles in the batched GGX pass.
 #include "vgroove/analytic/atan_pair.h"
 
+#include "tests/ulps.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,16 +14,7 @@
 
 namespace va = vgroove::analytic;
 
-namespace {
-
-// |a - b| in units of the last place of b (the exact value).
-double ulps(double a, long double b) {
-  const double bd = static_cast<double>(b);
-  const double ulp = std::nextafter(std::abs(bd), INFINITY) - std::abs(bd);
-  return static_cast<double>(std::abs(static_cast<long double>(a) - b) / ulp);
-}
-
-}  // namespace
+using vgroove::test_ulps::ulps;
 
 // Against atan2l (64-bit mantissa) for x >= 0: angles uniform in [-pi/2, pi/2], ratios |y| / x
 // from 1e-300 to 1e300, and both sides of every reduction point (q = (2 j + 1) / 16, where the

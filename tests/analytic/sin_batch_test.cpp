@@ -1,6 +1,8 @@
 // Tests of the batch sine (analytic/sin_batch.h) that the batched BRDF pass uses.
 #include "vgroove/analytic/sin_batch.h"
 
+#include "tests/ulps.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,16 +14,7 @@
 
 namespace va = vgroove::analytic;
 
-namespace {
-
-// |a - b| in units of the last place of b (the exact value).
-double ulps(double a, long double b) {
-  const double bd = static_cast<double>(b);
-  const double ulp = std::nextafter(std::abs(bd), INFINITY) - std::abs(bd);
-  return static_cast<double>(std::abs(static_cast<long double>(a) - b) / ulp);
-}
-
-}  // namespace
+using vgroove::test_ulps::ulps;
 
 // Against sinl (64-bit mantissa, ~2^-11 ulp of a double) over the whole documented range
 // [-pi/2, pi], uniformly and near the ends and the reduction points, and sin_cos_quadrant over
