@@ -23,14 +23,12 @@ double dot(const Dir3& a, const Dir3& b) { return a.x * b.x + a.y * b.y + a.z * 
 
 }  // namespace
 
-namespace {
-
 // h = (i + o)/|i + o|, a = the horizontal direction of h, so that t_h = -theta_h <= 0 and the
 // facet with normal h is the "left" one (2D angle -theta_m). Every field is computed symmetrically
 // in (i, o) or swaps with them bitwise (t_i <-> t_o, ...), so that the evaluation below is
-// reciprocal to the last bit (see beam_width). This is the reference passes' frame: std::hypot and
-// std::atan2, and each field from the normalized h (groove_frame below rounds differently).
-bool groove_frame_library(const Dir3& i, const Dir3& o, GrooveFrame& p) {
+// reciprocal to the last bit (see beam_width). The library's hypot and atan2, and each field from
+// the normalized h: the reference passes' frame (groove_frame_fast below rounds differently).
+bool groove_frame(const Dir3& i, const Dir3& o, GrooveFrame& p) {
   Dir3 h{i.x + o.x, i.y + o.y, i.z + o.z};
   const double len = std::sqrt(dot(h, h));
   h = {h.x / len, h.y / len, h.z / len};
@@ -57,22 +55,25 @@ bool groove_frame_library(const Dir3& i, const Dir3& o, GrooveFrame& p) {
   return true;
 }
 
+namespace {
+
 // groove_frame's fields for the batched GGX pass, rounded differently: from H = i + o = 2 (i.h) h
 // without normalizing it first (a = H_xy / |H_xy|, i.a = (i_x H_x + i_y H_y) / |H_xy|,
-// i.h = |H| / 2), the two angles from atan2_pair (at once, within 1 ulp), the quotients as
-// products by reciprocals. The library's frame took a quarter of the batched evaluation's time,
-// mostly in its chain hypot -> a -> i.a -> atan2. Symmetric in (i, o) as the library's.
-// Only where both are well conditioned; elsewhere the library's frame, bit for bit:
+// i.h = |H| / 2), the two angles from atan2_pair (at once, within 3 ulp), the quotients as
+// products by reciprocals. groove_frame costs about one Cook-Torrance evaluation, mostly in its
+// chain hypot -> a -> i.a -> atan2; with this one the batched GGX evaluation takes ~125 ns
+// instead of ~180 (README, "The BRDF's cost"). Symmetric in (i, o) as groove_frame is.
+// Only where both are well conditioned; elsewhere groove_frame, bit for bit:
 //  - h within 1e-100 of n: sqrt(H_x^2 + H_y^2) would lose the precision hypot keeps;
 //  - i.z + o.z <= 1e-2: i.h = (i.H + o.H) / (2 |H|) in the library's frame loses 2 eps / |H|
 //    relative to cancellation as i -> -o, and the outcome tests (Eq. 4) decide at the horizon
 //    on the last bits of the angles.
-// Beckmann and Phong take the library's frame (brdf_range): their D multiplies the angles'
+// Beckmann and Phong take groove_frame (brdf_range): their D multiplies the angles'
 // last bits by up to ~10^3 (tan^2 theta_m / alpha^2, p), beyond the 1e-12 the passes agree to.
 bool groove_frame_fast(const Dir3& i, const Dir3& o, GrooveFrame& p) {
   const Dir3 H{i.x + o.x, i.y + o.y, i.z + o.z};
   const double rho2 = H.x * H.x + H.y * H.y;
-  if (!(rho2 > 1e-200 && H.z > 1e-2)) return groove_frame_library(i, o, p);
+  if (!(rho2 > 1e-200 && H.z > 1e-2)) return groove_frame(i, o, p);
   const double len = std::sqrt(dot(H, H)), inv_len = 1.0 / len;
   const double rho = std::sqrt(rho2), inv_rho = 1.0 / rho;
   p.sin_h = rho * inv_len;
@@ -97,13 +98,6 @@ bool groove_frame_fast(const Dir3& i, const Dir3& o, GrooveFrame& p) {
   p.x.cos_half_diff = p.cos_d / p.c;
   return true;
 }
-
-}  // namespace
-
-// The library's hypot and atan2, and each field from the normalized h.
-bool groove_frame(const Dir3& i, const Dir3& o, GrooveFrame& p) { return groove_frame_library(i, o, p); }
-
-namespace {
 
 // The term of Eq. (16) of one solution of Eq. (5).
 double solution_term(const GrooveFrame& p, const Solution& q, double cos_i, double cos_o, NdfKind ndf, double alpha,
@@ -142,10 +136,9 @@ double brdf_range(const Dir3& i, const Dir3& o, int k_lo, int k_hi, NdfKind ndf,
   const double cos_i = i.z, cos_o = o.z;
   // Below or at the horizon: no flux (a set of measure zero; see the header).
   if (!(cos_i > 0.0 && cos_o > 0.0)) return 0.0;
-  // The batched GGX pass in the fast frame (groove_frame_fast says where and why), the others in
-  // the library's.
+  // The batched GGX pass in groove_frame_fast (which says where and why), the others in groove_frame.
   GrooveFrame p;
-  if (!(pass == Pass::batched && ndf == NdfKind::ggx ? groove_frame_fast(i, o, p) : groove_frame_library(i, o, p))) {
+  if (!(pass == Pass::batched && ndf == NdfKind::ggx ? groove_frame_fast(i, o, p) : groove_frame(i, o, p))) {
     // h = n: the limit of Eq. (16) is Cook-Torrance with G = 1 for k = 1 (sin theta_s / sin theta_h
     // -> 1) and diverges like 1 / sin(theta_h) for k >= 2.
     if (k_hi >= 2) return std::numeric_limits<double>::infinity();
