@@ -62,9 +62,10 @@
 //     lanes, polynomial sines, the common factors once); the plain evaluation, each solution's
 //     term on its own, is vgroove_brdf_per_solution_reference (values within 1e-12 relative,
 //     measured 2.5e-14 worst). For GGX the batched pass also takes the plane from
-//     groove_frame_fast (brdf_3d.cpp: both angles at once by atan2_pair, no normalized h, within
-//     6.7e-15 of the library's frame); Beckmann and Phong keep the library's frame, whose angles
-//     must keep their bits there (Beckmann's tails multiply an ulp of t_i by up to 10^3).
+//     groove_frame_fast (brdf_3d.cpp: both angles at once by atan2_pair, no normalized h; values
+//     within 6.7e-15 relative of the per-solution pass in groove_frame); Beckmann and Phong keep
+//     groove_frame, whose angles must keep their bits there (Beckmann's tails multiply an ulp of
+//     t_i by up to 10^3).
 //     Measured (bench/brdf_bench.cpp, 1024 cosine-weighted pairs, GGX alpha 0.3 and 1.0, medians
 //     of 5 interleaved repetitions): ~123 ns at max_k 4 and ~151 ns at max_k 16 against ~68 ns for
 //     cook_torrance (1.8x and 2.2x); the library's frame alone (two atan2, a hypot, ten divisions)
