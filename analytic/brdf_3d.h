@@ -67,8 +67,8 @@
 //     groove_frame, whose angles must keep their bits there (Beckmann's tails multiply an ulp of
 //     t_i by up to 10^3).
 //     Measured (bench/brdf_bench.cpp, 1024 cosine-weighted pairs, GGX alpha 0.3 and 1.0, medians
-//     of 5 interleaved repetitions): ~123 ns at max_k 4 and ~151 ns at max_k 16 against ~68 ns for
-//     cook_torrance (1.8x and 2.2x); the library's frame alone (two atan2, a hypot, ten divisions)
+//     of 5 interleaved repetitions): ~125 ns at max_k 4 and ~155 ns at max_k 16 against ~70 ns for
+//     cook_torrance (1.8x and 2.2-2.3x); the library's frame alone (two atan2, a hypot, ten divisions)
 //     had cost about one Cook-Torrance. The straightforward per-k evaluation (every j)
 //     stays as vgroove_brdf_k_reference for the tests.
 #pragma once
