@@ -181,8 +181,11 @@ void Microsurface3dTally::add_binned_block(const Termination* how, const int* k,
     }
     ++up, sum_k += kq, k_max = std::max(k_max, kq);
     const int row = std::min(kq, last_row);  // row_of(kq)
+    // p in [-nphi, 2 nphi) wrapped by masks: half the rays of a block come with p < 0 (the chunks
+    // centre the bins on phi = 0), so a branch would be mispredicted on every other ray.
     int pb = static_cast<int>(p[q]);
-    pb = pb < 0 ? pb + nphi : (pb >= nphi ? pb - nphi : pb);
+    pb += nphi & -static_cast<int>(pb < 0);
+    pb -= nphi & -static_cast<int>(pb >= nphi);
     const std::ptrdiff_t cell = static_cast<std::ptrdiff_t>(static_cast<int>(t[q]) * nphi + pb);
     ++rows[row];
     ++cells[cell];

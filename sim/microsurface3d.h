@@ -151,10 +151,12 @@ struct Microsurface3dTally : RayFates {
   }
 
   void add(const Trace3dResult& r);
-  // A ray whose bins are known: theta bin t, phi bin p (taken modulo phi_bins).
+  // A ray whose bins are known: theta bin t, phi bin p in [-phi_bins, 2 phi_bins) (taken modulo
+  // phi_bins).
   void add_binned(Termination how, int k, bool upward, int t, int p);
   // add_binned for n rays (t[q], p[q] whole numbers; o_z[q] > 0: upward), the same counts: the
-  // fates' totals kept in registers over the block instead of in memory ray by ray.
+  // fates' totals kept in registers over the block instead of in memory ray by ray, p wrapped
+  // without branches.
   void add_binned_block(const Termination* how, const int* k, const double* o_z, const double* t, const double* p,
                         int n);
   void merge(const Microsurface3dTally& other);  // same bins and max_k

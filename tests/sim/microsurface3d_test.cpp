@@ -206,6 +206,34 @@ TEST(Microsurface3dTally, BinEdges) {
   EXPECT_EQ(t.index(1, 2, 3), static_cast<std::size_t>((1 * 90 + 2) * 72 + 3));
 }
 
+// The block form counts as the ray-by-ray one: every fate, k past max_k, t at both ends and p over
+// the whole range it wraps, [-phi_bins, 2 phi_bins).
+TEST(Microsurface3dTally, BlockCountsAsRayByRay) {
+  Microsurface3dTally one(6, 8, 3), block(6, 8, 3);
+  std::vector<Termination> how;
+  std::vector<int> k;
+  std::vector<double> oz, t, p;
+  const Termination fates[] = {Termination::escaped, Termination::vertex_hit, Termination::bounce_limit};
+  for (int q = 0; q < 3 * 7 * 6 * 24; ++q) {
+    const Termination h = q % 11 == 0 ? fates[(q / 11) % 3] : Termination::escaped;
+    const int kq = 1 + q % 7, tq = (q / 7) % 6, pq = -8 + (q / 42) % 24;
+    const bool up = q % 13 != 0;
+    one.add_binned(h, kq, up, tq, pq);
+    how.push_back(h), k.push_back(kq), oz.push_back(up ? 0.5 : -0.5), t.push_back(tq), p.push_back(pq);
+  }
+  block.add_binned_block(how.data(), k.data(), oz.data(), t.data(), p.data(), static_cast<int>(how.size()));
+  EXPECT_EQ(block.rays, one.rays);
+  EXPECT_EQ(block.escaped, one.escaped);
+  EXPECT_EQ(block.vertex_hits, one.vertex_hits);
+  EXPECT_EQ(block.bounce_limit, one.bounce_limit);
+  EXPECT_EQ(block.not_upward, one.not_upward);
+  EXPECT_EQ(block.bounces, one.bounces);
+  EXPECT_EQ(block.max_k_seen, one.max_k_seen);
+  EXPECT_EQ(block.by_k, one.by_k);
+  EXPECT_EQ(block.hist, one.hist);
+  EXPECT_EQ(block.hist_by_k, one.hist_by_k);
+}
+
 // ---------------------------------------------------------------------------------------------
 // The surface.
 
