@@ -55,9 +55,9 @@ bool groove_frame(const Dir3& i, const Dir3& o, GrooveFrame& p) {
   return true;
 }
 
-namespace {
+namespace brdf_passes {
 
-// groove_frame's fields for the batched GGX pass, rounded differently: from H = i + o = 2 (i.h) h
+// groove_frame's fields for the batched GGX and Beckmann passes, rounded differently: from H = i + o = 2 (i.h) h
 // without normalizing it first (a = H_xy / |H_xy|, i.a = (i_x H_x + i_y H_y) / |H_xy|,
 // i.h = |H| / 2), the two angles from atan2_pair (at once, within 3 ulp), the quotients as
 // products by reciprocals. groove_frame costs about one Cook-Torrance evaluation, mostly in its
@@ -68,8 +68,10 @@ namespace {
 //  - i.z + o.z <= 1e-2: i.h = (i.H + o.H) / (2 |H|) in the library's frame loses 2 eps / |H|
 //    relative to cancellation as i -> -o, and the outcome tests (Eq. 4) decide at the horizon
 //    on the last bits of the angles.
-// Beckmann and Phong take groove_frame (brdf_range): their D multiplies the angles'
-// last bits by up to ~10^3 (tan^2 theta_m / alpha^2, p), beyond the 1e-12 the passes agree to.
+// Phong takes groove_frame (brdf_range): its D multiplies the angles' last bits by up to p
+// (~2 10^4 at alpha = 0.01), beyond the 1e-12 the passes agree to. Beckmann's (by
+// 2 tan^2 theta_m / alpha^2 / (sin cos)) is bounded pair by pair: the batched pass takes this
+// frame where the bound holds and groove_frame elsewhere (brdf_3d_batch.cpp).
 bool groove_frame_fast(const Dir3& i, const Dir3& o, GrooveFrame& p) {
   const Dir3 H{i.x + o.x, i.y + o.y, i.z + o.z};
   const double rho2 = H.x * H.x + H.y * H.y;
@@ -98,6 +100,10 @@ bool groove_frame_fast(const Dir3& i, const Dir3& o, GrooveFrame& p) {
   p.x.cos_half_diff = p.cos_d / p.c;
   return true;
 }
+
+}  // namespace brdf_passes
+
+namespace {
 
 // The term of Eq. (16) of one solution of Eq. (5).
 double solution_term(const GrooveFrame& p, const Solution& q, double cos_i, double cos_o, NdfKind ndf, double alpha,
@@ -136,9 +142,22 @@ double brdf_range(const Dir3& i, const Dir3& o, int k_lo, int k_hi, NdfKind ndf,
   const double cos_i = i.z, cos_o = o.z;
   // Below or at the horizon: no flux (a set of measure zero; see the header).
   if (!(cos_i > 0.0 && cos_o > 0.0)) return 0.0;
-  // The batched GGX pass in groove_frame_fast (which says where and why), the others in groove_frame.
   GrooveFrame p;
-  if (!(pass == Pass::batched && ndf == NdfKind::ggx ? groove_frame_fast(i, o, p) : groove_frame(i, o, p))) {
+  // The batched Beckmann pass first in groove_frame_fast with every term vectorized: it declines
+  // (NaN) a pair whose terms' weighted amplification exceeds its bound (brdf_3d_batch.cpp), and
+  // is not tried where the k = 1 term alone exceeds it (y = tan theta_h / (alpha^2 cos^2 theta_h)
+  // = sin_h / (alpha^2 cos^3 theta_h) > 64: the lobe's far tail, where it mostly would decline).
+  if (pass == Pass::batched && ndf == NdfKind::beckmann && !F && brdf_passes::groove_frame_fast(i, o, p)) {
+    const double ch = p.x.cos_half_sum;
+    if (p.sin_h <= 64.0 * (alpha * alpha) * (ch * ch * ch)) {
+      const double v = brdf_passes::brdf_batched(p, cos_i, cos_o, std::max(1, k_lo), k_hi, ndf, alpha, F,
+                                                 brdf_passes::BeckmannTails::vector);
+      if (!std::isnan(v)) return v;
+    }
+  }
+  // The batched GGX pass in groove_frame_fast (which says where and why), the others in groove_frame.
+  if (!(pass == Pass::batched && ndf == NdfKind::ggx ? brdf_passes::groove_frame_fast(i, o, p)
+                                                     : groove_frame(i, o, p))) {
     // h = n: the limit of Eq. (16) is Cook-Torrance with G = 1 for k = 1 (sin theta_s / sin theta_h
     // -> 1) and diverges like 1 / sin(theta_h) for k >= 2.
     if (k_hi >= 2) return std::numeric_limits<double>::infinity();

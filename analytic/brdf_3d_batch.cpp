@@ -18,22 +18,36 @@
 //     half-aperture by polynomials (sin_batch.h, within 2 ulp); the width's ends and form by
 //     selects; its one remaining sine (where the outcome's lower end is 0 or its two ends come
 //     from different offsets) by the polynomial at the same argument; for GGX, D and the term;
-//   - Beckmann's exp by a polynomial (exp_nonpositive) in the lanes where
-//     tan^2 / alpha^2 <= 32 (below); Beckmann's other lanes, Phong's power and the Fresnel
-//     product run over the live lanes one at a time;
+//   - Beckmann's exp by a polynomial (exp_nonpositive): in every lane (BeckmannTails::vector,
+//     below), or where tan^2 / alpha^2 <= 32 (exact); the exact mode's other lanes, Phong's power
+//     and the Fresnel product run over the live lanes one at a time;
 //   - the factors common to every term, c / (4 (i.h) cos_i cos_o) and 1 / sin(theta_h), are
 //     formed once, off the terms' path;
 //   - only j = 0 of Eq. (5) is enumerated: for j = +-1, |X - span| = |2 pi j - (a + b)| > pi
 //     while theta_v <= pi needs X / k <= pi, so Eq. (4)'s k |X - span| <= X fails by far more
 //     than rounding unless |a + b| is within 1e-9 of pi (both directions grazing); such pairs go
 //     to the per-solution pass.
-// The angles t_i, t_o (atan2 in groove_frame) are not touched: the width's sine arguments and
-// theta_v = X / k keep their bits, so the only differences from the per-solution pass are the
-// polynomial sines (2 ulp, relative) and the order of products. Two D amplify the ulp of
+// The angles t_i, t_o are the frame's: the width's sine arguments and theta_v = X / k keep their
+// bits, so in the library's frame (groove_frame) the only differences from the per-solution pass
+// are the polynomial sines (2 ulp, relative) and the order of products. Two D amplify the ulp of
 // theta_m's sine and cosine: Phong's cos^p theta_m, p = 2 / alpha^2 - 2, by p (2e-12 at
 // alpha = 0.01), and Beckmann's exp(-tan^2 theta_m / alpha^2) by 2 tan^2 / alpha^2 (up to
-// 1500): Phong always, and Beckmann where tan^2 / alpha^2 > 32, take them from std::sin and
-// std::cos, as the per-solution pass does.
+// 1500). Phong always takes them from std::sin and std::cos, as the per-solution pass does.
+// Beckmann has two modes (BeckmannTails, brdf_3d_passes.h):
+//   - exact (in groove_frame): the lanes where tan^2 / alpha^2 > 32 from std::sin, std::cos
+//     and std::exp;
+//   - vector (in groove_frame_fast, brdf_range): every lane from the polynomials, and with it
+//     a bound on how far the sum can be from the per-solution pass. In a term, x = tan^2 / alpha^2
+//     moves by 2 x d / (sin cos) when theta_m moves by d, and the fast frame's angles are within
+//     ~5 ulp of the library's (atan2_pair's 3, atan2's 1, the frame's roundings): d <= 1.1e-15 / k
+//     (|t| < pi / 2); the polynomial sines move x by <= 1.3e-15 x relative, and exp and the
+//     products add a few ulp. A term is then within 2.2e-15 y + 1.3e-15 x + 1e-15 ~ 3e-15 y + 1e-15
+//     of the per-solution pass's, y = x / (sin cos) = cos / (sin^3 alpha^2) >= 2 x (sin and cos
+//     of the half-aperture). The pass keeps the terms' y-weighted sum beside their sum and
+//     declines (NaN) a pair whose weighted mean y exceeds 64 (a deviation of up to ~2e-13; the
+//     lobe's far tail, where brdf_range evaluates it again in exact mode), and a pair with a
+//     term whose exponent is below -708 (exp under 2^-1022, left out: under ~1e-300 W / sin_h)
+//     unless the sum is far above such a term; and pairs with both directions grazing.
 //
 // Values: the same as the per-solution pass within 1e-12 relative (tests/analytic/brdf_3d_test.cpp,
 // BatchedPassEqualsPerSolutionPass). Cost: bench/brdf_bench.cpp.
@@ -45,6 +59,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <numbers>
 
 namespace vgroove::analytic::brdf_passes {
@@ -153,7 +168,7 @@ void add_terms(const GrooveFrame& p, const Slots& sl, NdfKind ndf, double alpha,
 #endif
 double
 brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_hi, NdfKind ndf, double alpha,
-             const FresnelFn& F) {
+             const FresnelFn& F, BeckmannTails tails) {
   constexpr double pi = std::numbers::pi;
   const V zero = splat(0.0), one = splat(1.0);
   // Lee et al. 2018, Eq. (16) with the Jacobian of Eq. (13): each term is |i.s| G = c W times D
@@ -167,6 +182,8 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
   // Both directions grazing: the j = +-1 solutions need the per-solution pass (header).
   const auto grazing = !(pi - select(fa + fb < 0.0, -(fa + fb), fa + fb) > 1e-9);
   if (grazing[0] | grazing[1] | grazing[2] | grazing[3]) {
+    if (ndf == NdfKind::beckmann && !F && tails == BeckmannTails::vector)
+      return std::numeric_limits<double>::quiet_NaN();
     return brdf_per_solution(p, cos_i, cos_o, k_lo, k_hi, ndf, alpha, F);
   }
   // Each family's k that can pass outcome_possible, from k_first in steps of 2 (its parity):
@@ -197,10 +214,14 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
   const V kf0 = splat(k_first[0]), kf1 = splat(k_first[1]), kf2 = splat(k_first[2]), kf3 = splat(k_first[3]);
   const bool ggx = ndf == NdfKind::ggx && !F;
   const bool beckmann = ndf == NdfKind::beckmann && !F;
+  const bool beckmann_vector = beckmann && tails == BeckmannTails::vector;
   const double beckmann_norm = std::numbers::pi * alpha * alpha;  // D_cs's pi alpha^2, for Beckmann
-  V t_1 = zero, t_k = zero;  // GGX: the terms without the common factors (k = 1, k >= 2)
-  double sum_1 = 0.0;        // k = 1: W D (F)
-  double sum_k = 0.0;        // k >= 2: sin(theta_m) / k W D (F)
+  const double inv_beckmann_norm = 1.0 / beckmann_norm, inv_alpha2 = 1.0 / (alpha * alpha);
+  V t_1 = zero, t_k = zero;     // GGX: the terms without the common factors (k = 1, k >= 2)
+  V y_1 = zero, y_k = zero;     // Beckmann vector: the terms times y (header)
+  auto underflow = V{} < zero;  // Beckmann vector: a live lane's exponent below -708
+  double sum_1 = 0.0;           // k = 1: W D (F)
+  double sum_k = 0.0;           // k >= 2: sin(theta_m) / k W D (F)
   Slots sl;
   // A vector of up to four candidates: k and family f per lane, the first `count` lanes live.
   // Inlined: a lambda is its own function, which would not be compiled for AVX2 with this one.
@@ -259,6 +280,24 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
       return;
     }
     V W_scalar = W;  // the lanes add_terms takes
+    if (beckmann_vector) {
+      // Every lane from the polynomials (header), with one quotient, r = 1 / (S^2 k), S = cos
+      // theta_m and C = sin theta_m: x = C^2 r k / alpha^2, the term W D (C / k for k >= 2) =
+      // W exp(-x) r^2 k (C for k >= 2) / (pi alpha^2), y = C / (S^3 alpha^2) = (C / alpha^2) r k (S r k).
+      const V S_live = select(live, S, one);
+      const V r = one / ((S_live * S_live) * k), rk = r * k;
+      const V x = (C * C) * rk * inv_alpha2;
+      const auto under = live & ~(x <= 708.0);
+      underflow |= under;
+      const V e = exp_nonpositive(select(under, zero, -x));
+      const V term = select(live & ~under, W, zero) * e * (rk * r) * select(k1, one, C) * inv_beckmann_norm;
+      t_1 += select(k1, term, zero);
+      t_k += select(k1, zero, term);
+      const V y = (C * inv_alpha2) * rk * (S_live * rk);
+      y_1 += select(k1, term * y, zero);
+      y_k += select(k1, zero, term * y);
+      return;
+    }
     if (beckmann) {
       // D_cs (ndf.h) with exp from the polynomial above, where tan^2 / alpha^2 <= 32; the other
       // lanes (add_terms' exact sines) one at a time. t = tan theta_m, D = exp(-t^2 / alpha^2) /
@@ -313,6 +352,17 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
   } else if (beckmann) {
     sum_1 += (t_1[0] + t_1[1]) + (t_1[2] + t_1[3]);
     sum_k += (t_k[0] + t_k[1]) + (t_k[2] + t_k[3]);
+    if (beckmann_vector) {
+      // Declined (header): the weighted mean of y above 64; a term left out (exponent below
+      // -708) and the sum not far above it.
+      const double sum = sum_1 + sum_k * inv_sin_h;
+      const double y_sum =
+          ((y_1[0] + y_1[1]) + (y_1[2] + y_1[3])) + ((y_k[0] + y_k[1]) + (y_k[2] + y_k[3])) * inv_sin_h;
+      const bool under = underflow[0] | underflow[1] | underflow[2] | underflow[3];
+      if (!(y_sum <= 64.0 * sum) || (under && !(sum > 1e-270 * std::max(1.0, inv_sin_h)))) {
+        return std::numeric_limits<double>::quiet_NaN();
+      }
+    }
   }
   return (sum_1 + sum_k * inv_sin_h) * common;
 }
