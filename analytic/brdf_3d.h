@@ -61,14 +61,16 @@
 //     max_k. vgroove_brdf takes them four at a time without branches (brdf_3d_batch.cpp: vector
 //     lanes, polynomial sines, the common factors once); the plain evaluation, each solution's
 //     term on its own, is vgroove_brdf_per_solution_reference (values within 1e-12 relative,
-//     measured 2.5e-14 worst). For GGX the batched pass also takes the plane from
-//     groove_frame_fast (brdf_3d.cpp: both angles at once by atan2_pair, no normalized h; values
-//     within 6.7e-15 relative of the per-solution pass in groove_frame); Beckmann and Phong keep
-//     groove_frame, whose angles must keep their bits there (Beckmann's tails multiply an ulp of
-//     t_i by up to 10^3).
-//     Measured (bench/brdf_bench.cpp, 1024 cosine-weighted pairs, GGX alpha 0.3 and 1.0, medians
-//     of 5 interleaved repetitions): ~125 ns at max_k 4 and ~155 ns at max_k 16 against ~70 ns for
-//     cook_torrance (1.8x and 2.2-2.3x); the library's frame alone (two atan2, a hypot, ten divisions)
+//     measured 2.5e-14 worst in groove_frame). For GGX and Beckmann the batched pass also takes the
+//     plane from groove_frame_fast (brdf_3d.cpp: both angles at once by atan2_pair, no normalized
+//     h; values within 6.7e-15 (GGX) and 4.6e-14 (Beckmann) relative of the per-solution pass in
+//     groove_frame). Beckmann's tails multiply an ulp of t_i by up to ~10^5: its pass in that frame
+//     bounds the amplification pair by pair and declines the far tail, which it evaluates again
+//     in groove_frame (brdf_3d_batch.cpp); Phong keeps groove_frame.
+//     Measured (bench/brdf_bench.cpp, 1024 cosine-weighted pairs, alpha 0.3 and 1.0, medians
+//     of 5 interleaved repetitions): GGX ~130 ns at max_k 4 and ~160 ns at max_k 16 against ~72 ns
+//     for cook_torrance (1.8-1.9x and 2.2x), Beckmann 150-160 and ~194 against ~83 (1.8-1.9x and
+//     2.3-2.4x); the library's frame alone (two atan2, a hypot, ten divisions)
 //     had cost about one Cook-Torrance. The straightforward per-k evaluation (every j)
 //     stays as vgroove_brdf_k_reference for the tests.
 #pragma once

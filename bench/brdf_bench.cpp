@@ -10,8 +10,8 @@
 // BM_vgroove_brdf runs the batched pass (analytic/brdf_3d_batch.cpp), BM_vgroove_brdf_per_solution
 // the evaluation it replaced (each solution's term on its own), on the same pairs, in the same run.
 // Measured (Release, idle 2-core host; medians of 5, ns per call): see the README's "The BRDF's
-// cost against Cook-Torrance". GGX alpha 0.3: batched ~125 (max_k 4),
-// ~155 (16); per solution ~300, ~355; cook_torrance ~70.
+// cost against Cook-Torrance". GGX alpha 0.3: batched ~131 (max_k 4),
+// ~158 (16); per solution ~311, ~369; cook_torrance ~72. Beckmann 0.3: ~160, ~194; ~339, ~417; ~84.
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/analytic/brdf_nonsymmetric.h"
 
