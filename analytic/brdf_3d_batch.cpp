@@ -78,12 +78,12 @@ template <typename Mask>
   return m ? a : b;
 }
 
-// e^z for z in [-40, 0] lane by lane: z = k ln 2 + r, |r| <= ln 2 / 2 (Cody-Waite, ln 2 in two
-// parts), e^r = 1 + r + r^2 (1/2! + r/3! + ... + r^11/13!) (truncation below 1.2e-17 relative),
-// times 2^k formed in the exponent bits. Checked through the terms: Beckmann's batched values
-// agree with the per-solution pass's std::exp to 2.5e-14 relative at worst, where the exponent
-// multiplies a sine's 2 ulp by up to 64 (tests/analytic/brdf_3d_test.cpp; dropping ln 2's low part
-// fails it).
+// e^z for z in [-708, 0] lane by lane: z = k ln 2 + r, |r| <= ln 2 / 2 (Cody-Waite, ln 2 in two
+// parts; k ln 2's high part is exact for |k| < 2^21), e^r = 1 + r + r^2 (1/2! + r/3! + ... +
+// r^11/13!) (truncation below 1.2e-17 relative), times 2^k formed in the exponent bits (k >= -1021
+// there: a normal number). Checked through the terms: Beckmann's batched values agree with the
+// per-solution pass's std::exp to 2.5e-14 relative at worst, where the exponent multiplies a
+// sine's 2 ulp by up to 64 (tests/analytic/brdf_3d_test.cpp; dropping ln 2's low part fails it).
 [[gnu::always_inline]] inline V exp_nonpositive(V z) {
   typedef std::int64_t VI __attribute__((vector_size(32)));
   constexpr double round_const = 6755399441055744.0;  // 1.5 2^52: (x + c) - c rounds x to an integer
