@@ -57,8 +57,8 @@ bool groove_frame(const Dir3& i, const Dir3& o, GrooveFrame& p) {
 
 namespace brdf_passes {
 
-// groove_frame's fields for the batched GGX and Beckmann passes, rounded differently: from H = i + o = 2 (i.h) h
-// without normalizing it first (a = H_xy / |H_xy|, i.a = (i_x H_x + i_y H_y) / |H_xy|,
+// groove_frame's fields for the batched GGX and Beckmann passes, rounded differently: from
+// H = i + o = 2 (i.h) h without normalizing it first (a = H_xy / |H_xy|, i.a = (i_x H_x + i_y H_y) / |H_xy|,
 // i.h = |H| / 2), the two angles from atan2_pair (at once, within 3 ulp), the quotients as
 // products by reciprocals. groove_frame costs about one Cook-Torrance evaluation, mostly in its
 // chain hypot -> a -> i.a -> atan2; with this one the batched GGX evaluation takes ~125 ns
@@ -149,7 +149,7 @@ double brdf_range(const Dir3& i, const Dir3& o, int k_lo, int k_hi, NdfKind ndf,
   // = sin_h / (alpha^2 cos^3 theta_h) > 64: the lobe's far tail, where it mostly would decline).
   if (pass == Pass::batched && ndf == NdfKind::beckmann && !F && brdf_passes::groove_frame_fast(i, o, p)) {
     const double ch = p.x.cos_half_sum;
-    if (p.sin_h <= 64.0 * (alpha * alpha) * (ch * ch * ch)) {
+    if (p.sin_h <= brdf_passes::kBeckmannMeanAmplification * (alpha * alpha) * (ch * ch * ch)) {
       const double v = brdf_passes::brdf_batched(p, cos_i, cos_o, std::max(1, k_lo), k_hi, ndf, alpha, F,
                                                  brdf_passes::BeckmannTails::vector);
       if (!std::isnan(v)) return v;

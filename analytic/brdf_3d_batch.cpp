@@ -181,9 +181,10 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
   const V fa = splat(p.x.t_i) * m_a, fb = splat(p.x.t_o) * m_b;
   // Both directions grazing: the j = +-1 solutions need the per-solution pass (header).
   const auto grazing = !(pi - select(fa + fb < 0.0, -(fa + fb), fa + fb) > 1e-9);
+  const bool beckmann = ndf == NdfKind::beckmann && !F;
+  const bool beckmann_vector = beckmann && tails == BeckmannTails::vector;
   if (grazing[0] | grazing[1] | grazing[2] | grazing[3]) {
-    if (ndf == NdfKind::beckmann && !F && tails == BeckmannTails::vector)
-      return std::numeric_limits<double>::quiet_NaN();
+    if (beckmann_vector) return std::numeric_limits<double>::quiet_NaN();
     return brdf_per_solution(p, cos_i, cos_o, k_lo, k_hi, ndf, alpha, F);
   }
   // Each family's k that can pass outcome_possible, from k_first in steps of 2 (its parity):
@@ -213,8 +214,6 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
   const bool more = (keep_4[0] | keep_4[1] | keep_4[2] | keep_4[3]) != 0;
   const V kf0 = splat(k_first[0]), kf1 = splat(k_first[1]), kf2 = splat(k_first[2]), kf3 = splat(k_first[3]);
   const bool ggx = ndf == NdfKind::ggx && !F;
-  const bool beckmann = ndf == NdfKind::beckmann && !F;
-  const bool beckmann_vector = beckmann && tails == BeckmannTails::vector;
   const double beckmann_norm = std::numbers::pi * alpha * alpha;  // D_cs's pi alpha^2, for Beckmann
   const double inv_beckmann_norm = 1.0 / beckmann_norm, inv_alpha2 = 1.0 / (alpha * alpha);
   V t_1 = zero, t_k = zero;     // GGX: the terms without the common factors (k = 1, k >= 2)
@@ -359,7 +358,7 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
       const double y_sum =
           ((y_1[0] + y_1[1]) + (y_1[2] + y_1[3])) + ((y_k[0] + y_k[1]) + (y_k[2] + y_k[3])) * inv_sin_h;
       const bool under = underflow[0] | underflow[1] | underflow[2] | underflow[3];
-      if (!(y_sum <= 64.0 * sum) || (under && !(sum > 1e-270 * std::max(1.0, inv_sin_h)))) {
+      if (!(y_sum <= kBeckmannMeanAmplification * sum) || (under && !(sum > 1e-270 * std::max(1.0, inv_sin_h)))) {
         return std::numeric_limits<double>::quiet_NaN();
       }
     }

@@ -26,6 +26,9 @@ double brdf_per_solution(const GrooveFrame& p, double cos_i, double cos_o, int k
 // vector, every term from the polynomials, for groove_frame_fast, NaN where the pass's bound
 // on its deviation from the per-solution pass fails (for exact in groove_frame to take).
 enum class BeckmannTails { exact, vector };
+// The vector mode's bound on the terms' weighted mean amplification y (brdf_3d_batch.cpp): a
+// deviation of up to ~2e-13 from the per-solution pass.
+inline constexpr double kBeckmannMeanAmplification = 64.0;
 double brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_hi, NdfKind ndf, double alpha,
                     const FresnelFn& F, BeckmannTails tails = BeckmannTails::exact);
 
