@@ -50,6 +50,8 @@ struct LobeRun {
   double m_half = 0.0;           // the median of theta_m over the grooves' area
   std::vector<double> cos_edge;  // cos of the theta_o bin edges, b = 0..tb (decreasing)
   bool four_node_pieces = true;  // Lobe3dOptions::four_node_pieces
+  // The fast kernels' tail strata (tail_strata_table) for Lobe3dOptions::tail_strata and light_tail_strata.
+  std::vector<double> tail_table, light_tail_table;
 };
 
 // One groove azimuth: the geometry of the cross-section.
@@ -490,6 +492,81 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
   }
 }
 
+// The tail's strata in the CDF, u_q = u0 + mass (q + 1/2) / n, have 1 - u_q = mass s_q with
+// s_q = 1 - (q + 1/2) / n whatever the azimuth. The table holds what the inverse CDF needs of s_q,
+// per stratum: Phong s_q^(1/(p+2)) (cos theta_m = (1 - u)^(1/(p+2)) is mass^(1/(p+2)) times it),
+// GGX s_q, Beckmann log s_q (tan^2 theta_m = -alpha^2 log(1 - u)).
+std::vector<double> tail_strata_table(NdfKind ndf, double alpha, int n) {
+  std::vector<double> t(static_cast<std::size_t>(std::max(n, 0)));
+  for (int q = 0; q < n; ++q) {
+    const double s = 1.0 - (q + 0.5) / n;
+    t[q] = ndf == NdfKind::phong ? std::pow(s, 1.0 / (phong_exponent(alpha) + 2.0))
+                                 : (ndf == NdfKind::beckmann ? std::log(s) : s);
+  }
+  return t;
+}
+
+// The half-aperture h = theta_v / 2 = pi/2 - theta_m where the CDF's complement is 1 - u =
+// one_minus_u > 0 (the reference kernels' tail): the library's asin and atan of cos theta_m resp.
+// cot theta_m, formed from 1 - u itself. Not pi - 2 theta_m: its absolute rounding (~4e-16, as
+// theta_m nears pi/2) times the k ~ 1 / theta_v reflections of the groove moves Eq. (6)'s shares
+// (by 1e-8 relative at theta_v = 1e-4, Phong 2.0 with the bands stopped at k = 5).
+double tail_half_aperture_reference(NdfKind ndf, double alpha, double one_minus_u) {
+  switch (ndf) {
+    case NdfKind::ggx:
+      return std::atan(std::sqrt(one_minus_u / (1.0 - one_minus_u)) / alpha);
+    case NdfKind::beckmann:
+      return std::atan(1.0 / (alpha * std::sqrt(-std::log(one_minus_u))));
+    case NdfKind::phong:
+      return std::asin(std::pow(one_minus_u, 1.0 / (phong_exponent(alpha) + 2.0)));
+  }
+  return 0.0;
+}
+
+// atan x and asin x for 0 <= x <= 0.1 by their Taylor series to x^17 (the next term is below
+// 1e-19 relative there): the tail's half-apertures h = theta_v / 2 <= pi / k_cap.
+double atan_small(double x) {
+  const double z = x * x;
+  const double p =
+      -1.0 / 3 +
+      z * (1.0 / 5 +
+           z * (-1.0 / 7 + z * (1.0 / 9 + z * (-1.0 / 11 + z * (1.0 / 13 + z * (-1.0 / 15 + z * (1.0 / 17)))))));
+  return x + x * (z * p);
+}
+double asin_small(double x) {
+  const double z = x * x;
+  const double p =
+      1.0 / 6 +
+      z * (3.0 / 40 +
+           z * (5.0 / 112 + z * (35.0 / 1152 + z * (63.0 / 2816 + z * (231.0 / 13312 +
+                                                                       z * (143.0 / 10240 + z * (6435.0 / 557056)))))));
+  return x + x * (z * p);
+}
+
+// The groove of the tail's stratum q (LobeRun::fast): the half-aperture h = pi/2 - theta_m from
+// 1 - u = mass s_q (tail_strata_table), with cos theta_m = sin h and sin theta_m = cos h.
+// `lead` is the per-azimuth factor: Phong mass^(1/(p+2)), GGX and Beckmann mass resp. log mass.
+double tail_half_aperture(NdfKind ndf, double alpha, double lead, double entry, double& cos_m, double& sin_m) {
+  if (ndf == NdfKind::phong) {
+    const double c = lead * entry;  // cos theta_m = sin h
+    cos_m = c;
+    sin_m = std::sqrt((1.0 - c) * (1.0 + c));
+    return c <= 0.1 ? asin_small(c) : std::asin(c);
+  }
+  // cot theta_m = tan h: GGX sqrt((1 - u) / u) / alpha, Beckmann 1 / (alpha sqrt(-log(1 - u))).
+  double x;
+  if (ndf == NdfKind::ggx) {
+    const double one_minus_u = lead * entry;
+    x = std::sqrt(one_minus_u / (1.0 - one_minus_u)) / alpha;
+  } else {
+    x = 1.0 / (alpha * std::sqrt(-(lead + entry)));
+  }
+  const double inv = 1.0 / std::sqrt(1.0 + x * x);
+  cos_m = x * inv;
+  sin_m = inv;
+  return x <= 0.1 ? atan_small(x) : std::atan(x);
+}
+
 // The tail beyond the explicit bands: midpoint rule in the CDF.
 // The outcomes of more than k_cap reflections come from theta_v < span / k_cap (Eq. 4).
 void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_cap, int n, int n_light, double weight,
@@ -501,7 +578,8 @@ void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_c
   // Whatever the strata, the tail's deposits sum to its exact total (run_lobe), so a bin's error
   // from this node is at most twice the tail's mass times the node's weight, and over all nodes at
   // most twice the largest mass: a tail lighter than kLightTail (lobe_3d.h) takes n_light strata.
-  if (mass < kLightTail) n = std::min(n, n_light);
+  const bool light = mass < kLightTail && n_light < n;
+  if (light) n = n_light;
   auto deposit = [&](int k, double Gf_over_w, double theta_o) {
     const int bin = r.fast ? bin_by_segment(r, az, sc, theta_o) : bin_of(r, az, theta_o);
     if (bin < 0) return;
@@ -511,12 +589,16 @@ void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_c
     sc.tail.emplace_back((static_cast<size_t>(row) * r.tb + t) * r.pb + pp, val);
     sc.tail.emplace_back((static_cast<size_t>(row) * r.tb + t) * r.pb + (r.pb - pp) % r.pb, val);
   };
+  // The fast kernels' strata from the table (tail_strata_table) and the azimuth's factor.
+  const std::vector<double>& table = light ? r.light_tail_table : r.tail_table;
+  const double lead = !r.fast                   ? 0.0
+                      : r.ndf == NdfKind::phong ? std::pow(mass, 1.0 / (phong_exponent(r.alpha) + 2.0))
+                                                : (r.ndf == NdfKind::beckmann ? std::log(mass) : mass);
   for (int q = 0; q < n; ++q) {
-    const double u = u0 + mass * (q + 0.5) / n;
     if (r.fast) {
       // Both outcomes of Eq. (6) as weight_fast forms them: K reflections on [f_b, f_k], K - 1 on [f_k, f_a].
       double cos_m, sin_m;
-      const double theta_v = std::numbers::pi - 2.0 * groove_cdf_inverse(r.ndf, r.alpha, u, cos_m, sin_m);
+      const double theta_v = 2.0 * tail_half_aperture(r.ndf, r.alpha, lead, table[q], cos_m, sin_m);
       const double st = side == FacetSide::left ? az.sin_tau : -az.sin_tau, ct = az.cos_tau;
       const double f_a = cos_m * ct - sin_m * st;
       if (!(f_a > 0.0)) continue;
@@ -529,7 +611,7 @@ void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_c
         deposit(K - 1, (f_a - f_k) / w, exit_angle_fast(az.tau, theta_v, K - 1, side));
       continue;
     }
-    const double theta_v = std::numbers::pi - 2.0 * groove_cdf_inverse(r.ndf, r.alpha, u);
+    const double theta_v = 2.0 * tail_half_aperture_reference(r.ndf, r.alpha, mass * (1.0 - (q + 0.5) / n));
     const FacetPrediction p = G_kaleidoscopic(az.tau, theta_v, side);
     if (!p.lit) continue;
     const double w = opening_width(az.tau, theta_v);
@@ -589,10 +671,14 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
     add_up(L);
     return L;
   }
-  LobeRun r{ndf, alpha, theta_i, theta_bins, phi_bins, max_k, model, &L.hist_by_k, true, 0.0, {}};
+  LobeRun r{ndf, alpha, theta_i, theta_bins, phi_bins, max_k, model, &L.hist_by_k, true, 0.0, {}, true, {}, {}};
   r.fast = !opt.reference_kernels;
   r.four_node_pieces = opt.four_node_pieces;
   r.m_half = groove_cdf_inverse(ndf, alpha, 0.5);
+  if (r.fast && model == LobeModel::vgroove) {
+    r.tail_table = tail_strata_table(ndf, alpha, opt.tail_strata);
+    r.light_tail_table = tail_strata_table(ndf, alpha, opt.light_tail_strata);
+  }
   for (int b = 0; b <= theta_bins; ++b) r.cos_edge.push_back(std::cos(b * 0.5 * std::numbers::pi / theta_bins));
   const GaussLegendre phi_rule = gauss_legendre(opt.phi_order);
   const std::vector<double>&gx = phi_rule.x, &gw = phi_rule.w;

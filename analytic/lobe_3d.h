@@ -49,7 +49,11 @@ namespace vgroove::analytic {
 //  - the bands k > max(max_k, 16) and the tail on half the phi_a panels, scaled to their exact
 //    flux at the full ones (high_k_coarsening): rows k <= max_k unchanged to the bit;
 //  - four Gauss-Legendre nodes where a piece is far from the integrand's singularities
-//    (four_node_pieces: bins within 5.3e-15 of eight), a tail lighter than 1e-9 with 16 strata.
+//    (four_node_pieces: bins within 5.3e-15 of eight), a tail lighter than 1e-9 with 16 strata;
+//  - the tail's strata from a per-lobe table of 1 - u (lobe_3d.cpp, tail_strata_table) and the
+//    half-aperture by a series, no library call per stratum: Phong 0.7 at 20 deg 151-156 ->
+//    121-123 ms (BM_lobe_3d, the two binaries alternating); the 60 Fig. 11 lobes per bin within
+//    2.6e-15 of the strata from u (which rounded 1 - u).
 // Cost at 30 x 24 bins, max_k 16, over the 60 3D cases of Fig. 11 (one core): median 90 ms, from
 // under 1 ms (normal incidence) to 212 ms (Phong 0.7 at 20 deg); before these, in the same run,
 // median 184 ms, 63-383 ms. The two differ per bin by up to 1.1e-7, per row by 6e-15.
