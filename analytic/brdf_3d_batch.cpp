@@ -18,7 +18,7 @@
 //     half-aperture by polynomials (sin_batch.h, within 2 ulp); the width's ends and form by
 //     selects; its one remaining sine (where the outcome's lower end is 0 or its two ends come
 //     from different offsets) by the polynomial at the same argument; for GGX, D and the term;
-//   - Beckmann's exp by a polynomial (exp_nonpositive): in every lane (BeckmannTails::vector,
+//   - Beckmann's exp by a polynomial (exp_batch, exp_log_batch.h): in every lane (BeckmannTails::vector,
 //     below), or where tan^2 / alpha^2 <= 32 (exact); the exact mode's other lanes, Phong's power
 //     and the Fresnel product run over the live lanes one at a time;
 //   - the factors common to every term, c / (4 (i.h) cos_i cos_o) and 1 / sin(theta_h), are
@@ -52,6 +52,7 @@
 // Values: the same as the per-solution pass within 1e-12 relative (tests/analytic/brdf_3d_test.cpp,
 // BatchedPassEqualsPerSolutionPass). Cost: bench/brdf_bench.cpp.
 #include "vgroove/analytic/brdf_3d_passes.h"
+#include "vgroove/analytic/exp_log_batch.h"
 #include "vgroove/analytic/kaleidoscope_solutions.h"
 #include "vgroove/analytic/sin_batch.h"
 
@@ -76,32 +77,6 @@ typedef double V __attribute__((vector_size(32)));
 template <typename Mask>
 [[gnu::always_inline]] inline V select(Mask m, V a, V b) {
   return m ? a : b;
-}
-
-// e^z for z in [-708, 0] lane by lane: z = k ln 2 + r, |r| <= ln 2 / 2 (Cody-Waite, ln 2 in two
-// parts; k ln 2's high part is exact for |k| < 2^21), e^r = 1 + r + r^2 (1/2! + r/3! + ... +
-// r^11/13!) (truncation below 1.2e-17 relative), times 2^k formed in the exponent bits (k >= -1021
-// there: a normal number). Checked through the terms: Beckmann's batched values agree with the
-// per-solution pass's std::exp to 2.5e-14 relative at worst, where the exponent multiplies a
-// sine's 2 ulp by up to 64 (tests/analytic/brdf_3d_test.cpp; dropping ln 2's low part fails it).
-[[gnu::always_inline]] inline V exp_nonpositive(V z) {
-  typedef std::int64_t VI __attribute__((vector_size(32)));
-  constexpr double round_const = 6755399441055744.0;  // 1.5 2^52: (x + c) - c rounds x to an integer
-  const V shifted = z * 1.44269504088896338700e+00 + round_const;
-  const V kd = shifted - round_const;
-  const V r = (z - kd * 6.93147180369123816490e-01) - kd * 1.90821492927058770002e-10;
-  const V r2 = r * r, r4 = r2 * r2, r8 = r4 * r4;
-  const V b0 = 5.000000000000000000000000e-01 + 1.666666666666666666666667e-01 * r;
-  const V b1 = 4.166666666666666666666667e-02 + 8.333333333333333333333333e-03 * r;
-  const V b2 = 1.388888888888888888888889e-03 + 1.984126984126984126984127e-04 * r;
-  const V b3 = 2.480158730158730158730159e-05 + 2.755731922398589065255732e-06 * r;
-  const V b4 = 2.755731922398589065255732e-07 + 2.505210838544171877505211e-08 * r;
-  const V b5 = 2.087675698786809897921009e-09 + 1.605904383682161459939238e-10 * r;
-  const V P = ((b0 + b1 * r2) + (b2 + b3 * r2) * r4) + (b4 + b5 * r2) * r8;
-  const V e = 1.0 + (r + r2 * P);
-  // k from the bits of k + 1.5 2^52 (same exponent as the constant), then 2^k = (k + 1023) << 52.
-  const VI k = reinterpret_cast<VI>(shifted) - reinterpret_cast<VI>(splat(round_const));
-  return e * reinterpret_cast<V>((k + 1023) << 52);
 }
 
 // The packing of up to eight candidates into lanes: candidate c = 4 w + f is family f's
@@ -288,7 +263,7 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
       const V x = (C * C) * rk * inv_alpha2;
       const auto under = live & ~(x <= 708.0);
       underflow |= under;
-      const V e = exp_nonpositive(select(under, zero, -x));
+      const V e = batch::exp_batch(select(under, zero, -x));
       const V term = select(live & ~under, W, zero) * e * (rk * r) * select(k1, one, C) * inv_beckmann_norm;
       t_1 += select(k1, term, zero);
       t_k += select(k1, zero, term);
@@ -305,7 +280,7 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
       const auto here = live & ~exact;
       const V S_here = select(here, S, one);  // other lanes' exponents stay in range
       const V t = C / S_here, c2 = S_here * S_here;
-      const V D = exp_nonpositive(select(here, -(t * t) / (alpha * alpha), zero)) / (beckmann_norm * c2 * c2);
+      const V D = batch::exp_batch(select(here, -(t * t) / (alpha * alpha), zero)) / (beckmann_norm * c2 * c2);
       const V w_d = select(here, W, zero) * D;
       t_1 += select(k1, w_d, zero);
       t_k += select(k1, zero, C * w_d / k);

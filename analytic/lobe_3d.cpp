@@ -1,6 +1,7 @@
 #include "vgroove/analytic/lobe_3d.h"
 
 #include "vgroove/analytic/kaleidoscope.h"
+#include "vgroove/analytic/lobe_3d_nodes.h"
 #include "vgroove/analytic/ndf.h"
 #include "vgroove/analytic/quadrature.h"
 #include "vgroove/analytic/sin_batch.h"
@@ -268,6 +269,16 @@ double piece_sum(const LobeRun& r, const Azimuth& az, FacetSide side, int k, int
                  double b0, double b1, bool in_w) {
   double v[N], cos_m[N], sin_m[N], w[N];
   for (int q = 0; q < N; ++q) v[q] = 0.5 * (b0 + b1) + 0.5 * (b1 - b0) * rule.x[q];
+  if constexpr (N % 4 == 0) {
+    // Four nodes at a time (lobe_3d_nodes.h): the same terms, to the bit.
+    const lobe_nodes::Piece piece{r.ndf, r.alpha, side == FacetSide::left ? az.sin_tau : -az.sin_tau, az.cos_tau, k,
+                                  K,     in_w};
+    double terms[N];
+    lobe_nodes::piece_terms(piece, N, v, rule.w.data(), terms);
+    double sum = 0.0;
+    for (int q = 0; q < N; ++q) sum += terms[q];
+    return sum;
+  }
   if (in_w) {
     if constexpr (kGgx) {
       // groove_cdf_inverse_cos_sin for GGX, inlined: tan theta_m = alpha sqrt(u / (1 - u)), u in

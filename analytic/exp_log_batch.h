@@ -1,0 +1,68 @@
+// vgroove analytic: e^z and log x for four doubles at a time, by polynomials that vectorize (GCC
+// and clang vector extensions): Beckmann's exponential in the batched BRDF pass
+// (brdf_3d_batch.cpp), Beckmann's and Phong's D at the lobe's quadrature nodes (lobe_3d_nodes.cpp).
+//
+// exp_batch(z), z in [-708, 709]: z = k ln 2 + r, |r| <= ln 2 / 2 (Cody-Waite, ln 2 in two parts;
+// k ln 2's high part is exact for |k| < 2^21), e^r = 1 + r + r^2 (1/2! + r/3! + ... + r^11/13!)
+// (truncation below 1.2e-17 relative), times 2^k formed in the exponent bits (k in [-1021, 1023]:
+// a normal number). Outside the range the lanes are meaningless; callers select.
+// log_batch(x), x a positive normal number: x = 2^e m, m in [sqrt(1/2), sqrt(2)), log m =
+// 2 atanh(s) = 2 (s + s^3/3 + ... + s^25/25), s = (m - 1) / (m + 1), |s| <= 0.1716 (truncation
+// below 1e-20 relative), plus e ln 2 in two parts.
+// Accuracy against long double (tests/analytic/exp_log_batch_test.cpp): exp within 0.97 ulp, log
+// within 1.93 ulp (where e ln 2 and log m cancel by half, just above 2^e sqrt(2)). A power formed
+// as exp_batch(p log_batch(x)) adds the exponent's rounding, |p log x| ulp, as any such pow.
+// Checked through the BRDF's terms too: Beckmann's batched values agree with the per-solution
+// pass's std::exp to 2.5e-14 relative at worst, where the exponent multiplies a sine's 2 ulp by up
+// to 64 (tests/analytic/brdf_3d_test.cpp; dropping ln 2's low part fails it).
+//
+// Always inlined: the callers are compiled twice (AVX2 and generic, target_clones), and an
+// out-of-line copy shared by both would pass its vectors by two conventions.
+#pragma once
+
+#include <cstdint>
+
+namespace vgroove::analytic::batch {
+
+typedef double V4 __attribute__((vector_size(32)));
+typedef std::int64_t I4 __attribute__((vector_size(32)));
+
+[[gnu::always_inline]] inline V4 exp_batch(V4 z) {
+  constexpr double round_const = 6755399441055744.0;  // 1.5 2^52: (x + c) - c rounds x to an integer
+  const V4 rc = V4{round_const, round_const, round_const, round_const};
+  const V4 shifted = z * 1.44269504088896338700e+00 + round_const;
+  const V4 kd = shifted - round_const;
+  const V4 r = (z - kd * 6.93147180369123816490e-01) - kd * 1.90821492927058770002e-10;
+  const V4 r2 = r * r, r4 = r2 * r2, r8 = r4 * r4;
+  const V4 b0 = 5.000000000000000000000000e-01 + 1.666666666666666666666667e-01 * r;
+  const V4 b1 = 4.166666666666666666666667e-02 + 8.333333333333333333333333e-03 * r;
+  const V4 b2 = 1.388888888888888888888889e-03 + 1.984126984126984126984127e-04 * r;
+  const V4 b3 = 2.480158730158730158730159e-05 + 2.755731922398589065255732e-06 * r;
+  const V4 b4 = 2.755731922398589065255732e-07 + 2.505210838544171877505211e-08 * r;
+  const V4 b5 = 2.087675698786809897921009e-09 + 1.605904383682161459939238e-10 * r;
+  const V4 P = ((b0 + b1 * r2) + (b2 + b3 * r2) * r4) + (b4 + b5 * r2) * r8;
+  const V4 e = 1.0 + (r + r2 * P);
+  // k from the bits of k + 1.5 2^52 (same exponent as the constant), then 2^k = (k + 1023) << 52.
+  const I4 k = reinterpret_cast<I4>(shifted) - reinterpret_cast<I4>(rc);
+  return e * reinterpret_cast<V4>((k + 1023) << 52);
+}
+
+[[gnu::always_inline]] inline V4 log_batch(V4 x) {
+  const I4 bits = reinterpret_cast<I4>(x);
+  // m in [1, 2) from the mantissa; the exponent field as a double (its bits in the mantissa of
+  // 2^52, less 2^52 and the bias); above sqrt(2), m halved and e raised.
+  V4 m = reinterpret_cast<V4>((bits & 0x000fffffffffffffLL) | 0x3ff0000000000000LL);
+  V4 e = reinterpret_cast<V4>(((bits >> 52) & 0x7ffLL) | 0x4330000000000000LL) - (4503599627370496.0 + 1023.0);
+  const auto high = m > 1.41421356237309504880;
+  m = high ? 0.5 * m : m;
+  e = high ? e + 1.0 : e;
+  const V4 s = (m - 1.0) / (m + 1.0), s2 = s * s, s4 = s2 * s2, s8 = s4 * s4;
+  // 1/3 + s^2/5 + ... + s^22/25, in Estrin's order.
+  const V4 a0 = 1.0 / 3 + s2 * (1.0 / 5), a1 = 1.0 / 7 + s2 * (1.0 / 9), a2 = 1.0 / 11 + s2 * (1.0 / 13);
+  const V4 a3 = 1.0 / 15 + s2 * (1.0 / 17), a4 = 1.0 / 19 + s2 * (1.0 / 21), a5 = 1.0 / 23 + s2 * (1.0 / 25);
+  const V4 P = ((a0 + a1 * s4) + (a2 + a3 * s4) * s8) + (a4 + a5 * s4) * (s8 * s8);
+  const V4 log_m = 2.0 * s + 2.0 * s * (s2 * P);
+  return e * 6.93147180369123816490e-01 + (log_m + e * 1.90821492927058770002e-10);
+}
+
+}  // namespace vgroove::analytic::batch

@@ -1,0 +1,116 @@
+#include "vgroove/analytic/lobe_3d_nodes.h"
+
+#include "vgroove/analytic/brdf_3d.h"
+#include "vgroove/analytic/exp_log_batch.h"
+#include "vgroove/analytic/ndf.h"
+#include "vgroove/analytic/sin_batch.h"
+
+#include <cmath>
+#include <cstring>
+#include <numbers>
+
+namespace vgroove::analytic::lobe_nodes {
+
+namespace {
+
+// Four doubles (GCC and clang vector extensions); comparisons give masks, ?: selects lane by lane.
+using V = batch::V4;
+
+// Always inlined: piece_terms is compiled twice (AVX2 and generic), and an out-of-line helper
+// shared by both would pass its vectors by two conventions.
+[[gnu::always_inline]] inline V splat(double x) { return V{x, x, x, x}; }
+[[gnu::always_inline]] inline V load(const double* p) {
+  V v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+[[gnu::always_inline]] inline void store(double* p, V v) { std::memcpy(p, &v, sizeof v); }
+// Lane by lane: the correctly rounded square root, as std::sqrt (no errno here: -fno-math-errno).
+[[gnu::always_inline]] inline V sqrt_v(V x) { return V{__builtin_sqrt(x[0]), __builtin_sqrt(x[1]), __builtin_sqrt(x[2]), __builtin_sqrt(x[3])}; }
+
+}  // namespace
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+// One copy for AVX2 and one for any x86-64, picked at start-up. AVX2 without FMA: no product is
+// fused, so both copies round alike, and as the scalar kernels.
+[[gnu::target_clones("avx2", "default")]]
+#endif
+void piece_terms(const Piece& p, int n, const double* v, const double* rule_w, double* terms) {
+  const bool ggx = p.ndf == NdfKind::ggx;
+  const V zero = splat(0.0), one = splat(1.0);
+  const V st = splat(p.sin_tau), ct = splat(p.cos_tau);
+  for (int b = 0; b < n; b += 4) {
+    const V x = load(v + b);
+    V cos_m, sin_m;
+    if (p.in_w && ggx) {
+      // groove_cdf_inverse_cos_sin for GGX: tan theta_m = alpha sqrt(u / (1 - u)), then
+      // cos_sin_of_atan's two forms (t <= 1 and beyond), selected.
+      const V u = x * x;
+      const V t = splat(p.alpha) * sqrt_v(u / (1.0 - u));
+      const V c1 = 1.0 / sqrt_v(1.0 + t * t), s1 = t * c1;
+      const V r = 1.0 / t;
+      const V s2 = 1.0 / sqrt_v(1.0 + r * r), c2 = r * s2;
+      const auto low = t <= 1.0;
+      cos_m = low ? c1 : c2;
+      sin_m = low ? s1 : s2;
+    } else if (p.in_w) {
+      double c[4], s[4];
+      for (int q = 0; q < 4; ++q) groove_cdf_inverse_cos_sin(p.ndf, p.alpha, v[b + q] * v[b + q], c[q], s[q]);
+      cos_m = load(c);
+      sin_m = load(s);
+    } else {
+      sin_cos_quadrant(x, sin_m, cos_m);
+    }
+    // weight_piece: f_k = Im(z^(2K-1)) cos tf - Re(z^(2K-1)) sin tf, z = sin_m + i cos_m, the power
+    // by squaring (K is the piece's: the same steps in every lane).
+    V re = one, im = zero, br = sin_m, bi = cos_m;
+    for (unsigned e = static_cast<unsigned>(2 * p.K - 1);; e >>= 1) {
+      if (e & 1u) {
+        const V t = re * br - im * bi;
+        im = re * bi + im * br;
+        re = t;
+      }
+      if (e <= 1u) break;
+      const V t = br * br - bi * bi;
+      bi = 2.0 * br * bi;
+      br = t;
+    }
+    const V f_a = cos_m * ct - sin_m * st;
+    const V nb = -(cos_m * ct + sin_m * st);
+    const V f_b = zero < nb ? nb : zero;  // std::max(0.0, nb)
+    const V fk = im * ct - re * st;
+    const V f_k = fk < f_b ? f_b : (f_a < fk ? f_a : fk);  // std::clamp(fk, f_b, f_a)
+    const V Gf = p.K == p.k ? f_k - f_b : f_a - f_k;
+    const V w = Gf / (2.0 * cos_m * ct);
+    const V weight = f_a > 0.0 ? w : zero;
+    V density;
+    if (p.in_w) {
+      density = 2.0 * x;
+    } else {
+      V D;
+      if (ggx) {
+        // D_cs_ggx: alpha^2 / (pi q^2), q = alpha^2 cos^2 + sin^2.
+        const V q = p.alpha * p.alpha * cos_m * cos_m + sin_m * sin_m;
+        D = p.alpha * p.alpha / (std::numbers::pi * q * q);
+      } else if (p.ndf == NdfKind::beckmann) {
+        // D_cs: exp(-tan^2 / alpha^2) / (pi alpha^2 cos^4), the exponential by the polynomial (0
+        // below e^-708).
+        const V t = sin_m / cos_m, c2 = cos_m * cos_m;
+        const V z = -(t * t) / (p.alpha * p.alpha);
+        const V e = batch::exp_batch(z >= -708.0 ? z : zero);
+        D = (z >= -708.0 ? e : zero) / (std::numbers::pi * p.alpha * p.alpha * c2 * c2);
+      } else {
+        // D_cs: (p + 2) / (2 pi) cos^p = e^(p log cos) by the polynomials (0 below e^-708; cos
+        // theta_m at a node is a normal number, and p log cos stays far below 709).
+        const double ph = phong_exponent(p.alpha);
+        const V z = ph * batch::log_batch(cos_m);
+        const V e = batch::exp_batch(z >= -708.0 ? (z <= 709.0 ? z : splat(709.0)) : zero);
+        D = (ph + 2.0) / (2.0 * std::numbers::pi) * (z >= -708.0 ? e : zero);
+      }
+      density = 2.0 * std::numbers::pi * D * cos_m * sin_m;
+    }
+    store(terms + b, load(rule_w + b) * weight * density);
+  }
+}
+
+}  // namespace vgroove::analytic::lobe_nodes
