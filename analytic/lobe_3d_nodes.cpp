@@ -26,7 +26,9 @@ using V = batch::V4;
 }
 [[gnu::always_inline]] inline void store(double* p, V v) { std::memcpy(p, &v, sizeof v); }
 // Lane by lane: the correctly rounded square root, as std::sqrt (no errno here: -fno-math-errno).
-[[gnu::always_inline]] inline V sqrt_v(V x) { return V{__builtin_sqrt(x[0]), __builtin_sqrt(x[1]), __builtin_sqrt(x[2]), __builtin_sqrt(x[3])}; }
+[[gnu::always_inline]] inline V sqrt_v(V x) {
+  return V{__builtin_sqrt(x[0]), __builtin_sqrt(x[1]), __builtin_sqrt(x[2]), __builtin_sqrt(x[3])};
+}
 
 }  // namespace
 
@@ -54,10 +56,24 @@ void piece_terms(const Piece& p, int n, const double* v, const double* rule_w, d
       cos_m = low ? c1 : c2;
       sin_m = low ? s1 : s2;
     } else if (p.in_w) {
-      double c[4], s[4];
-      for (int q = 0; q < 4; ++q) groove_cdf_inverse_cos_sin(p.ndf, p.alpha, v[b + q] * v[b + q], c[q], s[q]);
-      cos_m = load(c);
-      sin_m = load(s);
+      // groove_cdf_inverse_cos_sin for Beckmann and Phong, with log(1 - u) = log((1 - w)(1 + w))
+      // and expm1 by the polynomials (u = w^2 in (0, 1/2] at these nodes).
+      const V log_1mu = batch::log_batch((1.0 - x) * (1.0 + x));
+      if (p.ndf == NdfKind::phong) {
+        // 1 - cos theta_m = -expm1(log(1 - u) / (p + 2)).
+        const V one_minus_cos = -batch::expm1_batch(log_1mu / (phong_exponent(p.alpha) + 2.0));
+        cos_m = 1.0 - one_minus_cos;
+        sin_m = sqrt_v(one_minus_cos * (2.0 - one_minus_cos));
+      } else {
+        // tan theta_m = alpha sqrt(-log(1 - u)), then cos_sin_of_atan as for GGX.
+        const V t = splat(p.alpha) * sqrt_v(-log_1mu);
+        const V c1 = 1.0 / sqrt_v(1.0 + t * t), s1 = t * c1;
+        const V r = 1.0 / t;
+        const V s2 = 1.0 / sqrt_v(1.0 + r * r), c2 = r * s2;
+        const auto low = t <= 1.0;
+        cos_m = low ? c1 : c2;
+        sin_m = low ? s1 : s2;
+      }
     } else {
       sin_cos_quadrant(x, sin_m, cos_m);
     }

@@ -1,8 +1,8 @@
 // vgroove analytic (internal to lobe_3d.cpp): the terms of one piece's Gauss-Legendre nodes, four
 // nodes at a time. The same arithmetic as the scalar kernels (lobe_3d.cpp, piece_sum), in the same
-// order, lane by lane: the same bits, but for Beckmann's and Phong's D at nodes in theta_m, whose
-// exp and pow come from the polynomials of exp_log_batch.h (within a few ulp, plus the exponent's
-// rounding) instead of the library's.
+// order, lane by lane: the same bits, but for Beckmann's and Phong's D at nodes in theta_m and
+// their inverse CDFs at nodes in w, whose exp, expm1, log and pow come from the polynomials of
+// exp_log_batch.h (within 2 ulp, plus the exponent's rounding) instead of the library's.
 #pragma once
 
 #include "vgroove/common/ndf_kind.h"
@@ -15,8 +15,8 @@ struct Piece {
   double alpha;
   double sin_tau;  // sin of the projected incident angle, negated for the right facet
   double cos_tau;
-  int k;  // the outcome's reflections
-  int K;  // Eq. (4)'s K on the piece
+  int k;      // the outcome's reflections
+  int K;      // Eq. (4)'s K on the piece
   bool in_w;  // nodes in w = sqrt(CDF) (else in theta_m)
 };
 
