@@ -316,17 +316,28 @@ struct Scratch {
   std::vector<std::pair<size_t, double>> tail;  // the tail's deposits at this node
   // The bin of each segment between consecutive crossings T (constant there: T holds every exit
   // angle where a bin edge or the horizon is crossed), found at the segment's middle when first
-  // asked for; -2 not yet known.
-  std::vector<int> segment_bin;
+  // asked for; -2 not yet known. With it, its mirror image's (mirror_of).
+  std::vector<int> segment_bin, segment_mirror;
 };
+
+// The bin of the mirror image phi_o -> -phi_o of the exit in bin `bin`: (t, p) -> (t, -p mod phi_bins).
+int mirror_of(const LobeRun& r, int bin) {
+  const int t = bin / r.pb, p = bin % r.pb;
+  return t * r.pb + (r.pb - p) % r.pb;
+}
 
 // The bin of the exit angle t (LobeRun::fast): its segment among the crossings, no trigonometry
 // but once per segment.
-int bin_by_segment(const LobeRun& r, const Azimuth& az, Scratch& sc, double t) {
+// Also the mirror image's bin (mirror_of), without a division.
+int bin_by_segment(const LobeRun& r, const Azimuth& az, Scratch& sc, double t, int& mirror) {
   const std::size_t pos = static_cast<std::size_t>(std::upper_bound(sc.T.begin(), sc.T.end(), t) - sc.T.begin());
   if (pos == 0 || pos == sc.T.size()) return -1;  // beyond -pi/2 or pi/2: below the horizon
   int& b = sc.segment_bin[pos];
-  if (b == -2) b = bin_fast(r, az, 0.5 * (sc.T[pos - 1] + sc.T[pos]));
+  if (b == -2) {
+    b = bin_fast(r, az, 0.5 * (sc.T[pos - 1] + sc.T[pos]));
+    sc.segment_mirror[pos] = b < 0 ? -1 : mirror_of(r, b);
+  }
+  mirror = sc.segment_mirror[pos];
   return b;
 }
 
@@ -418,17 +429,18 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
   for (size_t s = 0; s + 1 < X.size(); ++s) {
     const double x0 = X[s], x1 = X[s + 1];
     if (!(x1 > x0)) continue;
-    int bin;
+    int bin, mirror = -1;
     const double x_mid = 0.5 * (x0 + x1);
     if (by_form) {
       // weight_fast > 0 is outcome's P > 0 (the same width over the same opening); the exit is Eq. (5).
       while (form + 2 < F.size() && F[form + 1] <= x_mid) ++form;
       if (!live[form]) continue;
-      bin = bin_by_segment(r, az, sc, exit_angle_fast(az.tau, x_mid, k, side));
+      bin = bin_by_segment(r, az, sc, exit_angle_fast(az.tau, x_mid, k, side), mirror);
     } else {
       const Outcome mid = outcome(r, az, side, k, x_mid);
       if (!(mid.P > 0.0)) continue;
       bin = r.fast ? bin_fast(r, az, mid.t_o) : bin_of(r, az, mid.t_o);
+      if (bin >= 0) mirror = mirror_of(r, bin);
     }
     if (bin < 0) continue;
     // The weight is dCDF(theta_m) = 2 pi D cos sin d theta_m. Near theta_m = 0, where D peaks
@@ -495,10 +507,10 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
     if (m0 < m_half) gl_pieces(w_at(s + 1, m0), m1 < m_half ? w_at(s, m1) : w_at(X.size(), m_half), true);
     if (m1 > m_half) gl_pieces(std::max(m0, m_half), m1, false);
     val *= weight;
-    const int t = bin / r.pb, p = bin % r.pb;
     // The mirror image pi - phi_a of the groove (y -> -y) sends the same flux to phi_o -> -phi_o.
-    acc[(static_cast<size_t>(row) * r.tb + t) * r.pb + p] += val;
-    acc[(static_cast<size_t>(row) * r.tb + t) * r.pb + (r.pb - p) % r.pb] += val;
+    const std::size_t row_start = static_cast<size_t>(row) * r.tb * r.pb;
+    acc[row_start + bin] += val;
+    acc[row_start + mirror] += val;
     sc.band_total += 2.0 * val;
   }
 }
@@ -592,13 +604,15 @@ void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_c
   const bool light = mass < kLightTail && n_light < n;
   if (light) n = n_light;
   auto deposit = [&](int k, double Gf_over_w, double theta_o) {
-    const int bin = r.fast ? bin_by_segment(r, az, sc, theta_o) : bin_of(r, az, theta_o);
+    int mirror = -1;
+    const int bin = r.fast ? bin_by_segment(r, az, sc, theta_o, mirror) : bin_of(r, az, theta_o);
     if (bin < 0) return;
+    if (!r.fast) mirror = mirror_of(r, bin);
     const int row = std::min(k, r.max_k + 1);
-    const int t = bin / r.pb, pp = bin % r.pb;
+    const std::size_t row_start = static_cast<size_t>(row) * r.tb * r.pb;
     const double val = weight * mass / n * Gf_over_w;
-    sc.tail.emplace_back((static_cast<size_t>(row) * r.tb + t) * r.pb + pp, val);
-    sc.tail.emplace_back((static_cast<size_t>(row) * r.tb + t) * r.pb + (r.pb - pp) % r.pb, val);
+    sc.tail.emplace_back(row_start + bin, val);
+    sc.tail.emplace_back(row_start + mirror, val);
   };
   // The fast kernels' strata from the table (tail_strata_table) and the azimuth's factor.
   const std::vector<double>& table = light ? r.light_tail_table : r.tail_table;
@@ -725,6 +739,7 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
     az.cos_tau = std::cos(az.tau);
     edge_crossings(r, az, sc.T);
     sc.segment_bin.assign(sc.T.size() + 1, -2);
+    sc.segment_mirror.assign(sc.T.size() + 1, -1);
     sc.band_total = 0.0;
     sc.tail.clear();
     for (FacetSide side : {FacetSide::left, FacetSide::right}) {

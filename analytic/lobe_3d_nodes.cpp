@@ -30,6 +30,16 @@ using V = batch::V4;
   return V{__builtin_sqrt(x[0]), __builtin_sqrt(x[1]), __builtin_sqrt(x[2]), __builtin_sqrt(x[3])};
 }
 
+// cos_sin_of_atan (brdf_3d.h) lane by lane: its two forms (t <= 1: c = 1 / sqrt(1 + t^2), s = t c;
+// beyond: with m = 1 / t, s = 1 / sqrt(1 + m^2), c = m s) share one square root, on the selected m.
+[[gnu::always_inline]] inline void cos_sin_of_atan_v(V t, V& c, V& s) {
+  const auto low = t <= 1.0;
+  const V m = low ? t : 1.0 / t;
+  const V q = 1.0 / sqrt_v(1.0 + m * m), a = m * q;
+  c = low ? q : a;
+  s = low ? a : q;
+}
+
 }  // namespace
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
@@ -48,13 +58,7 @@ void piece_terms(const Piece& p, int n, const double* v, const double* rule_w, d
       // groove_cdf_inverse_cos_sin for GGX: tan theta_m = alpha sqrt(u / (1 - u)), then
       // cos_sin_of_atan's two forms (t <= 1 and beyond), selected.
       const V u = x * x;
-      const V t = splat(p.alpha) * sqrt_v(u / (1.0 - u));
-      const V c1 = 1.0 / sqrt_v(1.0 + t * t), s1 = t * c1;
-      const V r = 1.0 / t;
-      const V s2 = 1.0 / sqrt_v(1.0 + r * r), c2 = r * s2;
-      const auto low = t <= 1.0;
-      cos_m = low ? c1 : c2;
-      sin_m = low ? s1 : s2;
+      cos_sin_of_atan_v(splat(p.alpha) * sqrt_v(u / (1.0 - u)), cos_m, sin_m);
     } else if (p.in_w) {
       // groove_cdf_inverse_cos_sin for Beckmann and Phong, with log(1 - u) = log((1 - w)(1 + w))
       // and expm1 by the polynomials (u = w^2 in (0, 1/2] at these nodes).
@@ -66,13 +70,7 @@ void piece_terms(const Piece& p, int n, const double* v, const double* rule_w, d
         sin_m = sqrt_v(one_minus_cos * (2.0 - one_minus_cos));
       } else {
         // tan theta_m = alpha sqrt(-log(1 - u)), then cos_sin_of_atan as for GGX.
-        const V t = splat(p.alpha) * sqrt_v(-log_1mu);
-        const V c1 = 1.0 / sqrt_v(1.0 + t * t), s1 = t * c1;
-        const V r = 1.0 / t;
-        const V s2 = 1.0 / sqrt_v(1.0 + r * r), c2 = r * s2;
-        const auto low = t <= 1.0;
-        cos_m = low ? c1 : c2;
-        sin_m = low ? s1 : s2;
+        cos_sin_of_atan_v(splat(p.alpha) * sqrt_v(-log_1mu), cos_m, sin_m);
       }
     } else {
       sin_cos_quadrant(x, sin_m, cos_m);
