@@ -318,6 +318,8 @@ struct Scratch {
   // angle where a bin edge or the horizon is crossed), found at the segment's middle when first
   // asked for; -2 not yet known. With it, its mirror image's (mirror_of).
   std::vector<int> segment_bin, segment_mirror;
+  // integrate_tail: the strata's theta_v, K, f_a, f_b, f_k and w (lobe_nodes::tail_strata).
+  std::vector<double> strata;
 };
 
 // The bin of the mirror image phi_o -> -phi_o of the exit in bin `bin`: (t, p) -> (t, -p mod phi_bins).
@@ -519,8 +521,10 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
 // s_q = 1 - (q + 1/2) / n whatever the azimuth. The table holds what the inverse CDF needs of s_q,
 // per stratum: Phong s_q^(1/(p+2)) (cos theta_m = (1 - u)^(1/(p+2)) is mass^(1/(p+2)) times it),
 // GGX s_q, Beckmann log s_q (tan^2 theta_m = -alpha^2 log(1 - u)).
+// Padded to a multiple of 4 entries (lobe_nodes::tail_strata takes four at a time; the padding's
+// strata are formed and never read).
 std::vector<double> tail_strata_table(NdfKind ndf, double alpha, int n) {
-  std::vector<double> t(static_cast<std::size_t>(std::max(n, 0)));
+  std::vector<double> t(static_cast<std::size_t>((std::max(n, 0) + 3) / 4 * 4), 0.5);
   for (int q = 0; q < n; ++q) {
     const double s = 1.0 - (q + 0.5) / n;
     t[q] = ndf == NdfKind::phong ? std::pow(s, 1.0 / (phong_exponent(alpha) + 2.0))
@@ -544,50 +548,6 @@ double tail_half_aperture_reference(NdfKind ndf, double alpha, double one_minus_
       return std::asin(std::pow(one_minus_u, 1.0 / (phong_exponent(alpha) + 2.0)));
   }
   return 0.0;
-}
-
-// atan x and asin x for 0 <= x <= 0.1 by their Taylor series to x^17 (the next term is below
-// 1e-19 relative there): the tail's half-apertures h = theta_v / 2 <= pi / k_cap.
-double atan_small(double x) {
-  const double z = x * x;
-  const double p =
-      -1.0 / 3 +
-      z * (1.0 / 5 +
-           z * (-1.0 / 7 + z * (1.0 / 9 + z * (-1.0 / 11 + z * (1.0 / 13 + z * (-1.0 / 15 + z * (1.0 / 17)))))));
-  return x + x * (z * p);
-}
-double asin_small(double x) {
-  const double z = x * x;
-  const double p =
-      1.0 / 6 +
-      z * (3.0 / 40 +
-           z * (5.0 / 112 + z * (35.0 / 1152 + z * (63.0 / 2816 + z * (231.0 / 13312 +
-                                                                       z * (143.0 / 10240 + z * (6435.0 / 557056)))))));
-  return x + x * (z * p);
-}
-
-// The groove of the tail's stratum q (LobeRun::fast): the half-aperture h = pi/2 - theta_m from
-// 1 - u = mass s_q (tail_strata_table), with cos theta_m = sin h and sin theta_m = cos h.
-// `lead` is the per-azimuth factor: Phong mass^(1/(p+2)), GGX and Beckmann mass resp. log mass.
-double tail_half_aperture(NdfKind ndf, double alpha, double lead, double entry, double& cos_m, double& sin_m) {
-  if (ndf == NdfKind::phong) {
-    const double c = lead * entry;  // cos theta_m = sin h
-    cos_m = c;
-    sin_m = std::sqrt((1.0 - c) * (1.0 + c));
-    return c <= 0.1 ? asin_small(c) : std::asin(c);
-  }
-  // cot theta_m = tan h: GGX sqrt((1 - u) / u) / alpha, Beckmann 1 / (alpha sqrt(-log(1 - u))).
-  double x;
-  if (ndf == NdfKind::ggx) {
-    const double one_minus_u = lead * entry;
-    x = std::sqrt(one_minus_u / (1.0 - one_minus_u)) / alpha;
-  } else {
-    x = 1.0 / (alpha * std::sqrt(-(lead + entry)));
-  }
-  const double inv = 1.0 / std::sqrt(1.0 + x * x);
-  cos_m = x * inv;
-  sin_m = inv;
-  return x <= 0.1 ? atan_small(x) : std::atan(x);
 }
 
 // The tail beyond the explicit bands: midpoint rule in the CDF.
@@ -614,28 +574,33 @@ void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_c
     sc.tail.emplace_back(row_start + bin, val);
     sc.tail.emplace_back(row_start + mirror, val);
   };
-  // The fast kernels' strata from the table (tail_strata_table) and the azimuth's factor.
+  // The fast kernels' strata from the table (tail_strata_table) and the azimuth's factor: Phong
+  // mass^(1/(p+2)), GGX and Beckmann mass resp. log mass.
   const std::vector<double>& table = light ? r.light_tail_table : r.tail_table;
   const double lead = !r.fast                   ? 0.0
                       : r.ndf == NdfKind::phong ? std::pow(mass, 1.0 / (phong_exponent(r.alpha) + 2.0))
                                                 : (r.ndf == NdfKind::beckmann ? std::log(mass) : mass);
-  for (int q = 0; q < n; ++q) {
-    if (r.fast) {
-      // Both outcomes of Eq. (6) as weight_fast forms them: K reflections on [f_b, f_k], K - 1 on [f_k, f_a].
-      double cos_m, sin_m;
-      const double theta_v = 2.0 * tail_half_aperture(r.ndf, r.alpha, lead, table[q], cos_m, sin_m);
-      const double st = side == FacetSide::left ? az.sin_tau : -az.sin_tau, ct = az.cos_tau;
-      const double f_a = cos_m * ct - sin_m * st;
-      if (!(f_a > 0.0)) continue;
-      const double f_b = std::max(0.0, -(cos_m * ct + sin_m * st));
-      const int K = saturate_to_int(std::floor((std::numbers::pi + 2.0 * tf) / theta_v) + 1.0);
-      const double f_k = std::clamp(f_k_of(K, theta_v, tf), f_b, f_a);
-      const double w = 2.0 * cos_m * az.cos_tau;
-      if (K > k_cap && f_k - f_b > 0.0) deposit(K, (f_k - f_b) / w, exit_angle_fast(az.tau, theta_v, K, side));
-      if (K - 1 > k_cap && f_a - f_k > 0.0)
-        deposit(K - 1, (f_a - f_k) / w, exit_angle_fast(az.tau, theta_v, K - 1, side));
-      continue;
+  if (r.fast) {
+    // The strata four at a time (lobe_nodes::tail_strata), then both outcomes of Eq. (6) as
+    // weight_fast forms them: K reflections on [f_b, f_k], K - 1 on [f_k, f_a].
+    const int padded = static_cast<int>(table.size());
+    sc.strata.resize(6 * static_cast<std::size_t>(padded));
+    double *theta_v = sc.strata.data(), *Kd = theta_v + padded, *f_a = Kd + padded, *f_b = f_a + padded,
+           *f_k = f_b + padded, *w = f_k + padded;
+    const lobe_nodes::TailStrata strata{r.ndf,      r.alpha, lead, side == FacetSide::left ? az.sin_tau : -az.sin_tau,
+                                        az.cos_tau, tf};
+    lobe_nodes::tail_strata(strata, padded, table.data(), theta_v, Kd, f_a, f_b, f_k, w);
+    for (int q = 0; q < n; ++q) {
+      if (!(f_a[q] > 0.0)) continue;
+      const int K = static_cast<int>(Kd[q]);
+      if (K > k_cap && f_k[q] - f_b[q] > 0.0)
+        deposit(K, (f_k[q] - f_b[q]) / w[q], exit_angle_fast(az.tau, theta_v[q], K, side));
+      if (K - 1 > k_cap && f_a[q] - f_k[q] > 0.0)
+        deposit(K - 1, (f_a[q] - f_k[q]) / w[q], exit_angle_fast(az.tau, theta_v[q], K - 1, side));
     }
+    return;
+  }
+  for (int q = 0; q < n; ++q) {
     const double theta_v = 2.0 * tail_half_aperture_reference(r.ndf, r.alpha, mass * (1.0 - (q + 0.5) / n));
     const FacetPrediction p = G_kaleidoscopic(az.tau, theta_v, side);
     if (!p.lit) continue;

@@ -40,6 +40,15 @@ using V = batch::V4;
   s = low ? a : q;
 }
 
+// floor x for x >= 0 (x + 2^52 - 2^52 rounds x to an integer, stepped down where it rounded up;
+// x >= 2^52 is one already).
+[[gnu::always_inline]] inline V floor_nonnegative(V x) {
+  constexpr double two52 = 4503599627370496.0;
+  const V r = (x + two52) - two52;
+  const V f = r > x ? r - 1.0 : r;
+  return x >= two52 ? x : f;
+}
+
 }  // namespace
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
@@ -124,6 +133,79 @@ void piece_terms(const Piece& p, int n, const double* v, const double* rule_w, d
       density = 2.0 * std::numbers::pi * D * cos_m * sin_m;
     }
     store(terms + b, load(rule_w + b) * weight * density);
+  }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+[[gnu::target_clones("avx2", "default")]]
+#endif
+void tail_strata(const TailStrata& t, int n, const double* table, double* theta_v, double* K, double* f_a,
+                 double* f_b, double* f_k, double* w) {
+  const V zero = splat(0.0);
+  const V st = splat(t.sin_tau), ct = splat(t.cos_tau);
+  const double span = std::numbers::pi + 2.0 * t.tf;
+  for (int b = 0; b < n; b += 4) {
+    const V entry = load(table + b);
+    // The half-aperture h = pi/2 - theta_m (cos theta_m = sin h, sin theta_m = cos h): h = asin of
+    // cos theta_m (Phong) or atan of cot theta_m (GGX: sqrt((1 - u) / u) / alpha, Beckmann
+    // 1 / (alpha sqrt(-log(1 - u)))), by the Taylor series to x^17 for x <= 0.1 (the next term is
+    // below 1e-19 relative; the tail's h <= pi / k_cap), the library's asin / atan beyond.
+    V cos_m, sin_m, h, arg;
+    const bool phong = t.ndf == NdfKind::phong;
+    if (phong) {
+      const V c = t.lead * entry;
+      cos_m = c;
+      sin_m = sqrt_v((1.0 - c) * (1.0 + c));
+      arg = c;
+      const V z = c * c;
+      const V pz =
+          1.0 / 6 +
+          z * (3.0 / 40 +
+               z * (5.0 / 112 +
+                    z * (35.0 / 1152 +
+                         z * (63.0 / 2816 + z * (231.0 / 13312 + z * (143.0 / 10240 + z * (6435.0 / 557056)))))));
+      h = c + c * (z * pz);
+    } else {
+      V x;
+      if (t.ndf == NdfKind::ggx) {
+        const V one_minus_u = t.lead * entry;
+        x = sqrt_v(one_minus_u / (1.0 - one_minus_u)) / t.alpha;
+      } else {
+        x = 1.0 / (t.alpha * sqrt_v(-(t.lead + entry)));
+      }
+      const V inv = 1.0 / sqrt_v(1.0 + x * x);
+      cos_m = x * inv;
+      sin_m = inv;
+      arg = x;
+      const V z = x * x;
+      const V pz =
+          -1.0 / 3 +
+          z * (1.0 / 5 +
+               z * (-1.0 / 7 + z * (1.0 / 9 + z * (-1.0 / 11 + z * (1.0 / 13 + z * (-1.0 / 15 + z * (1.0 / 17)))))));
+      h = x + x * (z * pz);
+    }
+    for (int l = 0; l < 4; ++l) {
+      if (!(arg[l] <= 0.1)) h[l] = phong ? std::asin(arg[l]) : std::atan(arg[l]);
+    }
+    const V tv = 2.0 * h;
+    const V fa = cos_m * ct - sin_m * st;
+    const V nb = -(cos_m * ct + sin_m * st);
+    const V fb = zero < nb ? nb : zero;  // std::max(0.0, nb)
+    // Eq. (4): K = floor(span / theta_v) + 1, saturated at INT_MAX (kaleidoscope.h, saturate_to_int).
+    const V k1 = floor_nonnegative(span / tv) + 1.0;
+    const V Kd = k1 < 2147483647.0 ? k1 : splat(2147483647.0);
+    // f_k_of: -sin((K - 1/2) theta_v - tf - pi), the sine odd-extended (lobe_3d.cpp, sin_pi).
+    const V a = (Kd - 0.5) * tv - t.tf - std::numbers::pi;
+    const auto neg = a < 0.0;
+    const V sa = sin_full(neg ? -a : a);
+    const V fk = -(neg ? -sa : sa);
+    const V fk_clamped = fk < fb ? fb : (fa < fk ? fa : fk);  // std::clamp(fk, fb, fa)
+    store(theta_v + b, tv);
+    store(K + b, Kd);
+    store(f_a + b, fa);
+    store(f_b + b, fb);
+    store(f_k + b, fk_clamped);
+    store(w + b, 2.0 * cos_m * t.cos_tau);
   }
 }
 

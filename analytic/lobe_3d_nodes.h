@@ -25,4 +25,22 @@ struct Piece {
 // 2 pi D cos sin (in theta_m).
 void piece_terms(const Piece& p, int n, const double* v, const double* rule_w, double* terms);
 
+// The tail's strata of one groove azimuth and facet (lobe_3d.cpp, integrate_tail): 1 - u = lead
+// entry (Phong cos theta_m = lead entry, Beckmann log(1 - u) = lead + entry; tail_strata_table).
+struct TailStrata {
+  NdfKind ndf;
+  double alpha;
+  double lead;
+  double sin_tau;  // as Piece::sin_tau
+  double cos_tau;
+  double tf;  // the facet's projected incident angle (tau, or -tau for the right facet)
+};
+
+// Per stratum q < n (n a multiple of 4; table holds n entries): the aperture theta_v, Eq. (4)'s K
+// (saturated as saturate_to_int, as a double), the offsets f_a, f_b and the clamped f_k of
+// Eq. (6), and the opening's width w = 2 cos theta_m cos tau: as integrate_tail forms them, to
+// the bit.
+void tail_strata(const TailStrata& t, int n, const double* table, double* theta_v, double* K, double* f_a, double* f_b,
+                 double* f_k, double* w);
+
 }  // namespace vgroove::analytic::lobe_nodes
