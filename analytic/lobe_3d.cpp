@@ -271,8 +271,9 @@ double piece_sum(const LobeRun& r, const Azimuth& az, FacetSide side, int k, int
   for (int q = 0; q < N; ++q) v[q] = 0.5 * (b0 + b1) + 0.5 * (b1 - b0) * rule.x[q];
   if constexpr (N % 4 == 0) {
     // Four nodes at a time (lobe_3d_nodes.h): the same terms, to the bit.
-    const lobe_nodes::Piece piece{r.ndf, r.alpha, side == FacetSide::left ? az.sin_tau : -az.sin_tau, az.cos_tau, k,
-                                  K,     in_w};
+    const bool left = side == FacetSide::left;
+    const lobe_nodes::Piece piece{
+        r.ndf, r.alpha, left ? az.sin_tau : -az.sin_tau, az.cos_tau, left ? az.tau : -az.tau, k, K, in_w};
     double terms[N];
     lobe_nodes::piece_terms(piece, N, v, rule.w.data(), terms);
     double sum = 0.0;

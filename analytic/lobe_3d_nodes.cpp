@@ -84,24 +84,35 @@ void piece_terms(const Piece& p, int n, const double* v, const double* rule_w, d
     } else {
       sin_cos_quadrant(x, sin_m, cos_m);
     }
-    // weight_piece: f_k = Im(z^(2K-1)) cos tf - Re(z^(2K-1)) sin tf, z = sin_m + i cos_m, the power
-    // by squaring (K is the piece's: the same steps in every lane).
-    V re = one, im = zero, br = sin_m, bi = cos_m;
-    for (unsigned e = static_cast<unsigned>(2 * p.K - 1);; e >>= 1) {
-      if (e & 1u) {
-        const V t = re * br - im * bi;
-        im = re * bi + im * br;
-        re = t;
+    V fk;
+    if (p.in_w) {
+      // weight_piece: f_k = Im(z^(2K-1)) cos tf - Re(z^(2K-1)) sin tf, z = sin_m + i cos_m, the
+      // power by squaring (K is the piece's: the same steps in every lane).
+      V re = one, im = zero, br = sin_m, bi = cos_m;
+      for (unsigned e = static_cast<unsigned>(2 * p.K - 1);; e >>= 1) {
+        if (e & 1u) {
+          const V t = re * br - im * bi;
+          im = re * bi + im * br;
+          re = t;
+        }
+        if (e <= 1u) break;
+        const V t = br * br - bi * bi;
+        bi = 2.0 * br * bi;
+        br = t;
       }
-      if (e <= 1u) break;
-      const V t = br * br - bi * bi;
-      bi = 2.0 * br * bi;
-      br = t;
+      fk = im * ct - re * st;
+    } else {
+      // At nodes in theta_m the angle is at hand: f_k = sin((K - 1/2) theta_v - tf) =
+      // -sin(a), a = (K - 1/2) theta_v - tf - pi in (tf - theta_v/2, tf + theta_v/2] by Eq. (4)
+      // (lobe_3d.cpp, f_k_of), theta_v = pi - 2 theta_m: one polynomial sine instead of the power.
+      const V a = (p.K - 0.5) * (std::numbers::pi - 2.0 * x) - p.tf - std::numbers::pi;
+      const auto neg = a < 0.0;
+      const V sa = sin_full(neg ? -a : a);
+      fk = -(neg ? -sa : sa);
     }
     const V f_a = cos_m * ct - sin_m * st;
     const V nb = -(cos_m * ct + sin_m * st);
-    const V f_b = zero < nb ? nb : zero;  // std::max(0.0, nb)
-    const V fk = im * ct - re * st;
+    const V f_b = zero < nb ? nb : zero;                   // std::max(0.0, nb)
     const V f_k = fk < f_b ? f_b : (f_a < fk ? f_a : fk);  // std::clamp(fk, f_b, f_a)
     const V Gf = p.K == p.k ? f_k - f_b : f_a - f_k;
     const V w = Gf / (2.0 * cos_m * ct);

@@ -1,8 +1,10 @@
 // vgroove analytic (internal to lobe_3d.cpp): the terms of one piece's Gauss-Legendre nodes, four
-// nodes at a time. The same arithmetic as the scalar kernels (lobe_3d.cpp, piece_sum), in the same
-// order, lane by lane: the same bits, but for Beckmann's and Phong's D at nodes in theta_m and
-// their inverse CDFs at nodes in w, whose exp, expm1, log and pow come from the polynomials of
-// exp_log_batch.h (within 2 ulp, plus the exponent's rounding) instead of the library's.
+// nodes at a time. The same integrand as the scalar kernels (lobe_3d.cpp, piece_sum), lane by lane,
+// within rounding: at nodes in theta_m Eq. (6)'s f_k from one polynomial sine of the angle
+// (weight_fast's f_k_of) instead of the complex power, Beckmann's and Phong's D by exp and pow,
+// and at nodes in w their inverse CDFs by log and expm1, from the polynomials of exp_log_batch.h
+// (within 2 ulp, plus the exponent's rounding) instead of the library's; the rest is the scalar
+// arithmetic in its order (GGX's nodes in w: the same bits).
 #pragma once
 
 #include "vgroove/common/ndf_kind.h"
@@ -15,6 +17,7 @@ struct Piece {
   double alpha;
   double sin_tau;  // sin of the projected incident angle, negated for the right facet
   double cos_tau;
+  double tf;  // the facet's projected incident angle (tau, or -tau for the right facet)
   int k;      // the outcome's reflections
   int K;      // Eq. (4)'s K on the piece
   bool in_w;  // nodes in w = sqrt(CDF) (else in theta_m)
