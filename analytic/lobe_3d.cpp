@@ -263,23 +263,13 @@ int bin_fast(const LobeRun& r, const Azimuth& az, double t) {
 }
 
 // The Gauss-Legendre sum of the weight times the density over one piece [b0, b1] of w (in_w) or
-// theta_m, N nodes (LobeRun::fast).
+// theta_m, N nodes (LobeRun::fast; the pieces of 4 and 8 nodes go to lobe_nodes::piece_terms in
+// runs, integrate_band).
 template <int N, bool kGgx>
 double piece_sum(const LobeRun& r, const Azimuth& az, FacetSide side, int k, int K, const GaussLegendre& rule,
                  double b0, double b1, bool in_w) {
   double v[N], cos_m[N], sin_m[N], w[N];
   for (int q = 0; q < N; ++q) v[q] = 0.5 * (b0 + b1) + 0.5 * (b1 - b0) * rule.x[q];
-  if constexpr (N % 4 == 0) {
-    // Four nodes at a time (lobe_3d_nodes.h): the same terms, to the bit.
-    const bool left = side == FacetSide::left;
-    const lobe_nodes::Piece piece{
-        r.ndf, r.alpha, left ? az.sin_tau : -az.sin_tau, az.cos_tau, left ? az.tau : -az.tau, k, K, in_w};
-    double terms[N];
-    lobe_nodes::piece_terms(piece, N, v, rule.w.data(), terms);
-    double sum = 0.0;
-    for (int q = 0; q < N; ++q) sum += terms[q];
-    return sum;
-  }
   if (in_w) {
     if constexpr (kGgx) {
       // groove_cdf_inverse_cos_sin for GGX, inlined: tan theta_m = alpha sqrt(u / (1 - u)), u in
@@ -321,6 +311,24 @@ struct Scratch {
   std::vector<int> segment_bin, segment_mirror;
   // integrate_tail: the strata's theta_v, K, f_a, f_b, f_k and w (lobe_nodes::tail_strata).
   std::vector<double> strata;
+  // integrate_band (LobeRun::fast): the band's pieces of theta_m and w, their nodes, and the
+  // segments they make up, summed once every piece's nodes are evaluated (flush_band).
+  struct Piece {
+    double b0, b1;
+    int order;
+    bool in_w;
+    int K;
+    std::size_t node;  // its first node in node_v (order >= 4), placed by flush_band
+    double sum;        // order 2: its sum (piece_sum)
+  };
+  struct Segment {
+    int bin, mirror;
+    std::size_t first, count;  // its pieces
+  };
+  std::vector<Piece> pieces;
+  std::vector<Segment> segments;
+  std::size_t nodes = 0;                           // the pieces' nodes (order >= 4)
+  std::vector<double> node_v, node_w, node_terms;  // sized to the most nodes a band has had
 };
 
 // The bin of the mirror image phi_o -> -phi_o of the exit in bin `bin`: (t, p) -> (t, -p mod phi_bins).
@@ -342,6 +350,67 @@ int bin_by_segment(const LobeRun& r, const Azimuth& az, Scratch& sc, double t, i
   }
   mirror = sc.segment_mirror[pos];
   return b;
+}
+
+// The pending pieces of a band (integrate_band, LobeRun::fast): their nodes through
+// lobe_nodes::piece_terms, each run of pieces with the same K and variable at once (many nodes
+// per call: the kernel's chain of dependent steps overlaps across them), then per segment in order
+// the pieces' sums, the segment's flux and its deposits, in the order and with the arithmetic of
+// the direct evaluation (piece_sum): the same bits.
+void flush_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, int row, double weight, Scratch& sc) {
+  if (sc.node_v.size() < sc.nodes) {
+    sc.node_v.resize(sc.nodes);
+    sc.node_w.resize(sc.nodes);
+    sc.node_terms.resize(sc.nodes);
+  }
+  // The nodes as piece_sum places them.
+  for (const Scratch::Piece& p : sc.pieces) {
+    if (p.order < 4) continue;
+    const GaussLegendre& rule = gauss_legendre_cached(p.order);
+    double* v = sc.node_v.data() + p.node;
+    double* w = sc.node_w.data() + p.node;
+    for (int q = 0; q < p.order; ++q) {
+      v[q] = 0.5 * (p.b0 + p.b1) + 0.5 * (p.b1 - p.b0) * rule.x[q];
+      w[q] = rule.w[q];
+    }
+  }
+  const bool left = side == FacetSide::left;
+  for (std::size_t a = 0; a < sc.pieces.size();) {
+    if (sc.pieces[a].order < 4) {
+      ++a;
+      continue;
+    }
+    std::size_t b = a + 1;
+    while (b < sc.pieces.size() && sc.pieces[b].order >= 4 && sc.pieces[b].K == sc.pieces[a].K &&
+           sc.pieces[b].in_w == sc.pieces[a].in_w)
+      ++b;
+    const Scratch::Piece& p = sc.pieces[a];
+    const std::size_t end = sc.pieces[b - 1].node + static_cast<std::size_t>(sc.pieces[b - 1].order);
+    const lobe_nodes::Piece run{r.ndf, r.alpha, left ? az.sin_tau : -az.sin_tau, az.cos_tau, left ? az.tau : -az.tau, k,
+                                p.K,   p.in_w};
+    lobe_nodes::piece_terms(run, static_cast<int>(end - p.node), sc.node_v.data() + p.node, sc.node_w.data() + p.node,
+                            sc.node_terms.data() + p.node);
+    a = b;
+  }
+  std::vector<double>& acc = *r.acc;
+  const std::size_t row_start = static_cast<size_t>(row) * r.tb * r.pb;
+  for (const Scratch::Segment& g : sc.segments) {
+    double val = 0.0;
+    for (std::size_t c = g.first; c < g.first + g.count; ++c) {
+      const Scratch::Piece& p = sc.pieces[c];
+      double sum = p.sum;
+      if (p.order >= 4) {
+        sum = 0.0;
+        for (int q = 0; q < p.order; ++q) sum += sc.node_terms[p.node + static_cast<std::size_t>(q)];
+      }
+      val += 0.5 * (p.b1 - p.b0) * sum;
+    }
+    val *= weight;
+    // The mirror image pi - phi_a of the groove (y -> -y) sends the same flux to phi_o -> -phi_o.
+    acc[row_start + g.bin] += val;
+    acc[row_start + g.mirror] += val;
+    sc.band_total += 2.0 * val;
+  }
 }
 
 // Integrate one facet's k-reflection outcomes over theta_v in [x_lo, x_hi] with the weight
@@ -429,6 +498,9 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
     if (wX[j] < 0.0) wX[j] = std::sqrt(groove_cdf(r.ndf, r.alpha, m));
     return wX[j];
   };
+  sc.pieces.clear();
+  sc.segments.clear();
+  sc.nodes = 0;
   for (size_t s = 0; s + 1 < X.size(); ++s) {
     const double x0 = X[s], x1 = X[s + 1];
     if (!(x1 > x0)) continue;
@@ -480,18 +552,16 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
         const GaussLegendre& rule = gauss_legendre_cached(order);
         double sum = 0.0;
         if (fast) {
-          const bool ggx = r.ndf == NdfKind::ggx;
-          if (order == 8) {
-            sum = ggx ? piece_sum<8, true>(r, az, side, k, K_piece, rule, b0, b1, in_w)
-                      : piece_sum<8, false>(r, az, side, k, K_piece, rule, b0, b1, in_w);
-          } else if (order == 4) {
-            sum = ggx ? piece_sum<4, true>(r, az, side, k, K_piece, rule, b0, b1, in_w)
-                      : piece_sum<4, false>(r, az, side, k, K_piece, rule, b0, b1, in_w);
+          // Pending: the nodes of 4 and 8 (piece_sum's, to the bit) go to lobe_nodes::piece_terms
+          // with the band's other pieces (flush_band); 2 nodes are summed here.
+          Scratch::Piece pending{b0, b1, order, in_w, K_piece, sc.nodes, 0.0};
+          if (order >= 4) {
+            sc.nodes += static_cast<std::size_t>(order);
           } else {
-            sum = ggx ? piece_sum<2, true>(r, az, side, k, K_piece, rule, b0, b1, in_w)
-                      : piece_sum<2, false>(r, az, side, k, K_piece, rule, b0, b1, in_w);
+            pending.sum = r.ndf == NdfKind::ggx ? piece_sum<2, true>(r, az, side, k, K_piece, rule, b0, b1, in_w)
+                                                : piece_sum<2, false>(r, az, side, k, K_piece, rule, b0, b1, in_w);
           }
-          val += 0.5 * (b1 - b0) * sum;
+          sc.pieces.push_back(pending);
           continue;
         }
         for (size_t q = 0; q < rule.x.size(); ++q) {
@@ -507,8 +577,13 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
         val += 0.5 * (b1 - b0) * sum;
       }
     };
+    const std::size_t first_piece = sc.pieces.size();
     if (m0 < m_half) gl_pieces(w_at(s + 1, m0), m1 < m_half ? w_at(s, m1) : w_at(X.size(), m_half), true);
     if (m1 > m_half) gl_pieces(std::max(m0, m_half), m1, false);
+    if (fast) {
+      sc.segments.push_back({bin, mirror, first_piece, sc.pieces.size() - first_piece});
+      continue;
+    }
     val *= weight;
     // The mirror image pi - phi_a of the groove (y -> -y) sends the same flux to phi_o -> -phi_o.
     const std::size_t row_start = static_cast<size_t>(row) * r.tb * r.pb;
@@ -516,6 +591,7 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
     acc[row_start + mirror] += val;
     sc.band_total += 2.0 * val;
   }
+  if (r.fast && r.model == LobeModel::vgroove) flush_band(r, az, side, k, row, weight, sc);
 }
 
 // The tail's strata in the CDF, u_q = u0 + mass (q + 1/2) / n, have 1 - u_q = mass s_q with

@@ -58,6 +58,7 @@ using V = batch::V4;
 #endif
 void piece_terms(const Piece& p, int n, const double* v, const double* rule_w, double* terms) {
   const bool ggx = p.ndf == NdfKind::ggx;
+  const double phong_p = p.ndf == NdfKind::phong ? phong_exponent(p.alpha) : 0.0;
   const V zero = splat(0.0), one = splat(1.0);
   const V st = splat(p.sin_tau), ct = splat(p.cos_tau);
   for (int b = 0; b < n; b += 4) {
@@ -74,7 +75,7 @@ void piece_terms(const Piece& p, int n, const double* v, const double* rule_w, d
       const V log_1mu = batch::log_batch((1.0 - x) * (1.0 + x));
       if (p.ndf == NdfKind::phong) {
         // 1 - cos theta_m = -expm1(log(1 - u) / (p + 2)).
-        const V one_minus_cos = -batch::expm1_batch(log_1mu / (phong_exponent(p.alpha) + 2.0));
+        const V one_minus_cos = -batch::expm1_batch(log_1mu / (phong_p + 2.0));
         cos_m = 1.0 - one_minus_cos;
         sin_m = sqrt_v(one_minus_cos * (2.0 - one_minus_cos));
       } else {
@@ -136,7 +137,7 @@ void piece_terms(const Piece& p, int n, const double* v, const double* rule_w, d
       } else {
         // D_cs: (p + 2) / (2 pi) cos^p = e^(p log cos) by the polynomials (0 below e^-708; cos
         // theta_m at a node is a normal number, and p log cos stays far below 709).
-        const double ph = phong_exponent(p.alpha);
+        const double ph = phong_p;
         const V z = ph * batch::log_batch(cos_m);
         const V e = batch::exp_batch(z >= -708.0 ? (z <= 709.0 ? z : splat(709.0)) : zero);
         D = (ph + 2.0) / (2.0 * std::numbers::pi) * (z >= -708.0 ? e : zero);
