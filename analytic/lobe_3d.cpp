@@ -791,8 +791,10 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
         integrate_band(r, az, side, 1, 0.0, std::numbers::pi, weight, sc);
         continue;
       }
+      // Part::high_k's bands start past k_split, unless the tail starts first (k_bands < k_split:
+      // then that part is the tail alone, and Part::low_k's bands end at k_cap).
       int k = part == Part::high_k ? k_split + 1 : 1;
-      for (;; ++k) {
+      for (; part != Part::high_k || k <= k_cap; ++k) {
         if (part == Part::low_k && k > k_split) break;
         // K in {k, k + 1} <=> theta_v in [span / (k + 1), span / (k - 1)).
         const double x_lo = span / (k + 1),
@@ -802,7 +804,9 @@ Lobe3d run_lobe(NdfKind ndf, double alpha, double theta_i, int theta_bins, int p
         // Stop once the grooves with outcomes beyond k (theta_v < span / k) weigh nothing.
         if (k >= max_k + 1 && 1.0 - groove_cdf(ndf, alpha, 0.5 * (std::numbers::pi - span / k)) < 1e-16) break;
       }
-      if (k >= k_cap) integrate_tail(r, az, side, k_cap, opt.tail_strata, opt.light_tail_strata, weight, sc);
+      // Part::low_k takes the tail's flux from the bands' (below), not its deposits.
+      if (k >= k_cap && part != Part::low_k)
+        integrate_tail(r, az, side, k_cap, opt.tail_strata, opt.light_tail_strata, weight, sc);
     }
     // What the bands leave of the node's flux is exact: each groove sends all its flux somewhere
     // (Eq. 6 over both facets sums to 1), so k > k_split (Part::low_k), or the tail, carries

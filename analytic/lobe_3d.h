@@ -50,13 +50,18 @@ namespace vgroove::analytic {
 //    flux at the full ones (high_k_coarsening): rows k <= max_k unchanged to the bit;
 //  - four Gauss-Legendre nodes where a piece is far from the integrand's singularities
 //    (four_node_pieces: bins within 5.3e-15 of eight), a tail lighter than 1e-9 with 16 strata;
-//  - the tail's strata from a per-lobe table of 1 - u (lobe_3d.cpp, tail_strata_table) and the
-//    half-aperture by a series, no library call per stratum: Phong 0.7 at 20 deg 151-156 ->
-//    121-123 ms (BM_lobe_3d, the two binaries alternating); the 60 Fig. 11 lobes per bin within
-//    2.6e-15 of the strata from u (which rounded 1 - u).
-// Cost at 30 x 24 bins, max_k 16, over the 60 3D cases of Fig. 11 (one core): median 90 ms, from
-// under 1 ms (normal incidence) to 212 ms (Phong 0.7 at 20 deg); before these, in the same run,
-// median 184 ms, 63-383 ms. The two differ per bin by up to 1.1e-7, per row by 6e-15.
+//  - the tail's strata from a per-lobe table of 1 - u (lobe_3d.cpp, tail_strata_table), their
+//    half-aperture by a series: per bin within 2.6e-15 of the strata from u (which rounded 1 - u);
+// and what makes it cheaper at the same integrand, within rounding (lobe_3d_nodes.h; the fast
+// kernels against the reference ones, per bin within 1e-15): the pieces' Gauss-Legendre nodes and
+// the tail's strata four at a time (AVX2 where the machine has it, the same bits without),
+// Beckmann's and Phong's exp, log and pow by polynomials (exp_log_batch.h), the nodes of a band
+// evaluated in runs, the deposits indexed without integer divisions.
+// Cost at 30 x 24 bins, max_k 16, over the 60 3D cases of Fig. 11 (one core, one process, idle
+// host; `BM_lobe_3d` runs seven of them): median 44 ms, from 2 ms (normal incidence) to 87 ms
+// (Phong 1.0 at 20 deg), 2.4-2.5 s in all; the scalar kernels of bdf3810 in the same period:
+// median 63 ms, up to 154-163 ms (Phong 0.7 at 20 deg), 3.75 s, per bin within 2.6e-15 of these.
+// (Before the shortcuts above: median 184 ms, 63-383 ms; per bin within 1.1e-7, per row 6e-15.)
 struct Lobe3d {
   int theta_bins = 0;
   int phi_bins = 0;
