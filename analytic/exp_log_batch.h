@@ -27,7 +27,9 @@ namespace vgroove::analytic::batch {
 typedef double V4 __attribute__((vector_size(32)));
 typedef std::int64_t I4 __attribute__((vector_size(32)));
 
-[[gnu::always_inline]] inline V4 exp_batch(V4 z) {
+// The reduction z = k ln 2 + r shared by exp_batch and expm1_batch: returns e^r - 1 =
+// r + r^2 P(r), and 2^k in two_k.
+[[gnu::always_inline]] inline V4 expm1_reduced(V4 z, V4& two_k) {
   constexpr double round_const = 6755399441055744.0;  // 1.5 2^52: (x + c) - c rounds x to an integer
   const V4 rc = V4{round_const, round_const, round_const, round_const};
   const V4 shifted = z * 1.44269504088896338700e+00 + round_const;
@@ -41,33 +43,25 @@ typedef std::int64_t I4 __attribute__((vector_size(32)));
   const V4 b4 = 2.755731922398589065255732e-07 + 2.505210838544171877505211e-08 * r;
   const V4 b5 = 2.087675698786809897921009e-09 + 1.605904383682161459939238e-10 * r;
   const V4 P = ((b0 + b1 * r2) + (b2 + b3 * r2) * r4) + (b4 + b5 * r2) * r8;
-  const V4 e = 1.0 + (r + r2 * P);
   // k from the bits of k + 1.5 2^52 (same exponent as the constant), then 2^k = (k + 1023) << 52.
   const I4 k = reinterpret_cast<I4>(shifted) - reinterpret_cast<I4>(rc);
-  return e * reinterpret_cast<V4>((k + 1023) << 52);
+  two_k = reinterpret_cast<V4>((k + 1023) << 52);
+  return r + r2 * P;
 }
 
-// e^z - 1 for z in [-708, 709]: with exp_batch's reduction z = k ln 2 + r, e^z - 1 =
-// 2^k (r + r^2 P(r)) + (2^k - 1), the series without its leading 1 (no cancellation however small
-// z is: k = 0 leaves the series alone) and 2^k - 1 exact for -53 <= k <= 53 (beyond, the result
-// is 2^k e^r or -1 to rounding).
+[[gnu::always_inline]] inline V4 exp_batch(V4 z) {
+  V4 two_k;
+  const V4 s = expm1_reduced(z, two_k);
+  return (1.0 + s) * two_k;
+}
+
+// e^z - 1 for z in [-708, 709]: 2^k (e^r - 1) + (2^k - 1), the series without its leading 1 (no
+// cancellation however small z is: k = 0 leaves the series alone) and 2^k - 1 exact for
+// -53 <= k <= 53 (beyond, the result is 2^k e^r or -1 to rounding).
 [[gnu::always_inline]] inline V4 expm1_batch(V4 z) {
-  constexpr double round_const = 6755399441055744.0;
-  const V4 rc = V4{round_const, round_const, round_const, round_const};
-  const V4 shifted = z * 1.44269504088896338700e+00 + round_const;
-  const V4 kd = shifted - round_const;
-  const V4 r = (z - kd * 6.93147180369123816490e-01) - kd * 1.90821492927058770002e-10;
-  const V4 r2 = r * r, r4 = r2 * r2, r8 = r4 * r4;
-  const V4 b0 = 5.000000000000000000000000e-01 + 1.666666666666666666666667e-01 * r;
-  const V4 b1 = 4.166666666666666666666667e-02 + 8.333333333333333333333333e-03 * r;
-  const V4 b2 = 1.388888888888888888888889e-03 + 1.984126984126984126984127e-04 * r;
-  const V4 b3 = 2.480158730158730158730159e-05 + 2.755731922398589065255732e-06 * r;
-  const V4 b4 = 2.755731922398589065255732e-07 + 2.505210838544171877505211e-08 * r;
-  const V4 b5 = 2.087675698786809897921009e-09 + 1.605904383682161459939238e-10 * r;
-  const V4 P = ((b0 + b1 * r2) + (b2 + b3 * r2) * r4) + (b4 + b5 * r2) * r8;
-  const I4 k = reinterpret_cast<I4>(shifted) - reinterpret_cast<I4>(rc);
-  const V4 two_k = reinterpret_cast<V4>((k + 1023) << 52);
-  return two_k * (r + r2 * P) + (two_k - 1.0);
+  V4 two_k;
+  const V4 s = expm1_reduced(z, two_k);
+  return two_k * s + (two_k - 1.0);
 }
 
 [[gnu::always_inline]] inline V4 log_batch(V4 x) {
