@@ -309,6 +309,7 @@ struct Scratch {
   // angle where a bin edge or the horizon is crossed), found at the segment's middle when first
   // asked for; -2 not yet known. With it, its mirror image's (mirror_of).
   std::vector<int> segment_bin, segment_mirror;
+  std::size_t segment_hint = 0;  // where bin_by_segment found the last exit
   // integrate_tail: the strata's theta_v, K, f_a, f_b, f_k and w (lobe_nodes::tail_strata).
   std::vector<double> strata;
   // integrate_band (LobeRun::fast): the band's pieces of theta_m and w, their nodes, and the
@@ -340,8 +341,24 @@ int mirror_of(const LobeRun& r, int bin) {
 // The bin of the exit angle t (LobeRun::fast): its segment among the crossings, no trigonometry
 // but once per segment.
 // Also the mirror image's bin (mirror_of), without a division.
+// The segment is looked for first where the previous call found its own and beside it (the
+// exits of consecutive segments and strata mostly move by less than a segment), else by bisection:
+// either way the first crossing above t.
 int bin_by_segment(const LobeRun& r, const Azimuth& az, Scratch& sc, double t, int& mirror) {
-  const std::size_t pos = static_cast<std::size_t>(std::upper_bound(sc.T.begin(), sc.T.end(), t) - sc.T.begin());
+  const std::vector<double>& T = sc.T;
+  const std::size_t h = sc.segment_hint;
+  auto holds = [&](std::size_t p) { return p >= 1 && p < T.size() && T[p - 1] <= t && t < T[p]; };
+  std::size_t pos;
+  if (holds(h)) {
+    pos = h;
+  } else if (holds(h + 1)) {
+    pos = h + 1;
+  } else if (h >= 1 && holds(h - 1)) {
+    pos = h - 1;
+  } else {
+    pos = static_cast<std::size_t>(std::upper_bound(T.begin(), T.end(), t) - T.begin());
+  }
+  sc.segment_hint = pos;
   if (pos == 0 || pos == sc.T.size()) return -1;  // beyond -pi/2 or pi/2: below the horizon
   int& b = sc.segment_bin[pos];
   if (b == -2) {

@@ -138,9 +138,13 @@ void piece_terms(const Piece& p, int n, const double* v, const double* rule_w, d
         // D_cs: (p + 2) / (2 pi) cos^p = e^(p log cos) by the polynomials (0 below e^-708; cos
         // theta_m at a node is a normal number, and p log cos stays far below 709).
         const double ph = phong_p;
-        const V z = ph * batch::log_batch(cos_m);
-        const V e = batch::exp_batch(z >= -708.0 ? (z <= 709.0 ? z : splat(709.0)) : zero);
-        D = (ph + 2.0) / (2.0 * std::numbers::pi) * (z >= -708.0 ? e : zero);
+        if (ph == 0.0) {
+          D = splat((ph + 2.0) / (2.0 * std::numbers::pi));  // alpha = 1: cos^0 = 1 (exp_batch(0) is 1 too)
+        } else {
+          const V z = ph * batch::log_batch(cos_m);
+          const V e = batch::exp_batch(z >= -708.0 ? (z <= 709.0 ? z : splat(709.0)) : zero);
+          D = (ph + 2.0) / (2.0 * std::numbers::pi) * (z >= -708.0 ? e : zero);
+        }
       }
       density = 2.0 * std::numbers::pi * D * cos_m * sin_m;
     }
