@@ -56,11 +56,12 @@ namespace vgroove::analytic {
 // kernels against the reference ones, per bin within 1e-15): the pieces' Gauss-Legendre nodes and
 // the tail's strata four at a time (AVX2 where the machine has it, the same bits without),
 // Beckmann's and Phong's exp, log and pow by polynomials (exp_log_batch.h), the nodes of a band
-// evaluated in runs, the deposits indexed without integer divisions.
+// evaluated in runs, the deposits indexed without integer divisions, the bin search started at
+// the last exit's segment.
 // Cost at 30 x 24 bins, max_k 16, over the 60 3D cases of Fig. 11 (one core, one process, idle
-// host; `BM_lobe_3d` runs seven of them): median 44 ms, from 2 ms (normal incidence) to 87 ms
-// (Phong 1.0 at 20 deg), 2.4-2.5 s in all; the scalar kernels of bdf3810 in the same period:
-// median 63 ms, up to 154-163 ms (Phong 0.7 at 20 deg), 3.75 s, per bin within 2.6e-15 of these.
+// host; `BM_lobe_3d` runs eight of them): median 43 ms, from 2 ms (normal incidence) to 82 ms
+// (Phong 0.7 at 20 deg), 2.4 s in all; the scalar kernels of bdf3810 in the same period: median
+// 63-70 ms, up to 154-167 ms (Phong 0.7 at 20 deg), 3.75-3.86 s, per bin within 2.6e-15 of these.
 // (Before the shortcuts above: median 184 ms, 63-383 ms; per bin within 1.1e-7, per row 6e-15.)
 struct Lobe3d {
   int theta_bins = 0;
