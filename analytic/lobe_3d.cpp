@@ -668,15 +668,14 @@ void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_c
     sc.tail.emplace_back(row_start + bin, val);
     sc.tail.emplace_back(row_start + mirror, val);
   };
-  // The fast kernels' strata from the table (tail_strata_table) and the azimuth's factor: Phong
-  // mass^(1/(p+2)), GGX and Beckmann mass resp. log mass.
-  const std::vector<double>& table = light ? r.light_tail_table : r.tail_table;
-  const double lead = !r.fast                   ? 0.0
-                      : r.ndf == NdfKind::phong ? std::pow(mass, 1.0 / (phong_exponent(r.alpha) + 2.0))
-                                                : (r.ndf == NdfKind::beckmann ? std::log(mass) : mass);
   if (r.fast) {
-    // The strata four at a time (lobe_nodes::tail_strata), then both outcomes of Eq. (6) as
-    // weight_fast forms them: K reflections on [f_b, f_k], K - 1 on [f_k, f_a].
+    // The strata four at a time (lobe_nodes::tail_strata) from the table (tail_strata_table) and
+    // the azimuth's factor (Phong mass^(1/(p+2)), GGX and Beckmann mass resp. log mass), then both
+    // outcomes of Eq. (6) as weight_fast forms them: K reflections on [f_b, f_k], K - 1 on [f_k, f_a].
+    const std::vector<double>& table = light ? r.light_tail_table : r.tail_table;
+    const double lead = r.ndf == NdfKind::phong      ? std::pow(mass, 1.0 / (phong_exponent(r.alpha) + 2.0))
+                        : r.ndf == NdfKind::beckmann ? std::log(mass)
+                                                     : mass;
     const int padded = static_cast<int>(table.size());
     sc.strata.resize(6 * static_cast<std::size_t>(padded));
     double *theta_v = sc.strata.data(), *Kd = theta_v + padded, *f_a = Kd + padded, *f_b = f_a + padded,

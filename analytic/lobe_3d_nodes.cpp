@@ -189,9 +189,8 @@ void tail_strata(const TailStrata& t, int n, const double* table, double* theta_
       } else {
         x = 1.0 / (t.alpha * sqrt_v(-(t.lead + entry)));
       }
-      const V inv = 1.0 / sqrt_v(1.0 + x * x);
-      cos_m = x * inv;
-      sin_m = inv;
+      // cos theta_m = sin(atan x), sin theta_m = cos(atan x).
+      cos_sin_of_atan_v(x, sin_m, cos_m);
       arg = x;
       const V z = x * x;
       const V pz =
