@@ -1,5 +1,8 @@
 #include "vgroove/validation/brdf_suite.h"
+
+#include "vgroove/support/format.h"
 #include "vgroove/support/printable.h"
+#include "vgroove/validation/lobe_bins.h"
 
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/analytic/brdf_flatland.h"
@@ -232,24 +235,12 @@ BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
   s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
   s.grooves = static_cast<int>(root.integer("grooves", 1, kMaxGrooves));
   s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, kMaxSeed));
-  s.flatland_bins = static_cast<int>(root.integer_or("flatland_bins", s.flatland_bins, 1, 100000));
-  s.theta_bins = static_cast<int>(root.integer_or("theta_bins", s.theta_bins, 1, 10000));
-  s.phi_bins = static_cast<int>(root.integer_or("phi_bins", s.phi_bins, 2, 10000));
-  if (s.phi_bins % 2 != 0)
-    root.fail("phi_bins",
-              "= " + std::to_string(s.phi_bins) + " must be even (the plane of incidence runs through two bins)");
-  s.max_k = static_cast<int>(root.integer_or("max_k", s.max_k, 0, kMaxHistogramK));
-  // Each worker holds a few arrays of the joint (k, bin) cells (tallies, lobes): bound them, as
-  // scenes do.
-  for (SurfaceDim d : s.dims) {
-    const bool flat = d == SurfaceDim::flatland;
-    const long long cells =
-        (flat ? static_cast<long long>(s.flatland_bins) : static_cast<long long>(s.theta_bins) * s.phi_bins) *
-        (s.max_k + 2);
-    if (cells > kMaxHistogramCells)
-      throw support::UserError(file + ": " + (flat ? "flatland_bins" : "theta_bins x phi_bins") +
-                               " x (max_k + 2) = " + std::to_string(cells) + " histogram cells, out of range [1, " +
-                               std::to_string(kMaxHistogramCells) + "]");
+  {
+    const bool flat = std::find(s.dims.begin(), s.dims.end(), SurfaceDim::flatland) != s.dims.end();
+    const bool three = std::find(s.dims.begin(), s.dims.end(), SurfaceDim::three_d) != s.dims.end();
+    const LobeBins bins = read_lobe_bins(root, {s.flatland_bins, s.theta_bins, s.phi_bins, s.max_k}, flat, three);
+    s.flatland_bins = bins.flatland_bins, s.theta_bins = bins.theta_bins, s.phi_bins = bins.phi_bins;
+    s.max_k = bins.max_k;
   }
   {
     support::JsonObject t = root.object("thresholds");
@@ -519,25 +510,20 @@ nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run) {
 }
 
 void print_brdf_table(std::ostream& os, const BrdfSuite& suite, const BrdfRun& run) {
-  char line[400];
-  std::snprintf(line, sizeof line, "%s (%s): %zu cases, %ld rays x %d grooves each, vgroove %s (git %s), %d threads\n",
-                support::printable(suite.name).c_str(), suite.kind.c_str(), run.cases.size(), suite.rays, suite.grooves,
-                version_string(), git_revision(), run.threads);
-  os << line;
-  std::snprintf(line, sizeof line, "  %-8s %-8s %5s %7s %9s %9s %9s %9s %10s %9s %8s %5s\n", "dim", "ndf", "alpha",
-                "theta_i", "L1", "L1 thr", "L1 by k", "thr", "albedo", "CT alb", "wall s", "pass");
-  os << line;
+  os << support::format("%s (%s): %zu cases, %ld rays x %d grooves each, vgroove %s (git %s), %d threads\n",
+                        support::printable(suite.name).c_str(), suite.kind.c_str(), run.cases.size(), suite.rays,
+                        suite.grooves, version_string(), git_revision(), run.threads);
+  os << support::format("  %-8s %-8s %5s %7s %9s %9s %9s %9s %10s %9s %8s %5s\n", "dim", "ndf", "alpha", "theta_i",
+                        "L1", "L1 thr", "L1 by k", "thr", "albedo", "CT alb", "wall s", "pass");
   for (const BrdfOutcome& o : run.cases) {
-    std::snprintf(line, sizeof line, "  %-8s %-8s %5.2f %7.2f %9.5f %9.5f %9.5f %9.5f %10.7f %9.5f %8.3f %5s\n",
-                  surface_dim_name(o.c.dim), analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta_i), o.l1,
-                  o.l1_threshold, o.l1_k, o.l1_k_threshold, o.albedo_sim, o.albedo_single,
-                  o.sim_wall_s + o.model_wall_s, o.pass ? "yes" : "NO");
-    os << line;
+    os << support::format("  %-8s %-8s %5.2f %7.2f %9.5f %9.5f %9.5f %9.5f %10.7f %9.5f %8.3f %5s\n",
+                          surface_dim_name(o.c.dim), analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta_i),
+                          o.l1, o.l1_threshold, o.l1_k, o.l1_k_threshold, o.albedo_sim, o.albedo_single,
+                          o.sim_wall_s + o.model_wall_s, o.pass ? "yes" : "NO");
   }
   std::size_t passed = 0;
   for (const auto& o : run.cases) passed += o.pass;
-  std::snprintf(line, sizeof line, "  %zu/%zu cases pass; wall %.2f s\n", passed, run.cases.size(), run.wall_s);
-  os << line;
+  os << support::format("  %zu/%zu cases pass; wall %.2f s\n", passed, run.cases.size(), run.wall_s);
 }
 
 }  // namespace vgroove::validation

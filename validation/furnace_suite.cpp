@@ -8,7 +8,9 @@
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/microsurface3d.h"
 #include "vgroove/sim/rng.h"
+#include "vgroove/support/format.h"
 #include "vgroove/support/json_reader.h"
+#include "vgroove/support/printable.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
 
@@ -343,30 +345,24 @@ nlohmann::json furnace_report_json(const FurnaceSuite& suite, const FurnaceRun& 
 }
 
 void print_furnace_table(std::ostream& os, const FurnaceSuite& suite, const FurnaceRun& run) {
-  char line[400];
-  std::snprintf(line, sizeof line,
-                "%s (furnace): %zu cases; Eq. 17 (N = %d) by quadrature and by %ld samples (%s), vgroove %s (git %s), "
-                "%d threads\n",
-                suite.name.c_str(), run.cases.size(), suite.max_k, suite.samples,
-                analytic::strategy_name(suite.strategy), version_string(), git_revision(), run.threads);
-  os << line;
-  std::snprintf(line, sizeof line, "  %-8s %-8s %5s %7s %12s %10s %10s %12s %10s %10s %10s %7s %5s\n", "dim", "ndf",
-                "alpha", "theta_i", "albedo quad", "beyond N", "energy-1", "albedo est", "est-1", "CT quad", "CT est",
-                "sim", "pass");
-  os << line;
+  os << support::format(
+      "%s (furnace): %zu cases; Eq. 17 (N = %d) by quadrature and by %ld samples (%s), vgroove %s (git %s), "
+      "%d threads\n",
+      support::printable(suite.name).c_str(), run.cases.size(), suite.max_k, suite.samples,
+      analytic::strategy_name(suite.strategy), version_string(), git_revision(), run.threads);
+  os << support::format("  %-8s %-8s %5s %7s %12s %10s %10s %12s %10s %10s %10s %7s %5s\n", "dim", "ndf", "alpha",
+                        "theta_i", "albedo quad", "beyond N", "energy-1", "albedo est", "est-1", "CT quad", "CT est",
+                        "sim", "pass");
   for (const FurnaceOutcome& o : run.cases) {
-    std::snprintf(line, sizeof line,
-                  "  %-8s %-8s %5.2f %7.2f %12.9f %10.3e %10.1e %12.9f %10.1e %10.6f %10.6f %7.5f %5s\n",
-                  surface_dim_name(o.c.dim), analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta_i),
-                  o.albedo_quadrature, o.flux_beyond_max_k, o.albedo_quadrature + o.flux_beyond_max_k - 1.0,
-                  o.albedo_estimate, o.albedo_estimate + o.flux_beyond_max_k - 1.0, o.cook_torrance_quadrature,
-                  o.cook_torrance_estimate, o.albedo_sim, o.pass ? "yes" : "NO");
-    os << line;
+    os << support::format("  %-8s %-8s %5.2f %7.2f %12.9f %10.3e %10.1e %12.9f %10.1e %10.6f %10.6f %7.5f %5s\n",
+                          surface_dim_name(o.c.dim), analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta_i),
+                          o.albedo_quadrature, o.flux_beyond_max_k, o.albedo_quadrature + o.flux_beyond_max_k - 1.0,
+                          o.albedo_estimate, o.albedo_estimate + o.flux_beyond_max_k - 1.0, o.cook_torrance_quadrature,
+                          o.cook_torrance_estimate, o.albedo_sim, o.pass ? "yes" : "NO");
   }
   std::size_t passed = 0;
   for (const auto& o : run.cases) passed += o.pass;
-  std::snprintf(line, sizeof line, "  %zu/%zu cases pass; wall %.2f s\n", passed, run.cases.size(), run.wall_s);
-  os << line;
+  os << support::format("  %zu/%zu cases pass; wall %.2f s\n", passed, run.cases.size(), run.wall_s);
 }
 
 }  // namespace vgroove::validation

@@ -1,7 +1,9 @@
 #include "vgroove/validation/model_table.h"
 
 #include "vgroove/common/angles.h"
+#include "vgroove/support/format.h"
 #include "vgroove/support/json_reader.h"
+#include "vgroove/support/printable.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/traced_lobe.h"
@@ -218,25 +220,20 @@ nlohmann::json model_table_report_json(const BrdfSuite& s, const ModelTable& t, 
 }
 
 void print_model_table(std::ostream& os, const BrdfSuite& s, const ModelTable& t, const ModelTableRun& run) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%s against the model table %s (%s): %zu cases, %ld rays x %d grooves each\n",
-                s.name.c_str(), t.file.c_str(), t.model.empty() ? "no name" : t.model.c_str(), run.cases.size(),
-                run.rays, s.grooves);
-  os << buf;
-  std::snprintf(buf, sizeof buf, "  %-8s %-8s %6s %7s %9s %9s %9s %9s %9s %9s  %s\n", "dim", "ndf", "alpha", "theta_i",
-                "albedo", "traced", "L1", "L1 thr", "flux L1", "thr", "pass");
-  os << buf;
+  os << support::format("%s against the model table %s (%s): %zu cases, %ld rays x %d grooves each\n",
+                        support::printable(s.name).c_str(), support::printable(t.file).c_str(),
+                        t.model.empty() ? "no name" : support::printable(t.model).c_str(), run.cases.size(), run.rays,
+                        s.grooves);
+  os << support::format("  %-8s %-8s %6s %7s %9s %9s %9s %9s %9s %9s  %s\n", "dim", "ndf", "alpha", "theta_i", "albedo",
+                        "traced", "L1", "L1 thr", "flux L1", "thr", "pass");
   for (std::size_t c = 0; c < run.cases.size(); ++c) {
     const BrdfCase k = s.case_at(c);
     const CheckBrdfCase& r = run.cases[c];
-    std::snprintf(buf, sizeof buf, "  %-8s %-8s %6.2f %7.2f %9.5f %9.5f %9.5f %9.5f %9.5f %9.5f  %s\n",
-                  surface_dim_name(k.dim), ndf_name(k.ndf), k.alpha, output_deg(k.theta_i), r.albedo_model,
-                  r.albedo_sim, r.l1, r.l1_threshold, r.l1_flux, r.l1_flux_threshold, r.pass ? "yes" : "NO");
-    os << buf;
+    os << support::format("  %-8s %-8s %6.2f %7.2f %9.5f %9.5f %9.5f %9.5f %9.5f %9.5f  %s\n", surface_dim_name(k.dim),
+                          ndf_name(k.ndf), k.alpha, output_deg(k.theta_i), r.albedo_model, r.albedo_sim, r.l1,
+                          r.l1_threshold, r.l1_flux, r.l1_flux_threshold, r.pass ? "yes" : "NO");
   }
-  std::snprintf(buf, sizeof buf, "  wall %.2f s on %d threads\n%s\n", run.wall_s, run.threads,
-                run.pass ? "PASS" : "FAIL");
-  os << buf;
+  os << support::format("  wall %.2f s on %d threads\n%s\n", run.wall_s, run.threads, run.pass ? "PASS" : "FAIL");
 }
 
 }  // namespace vgroove::validation

@@ -1,5 +1,9 @@
 #include "vgroove/validation/nonsymmetric_suite.h"
 
+#include "vgroove/support/format.h"
+#include "vgroove/support/printable.h"
+#include "vgroove/validation/lobe_bins.h"
+
 #include "vgroove/analytic/brdf_nonsymmetric.h"
 #include "vgroove/analytic/lobe_nonsymmetric.h"
 #include "vgroove/analytic/partner_distribution.h"
@@ -341,15 +345,16 @@ NonsymmetricSuite parse_nonsymmetric_suite(const nlohmann::json& j, const std::s
     a.finish();
   }
   s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
-  s.grooves = static_cast<int>(root.integer("grooves", 1, 10'000'000));
-  s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
-  s.flatland_bins = static_cast<int>(root.integer_or("flatland_bins", s.flatland_bins, 1, 100000));
-  s.theta_bins = static_cast<int>(root.integer_or("theta_bins", s.theta_bins, 1, 10000));
-  s.phi_bins = static_cast<int>(root.integer_or("phi_bins", s.phi_bins, 2, 10000));
-  if (s.phi_bins % 2 != 0)
-    root.fail("phi_bins",
-              "= " + std::to_string(s.phi_bins) + " must be even (the plane of incidence runs through two bins)");
-  s.max_k = static_cast<int>(root.integer_or("max_k", s.max_k, 1, 10000));
+  s.grooves = static_cast<int>(root.integer("grooves", 1, kMaxGrooves));
+  s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, kMaxSeed));
+  {
+    const bool flat = std::find(s.dims.begin(), s.dims.end(), SurfaceDim::flatland) != s.dims.end();
+    const bool three =
+        !s.aniso_ndfs.empty() || std::find(s.dims.begin(), s.dims.end(), SurfaceDim::three_d) != s.dims.end();
+    const LobeBins bins = read_lobe_bins(root, {s.flatland_bins, s.theta_bins, s.phi_bins, s.max_k}, flat, three);
+    s.flatland_bins = bins.flatland_bins, s.theta_bins = bins.theta_bins, s.phi_bins = bins.phi_bins;
+    s.max_k = bins.max_k;
+  }
   s.plane_k = static_cast<int>(root.integer_or("plane_k", s.plane_k, 0, 64));
   s.reciprocity_pairs = static_cast<int>(root.integer_or("reciprocity_pairs", s.reciprocity_pairs, 0, 100000));
   {
@@ -468,23 +473,19 @@ nlohmann::json nonsymmetric_report_json(const NonsymmetricSuite& suite, const No
 }
 
 void print_nonsymmetric_table(std::ostream& os, const NonsymmetricSuite& suite, const NonsymmetricRun& run) {
-  char line[400];
-  std::snprintf(line, sizeof line,
-                "%s (nonsymmetric_brdf): %zu cases, %ld rays x %d grooves each, vgroove %s (git %s), %d threads\n",
-                suite.name.c_str(), run.cases.size(), suite.rays, suite.grooves, version_string(), git_revision(),
-                run.threads);
-  os << line;
-  std::snprintf(line, sizeof line, "  %-8s %-8s %5s %5s %7s %6s %-11s %8s %8s %8s %8s %8s %-8s %8s %5s\n", "dim", "ndf",
-                "ax", "ay", "theta_i", "phi_i", "partner", "L1", "L1 thr", "L1 by k", "thr", "other L1", "other",
-                "wall s", "pass");
-  os << line;
+  os << support::format(
+      "%s (nonsymmetric_brdf): %zu cases, %ld rays x %d grooves each, vgroove %s (git %s), %d threads\n",
+      support::printable(suite.name).c_str(), run.cases.size(), suite.rays, suite.grooves, version_string(),
+      git_revision(), run.threads);
+  os << support::format("  %-8s %-8s %5s %5s %7s %6s %-11s %8s %8s %8s %8s %8s %-8s %8s %5s\n", "dim", "ndf", "ax",
+                        "ay", "theta_i", "phi_i", "partner", "L1", "L1 thr", "L1 by k", "thr", "other L1", "other",
+                        "wall s", "pass");
   for (const NonsymmetricOutcome& o : run.cases) {
-    std::snprintf(
-        line, sizeof line, "  %-8s %-8s %5.2f %5.2f %7.2f %6.1f %-11s %8.5f %8.5f %8.5f %8.5f %8.5f %-8s %8.3f %5s\n",
+    os << support::format(
+        "  %-8s %-8s %5.2f %5.2f %7.2f %6.1f %-11s %8.5f %8.5f %8.5f %8.5f %8.5f %-8s %8.3f %5s\n",
         surface_dim_name(o.c.dim), analytic::ndf_name(o.c.ndf), o.c.alpha_x, o.c.alpha_y, output_deg(o.c.theta_i),
         output_deg(o.c.phi_i), partner_name(o.c.symmetric), o.l1, o.l1_threshold, o.l1_k, o.l1_k_threshold, o.l1_other,
         o.other_rejected ? "rejected" : "accepted", o.sim_wall_s + o.model_wall_s, o.pass ? "yes" : "NO");
-    os << line;
   }
   double worst = 0.0;
   std::size_t recip_pass = 0;
@@ -497,11 +498,10 @@ void print_nonsymmetric_table(std::ostream& os, const NonsymmetricSuite& suite, 
     passed += o.pass;
     rejected += o.other_rejected;
   }
-  std::snprintf(line, sizeof line,
-                "  reciprocity: %zu/%zu rows below 1e-8, worst relative asymmetry %.2e\n"
-                "  %zu/%zu cases pass; the other partner law's model rejected in %zu; wall %.2f s\n",
-                recip_pass, run.reciprocity.size(), worst, passed, run.cases.size(), rejected, run.wall_s);
-  os << line;
+  os << support::format(
+      "  reciprocity: %zu/%zu rows below 1e-8, worst relative asymmetry %.2e\n"
+      "  %zu/%zu cases pass; the other partner law's model rejected in %zu; wall %.2f s\n",
+      recip_pass, run.reciprocity.size(), worst, passed, run.cases.size(), rejected, run.wall_s);
 }
 
 }  // namespace vgroove::validation

@@ -1,5 +1,7 @@
 // The report JSON and the table of the "profiles" suite (validation/profiles_suite.h).
 #include "vgroove/common/angles.h"
+#include "vgroove/support/format.h"
+#include "vgroove/support/printable.h"
 #include "vgroove/validation/profiles_suite.h"
 #include "vgroove/validation/report.h"
 
@@ -169,34 +171,29 @@ nlohmann::json profiles_report_json(const ProfilesSuite& suite, const ProfilesRu
 }
 
 void print_profiles_table(std::ostream& os, const ProfilesSuite& suite, const ProfilesRun& run) {
-  char line[512];
-  std::snprintf(line, sizeof line,
-                "%s (profiles): %zu cases x %zu surfaces, %d realizations of %d segments, %ld rays per beam, %ld walk "
-                "paths, vgroove %s (git %s), %d threads\n",
-                suite.name.c_str(), run.cases.size(), suite.surfaces.size(), suite.realizations, suite.segments,
-                suite.rays, suite.walk_paths, version_string(), git_revision(), run.threads);
-  os << line;
+  os << support::format(
+      "%s (profiles): %zu cases x %zu surfaces, %d realizations of %d segments, %ld rays per beam, %ld walk "
+      "paths, vgroove %s (git %s), %d threads\n",
+      support::printable(suite.name).c_str(), run.cases.size(), suite.surfaces.size(), suite.realizations,
+      suite.segments, suite.rays, suite.walk_paths, version_string(), git_revision(), run.threads);
   os << "  G1, G2: projected-area-weighted mean |traced - model| over the normal bins (noise: what a right model "
         "shows)\n  lobe: the largest z over k of the L1 distance of each k's lobe (<= sigmas: within noise)\n";
-  std::snprintf(line, sizeof line, "  %-8s %5s %5s %-7s %8s %8s %8s %8s %8s %8s %8s | %7s %7s %7s | %7s %7s | %4s\n",
-                "ndf", "alpha", "theta", "surface", "G1 noise", "Smith", "V-cav", "G2 noise", "sep", "h-corr", "V-cav",
-                "lit", "Smith", "V-cav", "z walk", "z vgrv", "pass");
-  os << line;
+  os << support::format("  %-8s %5s %5s %-7s %8s %8s %8s %8s %8s %8s %8s | %7s %7s %7s | %7s %7s | %4s\n", "ndf",
+                        "alpha", "theta", "surface", "G1 noise", "Smith", "V-cav", "G2 noise", "sep", "h-corr", "V-cav",
+                        "lit", "Smith", "V-cav", "z walk", "z vgrv", "pass");
   for (const ProfilesOutcome& o : run.cases)
     for (const SurfaceOutcome& s : o.surfaces) {
-      std::snprintf(line, sizeof line,
-                    "  %-8s %5.2f %5.1f %-7s %8.5f %8.5f %8.5f %8.5f %8.5f %8.5f %8.5f | %7.4f %7.4f %7.4f | %7.1f "
-                    "%7.1f | %4s\n",
-                    analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta), profile_surface_name(s.surface),
-                    s.g1_d_smith.noise, s.g1_d_smith.mean_abs, s.g1_d_vcavity.mean_abs, s.g2_d_separable.noise,
-                    s.g2_d_separable.mean_abs, s.g2_d_correlated.mean_abs, s.g2_d_vcavity.mean_abs, s.lit_traced,
-                    s.lit_smith, s.lit_vcavity, s.d_walk.max_z, s.d_vgroove.max_z, s.pass ? "yes" : "NO");
-      os << line;
+      os << support::format(
+          "  %-8s %5.2f %5.1f %-7s %8.5f %8.5f %8.5f %8.5f %8.5f %8.5f %8.5f | %7.4f %7.4f %7.4f | %7.1f "
+          "%7.1f | %4s\n",
+          analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta), profile_surface_name(s.surface),
+          s.g1_d_smith.noise, s.g1_d_smith.mean_abs, s.g1_d_vcavity.mean_abs, s.g2_d_separable.noise,
+          s.g2_d_separable.mean_abs, s.g2_d_correlated.mean_abs, s.g2_d_vcavity.mean_abs, s.lit_traced, s.lit_smith,
+          s.lit_vcavity, s.d_walk.max_z, s.d_vgroove.max_z, s.pass ? "yes" : "NO");
     }
   std::size_t passed = 0;
   for (const auto& o : run.cases) passed += o.pass;
-  std::snprintf(line, sizeof line, "  %zu/%zu cases pass; wall %.2f s\n", passed, run.cases.size(), run.wall_s);
-  os << line;
+  os << support::format("  %zu/%zu cases pass; wall %.2f s\n", passed, run.cases.size(), run.wall_s);
 }
 
 }  // namespace vgroove::validation

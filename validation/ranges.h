@@ -40,6 +40,11 @@ inline constexpr int kMaxThreads = 1024;
 // Histogram cells (bins x bounce-count rows) of one tally: each work item holds its own. Rows
 // k = 0..max_k (and one for larger k), max_k at most kMaxHistogramK.
 inline constexpr long long kMaxHistogramCells = 1'000'000;
+inline constexpr int kMinHistogramK = 0;
 inline constexpr int kMaxHistogramK = 1000;
+// Exit-direction bins of a lobe histogram: theta_o in flatland, theta_o x phi_o in 3D (phi even).
+inline constexpr int kMaxFlatlandBins = 100'000;
+inline constexpr int kMaxThetaBins = 10'000;
+inline constexpr int kMaxPhiBins = 10'000;
 
 }  // namespace vgroove::validation

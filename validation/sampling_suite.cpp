@@ -1,7 +1,9 @@
 #include "vgroove/validation/sampling_suite.h"
 
 #include "vgroove/common/angles.h"
+#include "vgroove/support/format.h"
 #include "vgroove/support/json_reader.h"
+#include "vgroove/support/printable.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
 
@@ -206,32 +208,26 @@ nlohmann::json sampling_report_json(const SamplingSuite& suite, const SamplingRu
 }
 
 void print_sampling_table(std::ostream& os, const SamplingSuite& suite, const SamplingRun& run) {
-  char line[400];
-  std::snprintf(line, sizeof line, "%s (sampling): vgroove %s (git %s), %d threads\n", suite.name.c_str(),
-                version_string(), git_revision(), run.threads);
-  os << line;
+  os << support::format("%s (sampling): vgroove %s (git %s), %d threads\n", support::printable(suite.name).c_str(),
+                        version_string(), git_revision(), run.threads);
   os << "  chi-square against the sampler's pdf (level " << (suite.chi_square.empty() ? 0.0 : suite.chi_square[0].level)
      << " over " << suite.chi_square.size() << " tests, Sidak)\n";
-  std::snprintf(line, sizeof line, "  %-8s %-8s %5s %7s %-13s %9s %9s %5s %9s %10s %10s %5s\n", "dim", "ndf", "alpha",
-                "theta_i", "strategy", "samples", "stat", "dof", "p", "norm err", "mean w", "pass");
-  os << line;
+  os << support::format("  %-8s %-8s %5s %7s %-13s %9s %9s %5s %9s %10s %10s %5s\n", "dim", "ndf", "alpha", "theta_i",
+                        "strategy", "samples", "stat", "dof", "p", "norm err", "mean w", "pass");
   for (const Chi2Outcome& o : run.chi_square) {
     const Chi2Spec& s = o.spec;
-    std::snprintf(line, sizeof line, "  %-8s %-8s %5.2f %7.2f %-13s %9ld %9.1f %5d %9.3g %10.1e %10.6f %5s\n",
-                  surface_dim_name(s.dim), analytic::ndf_name(s.ndf), s.alpha, output_deg(s.theta_i),
-                  analytic::strategy_name(s.strategy), s.samples, o.test.statistic, o.test.dof, o.test.p_value,
-                  o.normalization_error, o.weight_mean, o.pass ? "yes" : "NO");
-    os << line;
+    os << support::format("  %-8s %-8s %5.2f %7.2f %-13s %9ld %9.1f %5d %9.3g %10.1e %10.6f %5s\n",
+                          surface_dim_name(s.dim), analytic::ndf_name(s.ndf), s.alpha, output_deg(s.theta_i),
+                          analytic::strategy_name(s.strategy), s.samples, o.test.statistic, o.test.dof, o.test.p_value,
+                          o.normalization_error, o.weight_mean, o.pass ? "yes" : "NO");
   }
   os << "  variance of the weight rho cos / pdf per strategy (F = 1 or Schlick F0), ns per sample\n";
   for (const VarianceOutcome& o : run.variance) {
     const VarianceSpec& s = o.spec;
-    std::snprintf(line, sizeof line, "  %-8s %-8s %5.2f %7.2f F0 %4.2f:", surface_dim_name(s.dim),
-                  analytic::ndf_name(s.ndf), s.alpha, output_deg(s.theta_i), s.schlick_f0);
-    os << line;
+    os << support::format("  %-8s %-8s %5.2f %7.2f F0 %4.2f:", surface_dim_name(s.dim), analytic::ndf_name(s.ndf),
+                          s.alpha, output_deg(s.theta_i), s.schlick_f0);
     for (const StrategyStats& r : o.rows) {
-      std::snprintf(line, sizeof line, " %s %.3g (%.0f ns)", r.strategy.c_str(), r.variance, r.ns_per_sample);
-      os << line;
+      os << support::format(" %s %.3g (%.0f ns)", r.strategy.c_str(), r.variance, r.ns_per_sample);
     }
     os << "; lowest variance " << o.lowest_variance << ", most efficient " << o.most_efficient << "\n";
   }
@@ -242,9 +238,7 @@ void print_sampling_table(std::ostream& os, const SamplingSuite& suite, const Sa
   print_furnace_table(os, suite.furnace, fr);
   std::size_t chi_pass = 0;
   for (const auto& o : run.chi_square) chi_pass += o.pass;
-  std::snprintf(line, sizeof line, "  %zu/%zu chi-square cases pass; wall %.2f s\n", chi_pass, run.chi_square.size(),
-                run.wall_s);
-  os << line;
+  os << support::format("  %zu/%zu chi-square cases pass; wall %.2f s\n", chi_pass, run.chi_square.size(), run.wall_s);
 }
 
 }  // namespace vgroove::validation

@@ -1,4 +1,5 @@
 #include "vgroove/validation/table2_suite.h"
+#include "vgroove/support/format.h"
 #include "vgroove/support/printable.h"
 
 #include "vgroove/analytic/bounce_percentiles.h"
@@ -235,34 +236,28 @@ nlohmann::json table2_report_json(const Table2Suite& s, const Table2Run& run) {
 }
 
 void print_table2(std::ostream& os, const Table2Suite& s, const Table2Run& run) {
-  char line[256];
-  std::snprintf(line, sizeof line, "%s: maximum bounces at percentiles of D (%s), vgroove %s (git %s)\n",
-                support::printable(s.name).c_str(), support::printable(s.source).c_str(), version_string(),
-                git_revision());
-  os << line;
+  os << support::format("%s: maximum bounces at percentiles of D (%s), vgroove %s (git %s)\n",
+                        support::printable(s.name).c_str(), support::printable(s.source).c_str(), version_string(),
+                        git_revision());
   os << "  cell: paper / ours (projected-area percentile, Eq. 4 at theta_i = 0) / traced percentile of k\n";
   std::string head = "  perc.  ";
   for (auto n : s.ndfs)
     for (double a : s.alphas) {
-      std::snprintf(line, sizeof line, " %8.8s %-4.2g", analytic::ndf_name(n), a);
-      head += line;
+      head += support::format(" %8.8s %-4.2g", analytic::ndf_name(n), a);
     }
   os << head << "\n";
   const std::size_t na = s.alphas.size(), nn = s.ndfs.size();
   for (std::size_t q = 0; q < s.percentiles.size(); ++q) {
-    std::snprintf(line, sizeof line, "  %4.0f%%  ", 100.0 * s.percentiles[q]);
-    std::string row = line;
+    std::string row = support::format("  %4.0f%%  ", 100.0 * s.percentiles[q]);
     for (std::size_t n = 0; n < nn; ++n)
       for (std::size_t a = 0; a < na; ++a) {
         const std::size_t i = (q * nn + n) * na + a;
-        std::snprintf(line, sizeof line, " %4d/%-3d/%-4d", s.paper[i], run.ours[i], run.traced[i]);
-        row += line;
+        row += support::format(" %4d/%-3d/%-4d", s.paper[i], run.ours[i], run.traced[i]);
       }
     os << row << "\n";
   }
-  std::snprintf(line, sizeof line, "  %d/%zu entries agree with the paper; %ld rays per traced surface; wall %.2f s\n",
-                run.agree, run.ours.size(), s.rays, run.wall_s);
-  os << line;
+  os << support::format("  %d/%zu entries agree with the paper; %ld rays per traced surface; wall %.2f s\n", run.agree,
+                        run.ours.size(), s.rays, run.wall_s);
 }
 
 }  // namespace vgroove::validation
