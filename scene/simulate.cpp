@@ -1,6 +1,9 @@
 #include "vgroove/scene/simulate.h"
 #include "vgroove/support/printable.h"
 
+#include "vgroove/support/format.h"
+#include "vgroove/validation/part_fields.h"
+
 #include "vgroove/analytic/kaleidoscope_fresnel.h"
 #include "vgroove/optics/fresnel.h"
 #include "vgroove/sim/effects.h"
@@ -19,6 +22,7 @@
 #include <cstdio>
 #include <iostream>
 #include <numbers>
+#include <set>
 #include <type_traits>
 
 namespace vgroove::scene {
@@ -294,15 +298,71 @@ nlohmann::json SimulateWork::tally_json(const Tally& t) {
   return j;
 }
 
-SimTally SimulateWork::tally_from_json(const nlohmann::json& j) {
+SimTally SimulateWork::read_tally(support::JsonObject& j, std::size_t,
+                                  const std::vector<validation::ChunkRun>& runs) const {
+  using validation::read_counts;
   SimTally t;
-  fates_from_json(t.counts, j);
-  t.counts.by_k = j.at("by_k").get<std::vector<std::int64_t>>();
-  t.counts.theta_o = j.at("theta_o").get<std::vector<std::int64_t>>();
-  t.counts.theta_o_by_k = j.at("theta_o_by_k").get<std::vector<std::int64_t>>();
-  for (const nlohmann::json& c : j.at("energies"))
-    t.energies.push_back(
-        {c.at("chunk").get<std::int64_t>(), exact_doubles(c.at("energy")), exact_doubles(c.at("energy_by_k"))});
+  ThetaTally& c = t.counts;
+  validation::read_fates(j, c, validation::rays_in_chunks(runs, scene.light.rays, sim::kRaysPerChunk),
+                         scene.max_bounces);
+  // Rows k = 0 .. the largest k seen (k > kMaxKRow share the last): none when no ray escaped.
+  const std::size_t rows = c.escaped > 0 ? static_cast<std::size_t>(std::min(c.max_k_seen, kMaxKRow + 1)) + 1 : 0;
+  c.by_k = read_counts(j, "by_k", rows, c.escaped);
+  validation::check_sum(j, "by_k", c.by_k, c.escaped, "escaped rays");
+  if (rows > 0 && c.by_k.back() == 0) j.fail("by_k", "ends in 0: its last row must hold the rays of max_k_seen");
+  const ThetaTally shape = empty_tally(scene);
+  c.theta_o = read_counts(j, "theta_o", shape.theta_o.size(), c.escaped);
+  c.theta_o_by_k = read_counts(j, "theta_o_by_k", shape.theta_o_by_k.size(), c.escaped);
+  if (!shape.theta_o.empty()) {
+    validation::check_sum(j, "theta_o", c.theta_o, c.escaped, "escaped rays");
+    std::vector<std::int64_t> rows_of(static_cast<std::size_t>(scene.record.histogram_max_k) + 2, 0);
+    for (std::size_t k = 0; k < c.by_k.size(); ++k) rows_of[std::min<std::size_t>(k, rows_of.size() - 1)] += c.by_k[k];
+    validation::check_margins(j, "theta_o_by_k", c.theta_o_by_k, rows_of, "by_k (rows above histogram_max_k summed)",
+                              c.theta_o, "theta_o");
+  }
+  // Each chunk's energies, once per chunk the part ran, each channel at most the chunk's rays.
+  const std::size_t C = scene.channels.size();
+  const nlohmann::json& energies = j.raw("energies");
+  if (!energies.is_array()) j.fail("energies", "must be an array");
+  std::set<std::int64_t> expected;
+  for (const validation::ChunkRun& r : runs)
+    for (std::int64_t k = r.first; k < r.second; ++k) expected.insert(k);
+  if (energies.size() != expected.size())
+    j.fail("energies", "has " + std::to_string(energies.size()) + " chunks, not the " +
+                           std::to_string(expected.size()) + " the part ran");
+  for (std::size_t n = 0; n < energies.size(); ++n) {
+    support::JsonObject e(energies[n], j.file(), j.path("energies") + "/" + std::to_string(n));
+    const std::int64_t chunk = e.integer("chunk", 0, std::numeric_limits<long long>::max());
+    if (expected.erase(chunk) == 0)
+      e.fail("chunk", "= " + std::to_string(chunk) + " is not a chunk the part ran, or is given twice");
+    const double most =
+        static_cast<double>(validation::rays_in_chunks({{chunk, chunk + 1}}, scene.light.rays, sim::kRaysPerChunk));
+    ChunkEnergy ce{chunk, validation::read_exact_doubles(e, "energy", C), {}};
+    const nlohmann::json& by_k = e.raw("energy_by_k");
+    if (!by_k.is_array() || by_k.size() % std::max<std::size_t>(C, 1) != 0 || by_k.size() > (kMaxKRow + 2) * C)
+      e.fail("energy_by_k", "must be an array of whole rows of " + std::to_string(C) + " channels");
+    if (!scene.record.energy_per_k ? !by_k.empty() : by_k.size() > c.by_k.size() * C)
+      e.fail("energy_by_k", "has " + std::to_string(by_k.size()) + " values; the scene records " +
+                                (scene.record.energy_per_k ? "at most its rows k times its channels" : "none"));
+    ce.energy_by_k = validation::read_exact_doubles(e, "energy_by_k", by_k.size());
+    for (const std::vector<double>* v : {&ce.energy, &ce.energy_by_k})
+      for (std::size_t i = 0; i < v->size(); ++i)
+        if (!((*v)[i] >= 0.0 && (*v)[i] <= most))
+          e.fail_at(v == &ce.energy ? "energy" : "energy_by_k", i,
+                    "= " + support::format("%.17g", (*v)[i]) + " is out of range [0, " +
+                        support::format("%.17g", most) + "] (the chunk's rays)");
+    // The rows k of a channel hold the same throughputs as its total, summed in another order.
+    if (scene.record.energy_per_k)
+      for (std::size_t ch = 0; ch < C; ++ch) {
+        double sum = 0.0;
+        for (std::size_t i = ch; i < ce.energy_by_k.size(); i += C) sum += ce.energy_by_k[i];
+        if (!(std::abs(sum - ce.energy[ch]) <= 1e-9 * ce.energy[ch] + 1e-300))
+          e.fail("energy_by_k", "sums to " + support::format("%.17g", sum) + " in channel " + std::to_string(ch) +
+                                    ", not to its energy " + support::format("%.17g", ce.energy[ch]));
+      }
+    e.finish();
+    t.energies.push_back(std::move(ce));
+  }
   return t;
 }
 

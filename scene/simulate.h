@@ -116,9 +116,9 @@ struct SimulateWork {
   Fixed run_fixed(std::size_t) const { return {}; }
   static void merge(Tally& into, const Tally& from);
   static nlohmann::json tally_json(const Tally& t);
-  static Tally tally_from_json(const nlohmann::json& j);
   static nlohmann::json fixed_json(const Fixed&) { return nlohmann::json::object(); }
-  static Fixed fixed_from_json(const nlohmann::json&) { return {}; }
+  Tally read_tally(support::JsonObject& j, std::size_t unit, const std::vector<validation::ChunkRun>& runs) const;
+  Fixed read_fixed(support::JsonObject&, std::size_t) const { return {}; }
 };
 validation::Job<SimulateWork> simulate_job(const Scene& scene, nlohmann::json descriptor);
 // The result from every theta_i's merged tally (energies added in chunk order), with the model.

@@ -40,6 +40,10 @@ void JsonObject::fail(const std::string& key, const std::string& what) const {
   throw UserError(file_ + ": " + path(key) + " " + what);
 }
 
+void JsonObject::fail_at(const std::string& key, std::size_t index, const std::string& what) const {
+  throw UserError(file_ + ": " + path(key) + "/" + std::to_string(index) + " " + what);
+}
+
 const nlohmann::json& JsonObject::raw(const std::string& key) {
   if (!has(key)) fail(key, "is missing (required)");
   return j_.at(key);

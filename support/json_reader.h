@@ -25,6 +25,8 @@ class JsonObject {
   const nlohmann::json& raw(const std::string& key);  // marks the key as read
   std::string path(const std::string& key) const;     // pointer/key ("~", "/" escaped; long keys cut)
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
+  // The same for entry `index` of the array at `key` (pointer/key/index).
+  [[noreturn]] void fail_at(const std::string& key, std::size_t index, const std::string& what) const;
 
   JsonObject object(const std::string& key);
   std::string string(const std::string& key);

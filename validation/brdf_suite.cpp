@@ -1,5 +1,7 @@
 #include "vgroove/validation/brdf_suite.h"
 
+#include "vgroove/validation/part_fields.h"
+
 #include "vgroove/support/format.h"
 #include "vgroove/support/printable.h"
 #include "vgroove/validation/lobe_bins.h"
@@ -350,13 +352,27 @@ nlohmann::json BrdfWork::tally_json(const Tally& t) {
   return j;
 }
 
-BinnedTally BrdfWork::tally_from_json(const nlohmann::json& j) {
+namespace {
+// The rows (k = 0..max_k and one for more) and bins of case c's histograms.
+std::pair<std::size_t, std::size_t> lobe_shape(const BrdfSuite& suite, const BrdfCase& c) {
+  const std::size_t bins = c.dim == SurfaceDim::flatland
+                               ? static_cast<std::size_t>(suite.flatland_bins)
+                               : static_cast<std::size_t>(suite.theta_bins) * static_cast<std::size_t>(suite.phi_bins);
+  return {static_cast<std::size_t>(suite.max_k) + 2, bins};
+}
+}  // namespace
+
+BinnedTally BrdfWork::read_tally(support::JsonObject& j, std::size_t n, const std::vector<ChunkRun>& runs) const {
+  const auto [rows, bins] = lobe_shape(suite, suite.case_at(n));
   BinnedTally t;
-  fates_from_json(t, j);
-  t.by_k = j.at("by_k").get<std::vector<std::int64_t>>();
-  t.hist = j.at("hist").get<std::vector<std::int64_t>>();
-  t.hist_by_k = j.at("hist_by_k").get<std::vector<std::int64_t>>();
-  t.thread_s = j.at("thread_s").get<double>();
+  read_fates(j, t, rays_in_chunks(runs, rays, sim::kRaysPerChunk), sim::TraceOptions{}.max_bounces);
+  t.by_k = read_counts(j, "by_k", rows, t.escaped);
+  check_sum(j, "by_k", t.by_k, t.escaped, "escaped rays");
+  t.hist = read_counts(j, "hist", bins, t.escaped);
+  check_sum(j, "hist", t.hist, t.escaped, "escaped rays");
+  t.hist_by_k = read_counts(j, "hist_by_k", rows * bins, t.escaped);
+  check_margins(j, "hist_by_k", t.hist_by_k, t.by_k, "by_k", t.hist, "hist");
+  t.thread_s = j.number("thread_s", 0.0, true, std::numeric_limits<double>::max(), true);
   return t;
 }
 
@@ -370,15 +386,16 @@ nlohmann::json BrdfWork::fixed_json(const Fixed& m) {
           {"wall_s", m.wall_s}};
 }
 
-BrdfModel BrdfWork::fixed_from_json(const nlohmann::json& j) {
+BrdfModel BrdfWork::read_fixed(support::JsonObject& j, std::size_t n) const {
+  const auto [rows, bins] = lobe_shape(suite, suite.case_at(n));
   BrdfModel m;
-  m.by_k = exact_doubles(j.at("by_k"));
-  m.hist = exact_doubles(j.at("hist"));
-  m.hist_by_k = exact_doubles(j.at("hist_by_k"));
-  m.single_hist = exact_doubles(j.at("single_hist"));
-  m.albedo = exact_double(j.at("albedo"));
-  m.single_albedo = exact_double(j.at("single_albedo"));
-  m.wall_s = j.at("wall_s").get<double>();
+  m.by_k = read_exact_doubles(j, "by_k", rows);
+  m.hist = read_exact_doubles(j, "hist", bins);
+  m.hist_by_k = read_exact_doubles(j, "hist_by_k", rows * bins);
+  m.single_hist = read_exact_doubles(j, "single_hist", bins);
+  m.albedo = read_exact_double(j, "albedo");
+  m.single_albedo = read_exact_double(j, "single_albedo");
+  m.wall_s = j.number("wall_s", 0.0, true, std::numeric_limits<double>::max(), true);
   return m;
 }
 

@@ -146,9 +146,9 @@ struct BrdfWork {
   Fixed run_fixed(std::size_t c) const;
   static void merge(Tally& into, const Tally& from);
   static nlohmann::json tally_json(const Tally& t);
-  static Tally tally_from_json(const nlohmann::json& j);
   static nlohmann::json fixed_json(const Fixed& f);
-  static Fixed fixed_from_json(const nlohmann::json& j);
+  Tally read_tally(support::JsonObject& j, std::size_t c, const std::vector<ChunkRun>& runs) const;
+  Fixed read_fixed(support::JsonObject& j, std::size_t c) const;
 };
 // `descriptor`: what identifies the run in its parts (partial_report.h); rays > 0 overrides the suite's.
 Job<BrdfWork> brdf_job(const BrdfSuite& suite, long rays, nlohmann::json descriptor);

@@ -1,5 +1,7 @@
 #include "vgroove/validation/energy_table.h"
 
+#include "vgroove/validation/part_fields.h"
+
 #include "vgroove/analytic/brdf_flatland.h"
 #include "vgroove/analytic/lobe_3d.h"
 #include "vgroove/common/angles.h"
@@ -127,12 +129,11 @@ nlohmann::json EnergyWork::tally_json(const Tally& t) {
   return j;
 }
 
-EnergyWork::Tally EnergyWork::tally_from_json(const nlohmann::json& j) {
-  Tally t(j.at("max_k").get<int>());
-  fates_from_json(t, j);
-  t.by_k = j.at("by_k").get<std::vector<std::int64_t>>();
-  if (t.by_k.size() != static_cast<std::size_t>(t.max_k) + 2) throw support::UserError("by_k has the wrong length");
-  return t;
+EnergyWork::Tally EnergyWork::read_tally(support::JsonObject& j, std::size_t cell,
+                                         const std::vector<ChunkRun>& runs) const {
+  j.integer("max_k", grid.max_k, grid.max_k);
+  const sim::NdfGrooveOptions o = options(cell);
+  return read_bounce_counts(j, grid.max_k, rays_in_chunks(runs, o.rays, sim::kRaysPerChunk), o.trace.max_bounces);
 }
 
 nlohmann::json EnergyWork::fixed_json(const Fixed& f) {
@@ -140,11 +141,11 @@ nlohmann::json EnergyWork::fixed_json(const Fixed& f) {
       {"by_k", exact_json(f.by_k)}, {"albedo", exact_json(f.albedo)}, {"cook_torrance", exact_json(f.cook_torrance)}};
 }
 
-EnergyWork::Fixed EnergyWork::fixed_from_json(const nlohmann::json& j) {
+EnergyWork::Fixed EnergyWork::read_fixed(support::JsonObject& j, std::size_t) const {
   Fixed f;
-  f.by_k = exact_doubles(j.at("by_k"));
-  f.albedo = exact_double(j.at("albedo"));
-  f.cook_torrance = exact_double(j.at("cook_torrance"));
+  f.by_k = read_exact_doubles(j, "by_k", static_cast<std::size_t>(grid.max_k) + 2);
+  f.albedo = read_exact_double(j, "albedo");
+  f.cook_torrance = read_exact_double(j, "cook_torrance");
   return f;
 }
 

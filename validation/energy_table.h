@@ -89,9 +89,9 @@ struct EnergyWork {
   Fixed run_fixed(std::size_t cell) const { return energy_model(grid.cell_at(cell), grid.max_k); }
   static void merge(Tally& into, const Tally& from) { into.merge(from); }
   static nlohmann::json tally_json(const Tally& t);
-  static Tally tally_from_json(const nlohmann::json& j);
   static nlohmann::json fixed_json(const Fixed& f);
-  static Fixed fixed_from_json(const nlohmann::json& j);
+  Tally read_tally(support::JsonObject& j, std::size_t cell, const std::vector<ChunkRun>& runs) const;
+  Fixed read_fixed(support::JsonObject& j, std::size_t cell) const;
 };
 
 nlohmann::json energy_grid_json(const EnergyGrid& g);

@@ -217,10 +217,4 @@ nlohmann::json fates_json(const sim::RayFates& t) {
           {"max_k_seen", t.max_k_seen}};
 }
 
-void fates_from_json(sim::RayFates& t, const nlohmann::json& j) {
-  t.rays = j.at("rays"), t.escaped = j.at("escaped"), t.blocked = j.at("blocked");
-  t.vertex_hits = j.at("vertex_hits"), t.bounce_limit = j.at("bounce_limit"), t.not_upward = j.at("not_upward");
-  t.bounces = j.at("bounces"), t.max_k_seen = j.at("max_k_seen");
-}
-
 }  // namespace vgroove::validation

@@ -63,8 +63,7 @@ nlohmann::json exact_json(double v);
 nlohmann::json exact_json(const std::vector<double>& v);
 double exact_double(const nlohmann::json& j);
 std::vector<double> exact_doubles(const nlohmann::json& j);
-// The fates of a tally's rays (sim/ray_fates.h) and back.
+// The fates of a tally's rays (sim/ray_fates.h); part_fields.h reads them back.
 nlohmann::json fates_json(const sim::RayFates& t);
-void fates_from_json(sim::RayFates& t, const nlohmann::json& j);
 
 }  // namespace vgroove::validation

@@ -1,10 +1,14 @@
 #include "vgroove/validation/suite_run.h"
 
+#include "vgroove/support/format.h"
+#include "vgroove/validation/part_fields.h"
+
 #include "vgroove/validation/partial_report.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace vgroove::validation {
@@ -75,24 +79,96 @@ nlohmann::json GrooveCaseWork::tally_json(const Tally& tally) {
           {"thread_s", tally.thread_s}};
 }
 
-GrooveCaseTally GrooveCaseWork::tally_from_json(const nlohmann::json& j) {
+namespace {
+
+// A figure that is >= 0 where finite (NaN and infinities are what non_finite reports).
+double read_error(support::JsonObject& j, const std::string& key, double hi) {
+  const double x = read_exact_double(j, key);
+  if (std::isfinite(x) && !(x >= 0.0 && x <= hi))
+    j.fail(key, "= " + support::value_text(j.raw(key)) + " is out of range [0, " + support::format("%g", hi) + "]");
+  return x;
+}
+
+FacetOutcome read_facet(support::JsonObject& f, const CaseOptions& opt) {
+  constexpr long long kCountMax = std::numeric_limits<long long>::max();
+  FacetOutcome o;
+  if (!f.raw("compared").is_boolean()) f.fail("compared", "must be true or false");
+  o.compared = f.raw("compared").get<bool>();
+  o.rays = f.integer("rays", 0, std::numeric_limits<long long>::max() / 4);
+  o.vertex_hits = f.integer("vertex_hits", 0, o.rays);
+  o.bounce_limit = f.integer("bounce_limit", 0, o.rays - o.vertex_hits);
+  o.wrong_first = f.integer("wrong_first", 0, o.rays - o.vertex_hits - o.bounce_limit);
+  const long double most = static_cast<long double>(o.rays) * opt.max_bounces;
+  o.bounces = f.integer("bounces", 0, most > kCountMax ? kCountMax : static_cast<long long>(most));
+  o.k = static_cast<int>(f.integer("k", 0, std::numeric_limits<int>::max()));
+  o.l1 = read_error(f, "l1", 2.0);
+  o.theta_o_error = read_error(f, "theta_o_error", std::numbers::pi);
+  o.probe_rays = f.integer("probe_rays", 0, opt.probe_vertices ? 4 : 0);
+  o.probe_escaped = f.integer("probe_escaped", 0, o.probe_rays);
+  o.probe_vertex_hits = f.integer("probe_vertex_hits", 0, o.probe_rays);
+  o.probe_blocked = f.integer("probe_blocked", 0, o.probe_rays);
+  o.probe_bounce_limit = f.integer("probe_bounce_limit", 0, o.probe_rays);
+  if (o.probe_escaped + o.probe_vertex_hits + o.probe_blocked + o.probe_bounce_limit != o.probe_rays)
+    f.fail("probe_rays", "= " + std::to_string(o.probe_rays) + " is not the sum of the probes' fates");
+  if (!f.raw("non_finite").is_boolean()) f.fail("non_finite", "must be true or false");
+  o.non_finite = f.raw("non_finite").get<bool>();
+  o.zones = f.integer("zones", 0, kCountMax);
+  o.grid = f.integer("grid", 0, kCountMax);
+  o.uncertified_cells = f.integer("uncertified_cells", 0, kCountMax);
+  o.missed_bound = read_error(f, "missed_bound", 1.0);
+  o.narrowest_zone = read_error(f, "narrowest_zone", 1.0);
+  return o;
+}
+
+bool same_figure(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
+
+}  // namespace
+
+GrooveCaseTally GrooveCaseWork::read_tally(support::JsonObject& j, std::size_t unit,
+                                           const std::vector<ChunkRun>&) const {
+  std::size_t n = 0;
+  while (n + 1 < first.size() && first[n + 1] <= unit) ++n;
+  const CaseOptions& opt = options[n];
   GrooveCaseTally tally;
-  tally.thread_s = j.at("thread_s").get<double>();
+  tally.thread_s = j.number("thread_s", 0.0, true, std::numeric_limits<double>::max(), true);
   CaseOutcome& t = tally.outcome;
-  for (int n = 0; n < 2; ++n) {
-    const nlohmann::json& f = j.at("facets").at(static_cast<std::size_t>(n));
-    FacetOutcome& o = t.facet[n];
-    o.compared = f.at("compared"), o.l1 = exact_double(f.at("l1")), o.rays = f.at("rays"), o.bounces = f.at("bounces");
-    o.vertex_hits = f.at("vertex_hits"), o.bounce_limit = f.at("bounce_limit"), o.wrong_first = f.at("wrong_first");
-    o.k = f.at("k"), o.theta_o_error = exact_double(f.at("theta_o_error")), o.probe_rays = f.at("probe_rays");
-    o.probe_escaped = f.at("probe_escaped"), o.probe_vertex_hits = f.at("probe_vertex_hits");
-    o.probe_blocked = f.at("probe_blocked"), o.probe_bounce_limit = f.at("probe_bounce_limit");
-    o.non_finite = f.at("non_finite");
-    o.zones = f.at("zones"), o.grid = f.at("grid"), o.uncertified_cells = f.at("uncertified_cells");
-    o.missed_bound = exact_double(f.at("missed_bound")), o.narrowest_zone = exact_double(f.at("narrowest_zone"));
+  const nlohmann::json& facets = j.raw("facets");
+  if (!facets.is_array() || facets.size() != 2) j.fail("facets", "must be an array of two facets (left, right)");
+  // The case's figures as run_case forms them from its facets.
+  CaseOutcome sum;
+  for (std::size_t s = 0; s < 2; ++s) {
+    support::JsonObject f(facets[s], j.file(), j.path("facets") + "/" + std::to_string(s));
+    t.facet[s] = read_facet(f, opt);
+    f.finish();
+    const FacetOutcome& o = t.facet[s];
+    // An unlit facet is not traced: its outcome stays the empty one. A lit facet gets the suite's
+    // rays (with breakpoints, the zone search's).
+    if (!o.compared) {
+      if (o.rays || o.bounces || o.vertex_hits || o.bounce_limit || o.wrong_first || o.k || o.probe_rays || o.zones ||
+          o.grid || o.uncertified_cells || o.l1 != 0.0 || o.theta_o_error != 0.0 || o.missed_bound != 0.0 ||
+          o.narrowest_zone != 0.0 || o.non_finite)
+        f.fail("compared", "= false, but the facet holds figures (an unlit facet is not traced)");
+      continue;
+    }
+    if (opt.sampling != sim::Sampling::breakpoints && o.rays != opt.rays)
+      f.fail("rays", "= " + std::to_string(o.rays) + ", not the " + std::to_string(opt.rays) + " rays of a lit facet");
+    sum.l1 = std::max(sum.l1, o.l1);
+    sum.rays += o.rays;
+    sum.bounces += o.bounces;
+    sum.theta_o_error = std::max(sum.theta_o_error, o.theta_o_error);
+    sum.non_finite = sum.non_finite || o.non_finite;
   }
-  t.l1 = exact_double(j.at("l1")), t.rays = j.at("rays"), t.bounces = j.at("bounces");
-  t.theta_o_error = exact_double(j.at("theta_o_error")), t.non_finite = j.at("non_finite");
+  t.rays = j.integer("rays", sum.rays, sum.rays);
+  t.bounces = j.integer("bounces", sum.bounces, sum.bounces);
+  t.l1 = read_exact_double(j, "l1");
+  if (!same_figure(t.l1, sum.l1))
+    j.fail("l1", "= " + support::value_text(j.raw("l1")) + " is not the largest of its facets'");
+  t.theta_o_error = read_exact_double(j, "theta_o_error");
+  if (!same_figure(t.theta_o_error, sum.theta_o_error))
+    j.fail("theta_o_error", "= " + support::value_text(j.raw("theta_o_error")) + " is not the largest of its facets'");
+  if (!j.raw("non_finite").is_boolean() || j.raw("non_finite").get<bool>() != sum.non_finite)
+    j.fail("non_finite", "= " + support::value_text(j.raw("non_finite")) + " does not follow from its facets");
+  t.non_finite = sum.non_finite;
   return tally;
 }
 

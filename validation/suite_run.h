@@ -78,9 +78,9 @@ struct GrooveCaseWork {
   Fixed run_fixed(std::size_t) const { return {}; }
   static void merge(Tally&, const Tally&) {}  // one chunk per unit: never two tallies to merge
   static nlohmann::json tally_json(const Tally& t);
-  static Tally tally_from_json(const nlohmann::json& j);
   static nlohmann::json fixed_json(const Fixed&) { return nlohmann::json::object(); }
-  static Fixed fixed_from_json(const nlohmann::json&) { return {}; }
+  Tally read_tally(support::JsonObject& j, std::size_t unit, const std::vector<ChunkRun>& runs) const;
+  Fixed read_fixed(support::JsonObject&, std::size_t) const { return {}; }
 };
 Job<GrooveCaseWork> groove_cases_job(const std::vector<Suite>& suites, const std::vector<CaseOptions>& options,
                                      nlohmann::json descriptor);

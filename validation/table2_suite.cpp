@@ -1,6 +1,8 @@
 #include "vgroove/validation/table2_suite.h"
+
 #include "vgroove/support/format.h"
 #include "vgroove/support/printable.h"
+#include "vgroove/validation/part_fields.h"
 
 #include "vgroove/analytic/bounce_percentiles.h"
 #include "vgroove/common/angles.h"
@@ -134,12 +136,9 @@ nlohmann::json Table2Work::tally_json(const Tally& t) {
   return j;
 }
 
-sim::BounceCounts Table2Work::tally_from_json(const nlohmann::json& j) {
-  sim::BounceCounts t(kTable2MaxK);
-  fates_from_json(t, j);
-  t.by_k = j.at("by_k").get<std::vector<std::int64_t>>();
-  if (t.by_k.size() != kTable2MaxK + 2) throw support::UserError("by_k has the wrong length");
-  return t;
+sim::BounceCounts Table2Work::read_tally(support::JsonObject& j, std::size_t, const std::vector<ChunkRun>& runs) const {
+  return read_bounce_counts(j, kTable2MaxK, rays_in_chunks(runs, rays, sim::kRaysPerChunk),
+                            sim::TraceOptions{}.max_bounces);
 }
 
 Job<Table2Work> table2_job(const Table2Suite& s, long rays, nlohmann::json descriptor) {

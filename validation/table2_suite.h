@@ -62,9 +62,9 @@ struct Table2Work {
   Fixed run_fixed(std::size_t) const { return {}; }
   static void merge(Tally& into, const Tally& from) { into.merge(from); }
   static nlohmann::json tally_json(const Tally& t);
-  static Tally tally_from_json(const nlohmann::json& j);
   static nlohmann::json fixed_json(const Fixed&) { return nlohmann::json::object(); }
-  static Fixed fixed_from_json(const nlohmann::json&) { return {}; }
+  Tally read_tally(support::JsonObject& j, std::size_t unit, const std::vector<ChunkRun>& runs) const;
+  Fixed read_fixed(support::JsonObject&, std::size_t) const { return {}; }
 };
 // rays > 0 overrides the suite's.
 Job<Table2Work> table2_job(const Table2Suite& suite, long rays, nlohmann::json descriptor);

@@ -14,11 +14,15 @@
 //   Tally run_chunks(const Context&, std::size_t unit, std::int64_t begin, std::int64_t end) const;
 //   Fixed run_fixed(std::size_t unit) const;
 //   static void merge(Tally& into, const Tally& from);
-//   static nlohmann::json tally_json(const Tally&);  static Tally tally_from_json(const nlohmann::json&);
-//   static nlohmann::json fixed_json(const Fixed&);  static Fixed fixed_from_json(const nlohmann::json&);
-// The run_* functions are called from several threads at once.
+//   static nlohmann::json tally_json(const Tally&);  static nlohmann::json fixed_json(const Fixed&);
+//   Tally read_tally(support::JsonObject&, std::size_t unit, const std::vector<ChunkRun>& runs) const;
+//   Fixed read_fixed(support::JsonObject&, std::size_t unit) const;
+// The run_* functions are called from several threads at once. The read_* functions read what
+// another process wrote (a shard part, an MPI rank) as strictly as a suite file (part_fields.h):
+// the tally of the chunks `runs` of the unit, every array's length, count and sum checked.
 #pragma once
 
+#include "vgroove/support/json_reader.h"
 #include "vgroove/support/parallel.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/support/work_plan.h"
@@ -43,6 +47,15 @@
 namespace vgroove::validation {
 
 using ChunkRun = std::pair<std::int64_t, std::int64_t>;  // chunks [first, second)
+
+// The rays of the chunks `runs` of a unit of `rays` rays cut in chunks of `per_chunk` (the last
+// chunk holds the rest).
+inline std::int64_t rays_in_chunks(const std::vector<ChunkRun>& runs, std::int64_t rays, std::int64_t per_chunk) {
+  std::int64_t n = 0;
+  for (const ChunkRun& c : runs)
+    n += std::max<std::int64_t>(0, std::min(c.second * per_chunk, rays) - c.first * per_chunk);
+  return n;
+}
 
 template <class Tally, class Fixed>
 struct UnitPart {
@@ -143,26 +156,54 @@ nlohmann::json part_results_json(const PartResults<Work>& r) {
   return units;
 }
 
-// The inverse of part_results_json; `where` names the part in messages.
+// The inverse of part_results_json, as strictly as a suite file: `file` and the JSON path of the
+// first damaged value in every message; every chunk within its unit, every tally and fixed part
+// read by the work itself (Work::read_tally, read_fixed) against the job.
 template <class Work>
-PartResults<Work> part_results_from_json(const nlohmann::json& units, std::size_t unit_count,
-                                         const std::string& where) {
+PartResults<Work> part_results_from_json(const Work& work, const nlohmann::json& units,
+                                         const std::vector<support::WorkUnit>& job_units, const std::string& file) {
   PartResults<Work> r;
+  if (!units.is_array()) throw support::UserError(file + ": /units must be an array, found " + units.type_name());
   try {
-    for (const nlohmann::json& u : units) {
-      const auto unit = u.at("unit").get<std::size_t>();
-      if (unit >= unit_count || r.count(unit))
-        throw support::UserError(where + ": unit " + std::to_string(unit) + " is out of range or listed twice");
+    for (std::size_t n = 0; n < units.size(); ++n) {
+      support::JsonObject u(units[n], file, "/units/" + std::to_string(n));
+      const auto unit = static_cast<std::size_t>(u.integer("unit", 0, static_cast<long long>(job_units.size()) - 1));
+      if (r.count(unit)) u.fail("unit", "= " + std::to_string(unit) + " is listed twice");
       auto& part = r[unit];
-      for (const nlohmann::json& c : u.at("chunks"))
-        part.runs.emplace_back(c.at(0).get<std::int64_t>(), c.at(1).get<std::int64_t>());
-      if (u.contains("tally")) part.tally = Work::tally_from_json(u["tally"]);
-      if (u.contains("fixed")) part.fixed = Work::fixed_from_json(u["fixed"]);
+      const nlohmann::json& chunks = u.raw("chunks");
+      if (!chunks.is_array()) u.fail("chunks", "must be an array of [begin, end] pairs");
+      for (std::size_t c = 0; c < chunks.size(); ++c) {
+        const nlohmann::json& run = chunks[c];
+        const std::int64_t count = job_units[unit].chunks;
+        if (!run.is_array() || run.size() != 2 || !run[0].is_number_integer() || !run[1].is_number_integer() ||
+            run[0].get<std::int64_t>() < 0 || run[1].get<std::int64_t>() > count ||
+            run[0].get<std::int64_t>() >= run[1].get<std::int64_t>() ||
+            (run[1].is_number_unsigned() && run[1].get<std::uint64_t>() > static_cast<std::uint64_t>(count)))
+          u.fail("chunks/" + std::to_string(c), "= " + support::value_text(run) +
+                                                    " is not a run [begin, end) of the unit's " +
+                                                    std::to_string(count) + " chunks");
+        part.runs.emplace_back(run[0].get<std::int64_t>(), run[1].get<std::int64_t>());
+      }
+      std::sort(part.runs.begin(), part.runs.end());
+      for (std::size_t c = 1; c < part.runs.size(); ++c)
+        if (part.runs[c].first < part.runs[c - 1].second) u.fail("chunks", "has overlapping runs");
+      if (u.has("tally")) {
+        support::JsonObject t = u.object("tally");
+        part.tally = work.read_tally(t, unit, part.runs);
+        t.finish();
+      }
+      if (u.has("fixed")) {
+        support::JsonObject f = u.object("fixed");
+        part.fixed = work.read_fixed(f, unit);
+        f.finish();
+      }
+      u.finish();
       if (part.runs.empty() != !part.tally)
-        throw support::UserError(where + ": unit " + std::to_string(unit) + " has chunks without a tally or not");
+        u.fail(part.tally ? "tally" : "chunks", part.tally ? "is given for no chunks" : "are given without a tally");
+      if (!part.tally && !part.fixed) u.fail("chunks", "are empty and there is no fixed part: the unit ran nothing");
     }
   } catch (const nlohmann::json::exception& e) {
-    throw support::UserError(where + ": not a vgroove partial report (" + e.what() + ")");
+    throw support::UserError(file + ": not a vgroove partial report (" + e.what() + ")");
   }
   return r;
 }
@@ -281,7 +322,7 @@ std::vector<UnitResult<Work>> merge_job_parts(const Job<Work>& job, const std::v
                                ": its job does not match the one rebuilt from it (another version?)");
   std::vector<PartResults<Work>> results;
   for (const Part& p : parts) {
-    results.push_back(part_results_from_json<Work>(p.units, job.units.size(), p.file));
+    results.push_back(part_results_from_json<Work>(job.work, p.units, job.units, p.file));
     // The part ran exactly the chunks and fixed parts of its items.
     std::map<std::size_t, std::vector<ChunkRun>> expected;
     std::map<std::size_t, bool> fixed;
@@ -297,14 +338,15 @@ std::vector<UnitResult<Work>> merge_job_parts(const Job<Work>& job, const std::v
       const auto e = expected.find(unit);
       if ((e == expected.end() ? std::vector<ChunkRun>{} : e->second) != part.runs ||
           fixed.count(unit) != (part.fixed ? 1u : 0u))
-        throw support::UserError("merge: " + p.file + ": unit " + std::to_string(unit) +
-                                 " holds other chunks than its items (a damaged part)");
+        throw support::UserError("merge: " + p.file + ": /units: unit " + std::to_string(unit) +
+                                 " holds other chunks than the part's items (/partial/items): a damaged part");
     }
     std::set<std::size_t> units;
     for (const auto& [unit, runs] : expected) units.insert(unit);
     for (const auto& [unit, f] : fixed) units.insert(unit);
     if (results.back().size() != units.size())
-      throw support::UserError("merge: " + p.file + ": units of its items are missing (a damaged part)");
+      throw support::UserError("merge: " + p.file +
+                               ": /units lacks units of the part's items (/partial/items): " + "a damaged part");
   }
   return merge_unit_parts<Work>(job.units, results);
 }
