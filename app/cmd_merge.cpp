@@ -35,8 +35,7 @@ int merge_simulate(const std::vector<Part>& parts, const MergeArgs& a) {
   scene::SimulationResult r =
       scene::simulation_from(sc, merge_job_parts(scene::simulate_job(sc, simulate_descriptor(sc)), parts));
   for (const Part& p : parts) r.threads += p.header.threads, r.wall_s = std::max(r.wall_s, p.header.wall_s);
-  write_simulation(sc, r, a.out, a.force);
-  return 0;
+  return write_simulation(sc, r, a.out, a.force);
 }
 
 }  // namespace

@@ -22,12 +22,17 @@ nlohmann::json simulate_descriptor(const Scene& scene) {
   return validation::job_descriptor("simulate", "scene", {scene.file}, nlohmann::json::object());
 }
 
-void write_simulation(const Scene& scene, const SimulationResult& r, const std::string& out, bool force) {
+int write_simulation(const Scene& scene, const SimulationResult& r, const std::string& out, bool force) {
+  if (const std::string problem = lost_rays_problem(r); !problem.empty()) {
+    std::cerr << "vgroove: error: " << support::printable(scene.file) << ": " << problem << "\n";
+    return 1;
+  }
   print_result_table(std::cout, scene, r);
   if (!out.empty()) {
     support::write_file_atomically(out, result_json(scene, r).dump(1) + "\n", force);
     std::cout << "result: " << support::printable(out) << "\n";
   }
+  return 0;
 }
 
 int cmd_simulate(const SimulateArgs& a) {
@@ -62,16 +67,14 @@ int cmd_simulate(const SimulateArgs& a) {
     SimulationResult r = simulation_from(scene, *results);
     r.threads = threads;
     r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    write_simulation(scene, r, a.out, a.force);
-    return 0;
+    return write_simulation(scene, r, a.out, a.force);
   }
   const SimulationResult r = simulate(scene, a.threads, a.cancel);
   if (r.interrupted) {
     std::cerr << "vgroove: interrupted; no result written\n";
     return kExitInterrupted;
   }
-  write_simulation(scene, r, a.out, a.force);
-  return 0;
+  return write_simulation(scene, r, a.out, a.force);
 }
 
 }  // namespace vgroove::app

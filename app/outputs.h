@@ -30,7 +30,9 @@ void write_energy_table(const validation::EnergyTable& t, const std::string& out
 
 // Scenes: the job descriptor of `vgroove simulate`, and its table and result JSON.
 nlohmann::json simulate_descriptor(const scene::Scene& scene);
-void write_simulation(const scene::Scene& scene, const scene::SimulationResult& r, const std::string& out, bool force);
+// The table and (out non-empty) the result file; exit status 0, or 1 with one line on stderr and
+// nothing written when a theta_i lost more rays than a run may (scene::lost_rays_problem).
+int write_simulation(const scene::Scene& scene, const scene::SimulationResult& r, const std::string& out, bool force);
 
 // `bench accuracy`: the table and report of its runs (sampling outer, rays inner), and its parts merged.
 void write_accuracy_report(const validation::Suite& suite, const std::vector<validation::SuiteRun>& runs,

@@ -366,6 +366,21 @@ SimTally SimulateWork::read_tally(support::JsonObject& j, std::size_t,
   return t;
 }
 
+std::string lost_rays_problem(const SimulationResult& r) {
+  for (std::size_t t = 0; t < r.tallies.size(); ++t) {
+    const ThetaTally& ta = r.tallies[t];
+    const std::int64_t lost = ta.vertex_hits + ta.blocked + ta.not_upward;
+    if (ta.rays > 0 && static_cast<double>(lost) > kMaxLostShare * static_cast<double>(ta.rays))
+      return support::format(
+          "theta_i %g deg: %lld of %lld rays (%.2f %%) lost (%lld vertex hits, %lld blocked, %lld "
+          "not upward), more than the %g %% a run may lose: no result written",
+          validation::output_deg(r.theta_i[t]), static_cast<long long>(lost), static_cast<long long>(ta.rays),
+          100.0 * static_cast<double>(lost) / ta.rays, static_cast<long long>(ta.vertex_hits),
+          static_cast<long long>(ta.blocked), static_cast<long long>(ta.not_upward), 100.0 * kMaxLostShare);
+  }
+  return "";
+}
+
 validation::Job<SimulateWork> simulate_job(const Scene& scene, nlohmann::json descriptor) {
   // Cost: about 10 ns per reflection plus a ray's set-up; Fresnel conductors ~30 ns per bounce
   // and channel. Without a model of the scene's bounce counts: a flat estimate per ray.

@@ -128,6 +128,13 @@ SimulationResult simulation_from(const Scene& scene, const std::vector<validatio
 ModelFigures model_figures(const Scene& scene, double theta_i);
 
 // The result JSON: provenance, the scene's inputs, and per theta_i what the scene asked for.
+// The share of a theta_i's rays a run may lose to vertex hits, blocked entries and exits along
+// the horizon (the bounce limit is the scene's own choice and is reported, not counted here):
+// each is an exact coincidence of measure zero, so a run that loses more placed its rays on
+// vertices systematically and its figures would mislead.
+inline constexpr double kMaxLostShare = 1e-3;
+// "" when every theta_i lost at most kMaxLostShare of its rays; else the first that lost more.
+std::string lost_rays_problem(const SimulationResult& r);
 nlohmann::json result_json(const Scene& scene, const SimulationResult& r);
 void print_result_table(std::ostream& os, const Scene& scene, const SimulationResult& r);
 

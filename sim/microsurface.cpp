@@ -131,16 +131,21 @@ void trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTra
   std::uint64_t bits[kSymmetricBlock];
   for (std::int64_t j0 = begin; j0 < end; j0 += kSymmetricBlock) {
     const int m = static_cast<int>(std::min<std::int64_t>(kSymmetricBlock, end - j0));
-    if (opt.sampling == Sampling::stratified) {
-      for (int q = 0; q < m; ++q) u_of[q] = (static_cast<double>(j0 + q) + 0.5) / static_cast<double>(opt.rays);
-    } else {
+    if (opt.sampling != Sampling::stratified) {
       rng.next_u64s(bits, m);
       uniform_open_of(bits, u_of, m);
     }
     for (int q = 0; q < m; ++q) {
-      const double x = u_of[q] * g_count;
-      const int g = std::min(last, static_cast<int>(x));
-      const double f = x - g;
+      int g;
+      double f;
+      if (opt.sampling == Sampling::stratified) {
+        const Landing at = stratified_landing(j0 + q, opt.rays, static_cast<std::int64_t>(surface.grooves.size()));
+        g = at.groove, f = at.f;
+      } else {
+        const double x = u_of[q] * g_count;
+        g = std::min(last, static_cast<int>(x));
+        f = x - g;
+      }
       const SymmetricGrooveData& d = surface.data[static_cast<std::size_t>(g)];
       in.left_x[q] = d.left_x;
       in.right_x[q] = d.right_x;

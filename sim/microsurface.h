@@ -141,7 +141,27 @@ std::int64_t chunk_count(const MicrosurfaceTraceOptions& opt);
 // The rays of chunk c of a beam of `rays` rays from theta_i over grooves of equal width side by
 // side (all of a microsurface's, or a single groove): for each ray in order, the groove its
 // landing point falls in and the ray crossing that groove's opening, handed to fn(groove, ray).
-// Landing points are stratified midpoints j + 1/2 of `rays`, or drawn from Rng(seed, kRayStream, c).
+// Landing points are stratified (stratified_landing), or drawn from Rng(seed, kRayStream, c).
+// Stratified landing point j of `rays` on `grooves` grooves: the midpoint (j + 1/2) G / rays of
+// the j-th of `rays` equal strata of [0, G), in exact integer arithmetic: groove (2j + 1) G div
+// 2 rays, f = r / (2 rays) with r = (2j + 1) G mod 2 rays. A midpoint is a multiple of
+// 1 / (2 rays) and falls exactly on a ridge (r = 0) whenever (2j + 1) G / (2 rays) is whole (for
+// G = 2 rays, every one): such a point is moved into the groove on its right by 1 / (4 rays) of a
+// groove, half the midpoints' granularity, so that no ray lands on a ridge (a vertex hit). One
+// groove never needs it: its midpoints are f = (j + 1/2) / rays, bit for bit.
+struct Landing {
+  int groove = 0;
+  double f = 0.0;  // in (0, 1)
+};
+inline Landing stratified_landing(std::int64_t j, std::int64_t rays, std::int64_t grooves) {
+  const __int128 num = static_cast<__int128>(2 * j + 1) * grooves, den = 2 * static_cast<__int128>(rays);
+  const auto r = static_cast<std::int64_t>(num % den);
+  Landing at;
+  at.groove = static_cast<int>(num / den);
+  at.f = r == 0 ? 0.25 / static_cast<double>(rays) : static_cast<double>(r) / static_cast<double>(den);
+  return at;
+}
+
 template <class Fn>
 void for_each_landing(const std::vector<Groove>& grooves, double theta_i, Sampling sampling, std::int64_t rays,
                       std::uint64_t seed, std::int64_t chunk, Fn&& fn) {
@@ -155,11 +175,16 @@ void for_each_landing(const std::vector<Groove>& grooves, double theta_i, Sampli
   for (std::int64_t j = begin; j < end; ++j) {
     // Landing point on the macrosurface [0, G) in units of the groove width: groove index and
     // fraction f across its opening (one groove: f = u exactly).
-    const double u = sampling == Sampling::stratified ? (static_cast<double>(j) + 0.5) / static_cast<double>(rays)
-                                                      : uniform_open(rng);
-    const double x = u * g_count;
-    const int g = std::min(last, static_cast<int>(x));
-    const double f = x - g;
+    int g;
+    double f;
+    if (sampling == Sampling::stratified) {
+      const Landing at = stratified_landing(j, rays, static_cast<std::int64_t>(grooves.size()));
+      g = at.groove, f = at.f;
+    } else {
+      const double x = uniform_open(rng) * g_count;
+      g = std::min(last, static_cast<int>(x));
+      f = x - g;
+    }
     const Groove& groove = grooves[static_cast<std::size_t>(g)];
     const double xl = groove.rim_x(Side::left), xr = groove.rim_x(Side::right);
     // f = 0 lands exactly on the left peak: sim::trace reports it as a vertex hit.

@@ -414,6 +414,51 @@ TEST(Microsurface, AtNormalIncidenceSingleBouncesComeFromGroovesUnder30Degrees) 
   }
 }
 
+// Stratified landing points are the midpoints of equal strata, exactly: never on a ridge (f in
+// (0, 1)), in groove order, one groove's bit for bit (j + 1/2) / rays, and the strata's midpoints
+// where those fall inside a groove.
+TEST(Microsurface, StratifiedLandingPointsAreMidpointsOffTheRidges) {
+  for (const auto& [grooves, rays] : {std::pair<std::int64_t, std::int64_t>{1, 7},
+                                      {10000, 5000},
+                                      {6, 4},
+                                      {7, 7},
+                                      {3, 1000},
+                                      {10000000, 1000000000}}) {
+    int last = 0;
+    for (std::int64_t j : {std::int64_t{0}, std::int64_t{1}, rays / 3, rays / 2, rays - 2, rays - 1}) {
+      if (j < 0 || j >= rays) continue;
+      const Landing at = stratified_landing(j, rays, grooves);
+      EXPECT_GT(at.f, 0.0) << grooves << " " << rays << " " << j;
+      EXPECT_LT(at.f, 1.0) << grooves << " " << rays << " " << j;
+      EXPECT_GE(at.groove, last);
+      EXPECT_LT(at.groove, grooves);
+      last = at.groove;
+      const long double mid = (j + 0.5L) * grooves / rays;
+      const long double got = at.groove + static_cast<long double>(at.f);
+      EXPECT_LE(std::abs(got - mid), 0.25L / rays + 1e-15L * grooves) << grooves << " " << rays << " " << j;
+      if (grooves == 1) EXPECT_EQ(at.f, (static_cast<double>(j) + 0.5) / static_cast<double>(rays));
+    }
+  }
+}
+
+TEST(Microsurface, StratifiedRaysNeverHitARidge) {
+  // Two rays per groove land at f = 1/4 and 3/4 of each; one ray per two grooves used to land on
+  // every other left ridge (a vertex hit for 88 % of the rays).
+  for (const auto& [grooves, rays] : {std::pair{4000, 2000}, std::pair{2000, 4000}, std::pair{3000, 3000}}) {
+    const Microsurface m = make_microsurface({NdfKind::ggx, 0.5, grooves, 1});
+    MicrosurfaceTraceOptions o;
+    o.theta_i = deg(30);
+    o.rays = rays;
+    o.sampling = Sampling::stratified;
+    const MicrosurfaceTally t = trace_microsurface(m, o);
+    EXPECT_EQ(t.vertex_hits, 0) << grooves << " grooves, " << rays << " rays";
+    EXPECT_EQ(t.escaped, rays) << grooves << " grooves, " << rays << " rays";
+    const MicrosurfaceTally ref = trace_microsurface_chunk_reference(m, o, 0);
+    EXPECT_EQ(ref.by_k, t.by_k);
+    EXPECT_EQ(ref.theta_o_by_k, t.theta_o_by_k);
+  }
+}
+
 TEST(Microsurface, ResultsDoNotDependOnHowChunksAreMerged) {
   const Microsurface m = make_microsurface({NdfKind::beckmann, 0.5, 1000, 31});
   MicrosurfaceTraceOptions o;
