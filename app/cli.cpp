@@ -315,11 +315,11 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
   add_list(energy, "--ndf", ea.ndfs, "NDFs, comma-separated: ggx, beckmann, phong");
   add_list(energy, "--dim", ea.dims, "dimensions, comma-separated: flatland, 3d");
   add_real(energy, "--mu", ea.mu,
-           "mu = cos theta_i, comma-separated, each in " + support::interval_text(0.0, false, 1.0, true) +
-               " (default: --mu-points)")
+           "mu = cos theta_i, comma-separated, each in " + support::interval_text(kMinMu, true, 1.0, true) +
+               " (theta_i <= 89.9 deg; default: --mu-points)")
       ->delimiter(',');
-  add_integer(energy, "--mu-points", ea.mu_points, "mu at the midpoints (i + 1/2)/n of (0, 1], n", 1,
-              static_cast<long long>(kMaxGridPoints))
+  add_integer(energy, "--mu-points", ea.mu_points, "mu at the midpoints (i + 1/2)/n of (0, 1], n", 1, kMaxMuPoints,
+              " (the smallest midpoint 0.5/n stays >= cos 89.9 deg)")
       ->capture_default_str();
   add_real(energy, "--alpha", ea.alpha,
            "roughness, comma-separated, each in " + support::interval_text(kMinAlpha, true, kMaxAlpha, true) +

@@ -78,7 +78,10 @@ int cmd_energy(const EnergyArgs& a) {
                                why);
     return midpoints(n);
   };
-  g.mus = a.mu.empty() ? points(a.mu_points, "--mu-points", static_cast<int>(kMaxGridPoints), "") : a.mu;
+  g.mus = a.mu.empty()
+              ? points(a.mu_points, "--mu-points", kMaxMuPoints,
+                       " (the smallest midpoint 0.5/n stays >= cos 89.9 deg = " + support::number_text(kMinMu) + ")")
+              : a.mu;
   g.alphas = a.alpha.empty() ? points(a.alpha_points, "--alpha-points", kMaxAlphaPoints,
                                       " (the smallest midpoint 0.5/n stays >= " + support::number_text(kMinAlpha) + ")")
                              : a.alpha;

@@ -75,7 +75,7 @@ void check_energy_grid(const EnergyGrid& g) {
         throw support::UserError(flag + " = " + support::number_text(x) + " is out of range " +
                                  support::interval_text(lo, lo_closed, hi, true) + why);
   };
-  list(g.mus, "--mu", 0.0, false, 1.0, " (mu = cos theta_i; 0 is grazing)");
+  list(g.mus, "--mu", kMinMu, true, 1.0, " (mu = cos theta_i: theta_i <= 89.9 deg, the rough surfaces' range)");
   list(g.alphas, "--alpha", kMinAlpha, true, kMaxAlpha, "");
   if (g.rays < 1 || g.rays > kMaxEnergyRays)
     throw support::UserError("--rays = " + std::to_string(g.rays) + " is out of range [1, " +
