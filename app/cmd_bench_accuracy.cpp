@@ -171,7 +171,7 @@ void write_accuracy_report(const Suite& suite, const std::vector<SuiteRun>& all_
 
 int merge_accuracy(const std::vector<Part>& parts, const MergeArgs& a) {
   const nlohmann::json& job = parts.front().header.job;
-  const std::string file = job.at("input_file").get<std::string>();
+  const std::string file = input_file_of(parts.front());
   const SuiteSet set = load_suite_set(file);
   check_input_unchanged(job, {file}, parts.front().file);
   std::vector<sim::Sampling> samplings;

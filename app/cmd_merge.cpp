@@ -28,7 +28,7 @@ int merge_energy(const std::vector<Part>& parts, const MergeArgs& a) {
 }
 
 int merge_simulate(const std::vector<Part>& parts, const MergeArgs& a) {
-  const std::string file = parts.front().header.job.at("input_file").get<std::string>();
+  const std::string file = input_file_of(parts.front());
   const scene::Scene sc = scene::load_scene(file);
   validation::check_input_unchanged(parts.front().header.job, {file}, parts.front().file);
   if (a.dry_run) return 0;
@@ -46,8 +46,8 @@ int cmd_merge(const MergeArgs& a) {
   parts = check_parts(std::move(parts));
   // The parts and the job's input file are never overwritten by the merged report.
   std::vector<std::string> inputs = a.parts;
-  if (const auto& job = parts.front().header.job; job.contains("input_file") && job["input_file"].is_string())
-    inputs.push_back(job["input_file"].get<std::string>());
+  if (const auto& job = parts.front().header.job; !job.value("input_file", "").empty())
+    inputs.push_back(input_file_of(parts.front()));
   if (!a.out.empty()) support::check_writable_target(a.out, a.force, inputs);
   const std::string command = parts.front().header.job.value("command", "");
   if (command == "energy") return merge_energy(parts, a);

@@ -36,10 +36,10 @@ nlohmann::json options_json(const ValidateArgs& a) {
           {"sampling", a.sampling.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.sampling)},
           {"eq6_form", a.eq6_form.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.eq6_form)}};
 }
-ValidateArgs args_from(const nlohmann::json& job) {
+ValidateArgs args_from(const Part& part) {
   ValidateArgs a;
-  const nlohmann::json& o = job.at("options");
-  a.suite = job.at("input_file").get<std::string>();
+  const nlohmann::json& o = part.header.job.at("options");
+  a.suite = input_file_of(part);
   if (!o.at("rays").is_null()) a.rays = o["rays"].get<long>();
   if (!o.at("seed").is_null()) a.seed = o["seed"].get<long long>();
   if (!o.at("sampling").is_null()) a.sampling = o["sampling"].get<std::string>();
@@ -188,7 +188,7 @@ int validate_split(const ValidateArgs& a) {
 
 int merge_validate(const std::vector<Part>& parts, const MergeArgs& m) {
   const nlohmann::json& job = parts.front().header.job;
-  const ValidateArgs a = args_from(job);
+  const ValidateArgs a = args_from(parts.front());
   const ValidationPlan p = plan_of(a, support::Shard{});
   check_input_unchanged(job, input_files(a, p), parts.front().file);
   if (m.dry_run) return 0;

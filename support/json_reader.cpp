@@ -203,7 +203,7 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& file)
   }
 }
 
-nlohmann::json read_json_file(const std::string& file) {
+nlohmann::json read_json_file(const std::string& file, std::size_t max_bytes) {
   const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) throw UserError(file + ": cannot open the file (" + std::strerror(errno) + ")");
   struct stat st {};
@@ -224,10 +224,9 @@ nlohmann::json read_json_file(const std::string& file) {
     }
     if (n == 0) break;
     text.append(buf, static_cast<std::size_t>(n));
-    if (text.size() > kMaxJsonBytes) {
+    if (text.size() > max_bytes) {
       ::close(fd);
-      throw UserError(file + ": is larger than " + std::to_string(kMaxJsonBytes >> 20) +
-                      " MB; not a spec or report file");
+      throw UserError(file + ": is larger than " + std::to_string(max_bytes >> 20) + " MB; not a spec or report file");
     }
   }
   ::close(fd);

@@ -63,7 +63,8 @@ inline constexpr std::size_t kMaxJsonBytes = 64u << 20;
 nlohmann::json parse_json_text(const std::string& text, const std::string& file);
 // Reads `file` once (a pipe or /dev/stdin works) and parses it as above; a missing, unreadable or
 // non-regular file (a directory) or one past kMaxJsonBytes is a UserError naming it.
-nlohmann::json read_json_file(const std::string& file);
+// max_bytes: a larger limit for files the program wrote itself (shard parts).
+nlohmann::json read_json_file(const std::string& file, std::size_t max_bytes = kMaxJsonBytes);
 
 // A JSON value for a message: compact, on one line, at most about 60 characters ("..." after).
 std::string value_text(const nlohmann::json& v);

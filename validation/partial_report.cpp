@@ -4,9 +4,12 @@
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/report.h"
 
+#include "vgroove/support/memory.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -18,6 +21,8 @@ namespace {
 
 // The JSON pointer of the first place where a and b differ ("" when equal).
 std::string first_difference(const nlohmann::json& a, const nlohmann::json& b, const std::string& at) {
+  // Numbers by value: a count read back from a file is unsigned, the same count built here signed.
+  if (a.is_number() && b.is_number()) return a == b ? "" : (at.empty() ? "/" : at);
   if (a.type() != b.type()) return at.empty() ? "/" : at;
   if (a.is_object()) {
     for (const auto& [k, v] : a.items()) {
@@ -96,6 +101,7 @@ nlohmann::json job_descriptor(const std::string& command, const std::string& kin
   return {{"command", command},
           {"kind", kind},
           {"input_file", files.empty() ? "" : files.front()},
+          {"input_path", files.empty() ? "" : std::filesystem::absolute(files.front()).lexically_normal().string()},
           {"input_digest", file_digest(files)},
           {"options", std::move(options)}};
 }
@@ -151,7 +157,34 @@ Part part_from_json(const nlohmann::json& j, const std::string& where) {
   return p;
 }
 
-Part read_part(const std::string& file) { return part_from_json(support::read_json_file(file), file); }
+Part read_part(const std::string& file) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(file, ec);
+  if (!ec && size > support::kMaxJsonBytes)
+    support::check_memory(8.0 * static_cast<double>(size), file + ": reading the part",
+                          support::bytes_text(static_cast<double>(size)) + " of JSON");
+  return part_from_json(support::read_json_file(file, std::numeric_limits<std::size_t>::max()), file);
+}
+
+std::string input_file_of(const Part& part) {
+  const nlohmann::json& job = part.header.job;
+  const std::string given = job.value("input_file", ""), path = job.value("input_path", "");
+  std::error_code ec;
+  if (!given.empty() && std::filesystem::is_regular_file(given, ec) &&
+      std::filesystem::absolute(given).lexically_normal().string() == path)
+    return given;
+  if (!path.empty() && std::filesystem::is_regular_file(path, ec)) return path;
+  if (!given.empty() && std::filesystem::is_regular_file(given, ec)) return given;
+  throw support::UserError("merge: " + part.file + ": its input " + given + " (" + path +
+                           ") is not found from here: merge where the shards' input can be read");
+}
+
+std::string job_difference(const nlohmann::json& a, const nlohmann::json& b) {
+  nlohmann::json x = a, y = b;
+  if (x.is_object()) x.erase("input_file");
+  if (y.is_object()) y.erase("input_file");
+  return first_difference(x, y, "");
+}
 
 std::vector<Part> check_parts(std::vector<Part> parts) {
   if (parts.empty()) throw support::UserError("merge: no parts given");
@@ -162,7 +195,7 @@ std::vector<Part> check_parts(std::vector<Part> parts) {
                                " (git " + p.version["git"].dump() + "), " + first.file + " by " +
                                first.version["version"].dump() + " (git " + first.version["git"].dump() +
                                "): parts of different versions cannot be merged");
-    if (const std::string d = first_difference(first.header.job, p.header.job, ""); !d.empty())
+    if (const std::string d = job_difference(first.header.job, p.header.job); !d.empty())
       throw support::UserError("merge: " + p.file + " belongs to another run: /job" + d + " = " +
                                value_at(p.header.job, d) + ", " + first.file + " has " + value_at(first.header.job, d) +
                                " (different suites, options or seeds)");

@@ -48,9 +48,19 @@ std::string file_digest(const std::vector<std::string>& files);
 // The digest the descriptor holds against the files as they are now: a UserError when they changed.
 void check_input_unchanged(const nlohmann::json& descriptor, const std::vector<std::string>& files,
                            const std::string& part);
+// The input file a merge reads the job from: `input_file` as the shard was given it when it names
+// the same file from here, else `input_path` (its absolute path when the part was written), so
+// parts merge from any directory; a UserError naming the part when neither exists.
+std::string input_file_of(const Part& part);
+// The first JSON pointer where two jobs differ ("" when they are the same job). The input file's
+// name as given is left out: parts of one suite given by other paths are one job (the digest
+// holds its contents).
+std::string job_difference(const nlohmann::json& a, const nlohmann::json& b);
 // A partial report from its JSON; a UserError naming `where` when it is none.
 Part part_from_json(const nlohmann::json& j, const std::string& where);
 // Reads the file; a UserError when it is missing, truncated (not valid JSON) or not a partial report.
+// A part may be larger than a spec file: it is read when the memory its JSON needs (about eight
+// bytes per byte of text) is available (support/memory.h).
 Part read_part(const std::string& file);
 
 // The parts in shard order, after checking that they make one whole run: the same version and git

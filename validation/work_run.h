@@ -317,9 +317,9 @@ std::optional<nlohmann::json> run_job_part(const Job<Work>& job, const support::
 template <class Work>
 std::vector<UnitResult<Work>> merge_job_parts(const Job<Work>& job, const std::vector<Part>& parts) {
   for (const Part& p : parts)
-    if (p.header.job != job.descriptor)
-      throw support::UserError("merge: " + p.file +
-                               ": its job does not match the one rebuilt from it (another version?)");
+    if (const std::string d = job_difference(p.header.job, job.descriptor); !d.empty())
+      throw support::UserError("merge: " + p.file + ": its job differs at /partial/job" + d +
+                               " from the one rebuilt from it (another version?)");
   std::vector<PartResults<Work>> results;
   for (const Part& p : parts) {
     results.push_back(part_results_from_json<Work>(job.work, p.units, job.units, p.file));

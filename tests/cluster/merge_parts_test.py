@@ -19,7 +19,7 @@ import subprocess
 import sys
 import tempfile
 
-VGROOVE = sys.argv[1]
+VGROOVE = os.path.abspath(sys.argv[1])
 T = tempfile.mkdtemp(prefix="merge_parts_")
 
 SUITES = {
@@ -157,11 +157,49 @@ def check_kind(name):
     return name, tried, failures
 
 
+def same_report(a, b):
+    """tests/cluster/same_report.py: the two reports value for value, timings aside."""
+    same = os.path.join(os.path.dirname(os.path.abspath(__file__)), "same_report.py")
+    return subprocess.run([sys.executable, same, a, b], capture_output=True, text=True).returncode == 0
+
+
+def check_paths_and_sizes():
+    """Parts of one suite given by other paths (relative from its directory, absolute) merge from
+    another directory, and a part past the 64 MB of a spec file (padded with whitespace) merges:
+    each gives the report of the undamaged parts (timings aside)."""
+    failures = []
+    suite = f"{T}/table1.json"
+    one = run(["validate", suite, "--threads", "1", "--out", f"{T}/paths.one.json"])
+    p1 = subprocess.run([VGROOVE, "validate", "table1.json", "--threads", "1", "--shard", "1/2", "--out",
+                         "paths.p1.json"], cwd=T, capture_output=True, text=True)
+    p2 = run(["validate", suite, "--threads", "1", "--shard", "2/2", "--out", f"{T}/paths.p2.json"])
+    if p1.returncode not in (0, 1) or p2.returncode not in (0, 1):
+        return [f"paths: the shards failed: {p1.stderr} {p2.stderr}"]
+    merged = subprocess.run([VGROOVE, "merge", f"{T}/paths.p1.json", f"{T}/paths.p2.json", "--out",
+                             f"{T}/paths.merged.json"], cwd="/", capture_output=True, text=True)
+    if merged.returncode != one.returncode:
+        failures.append(f"paths: merge of a relative and an absolute part from /: exit {merged.returncode} "
+                        f"(one process {one.returncode}): {merged.stderr.strip()}")
+    elif not same_report(f"{T}/paths.one.json", f"{T}/paths.merged.json"):
+        failures.append("paths: the merged report differs from one process's")
+    with open(f"{T}/paths.p1.json", "a") as f:
+        f.write(" " * (65 << 20) + "\n")
+    big = run(["merge", f"{T}/paths.p1.json", f"{T}/paths.p2.json", "--out", f"{T}/paths.big.json"])
+    if big.returncode != one.returncode:
+        failures.append(f"sizes: a 65 MB part: exit {big.returncode}: {big.stderr.strip()}")
+    elif not same_report(f"{T}/paths.big.json", f"{T}/paths.merged.json"):
+        failures.append("sizes: the 65 MB part's merge differs")
+    return failures
+
+
 def main():
     for f, j in SUITES.items():
         with open(f"{T}/{f}", "w") as out:
             json.dump(j, out)
     failed = False
+    for f in check_paths_and_sizes():
+        print("  FAIL:", f)
+        failed = True
     with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
         for name, tried, failures in pool.map(check_kind, COMMANDS):
             print(f"{name}: {tried} damaged parts, {len(failures)} not refused as they must be")
