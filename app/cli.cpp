@@ -403,6 +403,13 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
 }  // namespace
 
 int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
+  // Paths and names reach the reports as JSON text, which holds UTF-8 only: refused before the work.
+  for (int i = 1; i < argc; ++i)
+    if (!support::valid_utf8(argv[i])) {
+      print_error("argument " + std::to_string(i) + " = \"" + std::string(argv[i]) +
+                  "\" is not valid UTF-8 (reports hold paths and names as JSON text): rename it or give another path");
+      return 2;
+    }
   const int status = run_command(argc, argv, ctx);
   // Output that did not reach its destination (a full disk, a closed stdout) is a failure.
   if (const std::string failed = support::flush_standard_output(); !failed.empty()) {

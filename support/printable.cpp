@@ -47,6 +47,16 @@ std::size_t decode(std::string_view s, std::size_t i, std::uint32_t& cp) {
 
 }  // namespace
 
+bool valid_utf8(std::string_view s) {
+  for (std::size_t i = 0; i < s.size();) {
+    std::uint32_t cp = 0;
+    const std::size_t n = decode(s, i, cp);
+    if (n == 0) return false;
+    i += n;
+  }
+  return true;
+}
+
 std::string printable(std::string_view s) {
   std::string out;
   out.reserve(s.size());

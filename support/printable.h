@@ -15,5 +15,8 @@ namespace vgroove::support {
 // characters and bytes that are not UTF-8 escaped: \n, \t, \r, \xNN for bytes, \u{XXXX} for
 // code points. Printable UTF-8 (accents, CJK) is kept as it is.
 std::string printable(std::string_view s);
+// Whether s is valid UTF-8 (no overlong forms, surrogates or code points past U+10FFFF): what a
+// JSON report can hold as text.
+bool valid_utf8(std::string_view s);
 
 }  // namespace vgroove::support

@@ -781,6 +781,26 @@ TEST(CliInput, NewSuiteKindsUseTheSameRanges) {
   expect_refused(vgroove("validate " + quoted(f)), "/theta_i_deg/0 = 89.95 is out of range [0, 89.9]");
 }
 
+// A suite path that is not UTF-8 ran the whole suite and then failed writing its report ("internal
+// error", exit 3, nothing written): every argument is checked before the work.
+TEST(CliInput, ArgumentsThatAreNotUtf8AreRefusedBeforeTheWork) {
+  TempDir dir;
+  const std::string suite = dir.file("bad\xff.json"), out = dir.file("r.json");
+  write_text(suite, read_text(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/table1_symmetric.json"));
+  for (const std::string& args :
+       {"validate " + quoted(suite) + " --rays 10 --out " + quoted(out), "validate " + quoted(suite) + " --rays 10",
+        "simulate x.json --out " + quoted(dir.file("r\xc3\x28.json"))}) {
+    SCOPED_TRACE(args);
+    const CliRun r = vgroove(args);
+    EXPECT_EQ(r.status, 2) << r;
+    EXPECT_EQ(r.out, "");
+    EXPECT_CONTAINS(r.err, "is not valid UTF-8 (reports hold paths and names as JSON text)");
+    EXPECT_EQ(lines(r.err), 1) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_CONTAINS(vgroove("validate " + quoted(suite) + " --rays 10").err, "bad\\xff.json");  // printed escaped
+}
+
 TEST(CliOutput, MergeNeverOverwritesItsParts) {
   TempDir dir;
   const std::string scene = small_scene(dir), part = dir.file("part.json");
