@@ -119,9 +119,11 @@ ModelTable parse_model_table(const nlohmann::json& j, const std::string& file, c
                                (flux.is_array() ? std::to_string(flux.size()) + " values" : flux.type_name()));
     for (std::size_t b = 0; b < bins; ++b) {
       const nlohmann::json& v = flux[b];
-      if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0.0)
+      // A bin holds at most all the incident light: a larger value is no fraction of it (and
+      // values near 1e308 would overflow the case's albedo).
+      if (!v.is_number() || !(v.get<double>() >= 0.0 && v.get<double>() <= 1.0))
         throw support::UserError(file + ": " + at + "/flux/" + std::to_string(b) + " = " + support::value_text(v) +
-                                 " must be a finite number >= 0 (a fraction of the incident flux)");
+                                 " must be a number in [0, 1] (a fraction of the incident flux)");
       t.flux[c].push_back(v.get<double>());
     }
   }
