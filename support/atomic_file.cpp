@@ -46,6 +46,11 @@ std::string link_text(const std::string& path) {
 
 Target classify(const std::string& path, bool overwrite) {
   if (path.empty()) throw UserError("--out: the path is empty");
+  // "-" means standard output to most tools; here it would be a file named "-".
+  if (path == "-")
+    throw UserError(
+        "--out = \"-\": results go to files (the table is on standard output); give a file name, "
+        "or ./- for a file named \"-\"");
   Target t;
   t.file = path;
   struct stat ls {};

@@ -755,6 +755,8 @@ TEST(CliInput, NewCommandsReadOptionsStrictly) {
       {"energy --shard 3/2 --out " + quoted(out), "--shard = 3/2 is out of range"},
       {"energy --shard +1/2 --out " + quoted(out), "--shard = \"+1/2\" is not of the form"},
       {"merge ''", "parts = \"\" is empty"},
+      {"energy --rays 10 --mu 1 --alpha 1 --out -", "--out = \"-\": results go to files"},
+      {"sample --n 100 --out -", "--out = \"-\": results go to files"},
       {"plot --format jpg r.json", "--format = \"jpg\" is not one of \"png\", \"svg\", \"pdf\""},
       {"plot r.json --out ''", "--out = \"\" is empty"},
   };
