@@ -588,13 +588,16 @@ void print_result_table(std::ostream& os, const Scene& scene, const SimulationRe
     }
     os << "\n";
   }
-  std::int64_t lost = 0;
-  for (const ThetaTally& ta : r.tallies) lost += ta.lost();
-  std::snprintf(buf, sizeof buf,
-                "  %lld rays, %lld bounces, %lld lost (vertex hits, bounce limit, ...); %d threads, %.3f s\n",
-                static_cast<long long>(r.rays), static_cast<long long>(r.bounces), static_cast<long long>(lost),
-                r.threads, r.wall_s);
-  os << buf;
+  sim::RayFates all;
+  for (const ThetaTally& ta : r.tallies) all.merge_fates(ta);
+  // The reflections are those of the escaped rays (a lost ray's are not counted), so with every
+  // ray at the bounce limit they are 0: the line says whose they are and why rays were lost.
+  os << support::format(
+      "  %lld rays, %lld reflections of the escaped ones; %lld lost (%lld at the bounce limit of %d, "
+      "%lld vertex hits, %lld blocked, %lld not upward); %d threads, %.3f s\n",
+      static_cast<long long>(r.rays), static_cast<long long>(r.bounces), static_cast<long long>(all.lost()),
+      static_cast<long long>(all.bounce_limit), scene.max_bounces, static_cast<long long>(all.vertex_hits),
+      static_cast<long long>(all.blocked), static_cast<long long>(all.not_upward), r.threads, r.wall_s);
 }
 
 }  // namespace vgroove::scene

@@ -543,6 +543,25 @@ TEST(SimulateCli, StratifiedRaysOnAMicrosurfaceAllLeave) {
   }
 }
 
+// With max_bounces 1 every ray in a 60 deg groove is still inside after one reflection: the summary
+// said "0 bounces" (those of the escaped rays) and "2000 lost (vertex hits, bounce limit, ...)";
+// it says whose reflections it counts and why the rays were lost.
+TEST(SimulateCli, TheSummarySaysWhyRaysWereLost) {
+  TempDir dir;
+  const std::string scene = dir.file("s.json");
+  json j = base_scene();
+  j["geometry"] = {{"kind", "groove"}, {"theta_v_deg", 60}};
+  j["light"] = {{"theta_i_deg", {0, 30}}, {"rays", 1000}, {"sampling", "stratified"}, {"seed", 1}};
+  j["effects"] = {{"fresnel", {{"kind", "none"}}}, {"max_bounces", 1}};
+  write_text(scene, j.dump());
+  const CliRun r = vgroove("simulate '" + scene + "'");
+  EXPECT_EQ(r.status, 0) << r;
+  EXPECT_NE(r.out.find("  2000 rays, 0 reflections of the escaped ones; 2000 lost (2000 at the bounce limit of 1, 0 "
+                       "vertex hits, 0 blocked, 0 not upward); "),
+            std::string::npos)
+      << r.out;
+}
+
 // One stratified ray into a right-angled groove at normal incidence lands on its apex: a run that
 // loses more than kMaxLostShare of its rays to vertices says so and writes nothing.
 TEST(SimulateCli, ARunThatLosesRaysToVerticesFailsLoudly) {
