@@ -90,6 +90,7 @@
 
 #include "vgroove/analytic/ndf.h"
 
+#include <atomic>
 #include <vector>
 
 namespace vgroove::analytic {
@@ -124,6 +125,10 @@ struct FlatlandLobe {
 struct FlatlandLobeOptions {
   int quadrature_order = 16;  // Gauss-Legendre points on the pieces with k <= 8 (fewer above)
   int resolve_cap = 4096;     // largest n_resolved
+  // Read before each bounce count's pieces (may be null): once set, the rest are skipped and the
+  // lobe is incomplete (the caller, stopped by Ctrl-C, discards it). 10^5 bins at max_k 300 take
+  // ~3 s.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 FlatlandLobe flatland_lobe(NdfKind ndf, double alpha, double theta_i, int bins, int max_k);
