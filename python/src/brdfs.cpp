@@ -7,12 +7,15 @@
 
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/analytic/brdf_flatland.h"
+#include "vgroove/analytic/brdf_model.h"
+#include "vgroove/analytic/partner_distribution.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/check_brdf.h"
 #include "vgroove/validation/run_options.h"
 
 #include <cmath>
+#include <limits>
 #include <mutex>
 
 namespace vgroove::python {
@@ -21,33 +24,76 @@ namespace {
 
 using validation::SurfaceDim;
 
-enum class Model { vgroove, cook_torrance };
-Model parse_model(const std::string& m) {
-  if (m == "vgroove") return Model::vgroove;
-  if (m == "cook_torrance") return Model::cook_torrance;
-  throw support::UserError("model = \"" + m + "\" is not one of \"vgroove\", \"cook_torrance\"");
+using analytic::BrdfModel;
+
+// The sums that cost O(max_k^2) and their largest max_k: `vgroove brdf`'s (app/cmd_brdf.cpp,
+// kFlatlandMaxK and kNonsymmetricMaxK; test_surfaces.py holds the two messages equal).
+constexpr int kFlatlandMaxK = 4096;
+constexpr int kNonsymmetricMaxK = 1024;
+
+// max_k checked as `vgroove brdf --max-k` is: [1, 2^31 - 1], the O(max_k^2) sums bounded.
+int brdf_orders(long long max_k, BrdfModel model, bool flat) {
+  if (max_k < 1 || max_k > std::numeric_limits<int>::max())
+    throw support::UserError("max_k = " + std::to_string(max_k) + " is out of range [1, " +
+                             std::to_string(std::numeric_limits<int>::max()) + "]");
+  if (model == BrdfModel::vgroove_nonsymmetric && max_k > kNonsymmetricMaxK)
+    throw support::UserError("max_k = " + std::to_string(max_k) + " is out of range [1, " +
+                             std::to_string(kNonsymmetricMaxK) +
+                             "] with model vgroove-nonsymmetric (the sum costs O(max_k^2))");
+  if (flat && model == BrdfModel::vgroove && max_k > kFlatlandMaxK)
+    throw support::UserError("max_k = " + std::to_string(max_k) + " is out of range [1, " +
+                             std::to_string(kFlatlandMaxK) + "] with dim flatland (the flatland sum costs O(max_k^2))");
+  return static_cast<int>(max_k);
 }
 
-void check_max_k(long long max_k) {
-  if (!(max_k >= 1 && max_k <= 1'000'000'000))
-    throw support::UserError("max_k = " + std::to_string(max_k) + " is out of range [1, 1000000000]");
+// Eq. (20)'s partner law exists for Phong below alpha = sqrt(2) only (ERRATA E-NS1): the command
+// line's refusal.
+void check_partner_law(BrdfModel model, NdfKind ndf, double alpha) {
+  if (model == BrdfModel::vgroove_nonsymmetric && !analytic::partner_law_exists(ndf, alpha))
+    throw support::UserError("alpha = " + support::number_text(alpha) + " is out of range " +
+                             support::interval_text(0, false, std::sqrt(2.0), false) +
+                             " with model vgroove-nonsymmetric ndf phong (Eq. 20's partner law needs alpha < "
+                             "sqrt(2))");
 }
 
-// f(wi_j, wo_j) for j < n into out (per_k: out[j * max_k + k - 1] for k = 1..max_k).
-void evaluate(Model model, NdfKind ndf, double alpha, SurfaceDim dim, bool per_k, int max_k, const double* wi,
+// The cost of one direction relative to the 3D sum (which costs the same for any max_k): the
+// flatland and nonsymmetric sums grow as max_k^2 (about 0.4 s per direction at max_k 4096).
+double relative_cost(BrdfModel model, bool flat, int max_k) {
+  if (model == BrdfModel::cook_torrance || (model == BrdfModel::vgroove && !flat)) return 1.0;
+  return std::max(1.0, static_cast<double>(max_k) * max_k / 256.0);
+}
+
+// f(wi_j, wo_j) for j < n into out (per_k: out[j * max_k + k - 1] for k = 1..max_k). The cancel
+// flag is read before each direction (one may take 0.4 s), so a chunk stops within one of them.
+void evaluate(BrdfModel model, NdfKind ndf, double alpha, SurfaceDim dim, bool per_k, int max_k, const double* wi,
               const double* wo, std::size_t n, double* out, int threads, std::atomic<bool>& cancel) {
   const std::size_t chunk = 4096;
   const std::size_t chunks = (n + chunk - 1) / chunk;
+  const bool cheap = relative_cost(model, dim == SurfaceDim::flatland, max_k) == 1.0;
+  analytic::BrdfEvalOptions opt;
+  opt.ndf = ndf, opt.alpha = alpha, opt.flatland = dim == SurfaceDim::flatland, opt.max_k = max_k;
+  opt.per_k = per_k ? max_k : 0;
   support::parallel_for(
       chunks, support::resolve_threads(threads),
       [&](std::size_t c) {
         const std::size_t end = std::min(n, (c + 1) * chunk);
         for (std::size_t j = c * chunk; j < end; ++j) {
+          if (!cheap && cancel.load(std::memory_order_relaxed)) return;
           const double* a = wi + 3 * j;
           const double* b = wo + 3 * j;
+          const analytic::Dir3 i{a[0], a[1], a[2]}, o{b[0], b[1], b[2]};
+          if (model == BrdfModel::vgroove_nonsymmetric) {
+            // Eq. 21-23 with the independent partner law of Eq. 20 (analytic/brdf_model.h).
+            const analytic::BrdfValue v = analytic::evaluate_brdf(model, i, o, opt);
+            if (per_k)
+              std::copy(v.by_k.begin(), v.by_k.end(), out + j * static_cast<std::size_t>(max_k));
+            else
+              out[j] = v.value;
+            continue;
+          }
           if (dim == SurfaceDim::flatland) {
             const double ti = flat_angle(a), to = flat_angle(b);
-            if (model == Model::cook_torrance) {
+            if (model == BrdfModel::cook_torrance) {
               out[j] = analytic::flatland_brdf_single(ndf, alpha, ti, to);
             } else if (per_k) {
               for (int k = 1; k <= max_k; ++k)
@@ -58,8 +104,7 @@ void evaluate(Model model, NdfKind ndf, double alpha, SurfaceDim dim, bool per_k
             }
             continue;
           }
-          const analytic::Dir3 i{a[0], a[1], a[2]}, o{b[0], b[1], b[2]};
-          if (model == Model::cook_torrance) {
+          if (model == BrdfModel::cook_torrance) {
             out[j] = analytic::cook_torrance(i, o, ndf, alpha);
           } else if (per_k) {
             for (int k = 1; k <= max_k; ++k)
@@ -74,20 +119,21 @@ void evaluate(Model model, NdfKind ndf, double alpha, SurfaceDim dim, bool per_k
 }
 
 py::array_t<double> brdf(const std::string& model_name, const std::string& ndf_name, double alpha, DoubleArray wi,
-                         DoubleArray wo, bool per_k, long long max_k, const std::string& dim_name, int threads) {
-  const Model model = parse_model(model_name);
+                         DoubleArray wo, bool per_k, long long max_k_in, const std::string& dim_name, int threads) {
+  const BrdfModel model = parse_brdf_model(model_name, true);
   const NdfKind ndf = parse_ndf(ndf_name);
   check_alpha(alpha);
   const SurfaceDim dim = parse_dim(dim_name);
-  check_max_k(max_k);
+  const bool flat = dim == SurfaceDim::flatland;
+  check_partner_law(model, ndf, alpha);
+  const int max_k = brdf_orders(max_k_in, model, flat);
   validation::check_threads(threads, "threads");
   if (wi.ndim() != 2 || wi.shape(1) != 3 || wo.ndim() != 2 || wo.shape(1) != 3 || wi.shape(0) != wo.shape(0))
     throw support::UserError("wi and wo must be arrays of shape (n, 3)");
   const std::size_t n = static_cast<std::size_t>(wi.shape(0));
-  const bool flat = dim == SurfaceDim::flatland;
-  check_directions(wi.data(), n, "wi", flat);
-  check_directions(wo.data(), n, "wo", flat);
-  const int k_out = per_k ? (model == Model::cook_torrance ? 1 : static_cast<int>(max_k)) : 1;
+  wi = unit_directions(wi, "wi", flat);
+  wo = unit_directions(wo, "wo", flat);
+  const int k_out = per_k ? (model == BrdfModel::cook_torrance ? 1 : max_k) : 1;
   if (per_k && static_cast<double>(n) * k_out > 1e9)
     throw support::UserError("per_k with max_k = " + std::to_string(max_k) + " over " + std::to_string(n) +
                              " directions needs more than 10^9 values");
@@ -97,11 +143,11 @@ py::array_t<double> brdf(const std::string& model_name, const std::string& ndf_n
   const double *pi = wi.data(), *pw = wo.data();
   run_interruptible(
       [&](std::atomic<bool>& cancel) {
-        evaluate(model, ndf, alpha, dim, per_k && model == Model::vgroove, static_cast<int>(max_k), pi, pw, n, po,
-                 threads, cancel);
+        evaluate(model, ndf, alpha, dim, per_k && model != BrdfModel::cook_torrance, max_k, pi, pw, n, po, threads,
+                 cancel);
         return 0;
       },
-      n < 2048);
+      static_cast<double>(n) * relative_cost(model, flat, max_k) < 2048.0);
   return out;
 }
 
@@ -127,7 +173,7 @@ validation::CheckBrdfOptions check_options(const std::string& name, const std::s
 }
 
 // f: a Python callable f(wi, wo) -> values, wi and wo float arrays of shape (n, 3); or the name
-// of a built-in model ("vgroove", "cook_torrance"), evaluated in C++ one direction at a time.
+// of a built-in model (parse_brdf_model), evaluated in C++ one direction at a time.
 py::object check_brdf(const py::object& f, long long max_k, const std::string& name, const std::string& ndf,
                       double alpha, const std::vector<double>& theta_i_deg, const py::object& rays,
                       const std::string& dim, const py::object& grooves, const py::object& seed, int theta_bins,
@@ -137,19 +183,22 @@ py::object check_brdf(const py::object& f, long long max_k, const std::string& n
       check_options(name, ndf, alpha, theta_i_deg, rays, dim, grooves, seed, theta_bins, phi_bins, flatland_bins,
                     sigmas, model_tolerance, quadrature_order, threads);
   if (py::isinstance<py::str>(f)) {
-    const Model model = parse_model(f.cast<std::string>());
-    check_max_k(max_k);
+    const BrdfModel model = parse_brdf_model(f.cast<std::string>(), true);
     const bool flat = o.dim == SurfaceDim::flatland;
+    check_partner_law(model, o.ndf, o.alpha);
+    analytic::BrdfEvalOptions eval;
+    eval.ndf = o.ndf, eval.alpha = alpha, eval.flatland = flat, eval.max_k = brdf_orders(max_k, model, flat);
     const NdfKind kind = o.ndf;
-    const int mk = static_cast<int>(max_k);
+    const int mk = eval.max_k;
     const validation::BrdfFn fn = [=](const analytic::Dir3& i, const analytic::Dir3& w) {
+      if (model == BrdfModel::vgroove_nonsymmetric) return analytic::evaluate_brdf(model, i, w, eval).value;
       if (flat) {
         const double ti = std::atan2(-i.x, i.z), to = std::atan2(-w.x, w.z);
-        return model == Model::cook_torrance ? analytic::flatland_brdf_single(kind, alpha, ti, to)
-                                             : analytic::flatland_brdf(kind, alpha, ti, to, mk);
+        return model == BrdfModel::cook_torrance ? analytic::flatland_brdf_single(kind, alpha, ti, to)
+                                                 : analytic::flatland_brdf(kind, alpha, ti, to, mk);
       }
-      return model == Model::cook_torrance ? analytic::cook_torrance(i, w, kind, alpha)
-                                           : analytic::vgroove_brdf(i, w, kind, alpha, mk);
+      return model == BrdfModel::cook_torrance ? analytic::cook_torrance(i, w, kind, alpha)
+                                               : analytic::vgroove_brdf(i, w, kind, alpha, mk);
     };
     const validation::CheckBrdfResult r = run_interruptible([&](std::atomic<bool>& cancel) {
       o.cancel = &cancel;
@@ -159,13 +208,16 @@ py::object check_brdf(const py::object& f, long long max_k, const std::string& n
   }
   if (!PyCallable_Check(f.ptr()))
     throw support::UserError("f = " + py::repr(f).cast<std::string>() +
-                             " must be a callable f(wi, wo) -> values, or \"vgroove\" or \"cook_torrance\"");
+                             " must be a callable f(wi, wo) -> values, or \"vgroove\", \"vgroove-nonsymmetric\" or "
+                             "\"cook-torrance\"");
   std::mutex error_mu;
   std::exception_ptr error;
   std::atomic<bool> failed{false};
   std::atomic<bool>* stop = nullptr;
   const validation::BrdfBatchFn batch = [&](const double* wi, const double* wo, std::size_t n, double* out) {
-    if (failed.load()) return std::fill(out, out + n, 0.0);
+    // After an error or Ctrl-C (the cancel flag, once run_interruptible set it) f is not called
+    // again: the remaining nodes are zeros of a result that is discarded.
+    if (failed.load() || (stop && stop->load())) return std::fill(out, out + n, 0.0);
     try {
       py::gil_scoped_acquire gil;
       const auto sn = static_cast<py::ssize_t>(n);

@@ -2,6 +2,7 @@
 // ValueError, long work on a worker thread with the GIL released and Ctrl-C honoured.
 #pragma once
 
+#include "vgroove/analytic/brdf_model.h"
 #include "vgroove/common/ndf_kind.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/brdf_suite.h"
@@ -37,6 +38,10 @@ using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecas
 py::object to_python(const nlohmann::json& j);
 
 NdfKind parse_ndf(const std::string& name);
+// A model by the command line's name (analytic/brdf_model.h: "vgroove", "vgroove-nonsymmetric"
+// when `nonsymmetric`, "cook-torrance"; "cook_torrance" too, this module's first spelling), else
+// ValueError listing the names, as `vgroove brdf --model` does.
+analytic::BrdfModel parse_brdf_model(const std::string& name, bool nonsymmetric);
 validation::SurfaceDim parse_dim(const std::string& name);
 // A Python int as a seed in [0, 2^63 - 1], else ValueError naming `what`.
 long long to_seed(const py::handle& v, const std::string& what);
@@ -44,9 +49,16 @@ long long to_seed(const py::handle& v, const std::string& what);
 long long to_count(const py::handle& v, const std::string& what, long long lo, long long hi);
 // alpha in (0, 2].
 void check_alpha(double alpha);
-// Directions n x 3 (row-major), unit length to 1e-9 (flatland: in the plane y = 0), else
-// ValueError naming the first offending row of `what`.
-void check_directions(const double* w, std::size_t n, const char* what, bool flatland);
+// The unit-vector rule of every direction the module takes: |len - 1| <= kUnitTolerance (and in
+// flatland |y| <= kUnitTolerance). Directions normalized in float32 are off by ~6e-8.
+inline constexpr double kUnitTolerance = 1e-6;
+// Rows within kExactUnit of unit length are used as given (the command line's directions, bit for
+// bit); the others within kUnitTolerance are divided by their length.
+inline constexpr double kExactUnit = 1e-9;
+// Directions n x 3 (rows of `w`, shape (n, 3)) held to the unit-vector rule: `w` itself when every
+// row is within kExactUnit of unit length, else a copy with the other rows divided by their length.
+// ValueError naming the first row of `what` that breaks the rule.
+DoubleArray unit_directions(const DoubleArray& w, const char* what, bool flatland);
 // The flatland angle of a direction in the plane y = 0: (-sin t, 0, cos t) -> t.
 inline double flat_angle(const double* w) { return std::atan2(-w[0], w[2]); }
 
@@ -120,6 +132,15 @@ py::array_t<T> array_of(const std::vector<T>& data, std::vector<py::ssize_t> sha
   py::array_t<T> a(shape);
   std::copy(data.begin(), data.end(), a.mutable_data());
   return a;
+}
+
+// A NumPy array of the given shape over `data`, moved (not copied) into memory the array owns:
+// a lobe or tally of 10^8 cells is not held twice.
+template <class T>
+py::array_t<T> array_from(std::vector<T>&& data, std::vector<py::ssize_t> shape) {
+  auto* owned = new std::vector<T>(std::move(data));
+  py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(shape, owned->data(), owner);
 }
 
 void bind_grooves(py::module_& m);

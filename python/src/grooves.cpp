@@ -118,7 +118,10 @@ py::object analytic_json(double theta_i_deg, std::optional<double> v, std::optio
   return to_python(validation::analytic_json(g, theta_i_deg, form));
 }
 
-int check_max_bounces(const py::handle& v) {
+// The bounce limit: max_bounces, or (None) the command line's default for the groove
+// (validation::default_max_bounces: enough for every ray of a narrow groove to leave).
+int check_max_bounces(const py::handle& v, const GrooveParams& g) {
+  if (v.is_none()) return g.degenerate() ? validation::kDefaultMaxBounces : validation::default_max_bounces(g.theta_v);
   return static_cast<int>(to_count(v, "max_bounces", 1, validation::kMaxBounces));
 }
 
@@ -133,7 +136,7 @@ py::dict trace(double theta_i_deg, const py::object& rays_obj, std::optional<dou
   const long rays = static_cast<long>(to_count(rays_obj, "rays", 1, validation::kMaxRays));
   const sim::Sampling sampling = validation::parse_sampling(sampling_name, names().sampling);
   const long long seed = to_seed(seed_obj, "seed");
-  const int max_bounces = check_max_bounces(max_bounces_obj);
+  const int max_bounces = check_max_bounces(max_bounces_obj, g);
   const auto n = static_cast<py::ssize_t>(rays);
   auto x = new_array<double>({n}), theta_o = new_array<double>({n}), exit_dir = new_array<double>({n, 2});
   auto first = new_array<std::int8_t>({n}), fate = new_array<std::int8_t>({n});
@@ -182,7 +185,7 @@ py::object groove_case(double theta_i_deg, std::optional<double> v, std::optiona
   o.rays = static_cast<long>(to_count(rays_obj, "rays", 1, validation::kMaxRays));
   o.sampling = validation::parse_sampling(sampling_name, names().sampling);
   o.seed = static_cast<std::uint64_t>(to_seed(seed_obj, "seed"));
-  o.max_bounces = check_max_bounces(max_bounces_obj);
+  o.max_bounces = check_max_bounces(max_bounces_obj, g);
   o.form = validation::parse_form(eq6_form, names().eq6_form);
   o.probe_vertices = probe_vertices;
   const auto stream = static_cast<std::uint64_t>(to_seed(stream_obj, "stream"));

@@ -8,6 +8,7 @@
 #include "vgroove/validation/spec_lists.h"
 
 #include <cmath>
+#include <new>
 
 namespace vgroove::python {
 
@@ -48,6 +49,13 @@ NdfKind parse_ndf(const std::string& name) {
   throw support::UserError("ndf = \"" + name + "\" is not one of \"beckmann\", \"ggx\", \"phong\"");
 }
 
+analytic::BrdfModel parse_brdf_model(const std::string& name, bool nonsymmetric) {
+  const auto m = analytic::brdf_model_from_name(name == "cook_torrance" ? "cook-torrance" : name);
+  if (m && (nonsymmetric || *m != analytic::BrdfModel::vgroove_nonsymmetric)) return *m;
+  throw support::UserError("model = \"" + name + "\" is not one of \"vgroove\", " +
+                           (nonsymmetric ? "\"vgroove-nonsymmetric\", " : "") + "\"cook-torrance\"");
+}
+
 validation::SurfaceDim parse_dim(const std::string& name) {
   if (name == "3d") return validation::SurfaceDim::three_d;
   if (name == "flatland") return validation::SurfaceDim::flatland;
@@ -69,28 +77,43 @@ long long to_seed(const py::handle& v, const std::string& what) {
   return to_count(v, what, 0, std::numeric_limits<long long>::max());
 }
 
-void check_directions(const double* w, std::size_t n, const char* what, bool flatland) {
-  // A first pass without branches or square roots: |len - 1| < 0.999e-9 for certain when len^2
-  // lies within these bounds. Only when some direction falls outside does the exact check below
-  // run (and name the first one that fails it).
-  constexpr double lo = (1.0 - 0.999e-9) * (1.0 - 0.999e-9), hi = (1.0 + 0.999e-9) * (1.0 + 0.999e-9);
+DoubleArray unit_directions(const DoubleArray& w, const char* what, bool flatland) {
+  const std::size_t n = static_cast<std::size_t>(w.shape(0));
+  const double* p = w.data();
+  // A first pass without branches or square roots: |len - 1| < 0.999 kExactUnit for certain when
+  // len^2 lies within these bounds. Only when some direction falls outside does the exact pass below
+  // run (it names the first one that breaks the rule).
+  constexpr double lo = (1.0 - 0.999 * kExactUnit) * (1.0 - 0.999 * kExactUnit);
+  constexpr double hi = (1.0 + 0.999 * kExactUnit) * (1.0 + 0.999 * kExactUnit);
   bool inside = true;
   for (std::size_t j = 0; j < n; ++j) {
-    const double x = w[3 * j], y = w[3 * j + 1], z = w[3 * j + 2], len2 = x * x + y * y + z * z;
-    inside &= (len2 >= lo) & (len2 <= hi) & (!flatland | (std::abs(y) <= 1e-9));
+    const double x = p[3 * j], y = p[3 * j + 1], z = p[3 * j + 2], len2 = x * x + y * y + z * z;
+    inside &= (len2 >= lo) & (len2 <= hi) & (!flatland | (std::abs(y) <= kUnitTolerance));
   }
-  if (inside) return;
+  if (inside) return w;
+  std::optional<DoubleArray> copy;
   for (std::size_t j = 0; j < n; ++j) {
-    const double x = w[3 * j], y = w[3 * j + 1], z = w[3 * j + 2];
+    const double x = p[3 * j], y = p[3 * j + 1], z = p[3 * j + 2];
     const double len = std::sqrt(x * x + y * y + z * z);
     auto text = [&] {
       return std::string(what) + "[" + std::to_string(j) + "] = (" + support::number_text(x) + ", " +
              support::number_text(y) + ", " + support::number_text(z) + ")";
     };
-    if (!(std::abs(len - 1.0) <= 1e-9)) throw support::UserError(text() + " is not a unit vector");
-    if (flatland && !(std::abs(y) <= 1e-9))
-      throw support::UserError(text() + " is not in the plane y = 0 (flatland directions: (-sin t, 0, cos t))");
+    const std::string tolerance = support::number_text(kUnitTolerance);
+    if (!(std::abs(len - 1.0) <= kUnitTolerance))
+      throw support::UserError(text() + " is not a unit vector (|len - 1| <= " + tolerance + ")");
+    if (flatland && !(std::abs(y) <= kUnitTolerance))
+      throw support::UserError(text() + " is not in the plane y = 0 (|y| <= " + tolerance +
+                               "; flatland directions: (-sin t, 0, cos t))");
+    if (std::abs(len - 1.0) <= kExactUnit) continue;
+    if (!copy) {
+      copy.emplace(std::vector<py::ssize_t>{static_cast<py::ssize_t>(n), 3});
+      std::copy(p, p + 3 * n, copy->mutable_data());
+    }
+    double* q = copy->mutable_data() + 3 * j;
+    q[0] = x / len, q[1] = y / len, q[2] = z / len;
   }
+  return copy ? *copy : w;
 }
 
 void check_alpha(double alpha) {
@@ -110,10 +133,24 @@ PYBIND11_MODULE(_vgroove, m) {
       if (p) std::rethrow_exception(p);
     } catch (const vgroove::support::UserError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const std::bad_alloc&) {
+      // What the command line says (app/cli.cpp), where an estimate let an allocation through.
+      PyErr_SetString(PyExc_MemoryError,
+                      "out of memory: the run needs more memory than this process may use (fewer rays, cases, "
+                      "grooves, bins or threads need less)");
     }
   });
   m.attr("__version__") = vgroove::validation::version_string();
   m.attr("git_revision") = vgroove::validation::git_revision();
+  // The ranges the module enforces (validation/ranges.h), for the package's docstrings.
+  py::dict ranges;
+  ranges["min_aperture_deg"] = vgroove::validation::kMinApertureDeg;
+  ranges["max_theta_i_deg"] = vgroove::validation::kMaxThetaIDeg;
+  ranges["min_alpha"] = vgroove::validation::kMinAlpha;
+  ranges["max_alpha"] = vgroove::validation::kMaxAlpha;
+  ranges["max_surface_theta_i_deg"] = vgroove::validation::kMaxSurfaceThetaIDeg;
+  ranges["unit_tolerance"] = kUnitTolerance;
+  m.attr("ranges") = ranges;
   m.def("output_deg", py::vectorize([](double rad) { return vgroove::validation::output_deg(rad); }),
         "Radians to degrees rounded to 1e-9 deg, as every report and --json output prints them.");
   bind_grooves(m);

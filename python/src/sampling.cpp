@@ -12,6 +12,8 @@
 #include "vgroove/common/angles.h"
 #include "vgroove/sim/rng.h"
 #include "vgroove/support/parallel.h"
+#include "vgroove/validation/ranges.h"
+#include "vgroove/validation/report.h"
 #include "vgroove/validation/run_options.h"
 #include "vgroove/validation/spec_lists.h"
 
@@ -111,24 +113,40 @@ class LightCursor {
   analytic::Dir3 d_;
 };
 
-Light light_of(const std::optional<DoubleArray>& wi, const std::optional<DoubleArray>& theta_i_deg, std::size_t n,
-               bool flat) {
+// The light's range: `vgroove sample --theta-i-deg`'s [0, kMaxSurfaceThetaIDeg] (the brdf and
+// furnace suites'), in flatland signed, [-89.9, 89.9] (the mirror image). A direction wi is held to
+// it by its polar angle (flatland: its signed angle) rounded to 1e-9 deg as reports print angles,
+// so that direction(89.9, 180) is taken.
+Light light_of(const std::optional<DoubleArray>& wi, std::optional<DoubleArray>& wi_unit,
+               const std::optional<DoubleArray>& theta_i_deg, std::size_t n, bool flat) {
   Light l;
   if (wi.has_value() == theta_i_deg.has_value())
     throw support::UserError("give the light as either wi (unit vectors) or theta_i_deg, not both or neither");
+  constexpr double hi = validation::kMaxSurfaceThetaIDeg;
+  const double lo = flat ? -hi : 0.0;
+  const std::string range = support::interval_text(lo, true, hi, true);
   if (wi) {
     if (wi->ndim() != 2 || wi->shape(1) != 3 || static_cast<std::size_t>(wi->shape(0)) != n)
       throw support::UserError("wi must be an array of shape (n, 3) with n = " + std::to_string(n));
-    check_directions(wi->data(), n, "wi", flat);
-    l.wi = wi->data();
+    wi_unit = unit_directions(*wi, "wi", flat);
+    const double* w = wi_unit->data();
+    for (std::size_t j = 0; j < n; ++j) {
+      const double* d = w + 3 * j;
+      const double t = validation::output_deg(flat ? flat_angle(d) : std::atan2(std::hypot(d[0], d[1]), d[2]));
+      if (!(t >= lo && t <= hi))
+        throw support::UserError("wi[" + std::to_string(j) + "] = (" + support::number_text(d[0]) + ", " +
+                                 support::number_text(d[1]) + ", " + support::number_text(d[2]) + ") is " +
+                                 support::number_text(t) + " deg from the normal, out of range " + range);
+    }
+    l.wi = w;
   } else {
     if (theta_i_deg->ndim() != 1 || static_cast<std::size_t>(theta_i_deg->shape(0)) != n)
       throw support::UserError("theta_i_deg must be an array of shape (n,) with n = " + std::to_string(n));
     for (std::size_t j = 0; j < n; ++j) {
       const double t = theta_i_deg->data()[j];
-      if (!(t > -90.0 && t < 90.0))
+      if (!(t >= lo && t <= hi))
         throw support::UserError("theta_i_deg[" + std::to_string(j) + "] = " + support::number_text(t) +
-                                 " is out of range (-90, 90)");
+                                 " is out of range " + range);
     }
     l.theta_i_deg = theta_i_deg->data();
   }
@@ -169,7 +187,8 @@ py::dict sample(const std::string& model, const std::string& ndf_name, double al
     throw support::UserError("u must be an array of shape (n, " + std::to_string(m) + ")");
   const std::size_t n = static_cast<std::size_t>(u.shape(0));
   const bool flat = dim == SurfaceDim::flatland;
-  const Light light = light_of(wi, theta_i_deg, n, flat);
+  std::optional<DoubleArray> wi_unit;
+  const Light light = light_of(wi, wi_unit, theta_i_deg, n, flat);
   check_uniforms(u.data(), n, static_cast<std::size_t>(m));
   const analytic::NonsymmetricSampler ns =
       nonsym ? nonsymmetric_sampler(ndf, alpha, opt, flat, tolerance) : analytic::NonsymmetricSampler{};
@@ -229,8 +248,9 @@ py::array_t<double> pdf(const std::string& model, const std::string& ndf_name, d
   if (wo.ndim() != 2 || wo.shape(1) != 3) throw support::UserError("wo must be an array of shape (n, 3)");
   const std::size_t n = static_cast<std::size_t>(wo.shape(0));
   const bool flat = dim == SurfaceDim::flatland;
-  const Light light = light_of(wi, theta_i_deg, n, flat);
-  check_directions(wo.data(), n, "wo", flat);
+  std::optional<DoubleArray> wi_unit;
+  const Light light = light_of(wi, wi_unit, theta_i_deg, n, flat);
+  wo = unit_directions(wo, "wo", flat);
   const analytic::NonsymmetricSampler ns =
       nonsym ? nonsymmetric_sampler(ndf, alpha, opt, flat, tolerance) : analytic::NonsymmetricSampler{};
   auto out = new_array<double>({static_cast<py::ssize_t>(n)});

@@ -11,18 +11,23 @@ analytic/kaleidoscope.h, analytic/brdf_3d.h, analytic/ndf.h):
 * Angles are in **degrees** and named ``*_deg``, measured from the macrosurface normal n,
   counter-clockwise positive. ``theta_i_deg > 0``: light from the upper left; a flat mirror gives
   ``theta_o = -theta_i``. A symmetric groove is given by its aperture ``theta_v_deg`` in
-  [1e-6, 180]; a nonsymmetric one by the angles of its facets' normals, ``theta_l_deg`` in
+  [{min_aperture_deg:g}, 180]; a nonsymmetric one by the angles of its facets' normals, ``theta_l_deg`` in
   [-90, 0] and ``theta_r_deg`` in [0, 90] (Lee et al. 2018, Fig. 5), aperture
   ``180 + theta_l_deg - theta_r_deg``. Degrees become radians as ``deg * (pi / 180)``, as the
-  command line does, so the same inputs give the same bits.
+  command line does, so the same inputs give the same bits. Single grooves take ``theta_i_deg``
+  in [-{max_theta_i_deg:g}, {max_theta_i_deg:g}].
 * Directions are unit vectors (arrays ``(..., 3)``) in the frame n = (0, 0, 1), both pointing
   away from the surface: ``wi`` towards the light, ``wo`` towards the viewer. The direction at
   polar angle theta and azimuth phi is (sin theta cos phi, sin theta sin phi, cos theta)
   (:func:`direction`). In flatland the directions lie in the plane y = 0: the one at signed angle
-  t is (-sin t, 0, cos t).
+  t is (-sin t, 0, cos t). A direction is a unit vector when |len - 1| <= {unit_tolerance:g} (and,
+  in flatland, |y| <= {unit_tolerance:g}): float32 rounding is within it. Directions within 1e-9 of
+  unit length are used as given, the others divided by their length.
 * BRDF values are in 1/sr (3D) or 1/rad (flatland), with F = 1 (a perfect mirror, white light).
 * NDFs: ``"ggx"``, ``"beckmann"``, ``"phong"`` (Phong exponent 2/alpha^2 - 2); roughness alpha in
-  (0, 2].
+  [{min_alpha:g}, {max_alpha:g}].
+* Numbers may be Python or NumPy scalars (np.int64, np.float32, ...); bools and complex values are
+  refused (ValueError), as are complex arrays (their imaginary part would be lost).
 * Seeds are integers in [0, 2^63 - 1]; the same seed gives the same bits on any thread count.
 """
 
@@ -30,9 +35,16 @@ from __future__ import annotations
 
 from typing import Callable, Optional, Sequence, Union
 
+import numbers
+import operator
+
 import numpy as np
 
 from . import _vgroove
+
+#: The ranges the module enforces (validation/ranges.h, the command line's).
+RANGES: dict = dict(_vgroove.ranges)
+__doc__ = __doc__.format(**RANGES)
 
 __all__ = [
     "__version__", "git_revision", "FATES", "LEFT", "RIGHT", "direction", "output_deg",
@@ -54,12 +66,66 @@ Microsurface = _vgroove.Microsurface
 ArrayLike = Union[float, Sequence[float], np.ndarray]
 
 
+def _real(x, name):
+    """x as a float: Python and NumPy real scalars (and 0-d real arrays); bools, complex values and
+    everything else raise ValueError naming the argument."""
+    if isinstance(x, np.ndarray) and x.ndim == 0:
+        x = x[()]
+    if isinstance(x, (bool, np.bool_)):
+        raise ValueError(f"{name} = {x!r} must be a real number, not a bool")
+    if isinstance(x, (complex, np.complexfloating)):
+        raise ValueError(f"{name} = {x!r} must be a real number, not complex (its imaginary part would be lost)")
+    if not isinstance(x, numbers.Real):
+        raise ValueError(f"{name} = {x!r} must be a real number")
+    return float(x)
+
+
+def _opt_real(x, name):
+    return None if x is None else _real(x, name)
+
+
+def _integer(x, name):
+    """x as an int: Python and NumPy integers (and 0-d integer arrays); bools, floats and
+    everything else raise ValueError naming the argument. The range is checked by the extension."""
+    if isinstance(x, np.ndarray) and x.ndim == 0:
+        x = x[()]
+    if isinstance(x, (bool, np.bool_)):
+        raise ValueError(f"{name} = {x!r} must be an integer, not a bool")
+    if not isinstance(x, numbers.Integral):
+        raise ValueError(f"{name} = {x!r} must be an integer")
+    return operator.index(x)
+
+
+def _opt_integer(x, name):
+    return None if x is None else _integer(x, name)
+
+
+def _reals(x, name):
+    """x as a float array: real numbers only (complex and bool arrays raise ValueError naming the
+    argument)."""
+    a = np.asarray(x)
+    if a.dtype.kind == "c":
+        raise ValueError(f"{name} has complex values (dtype {a.dtype}): give real numbers (the imaginary part would "
+                         "be lost)")
+    if a.dtype.kind not in "iuf":
+        if a.dtype.kind == "b" or a.dtype.kind == "O" and any(isinstance(v, (bool, np.bool_)) for v in a.flat):
+            raise ValueError(f"{name} has bools (dtype {a.dtype}): give real numbers")
+        if a.dtype.kind == "O" and any(isinstance(v, (complex, np.complexfloating)) for v in a.flat):
+            raise ValueError(f"{name} has complex values (dtype {a.dtype}): give real numbers (the imaginary part "
+                             "would be lost)")
+        try:
+            return a.astype(float)
+        except (TypeError, ValueError):
+            raise ValueError(f"{name} must hold real numbers (dtype {a.dtype})") from None
+    return a.astype(float, copy=False)
+
+
 def direction(theta_deg: ArrayLike, phi_deg: ArrayLike = 0.0) -> np.ndarray:
     """Unit vectors at polar angle theta and azimuth phi (degrees), shape broadcast + (3,):
     (sin theta cos phi, sin theta sin phi, cos theta). The light of the suites and of check_brdf
     is at azimuth 180 deg: ``direction(theta_i_deg, 180)``."""
-    t = np.radians(np.asarray(theta_deg, dtype=float))
-    p = np.radians(np.asarray(phi_deg, dtype=float))
+    t = np.radians(_reals(theta_deg, "theta_deg"))
+    p = np.radians(_reals(phi_deg, "phi_deg"))
     t, p = np.broadcast_arrays(t, p)
     return np.stack([np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)], axis=-1)
 
@@ -72,14 +138,21 @@ def output_deg(rad: ArrayLike) -> np.ndarray:
 def _groove_arrays(theta_i_deg, theta_v_deg, theta_l_deg, theta_r_deg):
     if theta_l_deg is None and theta_r_deg is None:
         v = 90.0 if theta_v_deg is None else theta_v_deg
-        ti, v = np.broadcast_arrays(np.asarray(theta_i_deg, dtype=float), np.asarray(v, dtype=float))
+        ti, v = np.broadcast_arrays(_reals(theta_i_deg, "theta_i_deg"), _reals(v, "theta_v_deg"))
         return ti.shape, [np.ascontiguousarray(a, dtype=float).ravel() for a in (ti, v)] + [None, None]
     if theta_l_deg is None or theta_r_deg is None:
         raise ValueError("theta_l_deg needs theta_r_deg" if theta_l_deg is not None else "theta_r_deg needs theta_l_deg")
     if theta_v_deg is not None:
         raise ValueError("theta_v_deg cannot be combined with theta_l_deg/theta_r_deg (the aperture follows from them)")
-    ti, l, r = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (theta_i_deg, theta_l_deg, theta_r_deg)))
+    ti, l, r = np.broadcast_arrays(*(_reals(a, n) for a, n in ((theta_i_deg, "theta_i_deg"),
+                                                              (theta_l_deg, "theta_l_deg"),
+                                                              (theta_r_deg, "theta_r_deg"))))
     return ti.shape, [np.ascontiguousarray(ti).ravel(), None] + [np.ascontiguousarray(a).ravel() for a in (l, r)]
+
+
+def _groove_scalars(theta_v_deg, theta_l_deg, theta_r_deg):
+    return (_opt_real(theta_v_deg, "theta_v_deg"), _opt_real(theta_l_deg, "theta_l_deg"),
+            _opt_real(theta_r_deg, "theta_r_deg"))
 
 
 def kaleidoscope(theta_i_deg: ArrayLike, theta_v_deg: Optional[ArrayLike] = None, *,
@@ -106,12 +179,13 @@ def analytic(theta_i_deg: float, theta_v_deg: Optional[float] = None, *, theta_l
     """``vgroove analytic --json`` for one groove and one incident angle, as a dict: "inputs",
     "bounces" (rows: first_facet, k, fraction of the beam entering the opening, theta_o_deg rounded
     to 1e-9 deg) and "facets" (k, f_a, G per bounce count, shadow; None for an unlit facet)."""
-    return _vgroove.analytic(float(theta_i_deg), theta_v_deg, theta_l_deg, theta_r_deg, eq6_form)
+    return _vgroove.analytic(_real(theta_i_deg, "theta_i_deg"), *_groove_scalars(theta_v_deg, theta_l_deg, theta_r_deg),
+                             eq6_form)
 
 
 def trace(theta_i_deg: float, rays: int = 1000, theta_v_deg: Optional[float] = None, *,
           theta_l_deg: Optional[float] = None, theta_r_deg: Optional[float] = None, sampling: str = "stratified",
-          seed: int = 1, max_bounces: int = 100000) -> dict:
+          seed: int = 1, max_bounces: Optional[int] = None) -> dict:
     """Traces one parallel beam through one groove exactly (sim/tracer.h), ray by ray, as
     ``vgroove trace`` does: ``rays`` rays across the opening, at the midpoints of equal strata
     (``sampling="stratified"``) or at seeded random points (``"random"``).
@@ -121,22 +195,29 @@ def trace(theta_i_deg: float, rays: int = 1000, theta_v_deg: Optional[float] = N
     (reflections), ``fate`` (int8 codes of :data:`FATES`), ``exit_dir`` ((rays, 2): the 2D exit
     direction (x, y), 0 where the ray did not escape), ``theta_o_deg`` (its angle, degrees, not
     rounded; 0 where the ray did not escape). ``summary``: the dict ``vgroove trace --json``
-    prints (rows per (first facet, k), buckets)."""
-    return _vgroove.trace(float(theta_i_deg), rays, theta_v_deg, theta_l_deg, theta_r_deg, sampling, seed,
-                          max_bounces)
+    prints (rows per (first facet, k), buckets). ``max_bounces``: the bounce limit, by default
+    (None) the command line's: 100000, or ceil(180 / theta_v_deg) + 1 where a narrower groove needs
+    more, so that every ray can leave."""
+    return _vgroove.trace(_real(theta_i_deg, "theta_i_deg"), _integer(rays, "rays"),
+                          *_groove_scalars(theta_v_deg, theta_l_deg, theta_r_deg), sampling, _integer(seed, "seed"),
+                          _opt_integer(max_bounces, "max_bounces"))
 
 
 def groove_case(theta_i_deg: float, theta_v_deg: Optional[float] = None, *, theta_l_deg: Optional[float] = None,
                 theta_r_deg: Optional[float] = None, rays: int = 1000, sampling: str = "stratified", seed: int = 1,
-                max_bounces: int = 100000, eq6_form: str = "corrected", probe_vertices: bool = False,
+                max_bounces: Optional[int] = None, eq6_form: str = "corrected", probe_vertices: bool = False,
                 stream: int = 0) -> dict:
     """One case of a single-groove suite (a cell of Table 1): ``rays`` rays aimed at each lit
     facet, traced, and their fractions per bounce count against Eq. 6 / Eq. 9 (L1, with the
     shadowed rays a bin of their own). Returns the case's entry of the report ("l1", per facet
     "l1", "k", "rays", ...). ``stream`` is the case's index in its suite (random sampling draws the
-    rays of facet f from the stream (seed, stream, f)), so a suite's case is reproduced exactly."""
-    return _vgroove.groove_case(float(theta_i_deg), theta_v_deg, theta_l_deg, theta_r_deg, rays, sampling, seed,
-                                max_bounces, eq6_form, probe_vertices, stream)
+    rays of facet f from the stream (seed, stream, f)), so a suite's case is reproduced exactly.
+    ``max_bounces`` as in :func:`trace` (by default the command line's limit for the groove)."""
+    return _vgroove.groove_case(_real(theta_i_deg, "theta_i_deg"),
+                                *_groove_scalars(theta_v_deg, theta_l_deg, theta_r_deg),
+                                _integer(rays, "rays"), sampling, _integer(seed, "seed"),
+                                _opt_integer(max_bounces, "max_bounces"), eq6_form, probe_vertices,
+                                _integer(stream, "stream"))
 
 
 def microsurface(ndf: str = "ggx", alpha: float = 0.5, grooves: int = 250000, seed: int = 1,
@@ -145,7 +226,7 @@ def microsurface(ndf: str = "ggx", alpha: float = 0.5, grooves: int = 250000, se
     NDF (sim/microsurface.h for ``dim="flatland"``, sim/microsurface3d.h for ``"3d"``): the
     surfaces of the Fig. 11, furnace and check_brdf suites (same seed, same surface). Its
     ``theta_m_deg`` (facet angles) and, in 3D, ``phi_a_deg`` (groove azimuths) are arrays."""
-    return _vgroove.microsurface(ndf, float(alpha), grooves, seed, dim)
+    return _vgroove.microsurface(ndf, _real(alpha, "alpha"), _integer(grooves, "grooves"), _integer(seed, "seed"), dim)
 
 
 def trace_microsurface(surface: Microsurface, theta_i_deg: float, rays: int = 1000000, *, seed: Optional[int] = None,
@@ -159,24 +240,32 @@ def trace_microsurface(surface: Microsurface, theta_i_deg: float, rays: int = 10
     everywhere) and ``theta_o_by_k`` (rows x bins). 3D (the light at azimuth 180 deg, theta_i in
     [0, 90)): ``hist`` (theta_bins over [0, 90) deg x phi_bins centred on phi = 0, the mirror
     side) and ``hist_by_k``. Divide by ``rays`` for fractions of the incident flux. The chunks of
-    rays run on ``threads`` threads (0: all cores); the counts do not depend on it."""
-    return _vgroove.trace_microsurface(surface, float(theta_i_deg), rays, seed, sampling, flatland_bins, theta_bins,
-                                       phi_bins, max_k, max_bounces, threads)
+    rays run on ``threads`` threads (0: all cores); the counts do not depend on it. Bins and max_k
+    take the "brdf" suites' ranges (max_k in [0, 1000]; the histogram's cells are bounded by the
+    memory check: a call that would need more memory than this process may use is refused
+    before it starts, with the estimate in the message); max_bounces in [1, 10^8]."""
+    return _vgroove.trace_microsurface(surface, _real(theta_i_deg, "theta_i_deg"), _integer(rays, "rays"),
+                                       _opt_integer(seed, "seed"), sampling, _integer(flatland_bins, "flatland_bins"),
+                                       _integer(theta_bins, "theta_bins"), _integer(phi_bins, "phi_bins"),
+                                       _integer(max_k, "max_k"), _integer(max_bounces, "max_bounces"),
+                                       _integer(threads, "threads"))
 
 
 def lobe(model: str, ndf: str, alpha: float, theta_i_deg: float, dim: str = "3d", *, flatland_bins: int = 90,
          theta_bins: int = 30, phi_bins: int = 24, max_k: int = 16) -> dict:
     """The model's lobe integrated over the bins of :func:`trace_microsurface`, as fractions of the
     incident flux: ``model="vgroove"`` (analytic/brdf_flatland.h, analytic/lobe_3d.h; rows per k
-    as in the tally) or ``"cook_torrance"`` (single scattering, V-cavity G: its albedo shows the
-    energy it loses). Keys: ``by_k``, ``albedo`` and ``theta_o``/``theta_o_by_k`` (flatland) or
-    ``hist``/``hist_by_k`` (3D)."""
-    return _vgroove.lobe(model, ndf, float(alpha), float(theta_i_deg), dim, flatland_bins, theta_bins, phi_bins,
-                         max_k)
+    as in the tally) or ``"cook-torrance"`` (also spelled ``"cook_torrance"``; single scattering,
+    V-cavity G: its albedo shows the energy it loses). Keys: ``by_k``, ``albedo`` and
+    ``theta_o``/``theta_o_by_k`` (flatland) or ``hist``/``hist_by_k`` (3D). Bins, max_k and the
+    memory check as in :func:`trace_microsurface`."""
+    return _vgroove.lobe(model, ndf, _real(alpha, "alpha"), _real(theta_i_deg, "theta_i_deg"), dim,
+                         _integer(flatland_bins, "flatland_bins"), _integer(theta_bins, "theta_bins"),
+                         _integer(phi_bins, "phi_bins"), _integer(max_k, "max_k"))
 
 
 def _directions(wi, wo):
-    wi, wo = np.asarray(wi, dtype=float), np.asarray(wo, dtype=float)
+    wi, wo = _reals(wi, "wi"), _reals(wo, "wo")
     if wi.shape[-1:] != (3,) or wo.shape[-1:] != (3,):
         raise ValueError(f"wi and wo must be arrays of unit vectors, shape (..., 3); got {wi.shape} and {wo.shape}")
     shape = np.broadcast_shapes(wi.shape, wo.shape)[:-1]
@@ -190,14 +279,24 @@ def brdf(model: str, ndf: str, alpha: float, wi: np.ndarray, wo: np.ndarray, per
 
     * ``model="vgroove"``: Lee et al. 2018, Eq. 16-17 (3D, analytic/brdf_3d.h) or its flatland
       analogue (analytic/brdf_flatland.h), the sum over k = 1..max_k; ``per_k=True`` gives the
-      terms, shape S + (max_k,). Evaluating the sum costs the same for any max_k; its albedo
-      reaches 1 at high roughness only with a large max_k (e.g. 10**6).
-    * ``model="cook_torrance"``: Eq. 1-3 with the V-cavity G (the k = 1 term), shape S (+ (1,)).
+      terms, shape S + (max_k,). Evaluating the 3D sum costs the same for any max_k; its albedo
+      reaches 1 at high roughness only with a large max_k (e.g. 10**6). The flatland sum costs
+      O(max_k^2) per direction (0.4 s at max_k 4096): max_k at most 4096 there.
+    * ``model="vgroove-nonsymmetric"``: Eq. 21-23 with the independent partner law of Eq. 20
+      (analytic/brdf_nonsymmetric.h; isotropic; Phong needs alpha < sqrt(2)), O(max_k^2) per
+      direction: max_k at most 1024.
+    * ``model="cook-torrance"`` (also spelled ``"cook_torrance"``): Eq. 1-3 with the V-cavity G
+      (the k = 1 term), shape S (+ (1,)).
+
+    The models and max_k ranges are ``vgroove brdf --model``'s, with its messages; max_k's default
+    here is 16 for every model (the command line's: all orders in 3D, 4096 in flatland, 64 for the
+    nonsymmetric model).
 
     Values in 1/sr (3D) or 1/rad (flatland, directions in the plane y = 0), F = 1, 0 below the
     horizon. The directions are evaluated on ``threads`` threads (0: all cores) without the GIL."""
     shape, a, b = _directions(wi, wo)
-    out = _vgroove.brdf(model, ndf, float(alpha), a, b, per_k, max_k, dim, threads)
+    out = _vgroove.brdf(model, ndf, _real(alpha, "alpha"), a, b, per_k, _integer(max_k, "max_k"), dim,
+                        _integer(threads, "threads"))
     return out.reshape(shape + out.shape[1:])
 
 
@@ -211,9 +310,12 @@ def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], np.ndarray], str], nd
 
     ``f(wi, wo) -> values``: a vectorized callable; wi and wo are float arrays of shape (n, 3)
     (unit vectors, the frame above, the light at azimuth 180 deg), it returns n values in 1/sr
-    (1/rad in flatland) with F = 1. It is called once per incident angle with every quadrature
-    node of that angle's bins. ``f`` may also be "vgroove" or "cook_torrance" (with ``max_k``):
-    the built-in models, evaluated in C++.
+    (1/rad in flatland) with F = 1. It is called with the nodes of one cell's Gauss-Legendre rule
+    at a time (quadrature_order^2 directions in 3D, quadrature_order in flatland): at least once
+    per bin and incident angle, more where cells are split (validation/check_brdf.h, BrdfBatchFn).
+    ``f`` may also be the name of a model of :func:`brdf` (with
+    ``max_k`` in its range): the built-in models, evaluated in C++. Ctrl-C stops the check within
+    one evaluation of f (f is not called again).
 
     Per theta_i: the procedural surface of (ndf, alpha, grooves, seed) is traced with ``rays``
     rays into the bins (3D: theta_bins over [0, 90) deg x phi_bins; flatland: flatland_bins), the
@@ -222,9 +324,14 @@ def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], np.ndarray], str], nd
     with what a correct model shows at this sample count (+ sigmas standard deviations +
     model_tolerance). Returns the report: "cases" (per theta_i: errors, thresholds, worst bins,
     pass), "pass", provenance."""
-    return _vgroove.check_brdf(f, max_k, name, ndf, float(alpha), [float(t) for t in np.atleast_1d(theta_i_deg)],
-                               rays, dim, grooves, seed, theta_bins, phi_bins, flatland_bins, float(sigmas),
-                               float(model_tolerance), quadrature_order, threads)
+    return _vgroove.check_brdf(f, _integer(max_k, "max_k"), name, ndf, _real(alpha, "alpha"),
+                               [float(t) for t in np.atleast_1d(_reals(theta_i_deg, "theta_i_deg"))],
+                               _integer(rays, "rays"), dim, _integer(grooves, "grooves"), _integer(seed, "seed"),
+                               _integer(theta_bins, "theta_bins"), _integer(phi_bins, "phi_bins"),
+                               _integer(flatland_bins, "flatland_bins"), _real(sigmas, "sigmas"),
+                               _real(model_tolerance, "model_tolerance"),
+                               _integer(quadrature_order, "quadrature_order"),
+                               _integer(threads, "threads"))
 
 
 def validate(path: str, *, rays: Optional[int] = None, threads: int = 0, sampling: Optional[str] = None,
@@ -236,7 +343,8 @@ def validate(path: str, *, rays: Optional[int] = None, threads: int = 0, samplin
     depend on it), sampling and eq6_form (single-groove suites), seed, model_table (a foreign
     model's bin-integrated lobes for a "brdf" suite: ``vgroove validate --model-table``).
     ``verbose`` prints the command line's table."""
-    return _vgroove.validate(str(path), rays, threads, sampling, eq6_form, seed,
+    return _vgroove.validate(str(path), _opt_integer(rays, "rays"), _integer(threads, "threads"), sampling, eq6_form,
+                             _opt_integer(seed, "seed"),
                              None if model_table is None else str(model_table), verbose)
 
 
@@ -245,11 +353,11 @@ def _light(wi, theta_i_deg):
     if (wi is None) == (theta_i_deg is None):
         raise ValueError("give the light as either wi (unit vectors) or theta_i_deg, not both or neither")
     if wi is not None:
-        wi = np.asarray(wi, dtype=float)
+        wi = _reals(wi, "wi")
         if wi.shape[-1:] != (3,):
             raise ValueError(f"wi must be an array of unit vectors, shape (..., 3); got {wi.shape}")
         return wi.shape[:-1], wi, None
-    t = np.asarray(theta_i_deg, dtype=float)
+    t = _reals(theta_i_deg, "theta_i_deg")
     return t.shape, None, t
 
 
@@ -268,7 +376,9 @@ def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = 
 
     The light: ``wi`` (unit vectors towards the light, S + (3,) broadcast; flatland: in the plane
     y = 0) or ``theta_i_deg`` (angles, broadcast to S; the suites' light at azimuth 180 deg, the
-    bits ``vgroove sample --theta-i-deg`` uses). ``strategy``: how the facet met first is drawn:
+    bits ``vgroove sample --theta-i-deg`` uses), in the command line's range [0, 89.9] deg
+    (flatland: signed, [-89.9, 89.9]); a direction ``wi`` is held to it by its angle from the
+    normal rounded to 1e-9 deg. ``strategy``: how the facet met first is drawn:
     "vndf" (the V-cavity's visible normals: samples the BRDF exactly, weight 1 with F = 1),
     "printed" (the paper's |s.n| D(s)), "smith-vndf" (GGX), "bounded-vndf" (GGX, 3D). Paths of more
     than ``max_k`` reflections return zero weight.
@@ -278,7 +388,7 @@ def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = 
     radian in flatland; 0 on a zero-weight return) and ``weight`` (rho cos(theta_o) / pdf, F = 1).
     Runs on ``threads`` threads (0: all cores) without the GIL; the values do not depend on it."""
     m = 5 if model == "vgroove-nonsymmetric" else 4
-    u = np.asarray(u, dtype=float)
+    u = _reals(u, "u")
     if u.shape[-1:] != (m,):
         raise ValueError(f"u must be an array of uniform numbers, shape (..., {m}); got {u.shape}")
     lshape, wi_, ti = _light(wi, theta_i_deg)
@@ -288,7 +398,8 @@ def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = 
         wi_ = np.ascontiguousarray(np.broadcast_to(wi_, shape + (3,))).reshape(-1, 3)
     else:
         ti = np.ascontiguousarray(np.broadcast_to(ti, shape)).reshape(-1)
-    out = _vgroove.sample(model, ndf, float(alpha), wi_, ti, u, strategy, max_k, float(tolerance), dim, threads)
+    out = _vgroove.sample(model, ndf, _real(alpha, "alpha"), wi_, ti, u, strategy, _integer(max_k, "max_k"),
+                          _real(tolerance, "tolerance"), dim, _integer(threads, "threads"))
     return {key: a.reshape(shape + a.shape[1:]) for key, a in out.items()}
 
 
@@ -301,7 +412,7 @@ def pdf(ndf: str, alpha: float, wo: np.ndarray, *, wi: Optional[np.ndarray] = No
     as in :func:`sample` (``model``: "vgroove" or "vgroove-nonsymmetric"). 0 below the horizon; +inf
     exactly at the mirror direction in 3D (where the BRDF diverges too). With ``strategy="vndf"``
     the symmetric model's pdf equals rho(wi, wo) cos(theta_o) (F = 1)."""
-    wo = np.asarray(wo, dtype=float)
+    wo = _reals(wo, "wo")
     if wo.shape[-1:] != (3,):
         raise ValueError(f"wo must be an array of unit vectors, shape (..., 3); got {wo.shape}")
     lshape, wi_, ti = _light(wi, theta_i_deg)
@@ -311,8 +422,8 @@ def pdf(ndf: str, alpha: float, wo: np.ndarray, *, wi: Optional[np.ndarray] = No
         wi_ = np.ascontiguousarray(np.broadcast_to(wi_, shape + (3,))).reshape(-1, 3)
     else:
         ti = np.ascontiguousarray(np.broadcast_to(ti, shape)).reshape(-1)
-    return _vgroove.pdf(model, ndf, float(alpha), wi_, ti, wo, strategy, max_k, float(tolerance), dim,
-                        threads).reshape(shape)
+    return _vgroove.pdf(model, ndf, _real(alpha, "alpha"), wi_, ti, wo, strategy, _integer(max_k, "max_k"),
+                        _real(tolerance, "tolerance"), dim, _integer(threads, "threads")).reshape(shape)
 
 
 def uniforms(n: int, seed: int = 1, stream: Sequence[int] = (0, 0), dims: int = 4) -> np.ndarray:
@@ -322,4 +433,5 @@ def uniforms(n: int, seed: int = 1, stream: Sequence[int] = (0, 0), dims: int = 
     flatland."""
     if len(stream) != 2:
         raise ValueError(f"stream = {tuple(stream)!r} must be two integers")
-    return _vgroove.uniforms(n, seed, stream[0], stream[1], dims)
+    return _vgroove.uniforms(_integer(n, "n"), _integer(seed, "seed"), _integer(stream[0], "stream[0]"),
+                             _integer(stream[1], "stream[1]"), _integer(dims, "dims"))

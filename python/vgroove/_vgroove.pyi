@@ -8,6 +8,7 @@ import numpy.typing as npt
 
 __version__: str
 git_revision: str
+ranges: dict[str, float]
 
 def output_deg(rad: npt.ArrayLike) -> Any: ...
 
@@ -17,10 +18,10 @@ def kaleidoscope(theta_i_deg: npt.NDArray[np.float64], theta_v_deg: Optional[npt
 def analytic(theta_i_deg: float, theta_v_deg: Optional[float], theta_l_deg: Optional[float],
              theta_r_deg: Optional[float], eq6_form: str) -> dict[str, Any]: ...
 def trace(theta_i_deg: float, rays: int, theta_v_deg: Optional[float], theta_l_deg: Optional[float],
-          theta_r_deg: Optional[float], sampling: str, seed: int, max_bounces: int) -> dict[str, Any]: ...
+          theta_r_deg: Optional[float], sampling: str, seed: int, max_bounces: Optional[int]) -> dict[str, Any]: ...
 def groove_case(theta_i_deg: float, theta_v_deg: Optional[float], theta_l_deg: Optional[float],
-                theta_r_deg: Optional[float], rays: int, sampling: str, seed: int, max_bounces: int, eq6_form: str,
-                probe_vertices: bool, stream: int) -> dict[str, Any]: ...
+                theta_r_deg: Optional[float], rays: int, sampling: str, seed: int, max_bounces: Optional[int],
+                eq6_form: str, probe_vertices: bool, stream: int) -> dict[str, Any]: ...
 
 class Microsurface:
     @property

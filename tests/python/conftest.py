@@ -188,3 +188,31 @@ def reports(suites, tmp_path_factory):
     if SHARED and os.path.exists(os.path.join(SHARED, "done")):
         return {k: os.path.join(SHARED, f"{k}.json") for k in list(suites) + ["accuracy"]}
     return make_reports(str(tmp_path_factory.mktemp("reports")), suites)
+
+
+def interrupted_after(code, delay=1.0):
+    """Runs `code` (Python, printing nothing) in a child with Python's default SIGINT handler, sends
+    SIGINT `delay` seconds after it starts the call and returns (what it printed: "interrupted" when
+    the call raised KeyboardInterrupt, "finished" when it returned first; the seconds from the
+    signal to the child's exit)."""
+    import signal
+    import time
+    prog = ("import signal, numpy as np, vgroove\n"
+            "signal.signal(signal.SIGINT, signal.default_int_handler)\n"
+            "print('started', flush=True)\n"
+            "try:\n" + "".join("    " + line + "\n" for line in code.splitlines()) +
+            "    print('finished', flush=True)\n"
+            "except KeyboardInterrupt:\n"
+            "    print('interrupted', flush=True)\n")
+    p = subprocess.Popen([sys.executable, "-c", prog], stdout=subprocess.PIPE, text=True)
+    assert p.stdout.readline().strip() == "started"
+    time.sleep(delay)
+    t0 = time.monotonic()
+    p.send_signal(signal.SIGINT)
+    try:
+        out, _ = p.communicate(timeout=120)
+    except subprocess.TimeoutExpired:  # still running: the signal was ignored
+        p.kill()
+        p.communicate()
+        return "still running 120 s after SIGINT", time.monotonic() - t0
+    return out.strip(), time.monotonic() - t0

@@ -69,3 +69,21 @@ def test_errors_in_the_callable(vg):
     # NaN from the model is a failed case, not a crash.
     r = vg.check_brdf(lambda wi, wo: np.full(len(wi), np.nan), rays=1000, grooves=100, theta_i_deg=[0])
     assert not r["pass"] and r["cases"][0]["non_finite"]
+
+
+@pytest.mark.parametrize("f", [
+    # A Python callable: f is not called again once the flag is set (python/src/brdfs.cpp).
+    "lambda wi, wo: vgroove.brdf('vgroove', 'ggx', 0.5, wi, wo)",
+    # A built-in model in C++ (flatland at max_k 1024: ~70 ms a direction, 0.3 s a bin's first
+    # rule): the flag read before each bin's first rule (validation/check_brdf.cpp).
+    "'vgroove'",
+])
+def test_ctrl_c_stops_a_check_with_a_callback_within_a_second(vg, f):
+    # 300 x 300 bins (or 1000 flatland bins): the first rule alone evaluates f on every bin of every
+    # angle (tens of seconds in all) before any refinement.
+    from conftest import interrupted_after
+    dim = "dim='flatland', flatland_bins=1000, max_k=1024" if f == "'vgroove'" else "theta_bins=300, phi_bins=300"
+    out, seconds = interrupted_after(f"vgroove.check_brdf({f}, 'ggx', 0.5, [0, 40], rays=10**5, grooves=10**4, "
+                                     f"{dim}, threads=2)", delay=0.5)
+    assert out == "interrupted"
+    assert seconds < 1.5, seconds

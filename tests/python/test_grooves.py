@@ -177,3 +177,34 @@ def test_values_no_flag_can_hold_are_value_errors(vg):
         vg.kaleidoscope(10.0, [60.0, 300.0])
     with pytest.raises(ValueError, match="theta_l_deg needs theta_r_deg"):
         vg.kaleidoscope(10.0, theta_l_deg=-30.0)
+
+
+def test_narrow_grooves_get_the_command_lines_bounce_limit(vg):
+    # A 0.001 deg groove needs up to ceil(180 / 0.001) = 180000 reflections: by default the limit
+    # is what the command line sets (validation::default_max_bounces), and every ray leaves.
+    t = vg.trace(0.0, 40, 0.001)
+    assert np.all(t["fate"] == 0) and t["k"].max() > 100000
+    theirs = cli_json("trace", "--theta-v-deg", 0.001, "--theta-i-deg", 0, "--rays", 40, "--json")
+    assert strip_timing(t["summary"]) == strip_timing(theirs)
+    c = vg.groove_case(0.0, 0.001, rays=40)
+    assert c["l1"] < 0.06, c["l1"]  # 2.0 with every ray held at a limit of 100000
+    with pytest.raises(ValueError, match=r"^max_bounces = 0 is out of range \[1, 100000000\]$"):
+        vg.groove_case(0.0, 0.001, rays=40, max_bounces=0)
+
+
+def test_numpy_scalars_are_numbers_and_bools_or_complex_are_refused(vg):
+    ref = vg.trace(30.0, 50, 60.0, seed=3, sampling="random")
+    t = vg.trace(np.float32(30.0), np.int64(50), np.float64(60.0), seed=np.int32(3), sampling="random",
+                 max_bounces=np.uint16(1000))
+    assert np.array_equal(t["k"], ref["k"]) and np.array_equal(t["x"], ref["x"])
+    assert vg.groove_case(np.int64(30), np.int64(60), rays=np.int64(20))["l1"] == vg.groove_case(30, 60, rays=20)["l1"]
+    with pytest.raises(ValueError, match=r"^rays = True must be an integer, not a bool$"):
+        vg.trace(30.0, True, 60.0)
+    with pytest.raises(ValueError, match=r"^theta_i_deg = True must be a real number, not a bool$"):
+        vg.trace(True, 10, 60.0)
+    with pytest.raises(ValueError, match=r"^theta_i_deg = \(30\+1j\) must be a real number, not complex"):
+        vg.trace(30 + 1j, 10, 60.0)
+    with pytest.raises(ValueError, match=r"^theta_v_deg = .*60.*1j.* must be a real number, not complex"):
+        vg.groove_case(30.0, np.complex128(60 + 1j))
+    with pytest.raises(ValueError, match=r"^theta_i_deg has complex values \(dtype complex128\)"):
+        vg.kaleidoscope(np.array([10.0, 20.0 + 1e-3j]), 60.0)

@@ -185,7 +185,7 @@ def test_vectorized_equals_row_by_row_and_any_thread_count(vg):
     assert vg.uniforms(5, 4, (1, 1), dims=2).shape == (5, 2)
 
 
-@pytest.mark.parametrize("theta_i,alpha,ndf,strategy", [(89.9, 0.01, "ggx", "vndf"), (89.99, 2.0, "phong", "printed"),
+@pytest.mark.parametrize("theta_i,alpha,ndf,strategy", [(89.9, 0.01, "ggx", "vndf"), (89.9, 2.0, "phong", "printed"),
                                                         (0.0, 0.01, "beckmann", "vndf"), (0.0, 2.0, "ggx", "bounded-vndf"),
                                                         (60.0, 0.01, "ggx", "smith-vndf")])
 def test_hard_cases_stay_finite(vg, theta_i, alpha, ndf, strategy):
@@ -320,3 +320,26 @@ def test_nonsymmetric_bad_input_gives_the_command_lines_message(vg, kwargs, flag
         vg.pdf("ggx", 0.5, [0, 0, 1], theta_i_deg=30, model="vgroove-nonsymmetric", tolerance=0)
     with pytest.raises(ValueError, match=r"shape \(\.\.\., 5\)"):
         vg.sample("ggx", 0.5, [0.1] * 4, theta_i_deg=30, model="vgroove-nonsymmetric")
+
+
+@pytest.mark.parametrize("theta_i", [-1.0, 89.95])
+def test_sample_and_pdf_take_the_command_lines_theta_i_range(vg, theta_i):
+    expected = cli_error("sample", "--theta-i-deg", theta_i).replace("--theta-i-deg", "theta_i_deg[0]")
+    assert expected.endswith("is out of range [0, 89.9]")
+    with pytest.raises(ValueError) as e:
+        vg.sample("ggx", 0.5, [[0.1] * 4], theta_i_deg=theta_i)
+    assert str(e.value) == expected
+    with pytest.raises(ValueError) as e:
+        vg.pdf("ggx", 0.5, [0.0, 0.0, 1.0], theta_i_deg=[30.0, theta_i])
+    assert str(e.value) == expected.replace("[0]", "[1]")
+    with pytest.raises(ValueError, match=r"^wi\[0\] = .* is 89.95 deg from the normal, out of range \[0, 89.9\]$"):
+        vg.pdf("ggx", 0.5, [0.0, 0.0, 1.0], wi=vg.direction(89.95, 180))
+    # The edge itself, as a number and as a direction (its angle rounded to 1e-9 deg, as reports print it).
+    assert vg.sample("ggx", 0.5, [[0.1] * 4], theta_i_deg=np.float64(89.9))["k"].shape == (1,)
+    assert vg.pdf("ggx", 0.5, [0.0, 0.0, 1.0], wi=vg.direction([0.0, 89.9], 180)).shape == (2,)
+    # Flatland angles are signed: the mirror image of the range.
+    assert np.isfinite(vg.pdf("ggx", 0.5, [0.0, 0.0, 1.0], theta_i_deg=-89.9, dim="flatland"))
+    with pytest.raises(ValueError, match=r"^theta_i_deg\[0\] = -89.95 is out of range \[-89.9, 89.9\]$"):
+        vg.pdf("ggx", 0.5, [0.0, 0.0, 1.0], theta_i_deg=-89.95, dim="flatland")
+    with pytest.raises(ValueError, match=r"^wi\[0\] = .* is -89.95 deg from the normal, out of range \[-89.9, 89.9\]$"):
+        vg.sample("ggx", 0.5, [[0.1] * 4], wi=[np.sin(np.radians(89.95)), 0, np.cos(np.radians(89.95))], dim="flatland")

@@ -6,7 +6,7 @@ import json
 import numpy as np
 import pytest
 
-from conftest import TINY_BRDF
+from conftest import TINY_BRDF, cli_error, cli_json, interrupted_after
 
 
 def test_trace_microsurface_and_lobe_equal_the_report(vg, reports):
@@ -96,30 +96,39 @@ def test_brdf_hard_cases_are_finite(vg):
 
 
 def test_unit_vector_rule_at_its_boundary(vg):
-    # |len - 1| <= 1e-9 is the rule; lengths between the quick pass's bound (0.999e-9) and 1e-9 are
-    # decided by the exact check, and the first bad row of a large array is the one named.
+    # |len - 1| <= 1e-6 is the rule (stated in the message); lengths between the quick pass's bound
+    # (0.999e-9) and 1e-6 are decided by the exact check, and the first bad row of a large array is
+    # the one named.
     wi = vg.direction(30, 180)
-    ok = np.array([0.0, 0.0, 1.0 + 0.9995e-9])
+    ok = np.array([0.0, 0.0, 1.0 + 0.9995e-6])
     assert np.isfinite(vg.brdf("vgroove", "ggx", 0.5, wi, ok))
-    with pytest.raises(ValueError, match=r"^wo\[0\] = .* is not a unit vector$"):
-        vg.brdf("vgroove", "ggx", 0.5, wi, np.array([0.0, 0.0, 1.0 + 1.001e-9]))
+    with pytest.raises(ValueError, match=r"^wo\[0\] = .* is not a unit vector \(\|len - 1\| <= 1e-06\)$"):
+        vg.brdf("vgroove", "ggx", 0.5, wi, np.array([0.0, 0.0, 1.0 + 1.001e-6]))
     wo = np.tile(vg.direction(20, 0), (100000, 1))
-    wo[77777] = [0.0, 0.0, 1.0 - 2e-9]
-    with pytest.raises(ValueError, match=r"^wo\[77777\] = .* is not a unit vector$"):
+    wo[77777] = [0.0, 0.0, 1.0 - 2e-6]
+    with pytest.raises(ValueError, match=r"^wo\[77777\] = .* is not a unit vector \(\|len - 1\| <= 1e-06\)$"):
         vg.brdf("vgroove", "ggx", 0.5, wi, wo)
+    # Beyond 1e-9 (within 1e-6) a direction is divided by its length, as NumPy would divide it.
+    unit = lambda v: v / np.linalg.norm(v)  # noqa: E731
+    w, a, b = vg.direction(20, 40), wi * (1 + 3e-7), vg.direction(20, 40) * (1 - 5e-7)
+    assert vg.brdf("vgroove", "ggx", 0.5, a, b) == vg.brdf("vgroove", "ggx", 0.5, unit(a), unit(b))
+    assert vg.pdf("ggx", 0.5, b, wi=a) == vg.pdf("ggx", 0.5, unit(b), wi=unit(a))
+    np.testing.assert_allclose(vg.pdf("ggx", 0.5, b, wi=a), vg.pdf("ggx", 0.5, w, wi=wi), rtol=1e-9)
 
 
 def test_bad_brdf_input(vg):
     wi, wo = vg.direction(30, 180), vg.direction(20, 0)
-    with pytest.raises(ValueError, match=r"^wo\[0\] = \(0\.5, 0, 0\.5\) is not a unit vector$"):
+    with pytest.raises(ValueError, match=r"^wo\[0\] = \(0\.5, 0, 0\.5\) is not a unit vector \(\|len - 1\| <= "
+                                         r"1e-06\)$"):
         vg.brdf("vgroove", "ggx", 0.5, wi, [0.5, 0, 0.5])
-    with pytest.raises(ValueError, match=r"^wi\[0\] = \(nan, 0, 1\) is not a unit vector$"):
+    with pytest.raises(ValueError, match=r"^wi\[0\] = \(nan, 0, 1\) is not a unit vector \(\|len - 1\| <= 1e-06\)$"):
         vg.brdf("vgroove", "ggx", 0.5, [np.nan, 0, 1], wo)
     with pytest.raises(ValueError, match=r"^alpha = 0 is out of range \[0.01, 2\]$"):
         vg.brdf("vgroove", "ggx", 0.0, wi, wo)
     with pytest.raises(ValueError, match=r'^ndf = "gxx" is not one of "beckmann", "ggx", "phong"$'):
         vg.brdf("vgroove", "gxx", 0.5, wi, wo)
-    with pytest.raises(ValueError, match=r'^model = "ct" is not one of "vgroove", "cook_torrance"$'):
+    with pytest.raises(ValueError, match=r'^model = "ct" is not one of "vgroove", "vgroove-nonsymmetric", '
+                                         r'"cook-torrance"$'):
         vg.brdf("ct", "ggx", 0.5, wi, wo)
     with pytest.raises(ValueError, match="not in the plane y = 0"):
         vg.brdf("vgroove", "ggx", 0.5, wi, vg.direction(20, 90), dim="flatland")
@@ -132,3 +141,177 @@ def test_bad_brdf_input(vg):
     surf = vg.microsurface("ggx", 0.5, 100, 1)
     with pytest.raises(ValueError, match=r"^theta_i_deg = 95 is out of range \[0, 90\)"):
         vg.trace_microsurface(surf, 95.0, 10)
+
+
+def test_flatland_brdf_max_k_has_the_command_lines_range(vg):
+    wi, wo = vg.direction(30, 180), vg.direction(20, 0)
+    for flags, kwargs in ((["--dim", "flatland", "--max-k", 5000], {"dim": "flatland", "max_k": 5000}),
+                          (["--model", "vgroove-nonsymmetric", "--max-k", 2000],
+                           {"model": "vgroove-nonsymmetric", "max_k": 2000})):
+        expected = cli_error("brdf", "--theta-o-deg", 20, *flags)
+        for flag in ("--max-k", "--dim", "--model"):
+            expected = expected.replace(flag, flag[2:].replace("-", "_"))
+        assert "[1, 4096]" in expected or "[1, 1024]" in expected
+        with pytest.raises(ValueError) as e:
+            vg.brdf(kwargs.pop("model", "vgroove"), "ggx", 0.5, wi, wo, **kwargs)
+        assert str(e.value) == expected
+    flat = vg.brdf("vgroove", "ggx", 0.5, [[-0.5, 0, 0.75 ** 0.5]], [[0.3, 0, 0.91 ** 0.5]], dim="flatland",
+                   max_k=4096)
+    assert np.isfinite(flat).all()
+
+
+def test_brdf_takes_the_command_lines_models(vg):
+    wi, wo = vg.direction([30.0, 60.0], 180), vg.direction([20.0, 45.0], [0.0, 30.0])
+    assert np.array_equal(vg.brdf("cook-torrance", "ggx", 0.5, wi, wo), vg.brdf("cook_torrance", "ggx", 0.5, wi, wo))
+    # 3D: (theta_i, theta_o, phi_o) with the light at azimuth 180 deg; flatland: signed angles, the
+    # direction at t being (-sin t, 0, cos t) = direction(t, 180).
+    for dim, pairs in (("3d", ((30.0, 20.0, 0.0), (60.0, 45.0, 30.0))), ("flatland", ((30.0, -20.0, 0.0),
+                                                                                        (60.0, 45.0, 0.0)))):
+        ti, to, po = (np.array(c) for c in zip(*pairs))
+        wi, wo = vg.direction(ti, 180), vg.direction(to, po) if dim == "3d" else vg.direction(to, 180)
+        ns = vg.brdf("vgroove-nonsymmetric", "ggx", 0.5, wi, wo, max_k=64, dim=dim)
+        per_k = vg.brdf("vgroove-nonsymmetric", "ggx", 0.5, wi, wo, True, max_k=64, dim=dim)
+        assert per_k.shape == (2, 64)
+        for j in range(2):
+            theirs = cli_json("brdf", "--model", "vgroove-nonsymmetric", "--ndf", "ggx", "--alpha", 0.5, "--dim", dim,
+                              "--theta-i-deg", ti[j], "--phi-i-deg", 180, "--theta-o-deg", to[j], "--phi-o-deg", po[j],
+                              "--per-k", "--per-k-max", 64, "--json")
+            np.testing.assert_allclose(ns[j], theirs["points"][0]["value"], rtol=1e-12, err_msg=dim)
+            np.testing.assert_allclose(per_k[j], theirs["points"][0]["by_k"], rtol=1e-12, atol=1e-300, err_msg=dim)
+    # The command line's default max_k for this model is 64; Python's is 16 for every model (the
+    # flatland and nonsymmetric sums cost O(max_k^2) per direction).
+    assert vg.brdf("vgroove-nonsymmetric", "ggx", 0.5, wi, wo).shape == (2,)
+    with pytest.raises(ValueError) as e:
+        vg.brdf("vgroove-nonsymmetric", "phong", 1.5, wi, wo)
+    theirs = cli_error("brdf", "--theta-o-deg", 20, "--model", "vgroove-nonsymmetric", "--ndf", "phong", "--alpha", 1.5)
+    for flag in ("--alpha", "--model", "--ndf"):
+        theirs = theirs.replace(flag, flag[2:])
+    assert str(e.value) == theirs.replace(" --partner independent", "")  # Python has no partner option
+    with pytest.raises(ValueError, match=r'^model = "ct" is not one of "vgroove", "vgroove-nonsymmetric", '
+                                         r'"cook-torrance"'):
+        vg.brdf("ct", "ggx", 0.5, wi, wo)
+
+
+def test_float32_normalized_directions_are_unit_vectors(vg):
+    # The rule: |len - 1| <= 1e-6 (float32 rounding leaves ~6e-8); rows beyond 1e-9 are divided by
+    # their length, the others used as given.
+    wi64, wo64 = vg.direction([30.0, 70.0, 0.0], 180), vg.direction([20.0, 5.0, 40.0], [0.0, 75.0, 10.0])
+    wi32 = (wi64 / np.linalg.norm(wi64, axis=-1, keepdims=True)).astype(np.float32)
+    wo32 = wo64.astype(np.float32)
+    got = vg.brdf("vgroove", "ggx", 0.5, wi32, wo32)
+
+    def rule(a):
+        a = np.asarray(a, float)
+        n = np.linalg.norm(a, axis=-1, keepdims=True)
+        return np.where(np.abs(n - 1) > 1e-9, a / n, a)
+
+    assert np.any(np.abs(np.linalg.norm(np.asarray(wo32, float), axis=-1) - 1) > 1e-9)
+    np.testing.assert_array_equal(got, vg.brdf("vgroove", "ggx", 0.5, rule(wi32), rule(wo32)))
+    np.testing.assert_allclose(got, vg.brdf("vgroove", "ggx", 0.5, wi64, wo64), rtol=1e-5)
+    s = vg.sample("ggx", 0.5, vg.uniforms(3, 1), wi=wi32)
+    np.testing.assert_array_equal(s["wo"], vg.sample("ggx", 0.5, vg.uniforms(3, 1), wi=rule(wi32))["wo"])
+    with pytest.raises(ValueError, match=r"^wo\[0\] = .* is not a unit vector \(\|len - 1\| <= 1e-06\)$"):
+        vg.brdf("vgroove", "ggx", 0.5, wi64[0], [0.0, 0.0, 1.0 + 2e-6])
+    flat = vg.direction(np.float32(25.0), 180).astype(np.float32)
+    assert np.isfinite(vg.brdf("vgroove", "ggx", 0.5, flat, [0.0, 0.0, 1.0], dim="flatland"))
+    with pytest.raises(ValueError, match=r"is not in the plane y = 0 \(\|y\| <= 1e-06;"):
+        vg.brdf("vgroove", "ggx", 0.5, flat, [0.0, 2e-6, 1.0], dim="flatland")
+    assert vg.RANGES["unit_tolerance"] == 1e-6
+
+
+def test_lobe_and_trace_refuse_what_does_not_fit_in_memory(vg):
+    # support::check_memory's one line, as the command line's runs refuse theirs: the estimate (the
+    # histograms held at once) against what this process may use, before any work.
+    with pytest.raises(ValueError, match=r"^lobe needs about .* GB of memory \(theta_bins x phi_bins x \(max_k \+ 2\) "
+                                         r"= 10000 x 10000 x 1002 = 100200000000 histogram cells\), more than the .* "
+                                         r"this process may use$"):
+        vg.lobe("vgroove", "ggx", 0.5, 30, theta_bins=10000, phi_bins=10000, max_k=1000)
+    with pytest.raises(ValueError, match=r"^lobe needs about .* \(flatland_bins x \(max_k \+ 2\) = 100000 x 1002 = "):
+        small = "import vgroove; vgroove.lobe('vgroove', 'ggx', 0.5, 30, 'flatland', flatland_bins=100000, max_k=1000)"
+        limited(small, gb=0.6)
+    surf = vg.microsurface("ggx", 0.5, 10, 1)
+    with pytest.raises(ValueError, match=r"^trace_microsurface needs about .* of memory \(3 tallies \(2 per thread and "
+                                         r"their sum\) of theta_bins x phi_bins x \(max_k \+ 2\) = 10000 x 10000 x "
+                                         r"1002 = 100200000000 histogram cells\), more than the .* this process may "
+                                         r"use$"):
+        vg.trace_microsurface(surf, 30, 10, theta_bins=10000, phi_bins=10000, max_k=1000, threads=4)
+    with pytest.raises(ValueError, match=r"^max_k = 1001 is out of range \[0, 1000\]$"):
+        vg.lobe("vgroove", "ggx", 0.5, 30, max_k=1001)
+    with pytest.raises(ValueError, match=r"^max_k = -1 is out of range \[0, 1000\]$"):
+        vg.trace_microsurface(surf, 30, 10, max_k=-1)
+    # max_k = 0 as in the suites: every ray in the row of k > 0; Cook-Torrance still its k = 1 row.
+    assert vg.lobe("vgroove", "ggx", 0.5, 30, max_k=0)["by_k"].shape == (2,)
+    ct0, ct = (vg.lobe("cook-torrance", "ggx", 0.5, 30, max_k=k) for k in (0, 4))
+    np.testing.assert_array_equal(ct0["hist"], ct["hist"])
+
+
+def limited(code, gb):
+    """Runs `code` in a Python child under `ulimit -v` (gb), re-raising its ValueError or MemoryError here."""
+    import os
+    import resource
+    import subprocess
+    import sys
+
+    def cap():
+        resource.setrlimit(resource.RLIMIT_AS, (int(gb * 2**30), int(gb * 2**30)))
+
+    wrapped = ("import sys\ntry:\n    " + code.replace("; ", "\n    ") +
+               "\nexcept (ValueError, MemoryError) as e:\n    print(type(e).__name__ + ': ' + str(e)); sys.exit(3)\n")
+    r = subprocess.run([sys.executable, "-c", wrapped], capture_output=True, text=True, preexec_fn=cap,
+                       env=dict(os.environ))
+    if r.returncode == 3:
+        kind, _, msg = r.stdout.strip().partition(": ")
+        raise {"ValueError": ValueError, "MemoryError": MemoryError}[kind](msg)
+    assert r.returncode == 0, (r.returncode, r.stdout, r.stderr)
+    return r.stdout
+
+
+def test_under_a_memory_limit_the_refusal_comes_before_the_work(vg):
+    # 3 x 10^7 cells of a 3D lobe, twice (analytic/lobe_3d.cpp), and the program: refused under a
+    # 400 MB limit with the line, not killed.
+    with pytest.raises(ValueError, match=r"^lobe needs about 563 MB of memory \(.* = 30000000 histogram cells\), "
+                                         r"more than the 429 MB this process may use$"):
+        limited("import vgroove; vgroove.lobe('vgroove', 'ggx', 0.5, 30, theta_bins=1000, phi_bins=1000, max_k=28)",
+                gb=0.4)
+    # A surface too large for the limit: the command line's out-of-memory line, not "std::bad_alloc".
+    with pytest.raises(MemoryError, match=r"^out of memory: the run needs more memory than this process may use"):
+        limited("import vgroove; vgroove.microsurface('ggx', 0.5, 10**7, 1)", gb=0.4)
+
+
+def test_surface_arrays_are_read_only_views(vg):
+    surf = vg.microsurface("ggx", 0.5, 100, 1, dim="3d")
+    for name in ("theta_m_deg", "phi_a_deg"):
+        a, b = getattr(surf, name), getattr(surf, name)
+        assert not a.flags.writeable and np.shares_memory(a, b), name
+        with pytest.raises(ValueError):
+            a[0] = 1.0
+    assert vg.microsurface("ggx", 0.5, np.int64(100), np.int64(1)).grooves == 100
+
+
+def test_docstrings_state_the_enforced_ranges(vg):
+    doc = vg.__doc__
+    assert "[0.001, 180]" in doc and "[0.01, 2]" in doc and "1e-6, 180" not in doc and "(0, 2]" not in doc
+    with pytest.raises(ValueError, match=r"out of range \[0\.001, 180\]"):
+        vg.trace(10.0, 10, 0.0005)
+    with pytest.raises(ValueError, match=r"^alpha = 2.5 is out of range \[0.01, 2\]$"):
+        vg.lobe("vgroove", "ggx", 2.5, 30)
+    with pytest.raises(ValueError, match=r"^alpha = \(0\.5\+1j\) must be a real number, not complex"):
+        vg.brdf("vgroove", "ggx", np.complex128(0.5 + 1j), [0, 0, 1], [0, 0, 1])
+    with pytest.raises(ValueError, match=r"^wo has complex values"):
+        vg.brdf("vgroove", "ggx", 0.5, [0, 0, 1], np.array([0, 0, 1], complex))
+
+
+@pytest.mark.parametrize("call", [
+    # ~9 s: a 3D lobe of 200 x 200 bins (analytic/lobe_3d.h, Lobe3dOptions::cancel).
+    "vgroove.lobe('vgroove', 'ggx', 0.5, 30, theta_bins=200, phi_bins=200)",
+    "vgroove.lobe('cook_torrance', 'ggx', 0.5, 30, theta_bins=200, phi_bins=200)",
+    # ~2.8 s: 10^5 flatland bins at max_k 300 (FlatlandLobeOptions::cancel).
+    "vgroove.lobe('vgroove', 'ggx', 0.01, 0, 'flatland', flatland_bins=100000, max_k=300)",
+    # ~0.4 s per direction at max_k 4096: 200 of them on one thread, read before each.
+    "vgroove.brdf('vgroove', 'ggx', 0.5, vgroove.direction([30.0] * 200, 180), [0.0, 0.0, 1.0], dim='flatland', "
+    "max_k=4096, threads=1)",
+])
+def test_ctrl_c_stops_a_long_lobe_within_a_second(vg, call):
+    out, seconds = interrupted_after(call, delay=0.5)
+    assert out == "interrupted"
+    assert seconds < 1.5, seconds
