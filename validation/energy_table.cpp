@@ -199,6 +199,7 @@ Job<EnergyWork> energy_job(const EnergyGrid& g) {
   nlohmann::json d = {{"command", "energy"},
                       {"kind", "energy"},
                       {"input_file", ""},
+                      {"input_path", ""},
                       {"input", energy_grid_json(g)},
                       {"options", nlohmann::json::object()}};
   return make_job(std::move(w), std::move(units), std::move(d));

@@ -2,6 +2,7 @@
 
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
 
 #include "vgroove/support/memory.h"
@@ -135,22 +136,39 @@ Part part_from_json(const nlohmann::json& j, const std::string& where) {
   Part p;
   p.file = where;
   try {
-    const nlohmann::json& h = j.at("partial");
-    p.header.job = h.at("job");
-    p.header.shard.index = h.at("shard").at("index").get<int>();
-    p.header.shard.count = h.at("shard").at("count").get<int>();
-    p.header.items = h.at("items").get<std::vector<std::size_t>>();
-    p.header.threads = h.at("threads").get<int>();
-    p.header.wall_s = h.at("wall_s").get<double>();
-    p.version = {{"version", j.at("version")}, {"git", j.at("git")}};
-    p.units = j.at("units");
-    const auto items = p.header.job.at("items").get<std::size_t>();
-    if (p.header.shard.count < 1 || p.header.shard.index < 1 || p.header.shard.index > p.header.shard.count)
-      throw support::UserError(where + ": /partial/shard = " + h["shard"].dump() + " is not a shard I/N");
-    for (std::size_t i : p.header.items)
-      if (i >= items)
-        throw support::UserError(where + ": /partial/items lists item " + std::to_string(i) + " of a job of " +
-                                 std::to_string(items));
+    // Read as strictly as a suite: every key known, every value of its type and range.
+    support::JsonObject top(j, where, "");
+    top.one_of("tool", {"vgroove"});
+    top.integer("schema_version", kReportSchemaVersion, kReportSchemaVersion);
+    p.version = {{"version", top.string("version")}, {"git", top.string("git")}};
+    p.units = top.raw("units");
+    support::JsonObject h = top.object("partial");
+    p.header.job = h.raw("job");
+    if (!p.header.job.is_object()) h.fail("job", "must be an object (the run's descriptor)");
+    support::JsonObject job(p.header.job, where, h.path("job"));
+    const long long items = job.integer("items", 1, std::numeric_limits<long long>::max());
+    job.string("input_file"), job.string("input_path"), job.string("command");
+    support::JsonObject shard = h.object("shard");
+    p.header.shard.count = static_cast<int>(shard.integer("count", 1, support::kMaxShards));
+    p.header.shard.index = static_cast<int>(shard.integer("index", 1, p.header.shard.count));
+    shard.finish();
+    const nlohmann::json& list = h.raw("items");
+    if (!list.is_array()) h.fail("items", "must be an array of work items");
+    for (std::size_t n = 0; n < list.size(); ++n) {
+      const nlohmann::json& v = list[n];
+      const long long lo = p.header.items.empty() ? 0 : static_cast<long long>(p.header.items.back()) + 1;
+      if (!v.is_number_integer() ||
+          (v.is_number_unsigned() && v.get<unsigned long long>() >= static_cast<unsigned long long>(items)) ||
+          v.get<long long>() < lo || v.get<long long>() >= items)
+        h.fail_at("items", n,
+                  "= " + support::value_text(v) + " is not a work item in [" + std::to_string(lo) + ", " +
+                      std::to_string(items) + ") (items in increasing order, each once)");
+      p.header.items.push_back(v.get<std::size_t>());
+    }
+    p.header.threads = static_cast<int>(h.integer("threads", 1, kMaxThreads));
+    p.header.wall_s = h.number("wall_s", 0.0, true, std::numeric_limits<double>::max(), true);
+    h.finish();
+    top.finish();
   } catch (const nlohmann::json::exception& e) {
     throw support::UserError(where + ": not a partial report (" + e.what() + ")");
   }
@@ -175,7 +193,7 @@ std::string input_file_of(const Part& part) {
     return given;
   if (!path.empty() && std::filesystem::is_regular_file(path, ec)) return path;
   if (!given.empty() && std::filesystem::is_regular_file(given, ec)) return given;
-  throw support::UserError("merge: " + part.file + ": its input " + given + " (" + path +
+  throw support::UserError("merge: " + part.file + ": its input " + given + " (/partial/job/input_file; " + path +
                            ") is not found from here: merge where the shards' input can be read");
 }
 
@@ -200,16 +218,16 @@ std::vector<Part> check_parts(std::vector<Part> parts) {
                                value_at(p.header.job, d) + ", " + first.file + " has " + value_at(first.header.job, d) +
                                " (different suites, options or seeds)");
     if (p.header.shard.count != first.header.shard.count)
-      throw support::UserError("merge: " + p.file + " is shard " + p.header.shard.text() + ", " + first.file +
-                               " shard " + first.header.shard.text() + ": parts of different splits");
+      throw support::UserError("merge: " + p.file + " is shard " + p.header.shard.text() + " (/partial/shard), " +
+                               first.file + " shard " + first.header.shard.text() + ": parts of different splits");
   }
   const int n = first.header.shard.count;
   std::map<int, const Part*> by_index;
   for (const Part& p : parts) {
     const auto [it, fresh] = by_index.emplace(p.header.shard.index, &p);
     if (!fresh)
-      throw support::UserError("merge: shard " + p.header.shard.text() + " is given twice (" + it->second->file + ", " +
-                               p.file + ")");
+      throw support::UserError("merge: shard " + p.header.shard.text() + " (/partial/shard) is given twice (" +
+                               it->second->file + ", " + p.file + ")");
   }
   std::string missing;
   int missing_count = 0;
@@ -227,13 +245,16 @@ std::vector<Part> check_parts(std::vector<Part> parts) {
     for (std::size_t i : p.header.items) {
       if (owner[i])
         throw support::UserError("merge: " + owner[i]->file + " and " + p.file + " both ran work item " +
-                                 std::to_string(i) + ": overlapping parts");
+                                 std::to_string(i) + " (/partial/items): overlapping parts");
       owner[i] = &p;
     }
   for (std::size_t i = 0; i < items; ++i)
-    if (!owner[i])
+    if (!owner[i]) {
+      std::string files;
+      for (const Part& p : parts) files += (files.empty() ? "" : ", ") + p.file;
       throw support::UserError("merge: no part ran work item " + std::to_string(i) + " of " + std::to_string(items) +
-                               ": an incomplete set is never merged");
+                               " (/partial/items of " + files + "): an incomplete set is never merged");
+    }
   std::sort(parts.begin(), parts.end(),
             [](const Part& a, const Part& b) { return a.header.shard.index < b.header.shard.index; });
   return parts;

@@ -2,7 +2,7 @@
 """merge_parts_test.py VGROOVE: `vgroove merge` reads shard parts as strictly as suite files.
 
 Real parts of every kind that shards (brdf in flatland and 3D, table2, single grooves, energy,
-simulate) are damaged one value at a time: counts made negative, fractional, 1e300, 2^64, off by
+simulate) are damaged one value at a time, in their tallies, their headers and their provenance: counts made negative, fractional, 1e300, 2^64, off by
 one or of the wrong type; arrays cut, extended or emptied; model values of the wrong type. Each
 damaged set must be refused with exit 2, one line on stderr naming the damaged part and the JSON
 path of the value, and no report; only a value no check can see (timings, and counts that no sum
@@ -51,7 +51,8 @@ COMMANDS = {
     "simulate": ["simulate", f"{T}/scene.json"],
 }
 # Values no check can see: timings, and counts that no sum or bound over the others constrains.
-UNSEEN = {"thread_s", "wall_s", "bounces", "max_k_seen", "k", "zones", "grid", "uncertified_cells"}
+UNSEEN = {"thread_s", "wall_s", "bounces", "max_k_seen", "k", "zones", "grid", "uncertified_cells", "threads",
+          "input_file"}  # (the input as given: found by its absolute path when it is not there)
 # A single groove's facet outcome holds these counts within its rays, with no sum over them.
 UNSEEN_IN_FACETS = {"vertex_hits", "bounce_limit", "wrong_first"}
 
@@ -93,7 +94,7 @@ def mutations(path, value):
     if isinstance(value, float):
         return [("string", "x" + repr(value), True), ("null", None, True), ("bool", True, True)]
     if isinstance(value, str):
-        return [("other string", value + "x", True), ("null", None, True)]
+        return [("other string", value + "x", seen), ("null", None, True)]
     return []
 
 
@@ -117,8 +118,9 @@ def check_kind(name):
     for damaged in (0, 1):
         part = json.load(open(parts[damaged]))
         by_shape = {}
-        for path, value in leaves(part["units"], ("units",)):
-            by_shape.setdefault(shape(path), []).append((path, value))
+        for root in ("units", "partial", "tool", "schema_version", "version", "git"):
+            for path, value in leaves(part[root], (root,)):
+                by_shape.setdefault(shape(path), []).append((path, value))
         for s in sorted(by_shape):
             path, value = rng.choice(by_shape[s])
             for label, new, must_refuse in mutations(path, value):
@@ -143,7 +145,7 @@ def check_kind(name):
                         problems.append("not one line")
                     if bad_file not in r.stderr:
                         problems.append("the part is not named")
-                    if not re.search(r"/units(/|\b)", r.stderr):
+                    if path[0] in ("units", "partial") and not re.search(r"/(units|partial|job)(/|\b)", r.stderr):
                         problems.append("no JSON path")
                     if problems:
                         failures.append(f"{name}: {where} {label}: {', '.join(problems)}: {r.stderr.strip()}")
