@@ -160,6 +160,7 @@ Table2Run table2_run_from(const Table2Suite& s, const std::vector<UnitResult<Tab
   run.ours.resize(nq * nn * na);
   run.alternatives.assign(std::size(kOtherMeasures), std::vector<int>(nq * nn * na));
   run.traced.resize(nq * nn * na);
+  if (!results.empty()) run.rays = static_cast<long>(results.front().tally.rays);
   for (std::size_t q = 0; q < nq; ++q)
     for (std::size_t n = 0; n < nn; ++n)
       for (std::size_t a = 0; a < na; ++a) {
@@ -199,6 +200,7 @@ nlohmann::json table2_report_json(const Table2Suite& s, const Table2Run& run) {
   j["kind"] = "table2";
   j["description"] = s.description;
   j["seed"] = s.seed;
+  j["rays"] = run.rays;
   j["threads"] = run.threads;
   j["wall_s"] = run.wall_s;
   j["source"] = s.source;
@@ -256,7 +258,7 @@ void print_table2(std::ostream& os, const Table2Suite& s, const Table2Run& run) 
     os << row << "\n";
   }
   os << support::format("  %d/%zu entries agree with the paper; %ld rays per traced surface; wall %.2f s\n", run.agree,
-                        run.ours.size(), s.rays, run.wall_s);
+                        run.ours.size(), run.rays, run.wall_s);
 }
 
 }  // namespace vgroove::validation

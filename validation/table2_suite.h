@@ -34,6 +34,7 @@ struct Table2Run {
   std::vector<int> ours;                       // the reading that reproduces the table
   std::vector<std::vector<int>> alternatives;  // per other reading, same layout
   std::vector<int> traced;                     // percentile of the traced bounce counts
+  long rays = 0;                               // traced per surface (the suite's, or --rays)
   int agree = 0;
   int threads = 1;
   double wall_s = 0.0;

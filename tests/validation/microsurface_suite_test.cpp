@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -193,6 +195,13 @@ TEST(MicrosurfaceSuite, Table2AllEntriesAgree) {
   const Table2Run run = run_table2_suite(s, 5000, 2);
   EXPECT_EQ(run.agree, 27);
   EXPECT_TRUE(run.pass);
+  // The rays traced (here the override, not the suite's 200,000) are what the table and the
+  // report say (both said the suite's).
+  EXPECT_EQ(run.rays, 5000);
+  EXPECT_EQ(table2_report_json(s, run)["rays"], 5000);
+  std::ostringstream table;
+  print_table2(table, s, run);
+  EXPECT_NE(table.str().find("; 5000 rays per traced surface;"), std::string::npos) << table.str();
   // The traced percentiles never exceed the rule's N: at normal incidence a groove's rays make
   // k - 1 or k reflections, k = Eq. (4), and N is Eq. (4) at the q-th percentile groove.
   for (std::size_t n = 0; n < run.ours.size(); ++n) EXPECT_LE(run.traced[n], run.ours[n]) << n;
