@@ -17,6 +17,8 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kHalfPi = 0.5 * std::numbers::pi;
 
+bool cancelled(const NonsymmetricLobeOptions& opt) { return opt.cancel && opt.cancel->load(std::memory_order_relaxed); }
+
 // Eq. (9)'s zones for the rays aimed at the left facet of the groove (theta_l, theta_r) at t_i:
 // widths (not divided by f_a; the longer facet of unit length) and their counts.
 struct Zones {
@@ -329,7 +331,7 @@ void integrate_section(const Projection& proj, double t_i, const Laws& laws, dou
   }
   const GaussLegendre& gl = gauss_legendre_cached(opt.order);
   const double dv = 1.0 / opt.partner_panels;
-  for (int j = 0; j < opt.partner_panels; ++j) {
+  for (int j = 0; j < opt.partner_panels && !cancelled(opt); ++j) {
     for (std::size_t g = 0; g < gl.size(); ++g) {
       const double v = (j + 0.5 + 0.5 * gl.x[g]) * dv;
       const double y = laws.tilt(v);
@@ -458,6 +460,7 @@ Lobe3d nonsymmetric_lobe_3d(const NonsymmetricModel& m, double theta_i, double a
     return p + 2.0 * kPi * std::round((q - p) / (2.0 * kPi)) + axes_azimuth;
   };
   auto node = [&](double psi_a, double dpsi) {
+    if (cancelled(opt)) return;
     const double phi_a = phi_of(psi_a);
     const double alpha = alpha_along(r, phi_a - axes_azimuth);
     const double w_phi = dpsi / (2.0 * kPi);

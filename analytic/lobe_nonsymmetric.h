@@ -40,6 +40,8 @@
 #include "vgroove/analytic/brdf_nonsymmetric.h"
 #include "vgroove/analytic/lobe_3d.h"
 
+#include <atomic>
+
 namespace vgroove::analytic {
 
 // The defaults are the 3D suite's (joint (k, bin) L1 within ~2e-3 of refined runs at 15 x 12 bins,
@@ -52,6 +54,9 @@ struct NonsymmetricLobeOptions {
   int tilt_order = 2;      // nodes per A piece: 2, 4 or 8
   int kb_cap = 256;
   double negligible = 1e-13;  // a piece of A (or B) carrying less flux is not cut at bin edges
+  // Read before each phi_a node and each partner panel (may be null): once set, the rest is skipped
+  // and the lobe is incomplete (the caller, stopped by Ctrl-C, discards it).
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 // The light at theta_i in (-pi/2, pi/2) (flatland, signed) or [0, pi/2) (3D, azimuth pi).

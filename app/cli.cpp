@@ -197,6 +197,7 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
   add_text(plot, "--format", pa.format, "png (default), svg or pdf");
   plot->add_flag("--force", pa.force, "overwrite existing images");
   pa.dry_run = ctx.dry_run;
+  pa.cancel = ctx.cancel;
   SimulateArgs sa;
   auto* simu = app.add_subcommand("simulate",
                                   "Run a scene (data/scenes/*.json): trace every theta_i with the effects it "
@@ -246,6 +247,7 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
   add_text(smp, "--out", sma.out, "result JSON to write (the chi-square table, observed and expected per cell)");
   smp->add_flag("--force", sma.force, "overwrite an existing result");
   sma.dry_run = ctx.dry_run;
+  sma.cancel = ctx.cancel;
   BinsArgs bi;
   auto* bins = app.add_subcommand("bins",
                                   "Write a \"brdf\" suite's bin layout (cases, bin edges, frame) as JSON: fill in a "
@@ -306,6 +308,7 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
     ba.max_k_given = brdf_max_k->count() > 0;
   });
   ba.dry_run = ctx.dry_run;
+  ba.cancel = ctx.cancel;
   EnergyArgs ea;
   auto* energy = app.add_subcommand(
       "energy",

@@ -2,6 +2,7 @@
 
 #include "vgroove/analytic/facet_strategy.h"
 #include "vgroove/app/options.h"
+#include "vgroove/app/progress.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/support/atomic_file.h"
 #include "vgroove/support/printable.h"
@@ -72,7 +73,8 @@ int cmd_sample(const SampleArgs& a) {
   s.cos_bins = a.cos_bins;
   s.phi_bins = a.phi_bins;
   s.theta_bins = a.theta_bins;
-  const validation::Chi2Outcome o = validation::run_chi2(s);
+  const validation::Chi2Outcome o = validation::run_chi2(s, nullptr, a.cancel);
+  if (o.interrupted) return interrupted_no_report();
 
   const double se = std::sqrt(o.weight_variance / static_cast<double>(std::max(1L, o.weight_samples)));
   std::printf("sample: %s %s %s alpha %g, theta_i %g deg, strategy %s, max_k %d, %ld samples (seed %lld)\n",

@@ -79,6 +79,7 @@ struct PlotArgs {
   std::string out;     // default: the report's name without .json; a suffix per figure
   std::string format;  // png (default), svg or pdf
   bool force = false;
+  const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) before the script starts: it does not start
 };
 int cmd_plot(const PlotArgs& a);
 
@@ -109,6 +110,7 @@ struct SampleArgs {
   int cos_bins = 8, phi_bins = 16, theta_bins = 36;
   std::string out;
   bool force = false;
+  const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: nothing is printed or written
 };
 int cmd_sample(const SampleArgs& a);
 
@@ -143,6 +145,7 @@ struct BrdfArgs {
   int per_k_max = 16;
   std::string directions;  // JSON file of direction pairs
   bool json = false;
+  const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop between pairs: nothing is printed
 };
 int cmd_brdf(const BrdfArgs& a);
 

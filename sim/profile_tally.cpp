@@ -33,10 +33,12 @@ MicrosurfaceTally trace_profile_chunk(const Polyline& p, const MicrosurfaceTrace
   return tally;
 }
 
-MicrosurfaceTally trace_profile(const Polyline& p, const MicrosurfaceTraceOptions& opt) {
+MicrosurfaceTally trace_profile(const Polyline& p, const MicrosurfaceTraceOptions& opt,
+                                const std::atomic<bool>* cancel) {
   MicrosurfaceTally total(opt.theta_o_bins, opt.max_k);
   const std::int64_t n = chunk_count(opt);
-  for (std::int64_t c = 0; c < n; ++c) total.merge(trace_profile_chunk(p, opt, c));
+  for (std::int64_t c = 0; c < n && !(cancel && cancel->load(std::memory_order_relaxed)); ++c)
+    total.merge(trace_profile_chunk(p, opt, c));
   return total;
 }
 

@@ -14,6 +14,7 @@
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/polyline.h"
 
+#include <atomic>
 #include <cstdint>
 
 namespace vgroove::sim {
@@ -24,7 +25,9 @@ double landing_x(const Polyline& p, double u);
 // The rays of chunk c (kRaysPerChunk of them; the last chunk holds the rest).
 MicrosurfaceTally trace_profile_chunk(const Polyline& p, const MicrosurfaceTraceOptions& opt, std::int64_t chunk);
 
-// All chunks, merged in order (one thread).
-MicrosurfaceTally trace_profile(const Polyline& p, const MicrosurfaceTraceOptions& opt);
+// All chunks, merged in order (one thread). `cancel` (may be null) is read before each chunk; once
+// set, the chunks traced so far are returned (an incomplete tally, for the caller to discard).
+MicrosurfaceTally trace_profile(const Polyline& p, const MicrosurfaceTraceOptions& opt,
+                                const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace vgroove::sim

@@ -60,10 +60,11 @@ VisibilityTally trace_visibility_chunk(const Polyline& p, const VisibilityOption
   return t;
 }
 
-VisibilityTally trace_visibility(const Polyline& p, const VisibilityOptions& opt) {
+VisibilityTally trace_visibility(const Polyline& p, const VisibilityOptions& opt, const std::atomic<bool>* cancel) {
   VisibilityTally total(p.segments());
   const std::int64_t n = (opt.rays + kRaysPerChunk - 1) / kRaysPerChunk;
-  for (std::int64_t c = 0; c < n; ++c) total.merge(trace_visibility_chunk(p, opt, c));
+  for (std::int64_t c = 0; c < n && !(cancel && cancel->load(std::memory_order_relaxed)); ++c)
+    total.merge(trace_visibility_chunk(p, opt, c));
   return total;
 }
 

@@ -23,6 +23,7 @@
 #include "vgroove/sim/beam.h"
 #include "vgroove/sim/polyline.h"
 
+#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -52,6 +53,9 @@ struct VisibilityTally {
 };
 
 VisibilityTally trace_visibility_chunk(const Polyline& p, const VisibilityOptions& opt, std::int64_t chunk);
-VisibilityTally trace_visibility(const Polyline& p, const VisibilityOptions& opt);  // all chunks, in order
+// All chunks, in order. `cancel` (may be null) is read before each chunk; once set, the chunks
+// traced so far are returned (an incomplete tally, for the caller to discard).
+VisibilityTally trace_visibility(const Polyline& p, const VisibilityOptions& opt,
+                                 const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace vgroove::sim

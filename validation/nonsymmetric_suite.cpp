@@ -74,6 +74,16 @@ void compare(NonsymmetricOutcome& out, const NonsymmetricSuite& suite, const std
              out.l1 <= out.l1_threshold && out.l1_k <= out.l1_k_threshold;
 }
 
+// All chunks of rays merged in order, as sim's trace_nonsymmetric_microsurface(3d) do (the same
+// tally), with the cancellation flag read before each chunk.
+template <class Tally, class Surface, class Options, class ChunkFn>
+Tally trace_chunks(const Surface& surface, const Options& to, Tally total, ChunkFn&& chunk,
+                   support::CancelFlag cancel) {
+  const std::int64_t n = sim::chunk_count(to);
+  for (std::int64_t c = 0; c < n && !support::cancelled(cancel); ++c) total.merge(chunk(surface, to, c));
+  return total;
+}
+
 template <class Tally>
 void take_counts(NonsymmetricOutcome& out, const Tally& t) {
   out.rays = t.rays, out.escaped = t.escaped, out.lost = t.lost(), out.bounces = t.bounces;
@@ -94,7 +104,8 @@ sim::NonsymmetricSurfaceOptions surface_options(const NonsymmetricSuite& suite, 
   return o;
 }
 
-NonsymmetricOutcome run_flatland(const NonsymmetricSuite& suite, const NonsymmetricCase& c, long rays) {
+NonsymmetricOutcome run_flatland(const NonsymmetricSuite& suite, const NonsymmetricCase& c, long rays,
+                                 support::CancelFlag cancel) {
   NonsymmetricOutcome out;
   out.c = c;
   const int bins = suite.flatland_bins;
@@ -107,15 +118,20 @@ NonsymmetricOutcome run_flatland(const NonsymmetricSuite& suite, const Nonsymmet
   to.seed = suite.seed;
   to.theta_o_bins = bins;
   to.max_k = suite.max_k;
-  const sim::MicrosurfaceTally t = sim::trace_nonsymmetric_microsurface(surface, to);
+  const sim::MicrosurfaceTally t = trace_chunks(surface, to, sim::MicrosurfaceTally(to.theta_o_bins, to.max_k),
+                                                sim::trace_nonsymmetric_microsurface_chunk, cancel);
   out.sim_wall_s = seconds_since(t0);
+  if (support::cancelled(cancel)) return out;
   take_counts(out, t);
   const auto t1 = Clock::now();
+  analytic::NonsymmetricLobeOptions lo = analytic::flatland_options();
+  lo.cancel = cancel;
   const analytic::FlatlandLobe lobe =
-      analytic::flatland_nonsymmetric_lobe(model_of(c, c.symmetric), c.theta_i, bins, suite.max_k);
+      analytic::flatland_nonsymmetric_lobe(model_of(c, c.symmetric), c.theta_i, bins, suite.max_k, lo);
   const analytic::FlatlandLobe other =
-      analytic::flatland_nonsymmetric_lobe(model_of(c, !c.symmetric), c.theta_i, bins, suite.max_k);
+      analytic::flatland_nonsymmetric_lobe(model_of(c, !c.symmetric), c.theta_i, bins, suite.max_k, lo);
   out.model_wall_s = seconds_since(t1);
+  if (support::cancelled(cancel)) return out;
   out.albedo_model = lobe.albedo;
   const double N = static_cast<double>(t.rays);
   out.by_k_sim = fractions(t.by_k, N);
@@ -146,7 +162,8 @@ NonsymmetricOutcome run_flatland(const NonsymmetricSuite& suite, const Nonsymmet
   return out;
 }
 
-NonsymmetricOutcome run_3d(const NonsymmetricSuite& suite, const NonsymmetricCase& c, long rays) {
+NonsymmetricOutcome run_3d(const NonsymmetricSuite& suite, const NonsymmetricCase& c, long rays,
+                           support::CancelFlag cancel) {
   NonsymmetricOutcome out;
   out.c = c;
   const int tb = suite.theta_bins, pb = suite.phi_bins, bins = tb * pb;
@@ -159,16 +176,22 @@ NonsymmetricOutcome run_3d(const NonsymmetricSuite& suite, const NonsymmetricCas
   to.theta_bins = tb;
   to.phi_bins = pb;
   to.max_k = suite.max_k;
-  const sim::Microsurface3dTally t = sim::trace_nonsymmetric_microsurface3d(surface, to);
+  const sim::Microsurface3dTally t =
+      trace_chunks(surface, to, sim::Microsurface3dTally(to.theta_bins, to.phi_bins, to.max_k),
+                   sim::trace_nonsymmetric_microsurface3d_chunk, cancel);
   out.sim_wall_s = seconds_since(t0);
+  if (support::cancelled(cancel)) return out;
   take_counts(out, t);
   const auto t1 = Clock::now();
   const double axes = kPi - c.phi_i;
+  analytic::NonsymmetricLobeOptions lo;
+  lo.cancel = cancel;
   const analytic::Lobe3d lobe =
-      analytic::nonsymmetric_lobe_3d(model_of(c, c.symmetric), c.theta_i, axes, tb, pb, suite.max_k);
+      analytic::nonsymmetric_lobe_3d(model_of(c, c.symmetric), c.theta_i, axes, tb, pb, suite.max_k, lo);
   const analytic::Lobe3d other =
-      analytic::nonsymmetric_lobe_3d(model_of(c, !c.symmetric), c.theta_i, axes, tb, pb, suite.max_k);
+      analytic::nonsymmetric_lobe_3d(model_of(c, !c.symmetric), c.theta_i, axes, tb, pb, suite.max_k, lo);
   out.model_wall_s = seconds_since(t1);
+  if (support::cancelled(cancel)) return out;
   out.albedo_model = lobe.albedo;
   const double N = static_cast<double>(t.rays);
   out.by_k_sim = fractions(t.by_k, N);
@@ -214,12 +237,13 @@ std::vector<ReciprocityRow> reciprocity_rows(const NonsymmetricSuite& s) {
   return rows;
 }
 
-void run_reciprocity(ReciprocityRow& row, std::uint64_t seed, std::size_t index) {
+void run_reciprocity(ReciprocityRow& row, std::uint64_t seed, std::size_t index, support::CancelFlag cancel) {
   std::mt19937_64 g(seed * 0x9e3779b97f4a7c15ULL + index);
   std::uniform_real_distribution<double> U(0.0, 1.0);
   analytic::NonsymmetricModel m;
   m.roughness = analytic::Roughness{row.ndf, row.alpha_x, row.alpha_y};
   for (int n = 0; n < row.pairs; ++n) {
+    if (support::cancelled(cancel)) return;
     for (int k = 1; k <= 4; ++k) {
       double a = 0.0, b = 0.0;
       if (row.dim == SurfaceDim::three_d) {
@@ -370,8 +394,9 @@ NonsymmetricSuite parse_nonsymmetric_suite(const nlohmann::json& j, const std::s
   return s;
 }
 
-NonsymmetricOutcome run_nonsymmetric_case(const NonsymmetricSuite& suite, const NonsymmetricCase& c, long rays) {
-  return c.dim == SurfaceDim::flatland ? run_flatland(suite, c, rays) : run_3d(suite, c, rays);
+NonsymmetricOutcome run_nonsymmetric_case(const NonsymmetricSuite& suite, const NonsymmetricCase& c, long rays,
+                                          const std::atomic<bool>* cancel) {
+  return c.dim == SurfaceDim::flatland ? run_flatland(suite, c, rays, cancel) : run_3d(suite, c, rays, cancel);
 }
 
 NonsymmetricRun run_nonsymmetric_suite(const NonsymmetricSuite& suite, long rays, int threads,
@@ -390,17 +415,18 @@ NonsymmetricRun run_nonsymmetric_suite(const NonsymmetricSuite& suite, long rays
       items, run.threads,
       [&](std::size_t n) {
         if (n < cases.size())
-          run.cases[n] = run_nonsymmetric_case(suite, cases[n], n_rays);
+          run.cases[n] = run_nonsymmetric_case(suite, cases[n], n_rays, cancel);
         else
-          run_reciprocity(run.reciprocity[n - cases.size()], suite.seed, n - cases.size());
+          run_reciprocity(run.reciprocity[n - cases.size()], suite.seed, n - cases.size(), cancel);
       },
       progress, cancel, 1);
   run.wall_s = seconds_since(t0);
-  run.interrupted = !complete;
-  run.pass =
-      complete &&
-      std::all_of(run.cases.begin(), run.cases.end(), [](const NonsymmetricOutcome& o) { return o.pass; }) &&
-      std::all_of(run.reciprocity.begin(), run.reciprocity.end(), [](const ReciprocityRow& r) { return r.pass; });
+  // A case stopped inside its loops still counts as run by parallel_for: the flag decides.
+  run.interrupted = !complete || support::cancelled(cancel);
+  const auto all_pass = [](const auto& v) {
+    return std::all_of(v.begin(), v.end(), [](const auto& o) { return o.pass; });
+  };
+  run.pass = !run.interrupted && all_pass(run.cases) && all_pass(run.reciprocity);
   return run;
 }
 

@@ -114,7 +114,10 @@ NonsymmetricSuite parse_nonsymmetric_suite(const nlohmann::json& j, const std::s
 NonsymmetricRun run_nonsymmetric_suite(const NonsymmetricSuite& suite, long rays, int threads,
                                        const support::ProgressFn& progress = {},
                                        const std::atomic<bool>* cancel = nullptr);
-NonsymmetricOutcome run_nonsymmetric_case(const NonsymmetricSuite& suite, const NonsymmetricCase& c, long rays);
+// `cancel` (may be null) is read between chunks of rays and inside the lobes' quadrature; once set,
+// the case stops there and its outcome is incomplete (the suite says interrupted).
+NonsymmetricOutcome run_nonsymmetric_case(const NonsymmetricSuite& suite, const NonsymmetricCase& c, long rays,
+                                          const std::atomic<bool>* cancel = nullptr);
 nlohmann::json nonsymmetric_report_json(const NonsymmetricSuite& suite, const NonsymmetricRun& run);
 void print_nonsymmetric_table(std::ostream& os, const NonsymmetricSuite& suite, const NonsymmetricRun& run);
 

@@ -144,7 +144,8 @@ CaseIndex index_of(const ProfilesSuite& s, std::size_t c) {
 
 SurfaceOutcome run_surface(const ProfilesSuite& suite, std::size_t case_index, const ProfilesCase& c,
                            ProfileSurface surface, long rays, const std::vector<double>& walk_lobe,
-                           const std::vector<double>& walk_var, const std::vector<double>& model_lobe) {
+                           const std::vector<double>& walk_var, const std::vector<double>& model_lobe,
+                           support::CancelFlag cancel) {
   const auto t0 = Clock::now();
   SurfaceOutcome out;
   out.surface = surface;
@@ -158,6 +159,7 @@ SurfaceOutcome run_surface(const ProfilesSuite& suite, std::size_t case_index, c
   std::vector<std::int64_t> pooled(static_cast<std::size_t>(rows * bins), 0), by_k(static_cast<std::size_t>(rows), 0);
   std::int64_t lobe_rays = 0, escaped = 0;
   for (int r = 0; r < suite.realizations; ++r) {
+    if (support::cancelled(cancel)) return out;
     // One profile per (ndf, alpha, surface, realization): the same for every theta.
     const std::uint64_t key = ((ix.ndf * 64 + ix.alpha) * 65536 + static_cast<std::uint64_t>(r)) * 2 + surface_key;
     const sim::Polyline p = make_profile(suite, c, surface, derived_seed(suite.seed, kProfileSeeds, key));
@@ -167,13 +169,16 @@ SurfaceOutcome run_surface(const ProfilesSuite& suite, std::size_t case_index, c
     vo.seed = derived_seed(suite.seed, kBeamSeeds, beam_key);
     sim::VisibilityOptions vi;
     vi.theta_view = -c.theta, vi.rays = rays, vi.seed = derived_seed(suite.seed, kBeamSeeds, beam_key + 1);
-    const sim::VisibilityTally from_o = sim::trace_visibility(p, vo), from_i = sim::trace_visibility(p, vi);
+    const sim::VisibilityTally from_o = sim::trace_visibility(p, vo, cancel);
+    const sim::VisibilityTally from_i = sim::trace_visibility(p, vi, cancel);
+    if (support::cancelled(cancel)) return out;  // the tallies are incomplete
     const MaskingMeasure m =
         measure_masking(p, MaskingCase{c.ndf, c.alpha, -c.theta, c.theta, suite.normal_bins}, from_o, from_i);
     sim::MicrosurfaceTraceOptions to;
     to.theta_i = c.theta, to.rays = rays, to.seed = derived_seed(suite.seed, kBeamSeeds, beam_key + 2);
     to.theta_o_bins = bins, to.max_k = suite.max_k;
-    const sim::MicrosurfaceTally t = sim::trace_profile(p, to);
+    const sim::MicrosurfaceTally t = sim::trace_profile(p, to, cancel);
+    if (support::cancelled(cancel)) return out;
 
     out.rays += from_o.rays + from_i.rays + t.rays;
     out.lost += m.lost + from_i.vertex_hits + from_i.back_face + t.lost();
@@ -242,12 +247,14 @@ SurfaceOutcome run_surface(const ProfilesSuite& suite, std::size_t case_index, c
 }
 
 // The flatland Smith walk's per-k lobe: joint (row, bin) fractions, and their variance.
-void run_walk(const ProfilesSuite& suite, std::size_t case_index, const ProfilesCase& c, ProfilesOutcome& out) {
+void run_walk(const ProfilesSuite& suite, std::size_t case_index, const ProfilesCase& c, ProfilesOutcome& out,
+              support::CancelFlag cancel) {
   const int rows = suite.max_k + 2, bins = suite.lobe_bins;
   std::vector<std::int64_t> h(static_cast<std::size_t>(rows * bins), 0), by_k(static_cast<std::size_t>(rows), 0);
   const std::uint64_t seed = derived_seed(suite.seed, kWalkSeeds, case_index);
   const double width = std::numbers::pi / bins;
   for (std::int64_t chunk = 0; chunk * kWalkChunk < suite.walk_paths; ++chunk) {
+    if (support::cancelled(cancel)) return;
     sim::Rng rng(seed, kWalkSeeds, static_cast<std::uint64_t>(chunk));
     auto uniform = [&] { return sim::uniform_open(rng); };
     const std::int64_t end = std::min<std::int64_t>(suite.walk_paths, (chunk + 1) * kWalkChunk);
@@ -317,12 +324,14 @@ ProfilesSuite parse_profiles_suite(const nlohmann::json& j, const std::string& f
   return s;
 }
 
-ProfilesOutcome run_profiles_case(const ProfilesSuite& suite, std::size_t case_index, long rays) {
+ProfilesOutcome run_profiles_case(const ProfilesSuite& suite, std::size_t case_index, long rays,
+                                  const std::atomic<bool>* cancel) {
   ProfilesOutcome out;
   out.c = suite.case_at(case_index);
   const auto t0 = Clock::now();
-  run_walk(suite, case_index, out.c, out);
+  run_walk(suite, case_index, out.c, out, cancel);
   out.walk_wall_s = seconds_since(t0);
+  if (support::cancelled(cancel)) return out;
   const analytic::FlatlandLobe lobe =
       analytic::flatland_lobe(out.c.ndf, out.c.alpha, out.c.theta, suite.lobe_bins, suite.max_k);
   out.model_lobe = lobe.theta_o_by_k;
@@ -331,7 +340,9 @@ ProfilesOutcome run_profiles_case(const ProfilesSuite& suite, std::size_t case_i
   for (double p : out.walk_lobe) walk_var.push_back(p * (1.0 - p) / static_cast<double>(out.walk_paths));
   out.pass = true;
   for (ProfileSurface s : suite.surfaces) {
-    out.surfaces.push_back(run_surface(suite, case_index, out.c, s, rays, out.walk_lobe, walk_var, out.model_lobe));
+    if (support::cancelled(cancel)) return out;
+    out.surfaces.push_back(
+        run_surface(suite, case_index, out.c, s, rays, out.walk_lobe, walk_var, out.model_lobe, cancel));
     out.pass = out.pass && out.surfaces.back().pass;
   }
   out.non_finite = !(all_finite(out.walk_lobe) && all_finite(out.model_lobe));
@@ -352,12 +363,13 @@ ProfilesRun run_profiles_suite(const ProfilesSuite& suite, long rays, int thread
   // One case per work item, its realizations in order on one thread: results do not depend on
   // the thread count.
   const bool complete = support::parallel_for(
-      suite.cases(), run.threads, [&](std::size_t c) { run.cases[c] = run_profiles_case(suite, c, n_rays); }, progress,
-      cancel, 1);
+      suite.cases(), run.threads, [&](std::size_t c) { run.cases[c] = run_profiles_case(suite, c, n_rays, cancel); },
+      progress, cancel, 1);
   run.wall_s = seconds_since(t0);
-  run.interrupted = !complete;
-  run.pass =
-      complete && std::all_of(run.cases.begin(), run.cases.end(), [](const ProfilesOutcome& o) { return o.pass; });
+  // A case stopped inside its loops still counts as run by parallel_for: the flag decides.
+  run.interrupted = !complete || support::cancelled(cancel);
+  run.pass = !run.interrupted &&
+             std::all_of(run.cases.begin(), run.cases.end(), [](const ProfilesOutcome& o) { return o.pass; });
   return run;
 }
 

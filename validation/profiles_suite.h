@@ -149,7 +149,10 @@ ProfilesSuite parse_profiles_suite(const nlohmann::json& j, const std::string& f
 // rays > 0 overrides the suite's rays per beam.
 ProfilesRun run_profiles_suite(const ProfilesSuite& suite, long rays, int threads,
                                const support::ProgressFn& progress = {}, const std::atomic<bool>* cancel = nullptr);
-ProfilesOutcome run_profiles_case(const ProfilesSuite& suite, std::size_t case_index, long rays);
+// `cancel` (may be null) is read between the beams' chunks of rays and the walk's chunks of paths;
+// once set, the case stops there and its outcome is incomplete (the suite says interrupted).
+ProfilesOutcome run_profiles_case(const ProfilesSuite& suite, std::size_t case_index, long rays,
+                                  const std::atomic<bool>* cancel = nullptr);
 
 nlohmann::json profiles_report_json(const ProfilesSuite& suite, const ProfilesRun& run);
 void print_profiles_table(std::ostream& os, const ProfilesSuite& suite, const ProfilesRun& run);

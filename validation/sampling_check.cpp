@@ -6,6 +6,7 @@
 #include "vgroove/analytic/sampling_flatland.h"
 #include "vgroove/analytic/sampling_nonsymmetric.h"
 #include "vgroove/sim/rng.h"
+#include "vgroove/support/parallel.h"
 #include "vgroove/validation/report.h"
 
 #include <algorithm>
@@ -20,6 +21,14 @@ namespace vgroove::validation {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// Thrown by a density evaluated after the cancellation flag was set: the quadratures stop at once
+// (run_chi2 and retest_chi2 catch it and say interrupted).
+struct Stopped {};
+void stop_if(const std::atomic<bool>* cancel) {
+  if (support::cancelled(cancel)) throw Stopped{};
+}
+
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 std::array<double, 4> uniforms(sim::Rng& rng) { return {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()}; }
@@ -58,7 +67,7 @@ analytic::AdaptiveOptions cell_options(long samples) {
 }
 
 // The cells and the histogram of the sampled directions.
-void sample_3d(Chi2Outcome& out) {
+void sample_3d(Chi2Outcome& out, const std::atomic<bool>* cancel) {
   const Chi2Spec& s = out.spec;
   Chi2Table& t = out.table;
   t.rows = s.cos_bins;
@@ -74,6 +83,7 @@ void sample_3d(Chi2Outcome& out) {
   const analytic::NonsymmetricSampler ns = s.nonsymmetric ? nonsymmetric_sampler(s) : analytic::NonsymmetricSampler{};
   const long weighted = s.nonsymmetric ? std::min(s.samples, kNonsymmetricWeightSamples) : s.samples;
   for (long n = 0; n < s.samples; ++n) {
+    stop_if(cancel);
     analytic::VgrooveSample3d x;
     if (s.nonsymmetric) {
       const std::array<double, 5> u = uniforms5(rng);
@@ -100,7 +110,7 @@ void sample_3d(Chi2Outcome& out) {
 }
 
 // The expected counts: the density integrated over each cell.
-void expect_3d(Chi2Outcome& out, const HeldDensity* held) {
+void expect_3d(Chi2Outcome& out, const HeldDensity* held, const std::atomic<bool>* cancel) {
   const Chi2Spec& s = out.spec;
   Chi2Table& t = out.table;
   t.expected.assign(t.observed.size(), 0.0);
@@ -109,6 +119,7 @@ void expect_3d(Chi2Outcome& out, const HeldDensity* held) {
   const auto t1 = Clock::now();
   const analytic::NonsymmetricSampler ns = s.nonsymmetric ? nonsymmetric_sampler(s) : analytic::NonsymmetricSampler{};
   auto pdf = [&](const analytic::Dir3& o) {
+    stop_if(cancel);
     if (held) return held->pdf3(o);
     return s.nonsymmetric ? analytic::nonsymmetric_pdf_3d(ns, i, o)
                           : analytic::vgroove_pdf_3d(i, o, s.ndf, s.alpha, opt);
@@ -165,7 +176,7 @@ void expect_3d(Chi2Outcome& out, const HeldDensity* held) {
                                            : analytic::sampler_failure_probability_3d(i, s.ndf, s.alpha, opt, 1e-9);
 }
 
-void sample_flatland(Chi2Outcome& out) {
+void sample_flatland(Chi2Outcome& out, const std::atomic<bool>* cancel) {
   const Chi2Spec& s = out.spec;
   Chi2Table& t = out.table;
   t.rows = 1;
@@ -180,6 +191,7 @@ void sample_flatland(Chi2Outcome& out) {
   const analytic::NonsymmetricSampler ns = s.nonsymmetric ? nonsymmetric_sampler(s) : analytic::NonsymmetricSampler{};
   const long weighted = s.nonsymmetric ? std::min(s.samples, kNonsymmetricWeightSamples) : s.samples;
   for (long n = 0; n < s.samples; ++n) {
+    stop_if(cancel);
     analytic::VgrooveSampleFlatland x;
     if (s.nonsymmetric) {
       const std::array<double, 5> u = uniforms5(rng);
@@ -203,7 +215,7 @@ void sample_flatland(Chi2Outcome& out) {
   w.into(out, weighted);
 }
 
-void expect_flatland(Chi2Outcome& out, const HeldDensity* held) {
+void expect_flatland(Chi2Outcome& out, const HeldDensity* held, const std::atomic<bool>* cancel) {
   const Chi2Spec& s = out.spec;
   Chi2Table& t = out.table;
   t.expected.assign(t.observed.size(), 0.0);
@@ -211,6 +223,7 @@ void expect_flatland(Chi2Outcome& out, const HeldDensity* held) {
   const auto t1 = Clock::now();
   const analytic::NonsymmetricSampler ns = s.nonsymmetric ? nonsymmetric_sampler(s) : analytic::NonsymmetricSampler{};
   auto pdf = [&](double to) {
+    stop_if(cancel);
     if (held) return held->pdf2(to);
     return s.nonsymmetric ? analytic::nonsymmetric_pdf_flatland(ns, s.theta_i, to)
                           : analytic::vgroove_pdf_flatland(s.theta_i, to, s.ndf, s.alpha, opt);
@@ -233,13 +246,14 @@ void expect_flatland(Chi2Outcome& out, const HeldDensity* held) {
 }
 
 // The expected counts under the sampler's pdf or the held density, and the test.
-void expect_and_test(Chi2Outcome& out, const HeldDensity* held) {
+void expect_and_test(Chi2Outcome& out, const HeldDensity* held, const std::atomic<bool>* cancel) {
   const Chi2Spec& spec = out.spec;
   out.pdf_integral = out.quadrature_error = 0.0;
   if (spec.dim == SurfaceDim::three_d)
-    expect_3d(out, held);
+    expect_3d(out, held, cancel);
   else
-    expect_flatland(out, held);
+    expect_flatland(out, held, cancel);
+  stop_if(cancel);  // the failure probability's quadrature cannot be stopped: say so after it
   Chi2Table& t = out.table;
   t.expected_none = static_cast<double>(spec.samples) * (held ? held->none : out.failure_probability);
   out.normalization_error = out.pdf_integral + (held ? held->none : out.failure_probability) - 1.0;
@@ -257,20 +271,30 @@ void expect_and_test(Chi2Outcome& out, const HeldDensity* held) {
 
 }  // namespace
 
-Chi2Outcome run_chi2(const Chi2Spec& spec, const HeldDensity* held) {
+Chi2Outcome run_chi2(const Chi2Spec& spec, const HeldDensity* held, const std::atomic<bool>* cancel) {
   Chi2Outcome out;
   out.spec = spec;
-  if (spec.dim == SurfaceDim::three_d)
-    sample_3d(out);
-  else
-    sample_flatland(out);
-  expect_and_test(out, held);
+  try {
+    if (spec.dim == SurfaceDim::three_d)
+      sample_3d(out, cancel);
+    else
+      sample_flatland(out, cancel);
+    expect_and_test(out, held, cancel);
+  } catch (const Stopped&) {
+    out.interrupted = true;
+    out.pass = false;
+  }
   return out;
 }
 
-Chi2Outcome retest_chi2(const Chi2Outcome& sampled, const HeldDensity& held) {
+Chi2Outcome retest_chi2(const Chi2Outcome& sampled, const HeldDensity& held, const std::atomic<bool>* cancel) {
   Chi2Outcome out = sampled;
-  expect_and_test(out, &held);
+  try {
+    expect_and_test(out, &held, cancel);
+  } catch (const Stopped&) {
+    out.interrupted = true;
+    out.pass = false;
+  }
   return out;
 }
 
@@ -336,7 +360,7 @@ analytic::NonsymmetricModel nonsymmetric_model(const VarianceSpec& spec) {
 }
 }  // namespace
 
-VarianceOutcome run_variance(const VarianceSpec& spec) {
+VarianceOutcome run_variance(const VarianceSpec& spec, const std::atomic<bool>* cancel) {
   VarianceOutcome out;
   out.spec = spec;
   const bool three_d = spec.dim == SurfaceDim::three_d;
@@ -352,6 +376,7 @@ VarianceOutcome run_variance(const VarianceSpec& spec) {
     long none = 0;
     const auto t0 = Clock::now();
     for (long n = 0; n < spec.samples; ++n) {
+      stop_if(cancel);
       const auto [w, returned] = draw(uniforms5(rng));
       sum += w, sum2 += w * w;
       none += !returned;
@@ -368,59 +393,66 @@ VarianceOutcome run_variance(const VarianceSpec& spec) {
     st.efficiency = st.variance > 0.0 ? 1.0 / (st.variance * secs / N) : std::numeric_limits<double>::infinity();
     out.rows.push_back(st);
   };
-  for (analytic::FacetStrategy s : {analytic::FacetStrategy::printed, analytic::FacetStrategy::vndf,
-                                    analytic::FacetStrategy::smith_vndf, analytic::FacetStrategy::bounded_vndf}) {
-    if (!analytic::strategy_supports(s, spec.ndf, !three_d)) continue;
-    const analytic::SamplerOptions opt{s, spec.max_k};
-    if (spec.nonsymmetric) {
-      const analytic::NonsymmetricSampler ns = analytic::make_nonsymmetric_sampler(spec.ndf, spec.alpha, opt, !three_d);
+  try {
+    for (analytic::FacetStrategy s : {analytic::FacetStrategy::printed, analytic::FacetStrategy::vndf,
+                                      analytic::FacetStrategy::smith_vndf, analytic::FacetStrategy::bounded_vndf}) {
+      if (!analytic::strategy_supports(s, spec.ndf, !three_d)) continue;
+      const analytic::SamplerOptions opt{s, spec.max_k};
+      if (spec.nonsymmetric) {
+        const analytic::NonsymmetricSampler ns =
+            analytic::make_nonsymmetric_sampler(spec.ndf, spec.alpha, opt, !three_d);
+        if (three_d)
+          run(analytic::strategy_name(s), [&](const std::array<double, 5>& u) {
+            const analytic::VgrooveSample3d x = analytic::sample_nonsymmetric_3d(ns, i, u, F);
+            return std::pair<double, bool>{x.weight, x.k > 0};
+          });
+        else
+          run(analytic::strategy_name(s), [&](const std::array<double, 5>& u) {
+            const analytic::VgrooveSampleFlatland x = analytic::sample_nonsymmetric_flatland(ns, spec.theta_i, u);
+            return std::pair<double, bool>{x.weight, x.k > 0};
+          });
+        continue;
+      }
       if (three_d)
-        run(analytic::strategy_name(s), [&](const std::array<double, 5>& u) {
-          const analytic::VgrooveSample3d x = analytic::sample_nonsymmetric_3d(ns, i, u, F);
+        run(analytic::strategy_name(s), [&](const std::array<double, 5>& u5) {
+          const std::array<double, 4> u{u5[0], u5[1], u5[2], u5[3]};
+          const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(i, u, spec.ndf, spec.alpha, opt, F);
           return std::pair<double, bool>{x.weight, x.k > 0};
         });
       else
-        run(analytic::strategy_name(s), [&](const std::array<double, 5>& u) {
-          const analytic::VgrooveSampleFlatland x = analytic::sample_nonsymmetric_flatland(ns, spec.theta_i, u);
+        run(analytic::strategy_name(s), [&](const std::array<double, 5>& u5) {
+          const std::array<double, 4> u{u5[0], u5[1], u5[2], u5[3]};
+          const analytic::VgrooveSampleFlatland x =
+              analytic::sample_vgroove_flatland(spec.theta_i, u, spec.ndf, spec.alpha, opt);
           return std::pair<double, bool>{x.weight, x.k > 0};
         });
-      continue;
     }
+    // Cosine-weighted sampling: weight = rho cos / (cos / pi) = pi rho (flatland: 2 rho2).
     if (three_d)
-      run(analytic::strategy_name(s), [&](const std::array<double, 5>& u5) {
-        const std::array<double, 4> u{u5[0], u5[1], u5[2], u5[3]};
-        const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(i, u, spec.ndf, spec.alpha, opt, F);
-        return std::pair<double, bool>{x.weight, x.k > 0};
+      run("cosine", [&](const std::array<double, 5>& u) {
+        const analytic::Dir3 o = analytic::sample_cosine_hemisphere(u[0], u[1]);
+        const double pdf = analytic::cosine_hemisphere_pdf(o);
+        const double rho = spec.nonsymmetric
+                               ? analytic::nonsymmetric_brdf(i, o, spec.max_k, nonsymmetric_model(spec), F)
+                               : analytic::vgroove_brdf(i, o, spec.ndf, spec.alpha, spec.max_k, F);
+        return std::pair<double, bool>{pdf > 0.0 && std::isfinite(rho) ? rho * o.z / pdf : 0.0, pdf > 0.0};
       });
     else
-      run(analytic::strategy_name(s), [&](const std::array<double, 5>& u5) {
-        const std::array<double, 4> u{u5[0], u5[1], u5[2], u5[3]};
-        const analytic::VgrooveSampleFlatland x =
-            analytic::sample_vgroove_flatland(spec.theta_i, u, spec.ndf, spec.alpha, opt);
-        return std::pair<double, bool>{x.weight, x.k > 0};
+      run("cosine", [&](const std::array<double, 5>& u) {
+        const double to = analytic::sample_cosine_flatland(u[0]);
+        const double pdf = analytic::cosine_flatland_pdf(to);
+        const analytic::SamplerOptions opt{analytic::FacetStrategy::vndf, spec.max_k};
+        const double rho_cos =
+            spec.nonsymmetric
+                ? analytic::flatland_nonsymmetric_brdf(spec.theta_i, to, spec.max_k, nonsymmetric_model(spec)) *
+                      std::cos(to)
+                : analytic::vgroove_pdf_and_brdf_flatland(spec.theta_i, to, spec.ndf, spec.alpha, opt).rho_cos;
+        return std::pair<double, bool>{pdf > 0.0 ? rho_cos / pdf : 0.0, pdf > 0.0};
       });
+  } catch (const Stopped&) {
+    out.interrupted = true;
+    return out;
   }
-  // Cosine-weighted sampling: weight = rho cos / (cos / pi) = pi rho (flatland: 2 rho2).
-  if (three_d)
-    run("cosine", [&](const std::array<double, 5>& u) {
-      const analytic::Dir3 o = analytic::sample_cosine_hemisphere(u[0], u[1]);
-      const double pdf = analytic::cosine_hemisphere_pdf(o);
-      const double rho = spec.nonsymmetric ? analytic::nonsymmetric_brdf(i, o, spec.max_k, nonsymmetric_model(spec), F)
-                                           : analytic::vgroove_brdf(i, o, spec.ndf, spec.alpha, spec.max_k, F);
-      return std::pair<double, bool>{pdf > 0.0 && std::isfinite(rho) ? rho * o.z / pdf : 0.0, pdf > 0.0};
-    });
-  else
-    run("cosine", [&](const std::array<double, 5>& u) {
-      const double to = analytic::sample_cosine_flatland(u[0]);
-      const double pdf = analytic::cosine_flatland_pdf(to);
-      const analytic::SamplerOptions opt{analytic::FacetStrategy::vndf, spec.max_k};
-      const double rho_cos =
-          spec.nonsymmetric
-              ? analytic::flatland_nonsymmetric_brdf(spec.theta_i, to, spec.max_k, nonsymmetric_model(spec)) *
-                    std::cos(to)
-              : analytic::vgroove_pdf_and_brdf_flatland(spec.theta_i, to, spec.ndf, spec.alpha, opt).rho_cos;
-      return std::pair<double, bool>{pdf > 0.0 ? rho_cos / pdf : 0.0, pdf > 0.0};
-    });
   const auto lowest =
       std::min_element(out.rows.begin(), out.rows.end(),
                        [](const StrategyStats& a, const StrategyStats& b) { return a.variance < b.variance; });

@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -72,8 +73,9 @@ struct Chi2Outcome {
   double sample_s = 0.0, integrate_s = 0.0;
   // The weights rho cos / pdf of the same samples (zero-weight returns count 0), F = 1.
   double weight_mean = 0.0, weight_variance = 0.0;
-  long weight_samples = 0;  // samples the weight's moments are over
-  bool pass = false;        // the chi-square accepts and |normalization_error| <= normalization_tolerance
+  long weight_samples = 0;   // samples the weight's moments are over
+  bool pass = false;         // the chi-square accepts and |normalization_error| <= normalization_tolerance
+  bool interrupted = false;  // `cancel` was set: the numbers are incomplete and mean nothing
 };
 
 // A density the test holds the sampler to in place of its own pdf (the power tests), with the
@@ -84,9 +86,12 @@ struct HeldDensity {
   double none = 0.0;
 };
 
-Chi2Outcome run_chi2(const Chi2Spec& spec, const HeldDensity* held = nullptr);
+// `cancel` (may be null) is read at every sample and every evaluation of the density; once set, the
+// run stops within one evaluation and the outcome says interrupted (pass false).
+Chi2Outcome run_chi2(const Chi2Spec& spec, const HeldDensity* held = nullptr,
+                     const std::atomic<bool>* cancel = nullptr);
 // The same samples held to another density (the histogram is reused, the expected counts redone).
-Chi2Outcome retest_chi2(const Chi2Outcome& sampled, const HeldDensity& held);
+Chi2Outcome retest_chi2(const Chi2Outcome& sampled, const HeldDensity& held, const std::atomic<bool>* cancel = nullptr);
 nlohmann::json chi2_json(const Chi2Outcome& o);
 
 // The weight's statistics per strategy.
@@ -113,8 +118,10 @@ struct VarianceOutcome {
   std::vector<StrategyStats> rows;
   std::string lowest_variance;  // among the strategies and cosine
   std::string most_efficient;
+  bool interrupted = false;  // `cancel` was set: rows missing or incomplete
 };
-VarianceOutcome run_variance(const VarianceSpec& spec);
+// `cancel` (may be null) is read at every sample.
+VarianceOutcome run_variance(const VarianceSpec& spec, const std::atomic<bool>* cancel = nullptr);
 nlohmann::json variance_json(const VarianceOutcome& o);
 
 }  // namespace vgroove::validation

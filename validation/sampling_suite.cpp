@@ -159,16 +159,17 @@ SamplingRun run_sampling_suite(const SamplingSuite& suite, int threads, const su
       n, run.threads,
       [&](std::size_t k) {
         if (k < n1)
-          run.chi_square[k] = run_chi2(suite.chi_square[k]);
+          run.chi_square[k] = run_chi2(suite.chi_square[k], nullptr, cancel);
         else if (k < n2)
-          run.variance[k - n1] = run_variance(suite.variance[k - n1]);
+          run.variance[k - n1] = run_variance(suite.variance[k - n1], cancel);
         else
           run.furnace[k - n2] = run_furnace_case(suite.furnace, suite.furnace_cases[k - n2]);
       },
       progress, cancel, 1);
   run.wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
-  run.interrupted = !complete;
-  run.pass = complete &&
+  // A case stopped inside its loops still counts as run by parallel_for: the flag decides.
+  run.interrupted = !complete || support::cancelled(cancel);
+  run.pass = !run.interrupted &&
              std::all_of(run.chi_square.begin(), run.chi_square.end(), [](const Chi2Outcome& o) { return o.pass; }) &&
              std::all_of(run.furnace.begin(), run.furnace.end(), [](const FurnaceOutcome& o) { return o.pass; });
   return run;

@@ -1,0 +1,157 @@
+// Tests of the vgroove command line under signals, through the built binary (issue 36, item 4):
+// Ctrl-C inside the loops of `sample` (every mode), `brdf --directions` and the profiles and
+// nonsymmetric suites stops the run within about a second with the status and line of every
+// interrupted run (130, "interrupted; no report written") and no output.
+#include "tests/cli_run.h"
+#include "tests/test_files.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <thread>
+
+namespace vgroove::app {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using testing_files::quoted;
+using testing_files::read_text;
+using testing_files::TempDir;
+using testing_files::write_text;
+
+struct Stopped {
+  int status = -1;       // exit status, -1 if killed by a signal
+  int signal = 0;        // the signal that killed it, if one did
+  double seconds = 0.0;  // from the signal to the exit
+  std::string out, err;
+};
+
+// Runs `env vgroove args` through sh (stdout and stderr to files in dir), sends sig after `after`
+// seconds and waits for the exit (SIGKILL after 30 s).
+Stopped signal_after(const std::string& args, int sig, double after, const TempDir& dir, const std::string& env = "") {
+  const std::string out = dir.file("sig.out"), err = dir.file("sig.err");
+  const std::string cmd = env + " exec " + quoted(VGROOVE_BIN) + " " + args + " >" + quoted(out) + " 2>" + quoted(err);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::duration<double>(after));
+  ::kill(pid, sig);
+  const auto t0 = std::chrono::steady_clock::now();
+  int st = 0;
+  for (;;) {
+    if (::waitpid(pid, &st, WNOHANG) == pid) break;
+    if (std::chrono::steady_clock::now() - t0 > std::chrono::seconds(30)) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &st, 0);
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  Stopped r;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  r.signal = WIFSIGNALED(st) ? WTERMSIG(st) : 0;
+  r.out = read_text(out);
+  r.err = read_text(err);
+  return r;
+}
+
+bool no_temporaries(const TempDir& dir) {
+  for (const std::string& e : dir.entries())
+    if (e.find(".tmp") != std::string::npos) return false;
+  return true;
+}
+
+// Ctrl-C after 1 s: exit 130 with the line every interrupted run prints, within 3 s (the loops
+// read the flag every few milliseconds of work; 3 s allows for a loaded machine and sanitizers),
+// nothing on stdout and no file at `out` (when given).
+void expect_prompt_stop(const std::string& args, const TempDir& dir, const std::string& out = "") {
+  const Stopped r = signal_after(args, SIGINT, 1.0, dir);
+  EXPECT_EQ(r.status, 130) << args << "\n" << r.err;
+  EXPECT_LT(r.seconds, 3.0) << args;
+  EXPECT_CONTAINS(r.err, "vgroove: interrupted; no report written");
+  EXPECT_EQ(r.out, "") << args;
+  if (!out.empty()) {
+    EXPECT_FALSE(fs::exists(out)) << args;
+  }
+  EXPECT_TRUE(no_temporaries(dir)) << args;
+}
+
+std::string suite_file(const std::string& name) { return std::string(VGROOVE_SOURCE_DIR) + "/data/suites/" + name; }
+
+// ---------------------------------------------------------------------------------------------
+// Item 4: Ctrl-C inside `sample`, `brdf --directions`, profiles and nonsymmetric suites.
+
+TEST(CliSignals, SampleStopsWhileDrawing) {
+  TempDir dir;
+  const std::string out = dir.file("s.json");
+  for (const std::string mode :
+       {"", "--dim flatland", "--model vgroove-nonsymmetric", "--model vgroove-nonsymmetric --dim flatland"})
+    expect_prompt_stop("sample --n 1000000000 " + mode + " --out " + quoted(out), dir, out);
+}
+
+TEST(CliSignals, SampleStopsInsideTheCellIntegrals) {
+  // Few samples, many cells (or the nonsymmetric pdf at ~1 ms an evaluation): minutes of quadrature.
+  TempDir dir;
+  const std::string out = dir.file("s.json");
+  for (const std::string mode : {"--cos-bins 1000 --phi-bins 1000", "--model vgroove-nonsymmetric --cos-bins 2",
+                                 "--model vgroove-nonsymmetric --dim flatland --theta-bins 10000"})
+    expect_prompt_stop("sample --n 1000 " + mode + " --out " + quoted(out), dir, out);
+}
+
+TEST(CliSignals, BrdfDirectionsStopsBetweenPairs) {
+  TempDir dir;
+  // Flatland at max_k 4096: ~0.4 s a pair; 3D near the horizon: up to ~20 ms a pair.
+  json flat, three;
+  for (int n = 0; n < 2000; ++n) flat["directions"].push_back({{"theta_i_deg", 30}, {"theta_o_deg", -20 + 1e-3 * n}});
+  for (int n = 0; n < 100000; ++n)
+    three["directions"].push_back(
+        {{"theta_i_deg", 89.99}, {"theta_o_deg", 89.99}, {"phi_i_deg", 0}, {"phi_o_deg", 90 + 1e-3 * n}});
+  const std::string f = dir.file("flat.json"), t = dir.file("three.json");
+  write_text(f, flat.dump());
+  write_text(t, three.dump());
+  expect_prompt_stop("brdf --dim flatland --directions " + quoted(f), dir);
+  expect_prompt_stop("brdf --dim flatland --directions " + quoted(f) + " --json", dir);
+  expect_prompt_stop("brdf --directions " + quoted(t) + " --json", dir);
+}
+
+TEST(CliSignals, ProfilesSuiteStopsInsideACase) {
+  // One case at a time, each stopped in its beams (10^9 rays) or its Smith walk (10^9 paths): a
+  // case used to run to its end, for hours.
+  TempDir dir;
+  const std::string out = dir.file("r.json"), suite = suite_file("profiles.json");
+  expect_prompt_stop("validate " + quoted(suite) + " --rays 1000000000 --threads 1 --out " + quoted(out), dir, out);
+  json j = json::parse(read_text(suite));
+  j["walk_paths"] = 1000000000;
+  const std::string walk = dir.file("walk.json");
+  write_text(walk, j.dump());
+  expect_prompt_stop("validate " + quoted(walk) + " --threads 1 --out " + quoted(out), dir, out);
+}
+
+TEST(CliSignals, NonsymmetricSuiteStopsInsideACase) {
+  // A case stopped in its tracing (10^9 rays) or in its 3D lobes' quadrature (90 x 72 bins: about a
+  // minute for the pair of lobes, which used to run to its end).
+  TempDir dir;
+  const std::string out = dir.file("r.json");
+  expect_prompt_stop("validate " + quoted(suite_file("nonsymmetric_brdf.json")) +
+                         " --rays 1000000000 --threads 1 --out " + quoted(out),
+                     dir, out);
+  const std::string lobe = dir.file("lobe.json");
+  write_text(lobe, R"({"name": "lobe", "kind": "nonsymmetric_brdf", "ndf": ["ggx"], "alpha": [0.5],
+    "theta_i_deg": [40], "dimensions": ["3d"], "rays": 1000, "grooves": 1000, "theta_bins": 90, "phi_bins": 72,
+    "reciprocity_pairs": 0, "thresholds": {"sigmas": 5, "model_tolerance": {"flatland": 1e-3, "3d": 3e-3}}})");
+  expect_prompt_stop("validate " + quoted(lobe) + " --out " + quoted(out), dir, out);
+}
+
+}  // namespace
+}  // namespace vgroove::app
