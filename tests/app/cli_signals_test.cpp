@@ -1,7 +1,8 @@
-// Tests of the vgroove command line under signals, through the built binary (issue 36, item 4):
-// Ctrl-C inside the loops of `sample` (every mode), `brdf --directions` and the profiles and
-// nonsymmetric suites stops the run within about a second with the status and line of every
-// interrupted run (130, "interrupted; no report written") and no output.
+// Tests of the vgroove command line under signals, through the built binary (issue 36, items 4
+// and 8): Ctrl-C inside the loops of `sample` (every mode), `brdf --directions` and the profiles
+// and nonsymmetric suites stops the run within about a second with the status and line of every
+// interrupted run (130, "interrupted; no report written") and no output; SIGINT, SIGTERM and SIGHUP
+// to `vgroove plot` reach the plot script, which writes nothing after vgroove has exited.
 #include "tests/cli_run.h"
 #include "tests/test_files.h"
 
@@ -9,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -151,6 +153,77 @@ TEST(CliSignals, NonsymmetricSuiteStopsInsideACase) {
     "theta_i_deg": [40], "dimensions": ["3d"], "rays": 1000, "grooves": 1000, "theta_bins": 90, "phi_bins": 72,
     "reciprocity_pairs": 0, "thresholds": {"sigmas": 5, "model_tolerance": {"flatland": 1e-3, "3d": 3e-3}}})");
   expect_prompt_stop("validate " + quoted(lobe) + " --out " + quoted(out), dir, out);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Item 8: the signals that stop `vgroove plot` reach its script.
+
+// An interpreter standing in for python3 (VGROOVE_PYTHON): it writes its pid, starts a temporary
+// file as plot.py does (.NAME.tmp.PID beside the target), takes `seconds` and then renames it into
+// place.
+std::string fake_python(const TempDir& dir, const std::string& seconds) {
+  const std::string f = dir.file("fake-python");
+  write_text(f,
+             "#!/bin/sh\n"
+             "echo $$ > " +
+                 quoted(dir.file("pid")) +
+                 "\n"
+                 ": > " +
+                 quoted(dir.file(".fig.png.tmp.")) +
+                 "$$\n"
+                 "sleep " +
+                 seconds +
+                 "\n"
+                 "mv " +
+                 quoted(dir.file(".fig.png.tmp.")) + "$$ " + quoted(dir.file("fig.png")) + "\n");
+  ::chmod(f.c_str(), 0755);
+  return f;
+}
+
+// A process that has exited (reaped or a zombie) or never was.
+bool gone(pid_t pid) {
+  if (::kill(pid, 0) != 0) return true;
+  const std::string stat = read_text("/proc/" + std::to_string(pid) + "/stat");
+  const std::size_t p = stat.rfind(')');
+  return p != std::string::npos && p + 2 < stat.size() && stat[p + 2] == 'Z';
+}
+
+TEST(CliSignals, PlotPassesStopSignalsToItsScript) {
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    TempDir dir;
+    const std::string report = dir.file("r.json");
+    write_text(report, "{}");
+    const std::string env = "VGROOVE_PYTHON=" + quoted(fake_python(dir, "1.5"));
+    const Stopped r =
+        signal_after("plot " + quoted(report) + " --out " + quoted(dir.file("fig.png")), sig, 0.5, dir, env);
+    // vgroove exits at once, as a process stopped by the signal would (128 + sig), after its script.
+    EXPECT_EQ(r.status, 128 + sig) << "signal " << sig << "\n" << r.err;
+    EXPECT_LT(r.seconds, 1.5) << "signal " << sig;
+    EXPECT_CONTAINS(r.err, "vgroove: interrupted; no plot written");
+    const pid_t script = static_cast<pid_t>(std::stol("0" + read_text(dir.file("pid"))));
+    ASSERT_GT(script, 0) << "the script did not start";
+    EXPECT_TRUE(gone(script)) << "signal " << sig << ": the script outlived vgroove";
+    // Nothing written after vgroove's exit: no figure once the script would have finished.
+    std::this_thread::sleep_for(std::chrono::milliseconds(1700));
+    EXPECT_FALSE(fs::exists(dir.file("fig.png"))) << "signal " << sig;
+    EXPECT_TRUE(no_temporaries(dir)) << "signal " << sig;
+  }
+}
+
+TEST(CliSignals, PlotUnsignalledKeepsItsScriptsStatus) {
+  TempDir dir;
+  const std::string report = dir.file("r.json");
+  write_text(report, "{}");
+  const std::string env = "VGROOVE_PYTHON=" + quoted(fake_python(dir, "0"));
+  const testing_files::CliRun r = testing_files::run_shell(env + " " + quoted(VGROOVE_BIN) + " plot " + quoted(report) +
+                                                           " --out " + quoted(dir.file("fig.png")));
+  EXPECT_EQ(r.status, 0) << r;
+  EXPECT_TRUE(fs::exists(dir.file("fig.png")));
+  EXPECT_TRUE(no_temporaries(dir));
+  const testing_files::CliRun missing = testing_files::run_shell("VGROOVE_PYTHON=" + quoted(dir.file("none")) + " " +
+                                                                 quoted(VGROOVE_BIN) + " plot " + quoted(report));
+  EXPECT_EQ(missing.status, 2) << missing;
+  EXPECT_CONTAINS(missing.err, "plot: cannot run " + dir.file("none") + " (No such file or directory)");
 }
 
 }  // namespace
