@@ -151,15 +151,26 @@ ModelBins model_bins(const BrdfBatchFn& f, const analytic::Dir3& wi, const Check
   }
   std::vector<Cell> children;
   double total = 0.0;  // the running sum of the estimates (summed afresh at the end)
-  for (auto q = cells; !q.empty(); q.pop()) total += q.top().err;
-  while (total > o.model_tolerance && in.evals < o.max_model_evals) {
+  // A value that is not finite or negative fails the case (CheckBrdfCase::non_finite) whatever
+  // the refinement gives: refining it would only spend max_model_evals calls (a NaN cost 18-26 s
+  // per angle through a Python callback), so it stops at the first one.
+  bool invalid = false;
+  for (auto q = cells; !q.empty(); q.pop()) {
+    total += q.top().err;
+    invalid = invalid || !(q.top().value >= 0.0 && std::isfinite(q.top().value));
+  }
+  while (!invalid && total > o.model_tolerance && in.evals < o.max_model_evals) {
     if (cancel && cancel->load(std::memory_order_relaxed)) break;
     const Cell c = cells.top();
     cells.pop();
     total -= c.err;
     children.clear();
     in.split(c, children);
-    for (Cell& ch : children) total += ch.err, cells.push(std::move(ch));
+    for (Cell& ch : children) {
+      total += ch.err;
+      invalid = invalid || !(ch.value >= 0.0 && std::isfinite(ch.value));
+      cells.push(std::move(ch));
+    }
   }
   const std::size_t bins = flat ? static_cast<std::size_t>(o.flatland_bins)
                                 : static_cast<std::size_t>(o.theta_bins) * static_cast<std::size_t>(o.phi_bins);

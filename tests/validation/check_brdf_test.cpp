@@ -8,6 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
+#include <atomic>
+
 #include <cmath>
 
 namespace vgroove::validation {
@@ -44,6 +48,32 @@ TEST(CheckBrdf, VgrooveModelPasses3d) {
   for (const CheckBrdfCase& c : r.cases) {
     EXPECT_NEAR(c.albedo_model, 1.0, 2e-4) << "theta_i " << c.theta_i_deg;  // F = 1: nothing is lost
     EXPECT_LE(c.model_error, o.model_tolerance * 1.0001);
+  }
+}
+
+// A model that returns NaN in one direction fails as non_finite after the first rule's calls:
+// refining the bin it poisons spent all of max_model_evals (4 x 10^6 calls per angle, 18-26 s
+// through a Python callback). A negative value the same.
+TEST(CheckBrdf, ANonFiniteOrNegativeModelFailsWithoutRefining) {
+  CheckBrdfOptions o = small_3d(0.5);
+  o.theta_i_deg = {40};
+  o.rays = 20'000;
+  o.grooves = 10'000;
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), -1.0}) {
+    std::atomic<std::int64_t> calls{0};
+    const BrdfFn base = vgroove_model(o);
+    const BrdfFn f = [&](const analytic::Dir3& wi, const analytic::Dir3& wo) {
+      ++calls;
+      return wo.z > 0.99 ? bad : base(wi, wo);  // the bins around the normal
+    };
+    const CheckBrdfResult r = check_brdf(f, o);
+    ASSERT_EQ(r.cases.size(), 1u);
+    EXPECT_TRUE(r.cases[0].non_finite) << bad;
+    EXPECT_FALSE(r.pass);
+    // The first rule: per bin one Gauss-Legendre rule over it and one per quarter (5 x order^2 nodes).
+    const std::int64_t first = 5LL * o.theta_bins * o.phi_bins * o.quadrature_order * o.quadrature_order;
+    EXPECT_LE(r.cases[0].model_evals, first) << bad;
+    EXPECT_LE(calls.load(), first) << bad;
   }
 }
 
