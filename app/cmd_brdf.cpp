@@ -25,8 +25,8 @@ struct Pair {
 
 constexpr std::size_t kMaxPairs = 10'000'000;
 // The sums that cost O(max_k^2): their largest --max-k and the default.
-constexpr int kFlatlandMaxK = 4096;
-constexpr int kNonsymmetricMaxK = 1024, kNonsymmetricDefaultK = 64;
+constexpr int kFlatlandMaxK = validation::kMaxFlatlandBrdfK;
+constexpr int kNonsymmetricMaxK = validation::kMaxNonsymmetricBrdfK, kNonsymmetricDefaultK = 64;
 
 void check_angle(double v, double lo, bool lo_closed, double hi, bool hi_closed, const std::string& what) {
   const bool ok = std::isfinite(v) && (lo_closed ? v >= lo : v > lo) && (hi_closed ? v <= hi : v < hi);

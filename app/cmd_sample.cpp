@@ -75,6 +75,13 @@ int cmd_sample(const SampleArgs& a) {
   s.theta_bins = a.theta_bins;
   const validation::Chi2Outcome o = validation::run_chi2(s, nullptr, a.cancel);
   if (o.interrupted) return interrupted_no_report();
+  // With too few samples the cells pool into fewer than two of >= 5 expected samples each: no
+  // chi-square test is possible, which is no verdict on the sampler ("p = 1 ... REJECTED").
+  if (o.test.dof < 1 && !o.test.samples_where_none_expected)
+    throw support::UserError("--n = " + std::to_string(a.n) + " is too few samples for a chi-square test (the " +
+                             std::to_string(o.test.pooled_in) + " cells pool into " +
+                             std::to_string(o.test.pooled_out) +
+                             " with >= 5 expected samples each; the test needs two): give a larger --n");
 
   const double se = std::sqrt(o.weight_variance / static_cast<double>(std::max(1L, o.weight_samples)));
   std::printf("sample: %s %s %s alpha %g, theta_i %g deg, strategy %s, max_k %d, %ld samples (seed %lld)\n",

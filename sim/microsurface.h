@@ -154,7 +154,8 @@ struct Landing {
   double f = 0.0;  // in (0, 1)
 };
 inline Landing stratified_landing(std::int64_t j, std::int64_t rays, std::int64_t grooves) {
-  const __int128 num = static_cast<__int128>(2 * j + 1) * grooves, den = 2 * static_cast<__int128>(rays);
+  __extension__ using Wide = __int128;  // (2j + 1) G exactly, for any j, rays and G
+  const Wide num = static_cast<Wide>(2 * j + 1) * grooves, den = 2 * static_cast<Wide>(rays);
   const auto r = static_cast<std::int64_t>(num % den);
   Landing at;
   at.groove = static_cast<int>(num / den);

@@ -9,7 +9,7 @@ namespace vgroove::validation {
 namespace {
 
 // Sums of counts: up to 10^8 bins of up to 2^62 each do not overflow 128 bits.
-using Wide = __int128;
+__extension__ using Wide = __int128;
 std::string wide_text(Wide v) {
   if (v >= std::numeric_limits<std::int64_t>::min() && v <= std::numeric_limits<std::int64_t>::max())
     return std::to_string(static_cast<std::int64_t>(v));

@@ -42,6 +42,10 @@ inline constexpr int kDefaultMaxBounces = 100'000;
 inline constexpr int kMaxBounces = 100'000'000;
 // Worker threads (0: all cores).
 inline constexpr int kMaxThreads = 1024;
+// Point BRDF evaluations whose sums over bounce counts cost O(max_k^2) (`vgroove brdf`, Python
+// brdf): their largest max_k (a flatland pair at 4096 takes about 0.4 s).
+inline constexpr int kMaxFlatlandBrdfK = 4096;
+inline constexpr int kMaxNonsymmetricBrdfK = 1024;
 // Histogram cells (bins x bounce-count rows) of one tally: each work item holds its own. Rows
 // k = 0..max_k (and one for larger k), max_k at most kMaxHistogramK.
 inline constexpr long long kMaxHistogramCells = 1'000'000;

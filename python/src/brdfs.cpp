@@ -12,6 +12,7 @@
 #include "vgroove/common/angles.h"
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/check_brdf.h"
+#include "vgroove/validation/ranges.h"
 #include "vgroove/validation/run_options.h"
 
 #include <cmath>
@@ -26,10 +27,10 @@ using validation::SurfaceDim;
 
 using analytic::BrdfModel;
 
-// The sums that cost O(max_k^2) and their largest max_k: `vgroove brdf`'s (app/cmd_brdf.cpp,
-// kFlatlandMaxK and kNonsymmetricMaxK; test_surfaces.py holds the two messages equal).
-constexpr int kFlatlandMaxK = 4096;
-constexpr int kNonsymmetricMaxK = 1024;
+// The sums that cost O(max_k^2) and their largest max_k: `vgroove brdf`'s (validation/ranges.h;
+// test_surfaces.py holds the two messages equal).
+constexpr int kFlatlandMaxK = validation::kMaxFlatlandBrdfK;
+constexpr int kNonsymmetricMaxK = validation::kMaxNonsymmetricBrdfK;
 
 // max_k checked as `vgroove brdf --max-k` is: [1, 2^31 - 1], the O(max_k^2) sums bounded.
 int brdf_orders(long long max_k, BrdfModel model, bool flat) {

@@ -736,6 +736,8 @@ TEST(CliInput, NewCommandsReadOptionsStrictly) {
       {"sample --theta-i-deg 89.95", "--theta-i-deg = 89.95 is out of range [0, 89.9]"},
       {"sample --n 2^63", "--n = \"2^63\" is not an integer"},
       {"sample --n 1e10", "--n = 1e10 is out of range [1, 1000000000]"},
+      {"sample --n 1",
+       "--n = 1 is too few samples for a chi-square test (the 129 cells pool into 0 with >= 5 expected"},
       {"sample --seed 18446744073709551616", "--seed = 18446744073709551616 is out of range [0, 9223372036854775807]"},
       {"sample --phi-bins 3", "--phi-bins = 3 is out of range [2, 1000], even"},
       {"sample --cos-bins 0x10", "--cos-bins = \"0x10\" is not an integer"},

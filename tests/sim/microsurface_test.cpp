@@ -436,7 +436,9 @@ TEST(Microsurface, StratifiedLandingPointsAreMidpointsOffTheRidges) {
       const long double mid = (j + 0.5L) * grooves / rays;
       const long double got = at.groove + static_cast<long double>(at.f);
       EXPECT_LE(std::abs(got - mid), 0.25L / rays + 1e-15L * grooves) << grooves << " " << rays << " " << j;
-      if (grooves == 1) EXPECT_EQ(at.f, (static_cast<double>(j) + 0.5) / static_cast<double>(rays));
+      if (grooves == 1) {
+        EXPECT_EQ(at.f, (static_cast<double>(j) + 0.5) / static_cast<double>(rays));
+      }
     }
   }
 }
