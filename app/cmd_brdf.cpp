@@ -197,12 +197,16 @@ int cmd_brdf(const BrdfArgs& a) {
     std::cout << j.dump(1) << "\n";
     return 0;
   }
+  // Cook-Torrance is single scattering whatever --max-k says.
+  const std::string orders_text = *model == analytic::BrdfModel::cook_torrance
+                                      ? std::string("single scattering (k = 1)")
+                                      : "orders 1.." + std::to_string(opt.max_k);
   if (nonsym)
-    std::printf("brdf %s: %s alpha %g (x) %g (y), partner %s, %s, orders 1..%d; value in %s\n", a.model.c_str(),
-                a.ndf.c_str(), a.alpha, opt.alpha_y, a.partner.c_str(), flat ? "flatland" : "3D", opt.max_k, unit);
+    std::printf("brdf %s: %s alpha %g (x) %g (y), partner %s, %s, %s; value in %s\n", a.model.c_str(), a.ndf.c_str(),
+                a.alpha, opt.alpha_y, a.partner.c_str(), flat ? "flatland" : "3D", orders_text.c_str(), unit);
   else
-    std::printf("brdf %s: %s alpha %g, %s, orders 1..%d; value in %s\n", a.model.c_str(), a.ndf.c_str(), a.alpha,
-                flat ? "flatland" : "3D", opt.max_k, unit);
+    std::printf("brdf %s: %s alpha %g, %s, %s; value in %s\n", a.model.c_str(), a.ndf.c_str(), a.alpha,
+                flat ? "flatland" : "3D", orders_text.c_str(), unit);
   std::printf("  %12s %10s %12s %10s  %s\n", "theta_i_deg", "phi_i_deg", "theta_o_deg", "phi_o_deg", "value");
   for (std::size_t n = 0; n < pairs.size(); ++n) {
     std::printf("  %12.9g %10.9g %12.9g %10.9g  %.17g\n", pairs[n].theta_i_deg, flat ? 0.0 : pairs[n].phi_i_deg,

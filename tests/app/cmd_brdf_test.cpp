@@ -57,6 +57,15 @@ TEST(CmdBrdf, TextPrintsEveryDigit) {
   EXPECT_NE(r.out.find(buf), std::string::npos) << r << "\nwant " << buf;
 }
 
+// Cook-Torrance's header says it is single scattering (it said "orders 1..1000000").
+TEST(CmdBrdf, CookTorranceHeaderSaysSingleScattering) {
+  const auto r = vgroove("brdf --model cook-torrance --theta-o-deg 20");
+  ASSERT_EQ(r.status, 0) << r;
+  EXPECT_EQ(r.out.rfind("brdf cook-torrance: ggx alpha 0.5, 3D, single scattering (k = 1); value in 1/sr\n", 0), 0u)
+      << r;
+  EXPECT_NE(vgroove("brdf --theta-o-deg 20").out.find(", 3D, orders 1.."), std::string::npos);
+}
+
 // The orders resolved one by one add up to the total when nothing lies beyond them (a smooth
 // surface far from grazing keeps its light within a few bounces).
 TEST(CmdBrdf, PerKSumsToTheTotal) {
