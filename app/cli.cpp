@@ -13,9 +13,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <new>
+#include <string>
+#include <vector>
 
 namespace vgroove::app {
 
@@ -405,6 +409,40 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
 
 }  // namespace
 
+namespace {
+// The comma-separated list options (energy's grid, bench accuracy's runs): CLI11 drops empty items
+// and runs a repeated one twice, so both are refused here, naming the option: "" when fine.
+std::string list_problem(int argc, const char* const* argv) {
+  static const char* const kLists[] = {"--ndf", "--dim", "--mu", "--alpha", "--rays", "--sampling"};
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    std::string name = arg, value;
+    if (const auto eq = arg.find('='); arg.rfind("--", 0) == 0 && eq != std::string::npos)
+      name = arg.substr(0, eq), value = arg.substr(eq + 1);
+    else if (i + 1 < argc)
+      value = argv[i + 1];
+    if (std::find(std::begin(kLists), std::end(kLists), name) == std::end(kLists) ||
+        value.find(',') == std::string::npos)
+      continue;
+    std::vector<std::string> items;
+    for (std::size_t b = 0;;) {
+      const std::size_t e = value.find(',', b);
+      items.push_back(value.substr(b, e == std::string::npos ? std::string::npos : e - b));
+      if (e == std::string::npos) break;
+      b = e + 1;
+    }
+    for (std::size_t n = 0; n < items.size(); ++n) {
+      if (items[n].empty())
+        return name + " = \"" + value + "\" has an empty item (items are separated by single commas)";
+      for (std::size_t m = 0; m < n; ++m)
+        if (items[m] == items[n])
+          return name + " = \"" + value + "\" gives " + items[n] + " twice (each item is run once: give it once)";
+    }
+  }
+  return "";
+}
+}  // namespace
+
 int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
   // Paths and names reach the reports as JSON text, which holds UTF-8 only: refused before the work.
   for (int i = 1; i < argc; ++i)
@@ -413,6 +451,10 @@ int run_cli(int argc, const char* const* argv, const CliContext& ctx) {
                   "\" is not valid UTF-8 (reports hold paths and names as JSON text): rename it or give another path");
       return 2;
     }
+  if (const std::string problem = list_problem(argc, argv); !problem.empty()) {
+    print_error(problem);
+    return 2;
+  }
   const int status = run_command(argc, argv, ctx);
   // Output that did not reach its destination (a full disk, a closed stdout) is a failure.
   if (const std::string failed = support::flush_standard_output(); !failed.empty()) {
