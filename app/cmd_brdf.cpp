@@ -9,6 +9,7 @@
 #include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -37,16 +38,23 @@ void check_angle(double v, double lo, bool lo_closed, double hi, bool hi_closed,
 
 // The ranges of the directions: 3D polar angles in [0, 90) towards the light and [0, 90] towards
 // the viewer, azimuths in [-360, 360]; flatland signed angles in (-90, 90) and [-90, 90].
+// `where` + the name: the flag (--theta-i-deg) when where is "--", the file's key (theta_i_deg) else.
 void check_pair(const Pair& p, bool flat, const std::string& where) {
+  const bool flag = where == "--";
+  auto name = [&](const char* key) {
+    std::string n = key;
+    if (flag) std::replace(n.begin(), n.end(), '_', '-');
+    return where + n;
+  };
   if (flat) {
-    check_angle(p.theta_i_deg, -90, false, 90, false, where + "theta-i-deg");
-    check_angle(p.theta_o_deg, -90, true, 90, true, where + "theta-o-deg");
+    check_angle(p.theta_i_deg, -90, false, 90, false, name("theta_i_deg"));
+    check_angle(p.theta_o_deg, -90, true, 90, true, name("theta_o_deg"));
     return;
   }
-  check_angle(p.theta_i_deg, 0, true, 90, false, where + "theta-i-deg");
-  check_angle(p.theta_o_deg, 0, true, 90, true, where + "theta-o-deg");
-  check_angle(p.phi_i_deg, -360, true, 360, true, where + "phi-i-deg");
-  check_angle(p.phi_o_deg, -360, true, 360, true, where + "phi-o-deg");
+  check_angle(p.theta_i_deg, 0, true, 90, false, name("theta_i_deg"));
+  check_angle(p.theta_o_deg, 0, true, 90, true, name("theta_o_deg"));
+  check_angle(p.phi_i_deg, -360, true, 360, true, name("phi_i_deg"));
+  check_angle(p.phi_o_deg, -360, true, 360, true, name("phi_o_deg"));
 }
 
 // Stops early (a partial list) once *cancel is set: the caller then reports the interruption.
@@ -63,6 +71,9 @@ std::vector<Pair> read_pairs(const std::string& file, bool flat, support::Cancel
   out.reserve(list.size());
   for (std::size_t n = 0; n < list.size() && !support::cancelled(cancel); ++n) {
     support::JsonObject o(list[n], file, "/directions/" + std::to_string(n));
+    // The keys first, so that a typo'd key is named as unknown rather than its intended key as missing.
+    for (const char* key : {"theta_i_deg", "theta_o_deg", "phi_i_deg", "phi_o_deg"}) o.has(key);
+    o.finish();
     Pair p{};
     p.theta_i_deg = o.number("theta_i_deg", -90, false, 90, false);
     p.theta_o_deg = o.number("theta_o_deg", -90, true, 90, true);

@@ -57,6 +57,26 @@ TEST(CmdBrdf, TextPrintsEveryDigit) {
   EXPECT_NE(r.out.find(buf), std::string::npos) << r << "\nwant " << buf;
 }
 
+// A --directions file's errors name its keys as the file spells them: a typo'd required key is
+// unknown (it was reported as the intended key missing), a value out of range at its JSON
+// pointer (it was spelled like the flag, /directions/0/theta-i-deg).
+TEST(CmdBrdf, DirectionsFileErrorsNameTheFilesKeys) {
+  TempDir dir;
+  const std::string f = dir.file("d.json");
+  write_text(f, R"({"directions": [{"theta_i": 10, "theta_o_deg": 20}]})");
+  auto r = vgroove("brdf --directions " + f);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "vgroove: error: " + f +
+                       ": /directions/0/theta_i is not a known key (known here: phi_i_deg, phi_o_deg, theta_i_deg, "
+                       "theta_o_deg)\n");
+  write_text(f, R"({"directions": [{"theta_i_deg": -10, "theta_o_deg": 20}]})");
+  r = vgroove("brdf --directions " + f);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "vgroove: error: " + f + ": /directions/0/theta_i_deg = -10 is out of range [0, 90)\n");
+  r = vgroove("brdf --theta-i-deg -10 --theta-o-deg 20");
+  EXPECT_EQ(r.err, "vgroove: error: --theta-i-deg = -10 is out of range [0, 90)\n");
+}
+
 // Cook-Torrance's header says it is single scattering (it said "orders 1..1000000").
 TEST(CmdBrdf, CookTorranceHeaderSaysSingleScattering) {
   const auto r = vgroove("brdf --model cook-torrance --theta-o-deg 20");
