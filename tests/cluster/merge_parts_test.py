@@ -120,6 +120,10 @@ def check_kind(name):
         by_shape = {}
         for root in ("units", "partial", "tool", "schema_version", "version", "git"):
             for path, value in leaves(part[root], (root,)):
+                # The job's descriptor is compared whole with the other parts' and the rebuilt
+                # one: its top-level values stand for the rest (a deep damage is the same check).
+                if path[:2] == ("partial", "job") and len(path) > 3:
+                    continue
                 by_shape.setdefault(shape(path), []).append((path, value))
         for s in sorted(by_shape):
             path, value = rng.choice(by_shape[s])
