@@ -353,6 +353,15 @@ ProfilesOutcome run_profiles_case(const ProfilesSuite& suite, std::size_t case_i
   return out;
 }
 
+double profiles_run_memory_bytes(const ProfilesSuite& suite, int threads) {
+  const double cases = static_cast<double>(suite.cases());
+  const double workers = std::min<double>(support::resolve_threads(threads), cases);
+  const double lobe = static_cast<double>(suite.lobe_bins) * (suite.max_k + 2) * 8.0;
+  const double per_case = lobe * (4.0 + 3.0 * suite.realizations * static_cast<double>(suite.surfaces.size())) +
+                          suite.normal_bins * 64.0 * suite.realizations;
+  return workers * 200.0 * suite.segments + cases * per_case;
+}
+
 ProfilesRun run_profiles_suite(const ProfilesSuite& suite, long rays, int threads, const support::ProgressFn& progress,
                                const std::atomic<bool>* cancel) {
   ProfilesRun run;

@@ -2,10 +2,12 @@
 
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/memory.h"
+#include "vgroove/support/parallel.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/suite_run.h"
 
+#include <algorithm>
 #include <sstream>
 
 namespace vgroove::validation {
@@ -69,6 +71,11 @@ ValidationPlan plan_validation(const ValidateOptions& a) {
       plan.kind = ValidationPlan::Kind::profiles;
       plan.profiles = parse_profiles_suite(j, a.suite);
       if (a.seed) plan.profiles.seed = static_cast<std::uint64_t>(*a.seed);
+      support::check_memory(
+          profiles_run_memory_bytes(plan.profiles, a.threads), a.suite + ": the run",
+          std::to_string(plan.profiles.segments) + " segments per profile on each of " +
+              std::to_string(std::min<std::size_t>(support::resolve_threads(a.threads), plan.profiles.cases())) +
+              " workers");
     } else if (kind == "table2") {
       plan.kind = ValidationPlan::Kind::table2;
       plan.table2 = parse_table2_suite(j, a.suite);

@@ -810,6 +810,23 @@ TEST(CliInput, ArgumentsThatAreNotUtf8AreRefusedBeforeTheWork) {
   EXPECT_CONTAINS(vgroove("validate " + quoted(suite) + " --rays 10").err, "bad\\xff.json");  // printed escaped
 }
 
+// A profiles suite ran 155 s up to 10.7 GB with no estimate: it is now refused before the work
+// when its profiles (about 150 bytes per segment on each worker) do not fit.
+TEST(CliInput, ProfilesSuitesThatCannotFitAreRefusedBeforeTheWork) {
+  TempDir dir;
+  const std::string f = dir.file("p.json"), out = dir.file("r.json");
+  json s = json::parse(read_text(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/profiles.json"));
+  s["segments"] = 1 << 24;
+  s["alpha"] = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
+  write_text(f, s.dump());
+  const CliRun r = vgroove("validate " + quoted(f) + " --threads 64 --out " + quoted(out));
+  EXPECT_EQ(r.status, 2) << r;
+  EXPECT_CONTAINS(r.err, ": the run needs about ");
+  EXPECT_CONTAINS(r.err, "(16777216 segments per profile on each of 64 workers), more than the ");
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(CliOutput, MergeNeverOverwritesItsParts) {
   TempDir dir;
   const std::string scene = small_scene(dir), part = dir.file("part.json");
