@@ -171,31 +171,8 @@ struct Interrupted {
 
 // Starts `vgroove args` (output files in dir), sends SIGINT after `after` s, waits for the exit.
 Interrupted interrupt_after(const std::string& args, double after, const TempDir& dir) {
-  const std::string out = dir.file("int.out"), err = dir.file("int.err");
-  const std::string cmd = std::string("exec '") + VGROOVE_BIN + "' " + args + " >" + quoted(out) + " 2>" + quoted(err);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  Interrupted r;
-  std::this_thread::sleep_for(std::chrono::duration<double>(after));
-  ::kill(pid, SIGINT);
-  const auto t0 = std::chrono::steady_clock::now();
-  int st = 0;
-  for (;;) {
-    if (::waitpid(pid, &st, WNOHANG) == pid) break;
-    if (std::chrono::steady_clock::now() - t0 > std::chrono::seconds(30)) {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &st, 0);
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  r.err = read_text(err);
-  return r;
+  const testing_files::Stopped s = testing_files::signal_after(args, SIGINT, after, dir);
+  return {s.signal ? -1 : s.status, s.seconds, s.err};
 }
 
 // The first Ctrl-C ends the run promptly, with 130 and no report. The loops read the flag every

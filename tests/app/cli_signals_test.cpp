@@ -26,47 +26,10 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using testing_files::quoted;
 using testing_files::read_text;
+using testing_files::signal_after;
+using testing_files::Stopped;
 using testing_files::TempDir;
 using testing_files::write_text;
-
-struct Stopped {
-  int status = -1;       // exit status, -1 if killed by a signal
-  int signal = 0;        // the signal that killed it, if one did
-  double seconds = 0.0;  // from the signal to the exit
-  std::string out, err;
-};
-
-// Runs `env vgroove args` through sh (stdout and stderr to files in dir), sends sig after `after`
-// seconds and waits for the exit (SIGKILL after 30 s).
-Stopped signal_after(const std::string& args, int sig, double after, const TempDir& dir, const std::string& env = "") {
-  const std::string out = dir.file("sig.out"), err = dir.file("sig.err");
-  const std::string cmd = env + " exec " + quoted(VGROOVE_BIN) + " " + args + " >" + quoted(out) + " 2>" + quoted(err);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  std::this_thread::sleep_for(std::chrono::duration<double>(after));
-  ::kill(pid, sig);
-  const auto t0 = std::chrono::steady_clock::now();
-  int st = 0;
-  for (;;) {
-    if (::waitpid(pid, &st, WNOHANG) == pid) break;
-    if (std::chrono::steady_clock::now() - t0 > std::chrono::seconds(30)) {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &st, 0);
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  Stopped r;
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  r.signal = WIFSIGNALED(st) ? WTERMSIG(st) : 0;
-  r.out = read_text(out);
-  r.err = read_text(err);
-  return r;
-}
 
 bool no_temporaries(const TempDir& dir) {
   for (const std::string& e : dir.entries())
