@@ -179,9 +179,9 @@ PartResults<Work> part_results_from_json(const Work& work, const nlohmann::json&
             run[0].get<std::int64_t>() < 0 || run[1].get<std::int64_t>() > count ||
             run[0].get<std::int64_t>() >= run[1].get<std::int64_t>() ||
             (run[1].is_number_unsigned() && run[1].get<std::uint64_t>() > static_cast<std::uint64_t>(count)))
-          u.fail("chunks/" + std::to_string(c), "= " + support::value_text(run) +
-                                                    " is not a run [begin, end) of the unit's " +
-                                                    std::to_string(count) + " chunks");
+          u.fail_at("chunks", c,
+                    "= " + support::value_text(run) + " is not a run [begin, end) of the unit's " +
+                        std::to_string(count) + " chunks");
         part.runs.emplace_back(run[0].get<std::int64_t>(), run[1].get<std::int64_t>());
       }
       std::sort(part.runs.begin(), part.runs.end());
@@ -346,7 +346,7 @@ std::vector<UnitResult<Work>> merge_job_parts(const Job<Work>& job, const std::v
     for (const auto& [unit, f] : fixed) units.insert(unit);
     if (results.back().size() != units.size())
       throw support::UserError("merge: " + p.file +
-                               ": /units lacks units of the part's items (/partial/items): " + "a damaged part");
+                               ": /units lacks units of the part's items (/partial/items): a damaged part");
   }
   return merge_unit_parts<Work>(job.units, results);
 }
