@@ -1,7 +1,7 @@
 // vgroove validation: `validate` as one library call, shared by the command line and the Python
-// module: read a suite file of any kind (single grooves: Table 1, stress; rough surfaces: "brdf"
-// (Fig. 11), "furnace", "sampling", "table2", "profiles", "nonsymmetric_brdf"), apply the overrides, run it, and return
-// the report JSON and the table the command line prints.
+// module: read a suite file of any registered kind (suite_kind.h: single grooves, "brdf",
+// "table2", "furnace", "sampling", "nonsymmetric_brdf", "profiles"), apply the overrides, run it in
+// this process, and return the report JSON and the table the command line prints.
 //
 // Two steps, so that a caller can check everything (and its output target) before the work:
 // plan_validation reads and checks (support::UserError naming the file, JSON path or option; the
@@ -10,15 +10,8 @@
 #pragma once
 
 #include "vgroove/support/parallel.h"
-#include "vgroove/validation/brdf_suite.h"
-#include "vgroove/validation/furnace_suite.h"
-#include "vgroove/validation/model_table.h"
-#include "vgroove/validation/nonsymmetric_suite.h"
-#include "vgroove/validation/profiles_suite.h"
 #include "vgroove/validation/run_options.h"
-#include "vgroove/validation/sampling_suite.h"
-#include "vgroove/validation/suite.h"
-#include "vgroove/validation/table2_suite.h"
+#include "vgroove/validation/suite_kind.h"
 
 #include <nlohmann/json.hpp>
 
@@ -42,32 +35,16 @@ struct ValidateOptions {
   OptionNames names;                       // how messages name the options above
 };
 
-// A suite file read and checked, with the overrides applied.
+// A suite file read and checked (by its kind, suite_kind.h), with the overrides applied.
 struct ValidationPlan {
-  enum class Kind {
-    single_grooves,
-    brdf,
-    table2,
-    model_table,
-    profiles,
-    nonsymmetric,
-    furnace,
-    sampling
-  } kind = Kind::single_grooves;
-  SuiteSet set;                   // single grooves
-  std::vector<CaseOptions> opts;  // per suite of the set
-  BrdfSuite brdf;
-  FurnaceSuite furnace;
-  SamplingSuite sampling;
-  Table2Suite table2;
-  ProfilesSuite profiles;
-  NonsymmetricSuite nonsymmetric;
-  std::shared_ptr<const ModelTable> table;  // Kind::model_table (with brdf)
-  long rays = 0;                            // rough surfaces: the override, 0 for the suite's
+  std::shared_ptr<const PlannedSuite> suite;
   int threads = 0;
   std::vector<std::string> inputs;  // the files read (suite, the set's suites, model table): never an output
   bool report = true;               // build ValidationResult::report (the command line without --out does not)
 };
+
+// The options as a kind reads them.
+SuiteOverrides overrides_of(const ValidateOptions& a);
 
 ValidationPlan plan_validation(const ValidateOptions& opt);
 
@@ -78,7 +55,7 @@ struct ValidationResult {
   bool interrupted = false;  // `cancel` was set: no report
 };
 
-// A progress callback per suite (labelled "validate NAME"); may return an empty function.
+// A progress callback for the run (labelled "validate NAME"); may return an empty function.
 using ProgressFactory = std::function<support::ProgressFn(const std::string& label)>;
 
 ValidationResult run_validation(const ValidationPlan& plan, const ProgressFactory& progress = {},

@@ -2,13 +2,18 @@
 """same_report.py A B: exit 0 when the two report JSON files are equal value for value (floats bit for
 bit) once the timings are set aside: keys named threads, or ending in wall_s, or holding a rate
 (*_per_s, *ns_per_*, *_per_hour), and what is chosen by wall time (bench accuracy's
-soonest_to_thresholds: the placement that reaches the thresholds first). Otherwise print the first difference (its JSON path) and exit 1."""
+soonest_to_thresholds: the placement that reaches the thresholds first). Otherwise print the first difference (its JSON path) and exit 1.
+With --provenance-aside the version and git revision that made each report are set aside too (two builds
+compared: scripts/compare_reports.sh)."""
 import json
 import sys
 
 
+PROVENANCE = set()
+
+
 def timing(key):
-    return key in ("threads", "soonest_to_thresholds") or key.endswith("wall_s") or key.endswith("_per_s") or "ns_per" in key \
+    return key in PROVENANCE or key in ("threads", "soonest_to_thresholds") or key.endswith("wall_s") or key.endswith("_per_s") or "ns_per" in key \
         or key.endswith("_per_hour")
 
 
@@ -38,8 +43,13 @@ def first_difference(a, b, path="$"):
 
 
 def main():
-    if len(sys.argv) != 3:
-        sys.exit("usage: same_report.py A.json B.json")
+    args = sys.argv[1:]
+    if args[:1] == ["--provenance-aside"]:
+        PROVENANCE.update(("version", "git"))
+        args = args[1:]
+    if len(args) != 2:
+        sys.exit("usage: same_report.py [--provenance-aside] A.json B.json")
+    sys.argv[1:] = args
     with open(sys.argv[1]) as fa, open(sys.argv[2]) as fb:
         a, b = json.load(fa), json.load(fb)
     d = first_difference(a, b)

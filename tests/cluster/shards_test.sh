@@ -15,7 +15,7 @@ trap 'rm -rf "$t"' EXIT
 same() { python3 "$src/tests/cluster/same_report.py" "$1" "$2"; }
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
-# Small suites of every kind that shards (and a furnace suite, which does not).
+# Small suites of every kind.
 cat >"$t/brdf.json" <<'J'
 {"name": "tiny_brdf", "kind": "brdf", "description": "a small Fig. 11 suite",
  "ndf": ["ggx"], "alpha": [0.5], "theta_i_deg": [0, 40], "dimensions": ["flatland", "3d"],
@@ -61,6 +61,30 @@ cat >"$t/furnace.json" <<'J'
  "samples": 1000, "strategy": "vndf", "rays": 1000, "grooves": 1000, "seed": 1,
  "thresholds": {"sigmas": 5, "quadrature_tolerance": {"flatland": 1e-9, "3d": 1e-6}}}
 J
+cat >"$t/nonsymmetric_brdf.json" <<'J'
+{"name": "tiny_nonsymmetric_brdf", "kind": "nonsymmetric_brdf", "ndf": ["ggx"], "alpha": [0.5], "theta_i_deg": [30],
+ "dimensions": ["flatland", "3d"],
+ "anisotropic": {"ndf": ["beckmann"], "alpha_x": [0.1], "alpha_y": [0.3], "theta_i_deg": [40], "phi_i_deg": [90],
+                 "partners": ["independent"]},
+ "rays": 4000, "grooves": 2000, "seed": 5, "flatland_bins": 30, "theta_bins": 6, "phi_bins": 8, "max_k": 6,
+ "plane_k": 2, "reciprocity_pairs": 3, "thresholds": {"sigmas": 5, "model_tolerance": {"flatland": 1e-3, "3d": 3e-3}}}
+J
+cat >"$t/profiles.json" <<'J'
+{"name": "tiny_profiles", "kind": "profiles", "ndf": ["ggx"], "alpha": [0.5], "theta_deg": [0, 60],
+ "surfaces": ["random", "vgroove"], "realizations": 2, "segments": 2048, "samples_per_length": 8, "rays": 3000,
+ "walk_paths": 20000, "normal_bins": 6, "lobe_bins": 18, "max_k": 4, "seed": 2,
+ "thresholds": {"p_min": 1e-3, "sigmas": 5, "model_tolerance": 1e-5}}
+J
+cat >"$t/sampling.json" <<'J'
+{"name": "tiny_sampling", "kind": "sampling", "seed": 4, "max_k": 32,
+ "chi_square": {"level": 0.01, "samples": {"3d": 20000, "flatland": 20000}, "cos_bins": 4, "phi_bins": 8, "theta_bins": 12,
+                "cases": [{"dimension": "3d", "ndf": "ggx", "alpha": 0.5, "theta_i_deg": 30, "strategy": "vndf"},
+                          {"dimension": "flatland", "ndf": "beckmann", "alpha": 0.3, "theta_i_deg": 60, "strategy": "printed"}]},
+ "variance": {"samples": 2000, "schlick_f0": [1.0], "cases": [{"dimension": "flatland", "ndf": "ggx", "alpha": 0.5, "theta_i_deg": 30}]},
+ "furnace": {"max_k": 32, "samples": 2000, "strategy": "vndf", "rays": 1000, "grooves": 1000, "sigmas": 5,
+             "quadrature_tolerance": {"flatland": 1e-9, "3d": 1e-6},
+             "cases": [{"dimension": "flatland", "ndf": "ggx", "alpha": 0.5, "theta_i_deg": 30}]}}
+J
 # (The 3D model's quadrature costs about a second of CPU per cell: few 3D cells.)
 ENERGY=(energy --ndf ggx --dim flatland,3d --mu-points 1 --alpha-points 2 --rays 3000 --max-k 4)
 ENERGY_FLAT=(energy --ndf ggx,phong --dim flatland --mu-points 3 --alpha-points 2 --rays 3000 --max-k 4)
@@ -100,6 +124,22 @@ case $check in
     sharded table2 3 validate "$t/table2.json"
     sharded set 4 validate "$t/set.json"
     sharded table1_overrides 2 validate "$t/table1.json" --rays 100 --seed 11 --sampling stratified
+    sharded furnace 3 validate "$t/furnace.json"
+    sharded furnace_seed 2 validate "$t/furnace.json" --seed 9
+    sharded nonsymmetric_brdf 4 validate "$t/nonsymmetric_brdf.json"
+    sharded profiles 3 validate "$t/profiles.json"
+    sharded sampling 3 validate "$t/sampling.json"
+    # A foreign model: the brdf suite's layout filled with a flat lobe (it fails: the same verdict
+    # merged as in one process).
+    "$bin" bins "$t/brdf.json" --out "$t/layout.json" >/dev/null
+    python3 - "$t/layout.json" "$t/table.json" <<'PY'
+import json, sys
+layout = json.load(open(sys.argv[1]))
+cases = [{k: c[k] for k in ("case", "ndf", "alpha", "theta_i_deg", "dimension")} | {"flux": [0.9 / c["bins"]] * c["bins"]}
+         for c in layout["cases"]]
+json.dump({"kind": "model_table", "suite": layout["suite"], "model": "flat", "cases": cases}, open(sys.argv[2], "w"))
+PY
+    sharded model_table 3 validate "$t/brdf.json" --model-table "$t/table.json"
     ;;
   accuracy) sharded accuracy 3 bench accuracy "$t/table1.json" --rays 50,200 --sampling stratified,random ;;
   simulate)
@@ -135,7 +175,6 @@ json.dump(j, open(sys.argv[2], "w"))
 PY
     refused "version" "$bin" merge "$t/a1.json" "$t/v2.json" --out "$t/x.json"
     [[ ! -e $t/x.json ]] || fail "a refused merge wrote a report"
-    refused "--shard" "$bin" validate "$t/furnace.json" --shard 1/2 --out "$t/f.json"
     refused "--shard" "$bin" validate "$t/table1.json" --shard 3/2 --out "$t/f.json"
     refused "--out" "$bin" validate "$t/table1.json" --shard 1/2
     [[ ! -e $t/f.json ]] || fail "a refused shard wrote a part"

@@ -1,0 +1,79 @@
+// The suite kind "brdf" (validation/brdf_suite.h: Lee et al. 2018, Fig. 11), and the same suite
+// with a model table (validation/model_table.h: a foreign model's lobes against the traced ones).
+#include "vgroove/support/json_reader.h"
+#include "vgroove/validation/brdf_suite.h"
+#include "vgroove/validation/kinds/job_of.h"
+#include "vgroove/validation/kinds/kinds.h"
+#include "vgroove/validation/kinds/one_process_job.h"
+#include "vgroove/validation/model_table.h"
+
+namespace vgroove::validation {
+
+namespace {
+
+class BrdfPlan final : public PlannedSuite {
+ public:
+  BrdfPlan(const nlohmann::json& j, const std::string& file, const SuiteOverrides& o) {
+    check_rough_surface_overrides(o, file, "brdf");
+    suite_ = parse_brdf_suite(j, file);
+    rays_ = o.rays.value_or(0);
+    if (o.seed) suite_.seed = static_cast<std::uint64_t>(*o.seed);
+    if (o.model_table) {
+      table_file_ = *o.model_table;
+      table_ = std::make_shared<const ModelTable>(
+          parse_model_table(support::read_json_file(table_file_), table_file_, suite_));
+    }
+  }
+  std::string name() const override { return suite_.name; }
+  std::string kind() const override { return table_ ? "brdf with --model-table" : "brdf"; }
+  std::vector<std::string> extra_inputs() const override {
+    return table_ ? std::vector<std::string>{table_file_} : std::vector<std::string>{};
+  }
+  double memory_bytes(int threads, bool report) const override {
+    return brdf_run_memory_bytes(suite_, threads, report);
+  }
+  std::string memory_what(int) const override {
+    return std::to_string(suite_.cases()) + " cases, " + std::to_string(suite_.grooves) +
+           " grooves per surface on each thread";
+  }
+  std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>* cancel) const override;
+
+ private:
+  BrdfSuite suite_;
+  long rays_ = 0;
+  std::string table_file_;
+  std::shared_ptr<const ModelTable> table_;
+};
+
+std::unique_ptr<SuiteJob> BrdfPlan::job(nlohmann::json descriptor, const std::atomic<bool>* cancel) const {
+  if (table_)
+    return one_process_job(std::move(descriptor), suite_.file + " with a model table",
+                           [s = suite_, t = table_, rays = rays_](int threads, const support::ProgressFn&,
+                                                                  const std::atomic<bool>* c,
+                                                                  bool report) -> std::optional<SuiteResult> {
+                             const ModelTableRun run = run_model_table(s, *t, rays, threads, c);
+                             if (run.interrupted) return std::nullopt;
+                             return suite_result(
+                                 run.pass, report, [&](std::ostream& os) { print_model_table(os, s, *t, run); },
+                                 [&] { return model_table_report_json(s, *t, run); });
+                           });
+  auto job = brdf_job(suite_, rays_, std::move(descriptor));
+  job.work.cancel = cancel;
+  return job_of(std::move(job), [s = suite_, rays = rays_](const auto& results, int threads, double wall,
+                                                             bool report) {
+    BrdfRun run = brdf_run_from(s, rays, results);
+    run.threads = threads, run.wall_s = wall;
+    return suite_result(
+        run.pass, report, [&](std::ostream& os) { print_brdf_table(os, s, run); },
+        [&] { return brdf_report_json(s, run); });
+  });
+}
+
+}  // namespace
+
+const SuiteKind& brdf_kind() {
+  static const KindOf<BrdfPlan> kind("brdf");
+  return kind;
+}
+
+}  // namespace vgroove::validation

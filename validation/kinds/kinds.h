@@ -1,0 +1,47 @@
+// vgroove validation: the suite kinds (suite_kind.h), one file each in this folder, and what they
+// share beyond the job (job_of.h): the table and verdict as a SuiteResult.
+#pragma once
+
+#include "vgroove/validation/suite_kind.h"
+
+#include <sstream>
+
+namespace vgroove::validation {
+
+const SuiteKind& groove_kind();        // single grooves: Table 1, stress, sets of suites (groove_kind.cpp)
+const SuiteKind& brdf_kind();          // "brdf": Fig. 11; with a model table, a foreign model (brdf_kind.cpp)
+const SuiteKind& table2_kind();        // "table2" (table2_kind.cpp)
+const SuiteKind& furnace_kind();       // "furnace" (furnace_kind.cpp)
+const SuiteKind& sampling_kind();      // "sampling" (sampling_kind.cpp)
+const SuiteKind& nonsymmetric_kind();  // "nonsymmetric_brdf" (nonsymmetric_kind.cpp)
+const SuiteKind& profiles_kind();      // "profiles" (profiles_kind.cpp)
+
+// The result of a finished run: `print(std::ostream&)` writes its table, `report_json()` (called
+// only when `report`) builds its report.
+template <class Print, class Report>
+SuiteResult suite_result(bool pass, bool report, Print&& print, Report&& report_json) {
+  SuiteResult r;
+  std::ostringstream table;
+  print(table);
+  r.table = table.str();
+  if (report) r.report = report_json();
+  r.pass = pass;
+  return r;
+}
+
+// A kind object for a PlannedSuite type P whose constructor reads (json, file, overrides).
+template <class P>
+class KindOf final : public SuiteKind {
+ public:
+  explicit KindOf(const char* name) : name_(name) {}
+  const char* name() const override { return name_; }
+  std::unique_ptr<PlannedSuite> plan(const nlohmann::json& j, const std::string& file,
+                                     const SuiteOverrides& o) const override {
+    return std::make_unique<P>(j, file, o);
+  }
+
+ private:
+  const char* name_;
+};
+
+}  // namespace vgroove::validation

@@ -1,0 +1,50 @@
+// The suite kind "table2" (validation/table2_suite.h: Lee et al. 2018, Table 2).
+#include "vgroove/validation/kinds/job_of.h"
+#include "vgroove/validation/kinds/kinds.h"
+#include "vgroove/validation/table2_suite.h"
+
+namespace vgroove::validation {
+
+namespace {
+
+class Table2Plan final : public PlannedSuite {
+ public:
+  Table2Plan(const nlohmann::json& j, const std::string& file, const SuiteOverrides& o) {
+    check_rough_surface_overrides(o, file, "table2");
+    suite_ = parse_table2_suite(j, file);
+    rays_ = o.rays.value_or(0);
+    if (o.seed) suite_.seed = static_cast<std::uint64_t>(*o.seed);
+  }
+  std::string name() const override { return suite_.name; }
+  std::string kind() const override { return "table2"; }
+  double memory_bytes(int threads, bool) const override { return table2_run_memory_bytes(suite_, threads); }
+  std::string memory_what(int) const override {
+    return std::to_string(suite_.grooves) + " grooves per surface on each thread";
+  }
+  std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>* cancel) const override {
+    auto job = table2_job(suite_, rays_, std::move(descriptor));
+    job.work.cancel = cancel;
+    return job_of(std::move(job), [s = suite_, cancel](const auto& results, int threads, double wall,
+                                                       bool report) -> std::optional<SuiteResult> {
+      Table2Run run = table2_run_from(s, results, cancel);
+      if (run.interrupted) return std::nullopt;
+      run.threads = threads, run.wall_s = wall;
+      return suite_result(
+          run.pass, report, [&](std::ostream& os) { print_table2(os, s, run); },
+          [&] { return table2_report_json(s, run); });
+    });
+  }
+
+ private:
+  Table2Suite suite_;
+  long rays_ = 0;
+};
+
+}  // namespace
+
+const SuiteKind& table2_kind() {
+  static const KindOf<Table2Plan> kind("table2");
+  return kind;
+}
+
+}  // namespace vgroove::validation
