@@ -47,20 +47,19 @@ class BrdfPlan final : public PlannedSuite {
 
 std::unique_ptr<SuiteJob> BrdfPlan::job(nlohmann::json descriptor, const std::atomic<bool>* cancel) const {
   if (table_)
-    return one_process_job(std::move(descriptor), suite_.file + " with a model table",
-                           [s = suite_, t = table_, rays = rays_](int threads, const support::ProgressFn&,
-                                                                  const std::atomic<bool>* c,
-                                                                  bool report) -> std::optional<SuiteResult> {
-                             const ModelTableRun run = run_model_table(s, *t, rays, threads, c);
-                             if (run.interrupted) return std::nullopt;
-                             return suite_result(
-                                 run.pass, report, [&](std::ostream& os) { print_model_table(os, s, *t, run); },
-                                 [&] { return model_table_report_json(s, *t, run); });
-                           });
+    return one_process_job(
+        std::move(descriptor), suite_.file + " with a model table",
+        [s = suite_, t = table_, rays = rays_](int threads, const support::ProgressFn&, const std::atomic<bool>* c,
+                                               bool report) -> std::optional<SuiteResult> {
+          const ModelTableRun run = run_model_table(s, *t, rays, threads, c);
+          if (run.interrupted) return std::nullopt;
+          return suite_result(
+              run.pass, report, [&](std::ostream& os) { print_model_table(os, s, *t, run); },
+              [&] { return model_table_report_json(s, *t, run); });
+        });
   auto job = brdf_job(suite_, rays_, std::move(descriptor));
   job.work.cancel = cancel;
-  return job_of(std::move(job), [s = suite_, rays = rays_](const auto& results, int threads, double wall,
-                                                             bool report) {
+  return job_of(std::move(job), [s = suite_, rays = rays_](const auto& results, int threads, double wall, bool report) {
     BrdfRun run = brdf_run_from(s, rays, results);
     run.threads = threads, run.wall_s = wall;
     return suite_result(

@@ -1,8 +1,8 @@
 // The suite kind "furnace" (validation/furnace_suite.h: the white furnace of the BRDF).
+#include "vgroove/support/user_error.h"
+#include "vgroove/validation/furnace_suite.h"
 #include "vgroove/validation/kinds/kinds.h"
 #include "vgroove/validation/kinds/one_process_job.h"
-#include "vgroove/validation/furnace_suite.h"
-#include "vgroove/support/user_error.h"
 
 namespace vgroove::validation {
 
@@ -21,12 +21,14 @@ class FurnacePlan final : public PlannedSuite {
   std::string name() const override { return suite_.name; }
   std::string kind() const override { return "furnace"; }
   double memory_bytes(int, bool) const override { return 0.0; }
-  std::string memory_what(int threads) const override { (void)threads; return std::string(); }
+  std::string memory_what(int threads) const override {
+    (void)threads;
+    return std::string();
+  }
   std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>*) const override {
     return one_process_job(std::move(descriptor), suite_.file + " (kind furnace)",
                            [s = suite_](int threads, const support::ProgressFn& progress,
-                                        const std::atomic<bool>* cancel,
-                                        bool report) -> std::optional<SuiteResult> {
+                                        const std::atomic<bool>* cancel, bool report) -> std::optional<SuiteResult> {
                              FurnaceRun run = run_furnace_suite(s, 0, threads, progress, cancel);
                              if (run.interrupted) return std::nullopt;
                              return suite_result(

@@ -43,15 +43,15 @@ class GroovePlan final : public PlannedSuite {
     auto job = groove_cases_job(set_.suites, opts_, std::move(descriptor));
     job.work.cancel = cancel;
     GrooveCaseWork work = job.work;
-    return job_of(std::move(job), [set = set_, work = std::move(work)](const auto& results, int threads, double wall,
-                                                                bool report) {
-      const std::vector<SuiteRun> runs = suite_runs_from(work, results, threads, wall);
-      bool pass = true;
-      for (const SuiteRun& r : runs) pass = pass && r.summary.pass();
-      return suite_result(
-          pass, report, [&](std::ostream& os) { print_set_table(os, set, runs); },
-          [&] { return report_json(set, runs); });
-    });
+    return job_of(std::move(job),
+                  [set = set_, work = std::move(work)](const auto& results, int threads, double wall, bool report) {
+                    const std::vector<SuiteRun> runs = suite_runs_from(work, results, threads, wall);
+                    bool pass = true;
+                    for (const SuiteRun& r : runs) pass = pass && r.summary.pass();
+                    return suite_result(
+                        pass, report, [&](std::ostream& os) { print_set_table(os, set, runs); },
+                        [&] { return report_json(set, runs); });
+                  });
   }
 
  private:

@@ -18,18 +18,21 @@ class NonsymmetricPlan final : public PlannedSuite {
   std::string name() const override { return suite_.name; }
   std::string kind() const override { return "nonsymmetric_brdf"; }
   double memory_bytes(int, bool) const override { return 0.0; }
-  std::string memory_what(int threads) const override { (void)threads; return std::string(); }
+  std::string memory_what(int threads) const override {
+    (void)threads;
+    return std::string();
+  }
   std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>*) const override {
-    return one_process_job(std::move(descriptor), suite_.file + " (kind nonsymmetric_brdf)",
-                           [s = suite_, rays = rays_](int threads, const support::ProgressFn& progress,
-                                        const std::atomic<bool>* cancel,
-                                        bool report) -> std::optional<SuiteResult> {
-                             NonsymmetricRun run = run_nonsymmetric_suite(s, rays, threads, progress, cancel);
-                             if (run.interrupted) return std::nullopt;
-                             return suite_result(
-                                 run.pass, report, [&](std::ostream& os) { print_nonsymmetric_table(os, s, run); },
-                                 [&] { return nonsymmetric_report_json(s, run); });
-                           });
+    return one_process_job(
+        std::move(descriptor), suite_.file + " (kind nonsymmetric_brdf)",
+        [s = suite_, rays = rays_](int threads, const support::ProgressFn& progress, const std::atomic<bool>* cancel,
+                                   bool report) -> std::optional<SuiteResult> {
+          NonsymmetricRun run = run_nonsymmetric_suite(s, rays, threads, progress, cancel);
+          if (run.interrupted) return std::nullopt;
+          return suite_result(
+              run.pass, report, [&](std::ostream& os) { print_nonsymmetric_table(os, s, run); },
+              [&] { return nonsymmetric_report_json(s, run); });
+        });
   }
 
  private:

@@ -20,19 +20,21 @@ class ProfilesPlan final : public PlannedSuite {
   std::string name() const override { return suite_.name; }
   std::string kind() const override { return "profiles"; }
   double memory_bytes(int threads, bool) const override { return profiles_run_memory_bytes(suite_, threads); }
-  std::string memory_what(int threads) const override { return std::to_string(suite_.segments) + " segments per profile on each of " +
-           std::to_string(std::min<std::size_t>(support::resolve_threads(threads), suite_.cases())) + " workers"; }
+  std::string memory_what(int threads) const override {
+    return std::to_string(suite_.segments) + " segments per profile on each of " +
+           std::to_string(std::min<std::size_t>(support::resolve_threads(threads), suite_.cases())) + " workers";
+  }
   std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>*) const override {
-    return one_process_job(std::move(descriptor), suite_.file + " (kind profiles)",
-                           [s = suite_, rays = rays_](int threads, const support::ProgressFn& progress,
-                                        const std::atomic<bool>* cancel,
-                                        bool report) -> std::optional<SuiteResult> {
-                             ProfilesRun run = run_profiles_suite(s, rays, threads, progress, cancel);
-                             if (run.interrupted) return std::nullopt;
-                             return suite_result(
-                                 run.pass, report, [&](std::ostream& os) { print_profiles_table(os, s, run); },
-                                 [&] { return profiles_report_json(s, run); });
-                           });
+    return one_process_job(
+        std::move(descriptor), suite_.file + " (kind profiles)",
+        [s = suite_, rays = rays_](int threads, const support::ProgressFn& progress, const std::atomic<bool>* cancel,
+                                   bool report) -> std::optional<SuiteResult> {
+          ProfilesRun run = run_profiles_suite(s, rays, threads, progress, cancel);
+          if (run.interrupted) return std::nullopt;
+          return suite_result(
+              run.pass, report, [&](std::ostream& os) { print_profiles_table(os, s, run); },
+              [&] { return profiles_report_json(s, run); });
+        });
   }
 
  private:

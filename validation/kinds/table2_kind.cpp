@@ -24,15 +24,16 @@ class Table2Plan final : public PlannedSuite {
   std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>* cancel) const override {
     auto job = table2_job(suite_, rays_, std::move(descriptor));
     job.work.cancel = cancel;
-    return job_of(std::move(job), [s = suite_, cancel](const auto& results, int threads, double wall,
-                                                       bool report) -> std::optional<SuiteResult> {
-      Table2Run run = table2_run_from(s, results, cancel);
-      if (run.interrupted) return std::nullopt;
-      run.threads = threads, run.wall_s = wall;
-      return suite_result(
-          run.pass, report, [&](std::ostream& os) { print_table2(os, s, run); },
-          [&] { return table2_report_json(s, run); });
-    });
+    return job_of(
+        std::move(job),
+        [s = suite_, cancel](const auto& results, int threads, double wall, bool report) -> std::optional<SuiteResult> {
+          Table2Run run = table2_run_from(s, results, cancel);
+          if (run.interrupted) return std::nullopt;
+          run.threads = threads, run.wall_s = wall;
+          return suite_result(
+              run.pass, report, [&](std::ostream& os) { print_table2(os, s, run); },
+              [&] { return table2_report_json(s, run); });
+        });
   }
 
  private:
