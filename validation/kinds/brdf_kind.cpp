@@ -11,20 +11,18 @@ namespace vgroove::validation {
 
 namespace {
 
-class BrdfPlan final : public PlannedSuite {
+class BrdfPlan final : public SuitePlan<BrdfSuite> {
  public:
   BrdfPlan(const nlohmann::json& j, const std::string& file, const SuiteOverrides& o) {
     check_rough_surface_overrides(o, file, "brdf");
     suite_ = parse_brdf_suite(j, file);
-    rays_ = o.rays.value_or(0);
-    if (o.seed) suite_.seed = static_cast<std::uint64_t>(*o.seed);
+    apply_rays_and_seed(o);
     if (o.model_table) {
       table_file_ = *o.model_table;
       table_ = std::make_shared<const ModelTable>(
           parse_model_table(support::read_json_file(table_file_), table_file_, suite_));
     }
   }
-  std::string name() const override { return suite_.name; }
   std::string kind() const override { return table_ ? "brdf with --model-table" : "brdf"; }
   std::vector<std::string> extra_inputs() const override {
     return table_ ? std::vector<std::string>{table_file_} : std::vector<std::string>{};
@@ -39,8 +37,6 @@ class BrdfPlan final : public PlannedSuite {
   std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>* cancel) const override;
 
  private:
-  BrdfSuite suite_;
-  long rays_ = 0;
   std::string table_file_;
   std::shared_ptr<const ModelTable> table_;
 };
@@ -59,13 +55,9 @@ std::unique_ptr<SuiteJob> BrdfPlan::job(nlohmann::json descriptor, const std::at
         });
   auto job = brdf_job(suite_, rays_, std::move(descriptor));
   job.work.cancel = cancel;
-  return job_of(std::move(job), [s = suite_, rays = rays_](const auto& results, int threads, double wall, bool report) {
-    BrdfRun run = brdf_run_from(s, rays, results);
-    run.threads = threads, run.wall_s = wall;
-    return suite_result(
-        run.pass, report, [&](std::ostream& os) { print_brdf_table(os, s, run); },
-        [&] { return brdf_report_json(s, run); });
-  });
+  return suite_job(
+      std::move(job), suite_, [rays = rays_](const BrdfSuite& s, const auto& r) { return brdf_run_from(s, rays, r); },
+      print_brdf_table, brdf_report_json);
 }
 
 }  // namespace

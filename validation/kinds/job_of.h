@@ -7,6 +7,7 @@
 #pragma once
 
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/kinds/kinds.h"
 #include "vgroove/validation/suite_kind.h"
 #include "vgroove/validation/work_run.h"
 
@@ -50,6 +51,24 @@ class JobOf final : public SuiteJob {
 template <class Work, class Finish>
 std::unique_ptr<SuiteJob> job_of(Job<Work> job, Finish finish) {
   return std::make_unique<JobOf<Work, Finish>>(std::move(job), std::move(finish));
+}
+
+// The job of a kind that turns its units' results into a run the way every kind does:
+//   run_from(suite, results) -> Run {pass, threads, wall_s[, interrupted]},
+//   print(std::ostream&, suite, run), report(suite, run) -> nlohmann::json.
+template <class Work, class Suite, class RunFrom, class Print, class Report>
+std::unique_ptr<SuiteJob> suite_job(Job<Work> job, Suite suite, RunFrom run_from, Print print, Report report) {
+  return job_of(std::move(job),
+                [suite = std::move(suite), run_from, print, report](const auto& results, int threads, double wall_s,
+                                                                    bool want_report) -> std::optional<SuiteResult> {
+                  auto run = run_from(suite, results);
+                  if constexpr (requires { run.interrupted; })
+                    if (run.interrupted) return std::nullopt;
+                  run.threads = threads, run.wall_s = wall_s;
+                  return suite_result(
+                      run.pass, want_report, [&](std::ostream& os) { print(os, suite, run); },
+                      [&] { return report(suite, run); });
+                });
 }
 
 }  // namespace vgroove::validation

@@ -4,7 +4,9 @@
 
 #include "vgroove/validation/suite_kind.h"
 
+#include <cstdint>
 #include <sstream>
+#include <string>
 
 namespace vgroove::validation {
 
@@ -28,6 +30,22 @@ SuiteResult suite_result(bool pass, bool report, Print&& print, Report&& report_
   r.pass = pass;
   return r;
 }
+
+// What the plans of the rough-surface kinds share: the suite, the rays override (0: the suite's)
+// and the seed override applied to the suite.
+template <class Suite>
+class SuitePlan : public PlannedSuite {
+ public:
+  std::string name() const override { return suite_.name; }
+
+ protected:
+  void apply_rays_and_seed(const SuiteOverrides& o) {
+    rays_ = o.rays.value_or(0);
+    if (o.seed) suite_.seed = static_cast<std::uint64_t>(*o.seed);
+  }
+  Suite suite_;
+  long rays_ = 0;
+};
 
 // A kind object for a PlannedSuite type P whose constructor reads (json, file, overrides).
 template <class P>

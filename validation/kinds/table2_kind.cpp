@@ -7,15 +7,13 @@ namespace vgroove::validation {
 
 namespace {
 
-class Table2Plan final : public PlannedSuite {
+class Table2Plan final : public SuitePlan<Table2Suite> {
  public:
   Table2Plan(const nlohmann::json& j, const std::string& file, const SuiteOverrides& o) {
     check_rough_surface_overrides(o, file, "table2");
     suite_ = parse_table2_suite(j, file);
-    rays_ = o.rays.value_or(0);
-    if (o.seed) suite_.seed = static_cast<std::uint64_t>(*o.seed);
+    apply_rays_and_seed(o);
   }
-  std::string name() const override { return suite_.name; }
   std::string kind() const override { return "table2"; }
   double memory_bytes(int threads, bool) const override { return table2_run_memory_bytes(suite_, threads); }
   std::string memory_what(int) const override {
@@ -24,21 +22,11 @@ class Table2Plan final : public PlannedSuite {
   std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>* cancel) const override {
     auto job = table2_job(suite_, rays_, std::move(descriptor));
     job.work.cancel = cancel;
-    return job_of(
-        std::move(job),
-        [s = suite_, cancel](const auto& results, int threads, double wall, bool report) -> std::optional<SuiteResult> {
-          Table2Run run = table2_run_from(s, results, cancel);
-          if (run.interrupted) return std::nullopt;
-          run.threads = threads, run.wall_s = wall;
-          return suite_result(
-              run.pass, report, [&](std::ostream& os) { print_table2(os, s, run); },
-              [&] { return table2_report_json(s, run); });
-        });
+    return suite_job(
+        std::move(job), suite_,
+        [cancel](const Table2Suite& s, const auto& results) { return table2_run_from(s, results, cancel); },
+        print_table2, table2_report_json);
   }
-
- private:
-  Table2Suite suite_;
-  long rays_ = 0;
 };
 
 }  // namespace
