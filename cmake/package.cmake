@@ -11,3 +11,7 @@ install(FILES ${CMAKE_BINARY_DIR}/vgrooveConfig.cmake ${CMAKE_BINARY_DIR}/vgroov
         DESTINATION ${VGROOVE_CMAKE_DIR})
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/CITATION.cff
         DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/vgroove)
+# The JSON Schemas of the files vgroove reads and writes (docs/schemas/), for editors and
+# validators: share/vgroove/schemas.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/schemas/ DESTINATION ${CMAKE_INSTALL_DATADIR}/vgroove/schemas
+        FILES_MATCHING PATTERN "*.schema.json")

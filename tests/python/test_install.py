@@ -3,6 +3,7 @@ prefix, then `import vgroove` with that prefix's Python directory on the path (a
 build tree), and the installed `vgroove plot` finding its plot script there."""
 
 import os
+import pathlib
 import shutil
 import subprocess
 import sys
@@ -62,3 +63,12 @@ def test_installed_command_line_plots(prefix, reports, tmp_path):
     assert r.returncode == 0, r.stderr
     assert (tmp_path / "t2.png").read_bytes().startswith(b"\x89PNG\r\n\x1a\n")
     assert SOURCE  # the source tree is not needed by the installed package
+
+
+def test_the_schemas_are_installed(prefix):
+    schemas = prefix / "share" / "vgroove" / "schemas"
+    names = sorted(p.name for p in schemas.glob("*.schema.json"))
+    source = pathlib.Path(SOURCE) / "docs" / "schemas"
+    assert names == sorted(p.name for p in source.glob("*.schema.json")) and names, names
+    for p in schemas.glob("*.schema.json"):
+        assert p.read_bytes() == (source / p.name).read_bytes()
