@@ -5,9 +5,10 @@ set -euo pipefail
 # The Python module and the plots: pybind11-dev python3-dev (build), python3-numpy
 # python3-matplotlib (run; matplotlib brings PIL), python3-pytest (tests); all for Debian's
 # /usr/bin/python3. MPI (libopenmpi-dev openmpi-bin): the tests run vgroove under mpirun
-# (tests/cluster/); the default build does not need it. GNU parallel (scripts/cluster/) is optional.
+# (tests/cluster/); the default build does not need it. Boost.Math (header-only): the tests'
+# chi-square p-values. GNU parallel (scripts/cluster/) is optional.
 packages=(g++ cmake ninja-build git libeigen3-dev libcli11-dev nlohmann-json3-dev
-          libgtest-dev libgmock-dev libbenchmark-dev python3-jsonschema
+          libgtest-dev libgmock-dev libbenchmark-dev libboost-math-dev python3-jsonschema
           pybind11-dev python3-dev python3-numpy python3-matplotlib python3-pytest
           libopenmpi-dev openmpi-bin "$@")
 missing=()

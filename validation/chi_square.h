@@ -18,7 +18,8 @@
 namespace vgroove::validation {
 
 // Q(a, x), the regularized upper incomplete gamma function (series below a + 1, Lentz's continued
-// fraction above).
+// fraction above), within 1e-12 relative of Boost.Math's down to Q = 1e-30 for 2a in [1, 10^4]
+// (tests/validation/chi_square_test.cpp).
 double gamma_q(double a, double x);
 // The chi-square survival function: P(X >= x) for X with dof degrees of freedom.
 double chi_square_sf(double x, int dof);
