@@ -36,6 +36,13 @@ struct ChiSquareResult {
   bool samples_where_none_expected = false;
   bool reject = false;
 };
+// Its members for a shard part (outcome_fields.h).
+template <class F>
+void fields(ChiSquareResult& r, F&& f) {
+  f("statistic", r.statistic), f("dof", r.dof), f("p_value", r.p_value), f("level", r.level), f("cells", r.cells);
+  f("pooled_in", r.pooled_in), f("pooled_out", r.pooled_out);
+  f("samples_where_none_expected", r.samples_where_none_expected), f("reject", r.reject);
+}
 
 // The test of the header; observed and expected of equal length (counts, not fractions).
 ChiSquareResult chi_square_test(const std::vector<double>& observed, const std::vector<double>& expected, double level,
@@ -49,6 +56,10 @@ struct OrderedChiSquare {
   int dof = 0;     // pooled cells - 1 (the total is fixed)
   double p = 1.0;  // probability of a statistic this large under the model
 };
+template <class F>
+void fields(OrderedChiSquare& c, F&& f) {
+  f("stat", c.stat), f("dof", c.dof), f("p", c.p);
+}
 OrderedChiSquare chi_square(const std::vector<double>& expected, const std::vector<double>& observed);
 
 }  // namespace vgroove::validation

@@ -253,21 +253,18 @@ FurnaceOutcome run_furnace_case(const FurnaceSuite& suite, const BrdfCase& c, co
   return out;
 }
 
-FurnaceRun run_furnace_suite(const FurnaceSuite& suite, long samples, int threads, const support::ProgressFn& progress,
-                             const std::atomic<bool>* cancel) {
-  FurnaceRun run;
-  run.threads = support::resolve_threads(threads);
-  run.cases.resize(suite.cases());
+Job<FurnaceWork> furnace_job(const FurnaceSuite& suite, long samples, nlohmann::json descriptor) {
   FurnaceSuite s = suite;
   if (samples > 0) s.samples = samples;
-  const auto t0 = Clock::now();
-  const bool complete = support::parallel_for(
-      s.cases(), run.threads, [&](std::size_t c) { run.cases[c] = run_furnace_case(s, s.case_at(c)); }, progress,
-      cancel, 1);
-  run.wall_s = seconds_since(t0);
-  run.interrupted = !complete;
-  run.pass =
-      complete && std::all_of(run.cases.begin(), run.cases.end(), [](const FurnaceOutcome& o) { return o.pass; });
+  return item_job<FurnaceOutcome>(
+      s.cases(), [s](std::size_t c) { return run_furnace_case(s, s.case_at(c)); },
+      [s](support::JsonObject&, std::size_t c, FurnaceOutcome& o) { o.c = s.case_at(c); }, std::move(descriptor));
+}
+
+FurnaceRun furnace_run_from(const FurnaceSuite&, const std::vector<UnitResult<FurnaceWork>>& results) {
+  FurnaceRun run;
+  for (const auto& r : results) run.cases.push_back(r.tally);
+  run.pass = std::all_of(run.cases.begin(), run.cases.end(), [](const FurnaceOutcome& o) { return o.pass; });
   return run;
 }
 

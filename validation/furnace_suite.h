@@ -31,6 +31,7 @@
 #include "vgroove/analytic/facet_strategy.h"
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/brdf_suite.h"
+#include "vgroove/validation/item_work.h"
 
 #include <nlohmann/json.hpp>
 
@@ -74,6 +75,20 @@ struct FurnaceOutcome {
   bool pass = false;
 };
 
+// Its members for a shard part (outcome_fields.h); the case is the suite's.
+template <class F>
+void fields(FurnaceOutcome& o, F&& f) {
+  f("albedo_quadrature", o.albedo_quadrature), f("quadrature_error", o.quadrature_error);
+  f("flux_beyond_max_k", o.flux_beyond_max_k);
+  f("albedo_estimate", o.albedo_estimate), f("standard_error", o.standard_error);
+  f("cook_torrance_quadrature", o.cook_torrance_quadrature), f("cook_torrance_estimate", o.cook_torrance_estimate);
+  f("cook_torrance_standard_error", o.cook_torrance_standard_error);
+  f("albedo_sim", o.albedo_sim), f("rays", o.rays), f("in_flight", o.in_flight);
+  f("quadrature_s", o.quadrature_s), f("estimate_s", o.estimate_s), f("sim_s", o.sim_s);
+  f("energy_ok", o.energy_ok), f("estimate_ok", o.estimate_ok), f("cook_torrance_ok", o.cook_torrance_ok);
+  f("sim_ok", o.sim_ok), f("finite", o.finite), f("pass", o.pass);
+}
+
 struct FurnaceRun {
   std::vector<FurnaceOutcome> cases;
   int threads = 1;
@@ -91,9 +106,10 @@ struct BrdfUnderTest {
 
 FurnaceSuite parse_furnace_suite(const nlohmann::json& j, const std::string& file);
 FurnaceOutcome run_furnace_case(const FurnaceSuite& suite, const BrdfCase& c, const BrdfUnderTest& brdf = {});
-// samples > 0 overrides the suite's estimator samples.
-FurnaceRun run_furnace_suite(const FurnaceSuite& suite, long samples, int threads,
-                             const support::ProgressFn& progress = {}, const std::atomic<bool>* cancel = nullptr);
+// The suite as work items (item_work.h): one per case. samples > 0 overrides the suite's.
+using FurnaceWork = ItemWork<FurnaceOutcome>;
+Job<FurnaceWork> furnace_job(const FurnaceSuite& suite, long samples, nlohmann::json descriptor);
+FurnaceRun furnace_run_from(const FurnaceSuite& suite, const std::vector<UnitResult<FurnaceWork>>& results);
 nlohmann::json furnace_report_json(const FurnaceSuite& suite, const FurnaceRun& run);
 void print_furnace_table(std::ostream& os, const FurnaceSuite& suite, const FurnaceRun& run);
 

@@ -5,15 +5,16 @@
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/printable.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/histogram_metrics.h"
+#include "vgroove/validation/part_fields.h"
 #include "vgroove/validation/report.h"
-#include "vgroove/validation/traced_lobe.h"
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <map>
+#include <limits>
 #include <numbers>
-#include <tuple>
+#include <stdexcept>
 
 namespace vgroove::validation {
 
@@ -134,46 +135,122 @@ ModelTable parse_model_table(const nlohmann::json& j, const std::string& file, c
   return t;
 }
 
+std::shared_ptr<const ModelTableWork::Context> ModelTableWork::prepare(std::size_t c) const {
+  const BrdfCase k = suite.case_at(c);
+  auto ctx = std::make_shared<Context>();
+  if (k.dim == SurfaceDim::flatland) {
+    sim::MicrosurfaceOptions so;
+    so.ndf = k.ndf, so.alpha = k.alpha, so.grooves = suite.grooves, so.seed = suite.seed;
+    ctx->flat = sim::make_microsurface(so);
+  } else {
+    sim::Microsurface3dOptions so;
+    so.ndf = k.ndf, so.alpha = k.alpha, so.grooves = suite.grooves, so.seed = suite.seed;
+    ctx->three_d = sim::make_microsurface3d(so);
+  }
+  return ctx;
+}
+
+LobeTally ModelTableWork::run_chunks(const Context& ctx, std::size_t c, std::int64_t begin, std::int64_t end) const {
+  const BrdfCase k = suite.case_at(c);
+  const auto t0 = Clock::now();
+  LobeTally out;
+  out.hist.assign(static_cast<std::size_t>(bins_of(suite, k.dim)), 0);
+  for (std::int64_t chunk = begin; chunk < end && !support::cancelled(cancel); ++chunk) {
+    std::vector<std::int64_t> hist;
+    if (k.dim == SurfaceDim::flatland) {
+      sim::MicrosurfaceTraceOptions to;
+      to.theta_i = k.theta_i, to.rays = rays, to.seed = suite.seed, to.theta_o_bins = suite.flatland_bins;
+      to.max_k = 0;
+      sim::MicrosurfaceTally t = sim::trace_microsurface_chunk(ctx.flat, to, chunk);
+      hist = std::move(t.theta_o), out.rays += t.rays;
+    } else {
+      sim::Microsurface3dTraceOptions to;
+      to.theta_i = k.theta_i, to.rays = rays, to.seed = suite.seed;
+      to.theta_bins = suite.theta_bins, to.phi_bins = suite.phi_bins, to.max_k = 0;
+      sim::Microsurface3dTally t = sim::trace_microsurface3d_chunk(ctx.three_d, to, chunk);
+      hist = std::move(t.hist), out.rays += t.rays;
+    }
+    for (std::size_t n = 0; n < out.hist.size(); ++n) out.hist[n] += hist[n];
+  }
+  out.thread_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  return out;
+}
+
+ModelTableWork::Fixed ModelTableWork::run_fixed(std::size_t) const {
+  throw std::logic_error("ModelTableWork: the model is the table's, nothing to run");
+}
+
+void ModelTableWork::merge(Tally& into, const Tally& from) {
+  for (std::size_t n = 0; n < into.hist.size(); ++n) into.hist[n] += from.hist[n];
+  into.rays += from.rays;
+  into.thread_s += from.thread_s;
+}
+
+nlohmann::json ModelTableWork::tally_json(const Tally& t) {
+  return {{"hist", t.hist}, {"rays", t.rays}, {"thread_s", t.thread_s}};
+}
+
+LobeTally ModelTableWork::read_tally(support::JsonObject& j, std::size_t c, const std::vector<ChunkRun>& runs) const {
+  LobeTally t;
+  const std::int64_t n = rays_in_chunks(runs, rays, sim::kRaysPerChunk);
+  t.rays = j.integer("rays", n, n);
+  t.hist = read_counts(j, "hist", static_cast<std::size_t>(bins_of(suite, suite.case_at(c).dim)), t.rays);
+  std::int64_t escaped = 0;
+  for (std::int64_t h : t.hist) escaped += h;  // each <= rays <= 2^62 over at most 10^9 bins: no overflow in practice
+  if (escaped > t.rays)
+    j.fail("hist", "holds " + std::to_string(escaped) + " rays, more than the " + std::to_string(t.rays) + " traced");
+  t.thread_s = j.number("thread_s", 0.0, true, std::numeric_limits<double>::max(), true);
+  return t;
+}
+
+ModelTableWork::Fixed ModelTableWork::read_fixed(support::JsonObject& j, std::size_t) const {
+  throw support::UserError(j.file() + ": " + j.pointer() + " is given: a model-table case has no fixed part");
+}
+
+Job<ModelTableWork> model_table_job(const BrdfSuite& s, long rays, nlohmann::json descriptor,
+                                    const std::atomic<bool>* cancel) {
+  const long n_rays = rays > 0 ? rays : s.rays;
+  const std::int64_t chunks = (static_cast<std::int64_t>(n_rays) + sim::kRaysPerChunk - 1) / sim::kRaysPerChunk;
+  std::vector<support::WorkUnit> units(s.cases());
+  for (std::size_t c = 0; c < s.cases(); ++c) {
+    units[c].chunks = chunks;
+    units[c].chunk_cost = s.case_at(c).dim == SurfaceDim::flatland ? 1 : 4;
+  }
+  return make_job(ModelTableWork{s, n_rays, cancel}, std::move(units), std::move(descriptor));
+}
+
+ModelTableRun model_table_run_from(const BrdfSuite& s, const ModelTable& t, long rays,
+                                   const std::vector<UnitResult<ModelTableWork>>& results) {
+  ModelTableRun run;
+  run.rays = rays > 0 ? rays : s.rays;
+  run.pass = true;
+  for (std::size_t c = 0; c < results.size(); ++c) {
+    const BrdfCase k = s.case_at(c);
+    const LobeTally& traced = results[c].tally;
+    const std::vector<double> flux = fractions(traced.hist, static_cast<double>(traced.rays));
+    CheckBrdfCase out =
+        compare_lobes(flux, t.flux[c], static_cast<double>(traced.rays), s.grooves, s.sigmas, tolerance(s, k.dim));
+    out.theta_i_deg = output_deg(k.theta_i);
+    out.rays = traced.rays;
+    out.sim_wall_s = traced.thread_s;
+    out.worst = worst_bins(flux, t.flux[c], k.dim, s.theta_bins, s.phi_bins, s.flatland_bins);
+    run.pass = run.pass && out.pass;
+    run.cases.push_back(std::move(out));
+  }
+  return run;
+}
+
 ModelTableRun run_model_table(const BrdfSuite& s, const ModelTable& t, long rays, int threads,
                               const std::atomic<bool>* cancel) {
-  ModelTableRun run;
-  run.threads = support::resolve_threads(threads);
-  run.rays = rays > 0 ? rays : s.rays;
-  run.cases.resize(s.cases());
   const auto t0 = Clock::now();
-  // One trace per surface (ndf, alpha, dimension) over its incidences.
-  std::map<std::tuple<int, double, int>, std::vector<std::size_t>> groups;
-  for (std::size_t c = 0; c < s.cases(); ++c) {
-    const BrdfCase k = s.case_at(c);
-    groups[{static_cast<int>(k.ndf), k.alpha, static_cast<int>(k.dim)}].push_back(c);
-  }
-  run.pass = true;
-  for (const auto& [key, members] : groups) {
-    const BrdfCase first = s.case_at(members.front());
-    LobeSetup setup;
-    setup.ndf = first.ndf, setup.alpha = first.alpha, setup.dim = first.dim, setup.rays = run.rays;
-    setup.grooves = s.grooves, setup.seed = s.seed;
-    setup.theta_bins = s.theta_bins, setup.phi_bins = s.phi_bins, setup.flatland_bins = s.flatland_bins;
-    std::vector<double> theta_i;
-    for (std::size_t c : members) theta_i.push_back(s.case_at(c).theta_i);
-    const std::vector<TracedLobe> traced = trace_lobes(setup, theta_i, run.threads, cancel);
-    if (traced.size() != members.size()) {
-      run.interrupted = true;
-      return run;
-    }
-    for (std::size_t m = 0; m < members.size(); ++m) {
-      const std::size_t c = members[m];
-      CheckBrdfCase out = compare_lobes(traced[m].flux, t.flux[c], static_cast<double>(traced[m].rays), s.grooves,
-                                        s.sigmas, tolerance(s, first.dim));
-      out.theta_i_deg = output_deg(theta_i[m]);
-      out.rays = traced[m].rays;
-      out.sim_wall_s = traced[m].thread_s;
-      out.worst = worst_bins(traced[m].flux, t.flux[c], first.dim, s.theta_bins, s.phi_bins, s.flatland_bins);
-      run.pass = run.pass && out.pass;
-      run.cases[c] = std::move(out);
-    }
-  }
+  const auto results = run_job(model_table_job(s, rays, {}, cancel), threads, {}, cancel);
+  ModelTableRun run;
+  if (results) run = model_table_run_from(s, t, rays, *results);
+  run.rays = rays > 0 ? rays : s.rays;
+  run.threads = support::resolve_threads(threads);
   run.wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  run.interrupted = !results;
+  run.pass = run.pass && !run.interrupted;
   return run;
 }
 

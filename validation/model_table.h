@@ -13,12 +13,18 @@
 // of finite numbers >= 0.
 #pragma once
 
+#include "vgroove/sim/microsurface.h"
+#include "vgroove/sim/microsurface3d.h"
+#include "vgroove/support/json_reader.h"
 #include "vgroove/validation/brdf_suite.h"
 #include "vgroove/validation/check_brdf.h"
+#include "vgroove/validation/work_run.h"
 
 #include <nlohmann/json.hpp>
 
 #include <atomic>
+#include <cstdint>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -44,6 +50,38 @@ struct ModelTableRun {
   bool interrupted = false;
   bool pass = false;
 };
+// The run as work items (work_run.h): a unit per case, its rays in chunks (sim::kRaysPerChunk,
+// the procedural surface's streams, as trace_lobes draws them); the tally is the case's traced
+// histogram, the model the table's lobe. rays > 0 overrides the suite's; `cancel` (may be null) is
+// polled between chunks.
+struct LobeTally {
+  std::vector<std::int64_t> hist;  // escaped rays per bin
+  std::int64_t rays = 0;
+  double thread_s = 0.0;  // time spent tracing (a timing: never compared)
+};
+struct ModelTableWork {
+  struct Context {
+    sim::Microsurface flat;
+    sim::Microsurface3d three_d;
+  };
+  struct Fixed {};
+  using Tally = LobeTally;
+  BrdfSuite suite;
+  long rays = 0;
+  const std::atomic<bool>* cancel = nullptr;
+  std::shared_ptr<const Context> prepare(std::size_t c) const;
+  Tally run_chunks(const Context& ctx, std::size_t c, std::int64_t begin, std::int64_t end) const;
+  Fixed run_fixed(std::size_t c) const;
+  static void merge(Tally& into, const Tally& from);
+  static nlohmann::json tally_json(const Tally& t);
+  static nlohmann::json fixed_json(const Fixed&) { return nlohmann::json::object(); }
+  Tally read_tally(support::JsonObject& j, std::size_t c, const std::vector<ChunkRun>& runs) const;
+  Fixed read_fixed(support::JsonObject& j, std::size_t c) const;
+};
+Job<ModelTableWork> model_table_job(const BrdfSuite& suite, long rays, nlohmann::json descriptor,
+                                    const std::atomic<bool>* cancel = nullptr);
+ModelTableRun model_table_run_from(const BrdfSuite& suite, const ModelTable& table, long rays,
+                                   const std::vector<UnitResult<ModelTableWork>>& results);
 // rays > 0 overrides the suite's.
 ModelTableRun run_model_table(const BrdfSuite& suite, const ModelTable& table, long rays, int threads,
                               const std::atomic<bool>* cancel = nullptr);

@@ -399,34 +399,98 @@ NonsymmetricOutcome run_nonsymmetric_case(const NonsymmetricSuite& suite, const 
   return c.dim == SurfaceDim::flatland ? run_flatland(suite, c, rays, cancel) : run_3d(suite, c, rays, cancel);
 }
 
-NonsymmetricRun run_nonsymmetric_suite(const NonsymmetricSuite& suite, long rays, int threads,
-                                       const support::ProgressFn& progress, const std::atomic<bool>* cancel) {
-  NonsymmetricRun run;
-  run.threads = support::resolve_threads(threads);
+double nonsymmetric_run_memory_bytes(const NonsymmetricSuite& suite, int threads, bool report) {
+  constexpr double kNumberBytes = 64;  // a double in the report: its JSON node, vector slot and text
   const std::vector<NonsymmetricCase> cases = suite.cases();
-  run.cases.resize(cases.size());
-  run.reciprocity = reciprocity_rows(suite);
+  const double rows = suite.max_k + 2.0;
+  double cells = 0.0, groove = 0.0, plane = 0.0;
+  for (const NonsymmetricCase& c : cases) {
+    const bool flat = c.dim == SurfaceDim::flatland;
+    cells =
+        std::max(cells, rows * (flat ? suite.flatland_bins : static_cast<double>(suite.theta_bins) * suite.phi_bins));
+    groove = std::max(groove, sizeof(sim::Groove) + 16.0 + (flat ? 0.0 : 8.0 + sizeof(sim::GrooveFrame3d)));
+    plane = std::max(plane, (flat ? suite.flatland_bins : 2.0 * suite.theta_bins) * (4.0 + 3.0 * suite.plane_k));
+  }
+  const double n = static_cast<double>(cases.size());
+  const double workers = std::min<double>(support::resolve_threads(threads), n);
+  // Per worker: the surface; the case's tally and a chunk's; the two models' lobes (this partner
+  // law and the other) and the comparison's fractions and normalized copies: about twelve arrays of
+  // the joint cells. Per case: its outcome (bounce rows and the plane of incidence), held twice
+  // while parts are merged, and with `report` its JSON.
+  const double per_worker = suite.grooves * groove + 12.0 * cells * 8.0;
+  const double per_case = sizeof(NonsymmetricOutcome) + 2.0 * (3.0 * rows + plane) * 8.0 +
+                          (report ? (3.0 * rows + plane) * kNumberBytes : 0.0);
+  return workers * per_worker + n * per_case;
+}
+
+Job<NonsymmetricWork> nonsymmetric_job(const NonsymmetricSuite& suite, long rays, nlohmann::json descriptor,
+                                       const std::atomic<bool>* cancel) {
+  const std::vector<NonsymmetricCase> cases = suite.cases();
+  const std::vector<ReciprocityRow> rows = reciprocity_rows(suite);
   const long n_rays = rays > 0 ? rays : suite.rays;
-  const auto t0 = Clock::now();
-  // One work item per case (its rays in order on one thread) or per reciprocity row: the results
-  // do not depend on the thread count.
-  const std::size_t items = cases.size() + run.reciprocity.size();
-  const bool complete = support::parallel_for(
-      items, run.threads,
-      [&](std::size_t n) {
-        if (n < cases.size())
-          run.cases[n] = run_nonsymmetric_case(suite, cases[n], n_rays, cancel);
-        else
-          run_reciprocity(run.reciprocity[n - cases.size()], suite.seed, n - cases.size(), cancel);
+  const std::size_t n = cases.size();
+  return item_job<NonsymmetricItem>(
+      n + rows.size(),
+      [suite, cases, rows, n_rays, cancel](std::size_t k) {
+        NonsymmetricItem item;
+        if (k < cases.size()) {
+          item.outcome = run_nonsymmetric_case(suite, cases[k], n_rays, cancel);
+        } else {
+          item.reciprocity = rows[k - cases.size()];
+          run_reciprocity(*item.reciprocity, suite.seed, k - cases.size(), cancel);
+        }
+        return item;
       },
-      progress, cancel, 1);
-  run.wall_s = seconds_since(t0);
-  // A case stopped inside its loops still counts as run by parallel_for: the flag decides.
-  run.interrupted = !complete || support::cancelled(cancel);
+      [cases, rows](support::JsonObject& o, std::size_t k, NonsymmetricItem& item) {
+        const bool is_case = k < cases.size();
+        if (item.outcome.has_value() == item.reciprocity.has_value() || item.outcome.has_value() != is_case)
+          o.fail("outcome", std::string("must hold exactly the item's ") + (is_case ? "case" : "reciprocity row"));
+        if (item.reciprocity) {
+          const ReciprocityRow read = *item.reciprocity;
+          item.reciprocity = rows[k - cases.size()];
+          item.reciprocity->evaluated = read.evaluated, item.reciprocity->worst = read.worst;
+          item.reciprocity->pass = read.pass;
+          return;
+        }
+        NonsymmetricOutcome& c = *item.outcome;
+        c.c = cases[k];
+        const std::size_t plane = c.plane_theta_deg.size(), by_k = c.by_k_sim.size();
+        const auto same = [](const std::vector<std::vector<double>>& v, std::size_t rows_, std::size_t cols) {
+          return v.size() == rows_ && std::all_of(v.begin(), v.end(), [&](const auto& r) { return r.size() == cols; });
+        };
+        if (c.plane_sim.size() != plane || c.plane_model.size() != plane || c.plane_other.size() != plane ||
+            c.by_k_model.size() != by_k || c.by_k_other.size() != by_k ||
+            !same(c.plane_model_k, c.plane_sim_k.size(), plane) ||
+            !same(c.plane_other_k, c.plane_sim_k.size(), plane) || !same(c.plane_sim_k, c.plane_sim_k.size(), plane))
+          o.fail("outcome", "/case: the plane and bounce arrays differ in length");
+      },
+      std::move(descriptor));
+}
+
+NonsymmetricRun nonsymmetric_run_from(const NonsymmetricSuite&,
+                                      const std::vector<UnitResult<NonsymmetricWork>>& results) {
+  NonsymmetricRun run;
+  for (const auto& r : results) {
+    if (r.tally.outcome) run.cases.push_back(*r.tally.outcome);
+    if (r.tally.reciprocity) run.reciprocity.push_back(*r.tally.reciprocity);
+  }
   const auto all_pass = [](const auto& v) {
     return std::all_of(v.begin(), v.end(), [](const auto& o) { return o.pass; });
   };
-  run.pass = !run.interrupted && all_pass(run.cases) && all_pass(run.reciprocity);
+  run.pass = all_pass(run.cases) && all_pass(run.reciprocity);
+  return run;
+}
+
+NonsymmetricRun run_nonsymmetric_suite(const NonsymmetricSuite& suite, long rays, int threads,
+                                       const support::ProgressFn& progress, const std::atomic<bool>* cancel) {
+  const auto t0 = Clock::now();
+  const auto results = run_job(nonsymmetric_job(suite, rays, {}, cancel), threads, progress, cancel);
+  NonsymmetricRun run;
+  if (results) run = nonsymmetric_run_from(suite, *results);
+  run.threads = support::resolve_threads(threads);
+  run.wall_s = seconds_since(t0);
+  run.interrupted = !results;
+  run.pass = run.pass && !run.interrupted;
   return run;
 }
 

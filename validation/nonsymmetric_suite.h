@@ -27,11 +27,13 @@
 #include "vgroove/analytic/ndf.h"
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/brdf_suite.h"
+#include "vgroove/validation/item_work.h"
 
 #include <nlohmann/json.hpp>
 
 #include <atomic>
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -100,6 +102,34 @@ struct ReciprocityRow {
   bool pass = false;             // worst <= 1e-8
 };
 
+// Their members for a shard part (outcome_fields.h); the case and the row's surface are the suite's.
+template <class F>
+void fields(NonsymmetricOutcome& o, F&& f) {
+  f("rays", o.rays), f("escaped", o.escaped), f("lost", o.lost), f("bounces", o.bounces);
+  f("max_k_seen", o.max_k_seen), f("sim_wall_s", o.sim_wall_s), f("model_wall_s", o.model_wall_s);
+  f("albedo_sim", o.albedo_sim), f("albedo_model", o.albedo_model), f("albedo_threshold", o.albedo_threshold);
+  f("l1", o.l1), f("l1_expected", o.l1_expected), f("l1_threshold", o.l1_threshold);
+  f("l1_k", o.l1_k), f("l1_k_expected", o.l1_k_expected), f("l1_k_threshold", o.l1_k_threshold);
+  f("l1_other", o.l1_other), f("other_rejected", o.other_rejected);
+  f("by_k_sim", o.by_k_sim), f("by_k_model", o.by_k_model), f("by_k_other", o.by_k_other);
+  f("plane_theta_deg", o.plane_theta_deg), f("plane_sim", o.plane_sim), f("plane_model", o.plane_model);
+  f("plane_other", o.plane_other), f("plane_sim_k", o.plane_sim_k), f("plane_model_k", o.plane_model_k);
+  f("plane_other_k", o.plane_other_k), f("non_finite", o.non_finite), f("pass", o.pass);
+}
+template <class F>
+void fields(ReciprocityRow& r, F&& f) {
+  f("evaluated", r.evaluated), f("worst", r.worst), f("pass", r.pass);
+}
+// One item of the run (item_work.h): a case, then a reciprocity row (the one it is set).
+struct NonsymmetricItem {
+  std::optional<NonsymmetricOutcome> outcome;
+  std::optional<ReciprocityRow> reciprocity;
+};
+template <class F>
+void fields(NonsymmetricItem& o, F&& f) {
+  f("case", o.outcome), f("reciprocity", o.reciprocity);
+}
+
 struct NonsymmetricRun {
   std::vector<NonsymmetricOutcome> cases;
   std::vector<ReciprocityRow> reciprocity;
@@ -110,6 +140,17 @@ struct NonsymmetricRun {
 };
 
 NonsymmetricSuite parse_nonsymmetric_suite(const nlohmann::json& j, const std::string& file);
+// An upper bound of the memory the run needs (support/memory.h): per worker a surface of `grooves`
+// grooves, its tallies and the two models' lobes over the joint (k, bin) cells; per case its
+// outcome, and with `report` its JSON.
+double nonsymmetric_run_memory_bytes(const NonsymmetricSuite& suite, int threads, bool report);
+// The suite as work items (item_work.h): one per case, then one per reciprocity row. rays > 0
+// overrides the suite's; `cancel` (may be null) is read inside each item.
+using NonsymmetricWork = ItemWork<NonsymmetricItem>;
+Job<NonsymmetricWork> nonsymmetric_job(const NonsymmetricSuite& suite, long rays, nlohmann::json descriptor,
+                                       const std::atomic<bool>* cancel = nullptr);
+NonsymmetricRun nonsymmetric_run_from(const NonsymmetricSuite& suite,
+                                      const std::vector<UnitResult<NonsymmetricWork>>& results);
 // rays > 0 overrides the suite's.
 NonsymmetricRun run_nonsymmetric_suite(const NonsymmetricSuite& suite, long rays, int threads,
                                        const support::ProgressFn& progress = {},

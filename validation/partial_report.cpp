@@ -107,20 +107,36 @@ nlohmann::json job_descriptor(const std::string& command, const std::string& kin
           {"options", std::move(options)}};
 }
 
+namespace {
+constexpr std::uint64_t kFnvOffset = 0xcbf29ce484222325ULL, kFnvPrime = 0x100000001b3ULL;
+std::string hex16(std::uint64_t h) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+}  // namespace
+
 std::string file_digest(const std::vector<std::string>& files) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
+  std::uint64_t h = kFnvOffset;
   for (const std::string& f : files) {
     std::ifstream in(f, std::ios::binary);
     if (!in) throw support::UserError(f + ": cannot open the file (missing or unreadable)");
     for (std::istreambuf_iterator<char> it(in), end; it != end; ++it) {
       h ^= static_cast<unsigned char>(*it);
-      h *= 0x100000001b3ULL;
+      h *= kFnvPrime;
     }
-    h ^= 0xff, h *= 0x100000001b3ULL;  // a file boundary
+    h ^= 0xff, h *= kFnvPrime;  // a file boundary
   }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
+  return hex16(h);
+}
+
+std::string text_digest(const std::string& text) {
+  std::uint64_t h = kFnvOffset;
+  for (const char c : text) {
+    h ^= static_cast<unsigned char>(c);
+    h *= kFnvPrime;
+  }
+  return hex16(h);
 }
 
 void check_input_unchanged(const nlohmann::json& descriptor, const std::vector<std::string>& files,

@@ -45,6 +45,8 @@ nlohmann::json job_descriptor(const std::string& command, const std::string& kin
                               const std::vector<std::string>& files, nlohmann::json options);
 // FNV-1a (64 bits) of the files' bytes, as 16 hex digits; a UserError when one cannot be read.
 std::string file_digest(const std::vector<std::string>& files);
+// The same digest of a text.
+std::string text_digest(const std::string& text);
 // The digest the descriptor holds against the files as they are now: a UserError when they changed.
 void check_input_unchanged(const nlohmann::json& descriptor, const std::vector<std::string>& files,
                            const std::string& part);

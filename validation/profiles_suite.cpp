@@ -362,23 +362,48 @@ double profiles_run_memory_bytes(const ProfilesSuite& suite, int threads) {
   return workers * 200.0 * suite.segments + cases * per_case;
 }
 
+Job<ProfilesWork> profiles_job(const ProfilesSuite& suite, long rays, nlohmann::json descriptor,
+                               const std::atomic<bool>* cancel) {
+  const long n_rays = rays > 0 ? rays : suite.rays;
+  // A case's realizations run in order on one thread from its own seeds: where it runs does not
+  // change its numbers.
+  return item_job<ProfilesOutcome>(
+      suite.cases(), [suite, n_rays, cancel](std::size_t c) { return run_profiles_case(suite, c, n_rays, cancel); },
+      [suite](support::JsonObject& o, std::size_t c, ProfilesOutcome& out) {
+        out.c = suite.case_at(c);
+        const std::size_t joint = static_cast<std::size_t>(suite.max_k + 2) * static_cast<std::size_t>(suite.lobe_bins);
+        if (out.surfaces.size() != suite.surfaces.size())
+          o.fail("outcome", "/surfaces: " + std::to_string(out.surfaces.size()) + " surfaces, not the suite's " +
+                                std::to_string(suite.surfaces.size()));
+        bool shaped = out.walk_lobe.size() == joint && out.model_lobe.size() == joint;
+        for (std::size_t n = 0; n < out.surfaces.size(); ++n) {
+          out.surfaces[n].surface = suite.surfaces[n];
+          shaped = shaped && out.surfaces[n].lobe.mean.size() == joint && out.surfaces[n].lobe.se.size() == joint;
+        }
+        if (!shaped)
+          o.fail("outcome", "/walk_lobe, /model_lobe or a surface's /lobe is not of the suite's (max_k + 2) x " +
+                                std::to_string(suite.lobe_bins) + " cells");
+      },
+      std::move(descriptor));
+}
+
+ProfilesRun profiles_run_from(const ProfilesSuite&, const std::vector<UnitResult<ProfilesWork>>& results) {
+  ProfilesRun run;
+  for (const auto& r : results) run.cases.push_back(r.tally);
+  run.pass = std::all_of(run.cases.begin(), run.cases.end(), [](const ProfilesOutcome& o) { return o.pass; });
+  return run;
+}
+
 ProfilesRun run_profiles_suite(const ProfilesSuite& suite, long rays, int threads, const support::ProgressFn& progress,
                                const std::atomic<bool>* cancel) {
-  ProfilesRun run;
-  run.threads = support::resolve_threads(threads);
-  run.cases.resize(suite.cases());
-  const long n_rays = rays > 0 ? rays : suite.rays;
   const auto t0 = Clock::now();
-  // One case per work item, its realizations in order on one thread: results do not depend on
-  // the thread count.
-  const bool complete = support::parallel_for(
-      suite.cases(), run.threads, [&](std::size_t c) { run.cases[c] = run_profiles_case(suite, c, n_rays, cancel); },
-      progress, cancel, 1);
+  const auto results = run_job(profiles_job(suite, rays, {}, cancel), threads, progress, cancel);
+  ProfilesRun run;
+  if (results) run = profiles_run_from(suite, *results);
+  run.threads = support::resolve_threads(threads);
   run.wall_s = seconds_since(t0);
-  // A case stopped inside its loops still counts as run by parallel_for: the flag decides.
-  run.interrupted = !complete || support::cancelled(cancel);
-  run.pass = !run.interrupted &&
-             std::all_of(run.cases.begin(), run.cases.end(), [](const ProfilesOutcome& o) { return o.pass; });
+  run.interrupted = !results;
+  run.pass = run.pass && !run.interrupted;
   return run;
 }
 

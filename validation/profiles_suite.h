@@ -35,6 +35,7 @@
 #include "vgroove/analytic/ndf.h"
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/chi_square.h"
+#include "vgroove/validation/item_work.h"
 
 #include <nlohmann/json.hpp>
 
@@ -137,6 +138,44 @@ struct ProfilesOutcome {
   bool pass = false;
 };
 
+// Their members for a shard part (outcome_fields.h); the case and each surface's kind are the suite's.
+template <class F>
+void fields(BinStat& b, F&& f) {
+  f("mean", b.mean), f("se", b.se);
+}
+template <class F>
+void fields(ModelDistance& d, F&& f) {
+  f("mean_abs", d.mean_abs), f("noise", d.noise), f("max_abs_z", d.max_abs_z);
+}
+template <class F>
+void fields(LobeDistance& d, F&& f) {
+  f("l1", d.l1), f("expected", d.expected), f("sd", d.sd), f("z", d.z), f("l1_total", d.l1_total);
+  f("expected_total", d.expected_total), f("sd_total", d.sd_total), f("z_total", d.z_total), f("max_z", d.max_z);
+  f("within_noise", d.within_noise);
+}
+template <class F>
+void fields(SurfaceOutcome& o, F&& f) {
+  f("rays", o.rays), f("lost", o.lost), f("shadow_vertex", o.shadow_vertex), f("bounces", o.bounces);
+  f("identity_error", o.identity_error), f("g1_identity", o.g1_identity);
+  f("g1_average_vcavity", o.g1_average_vcavity), f("g1_weight", o.g1_weight), f("g1_traced", o.g1_traced);
+  f("g1_vcavity", o.g1_vcavity), f("g2_weight", o.g2_weight), f("g2_traced", o.g2_traced);
+  f("g2_vcavity", o.g2_vcavity), f("g1_smith", o.g1_smith), f("g2_smith_separable", o.g2_smith_separable);
+  f("g2_smith_correlated", o.g2_smith_correlated), f("g1_d_smith", o.g1_d_smith), f("g1_d_vcavity", o.g1_d_vcavity);
+  f("g2_d_separable", o.g2_d_separable), f("g2_d_correlated", o.g2_d_correlated);
+  f("g2_d_vcavity", o.g2_d_vcavity), f("lit_traced", o.lit_traced), f("lit_se", o.lit_se);
+  f("lit_smith", o.lit_smith), f("lit_vcavity", o.lit_vcavity), f("g1_chi2", o.g1_chi2), f("g2_chi2", o.g2_chi2);
+  f("lit_z_vcavity", o.lit_z_vcavity), f("lobe", o.lobe), f("by_k", o.by_k), f("albedo", o.albedo);
+  f("d_walk", o.d_walk), f("d_vgroove", o.d_vgroove), f("l1_pooled", o.l1_pooled);
+  f("l1_pooled_threshold", o.l1_pooled_threshold), f("identity_holds", o.identity_holds), f("pass", o.pass);
+  f("wall_s", o.wall_s);
+}
+template <class F>
+void fields(ProfilesOutcome& o, F&& f) {
+  f("walk_lobe", o.walk_lobe), f("walk_by_k", o.walk_by_k), f("walk_paths", o.walk_paths);
+  f("walk_left", o.walk_left), f("model_lobe", o.model_lobe), f("model_by_k", o.model_by_k);
+  f("surfaces", o.surfaces), f("walk_wall_s", o.walk_wall_s), f("non_finite", o.non_finite), f("pass", o.pass);
+}
+
 struct ProfilesRun {
   std::vector<ProfilesOutcome> cases;
   int threads = 1;
@@ -146,6 +185,12 @@ struct ProfilesRun {
 };
 
 ProfilesSuite parse_profiles_suite(const nlohmann::json& j, const std::string& file);
+// The suite as work items (item_work.h): one per case. rays > 0 overrides the suite's; `cancel`
+// (may be null) is read inside each case.
+using ProfilesWork = ItemWork<ProfilesOutcome>;
+Job<ProfilesWork> profiles_job(const ProfilesSuite& suite, long rays, nlohmann::json descriptor,
+                               const std::atomic<bool>* cancel = nullptr);
+ProfilesRun profiles_run_from(const ProfilesSuite& suite, const std::vector<UnitResult<ProfilesWork>>& results);
 // rays > 0 overrides the suite's rays per beam.
 // An upper bound of the memory run_profiles_suite needs (support/memory.h): per worker (one case
 // at a time) its profile with its generation, visibility tallies and masking measures, counted

@@ -271,6 +271,23 @@ void expect_and_test(Chi2Outcome& out, const HeldDensity* held, const std::atomi
 
 }  // namespace
 
+std::string chi2_table_shape_error(const Chi2Spec& spec, const Chi2Table& t) {
+  const bool flat = spec.dim == SurfaceDim::flatland;
+  const int rows = flat ? 1 : spec.cos_bins, cols = flat ? spec.theta_bins : spec.phi_bins;
+  const auto cells = static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols);
+  if (t.rows != rows || t.cols != cols)
+    return "is a table of " + std::to_string(t.rows) + " x " + std::to_string(t.cols) + " cells, not the spec's " +
+           std::to_string(rows) + " x " + std::to_string(cols);
+  if (t.row_edges.size() != static_cast<std::size_t>(rows) + 1 ||
+      t.col_edges.size() != static_cast<std::size_t>(cols) + 1)
+    return "has " + std::to_string(t.row_edges.size()) + " row and " + std::to_string(t.col_edges.size()) +
+           " column edges, not " + std::to_string(rows + 1) + " and " + std::to_string(cols + 1);
+  if (t.observed.size() != cells || t.expected.size() != cells)
+    return "has " + std::to_string(t.observed.size()) + " observed and " + std::to_string(t.expected.size()) +
+           " expected cells, not " + std::to_string(cells);
+  return {};
+}
+
 Chi2Outcome run_chi2(const Chi2Spec& spec, const HeldDensity* held, const std::atomic<bool>* cancel) {
   Chi2Outcome out;
   out.spec = spec;

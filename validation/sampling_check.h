@@ -77,6 +77,23 @@ struct Chi2Outcome {
   bool pass = false;         // the chi-square accepts and |normalization_error| <= normalization_tolerance
   bool interrupted = false;  // `cancel` was set: the numbers are incomplete and mean nothing
 };
+// Their members for a shard part (outcome_fields.h); the spec is the suite's.
+template <class F>
+void fields(Chi2Table& t, F&& f) {
+  f("rows", t.rows), f("cols", t.cols), f("row_edges", t.row_edges), f("col_edges", t.col_edges);
+  f("observed", t.observed), f("expected", t.expected);
+  f("observed_none", t.observed_none), f("expected_none", t.expected_none);
+}
+template <class F>
+void fields(Chi2Outcome& o, F&& f) {
+  f("table", o.table), f("test", o.test), f("pdf_integral", o.pdf_integral), f("quadrature_error", o.quadrature_error);
+  f("failure_probability", o.failure_probability), f("normalization_error", o.normalization_error);
+  f("normalization_tolerance", o.normalization_tolerance), f("sample_s", o.sample_s), f("integrate_s", o.integrate_s);
+  f("weight_mean", o.weight_mean), f("weight_variance", o.weight_variance), f("weight_samples", o.weight_samples);
+  f("pass", o.pass), f("interrupted", o.interrupted);
+}
+// The shape `spec` gives a table (rows, columns, edges and cells), or what differs.
+std::string chi2_table_shape_error(const Chi2Spec& spec, const Chi2Table& t);
 
 // A density the test holds the sampler to in place of its own pdf (the power tests), with the
 // probability of no direction it claims.
@@ -120,6 +137,16 @@ struct VarianceOutcome {
   std::string most_efficient;
   bool interrupted = false;  // `cancel` was set: rows missing or incomplete
 };
+template <class F>
+void fields(StrategyStats& s, F&& f) {
+  f("strategy", s.strategy), f("mean", s.mean), f("variance", s.variance), f("standard_error", s.standard_error);
+  f("no_direction", s.no_direction), f("ns_per_sample", s.ns_per_sample), f("efficiency", s.efficiency);
+}
+template <class F>
+void fields(VarianceOutcome& o, F&& f) {
+  f("rows", o.rows), f("lowest_variance", o.lowest_variance), f("most_efficient", o.most_efficient);
+  f("interrupted", o.interrupted);
+}
 // `cancel` (may be null) is read at every sample.
 VarianceOutcome run_variance(const VarianceSpec& spec, const std::atomic<bool>* cancel = nullptr);
 nlohmann::json variance_json(const VarianceOutcome& o);

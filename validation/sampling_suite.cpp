@@ -145,30 +145,50 @@ SamplingSuite parse_sampling_suite(const nlohmann::json& j, const std::string& f
   return s;
 }
 
-SamplingRun run_sampling_suite(const SamplingSuite& suite, int threads, const support::ProgressFn& progress,
-                               const std::atomic<bool>* cancel) {
-  SamplingRun run;
-  run.threads = support::resolve_threads(threads);
-  run.chi_square.resize(suite.chi_square.size());
-  run.variance.resize(suite.variance.size());
-  run.furnace.resize(suite.furnace_cases.size());
+Job<SamplingWork> sampling_job(const SamplingSuite& suite, nlohmann::json descriptor, const std::atomic<bool>* cancel) {
   const std::size_t n1 = suite.chi_square.size(), n2 = n1 + suite.variance.size(), n = n2 + suite.furnace_cases.size();
-  const auto t0 = Clock::now();
-  // One item per case (each case's numbers come from its own seeded stream: thread count free).
-  const bool complete = support::parallel_for(
-      n, run.threads,
-      [&](std::size_t k) {
+  // Each item's numbers come from its own seeded stream: where it runs does not change them.
+  return item_job<SamplingItem>(
+      n,
+      [suite, n1, n2, cancel](std::size_t k) {
+        SamplingItem item;
         if (k < n1)
-          run.chi_square[k] = run_chi2(suite.chi_square[k], nullptr, cancel);
+          item.chi_square = run_chi2(suite.chi_square[k], nullptr, cancel);
         else if (k < n2)
-          run.variance[k - n1] = run_variance(suite.variance[k - n1], cancel);
+          item.variance = run_variance(suite.variance[k - n1], cancel);
         else
-          run.furnace[k - n2] = run_furnace_case(suite.furnace, suite.furnace_cases[k - n2]);
+          item.furnace = run_furnace_case(suite.furnace, suite.furnace_cases[k - n2]);
+        return item;
       },
-      progress, cancel, 1);
-  run.wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
-  // A case stopped inside its loops still counts as run by parallel_for: the flag decides.
-  run.interrupted = !complete || support::cancelled(cancel);
+      [suite, n1, n2](support::JsonObject& o, std::size_t k, SamplingItem& item) {
+        const char* const want = k < n1 ? "chi_square" : k < n2 ? "variance" : "furnace";
+        if ((item.chi_square.has_value() + item.variance.has_value() + item.furnace.has_value()) != 1 ||
+            (k < n1   ? !item.chi_square
+             : k < n2 ? !item.variance
+                      : !item.furnace))
+          o.fail("outcome", std::string("must hold exactly the item's ") + want + " outcome");
+        if (item.chi_square) {
+          item.chi_square->spec = suite.chi_square[k];
+          if (const std::string e = chi2_table_shape_error(item.chi_square->spec, item.chi_square->table); !e.empty())
+            o.fail("outcome", "/chi_square/table " + e);
+        }
+        if (item.variance) item.variance->spec = suite.variance[k - n1];
+        if (item.furnace) item.furnace->c = suite.furnace_cases[k - n2];
+      },
+      std::move(descriptor));
+}
+
+SamplingRun sampling_run_from(const SamplingSuite&, const std::vector<UnitResult<SamplingWork>>& results) {
+  SamplingRun run;
+  for (const auto& r : results) {
+    if (r.tally.chi_square) run.chi_square.push_back(*r.tally.chi_square);
+    if (r.tally.variance) run.variance.push_back(*r.tally.variance);
+    if (r.tally.furnace) run.furnace.push_back(*r.tally.furnace);
+  }
+  // An item stopped inside its loops says so: the run is then incomplete.
+  run.interrupted =
+      std::any_of(run.chi_square.begin(), run.chi_square.end(), [](const auto& o) { return o.interrupted; }) ||
+      std::any_of(run.variance.begin(), run.variance.end(), [](const auto& o) { return o.interrupted; });
   run.pass = !run.interrupted &&
              std::all_of(run.chi_square.begin(), run.chi_square.end(), [](const Chi2Outcome& o) { return o.pass; }) &&
              std::all_of(run.furnace.begin(), run.furnace.end(), [](const FurnaceOutcome& o) { return o.pass; });

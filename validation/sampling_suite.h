@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include <atomic>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -44,9 +45,22 @@ struct SamplingRun {
   bool pass = false;
 };
 
-SamplingSuite parse_sampling_suite(const nlohmann::json& j, const std::string& file);
-SamplingRun run_sampling_suite(const SamplingSuite& suite, int threads, const support::ProgressFn& progress = {},
+// One item of the run (item_work.h), in the order chi_square, variance, furnace: the one it is set.
+struct SamplingItem {
+  std::optional<Chi2Outcome> chi_square;
+  std::optional<VarianceOutcome> variance;
+  std::optional<FurnaceOutcome> furnace;
+};
+template <class F>
+void fields(SamplingItem& o, F&& f) {
+  f("chi_square", o.chi_square), f("variance", o.variance), f("furnace", o.furnace);
+}
+using SamplingWork = ItemWork<SamplingItem>;
+Job<SamplingWork> sampling_job(const SamplingSuite& suite, nlohmann::json descriptor,
                                const std::atomic<bool>* cancel = nullptr);
+SamplingRun sampling_run_from(const SamplingSuite& suite, const std::vector<UnitResult<SamplingWork>>& results);
+
+SamplingSuite parse_sampling_suite(const nlohmann::json& j, const std::string& file);
 nlohmann::json sampling_report_json(const SamplingSuite& suite, const SamplingRun& run);
 void print_sampling_table(std::ostream& os, const SamplingSuite& suite, const SamplingRun& run);
 

@@ -337,6 +337,15 @@ TEST(CliLimits, SpecsThatCannotFitAreRefusedWithTheEstimate) {
     const CliRun g = run_shell("ulimit -v 4000000; exec " + kBin + " validate " + quoted(f) + " --threads 2");
     expect_refused(g, "of memory (");
     EXPECT_CONTAINS(g.err, "this process may use");
+    // The same surfaces in a nonsymmetric suite (two 3D surfaces of 10^7 grooves at once, about 3 GB)
+    // under 2 GB: refused with its estimate, not started to die of the allocation.
+    const std::string n = dir.file("huge_nonsymmetric.json");
+    write_text(n, R"({"name": "n", "kind": "nonsymmetric_brdf", "ndf": ["ggx"], "alpha": [0.5],
+      "theta_i_deg": [0, 30], "dimensions": ["3d"], "rays": 1000, "grooves": 10000000, "reciprocity_pairs": 0,
+      "thresholds": {"sigmas": 5, "model_tolerance": {"flatland": 1e-3, "3d": 3e-3}}})");
+    const CliRun ns = run_shell("ulimit -v 2000000; exec " + kBin + " validate " + quoted(n) + " --threads 2");
+    expect_refused(ns, "of memory (2 cases, 10000000 grooves per surface on each thread)");
+    EXPECT_CONTAINS(ns.err, "this process may use");
   }
   // A grid of 10^6 x 10^6 cases (each list within its own limit).
   write_text(f, R"({"name": "grid", "kind": "table1",

@@ -4,7 +4,6 @@
 #include "vgroove/validation/brdf_suite.h"
 #include "vgroove/validation/kinds/job_of.h"
 #include "vgroove/validation/kinds/kinds.h"
-#include "vgroove/validation/kinds/one_process_job.h"
 #include "vgroove/validation/model_table.h"
 
 namespace vgroove::validation {
@@ -43,16 +42,13 @@ class BrdfPlan final : public SuitePlan<BrdfSuite> {
 
 std::unique_ptr<SuiteJob> BrdfPlan::job(nlohmann::json descriptor, const std::atomic<bool>* cancel) const {
   if (table_)
-    return one_process_job(
-        std::move(descriptor), suite_.file + " with a model table",
-        [s = suite_, t = table_, rays = rays_](int threads, const support::ProgressFn&, const std::atomic<bool>* c,
-                                               bool report) -> std::optional<SuiteResult> {
-          const ModelTableRun run = run_model_table(s, *t, rays, threads, c);
-          if (run.interrupted) return std::nullopt;
-          return suite_result(
-              run.pass, report, [&](std::ostream& os) { print_model_table(os, s, *t, run); },
-              [&] { return model_table_report_json(s, *t, run); });
-        });
+    return suite_job(
+        model_table_job(suite_, rays_, std::move(descriptor), cancel), suite_,
+        [t = table_, rays = rays_](const BrdfSuite& s, const auto& r) { return model_table_run_from(s, *t, rays, r); },
+        [t = table_](std::ostream& os, const BrdfSuite& s, const ModelTableRun& run) {
+          print_model_table(os, s, *t, run);
+        },
+        [t = table_](const BrdfSuite& s, const ModelTableRun& run) { return model_table_report_json(s, *t, run); });
   auto job = brdf_job(suite_, rays_, std::move(descriptor));
   job.work.cancel = cancel;
   return suite_job(

@@ -1,8 +1,8 @@
 // The suite kind "furnace" (validation/furnace_suite.h: the white furnace of the BRDF).
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/furnace_suite.h"
+#include "vgroove/validation/kinds/job_of.h"
 #include "vgroove/validation/kinds/kinds.h"
-#include "vgroove/validation/kinds/one_process_job.h"
 
 namespace vgroove::validation {
 
@@ -26,15 +26,8 @@ class FurnacePlan final : public PlannedSuite {
     return std::string();
   }
   std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>*) const override {
-    return one_process_job(std::move(descriptor), suite_.file + " (kind furnace)",
-                           [s = suite_](int threads, const support::ProgressFn& progress,
-                                        const std::atomic<bool>* cancel, bool report) -> std::optional<SuiteResult> {
-                             FurnaceRun run = run_furnace_suite(s, 0, threads, progress, cancel);
-                             if (run.interrupted) return std::nullopt;
-                             return suite_result(
-                                 run.pass, report, [&](std::ostream& os) { print_furnace_table(os, s, run); },
-                                 [&] { return furnace_report_json(s, run); });
-                           });
+    return suite_job(furnace_job(suite_, 0, std::move(descriptor)), suite_, furnace_run_from, print_furnace_table,
+                     furnace_report_json);
   }
 
  private:

@@ -1,6 +1,6 @@
 // The suite kind "nonsymmetric_brdf" (validation/nonsymmetric_suite.h: Lee et al. 2018, Sec. 5.2-5.3).
+#include "vgroove/validation/kinds/job_of.h"
 #include "vgroove/validation/kinds/kinds.h"
-#include "vgroove/validation/kinds/one_process_job.h"
 #include "vgroove/validation/nonsymmetric_suite.h"
 
 namespace vgroove::validation {
@@ -17,22 +17,16 @@ class NonsymmetricPlan final : public PlannedSuite {
   }
   std::string name() const override { return suite_.name; }
   std::string kind() const override { return "nonsymmetric_brdf"; }
-  double memory_bytes(int, bool) const override { return 0.0; }
-  std::string memory_what(int threads) const override {
-    (void)threads;
-    return std::string();
+  double memory_bytes(int threads, bool report) const override {
+    return nonsymmetric_run_memory_bytes(suite_, threads, report);
   }
-  std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>*) const override {
-    return one_process_job(
-        std::move(descriptor), suite_.file + " (kind nonsymmetric_brdf)",
-        [s = suite_, rays = rays_](int threads, const support::ProgressFn& progress, const std::atomic<bool>* cancel,
-                                   bool report) -> std::optional<SuiteResult> {
-          NonsymmetricRun run = run_nonsymmetric_suite(s, rays, threads, progress, cancel);
-          if (run.interrupted) return std::nullopt;
-          return suite_result(
-              run.pass, report, [&](std::ostream& os) { print_nonsymmetric_table(os, s, run); },
-              [&] { return nonsymmetric_report_json(s, run); });
-        });
+  std::string memory_what(int) const override {
+    return std::to_string(suite_.cases().size()) + " cases, " + std::to_string(suite_.grooves) +
+           " grooves per surface on each thread";
+  }
+  std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>* cancel) const override {
+    return suite_job(nonsymmetric_job(suite_, rays_, std::move(descriptor), cancel), suite_, nonsymmetric_run_from,
+                     print_nonsymmetric_table, nonsymmetric_report_json);
   }
 
  private:

@@ -1,6 +1,6 @@
 // The suite kind "profiles" (validation/profiles_suite.h: masking and multiple scattering on random profiles).
+#include "vgroove/validation/kinds/job_of.h"
 #include "vgroove/validation/kinds/kinds.h"
-#include "vgroove/validation/kinds/one_process_job.h"
 #include "vgroove/validation/profiles_suite.h"
 
 #include <algorithm>
@@ -24,17 +24,9 @@ class ProfilesPlan final : public PlannedSuite {
     return std::to_string(suite_.segments) + " segments per profile on each of " +
            std::to_string(std::min<std::size_t>(support::resolve_threads(threads), suite_.cases())) + " workers";
   }
-  std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>*) const override {
-    return one_process_job(
-        std::move(descriptor), suite_.file + " (kind profiles)",
-        [s = suite_, rays = rays_](int threads, const support::ProgressFn& progress, const std::atomic<bool>* cancel,
-                                   bool report) -> std::optional<SuiteResult> {
-          ProfilesRun run = run_profiles_suite(s, rays, threads, progress, cancel);
-          if (run.interrupted) return std::nullopt;
-          return suite_result(
-              run.pass, report, [&](std::ostream& os) { print_profiles_table(os, s, run); },
-              [&] { return profiles_report_json(s, run); });
-        });
+  std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>* cancel) const override {
+    return suite_job(profiles_job(suite_, rays_, std::move(descriptor), cancel), suite_, profiles_run_from,
+                     print_profiles_table, profiles_report_json);
   }
 
  private:

@@ -1,7 +1,7 @@
 // The suite kind "sampling" (validation/sampling_suite.h: the importance sampling held to account).
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/kinds/job_of.h"
 #include "vgroove/validation/kinds/kinds.h"
-#include "vgroove/validation/kinds/one_process_job.h"
 #include "vgroove/validation/sampling_suite.h"
 
 namespace vgroove::validation {
@@ -25,16 +25,9 @@ class SamplingPlan final : public PlannedSuite {
     (void)threads;
     return std::string();
   }
-  std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>*) const override {
-    return one_process_job(std::move(descriptor), suite_.file + " (kind sampling)",
-                           [s = suite_](int threads, const support::ProgressFn& progress,
-                                        const std::atomic<bool>* cancel, bool report) -> std::optional<SuiteResult> {
-                             SamplingRun run = run_sampling_suite(s, threads, progress, cancel);
-                             if (run.interrupted) return std::nullopt;
-                             return suite_result(
-                                 run.pass, report, [&](std::ostream& os) { print_sampling_table(os, s, run); },
-                                 [&] { return sampling_report_json(s, run); });
-                           });
+  std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>* cancel) const override {
+    return suite_job(sampling_job(suite_, std::move(descriptor), cancel), suite_, sampling_run_from,
+                     print_sampling_table, sampling_report_json);
   }
 
  private:
