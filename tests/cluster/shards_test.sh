@@ -2,10 +2,11 @@
 # Sharded runs against one process: shards_test.sh VGROOVE SOURCE_DIR CHECK
 #   validate | accuracy | simulate | energy: N shards (run one by one, merged in reverse order) give
 #     the report of one process, value for value (timings aside, tests/cluster/same_report.py), and
-#     the same exit code; N larger than the work splits cases into ray chunks.
+#     the same exit code, for every suite kind and a model table; N larger than the work splits
+#     cases into ray chunks.
 #   refusals: merge refuses parts of different suites, seeds, versions or splits, repeated, missing
-#     and truncated parts, each with a one-line error and exit 2, and writes nothing; suite kinds
-#     that run in one process refuse --shard in one line.
+#     and truncated parts, each with a one-line error and exit 2, and writes nothing; a bad --shard
+#     or a shard without --out is refused before any work.
 #   killed: a shard killed (SIGKILL) or interrupted (SIGINT) leaves no report, and the merge of the
 #     remaining parts is refused.
 set -euo pipefail
