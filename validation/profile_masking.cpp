@@ -41,6 +41,8 @@ MaskingMeasure measure_masking(const sim::Polyline& p, const MaskingCase& c, con
   std::vector<double> w1(B, 0.0), v1(B, 0.0), seen(B, 0.0), w2(B, 0.0), v2(B, 0.0), seen_lit(B, 0.0);
   double front = 0.0, length = 0.0, lit_v = 0.0, lit_s = 0.0;
   double lit_sum = 0.0, lit_sq = 0.0;  // sum c f and sum c^2 f over the beam from i, c per ray
+  // The same with the projected length dx = ds (m.n) per segment (the macro fraction).
+  double width = 0.0, mlit_v = 0.0, mlit_s = 0.0, mlit_sum = 0.0, mlit_sq = 0.0;
   const double Ni = static_cast<double>(from_i.rays);
   for (int s = 0; s < p.segments(); ++s) {
     const std::size_t ss = static_cast<std::size_t>(s);
@@ -49,6 +51,8 @@ MaskingMeasure measure_masking(const sim::Polyline& p, const MaskingCase& c, con
     const double on = o.dot(n), in = i.dot(n);
     const std::size_t b = static_cast<std::size_t>(bin_of(theta_m, nb));
     length += len;
+    const double dx = len * n.y();  // a heightfield: n.y > 0 (sim/polyline.h)
+    width += dx;
     if (on > 0.0) {
       const double share = len * on / beam_o;
       const double g_o = analytic::G1_vcavity_inplane(c.theta_o, theta_m);
@@ -70,6 +74,12 @@ MaskingMeasure measure_masking(const sim::Polyline& p, const MaskingCase& c, con
       const double f = static_cast<double>(from_i.seen[ss]) / Ni;
       lit_sum += per_ray * f;
       lit_sq += per_ray * per_ray * f;
+      const double g_i = analytic::G1_vcavity_inplane(c.theta_i, theta_m);
+      mlit_v += g_i * dx;
+      mlit_s += dx / (1.0 + lambda_i);
+      const double per_ray_dx = per_ray * n.y();  // its projected length
+      mlit_sum += per_ray_dx * f;
+      mlit_sq += per_ray_dx * per_ray_dx * f;
     }
   }
   m.g1_weight = w1;
@@ -85,10 +95,16 @@ MaskingMeasure measure_masking(const sim::Polyline& p, const MaskingCase& c, con
   m.g1_identity = beam_o / front;
   m.g1_average_traced = (seen_all / N) * beam_o / front;
   m.g1_average_vcavity = v_all * beam_o / front;
-  m.lit_traced = lit_sum / length;
-  m.lit_traced_sd = std::sqrt(std::max(0.0, lit_sq - lit_sum * lit_sum) / Ni) / length;
-  m.lit_vcavity = lit_v / length;
-  m.lit_smith = lit_s / length;
+  // Each ray from i adds c (its segment's length per ray) with probability f: the mean over the
+  // N rays has the variance (sum c^2 f - (sum c f)^2) / N.
+  m.lit_arc_traced = lit_sum / length;
+  m.lit_arc_traced_sd = std::sqrt(std::max(0.0, lit_sq - lit_sum * lit_sum) / Ni) / length;
+  m.lit_arc_vcavity = lit_v / length;
+  m.lit_arc_smith = lit_s / length;
+  m.lit_traced = mlit_sum / width;
+  m.lit_traced_sd = std::sqrt(std::max(0.0, mlit_sq - mlit_sum * mlit_sum) / Ni) / width;
+  m.lit_vcavity = mlit_v / width;
+  m.lit_smith = mlit_s / width;
 
   // Counts against V-cavity: G1 over the bins; G2 over the bins and the seen-but-unlit rest.
   std::vector<double> e1, e2, o2;

@@ -57,8 +57,20 @@ struct MaskingMeasure {
   double g2_smith_separable = 0.0, g2_smith_correlated = 0.0;
   // Averages over all front-facing facets, projected-area weights (the identity, Eq. 5).
   double g1_average_traced = 0.0, g1_identity = 0.0, g1_average_vcavity = 0.0;
-  // The lit fraction of the profile's length from i (traced with its standard deviation).
+  // The lit fraction from i per unit macro (horizontal) length, Smith's classic illuminated
+  // fraction (Smith 1967; Heitz 2014, Sec. 5): each segment weighted by its projected length
+  // dx = ds (m.n), traced with the standard deviation of the ray counting.
+  //   Smith:    chi+(i.m) / (1 + Lambda(i)) per point (Eq. 10), so the macro fraction is
+  //             P_dx(i.m > 0) / (1 + Lambda(i)) over the profile's own dx (Smith 1967's
+  //             S(theta) = (1 - erfc(cot theta / (sqrt 2 sigma)) / 2) / (1 + Lambda) for Gaussian
+  //             slopes; for GGX slopes P(i.m > 0) = (1 + Lambda) / (1 + 2 Lambda), so 1 / (1 + 2 Lambda)).
+  //   V-cavity: chi+(i.m) G1_vcavity(i, m) (Eq. 24) per segment, weighted by dx: exact on
+  //             V-groove profiles (a groove of half-angle theta_m with theta_m + |theta_i| > pi/2
+  //             has its width lit by cos theta_m cos theta_i / cos(theta_m - |theta_i|), else 1).
   double lit_traced = 0.0, lit_traced_sd = 0.0, lit_vcavity = 0.0, lit_smith = 0.0;
+  // The same per unit arc length of the profile (weights ds): steep facets count 1 / cos theta_m
+  // times more than in the macro fraction.
+  double lit_arc_traced = 0.0, lit_arc_traced_sd = 0.0, lit_arc_vcavity = 0.0, lit_arc_smith = 0.0;
   // Traced counts against V-cavity's expected counts.
   OrderedChiSquare g1_chi2, g2_chi2;
   std::int64_t rays = 0, lost = 0;  // lost: first hits at a vertex or on a back face (view o)

@@ -32,6 +32,18 @@ nlohmann::json lobe_distance_json(const LobeDistance& d) {
           {"max_z_by_k", d.max_z}, {"within_noise", d.within_noise}};
 }
 
+// traced_se is the error of z_vcavity (the ray counting; the predictions are each profile's own),
+// realization_se the traced value's spread over the surfaces.
+nlohmann::json lit_json(const ProfilesCase& c, const LitFraction& l) {
+  return {{"light_deg", output_deg(-c.theta)},
+          {"traced", l.traced},
+          {"traced_se", l.se},
+          {"realization_se", l.realization_se},
+          {"smith", l.smith},
+          {"vcavity", l.vcavity},
+          {"z_vcavity", l.z_vcavity}};
+}
+
 nlohmann::json chi_json(const OrderedChiSquare& c) { return {{"stat", c.stat}, {"dof", c.dof}, {"p", c.p}}; }
 
 std::vector<double> edges_deg(int bins) {
@@ -59,7 +71,9 @@ nlohmann::json surface_json(const ProfilesSuite& suite, const ProfilesCase& c, c
            {{"view_deg", output_deg(c.theta)},
             {"weight", s.g1_weight.mean},
             {"traced", s.g1_traced.mean},
-            {"traced_se", s.g1_traced.se},
+            {"traced_se", s.g1_se},
+            {"realization_se", s.g1_traced.se},
+            {"counting_se", s.g1_counting_se},
             {"smith", s.g1_smith},
             {"vcavity", s.g1_vcavity.mean},
             {"distance", {{"smith", distance_json(s.g1_d_smith)}, {"vcavity", distance_json(s.g1_d_vcavity)}}},
@@ -69,7 +83,9 @@ nlohmann::json surface_json(const ProfilesSuite& suite, const ProfilesCase& c, c
             {"view_deg", output_deg(c.theta)},
             {"weight", s.g2_weight.mean},
             {"traced", s.g2_traced.mean},
-            {"traced_se", s.g2_traced.se},
+            {"traced_se", s.g2_se},
+            {"realization_se", s.g2_traced.se},
+            {"counting_se", s.g2_counting_se},
             {"smith_separable", s.g2_smith_separable},
             {"smith_height_correlated", s.g2_smith_correlated},
             {"vcavity", s.g2_vcavity.mean},
@@ -78,13 +94,8 @@ nlohmann::json surface_json(const ProfilesSuite& suite, const ProfilesCase& c, c
               {"smith_height_correlated", distance_json(s.g2_d_correlated)},
               {"vcavity", distance_json(s.g2_d_vcavity)}}},
             {"chi2_vcavity", chi_json(s.g2_chi2)}}},
-          {"lit_fraction",
-           {{"light_deg", output_deg(-c.theta)},
-            {"traced", s.lit_traced},
-            {"traced_se", s.lit_se},
-            {"smith", s.lit_smith},
-            {"vcavity", s.lit_vcavity},
-            {"z_vcavity", s.lit_z_vcavity}}},
+          {"lit_fraction", lit_json(c, s.lit)},
+          {"lit_fraction_arc_length", lit_json(c, s.lit_arc)},
           {"lobe",
            {{"incident_deg", output_deg(c.theta)},
             {"traced_by_k", rows_of(s.lobe.mean, rows, bins)},
@@ -160,7 +171,7 @@ nlohmann::json profiles_report_json(const ProfilesSuite& suite, const ProfilesRu
   j["thresholds"] = {
       {"rule",
        "every profile: no ray lost and the projected-area identity to 1e-12; V-groove profiles: V-cavity "
-       "G1 and G2 chi-square p >= p_min / tests, lit fraction |z| <= sigmas, V-groove model lobe L1 <= "
+       "G1 and G2 chi-square p >= p_min / tests, lit fraction of arc length |z| <= sigmas, V-groove model lobe L1 <= "
        "expected + sigmas sd + model_tolerance; model distances on other surfaces are results"},
       {"p_min", suite.p_min},
       {"tests", suite.verdict_tests()},
@@ -178,18 +189,22 @@ void print_profiles_table(std::ostream& os, const ProfilesSuite& suite, const Pr
       suite.segments, suite.rays, suite.walk_paths, version_string(), git_revision(), run.threads);
   os << "  G1, G2: projected-area-weighted mean |traced - model| over the normal bins (noise: what a right model "
         "shows)\n  lobe: the largest z over k of the L1 distance of each k's lobe (<= sigmas: within noise)\n";
-  os << support::format("  %-8s %5s %5s %-7s %8s %8s %8s %8s %8s %8s %8s | %7s %7s %7s | %7s %7s | %4s\n", "ndf",
-                        "alpha", "theta", "surface", "G1 noise", "Smith", "V-cav", "G2 noise", "sep", "h-corr", "V-cav",
-                        "lit", "Smith", "V-cav", "z walk", "z vgrv", "pass");
+  os << "  lit: the lit fraction per unit macro length, traced (its error) / Smith / V-cavity; arc: per unit arc "
+        "length, traced (its error) / V-cavity\n";
+  os << support::format(
+      "  %-8s %5s %5s %-7s %8s %8s %8s %8s %8s %8s %8s | %7s %7s %7s %7s | %7s %7s %7s | %7s %7s | %4s\n", "ndf",
+      "alpha", "theta", "surface", "G1 noise", "Smith", "V-cav", "G2 noise", "sep", "h-corr", "V-cav", "lit", "(se)",
+      "Smith", "V-cav", "arc", "(se)", "V-cav", "z walk", "z vgrv", "pass");
   for (const ProfilesOutcome& o : run.cases)
     for (const SurfaceOutcome& s : o.surfaces) {
       os << support::format(
-          "  %-8s %5.2f %5.1f %-7s %8.5f %8.5f %8.5f %8.5f %8.5f %8.5f %8.5f | %7.4f %7.4f %7.4f | %7.1f "
-          "%7.1f | %4s\n",
+          "  %-8s %5.2f %5.1f %-7s %8.5f %8.5f %8.5f %8.5f %8.5f %8.5f %8.5f | %7.4f %7.4f %7.4f %7.4f | %7.4f %7.4f "
+          "%7.4f | %7.1f %7.1f | %4s\n",
           analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta), profile_surface_name(s.surface),
           s.g1_d_smith.noise, s.g1_d_smith.mean_abs, s.g1_d_vcavity.mean_abs, s.g2_d_separable.noise,
-          s.g2_d_separable.mean_abs, s.g2_d_correlated.mean_abs, s.g2_d_vcavity.mean_abs, s.lit_traced, s.lit_smith,
-          s.lit_vcavity, s.d_walk.max_z, s.d_vgroove.max_z, s.pass ? "yes" : "NO");
+          s.g2_d_separable.mean_abs, s.g2_d_correlated.mean_abs, s.g2_d_vcavity.mean_abs, s.lit.traced, s.lit.se,
+          s.lit.smith, s.lit.vcavity, s.lit_arc.traced, s.lit_arc.se, s.lit_arc.vcavity, s.d_walk.max_z,
+          s.d_vgroove.max_z, s.pass ? "yes" : "NO");
     }
   std::size_t passed = 0;
   for (const auto& o : run.cases) passed += o.pass;

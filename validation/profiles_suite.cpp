@@ -62,16 +62,33 @@ double mean_of(const std::vector<double>& v) {
 
 // The per-bin G values of a ratio seen / weight: their standard error is the realizations' spread,
 // but at least the binomial noise of the rays, sqrt(p (1 - p) / rays) / weight with p = G weight.
+struct BinErrors {
+  std::vector<double> se, counting_se;  // NaN where the bin has no traced value or weight
+};
+BinErrors bin_errors(const BinStat& traced, const BinStat& weight, double rays) {
+  BinErrors e;
+  for (std::size_t b = 0; b < traced.mean.size(); ++b) {
+    const double t = traced.mean[b], w = weight.mean[b];
+    if (!(std::isfinite(t) && std::isfinite(w) && w > 0.0)) {
+      e.se.push_back(kNaN), e.counting_se.push_back(kNaN);
+      continue;
+    }
+    const double p = std::clamp(t * w, 0.0, 1.0);
+    const double floor = std::sqrt(p * (1.0 - p) / rays) / w;
+    e.counting_se.push_back(floor);
+    e.se.push_back(std::isfinite(traced.se[b]) ? std::max(traced.se[b], floor) : floor);
+  }
+  return e;
+}
+
 ModelDistance model_distance(const BinStat& traced, const std::vector<double>& model, const BinStat& weight,
-                             double rays) {
+                             const BinErrors& err) {
   ModelDistance d;
   double w_sum = 0.0;
   for (std::size_t b = 0; b < traced.mean.size(); ++b) {
     const double t = traced.mean[b], m = model[b], w = weight.mean[b];
     if (!(std::isfinite(t) && std::isfinite(m) && std::isfinite(w) && w > 0.0)) continue;
-    const double p = std::clamp(t * w, 0.0, 1.0);
-    const double floor = std::sqrt(p * (1.0 - p) / rays) / w;
-    const double se = std::isfinite(traced.se[b]) ? std::max(traced.se[b], floor) : floor;
+    const double se = err.se[b];
     w_sum += w;
     d.mean_abs += w * std::abs(t - m);
     d.noise += w * std::sqrt(2.0 / std::numbers::pi) * se;
@@ -79,6 +96,24 @@ ModelDistance model_distance(const BinStat& traced, const std::vector<double>& m
   }
   if (w_sum > 0.0) d.mean_abs /= w_sum, d.noise /= w_sum;
   return d;
+}
+
+// The lit fraction over the realizations: traced[r], its counting sd[r], the predictions[r].
+LitFraction lit_fraction(const std::vector<double>& traced, const std::vector<double>& sd,
+                         const std::vector<double>& smith, const std::vector<double>& vcavity) {
+  LitFraction l;
+  std::vector<std::vector<double>> per_r;
+  for (double x : traced) per_r.push_back({x});
+  const BinStat b = bin_stat(per_r);
+  l.traced = b.mean[0], l.realization_se = b.se[0];
+  l.smith = mean_of(smith), l.vcavity = mean_of(vcavity);
+  double num = 0.0, var = 0.0;
+  for (std::size_t r = 0; r < traced.size(); ++r) num += traced[r] - vcavity[r], var += sd[r] * sd[r];
+  // z = sum_r (traced - vcavity) / sqrt(sum_r sd^2) = (mean traced - mean vcavity) / se.
+  const double R = static_cast<double>(traced.size());
+  l.se = std::sqrt(var) / R;
+  l.z_vcavity = var > 0.0 ? num / std::sqrt(var) : (num == 0.0 ? 0.0 : kNaN);
+  return l;
 }
 
 // L1 of the traced lobe's mean from a model, per row and in total, against the L1 the noise
@@ -153,9 +188,9 @@ SurfaceOutcome run_surface(const ProfilesSuite& suite, std::size_t case_index, c
   const int rows = suite.max_k + 2, bins = suite.lobe_bins;
   const std::uint64_t surface_key = surface == ProfileSurface::random ? 0 : 1;
   std::vector<std::vector<double>> g1w, g1t, g1v, g2w, g2t, g2v, lobes;
-  std::vector<double> identities, vc_averages, lit_t, lit_s, lit_v, ident_err;
+  std::vector<double> identities, vc_averages, ident_err;
+  std::vector<double> lit_t, lit_sd, lit_s, lit_v, arc_t, arc_sd, arc_s, arc_v;
   std::vector<OrderedChiSquare> chi1, chi2;
-  double lit_num = 0.0, lit_var = 0.0;
   std::vector<std::int64_t> pooled(static_cast<std::size_t>(rows * bins), 0), by_k(static_cast<std::size_t>(rows), 0);
   std::int64_t lobe_rays = 0, escaped = 0;
   for (int r = 0; r < suite.realizations; ++r) {
@@ -190,8 +225,10 @@ SurfaceOutcome run_surface(const ProfilesSuite& suite, std::size_t case_index, c
     out.g2_smith_correlated = m.g2_smith_correlated;
     identities.push_back(m.g1_identity), vc_averages.push_back(m.g1_average_vcavity);
     ident_err.push_back(std::abs(m.g1_average_traced - m.g1_identity) / m.g1_identity);
-    lit_t.push_back(m.lit_traced), lit_s.push_back(m.lit_smith), lit_v.push_back(m.lit_vcavity);
-    lit_num += m.lit_traced - m.lit_vcavity, lit_var += m.lit_traced_sd * m.lit_traced_sd;
+    lit_t.push_back(m.lit_traced), lit_sd.push_back(m.lit_traced_sd);
+    lit_s.push_back(m.lit_smith), lit_v.push_back(m.lit_vcavity);
+    arc_t.push_back(m.lit_arc_traced), arc_sd.push_back(m.lit_arc_traced_sd);
+    arc_s.push_back(m.lit_arc_smith), arc_v.push_back(m.lit_arc_vcavity);
     chi1.push_back(m.g1_chi2), chi2.push_back(m.g2_chi2);
     lobes.push_back(fractions(t.theta_o_by_k, static_cast<double>(t.rays)));
     for (std::size_t n = 0; n < pooled.size(); ++n) pooled[n] += t.theta_o_by_k[n];
@@ -202,24 +239,20 @@ SurfaceOutcome run_surface(const ProfilesSuite& suite, std::size_t case_index, c
   out.g2_weight = bin_stat(g2w), out.g2_traced = bin_stat(g2t), out.g2_vcavity = bin_stat(g2v);
   const std::size_t nb = static_cast<std::size_t>(suite.normal_bins);
   const double view_rays = static_cast<double>(rays) * suite.realizations;
-  out.g1_d_smith = model_distance(out.g1_traced, std::vector<double>(nb, out.g1_smith), out.g1_weight, view_rays);
-  out.g1_d_vcavity = model_distance(out.g1_traced, out.g1_vcavity.mean, out.g1_weight, view_rays);
+  const BinErrors e1 = bin_errors(out.g1_traced, out.g1_weight, view_rays);
+  const BinErrors e2 = bin_errors(out.g2_traced, out.g2_weight, view_rays);
+  out.g1_se = e1.se, out.g1_counting_se = e1.counting_se, out.g2_se = e2.se, out.g2_counting_se = e2.counting_se;
+  out.g1_d_smith = model_distance(out.g1_traced, std::vector<double>(nb, out.g1_smith), out.g1_weight, e1);
+  out.g1_d_vcavity = model_distance(out.g1_traced, out.g1_vcavity.mean, out.g1_weight, e1);
   out.g2_d_separable =
-      model_distance(out.g2_traced, std::vector<double>(nb, out.g2_smith_separable), out.g2_weight, view_rays);
+      model_distance(out.g2_traced, std::vector<double>(nb, out.g2_smith_separable), out.g2_weight, e2);
   out.g2_d_correlated =
-      model_distance(out.g2_traced, std::vector<double>(nb, out.g2_smith_correlated), out.g2_weight, view_rays);
-  out.g2_d_vcavity = model_distance(out.g2_traced, out.g2_vcavity.mean, out.g2_weight, view_rays);
+      model_distance(out.g2_traced, std::vector<double>(nb, out.g2_smith_correlated), out.g2_weight, e2);
+  out.g2_d_vcavity = model_distance(out.g2_traced, out.g2_vcavity.mean, out.g2_weight, e2);
   out.g1_identity = mean_of(identities), out.g1_average_vcavity = mean_of(vc_averages);
   out.identity_error = *std::max_element(ident_err.begin(), ident_err.end());
-  {
-    // The lit fraction as a one-bin statistic over the realizations.
-    std::vector<std::vector<double>> per_r;
-    for (double x : lit_t) per_r.push_back({x});
-    const BinStat l = bin_stat(per_r);
-    out.lit_traced = l.mean[0], out.lit_se = l.se[0];
-  }
-  out.lit_smith = mean_of(lit_s), out.lit_vcavity = mean_of(lit_v);
-  out.lit_z_vcavity = lit_var > 0.0 ? lit_num / std::sqrt(lit_var) : (lit_num == 0.0 ? 0.0 : kNaN);
+  out.lit = lit_fraction(lit_t, lit_sd, lit_s, lit_v);
+  out.lit_arc = lit_fraction(arc_t, arc_sd, arc_s, arc_v);
   out.g1_chi2 = combine(chi1), out.g2_chi2 = combine(chi2);
 
   out.lobe = bin_stat(lobes);
@@ -239,7 +272,7 @@ SurfaceOutcome run_surface(const ProfilesSuite& suite, std::size_t case_index, c
   out.identity_holds = out.lost == 0 && out.identity_error <= 1e-12;
   const double p_thr = suite.p_min / std::max(1, suite.verdict_tests());
   const bool exact_model_holds = out.g1_chi2.p >= p_thr && out.g2_chi2.p >= p_thr &&
-                                 std::abs(out.lit_z_vcavity) <= suite.sigmas &&
+                                 std::abs(out.lit_arc.z_vcavity) <= suite.sigmas &&
                                  out.l1_pooled <= out.l1_pooled_threshold;
   out.pass = out.identity_holds && (surface == ProfileSurface::random || exact_model_holds);
   out.wall_s = seconds_since(t0);
@@ -347,8 +380,8 @@ ProfilesOutcome run_profiles_case(const ProfilesSuite& suite, std::size_t case_i
   }
   out.non_finite = !(all_finite(out.walk_lobe) && all_finite(out.model_lobe));
   for (const SurfaceOutcome& so : out.surfaces)
-    out.non_finite =
-        out.non_finite || !all_finite(so.lobe.mean) || !std::isfinite(so.lit_traced) || !std::isfinite(so.g1_identity);
+    out.non_finite = out.non_finite || !all_finite(so.lobe.mean) || !std::isfinite(so.lit_arc.traced) ||
+                     !std::isfinite(so.lit.traced) || !std::isfinite(so.g1_identity);
   out.pass = out.pass && !out.non_finite;
   return out;
 }

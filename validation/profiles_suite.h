@@ -20,12 +20,13 @@
 // for the surface):
 //   - every profile: no ray lost, and the projected-area identity (validation/profile_masking.h);
 //   - V-groove profiles: the V-cavity G1 and G2 (chi-square of the counts, summed over the
-//     realizations, p >= p_min / number of such tests), the lit length (|z| <= sigmas), and the
+//     realizations, p >= p_min / number of such tests), the lit fraction of arc length (|z| <= sigmas), and the
 //     V-groove model's per-k lobe (L1 of the joint (k, bin) fractions within expected + sigmas sd
 //     + model_tolerance of validation/histogram_metrics.h, N = rays x realizations, G = grooves x
 //     realizations).
 // Everything else is a measured result, reported with its statistical error: per bin the mean
-// over realizations and its standard error from their spread; each model's distance from the
+// over realizations and its standard error (the realizations' spread, at least the rays'
+// binomial error: the one the distances use); each model's distance from the
 // traced value per bin (in standard errors) and, over the bins, the projected-area-weighted mean
 // |difference| beside the value noise alone would give; per k the L1 distance of the walk's and
 // the V-groove model's lobes from the traced lobe, with the L1 expected from the noise of both
@@ -103,6 +104,16 @@ struct LobeDistance {
   bool within_noise = false;  // every row's z and z_total <= sigmas
 };
 
+// A lit fraction (per unit macro length or per unit arc length) over the realizations, with the
+// predictions made on the same profiles. Each realization's prediction is that profile's, so
+// traced - V-cavity differs from 0 by the ray counting alone where V-cavity is exact: se (the
+// error of the verdict's z_vcavity) is the counting error of the mean, sqrt(sum_r sd_r^2) / R;
+// realization_se is the spread of the traced value over the surfaces (the error of the
+// ensemble's mean against a model of the ensemble).
+struct LitFraction {
+  double traced = 0.0, se = 0.0, realization_se = 0.0, smith = 0.0, vcavity = 0.0, z_vcavity = 0.0;
+};
+
 struct SurfaceOutcome {
   ProfileSurface surface = ProfileSurface::random;
   std::int64_t rays = 0, lost = 0, shadow_vertex = 0, bounces = 0;
@@ -111,10 +122,13 @@ struct SurfaceOutcome {
   BinStat g1_weight, g1_traced, g1_vcavity, g2_weight, g2_traced, g2_vcavity;
   double g1_smith = 0.0, g2_smith_separable = 0.0, g2_smith_correlated = 0.0;
   ModelDistance g1_d_smith, g1_d_vcavity, g2_d_separable, g2_d_correlated, g2_d_vcavity;
-  double lit_traced = 0.0, lit_se = 0.0, lit_smith = 0.0, lit_vcavity = 0.0;
+  // Per bin, the standard error model_distance uses: the realizations' spread (g1_traced.se) but
+  // at least the rays' binomial error (g1_counting_se).
+  std::vector<double> g1_se, g1_counting_se, g2_se, g2_counting_se;
+  LitFraction lit;      // per unit macro length (Smith's classic illuminated fraction)
+  LitFraction lit_arc;  // per unit arc length (its z_vcavity is the verdict on V-groove profiles)
   // Against V-cavity, over all realizations (the verdict on V-groove profiles).
   OrderedChiSquare g1_chi2, g2_chi2;
-  double lit_z_vcavity = 0.0;
   // The per-k lobe: joint (k row, bin) fractions of the incident flux, mean and se.
   BinStat lobe;
   std::vector<double> by_k;
@@ -154,6 +168,11 @@ void fields(LobeDistance& d, F&& f) {
   f("within_noise", d.within_noise);
 }
 template <class F>
+void fields(LitFraction& l, F&& f) {
+  f("traced", l.traced), f("se", l.se), f("realization_se", l.realization_se), f("smith", l.smith);
+  f("vcavity", l.vcavity), f("z_vcavity", l.z_vcavity);
+}
+template <class F>
 void fields(SurfaceOutcome& o, F&& f) {
   f("rays", o.rays), f("lost", o.lost), f("shadow_vertex", o.shadow_vertex), f("bounces", o.bounces);
   f("identity_error", o.identity_error), f("g1_identity", o.g1_identity);
@@ -162,9 +181,9 @@ void fields(SurfaceOutcome& o, F&& f) {
   f("g2_vcavity", o.g2_vcavity), f("g1_smith", o.g1_smith), f("g2_smith_separable", o.g2_smith_separable);
   f("g2_smith_correlated", o.g2_smith_correlated), f("g1_d_smith", o.g1_d_smith), f("g1_d_vcavity", o.g1_d_vcavity);
   f("g2_d_separable", o.g2_d_separable), f("g2_d_correlated", o.g2_d_correlated);
-  f("g2_d_vcavity", o.g2_d_vcavity), f("lit_traced", o.lit_traced), f("lit_se", o.lit_se);
-  f("lit_smith", o.lit_smith), f("lit_vcavity", o.lit_vcavity), f("g1_chi2", o.g1_chi2), f("g2_chi2", o.g2_chi2);
-  f("lit_z_vcavity", o.lit_z_vcavity), f("lobe", o.lobe), f("by_k", o.by_k), f("albedo", o.albedo);
+  f("g2_d_vcavity", o.g2_d_vcavity), f("g1_se", o.g1_se), f("g1_counting_se", o.g1_counting_se);
+  f("g2_se", o.g2_se), f("g2_counting_se", o.g2_counting_se), f("lit", o.lit), f("lit_arc", o.lit_arc);
+  f("g1_chi2", o.g1_chi2), f("g2_chi2", o.g2_chi2), f("lobe", o.lobe), f("by_k", o.by_k), f("albedo", o.albedo);
   f("d_walk", o.d_walk), f("d_vgroove", o.d_vgroove), f("l1_pooled", o.l1_pooled);
   f("l1_pooled_threshold", o.l1_pooled_threshold), f("identity_holds", o.identity_holds), f("pass", o.pass);
   f("wall_s", o.wall_s);

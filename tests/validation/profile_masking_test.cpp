@@ -53,7 +53,7 @@ struct Pair {
   double theta_i_deg, theta_o_deg;
 };
 constexpr Pair kPairs[] = {{0, 0}, {-40, 40}, {30, 60}, {-70, 85}, {70, 70}};
-constexpr int kTests = 2 * 2 * 5 * 3;  // ndf x alpha x pairs x (G1, G2, lit)
+constexpr int kTests = 2 * 2 * 5 * 4;  // ndf x alpha x pairs x (G1, G2, lit, lit per arc length)
 
 TEST(ProfileMasking, VCavityIsExactOnVGrooveProfiles) {
   for (NdfKind ndf : {NdfKind::beckmann, NdfKind::ggx})
@@ -69,10 +69,57 @@ TEST(ProfileMasking, VCavityIsExactOnVGrooveProfiles) {
         EXPECT_GT(m.g1_chi2.p, 1e-3 / kTests) << where.str() << " chi2=" << m.g1_chi2.stat << "/" << m.g1_chi2.dof;
         EXPECT_GT(m.g2_chi2.p, 1e-3 / kTests) << where.str() << " chi2=" << m.g2_chi2.stat << "/" << m.g2_chi2.dof;
         EXPECT_NEAR(m.lit_traced, m.lit_vcavity, 4.5 * m.lit_traced_sd + 1e-12) << where.str();
+        EXPECT_NEAR(m.lit_arc_traced, m.lit_arc_vcavity, 4.5 * m.lit_arc_traced_sd + 1e-12) << where.str();
         // The V-cavity average is the identity on V-grooves (its Eq. 5), to rounding.
         EXPECT_NEAR(m.g1_average_vcavity, m.g1_identity, 1e-12) << where.str();
       }
     }
+}
+
+// Smith's illuminated fraction is per unit macro length (Smith 1967; Heitz 2014, Sec. 5). On a
+// profile of grooves of half-angles 20 and 60 deg (equal widths) lit from -45 deg, by hand:
+// the 20 deg groove is lit whole (20 + 45 <= 90: no facet turns its back to the light); of the
+// 60 deg one only the facet turned towards the light, cut by the shadow of the near rim, to
+// cos 60 cos 45 / cos(60 - 45) of the groove's width (Heitz 2014, Eq. 24). Per macro length
+// (1 + 0.36603) / 2 = 0.68301; per arc length the 60 deg groove's facets are longer by
+// cos 20 / cos 60, (1/cos 20 + 0.36603/cos 60) / (1/cos 20 + 1/cos 60) = 0.58620.
+TEST(ProfileMasking, LitFractionIsPerMacroLengthAndPerArcLengthByHand) {
+  const double t20 = deg(20), t60 = deg(60), ti = deg(-45);
+  std::vector<double> theta_m;
+  for (int g = 0; g < 500; ++g) theta_m.push_back(g % 2 == 0 ? t20 : t60);
+  const sim::Polyline p = sim::vgroove_polyline(theta_m);
+  const double lit60 = std::cos(t60) * std::cos(ti) / std::cos(t60 + ti);
+  const double macro = 0.5 * (1.0 + lit60);
+  const double arc = (1.0 / std::cos(t20) + lit60 / std::cos(t60)) / (1.0 / std::cos(t20) + 1.0 / std::cos(t60));
+  ASSERT_NEAR(macro, 0.68301, 1e-5);
+  ASSERT_NEAR(arc, 0.58620, 1e-5);
+  const MaskingCase c{NdfKind::ggx, 0.7, ti, -ti, 18};
+  const Traced t = trace_both(p, c.theta_i, c.theta_o, 200000);
+  const MaskingMeasure m = measure_masking(p, c, t.from_o, t.from_i);
+  EXPECT_EQ(m.lost, 0);
+  EXPECT_NEAR(m.lit_traced, macro, 5.0 * m.lit_traced_sd) << "sd " << m.lit_traced_sd;
+  EXPECT_NEAR(m.lit_arc_traced, arc, 5.0 * m.lit_arc_traced_sd) << "sd " << m.lit_arc_traced_sd;
+  EXPECT_NEAR(m.lit_vcavity, macro, 1e-12);
+  EXPECT_NEAR(m.lit_arc_vcavity, arc, 1e-12);
+  // Smith: a facing point is lit with probability 1 / (1 + Lambda) (Eq. 10); three of the four
+  // facets (the 60 deg groove's far one turns its back) face the light, each a quarter of the width.
+  const double g1 = 1.0 / (1.0 + analytic::Lambda(c.ndf, ti, c.alpha));
+  EXPECT_NEAR(m.lit_smith, 0.75 * g1, 1e-12);
+  EXPECT_NEAR(m.lit_arc_smith,
+              (2.0 / std::cos(t20) + 1.0 / std::cos(t60)) / (2.0 / std::cos(t20) + 2.0 / std::cos(t60)) * g1, 1e-12);
+}
+
+// A flat profile (grooves of half-angle 0) is lit whole per macro length at any angle below 90.
+TEST(ProfileMasking, FlatProfileIsLitWhole) {
+  const sim::Polyline p = sim::vgroove_polyline(std::vector<double>(64, 0.0));
+  for (double theta : {0.0, 40.0, 80.0, 89.0}) {
+    const MaskingCase c{NdfKind::beckmann, 0.5, deg(-theta), deg(theta), 18};
+    const Traced t = trace_both(p, c.theta_i, c.theta_o, 20000);
+    const MaskingMeasure m = measure_masking(p, c, t.from_o, t.from_i);
+    EXPECT_NEAR(m.lit_traced, 1.0, 1e-12) << theta;
+    EXPECT_NEAR(m.lit_arc_traced, 1.0, 1e-12) << theta;
+    EXPECT_NEAR(m.lit_vcavity, 1.0, 1e-12) << theta;
+  }
 }
 
 TEST(ProfileMasking, SmithIsRejectedOnVGrooveProfilesAtGrazingView) {

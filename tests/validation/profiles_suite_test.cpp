@@ -133,5 +133,54 @@ TEST(ProfilesSuite, ReportHasWhatAPlotNeeds) {
             2.0 * rd["g1"]["distance"]["smith"]["mean_abs"].get<double>());
 }
 
+// A reader's z from the report is the suite's: G1's and G2's traced_se per bin is the error the
+// distances use (the realizations' spread, but at least the rays' binomial error: a spread of two
+// realizations falls below it by chance), and the lit fractions' traced_se is their z_vcavity's
+// (the ray counting: the predictions are each profile's own). On V-groove profiles V-cavity is
+// exact, so both lit fractions (per macro length and per arc length) are within sigmas of it.
+bool finite(const json& v) { return v.is_number() && std::isfinite(v.get<double>()); }
+
+TEST(ProfilesSuite, ReportedErrorsAreTheVerdicts) {
+  const ProfilesSuite s = parse_profiles_suite(small("ggx"), "small.json");
+  const ProfilesRun run = run_profiles_suite(s, 0, 2);
+  const json j = profiles_report_json(s, run);
+  for (const json& c : j["cases"])
+    for (const json& sf : c["surfaces"]) {
+      const std::string where = sf["surface"].get<std::string>() + " theta " + c["theta_deg"].dump();
+      for (const char* g : {"g1", "g2"}) {
+        const json& G = sf[g];
+        double max_z = 0.0;
+        for (std::size_t b = 0; b < G["traced"].size(); ++b) {
+          // Bins no facet fell into (NaN in memory, null in a written report).
+          if (!finite(G["traced"][b]) || !finite(G["vcavity"][b])) continue;
+          const double se = G["traced_se"][b].get<double>(), counting = G["counting_se"][b].get<double>();
+          EXPECT_GE(se, counting) << where << " " << g << " bin " << b;
+          if (finite(G["realization_se"][b])) {
+            EXPECT_GE(se, G["realization_se"][b].get<double>()) << where << " " << g << " bin " << b;
+          }
+          if (se > 0.0)
+            max_z = std::max(max_z, std::abs(G["traced"][b].get<double>() - G["vcavity"][b].get<double>()) / se);
+        }
+        EXPECT_NEAR(max_z, G["distance"]["vcavity"]["max_abs_z"].get<double>(), 1e-12 * (1.0 + max_z))
+            << where << " " << g;
+      }
+      for (const char* key : {"lit_fraction", "lit_fraction_arc_length"}) {
+        const json& l = sf[key];
+        const double z = (l["traced"].get<double>() - l["vcavity"].get<double>()) / l["traced_se"].get<double>();
+        // The same z to the rounding of a difference of two means (traced = V-cavity to 1e-13 at 0 deg).
+        EXPECT_NEAR(z, l["z_vcavity"].get<double>(), 1e-6 + 1e-9 * std::abs(z)) << where << " " << key;
+        if (sf["surface"] == "vgroove") {
+          EXPECT_LE(std::abs(z), s.sigmas) << where << " " << key;
+        }
+      }
+      // Per macro length the steep facets count less: at 70 deg, where the steep grooves are the
+      // shadowed ones, the macro fraction is the larger.
+      if (c["theta_deg"] == 70.0) {
+        EXPECT_GT(sf["lit_fraction"]["traced"].get<double>(), sf["lit_fraction_arc_length"]["traced"].get<double>())
+            << where;
+      }
+    }
+}
+
 }  // namespace
 }  // namespace vgroove::validation
