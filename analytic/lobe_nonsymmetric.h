@@ -28,9 +28,21 @@
 // bin edge (t_o is linear in A within a k_b piece, and the bin edges are finitely many t in each
 // cross-section), so that every outcome stays in one bin on each piece: the deposits are smooth
 // functions of (phi_a, B) with kinks, not steps. The remaining errors are the kinks of Eq. (9)'s
-// max and min inside the pieces and of the deposits in (phi_a, B) (~h^2 each), measured by
-// refinement in the tests and the report (model_tolerance). Beyond k_b = kb_cap (apertures below
-// ~pi / kb_cap) a piece is integrated without cuts.
+// max and min inside the pieces and of the deposits in (phi_a, B), measured by refinement in the
+// tests and the report (model_tolerance). Beyond k_b = kb_cap (apertures below ~pi / kb_cap) a
+// piece is integrated without cuts.
+// The kinks in B bound the flatland bins' accuracy. A bin's deposit of count n is the integral over
+// a strip of (A, B) between two lines of constant exit (Eq. 8 is linear in A and B), and it is C^1
+// in B with a jump in its second derivative wherever a strip edge crosses a line on which the
+// deposit kinks in A: the lit limit and the horizon of the first reflection (A = pi/2 - t_i and
+// (pi/2 - t_i) / 2, for the facet hit first), A = 0, Eq. (7)'s k_b changes. These sit one per bin
+// edge, feature and count (GGX 0.3 at 80 deg, k = 2, one bin: six, at B0 + 0, 1, 5, 6, 10, 11 deg),
+// too many to cut, and the Gauss panels over B leave ~h_B^3 each, alternating from bin to bin. Against
+// Eq. (23) integrated over the bins (90 bins, k = 1..4; tests/analytic/lobe_nonsymmetric_test.cpp)
+// flatland_options() is within 7e-7 per bin (GGX 1.0 at 80 deg, k = 2; GGX 0.3: 2.2e-7, row L1
+// 5e-6; Beckmann 0.3: 5e-8), at 32 partner panels within 1.5e-5 (L1 3e-4). Reaching 1e-8 takes 16
+// times the nodes in B (256 panels of 8: 8.8e-9; this comparison's floor ~6e-9), or an outer
+// variable along which the bins do not move (the exit angle of each count, as Eq. 23 integrates).
 //
 // Layouts: FlatlandLobe and Lobe3d (analytic/brdf_flatland.h, analytic/lobe_3d.h), the light at
 // azimuth pi in 3D; rows k = 0..max_k, row max_k + 1 for every k > max_k.
@@ -62,7 +74,7 @@ struct NonsymmetricLobeOptions {
 // The light at theta_i in (-pi/2, pi/2) (flatland, signed) or [0, pi/2) (3D, azimuth pi).
 // axes_azimuth: 3D, the azimuth of the alpha_x axis in the lobe's frame (light at pi); a light at
 // azimuth phi_i over the roughness axes is axes_azimuth = pi - phi_i.
-// Flatland's options: joint L1 within ~3e-4 of refined runs at 90 bins, ~10 ms per case.
+// Flatland's options: within ~1e-6 per bin of Eq. (23) integrated at 90 bins, ~30-170 ms per case.
 NonsymmetricLobeOptions flatland_options();
 
 FlatlandLobe flatland_nonsymmetric_lobe(const NonsymmetricModel& m, double theta_i, int bins, int max_k,
