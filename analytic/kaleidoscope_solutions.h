@@ -94,9 +94,10 @@ struct Solution {
 
 // Calls fn(const Solution&) for every solution with k in [k_lo, k_hi] and W > 0, in a fixed order
 // (facet, parity, j, k). k = 1: s = h is the left facet (the frame's choice t_h <= 0); the right
-// facet's k = 1 solution exists only as the rounding image of t_h = 0 and is skipped.
+// facet's k = 1 solution exists only as the rounding image of t_h = 0 and is skipped. Apertures
+// below theta_v_min are not visited (a caller's D is 0 there: ndf.h, D_vanishing_aperture).
 template <class Fn>
-void for_each_solution(const CrossSection& p, int k_lo, int k_hi, Fn&& fn) {
+void for_each_solution(const CrossSection& p, int k_lo, int k_hi, Fn&& fn, double theta_v_min = 0.0) {
   for (FacetSide side : {FacetSide::left, FacetSide::right}) {
     for (int k_first : {1, 2}) {
       const Ends e = ends_of(p, side, k_first);  // depends on the parity of k only
@@ -115,6 +116,7 @@ void for_each_solution(const CrossSection& p, int k_lo, int k_hi, Fn&& fn) {
         for (; k <= k_end; k += 2) {
           if (k == 1 && side == FacetSide::right) continue;
           const double theta_v = solution_theta_v(d, j, k);
+          if (theta_v < theta_v_min) break;  // theta_v falls as k grows
           if (!(theta_v > 0.0 && theta_v <= std::numbers::pi)) continue;
           if (!outcome_possible(e, theta_v, k)) continue;
           const double half = 0.5 * theta_v;

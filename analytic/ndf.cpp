@@ -76,6 +76,20 @@ double D_cs(NdfKind kind, double c, double s, double alpha) {
   return 0.0;
 }
 
+double D_vanishing_aperture(NdfKind kind, double alpha) {
+  switch (kind) {
+    case NdfKind::ggx:
+      return 0.0;
+    case NdfKind::beckmann:
+      return 2.0 * std::atan(1.0 / (alpha * std::sqrt(760.0)));
+    case NdfKind::phong: {
+      const double p = phong_exponent(alpha);
+      return p > 0.0 ? 2.0 * std::asin(std::exp(-760.0 / p)) : 0.0;
+    }
+  }
+  return 0.0;
+}
+
 double D2_beckmann(double theta_m, double alpha) {
   assert(alpha > 0.0);
   if (outside(theta_m)) return 0.0;

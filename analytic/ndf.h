@@ -83,6 +83,13 @@ double D(NdfKind kind, double theta_m, double alpha);
 // The same from cos(theta_m) and sin(theta_m), theta_m in [0, pi/2) (no chi+ test): saves the
 // transcendental calls where the caller has both (the BRDF's and the samplers' sums).
 double D_cs(NdfKind kind, double cos_m, double sin_m, double alpha);
+// The aperture theta_v = pi - 2 theta_m below which D_cs is exactly 0 in double, because its exp
+// or pow underflows (D falls monotonically towards vertical facets): Beckmann, exp(-tan^2/alpha^2)
+// = 0 once tan^2/alpha^2 > 745.2, at theta_v < 2 atan(1 / (alpha sqrt(760))); Phong with p > 0,
+// cos^p = 0 once p log(cos) < -745.2, at theta_v < 2 asin(exp(-760 / p)); 0 (never) for GGX and
+// Phong with p <= 0. The margins make it a lower bound: the sums over apertures (the samplers'
+// pdf) stop there and lose only exact zeros.
+double D_vanishing_aperture(NdfKind kind, double alpha);
 // D_cs for GGX, inline (the lobes' quadrature nodes): alpha^2 / (pi (alpha^2 cos^2 + sin^2)^2).
 inline double D_cs_ggx(double cos_m, double sin_m, double alpha) {
   const double q = alpha * alpha * cos_m * cos_m + sin_m * sin_m;

@@ -104,14 +104,17 @@ PdfAndBrdf vgroove_pdf_and_brdf_3d(const Dir3& i, const Dir3& o, NdfKind ndf, do
   if (!groove_frame(i, o, f)) return {kInf, kInf};
   PdfAndBrdf r;
   const StrategyTerm term(i, alpha, opt.strategy);
-  for_each_solution(f.x, 1, opt.max_k, [&](const Solution& q) {
-    const double D = D_cs(ndf, q.S, q.C, alpha);
-    const double J = jacobian(f, q);
-    const double theta_m = 0.5 * (std::numbers::pi - q.theta_v);
-    // Lee et al. 2018, Eq. (16) times cos(theta_o): F |i.s| G D |ds/do| / cos(theta_i).
-    r.rho_cos += fresnel_along_path(F, f.x.t_i, theta_m, q.first, q.k, f.c) * f.c * q.W * D * J / i.z;
-    r.pdf += term(f, q, D) * J;
-  });
+  for_each_solution(
+      f.x, 1, opt.max_k,
+      [&](const Solution& q) {
+        const double D = D_cs(ndf, q.S, q.C, alpha);
+        const double J = jacobian(f, q);
+        const double theta_m = 0.5 * (std::numbers::pi - q.theta_v);
+        // Lee et al. 2018, Eq. (16) times cos(theta_o): F |i.s| G D |ds/do| / cos(theta_i).
+        r.rho_cos += fresnel_along_path(F, f.x.t_i, theta_m, q.first, q.k, f.c) * f.c * q.W * D * J / i.z;
+        r.pdf += term(f, q, D) * J;
+      },
+      D_vanishing_aperture(ndf, alpha));
   return r;
 }
 
@@ -122,8 +125,10 @@ double vgroove_pdf_3d_k(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha,
   if (!groove_frame(i, o, f)) return k_hi >= 2 ? kInf : 0.0;
   double pdf = 0.0;
   const StrategyTerm term(i, alpha, opt.strategy);
-  for_each_solution(f.x, std::max(1, k_lo), std::min(k_hi, opt.max_k),
-                    [&](const Solution& q) { pdf += term(f, q, D_cs(ndf, q.S, q.C, alpha)) * jacobian(f, q); });
+  for_each_solution(
+      f.x, std::max(1, k_lo), std::min(k_hi, opt.max_k),
+      [&](const Solution& q) { pdf += term(f, q, D_cs(ndf, q.S, q.C, alpha)) * jacobian(f, q); },
+      D_vanishing_aperture(ndf, alpha));
   return pdf;
 }
 
@@ -155,7 +160,12 @@ VgrooveSample3d sample_vgroove_3d(const Dir3& i, const std::array<double, 4>& u,
   const double total = opt.strategy == FacetStrategy::printed ? p.f_a : w_fewer + w_more;
   const double x = u[3] * total;
   const BounceShare* out = x < w_fewer ? &p.fewer : (x < w_fewer + w_more ? &p.more : nullptr);
-  if (out == nullptr || out->n < 1 || out->n > opt.max_k) return no_direction(i);
+  if (out == nullptr || out->n < 1) return no_direction(i);
+  if (out->n > opt.max_k) {
+    VgrooveSample3d lost = no_direction(i);
+    lost.beyond_max_k = true;
+    return lost;
+  }
   // Step 3: Eq. (5) in the cross-section, lifted back (the component along u is kept).
   const double st = std::sin(out->theta_o), ct = std::cos(out->theta_o);
   const Dir3 o{-g.c * st * g.ax + g.iu * g.ay, -g.c * st * g.ay - g.iu * g.ax, g.c * ct};
@@ -167,10 +177,16 @@ VgrooveSample3d sample_vgroove_3d(const Dir3& i, const std::array<double, 4>& u,
 
 // ---- The failure probability, over the facets -----------------------------------------------------
 
-double sampler_failure_probability_3d(const Dir3& i, NdfKind ndf, double alpha, const SamplerOptions& opt, double tol) {
+namespace {
+
+// The failure probability, or (beyond_only) its part from the paths beyond max_k.
+double failure_integral(const Dir3& i, NdfKind ndf, double alpha, const SamplerOptions& opt, double tol,
+                        bool beyond_only) {
   if (!(i.z > 0.0)) return 1.0;
   const double phi_i = std::atan2(i.y, i.x);
   const bool printed = opt.strategy == FacetStrategy::printed;
+  // Beyond max_k, the printed strategy fails only where the other strategies do.
+  const bool whole_range = printed && !beyond_only;
   // q(s) P(no direction | s) at the facet (theta_v, psi) (psi the azimuth from i's), times
   // ds / (d theta_v d psi) = sin(theta_s) / 2. q is written with cos(theta_s) = sin(v/2) and
   // |i.s| = c f_a from Eq. (6), not from the vector s: near vertical facets (v -> 0) theta_s no
@@ -183,7 +199,7 @@ double sampler_failure_probability_3d(const Dir3& i, NdfKind ndf, double alpha, 
     const FacetGroove g = groove_of(i, s);
     const FacetPrediction p = G_kaleidoscopic(g.t_i, theta_v, FacetSide::left);
     const double D = D_cs(ndf, S, C, alpha);
-    if (!p.lit) return printed ? D * S * 0.5 * C : 0.0;  // only the printed strategy draws unlit facets
+    if (!p.lit) return whole_range ? D * S * 0.5 * C : 0.0;  // only the printed strategy draws unlit facets
     double q = 0.0;
     switch (opt.strategy) {
       case FacetStrategy::printed:
@@ -208,17 +224,18 @@ double sampler_failure_probability_3d(const Dir3& i, NdfKind ndf, double alpha, 
     const double w_fewer = p.f_a - p.f_k, w_more = p.f_k - p.f_b;
     const bool all_lost = p.fewer.n > opt.max_k, more_lost = p.more.n > opt.max_k;
     double fail = 1.0;
-    if (!all_lost) {
-      if (printed)
-        fail = (p.f_b + (more_lost ? w_more : 0.0)) / p.f_a;
-      else
-        fail = more_lost && w_fewer + w_more > 0.0 ? w_more / (w_fewer + w_more) : 0.0;
+    if (all_lost) {
+      if (printed && beyond_only) fail = (w_fewer + w_more) / p.f_a;
+    } else if (printed) {
+      fail = ((beyond_only ? 0.0 : p.f_b) + (more_lost ? w_more : 0.0)) / p.f_a;
+    } else {
+      fail = more_lost && w_fewer + w_more > 0.0 ? w_more / (w_fewer + w_more) : 0.0;
     }
     return q * fail * 0.5 * C;
   };
   // Only apertures below 2 pi / max_k can exceed max_k reflections (Eq. 4 with |t_i| < pi/2);
   // the printed strategy also fails over the whole range (shadowed and unlit facets).
-  const double v_max = printed ? std::numbers::pi : std::min(std::numbers::pi, 2.0 * std::numbers::pi / opt.max_k);
+  const double v_max = whole_range ? std::numbers::pi : std::min(std::numbers::pi, 2.0 * std::numbers::pi / opt.max_k);
   std::vector<double> cuts{0.0, v_max};
   const double v_tail = std::min(v_max, 2.0 * std::numbers::pi / opt.max_k);
   for (double v = v_tail; v > v_tail * 1e-12; v *= 0.5) cuts.push_back(v);
@@ -263,6 +280,17 @@ double sampler_failure_probability_3d(const Dir3& i, NdfKind ndf, double alpha, 
   outer.max_pieces = 400;
   // Mirror symmetry about the plane of incidence: psi in [0, pi], twice.
   return 2.0 * integrate_adaptive(along, outer_cuts, outer).value;
+}
+
+}  // namespace
+
+double sampler_failure_probability_3d(const Dir3& i, NdfKind ndf, double alpha, const SamplerOptions& opt, double tol) {
+  return failure_integral(i, ndf, alpha, opt, tol, false);
+}
+
+double sampler_beyond_max_k_probability_3d(const Dir3& i, NdfKind ndf, double alpha, const SamplerOptions& opt,
+                                           double tol) {
+  return failure_integral(i, ndf, alpha, opt, tol, true);
 }
 
 Dir3 sample_cosine_hemisphere(double u0, double u1) {

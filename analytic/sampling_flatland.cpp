@@ -124,17 +124,27 @@ VgrooveSampleFlatland sample_vgroove_flatland(double theta_i, const std::array<d
   const double total = opt.strategy == FacetStrategy::printed ? p.f_a : w_fewer + w_more;
   const double x = u[3] * total;
   const BounceShare* out = x < w_fewer ? &p.fewer : (x < w_fewer + w_more ? &p.more : nullptr);
-  if (out == nullptr || out->n < 1 || out->n > opt.max_k) return none;
+  if (out == nullptr || out->n < 1) return none;
+  if (out->n > opt.max_k) {
+    VgrooveSampleFlatland lost = none;
+    lost.beyond_max_k = true;
+    return lost;
+  }
   if (!(std::abs(out->theta_o) < kHalfPi)) return none;
   const PdfAndBrdf2 e = vgroove_pdf_and_brdf_flatland(theta_i, out->theta_o, ndf, alpha, opt);
   if (!(e.pdf > 0.0 && std::isfinite(e.pdf) && std::isfinite(e.rho_cos))) return none;
   return {out->theta_o, out->n, e.pdf, e.rho_cos / e.pdf};
 }
 
-double sampler_failure_probability_flatland(double theta_i, NdfKind ndf, double alpha, const SamplerOptions& opt,
-                                            double tol) {
+namespace {
+
+// The failure probability, or (beyond_only) its part from the paths beyond max_k.
+double failure_integral(double theta_i, NdfKind ndf, double alpha, const SamplerOptions& opt, double tol,
+                        bool beyond_only) {
   if (!(std::abs(theta_i) < kHalfPi)) return 1.0;
   const bool printed = opt.strategy == FacetStrategy::printed;
+  // Beyond max_k, the printed strategy fails only where the other strategies do.
+  const bool whole_range = printed && !beyond_only;
   // q(theta_s) P(no direction | theta_s), over theta_s = -(pi - v)/2 (left) and +(pi - v)/2 (right).
   // q is written with cos(theta_s) = sin(v/2) and the facet's projected width f_a = <i.s> from
   // Eq. (6), not from theta_s: near vertical facets (v -> 0) theta_s = pi/2 - v/2 no longer
@@ -145,7 +155,7 @@ double sampler_failure_probability_flatland(double theta_i, NdfKind ndf, double 
     const double S = std::sin(0.5 * theta_v), C = std::cos(0.5 * theta_v);  // cos, sin of theta_s
     const double D2v = D2_cs(ndf, S, C, alpha);
     const FacetPrediction p = G_kaleidoscopic(theta_i, theta_v, side);
-    if (!p.lit) return printed ? D2v * S * 0.5 : 0.0;  // d theta_s = d theta_v / 2
+    if (!p.lit) return whole_range ? D2v * S * 0.5 : 0.0;  // d theta_s = d theta_v / 2
     double q = 0.0;
     switch (opt.strategy) {
       case FacetStrategy::printed:
@@ -170,15 +180,16 @@ double sampler_failure_probability_flatland(double theta_i, NdfKind ndf, double 
     const double w_fewer = p.f_a - p.f_k, w_more = p.f_k - p.f_b;
     const bool all_lost = p.fewer.n > opt.max_k, more_lost = p.more.n > opt.max_k;
     double fail = 1.0;
-    if (!all_lost) {
-      if (printed)
-        fail = (p.f_b + (more_lost ? w_more : 0.0)) / p.f_a;
-      else
-        fail = more_lost && w_fewer + w_more > 0.0 ? w_more / (w_fewer + w_more) : 0.0;
+    if (all_lost) {
+      if (printed && beyond_only) fail = (w_fewer + w_more) / p.f_a;
+    } else if (printed) {
+      fail = ((beyond_only ? 0.0 : p.f_b) + (more_lost ? w_more : 0.0)) / p.f_a;
+    } else {
+      fail = more_lost && w_fewer + w_more > 0.0 ? w_more / (w_fewer + w_more) : 0.0;
     }
     return q * 0.5 * fail;
   };
-  const double v_max = printed ? std::numbers::pi : std::min(std::numbers::pi, 2.0 * std::numbers::pi / opt.max_k);
+  const double v_max = whole_range ? std::numbers::pi : std::min(std::numbers::pi, 2.0 * std::numbers::pi / opt.max_k);
   const double v_tail = std::min(v_max, 2.0 * std::numbers::pi / opt.max_k);
   std::vector<double> cuts{v_max};
   for (double v = v_tail; v > v_tail * 1e-12; v *= 0.5) cuts.push_back(v);
@@ -210,6 +221,18 @@ double sampler_failure_probability_flatland(double theta_i, NdfKind ndf, double 
     }
   }
   return sum;
+}
+
+}  // namespace
+
+double sampler_failure_probability_flatland(double theta_i, NdfKind ndf, double alpha, const SamplerOptions& opt,
+                                            double tol) {
+  return failure_integral(theta_i, ndf, alpha, opt, tol, false);
+}
+
+double sampler_beyond_max_k_probability_flatland(double theta_i, NdfKind ndf, double alpha, const SamplerOptions& opt,
+                                                 double tol) {
+  return failure_integral(theta_i, ndf, alpha, opt, tol, true);
 }
 
 double sample_cosine_flatland(double u) { return std::asin(2.0 * u - 1.0); }

@@ -32,6 +32,7 @@ struct VgrooveSampleFlatland {
   int k = 0;
   double pdf = 0.0;  // per radian
   double weight = 0.0;
+  bool beyond_max_k = false;  // zero weight because the drawn path has more than max_k reflections
 };
 
 VgrooveSampleFlatland sample_vgroove_flatland(double theta_i, const std::array<double, 4>& u, NdfKind ndf, double alpha,
@@ -54,6 +55,9 @@ double printed_p_flatland(double theta_i, double theta_o, NdfKind ndf, double al
 // The probability of no direction, integrated over the facet angle (independent of pdf).
 double sampler_failure_probability_flatland(double theta_i, NdfKind ndf, double alpha, const SamplerOptions& opt,
                                             double tol = 1e-11);
+// Its part from the paths of more than max_k reflections (sampling_3d.h).
+double sampler_beyond_max_k_probability_flatland(double theta_i, NdfKind ndf, double alpha, const SamplerOptions& opt,
+                                                 double tol = 1e-11);
 
 // The flatland cosine law: pdf = cos(theta_o) / 2 over (-pi/2, pi/2), theta_o = asin(2 u - 1).
 double sample_cosine_flatland(double u);

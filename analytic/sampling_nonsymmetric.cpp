@@ -191,8 +191,9 @@ namespace {
 
 // Eq. (9)'s roulette over the zones of the facet hit first: the zone whose cumulative share G
 // passes u times the total (the lit fraction, or 1 with the printed strategy, whose facets include
-// the shadowed ones); null when no path of 1..max_k reflections is drawn.
-const BounceShare* roulette(const NonsymmetricPrediction& g, const SamplerOptions& opt, double u) {
+// the shadowed ones); null when no path of 1..max_k reflections is drawn (*beyond set when the
+// drawn path has more than max_k).
+const BounceShare* roulette(const NonsymmetricPrediction& g, const SamplerOptions& opt, double u, bool* beyond) {
   const double total = opt.strategy == FacetStrategy::printed ? 1.0 : 1.0 - g.shadow;
   if (!(total > 0.0)) return nullptr;
   const double xu = u * total;
@@ -200,7 +201,10 @@ const BounceShare* roulette(const NonsymmetricPrediction& g, const SamplerOption
   for (const BounceShare& z : g.share) {
     if (!(z.G > 0.0)) continue;
     acc += z.G;
-    if (xu < acc) return z.n >= 1 && z.n <= opt.max_k ? &z : nullptr;
+    if (xu < acc) {
+      *beyond = z.n > opt.max_k;
+      return z.n >= 1 && z.n <= opt.max_k ? &z : nullptr;
+    }
   }
   return nullptr;
 }
@@ -208,7 +212,7 @@ const BounceShare* roulette(const NonsymmetricPrediction& g, const SamplerOption
 }  // namespace
 
 NonsymmetricDraw3d draw_nonsymmetric_3d(const NonsymmetricSampler& S, const Dir3& i, const std::array<double, 5>& u) {
-  const NonsymmetricDraw3d none{{-i.x, -i.y, i.z}, 0};
+  const NonsymmetricDraw3d none{{-i.x, -i.y, i.z}, 0}, lost{none.o, 0, true};
   if (!(i.z > 0.0)) return none;
   // Step 1: the facet hit first, leaning towards a.
   const Dir3 s = sample_facet(S, i, u);
@@ -223,8 +227,9 @@ NonsymmetricDraw3d draw_nonsymmetric_3d(const NonsymmetricSampler& S, const Dir3
   const double t_i = std::atan2(-ia, i.z);
   const NonsymmetricPrediction g = G_nonsymmetric(t_i, -A, B, FacetSide::left);
   if (!g.lit) return none;
-  const BounceShare* out = roulette(g, S.opt, u[4]);
-  if (out == nullptr) return none;
+  bool beyond = false;
+  const BounceShare* out = roulette(g, S.opt, u[4], &beyond);
+  if (out == nullptr) return beyond ? lost : none;
   // Step 4: Eq. (8) in the cross-section, lifted back.
   const double st = std::sin(out->theta_o), ct = std::cos(out->theta_o);
   const Dir3 o{-c * st * ax + iu * ay, -c * st * ay - iu * ax, c * ct};
@@ -236,7 +241,7 @@ VgrooveSample3d sample_nonsymmetric_3d(const NonsymmetricSampler& S, const Dir3&
                                        const FresnelFn& F) {
   const VgrooveSample3d none{{-i.x, -i.y, i.z}, 0, 0.0, 0.0};
   const NonsymmetricDraw3d d = draw_nonsymmetric_3d(S, i, u);
-  if (d.k == 0) return none;
+  if (d.k == 0) return {none.o, 0, 0.0, 0.0, d.beyond_max_k};
   const Dir3& o = d.o;
   const double pdf = nonsymmetric_pdf_3d(S, i, o);
   if (!(pdf > 0.0 && pdf < kInf)) return none;
@@ -319,7 +324,7 @@ double nonsymmetric_pdf_flatland(const NonsymmetricSampler& S, double theta_i, d
 
 NonsymmetricDrawFlatland draw_nonsymmetric_flatland(const NonsymmetricSampler& S, double theta_i,
                                                     const std::array<double, 5>& u) {
-  const NonsymmetricDrawFlatland none{-theta_i, 0};
+  const NonsymmetricDrawFlatland none{-theta_i, 0}, lost{-theta_i, 0, true};
   if (!(std::abs(theta_i) < kHalfPi)) return none;
   const double theta_s = sample_facet2(S, theta_i, u);
   if (!(std::abs(theta_s) < kHalfPi)) return none;
@@ -328,8 +333,9 @@ NonsymmetricDrawFlatland draw_nonsymmetric_flatland(const NonsymmetricSampler& S
   const double B = sample_partner(S.partner, u[3]);
   const NonsymmetricPrediction g = G_nonsymmetric(ti, -A, B, FacetSide::left);
   if (!g.lit) return none;
-  const BounceShare* out = roulette(g, S.opt, u[4]);
-  if (out == nullptr) return none;
+  bool beyond = false;
+  const BounceShare* out = roulette(g, S.opt, u[4], &beyond);
+  if (out == nullptr) return beyond ? lost : none;
   const double theta_o = sgn * out->theta_o;
   if (!(std::abs(theta_o) < kHalfPi)) return none;
   return {theta_o, out->n};
@@ -339,7 +345,7 @@ VgrooveSampleFlatland sample_nonsymmetric_flatland(const NonsymmetricSampler& S,
                                                    const std::array<double, 5>& u) {
   const VgrooveSampleFlatland none{-theta_i, 0, 0.0, 0.0};
   const NonsymmetricDrawFlatland d = draw_nonsymmetric_flatland(S, theta_i, u);
-  if (d.k == 0) return none;
+  if (d.k == 0) return {none.theta_o, 0, 0.0, 0.0, d.beyond_max_k};
   const double theta_o = d.theta_o;
   const double pdf = nonsymmetric_pdf_flatland(S, theta_i, theta_o);
   if (!(pdf > 0.0 && pdf < kInf)) return none;

@@ -41,6 +41,10 @@
 // and the partner (not over o), is *_failure_probability: the pdf's normalization is checked
 // against it (tests/analytic/sampling_nonsymmetric_test.cpp).
 //
+// Default max_k: kNonsymmetricSamplerMaxK = 256, because the pdf's cost grows as max_k (below): the
+// share lost beyond it is ~1e-6 at GGX alpha 1 (2.4e-5 at 64), below one sample in the 10^4 to 10^5
+// samples a run of this sampler affords.
+//
 // Cost: pdf and the weight integrate over B for each k <= max_k and both orientations (the BRDF's
 // own evaluation, brdf_nonsymmetric.h, does the same): ~1 ms per pdf at tolerance 1e-9 and a few
 // ms per sample (bench/sampling_bench.cpp), against ~1 us for the draw alone. A renderer would
@@ -57,11 +61,13 @@
 
 namespace vgroove::analytic {
 
+inline constexpr int kNonsymmetricSamplerMaxK = 256;
+
 // The sampler of one material: NDF, alpha, strategy and the partner table, built once.
 struct NonsymmetricSampler {
   NdfKind ndf = NdfKind::ggx;
   double alpha = 0.5;
-  SamplerOptions opt;
+  SamplerOptions opt{FacetStrategy::vndf, kNonsymmetricSamplerMaxK};
   bool flatland = false;
   double tolerance = 1e-9;  // relative, per integrated B-piece of the pdf
   PartnerTable partner;     // P (3D) or P2 (flatland), tabulated
@@ -80,6 +86,7 @@ NonsymmetricSampler make_nonsymmetric_sampler(NdfKind ndf, double alpha, const S
 struct NonsymmetricDraw3d {
   Dir3 o;
   int k = 0;
+  bool beyond_max_k = false;  // no direction because the drawn path has more than max_k reflections
 };
 NonsymmetricDraw3d draw_nonsymmetric_3d(const NonsymmetricSampler& s, const Dir3& i, const std::array<double, 5>& u);
 VgrooveSample3d sample_nonsymmetric_3d(const NonsymmetricSampler& s, const Dir3& i, const std::array<double, 5>& u,
@@ -94,6 +101,7 @@ double nonsymmetric_failure_probability_3d(const NonsymmetricSampler& s, const D
 struct NonsymmetricDrawFlatland {
   double theta_o = 0.0;
   int k = 0;
+  bool beyond_max_k = false;
 };
 NonsymmetricDrawFlatland draw_nonsymmetric_flatland(const NonsymmetricSampler& s, double theta_i,
                                                     const std::array<double, 5>& u);

@@ -1,5 +1,6 @@
 #include "vgroove/app/cli.h"
 
+#include "vgroove/analytic/sampling_nonsymmetric.h"
 #include "vgroove/app/commands.h"
 #include "vgroove/app/distributed.h"
 #include "vgroove/app/mpi_world.h"
@@ -241,8 +242,12 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
            "tabulated inverse CDF of P(theta_r); phong alpha <= 1; its pdf costs ~1 ms: use --n ~10^4 to "
            "10^5 and, in 3d, few cells)")
       ->capture_default_str();
-  add_integer(smp, "--max-k", sma.max_k, "paths with more reflections return zero weight", 1, 100000)
-      ->capture_default_str();
+  auto* smp_max_k = add_integer(smp, "--max-k", sma.max_k,
+                                "paths with more reflections return zero weight, counted as lost beyond max_k "
+                                "(default " +
+                                    std::to_string(analytic::kSamplerMaxK) + "; vgroove-nonsymmetric " +
+                                    std::to_string(analytic::kNonsymmetricSamplerMaxK) + ", its pdf costs O(max_k))",
+                                1, 100000);
   add_seed(smp, sma.seed, "seed of the uniform numbers")->capture_default_str();
   add_integer(smp, "--cos-bins", sma.cos_bins, "3d: cells over cos theta_o in [0, 1]", 1, 1000)->capture_default_str();
   add_integer(smp, "--phi-bins", sma.phi_bins, "3d: cells over phi_o, even", 2, 1000)->capture_default_str();
@@ -250,6 +255,7 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
       ->capture_default_str();
   add_text(smp, "--out", sma.out, "result JSON to write (the chi-square table, observed and expected per cell)");
   smp->add_flag("--force", sma.force, "overwrite an existing result");
+  smp->callback([&sma, smp_max_k]() { sma.max_k_given = smp_max_k->count() > 0; });
   sma.dry_run = ctx.dry_run;
   sma.cancel = ctx.cancel;
   BinsArgs bi;

@@ -1,6 +1,8 @@
 #include "vgroove/app/commands.h"
 
 #include "vgroove/analytic/facet_strategy.h"
+#include "vgroove/analytic/sampling_3d.h"
+#include "vgroove/analytic/sampling_nonsymmetric.h"
 #include "vgroove/app/options.h"
 #include "vgroove/app/progress.h"
 #include "vgroove/common/angles.h"
@@ -67,7 +69,7 @@ int cmd_sample(const SampleArgs& a) {
   s.theta_i = a.theta_i_deg * kRadPerDeg;
   s.strategy = *strategy;
   s.nonsymmetric = nonsymmetric;
-  s.max_k = a.max_k;
+  s.max_k = nonsymmetric && !a.max_k_given ? analytic::kNonsymmetricSamplerMaxK : a.max_k;
   s.samples = a.n;
   s.seed = static_cast<std::uint64_t>(a.seed);
   s.cos_bins = a.cos_bins;
@@ -85,10 +87,17 @@ int cmd_sample(const SampleArgs& a) {
 
   const double se = std::sqrt(o.weight_variance / static_cast<double>(std::max(1L, o.weight_samples)));
   std::printf("sample: %s %s %s alpha %g, theta_i %g deg, strategy %s, max_k %d, %ld samples (seed %lld)\n",
-              a.model.c_str(), a.dim.c_str(), a.ndf.c_str(), a.alpha, a.theta_i_deg, a.strategy.c_str(), a.max_k, a.n,
+              a.model.c_str(), a.dim.c_str(), a.ndf.c_str(), a.alpha, a.theta_i_deg, a.strategy.c_str(), s.max_k, a.n,
               a.seed);
   std::printf("  no direction: %.0f of %ld (expected %.1f: the sampler's failure probability %.3e)\n",
               o.table.observed_none, a.n, o.table.expected_none, o.failure_probability);
+  if (o.beyond_max_k_probability >= 0.0)
+    std::printf("  lost beyond max_k = %d reflections: %.0f of %ld (share %.3e; expected %.3e)\n", s.max_k,
+                o.observed_beyond_max_k, a.n, o.observed_beyond_max_k / static_cast<double>(a.n),
+                o.beyond_max_k_probability);
+  else
+    std::printf("  lost beyond max_k = %d reflections: %.0f of %ld (share %.3e; part of the failure probability)\n",
+                s.max_k, o.observed_beyond_max_k, a.n, o.observed_beyond_max_k / static_cast<double>(a.n));
   std::printf(
       "  weight rho cos / pdf (over %ld samples): mean %.6f, standard deviation %.4g, standard error %.2g; %.0f ns per "
       "sample\n",

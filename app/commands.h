@@ -2,6 +2,8 @@
 // main.cpp only parses; these validate values (UserError naming the option) and run.
 #pragma once
 
+#include "vgroove/analytic/sampling_3d.h"
+
 #include <atomic>
 #include <cstdint>
 #include <limits>
@@ -104,8 +106,9 @@ struct SampleArgs {
   long n = 100000;
   std::string strategy = "vndf";
   std::string dim = "3d";
-  std::string model = "vgroove";  // or "vgroove-nonsymmetric" (Eq. 23)
-  int max_k = 256;
+  std::string model = "vgroove";       // or "vgroove-nonsymmetric" (Eq. 23)
+  int max_k = analytic::kSamplerMaxK;  // analytic::kNonsymmetricSamplerMaxK for that model, unless given
+  bool max_k_given = false;
   long long seed = 1;
   int cos_bins = 8, phi_bins = 16, theta_bins = 36;
   std::string out;

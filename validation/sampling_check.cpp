@@ -90,6 +90,7 @@ void sample_3d(Chi2Outcome& out, const std::atomic<bool>* cancel) {
       const analytic::NonsymmetricDraw3d d = analytic::draw_nonsymmetric_3d(ns, i, u);
       x.o = d.o;
       x.k = d.k;
+      x.beyond_max_k = d.beyond_max_k;
       if (n < weighted) w.add(analytic::sample_nonsymmetric_3d(ns, i, u).weight);
     } else {
       x = analytic::sample_vgroove_3d(i, uniforms(rng), s.ndf, s.alpha, opt);
@@ -97,6 +98,7 @@ void sample_3d(Chi2Outcome& out, const std::atomic<bool>* cancel) {
     }
     if (x.k == 0) {
       t.observed_none += 1.0;
+      if (x.beyond_max_k) out.observed_beyond_max_k += 1.0;
       continue;
     }
     const int r = std::clamp(static_cast<int>(x.o.z * t.rows), 0, t.rows - 1);
@@ -174,6 +176,11 @@ void expect_3d(Chi2Outcome& out, const HeldDensity* held, const std::atomic<bool
   out.integrate_s = seconds_since(t1);
   out.failure_probability = s.nonsymmetric ? analytic::nonsymmetric_failure_probability_3d(ns, i, 1e-8)
                                            : analytic::sampler_failure_probability_3d(i, s.ndf, s.alpha, opt, 1e-9);
+  // With every strategy but the printed one, the failures are the paths beyond max_k.
+  out.beyond_max_k_probability = s.nonsymmetric ? -1.0
+                                 : s.strategy != analytic::FacetStrategy::printed
+                                     ? out.failure_probability
+                                     : analytic::sampler_beyond_max_k_probability_3d(i, s.ndf, s.alpha, opt, 1e-9);
 }
 
 void sample_flatland(Chi2Outcome& out, const std::atomic<bool>* cancel) {
@@ -198,6 +205,7 @@ void sample_flatland(Chi2Outcome& out, const std::atomic<bool>* cancel) {
       const analytic::NonsymmetricDrawFlatland d = analytic::draw_nonsymmetric_flatland(ns, s.theta_i, u);
       x.theta_o = d.theta_o;
       x.k = d.k;
+      x.beyond_max_k = d.beyond_max_k;
       if (n < weighted) w.add(analytic::sample_nonsymmetric_flatland(ns, s.theta_i, u).weight);
     } else {
       x = analytic::sample_vgroove_flatland(s.theta_i, uniforms(rng), s.ndf, s.alpha, opt);
@@ -205,6 +213,7 @@ void sample_flatland(Chi2Outcome& out, const std::atomic<bool>* cancel) {
     }
     if (x.k == 0) {
       t.observed_none += 1.0;
+      if (x.beyond_max_k) out.observed_beyond_max_k += 1.0;
       continue;
     }
     const int c =
@@ -243,6 +252,11 @@ void expect_flatland(Chi2Outcome& out, const HeldDensity* held, const std::atomi
   out.failure_probability = s.nonsymmetric
                                 ? analytic::nonsymmetric_failure_probability_flatland(ns, s.theta_i, 1e-10)
                                 : analytic::sampler_failure_probability_flatland(s.theta_i, s.ndf, s.alpha, opt);
+  out.beyond_max_k_probability =
+      s.nonsymmetric ? -1.0
+      : s.strategy != analytic::FacetStrategy::printed
+          ? out.failure_probability
+          : analytic::sampler_beyond_max_k_probability_flatland(s.theta_i, s.ndf, s.alpha, opt);
 }
 
 // The expected counts under the sampler's pdf or the held density, and the test.
@@ -346,6 +360,9 @@ nlohmann::json chi2_json(const Chi2Outcome& o) {
       {"pdf_integral", o.pdf_integral},
       {"quadrature_error", o.quadrature_error},
       {"failure_probability", o.failure_probability},
+      {"observed_beyond_max_k", o.observed_beyond_max_k},
+      {"beyond_max_k_probability",
+       o.beyond_max_k_probability < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(o.beyond_max_k_probability)},
       {"normalization_error", o.normalization_error},
       {"normalization_tolerance", o.normalization_tolerance},
       {"weight_mean", o.weight_mean},

@@ -14,6 +14,8 @@
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/analytic/facet_strategy.h"
 #include "vgroove/analytic/ndf.h"
+#include "vgroove/analytic/sampling_3d.h"
+#include "vgroove/analytic/sampling_nonsymmetric.h"
 #include "vgroove/validation/brdf_suite.h"
 #include "vgroove/validation/chi_square.h"
 
@@ -37,7 +39,7 @@ struct Chi2Spec {
   double alpha = 0.5;
   double theta_i = 0.0;  // radians; the light at i = dir3(theta_i, pi) (flatland: theta_i)
   analytic::FacetStrategy strategy = analytic::FacetStrategy::vndf;
-  int max_k = 256;
+  int max_k = analytic::kSamplerMaxK;  // the nonsymmetric model's default: analytic::kNonsymmetricSamplerMaxK
   long samples = 100000;
   std::uint64_t seed = 1;
   int cos_bins = 8, phi_bins = 16;  // 3D: cos(theta_o) in [0, 1] x phi_o in [-pi, pi), phi_bins even
@@ -68,6 +70,11 @@ struct Chi2Outcome {
   double pdf_integral = 0.0;         // the cells' integrals summed
   double quadrature_error = 0.0;     // their summed error estimates
   double failure_probability = 0.0;  // over the facets
+  // The samples lost because their path has more than max_k reflections (part of observed_none),
+  // and the share expected (part of failure_probability; symmetric model only, -1 for the
+  // nonsymmetric one, whose failure probability is not split).
+  double observed_beyond_max_k = 0.0;
+  double beyond_max_k_probability = 0.0;
   double normalization_error = 0.0;  // pdf_integral + failure_probability - 1
   double normalization_tolerance = 0.0;
   double sample_s = 0.0, integrate_s = 0.0;
@@ -87,7 +94,8 @@ void fields(Chi2Table& t, F&& f) {
 template <class F>
 void fields(Chi2Outcome& o, F&& f) {
   f("table", o.table), f("test", o.test), f("pdf_integral", o.pdf_integral), f("quadrature_error", o.quadrature_error);
-  f("failure_probability", o.failure_probability), f("normalization_error", o.normalization_error);
+  f("failure_probability", o.failure_probability), f("observed_beyond_max_k", o.observed_beyond_max_k);
+  f("beyond_max_k_probability", o.beyond_max_k_probability), f("normalization_error", o.normalization_error);
   f("normalization_tolerance", o.normalization_tolerance), f("sample_s", o.sample_s), f("integrate_s", o.integrate_s);
   f("weight_mean", o.weight_mean), f("weight_variance", o.weight_variance), f("weight_samples", o.weight_samples);
   f("pass", o.pass), f("interrupted", o.interrupted);
@@ -117,7 +125,7 @@ struct VarianceSpec {
   analytic::NdfKind ndf = analytic::NdfKind::ggx;
   double alpha = 0.5;
   double theta_i = 0.0;
-  int max_k = 256;
+  int max_k = analytic::kSamplerMaxK;  // the nonsymmetric model's default: analytic::kNonsymmetricSamplerMaxK
   long samples = 20000;
   std::uint64_t seed = 1;
   double schlick_f0 = 1.0;    // Fresnel: Schlick with this F0 (1: F = 1, the furnace); 3D only

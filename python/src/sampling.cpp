@@ -197,6 +197,8 @@ py::dict sample(const std::string& model, const std::string& ndf_name, double al
   auto k = new_array<std::int32_t>({sn});
   auto pdf = new_array<double>({sn});
   auto weight = new_array<double>({sn});
+  auto beyond = new_array<bool>({sn});
+  bool* pb = beyond.mutable_data();
   double* po = wo.mutable_data();
   std::int32_t* pk = k.mutable_data();
   double *pp = pdf.mutable_data(), *pw = weight.mutable_data();
@@ -208,11 +210,11 @@ py::dict sample(const std::string& model, const std::string& ndf_name, double al
       if (flat) {
         const analytic::VgrooveSampleFlatland x = analytic::sample_nonsymmetric_flatland(ns, light.angle(j), uj);
         po[3 * j] = -std::sin(x.theta_o), po[3 * j + 1] = 0.0, po[3 * j + 2] = std::cos(x.theta_o);
-        pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight;
+        pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight, pb[j] = x.beyond_max_k;
       } else {
         const analytic::VgrooveSample3d x = analytic::sample_nonsymmetric_3d(ns, cursor.dir(j), uj);
         po[3 * j] = x.o.x, po[3 * j + 1] = x.o.y, po[3 * j + 2] = x.o.z;
-        pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight;
+        pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight, pb[j] = x.beyond_max_k;
       }
       return;
     }
@@ -220,11 +222,11 @@ py::dict sample(const std::string& model, const std::string& ndf_name, double al
     if (flat) {
       const analytic::VgrooveSampleFlatland x = analytic::sample_vgroove_flatland(light.angle(j), uj, ndf, alpha, opt);
       po[3 * j] = -std::sin(x.theta_o), po[3 * j + 1] = 0.0, po[3 * j + 2] = std::cos(x.theta_o);
-      pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight;
+      pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight, pb[j] = x.beyond_max_k;
     } else {
       const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(cursor.dir(j), uj, ndf, alpha, opt);
       po[3 * j] = x.o.x, po[3 * j + 1] = x.o.y, po[3 * j + 2] = x.o.z;
-      pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight;
+      pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight, pb[j] = x.beyond_max_k;
     }
   });
   py::dict out;
@@ -232,6 +234,7 @@ py::dict sample(const std::string& model, const std::string& ndf_name, double al
   out["k"] = k;
   out["pdf"] = pdf;
   out["weight"] = weight;
+  out["beyond_max_k"] = beyond;
   return out;
 }
 
@@ -301,6 +304,9 @@ void bind_sampling(py::module_& m) {
         py::arg("u"), py::arg("strategy"), py::arg("max_k"), py::arg("tolerance"), py::arg("dim"), py::arg("threads"));
   m.def("pdf", &pdf, py::arg("model"), py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("theta_i_deg"),
         py::arg("wo"), py::arg("strategy"), py::arg("max_k"), py::arg("tolerance"), py::arg("dim"), py::arg("threads"));
+  // The samplers' default max_k (analytic/sampling_3d.h, analytic/sampling_nonsymmetric.h).
+  m.attr("SAMPLER_MAX_K") = analytic::kSamplerMaxK;
+  m.attr("NONSYMMETRIC_SAMPLER_MAX_K") = analytic::kNonsymmetricSamplerMaxK;
   m.def("uniforms", &uniforms, py::arg("n"), py::arg("seed"), py::arg("a"), py::arg("b"), py::arg("dims"));
 }
 

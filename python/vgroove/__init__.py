@@ -50,7 +50,7 @@ __all__ = [
     "__version__", "git_revision", "FATES", "LEFT", "RIGHT", "direction", "output_deg",
     "kaleidoscope", "analytic", "trace", "groove_case",
     "Microsurface", "microsurface", "trace_microsurface", "lobe",
-    "brdf", "check_brdf", "validate", "sample", "pdf", "uniforms",
+    "brdf", "check_brdf", "validate", "sample", "pdf", "uniforms", "SAMPLER_MAX_K", "NONSYMMETRIC_SAMPLER_MAX_K",
 ]
 
 __version__: str = _vgroove.__version__
@@ -361,9 +361,20 @@ def _light(wi, theta_i_deg):
     return t.shape, None, t
 
 
+SAMPLER_MAX_K = _vgroove.SAMPLER_MAX_K
+NONSYMMETRIC_SAMPLER_MAX_K = _vgroove.NONSYMMETRIC_SAMPLER_MAX_K
+
+
+def _sampler_max_k(max_k: Optional[int], model: str) -> int:
+    """max_k as given, or the model's default (``vgroove sample --max-k``'s)."""
+    if max_k is None:
+        return NONSYMMETRIC_SAMPLER_MAX_K if model == "vgroove-nonsymmetric" else SAMPLER_MAX_K
+    return _integer(max_k, "max_k")
+
+
 def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = None,
-           theta_i_deg: Optional[ArrayLike] = None, strategy: str = "vndf", max_k: int = 256, dim: str = "3d",
-           model: str = "vgroove", tolerance: float = 1e-9, threads: int = 0) -> dict:
+           theta_i_deg: Optional[ArrayLike] = None, strategy: str = "vndf", max_k: Optional[int] = None,
+           dim: str = "3d", model: str = "vgroove", tolerance: float = 1e-9, threads: int = 0) -> dict:
     """Importance-samples the V-groove BRDF (Lee et al. 2018, Sec. 6): one exit direction per row of
     uniform numbers ``u`` (each in [0, 1); :func:`uniforms` gives vgroove's streams).
 
@@ -381,11 +392,17 @@ def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = 
     normal rounded to 1e-9 deg. ``strategy``: how the facet met first is drawn:
     "vndf" (the V-cavity's visible normals: samples the BRDF exactly, weight 1 with F = 1),
     "printed" (the paper's |s.n| D(s)), "smith-vndf" (GGX), "bounded-vndf" (GGX, 3D). Paths of more
-    than ``max_k`` reflections return zero weight.
+    than ``max_k`` reflections (in [1, 100000]) return zero weight and say so in ``beyond_max_k``.
+    Its default (None) is ``vgroove sample --max-k``'s: 16384 (``SAMPLER_MAX_K``), which loses fewer
+    than one sample in 10^7 for GGX and Beckmann at any alpha and Phong up to alpha 1
+    (analytic/sampling_3d.h), and 256 (``NONSYMMETRIC_SAMPLER_MAX_K``) for the nonsymmetric model,
+    whose pdf costs O(max_k).
 
     Returns arrays over S: ``wo`` (S + (3,), unit vectors; the mirror direction on a zero-weight
     return), ``k`` (int32 reflections; 0: no direction), ``pdf`` (density of wo per steradian, per
-    radian in flatland; 0 on a zero-weight return) and ``weight`` (rho cos(theta_o) / pdf, F = 1).
+    radian in flatland; 0 on a zero-weight return), ``weight`` (rho cos(theta_o) / pdf, F = 1) and
+    ``beyond_max_k`` (bool: a zero-weight return because the drawn path has more than max_k
+    reflections; its mean is the share lost to max_k).
     Runs on ``threads`` threads (0: all cores) without the GIL; the values do not depend on it."""
     m = 5 if model == "vgroove-nonsymmetric" else 4
     u = _reals(u, "u")
@@ -398,14 +415,14 @@ def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = 
         wi_ = np.ascontiguousarray(np.broadcast_to(wi_, shape + (3,))).reshape(-1, 3)
     else:
         ti = np.ascontiguousarray(np.broadcast_to(ti, shape)).reshape(-1)
-    out = _vgroove.sample(model, ndf, _real(alpha, "alpha"), wi_, ti, u, strategy, _integer(max_k, "max_k"),
+    out = _vgroove.sample(model, ndf, _real(alpha, "alpha"), wi_, ti, u, strategy, _sampler_max_k(max_k, model),
                           _real(tolerance, "tolerance"), dim, _integer(threads, "threads"))
     return {key: a.reshape(shape + a.shape[1:]) for key, a in out.items()}
 
 
 def pdf(ndf: str, alpha: float, wo: np.ndarray, *, wi: Optional[np.ndarray] = None,
-        theta_i_deg: Optional[ArrayLike] = None, strategy: str = "vndf", max_k: int = 256, dim: str = "3d",
-        model: str = "vgroove", tolerance: float = 1e-9, threads: int = 0) -> np.ndarray:
+        theta_i_deg: Optional[ArrayLike] = None, strategy: str = "vndf", max_k: Optional[int] = None,
+        dim: str = "3d", model: str = "vgroove", tolerance: float = 1e-9, threads: int = 0) -> np.ndarray:
     """The density of the directions :func:`sample` produces, at ``wo`` (unit vectors, S + (3,);
     flatland: in the plane y = 0), per steradian (per radian in flatland): the sum over every path
     of k <= max_k reflections that ends at wo (analytic/sampling_3d.h). The light and the options
@@ -422,7 +439,7 @@ def pdf(ndf: str, alpha: float, wo: np.ndarray, *, wi: Optional[np.ndarray] = No
         wi_ = np.ascontiguousarray(np.broadcast_to(wi_, shape + (3,))).reshape(-1, 3)
     else:
         ti = np.ascontiguousarray(np.broadcast_to(ti, shape)).reshape(-1)
-    return _vgroove.pdf(model, ndf, _real(alpha, "alpha"), wi_, ti, wo, strategy, _integer(max_k, "max_k"),
+    return _vgroove.pdf(model, ndf, _real(alpha, "alpha"), wi_, ti, wo, strategy, _sampler_max_k(max_k, model),
                         _real(tolerance, "tolerance"), dim, _integer(threads, "threads")).reshape(shape)
 
 

@@ -285,5 +285,32 @@ TEST(SmithG1, ProjectedAreaIsConservedIn3D) {
       }
 }
 
+// D_vanishing_aperture is a lower bound of where D_cs is exactly 0, and close to it: D is 0 just
+// below it and at every smaller aperture tried, and positive a tenth above it. GGX never vanishes.
+TEST(NdfVanishing, DIsZeroBelowTheVanishingApertureAndPositiveAbove) {
+  auto D_at = [](NdfKind ndf, double v, double alpha) {
+    return D_cs(ndf, std::sin(0.5 * v), std::cos(0.5 * v), alpha);  // cos, sin of theta_m = (pi - v) / 2
+  };
+  EXPECT_EQ(D_vanishing_aperture(NdfKind::ggx, 0.5), 0.0);
+  EXPECT_EQ(D_vanishing_aperture(NdfKind::phong, 1.5), 0.0);  // p < 0: D grows towards vertical facets
+  int checked = 0;
+  for (const NdfKind ndf : {NdfKind::beckmann, NdfKind::phong})
+    for (const double alpha : {0.01, 0.05, 0.2, 0.5, 1.0, 2.0}) {
+      const double v0 = D_vanishing_aperture(ndf, alpha);
+      if (!(v0 > 0.0)) continue;
+      ++checked;
+      for (const double f : {1.0 - 1e-12, 0.9, 0.5, 1e-3, 1e-9})
+        EXPECT_EQ(D_at(ndf, f * v0, alpha), 0.0) << ndf_name(ndf) << " alpha " << alpha << " at " << f << " v0";
+      // Positive where the exponent is 20 above the bound's: tan / alpha smaller by sqrt(740 / 760)
+      // (Beckmann), cos larger by exp(20 / p) (Phong).
+      const double v1 =
+          ndf == NdfKind::beckmann
+              ? 2.0 * std::atan(1.0 / (alpha * std::sqrt(740.0)))
+              : 2.0 * std::asin(std::min(1.0, std::sin(0.5 * v0) * std::exp(20.0 / phong_exponent(alpha))));
+      EXPECT_GT(D_at(ndf, v1, alpha), 0.0) << ndf_name(ndf) << " alpha " << alpha;
+    }
+  EXPECT_GE(checked, 9);
+}
+
 }  // namespace
 }  // namespace vgroove::analytic

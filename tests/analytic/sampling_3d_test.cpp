@@ -243,3 +243,80 @@ TEST(Sampling3d, CosineHemisphere) {
 
 }  // namespace
 }  // namespace vgroove::analytic
+
+namespace vgroove::analytic {
+namespace {
+
+// The default max_k (kSamplerMaxK) loses fewer than one sample in 10^7 (sampling_3d.h): at the
+// heaviest tails among GGX, Beckmann and Phong up to alpha 1, the share beyond max_k (integrated
+// over the facets) is below 1e-7. At the old default 256 it was 1.5e-4 for GGX alpha 2.
+TEST(Sampling3d, DefaultMaxKLosesFewerThanOneSampleInTenMillion) {
+  struct Case {
+    NdfKind ndf;
+    double alpha, deg;
+  };
+  for (const Case c :
+       {Case{NdfKind::ggx, 2.0, 0.0}, Case{NdfKind::beckmann, 2.0, 60.0}, Case{NdfKind::phong, 1.0, 30.0}}) {
+    const Dir3 i = dir3(c.deg * kRadPerDeg, std::numbers::pi);
+    for (FacetStrategy st : {FacetStrategy::vndf, FacetStrategy::printed}) {
+      const double lost = sampler_beyond_max_k_probability_3d(i, c.ndf, c.alpha, SamplerOptions{st}, 1e-10);
+      EXPECT_LT(lost, 1e-7) << ndf_name(c.ndf) << " alpha " << c.alpha << " " << strategy_name(st);
+      EXPECT_GE(lost, 0.0);
+    }
+  }
+}
+
+// A sample lost to max_k says so, and the share of them is the integral over the facets: with
+// max_k = 4 at GGX alpha 1, 30 deg, N = 200000 samples, the count is binomial (N, p) and must lie
+// within 4.5 sigma of N p. With the vndf strategy the paths beyond max_k are all its failures;
+// the printed one also fails on shadowed facets, which are not counted.
+TEST(Sampling3d, SamplesLostBeyondMaxKAreCountedAtTheirShare) {
+  const Dir3 i = dir3(30.0 * kRadPerDeg, std::numbers::pi);
+  for (FacetStrategy st : {FacetStrategy::vndf, FacetStrategy::printed}) {
+    const SamplerOptions opt{st, 4};
+    const double p = sampler_beyond_max_k_probability_3d(i, NdfKind::ggx, 1.0, opt, 1e-10);
+    const double fail = sampler_failure_probability_3d(i, NdfKind::ggx, 1.0, opt, 1e-10);
+    ASSERT_GT(p, 1e-3);
+    if (st == FacetStrategy::vndf) {
+      EXPECT_NEAR(p, fail, 1e-9);
+    } else {
+      EXPECT_LT(p, fail - 0.01);
+    }
+    std::mt19937_64 g(7);
+    const long N = 200000;
+    long lost = 0, none = 0;
+    for (long n = 0; n < N; ++n) {
+      const VgrooveSample3d s = sample_vgroove_3d(i, uniforms(g), NdfKind::ggx, 1.0, opt);
+      if (s.k == 0) ++none;
+      if (!s.beyond_max_k) continue;
+      ++lost;
+      EXPECT_EQ(s.k, 0);
+      EXPECT_EQ(s.weight, 0.0);
+    }
+    const double mean = N * p, sigma = std::sqrt(N * p * (1.0 - p));
+    EXPECT_NEAR(static_cast<double>(lost), mean, 4.5 * sigma) << strategy_name(st) << " p " << p;
+    if (st == FacetStrategy::printed) {
+      EXPECT_GT(none, lost + 1000);
+    }
+  }
+}
+
+// The pdf's sum stops at the aperture below which D is exactly 0 (ndf.h, D_vanishing_aperture):
+// near the retro direction, where paths of thousands of reflections end, it still equals the BRDF
+// times the cosine (vgroove_brdf sums every aperture).
+TEST(Sampling3d, PdfStopsOnlyWhereDVanishes) {
+  const Dir3 i = dir3(60.0 * kRadPerDeg, std::numbers::pi);
+  for (const NdfKind ndf : {NdfKind::beckmann, NdfKind::phong})
+    for (const double alpha : {0.05, 0.5, 2.0}) {
+      if (ndf == NdfKind::phong && alpha > 1.0) continue;
+      for (const double d : {1e-2, 1e-3, 1e-4}) {
+        const Dir3 o = dir3((60.0 - d) * kRadPerDeg, std::numbers::pi + 3.0 * d * kRadPerDeg);  // near i
+        const double pdf = vgroove_pdf_3d(i, o, ndf, alpha, SamplerOptions{});
+        const double rho_cos = vgroove_brdf(i, o, ndf, alpha, kSamplerMaxK) * o.z;
+        EXPECT_NEAR(pdf, rho_cos, 1e-12 * std::max(1.0, rho_cos)) << ndf_name(ndf) << " alpha " << alpha << " d " << d;
+      }
+    }
+}
+
+}  // namespace
+}  // namespace vgroove::analytic

@@ -178,5 +178,16 @@ TEST(SamplingFlatland, HardCases) {
   EXPECT_GT(returned, 0);
 }
 
+// The default max_k loses fewer than one sample in 10^7 in flatland too (sampling_3d.h).
+TEST(SamplingFlatland, DefaultMaxKLosesFewerThanOneSampleInTenMillion) {
+  for (const FacetStrategy st : {FacetStrategy::vndf, FacetStrategy::printed}) {
+    EXPECT_LT(sampler_beyond_max_k_probability_flatland(0.0, NdfKind::ggx, 2.0, SamplerOptions{st}), 1e-7);
+    EXPECT_LT(sampler_beyond_max_k_probability_flatland(30.0 * kRadPerDeg, NdfKind::phong, 1.0, SamplerOptions{st}),
+              1e-7);
+    EXPECT_LT(sampler_beyond_max_k_probability_flatland(80.0 * kRadPerDeg, NdfKind::ggx, 1.0, SamplerOptions{st}),
+              1e-7);
+  }
+}
+
 }  // namespace
 }  // namespace vgroove::analytic

@@ -14,10 +14,13 @@ from conftest import cli, cli_error
 STREAM = 0x5A3D  # `vgroove sample`'s stream: (seed, (0x5a3d, 0)) in 3D, (seed, (0x5a3d, 1)) in flatland
 
 
-def cli_sample(tmp_path, dim, ndf, alpha, theta_i, strategy, n, seed, max_k=256, bins=None):
-    out = tmp_path / f"sample-{dim}-{strategy}.json"
+def cli_sample(tmp_path, dim, ndf, alpha, theta_i, strategy, n, seed, max_k=None, bins=None):
+    # max_k None: the command's default, which the Python calls beside it leave at theirs.
+    out = tmp_path / f"sample-{dim}-{strategy}-{max_k}.json"
     args = ["sample", "--dim", dim, "--ndf", ndf, "--alpha", alpha, "--theta-i-deg", theta_i, "--strategy", strategy,
-            "--n", n, "--seed", seed, "--max-k", max_k, "--out", out]
+            "--n", n, "--seed", seed, "--out", out]
+    if max_k is not None:
+        args += ["--max-k", max_k]
     for flag, v in (bins or {}).items():
         args += [flag, v]
     cli(*args)
@@ -107,14 +110,16 @@ def test_flatland_pdf_integrates_to_the_command_lines_expected_counts(vg, tmp_pa
     # The command line's expected counts are N x the pdf (analytic/sampling_flatland.h) integrated
     # adaptively over its cells; Gauss-Legendre over the same cells, split at +-theta_i like the
     # command line's, of pdf() from Python must give the same to the quadratures' accuracy.
-    n = 100000
-    theirs = cli_sample(tmp_path, "flatland", ndf, alpha, theta_i, strategy, n, 1)
+    # max_k 256 on both sides: the fixed Gauss-Legendre rule here resolves the pdf's structure near
+    # the retro direction (paths of up to max_k reflections) to 1e-5 only that far.
+    n, max_k = 100000, 256
+    theirs = cli_sample(tmp_path, "flatland", ndf, alpha, theta_i, strategy, n, 1, max_k=max_k)
     edges = theirs["table"]["col_edges"]
     ti = math.radians(theta_i)
 
     def density(t):
         wo = np.stack([-np.sin(t), np.zeros_like(t), np.cos(t)], axis=-1)
-        return vg.pdf(ndf, alpha, wo, theta_i_deg=theta_i, strategy=strategy, dim="flatland")
+        return vg.pdf(ndf, alpha, wo, theta_i_deg=theta_i, strategy=strategy, dim="flatland", max_k=max_k)
 
     ours = n * gauss_legendre_cells(density, edges, [-ti, ti])
     expected = np.array(theirs["table"]["expected"][0])
@@ -123,7 +128,7 @@ def test_flatland_pdf_integrates_to_the_command_lines_expected_counts(vg, tmp_pa
     other = "vndf" if strategy != "vndf" else "printed"
     wrong = n * gauss_legendre_cells(
         lambda t: vg.pdf(ndf, alpha, np.stack([-np.sin(t), 0 * t, np.cos(t)], axis=-1), theta_i_deg=theta_i,
-                         strategy=other, dim="flatland"), edges, [-ti, ti])
+                         strategy=other, dim="flatland", max_k=max_k), edges, [-ti, ti])
     assert np.max(np.abs(wrong - expected)) > 1e-2 * max(1.0, expected.max())
     # Normalization: the cells and the failure probability make 1.
     assert abs(ours.sum() / n + theirs["failure_probability"] - 1.0) < 1e-5
@@ -343,3 +348,25 @@ def test_sample_and_pdf_take_the_command_lines_theta_i_range(vg, theta_i):
         vg.pdf("ggx", 0.5, [0.0, 0.0, 1.0], theta_i_deg=-89.95, dim="flatland")
     with pytest.raises(ValueError, match=r"^wi\[0\] = .* is -89.95 deg from the normal, out of range \[-89.9, 89.9\]$"):
         vg.sample("ggx", 0.5, [[0.1] * 4], wi=[np.sin(np.radians(89.95)), 0, np.cos(np.radians(89.95))], dim="flatland")
+
+
+def test_the_samples_lost_beyond_max_k_and_the_default_are_the_command_lines(vg, tmp_path):
+    # The default max_k is the command line's (16384; 256 for the nonsymmetric model), and a sample
+    # lost because its path has more than max_k reflections says so: the same samples as `vgroove
+    # sample` reports, at the share it expects (binomial, within 4.5 sigma).
+    assert vg.SAMPLER_MAX_K == 16384 and vg.NONSYMMETRIC_SAMPLER_MAX_K == 256
+    n, seed = 20000, 3
+    default = cli_sample(tmp_path, "3d", "ggx", 1.0, 30, "printed", n, seed)
+    assert default["max_k"] == vg.SAMPLER_MAX_K
+    theirs = cli_sample(tmp_path, "3d", "ggx", 1.0, 30, "printed", n, seed, max_k=4)
+    u = vg.uniforms(n, seed, (STREAM, 0))
+    r = vg.sample("ggx", 1.0, u, theta_i_deg=30, strategy="printed", max_k=4)
+    lost = r["beyond_max_k"]
+    assert lost.dtype == bool and lost.shape == (n,)
+    assert int(lost.sum()) == theirs["observed_beyond_max_k"]
+    assert np.all(r["k"][lost] == 0) and np.all(r["weight"][lost] == 0)
+    assert int(lost.sum()) < int((r["k"] == 0).sum())  # the printed strategy also fails on shadowed facets
+    p = theirs["beyond_max_k_probability"]
+    assert abs(lost.sum() - n * p) <= 4.5 * math.sqrt(n * p * (1 - p))
+    r0 = vg.sample("ggx", 1.0, u, theta_i_deg=30, strategy="printed")
+    assert default["observed_beyond_max_k"] == int(r0["beyond_max_k"].sum()) == 0
