@@ -6,6 +6,7 @@
 #include "vgroove/analytic/lobe_3d.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/sim/microsurface.h"
+#include "vgroove/support/format.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/partial_report.h"
 #include "vgroove/validation/report.h"
@@ -379,10 +380,7 @@ void print_energy_table(std::ostream& os, const EnergyTable& t) {
           const double N = static_cast<double>(c.counts.rays);
           const double e1 = static_cast<double>(c.counts.by_k[1]) / N;
           const double ems = static_cast<double>(c.counts.escaped - c.counts.by_k[1]) / N;
-          char buf[96];
-          std::snprintf(buf, sizeof buf, " %6.4f/%6.4f %.4f(%.4f)", e1, c.model.by_k[1], ems,
-                        c.model.albedo - c.model.by_k[1]);
-          os << buf;
+          os << support::format(" %6.4f/%6.4f %.4f(%.4f)", e1, c.model.by_k[1], ems, c.model.albedo - c.model.by_k[1]);
         }
         os << "\n";
       }

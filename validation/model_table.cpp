@@ -106,9 +106,8 @@ ModelTable parse_model_table(const nlohmann::json& j, const std::string& file, c
     const std::string dim = o.string("dimension");
     if (ndf != ndf_name(k.ndf) || alpha != k.alpha || theta_i != output_deg(k.theta_i) ||
         dim != surface_dim_name(k.dim)) {
-      char want[160];
-      std::snprintf(want, sizeof want, "ndf %s, alpha %g, theta_i_deg %g, dimension %s", ndf_name(k.ndf), k.alpha,
-                    output_deg(k.theta_i), surface_dim_name(k.dim));
+      const std::string want = support::format("ndf %s, alpha %g, theta_i_deg %g, dimension %s", ndf_name(k.ndf),
+                                               k.alpha, output_deg(k.theta_i), surface_dim_name(k.dim));
       o.fail("case", "= " + std::to_string(c) + " is " + want + " in the layout (`vgroove bins " + s.file + "`)");
     }
     const nlohmann::json& flux = o.raw("flux");

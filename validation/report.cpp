@@ -1,5 +1,6 @@
 #include "vgroove/validation/report.h"
 #include "vgroove/common/angles.h"
+#include "vgroove/support/format.h"
 #include "vgroove/support/printable.h"
 
 #include "vgroove_version.h"
@@ -184,9 +185,11 @@ void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run) {
   if (suite.paper && !suite.paper->placement.empty())
     os << "  the paper's figures are consistent with " << suite.paper->placement
        << " ray placement: " << support::printable(suite.paper->placement_evidence) << "\n";
-  const CaseOutcome& w = run.cases[s.worst_case];
-  os << "  worst case: " << groove_text(w.groove) << ", theta_i " << output_deg(w.theta_i) << " deg (L1 "
-     << fmt("%.4g", w.l1) << ")\n";
+  if (s.worst_case < run.cases.size()) {  // a run with no case has none
+    const CaseOutcome& w = run.cases[s.worst_case];
+    os << "  worst case: " << groove_text(w.groove) << ", theta_i " << output_deg(w.theta_i) << " deg (L1 "
+       << fmt("%.4g", w.l1) << ")\n";
+  }
   if (s.degenerate_cases) {
     os << "  degenerate (zero aperture, no opening; listed in the report, not compared):";
     std::string last;
@@ -248,11 +251,9 @@ void print_set_table(std::ostream& os, const SuiteSet& set, const std::vector<Su
     const Summary& s = runs[n].summary;
     pass = pass && s.pass();
     os << "  ";
-    char buf[256];
-    std::snprintf(buf, sizeof buf, "%-*s %12.4g %12.4g %14.4g %13.4g %7zu %8.3f\n", width,
-                  support::printable(su.name).c_str(), su.paper ? su.paper->max_l1 : NAN, s.max_l1,
-                  su.paper ? su.paper->mean_l1 : NAN, s.mean_l1, s.cases, s.wall_s);
-    os << buf;
+    os << support::format("%-*s %12.4g %12.4g %14.4g %13.4g %7zu %8.3f\n", width, support::printable(su.name).c_str(),
+                          su.paper ? su.paper->max_l1 : NAN, s.max_l1, su.paper ? su.paper->mean_l1 : NAN, s.mean_l1,
+                          s.cases, s.wall_s);
   }
   os << (pass ? "PASS" : "FAIL") << "\n";
 }

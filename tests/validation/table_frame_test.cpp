@@ -9,6 +9,8 @@
 #include "vgroove/validation/profiles_suite.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/sampling_suite.h"
+#include "vgroove/validation/suite.h"
+#include "vgroove/validation/suite_run.h"
 #include "vgroove/validation/table2_suite.h"
 
 #include <gtest/gtest.h>
@@ -104,6 +106,29 @@ TEST(TableFrame, EveryKindEscapesAndKeepsLongNames) {
     expect_escaped_and_whole("table2", std::string("(git ") + git_revision() + ")\n",
                              [&](std::ostream& os) { print_table2(os, s, Table2Run{}); });
   }
+}
+
+// A set's summary table sizes its first column to the longest suite name: a 420-character name
+// keeps its row whole, every column after it, and the row's newline.
+TEST(TableFrame, SetSummaryKeepsLongSuiteNames) {
+  SuiteSet set;
+  set.name = "set";
+  set.suites.resize(2);
+  set.suites[0].name = "short";
+  set.suites[1].name = kName;
+  std::vector<SuiteRun> runs(2);
+  runs[1].summary.wall_s = 12.5;
+  std::ostringstream os;
+  print_set_table(os, set, runs);
+  const std::string out = os.str();
+  const std::size_t at = out.rfind(kShown);
+  ASSERT_NE(at, std::string::npos) << out.substr(out.size() > 800 ? out.size() - 800 : 0);
+  const std::size_t eol = out.find('\n', at);
+  ASSERT_NE(eol, std::string::npos) << "the long name's row lost its newline";
+  const std::string row = out.substr(at, eol - at);
+  EXPECT_EQ(row.substr(row.size() - 6), "12.500") << row.substr(row.size() > 80 ? row.size() - 80 : 0);
+  const std::string verdict = out.substr(eol + 1);
+  EXPECT_TRUE(verdict == "PASS\n" || verdict == "FAIL\n") << verdict;
 }
 
 }  // namespace
