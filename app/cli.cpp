@@ -247,11 +247,13 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
                                 "(default " +
                                     std::to_string(analytic::kSamplerMaxK) + "; vgroove-nonsymmetric " +
                                     std::to_string(analytic::kNonsymmetricSamplerMaxK) + ", its pdf costs O(max_k))",
-                                1, 100000);
+                                1, kMaxSamplerK);
   add_seed(smp, sma.seed, "seed of the uniform numbers")->capture_default_str();
-  add_integer(smp, "--cos-bins", sma.cos_bins, "3d: cells over cos theta_o in [0, 1]", 1, 1000)->capture_default_str();
-  add_integer(smp, "--phi-bins", sma.phi_bins, "3d: cells over phi_o, even", 2, 1000)->capture_default_str();
-  add_integer(smp, "--theta-bins", sma.theta_bins, "flatland: cells over theta_o in (-90, 90)", 1, 10000)
+  add_integer(smp, "--cos-bins", sma.cos_bins, "3d: cells over cos theta_o in [0, 1]", 1, kMaxSampleCosBins)
+      ->capture_default_str();
+  add_integer(smp, "--phi-bins", sma.phi_bins, "3d: cells over phi_o, even", 2, kMaxSamplePhiBins)
+      ->capture_default_str();
+  add_integer(smp, "--theta-bins", sma.theta_bins, "flatland: cells over theta_o in (-90, 90)", 1, kMaxSampleThetaBins)
       ->capture_default_str();
   add_text(smp, "--out", sma.out, "result JSON to write (the chi-square table, observed and expected per cell)");
   smp->add_flag("--force", sma.force, "overwrite an existing result");

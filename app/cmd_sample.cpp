@@ -9,6 +9,7 @@
 #include "vgroove/support/atomic_file.h"
 #include "vgroove/support/printable.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/sampling_check.h"
 #include "vgroove/validation/spec_lists.h"
@@ -53,12 +54,17 @@ int cmd_sample(const SampleArgs& a) {
   if (nonsymmetric && *ndf == analytic::NdfKind::phong && a.alpha > 1.0)
     out_of_range("--alpha", a.alpha,
                  "(0, 1] for --model vgroove-nonsymmetric with --ndf phong (the partner law's table)");
-  if (a.max_k < 1 || a.max_k > 100000) out_of_range("--max-k", a.max_k, "[1, 100000]");
+  using validation::kMaxSamplerK, validation::kMaxSampleCosBins, validation::kMaxSamplePhiBins,
+      validation::kMaxSampleThetaBins;
+  auto range = [](int lo, int hi) { return "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]"; };
+  if (a.max_k < 1 || a.max_k > kMaxSamplerK) out_of_range("--max-k", a.max_k, range(1, kMaxSamplerK));
   check_seed(a.seed, "--seed");
-  if (a.cos_bins < 1 || a.cos_bins > 1000) out_of_range("--cos-bins", a.cos_bins, "[1, 1000]");
-  if (a.phi_bins < 2 || a.phi_bins > 1000 || a.phi_bins % 2 != 0)
-    out_of_range("--phi-bins", a.phi_bins, "[2, 1000], even");
-  if (a.theta_bins < 1 || a.theta_bins > 10000) out_of_range("--theta-bins", a.theta_bins, "[1, 10000]");
+  if (a.cos_bins < 1 || a.cos_bins > kMaxSampleCosBins)
+    out_of_range("--cos-bins", a.cos_bins, range(1, kMaxSampleCosBins));
+  if (a.phi_bins < 2 || a.phi_bins > kMaxSamplePhiBins || a.phi_bins % 2 != 0)
+    out_of_range("--phi-bins", a.phi_bins, range(2, kMaxSamplePhiBins) + ", even");
+  if (a.theta_bins < 1 || a.theta_bins > kMaxSampleThetaBins)
+    out_of_range("--theta-bins", a.theta_bins, range(1, kMaxSampleThetaBins));
   if (!a.out.empty()) support::check_writable_target(a.out, a.force);  // fail before the work, not after
   if (a.dry_run) return 0;
 

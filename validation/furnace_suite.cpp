@@ -11,6 +11,7 @@
 #include "vgroove/support/format.h"
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/printable.h"
+#include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
 
@@ -193,7 +194,7 @@ FurnaceSuite parse_furnace_suite(const nlohmann::json& j, const std::string& fil
     s.theta_i.push_back(d * kRadPerDeg);
   for (const auto& d : read_names(root, "dimensions", {"flatland", "3d"}))
     s.dims.push_back(d == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d);
-  s.max_k = static_cast<int>(root.integer("max_k", 1, 100000));
+  s.max_k = static_cast<int>(root.integer("max_k", 1, kMaxSamplerK));
   s.samples = static_cast<long>(root.integer("samples", 1, kMaxRays));
   const std::string strategy = root.one_of("strategy", {"printed", "vndf", "smith-vndf", "bounded-vndf"});
   s.strategy = *analytic::strategy_from_name(strategy);

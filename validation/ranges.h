@@ -55,5 +55,12 @@ inline constexpr int kMaxHistogramK = 1000;
 inline constexpr int kMaxFlatlandBins = 100'000;
 inline constexpr int kMaxThetaBins = 10'000;
 inline constexpr int kMaxPhiBins = 10'000;
+// The samplers' max_k: `vgroove sample --max-k`, the sampling and furnace suites' max_k, Python's
+// sample and pdf (the default: analytic/sampling_3d.h, kSamplerMaxK).
+inline constexpr int kMaxSamplerK = 100'000;
+// `vgroove sample`'s chi-square cells: cos theta_o and phi_o (even) in 3D, theta_o in flatland.
+inline constexpr int kMaxSampleCosBins = 1000;
+inline constexpr int kMaxSamplePhiBins = 1000;
+inline constexpr int kMaxSampleThetaBins = 10'000;
 
 }  // namespace vgroove::validation

@@ -4,6 +4,7 @@
 #include "vgroove/support/format.h"
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/printable.h"
+#include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
 
@@ -72,7 +73,7 @@ SamplingSuite parse_sampling_suite(const nlohmann::json& j, const std::string& f
   s.description = root.string_or("description", "");
   root.one_of("kind", {"sampling"});
   s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
-  const int max_k = static_cast<int>(root.integer("max_k", 1, 100000));
+  const int max_k = static_cast<int>(root.integer("max_k", 1, kMaxSamplerK));
   {
     support::JsonObject c = root.object("chi_square");
     const double level = c.number("level", 0.0, false, 0.5, true);
@@ -127,7 +128,7 @@ SamplingSuite parse_sampling_suite(const nlohmann::json& j, const std::string& f
     FurnaceSuite& fs = s.furnace;
     fs.file = file;
     fs.name = s.name + "/furnace";
-    fs.max_k = static_cast<int>(f.integer("max_k", 1, 100000));
+    fs.max_k = static_cast<int>(f.integer("max_k", 1, kMaxSamplerK));
     fs.samples = static_cast<long>(f.integer("samples", 1, kMaxRays));
     fs.strategy = *analytic::strategy_from_name(f.one_of("strategy", {"printed", "vndf"}));
     fs.rays = static_cast<long>(f.integer("rays", 1, kMaxRays));

@@ -45,8 +45,9 @@ analytic::SamplerOptions sampler_options(const std::string& strategy, NdfKind nd
     throw support::UserError("strategy = \"" + strategy + "\" does not exist for ndf " + analytic::ndf_name(ndf) +
                              " dim " + (flat ? "flatland" : "3d") +
                              " (smith-vndf: ggx only; bounded-vndf: ggx in 3d only)");
-  if (max_k < 1 || max_k > 100000)
-    throw support::UserError("max_k = " + std::to_string(max_k) + " is out of range [1, 100000]");
+  if (max_k < 1 || max_k > validation::kMaxSamplerK)
+    throw support::UserError("max_k = " + std::to_string(max_k) + " is out of range [1, " +
+                             std::to_string(validation::kMaxSamplerK) + "]");
   return {*s, static_cast<int>(max_k)};
 }
 
