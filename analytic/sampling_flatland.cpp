@@ -3,6 +3,7 @@
 #include "vgroove/analytic/kaleidoscope.h"
 #include "vgroove/analytic/kaleidoscope_solutions.h"
 #include "vgroove/analytic/quadrature.h"
+#include "vgroove/analytic/sampler_failure_share.h"
 #include "vgroove/analytic/vndf.h"
 
 #include <algorithm>
@@ -173,20 +174,7 @@ double failure_integral(double theta_i, NdfKind ndf, double alpha, const Sampler
         q = g1 * p.f_a * D2v / ci;  // G1(theta_i) <i.s> D2 / cos(theta_i)
         break;
     }
-    // The share of the drawn outcomes beyond max_k. All of them when even the fewer reflections
-    // exceed max_k (set exactly: for narrow grooves near grazing light f_a, f_k, f_b are all close to
-    // 1 and their differences ~ v cos(t) lose their digits, down to 0); near Eq. (4)'s boundary
-    // K = max_k + 1 only the k-reflection outcome.
-    const double w_fewer = p.f_a - p.f_k, w_more = p.f_k - p.f_b;
-    const bool all_lost = p.fewer.n > opt.max_k, more_lost = p.more.n > opt.max_k;
-    double fail = 1.0;
-    if (all_lost) {
-      if (printed && beyond_only) fail = (w_fewer + w_more) / p.f_a;
-    } else if (printed) {
-      fail = ((beyond_only ? 0.0 : p.f_b) + (more_lost ? w_more : 0.0)) / p.f_a;
-    } else {
-      fail = more_lost && w_fewer + w_more > 0.0 ? w_more / (w_fewer + w_more) : 0.0;
-    }
+    const double fail = facet_failure_share(p, opt.max_k, printed, beyond_only);
     return q * 0.5 * fail;
   };
   const double v_max = whole_range ? std::numbers::pi : std::min(std::numbers::pi, 2.0 * std::numbers::pi / opt.max_k);
