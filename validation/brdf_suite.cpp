@@ -49,22 +49,12 @@ Options surface_options(analytic::NdfKind ndf, double alpha, int grooves, std::u
 void compare(BrdfOutcome& out, const BrdfSuite& suite, const std::vector<double>& sim_joint,
              const std::vector<double>& model_joint, int bins, double model_tolerance) {
   const double N = static_cast<double>(out.rays), G = static_cast<double>(suite.grooves);
-  const LobeComparison c = compare_lobes(sim_joint, model_joint, bins, N, G, suite.sigmas, model_tolerance);
-  out.l1 = c.shape.l1, out.l1_expected = c.shape.expected, out.l1_threshold = c.shape.threshold;
-  out.l1_k = c.joint.l1, out.l1_k_expected = c.joint.expected, out.l1_k_threshold = c.joint.threshold;
-  out.albedo_threshold = albedo_threshold(out.albedo_model, N, G, suite.sigmas, model_tolerance);
+  const bool holds =
+      take_comparison(out, compare_lobes(sim_joint, model_joint, bins, N, G, suite.sigmas, model_tolerance), N, G,
+                      suite.sigmas, model_tolerance);
   out.non_finite = !(std::isfinite(out.l1) && std::isfinite(out.l1_k) && std::isfinite(out.albedo_model) &&
                      std::isfinite(out.albedo_single) && all_finite(model_joint));
-  const bool albedo_ok = std::abs(out.albedo_sim - out.albedo_model) <= out.albedo_threshold;
-  out.pass = !out.non_finite && albedo_ok && c.shape.holds() && c.joint.holds();
-}
-
-// The counts of a traced case.
-void take_counts(BrdfOutcome& out, const BinnedTally& t) {
-  out.rays = t.rays, out.escaped = t.escaped, out.lost = t.lost(), out.bounces = t.bounces;
-  out.max_k_seen = t.max_k_seen;
-  out.in_flight = t.bounce_limit;
-  out.albedo_sim = static_cast<double>(t.escaped) / static_cast<double>(t.rays);
+  out.pass = !out.non_finite && holds;
 }
 
 sim::MicrosurfaceTraceOptions flatland_trace(const BrdfSuite& suite, const BrdfCase& c, long rays) {
@@ -101,6 +91,7 @@ BrdfOutcome finish(const BrdfSuite& suite, const BrdfCase& c, const BinnedTally&
   const int bins = plane.bins();
   out.sim_wall_s = t.thread_s;
   take_counts(out, t);
+  out.in_flight = t.bounce_limit;
   out.model_wall_s = lobe.wall_s;
   out.albedo_model = lobe.albedo;
   out.albedo_single = lobe.single_albedo;
@@ -407,44 +398,16 @@ nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run) {
     worst_ratio = std::max({worst_ratio, o.l1 / o.l1_threshold, o.l1_k / o.l1_k_threshold});
     worst_albedo = std::max(worst_albedo, std::abs(o.albedo_sim - o.albedo_model));
     worst_single = std::min(worst_single, o.albedo_single);
-    nlohmann::json c = {{"ndf", analytic::ndf_name(o.c.ndf)},
-                        {"alpha", o.c.alpha},
-                        {"theta_i_deg", output_deg(o.c.theta_i)},
-                        {"dimension", surface_dim_name(o.c.dim)},
-                        {"rays", o.rays},
-                        {"escaped", o.escaped},
-                        {"lost", o.lost},
-                        {"in_flight_at_bounce_limit", o.in_flight},
-                        {"bounces", o.bounces},
-                        {"max_k_seen", o.max_k_seen},
-                        {"sim_wall_s", o.sim_wall_s},
-                        {"model_wall_s", o.model_wall_s},
-                        {"albedo_sim", o.albedo_sim},
-                        {"albedo_model", o.albedo_model},
-                        {"albedo_cook_torrance", o.albedo_single},
-                        {"cook_torrance_energy_lost", 1.0 - o.albedo_single},
-                        {"albedo_difference", o.albedo_sim - o.albedo_model},
-                        {"albedo_threshold", o.albedo_threshold},
-                        {"by_k_sim", o.by_k_sim},
-                        {"by_k_model", o.by_k_model},
-                        {"non_finite", o.non_finite},
-                        {"pass", o.pass}};
-    {
-      c["l1"] = o.l1;
-      c["l1_expected"] = o.l1_expected;
-      c["l1_threshold"] = o.l1_threshold;
-      c["l1_by_k"] = o.l1_k;
-      c["l1_by_k_expected"] = o.l1_k_expected;
-      c["l1_by_k_threshold"] = o.l1_k_threshold;
-      c["plane"] = {{"theta_deg", o.plane_theta_deg},
-                    {"unit", o.c.dim == SurfaceDim::flatland ? "fraction of the flux per radian"
-                                                             : "fraction of the flux per steradian"},
-                    {"sim", o.plane_sim},
-                    {"model", o.plane_model},
-                    {"cook_torrance", o.plane_single},
-                    {"sim_by_k", o.plane_sim_k},
-                    {"model_by_k", o.plane_model_k}};
-    }
+    nlohmann::json c = lobe_case_json(o, o.c.dim == SurfaceDim::flatland);
+    c["ndf"] = analytic::ndf_name(o.c.ndf);
+    c["alpha"] = o.c.alpha;
+    c["theta_i_deg"] = output_deg(o.c.theta_i);
+    c["dimension"] = surface_dim_name(o.c.dim);
+    c["in_flight_at_bounce_limit"] = o.in_flight;
+    c["albedo_cook_torrance"] = o.albedo_single;
+    c["cook_torrance_energy_lost"] = 1.0 - o.albedo_single;
+    c["albedo_difference"] = o.albedo_sim - o.albedo_model;
+    c["plane"]["cook_torrance"] = o.plane_single;
     cases.push_back(std::move(c));
   }
   j["cases"] = std::move(cases);
