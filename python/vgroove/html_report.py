@@ -59,7 +59,7 @@ TEXT_LIMIT = 200
 
 
 # ----------------------------------------------------------------------------------------------
-# Text: every string that reaches the page goes through text() or attr().
+# Text: every string that reaches the page goes through text() (num() for values).
 
 _FORMAT_CHARS = set(range(0x200B, 0x2010)) | set(range(0x202A, 0x202F)) | set(range(0x2060, 0x2070)) | {
     0x061C, 0xFEFF, 0x00AD, 0xFFFE, 0xFFFF} | set(range(0xFDD0, 0xFDF0))
@@ -249,11 +249,16 @@ def read_entry(directory: str, name: str) -> Entry:
         e.reason = f"JSON {_plot._kind(data)}, not a vgroove report (a JSON object with \"tool\": \"vgroove\")"
         return e
     if data.get("tool") != "vgroove":
-        e.reason = "not a vgroove report (no \"tool\": \"vgroove\")"
+        if "tool" not in data and "name" in data and any(k in data for k in ("kind", "suites", "thresholds", "groove")):
+            e.reason = "a suite, not a report (vgroove validate FILE --out REPORT.json runs it)"
+        elif "tool" not in data and "geometry" in data and "light" in data:
+            e.reason = "a scene, not a result (vgroove simulate FILE --out RESULT.json runs it)"
+        else:
+            e.reason = "not a vgroove report (no \"tool\": \"vgroove\")"
         return e
     if "partial" in data:
-        shard = get(data, "partial", "shard")
-        which = f" ({printable(shard, 40)})" if isinstance(shard, str) else ""
+        i, n = get(data, "partial", "shard", "index"), get(data, "partial", "shard", "count")
+        which = f" (shard {num(i)} of {num(n)})" if number(i) is not None and number(n) is not None else ""
         e.reason = f"a partial report{which}: join the parts with vgroove merge, then report the merged file"
         return e
     e.data = data
@@ -946,10 +951,14 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     except KeyboardInterrupt:
         print("\nvgroove: interrupted; no report written", file=sys.stderr)
         return 130
-    for name, reason in info["skipped"]:
-        print(f"report: skipped {printable(name, path=True)}: {printable(reason, 300)}")
-    print(f"report: {printable(info['out'], path=True)} ({len(info['reports'])} reports, {info['plots']} plots, "
-          f"{len(info['skipped'])} files skipped)")
+    try:
+        for name, reason in info["skipped"]:
+            print(f"report: skipped {printable(name, path=True)}: {printable(reason, 300)}")
+        print(f"report: {printable(info['out'], path=True)} ({len(info['reports'])} reports, {info['plots']} plots, "
+              f"{len(info['skipped'])} files skipped)", flush=True)
+    except OSError as e:  # a closed or full standard output: the page is written, the lines are lost
+        print(f"vgroove: error: standard output: {e.strerror or e}", file=sys.stderr)
+        return 2
     return 0
 
 
