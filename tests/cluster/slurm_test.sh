@@ -9,7 +9,8 @@
 #     DependencyNeverSatisfied), the task is recorded FAILED with its exit code and its message is in
 #     its output file, and no report is written;
 #   - slurm_mpi.sbatch (when VGROOVE_MPI, vgroove built with MPI, is given): 2 ranks started by srun
-#     (PMIx) write the report of one process.
+#     (PMIx) write the report of one process; with rank 1 made to fail the job fails, naming it, and
+#     writes no report.
 #   Stops every daemon it started (by pid) on exit. Skipped (exit 77) with the reason when the packages
 #   are not installed (scripts/install-deps.sh installs them) or when not run as root (slurmd starts
 #   jobs as their users); VGROOVE_NO_SKIP=1 (CI) makes a skip a failure.
@@ -108,7 +109,7 @@ for _ in $(seq 300); do
   sleep 0.2
 done
 [[ $(sinfo -h -o %T 2>/dev/null) == idle ]] || fail "the node did not become idle: $(sinfo 2>&1 | tail -1)"
-echo "ok: slurmctld and slurmd on $host, ports $ctld_port and $slurmd_port"
+echo "ok: slurmctld and slurmd on $host, ports $ctld_port and $slurmd_port ($SECONDS s)"
 
 # A job's state and exit code ("COMPLETED 0:0"); its reason ("DependencyNeverSatisfied").
 state() { scontrol show job "$1" | sed -n 's/.*JobState=\([A-Z_]*\) .*/\1/p;s/.* ExitCode=\([0-9:]*\).*/\1/p' | paste -sd ' '; }
@@ -143,7 +144,7 @@ done
 [[ $(state "$merge") == "COMPLETED 0:0" ]] || fail "merge job: $(state "$merge")"
 python3 "$src/tests/cluster/same_report.py" "$t/one.json" "$t/slurm.json" || fail "slurm_shards.sh: report differs"
 [[ $(ls "$t/slurm.parts"/part-*.json | wc -l) == 3 ]] || fail "slurm_shards.sh: not 3 parts"
-echo "ok: slurm_shards.sh: 3 array tasks and the merge job completed; the report equals one process's"
+echo "ok: slurm_shards.sh: 3 array tasks and the merge job completed; the report equals one process's ($SECONDS s)"
 
 # Task 2 of 3 fails: its exit code is recorded, the merge job is cancelled and never runs.
 cat >"$t/flaky" <<EOF
@@ -165,7 +166,7 @@ done
   fail "merge job: $(state "$merge"), $(reason "$merge")"
 [[ ! -e $t/bad.json ]] || fail "a task failed, yet a report"
 [[ -z $(ls "$t/bad.parts"/slurm-merge-* 2>/dev/null) ]] || fail "the merge job ran"
-echo "ok: slurm_shards.sh: task 2 FAILED (exit 3), the merge job CANCELLED (DependencyNeverSatisfied) unrun, no report"
+echo "ok: slurm_shards.sh: task 2 FAILED (exit 3), the merge job CANCELLED (DependencyNeverSatisfied) unrun, no report ($SECONDS s)"
 
 # MPI under srun: vgroove built with MPI, 2 ranks on the node's cores.
 if [[ -n $mpibin ]]; then
@@ -175,5 +176,12 @@ if [[ -n $mpibin ]]; then
   wait_gone "$job"
   [[ $(state "$job") == "COMPLETED 0:0" ]] || { cat "$t/mpi-$job.out" >&2; fail "MPI job: $(state "$job")"; }
   python3 "$src/tests/cluster/same_report.py" "$t/one.json" "$t/mpi.json" || fail "slurm_mpi.sbatch: report differs"
-  echo "ok: slurm_mpi.sbatch: 2 ranks under srun (PMIx); the report equals one process's"
+  # Two ranks indeed: rank 1 made to fail (app/distributed.h's test hook) ends the job, naming it.
+  job=$(sbatch --parsable --ntasks=2 --cpus-per-task=1 --export=ALL,SLURM_MPI_TYPE=pmix,VGROOVE_TEST_FAIL_RANK=1 \
+    --output="$t/mpi-%j.out" "$src/scripts/cluster/slurm_mpi.sbatch" "$t/mpi-bad.json" "$mpibin" validate "$t/table1.json")
+  wait_gone "$job"
+  [[ $(state "$job") == FAILED* ]] || fail "MPI job with a failing rank: $(state "$job")"
+  grep -q "rank 1 of 2" "$t/mpi-$job.out" || fail "MPI job: the error does not name rank 1 of 2: $(tail -3 "$t/mpi-$job.out")"
+  [[ ! -e $t/mpi-bad.json ]] || fail "MPI job with a failing rank: a report was written"
+  echo "ok: slurm_mpi.sbatch: 2 ranks under srun (PMIx) give the report of one process; a failing rank ($(state "$job")) is named, no report ($SECONDS s)"
 fi
