@@ -159,7 +159,7 @@ def png_problem(data: bytes) -> Optional[str]:
         kind = data[pos + 4:pos + 8]
         body = data[pos + 8:pos + 8 + length]
         if len(body) != length or pos + 12 + length > len(data):
-            return f"truncated in a {printable(kind.decode('latin-1'))} chunk"
+            return f"truncated inside the {printable(kind.decode('latin-1'))} chunk at byte {pos}"
         (crc,) = struct.unpack(">I", data[pos + 8 + length:pos + 12 + length])
         if zlib.crc32(kind + body) != crc:
             return f"{printable(kind.decode('latin-1'))} chunk at byte {pos}: CRC mismatch"
@@ -682,7 +682,7 @@ def cases_line(e: Entry) -> str:
     if e.kind == "single_grooves":
         subs = r["suites"] if isinstance(r.get("suites"), list) else [r]
         n = [number(get(s, "summary", "cases")) for s in subs]
-        return num(int(sum(x for x in n if x is not None)))
+        return f"{num(int(sum(x for x in n if x is not None)))} cases"
     if e.kind == "table2":
         return f"{num(get(sm, 'agree'))} of {num(get(sm, 'entries'))} agree"
     if e.kind == "sampling":
@@ -817,7 +817,7 @@ h1{font-size:1.5em}h2{font-size:1.25em;border-top:2px solid #ccc;padding-top:.8e
 table{border-collapse:collapse;margin:.6em 0 1.2em;font-size:13px}
 caption{text-align:left;font-weight:600;padding:.2em 0}
 th,td{border:1px solid #ccc;padding:.2em .5em;text-align:left;vertical-align:top}
-thead th{background:#f2f2f2}table.kv th{background:#f7f7f7;font-weight:normal}
+thead th{background:#f2f2f2}table.kv th{background:#f7f7f7;font-weight:normal}table.kv caption{white-space:nowrap}
 td{font-variant-numeric:tabular-nums;overflow-wrap:anywhere}
 .pass,.fail,.none{font-weight:700;padding:0 .4em;border-radius:3px}
 .pass{color:#0a5d1e;background:#d9f2df}.fail{color:#8a0c0c;background:#fadcdc}.none{color:#555;background:#eee}
