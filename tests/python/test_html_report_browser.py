@@ -32,7 +32,8 @@ if CHROMIUM is None:
 
 FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
          "--disable-background-networking", "--disable-component-update", "--disable-sync",
-         "--disable-default-apps", "--disable-extensions", "--mute-audio", "--remote-debugging-pipe"]
+         "--disable-default-apps", "--disable-extensions", "--mute-audio", "--disable-dev-shm-usage",
+         "--remote-debugging-pipe"]
 WIDTH, HEIGHT = 1280, 900
 TIMEOUT = 60.0
 
