@@ -347,6 +347,8 @@ def draw_png(draw: Any) -> Tuple[Optional[bytes], str]:
         fig.savefig(buf, format="png", metadata=_plot._metadata("png"))
     except ReportError as err:
         return None, str(err)
+    except Exception as err:  # a report plot.py accepted but matplotlib cannot draw: the page goes on
+        return None, f"matplotlib could not draw it ({type(err).__name__}: {printable(err, 200)})"
     data = buf.getvalue()
     problem = png_problem(data)
     return (data, "") if problem is None else (None, f"matplotlib wrote a damaged PNG ({problem})")
@@ -838,15 +840,26 @@ def render(directory: str, draw_missing: bool = True) -> Tuple[str, Dict[str, An
     entries = [read_entry(directory, n) for n in names]
     reports = [e for e in entries if e.data is not None]
     skipped = [e for e in entries if e.data is None]
+    sections, plots, readable = [], 0, []
+    for e in reports:
+        # A report whose fields are of unexpected types (damaged by hand, or of another version) is
+        # skipped with the reason rather than ending the page.
+        try:
+            s, k = section(len(readable) + 1, e, directory, draw_missing)
+        except (TypeError, ValueError, KeyError, AttributeError, IndexError, OverflowError) as err:
+            e.reason = f"its fields cannot be read ({type(err).__name__}: {printable(err, 200)})"
+            e.data = None
+            skipped.append(e)
+            continue
+        readable.append(e)
+        sections.append(s)
+        plots += k
+    skipped.sort(key=lambda e: e.name)
+    reports = readable
     if not reports:
         first = skipped[0]
         raise ReportError(f"{printable(directory, path=True)}: none of its {len(entries)} .json files is a vgroove "
                           f"report ({printable(first.name, path=True)}: {printable(first.reason, 300)})")
-    sections, plots = [], 0
-    for n, e in enumerate(reports, 1):
-        s, k = section(n, e, directory, draw_missing)
-        sections.append(s)
-        plots += k
     verdicts = [report_pass(e) for e in reports]
     failing = sum(v is False for v in verdicts)
     versions = sorted({f"{printable(e.data.get('version', '?'), 40)} (git {printable(e.data.get('git', '?'), 40)})"

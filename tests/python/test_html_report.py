@@ -183,6 +183,47 @@ def test_damaged_and_foreign_json_are_named(run_dir, tmp_path, reports, suites):
     assert r.stdout.strip().splitlines()[-1] == f"report: {tmp_path}/cli.html (1 reports, 0 plots, 9 files skipped)"
 
 
+def test_damaged_fields_never_end_the_page(run_dir, tmp_path):
+    # Reports of every kind with 1-3 values or whole objects replaced by values of other types
+    # (deterministic, 400 of them): each gives a section or is skipped with its reason.
+    import random
+    rng = random.Random(2018)
+    values = [None, "x", "<b>", [], {}, [1, 2], {"a": 1}, -1, 0, 1e308, -1e308, True, 10**30, 1.5]
+
+    def paths(v, p=()):
+        if p:
+            yield p
+        items = v.items() if isinstance(v, dict) else enumerate(v[:3]) if isinstance(v, list) else []
+        for k, x in items:
+            yield from paths(x, p + (k,))
+
+    originals = {kind: load(run_dir / f"{kind}.json") for kind in KINDS}
+    d = tmp_path / "run"
+    d.mkdir()
+    outcomes = {"section": 0, "skipped": 0}
+    for _ in range(400):
+        kind = rng.choice(KINDS)
+        r = json.loads(json.dumps(originals[kind]))
+        all_paths = list(paths(r))
+        for _ in range(rng.randint(1, 3)):
+            path = rng.choice(all_paths)
+            obj = r
+            try:
+                for p in path[:-1]:
+                    obj = obj[p]
+                obj[path[-1]] = json.loads(json.dumps(rng.choice(values)))
+            except (KeyError, IndexError, TypeError):
+                pass  # an earlier replacement removed this path
+        write_json(d / "r.json", r)
+        try:
+            page, info = html_report.render(str(d), draw_missing=False)
+            outcomes["section" if info["reports"] else "skipped"] += 1
+        except html_report.ReportError as e:  # the one report skipped, with its reason
+            assert "none of its 1 .json files is a vgroove report (r.json: " in str(e)
+            outcomes["skipped"] += 1
+    assert outcomes["section"] > 300, outcomes
+
+
 def one_line_error(*args):
     r = cli("report", *args, check=False)
     assert r.returncode == 2, (r.returncode, r.stdout, r.stderr)
