@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import argparse
 import base64
+import heapq
 import html
 import io
 import json
@@ -373,21 +374,19 @@ def case_pass(c: Any) -> Optional[bool]:
     return v if isinstance(v, bool) else None
 
 
-def worst_first(cases: Sequence[Any], badness: Any) -> Tuple[List[Any], str]:
-    """The cases to list: every failing one (up to MAX_FAILING_ROWS), then the worst passing ones
-    by `badness` (larger is worse) up to WORST_ROWS in all; and a line saying how many there are."""
-    dicts = [c for c in cases if isinstance(c, dict)]
-
-    def key(c: Any) -> Tuple[int, float]:
-        b = badness(c)
-        return (0 if case_pass(c) is False else 1, -(b if b is not None else -math.inf))
-
-    ranked = sorted(dicts, key=key)
-    failing = [c for c in ranked if case_pass(c) is False]
-    shown = failing[:MAX_FAILING_ROWS]
-    rest = [c for c in ranked if case_pass(c) is not False]
-    shown += rest[:max(0, WORST_ROWS - len(shown))]
-    line = f"{len(dicts)} cases"
+def worst_first(cases: Sequence[Any], badness: Any, failed: Any = None) -> Tuple[List[Any], str]:
+    """The cases to list: the failing ones (`failed`, default: "pass" false), worst first, up to
+    MAX_FAILING_ROWS, then the worst passing ones by `badness` (larger is worse) up to WORST_ROWS in
+    all, ties in the report's order; and a line saying how many there are."""
+    is_failed = failed or (lambda c: case_pass(c) is False)
+    failing, passing = [], []
+    for n, c in enumerate(cases):
+        if isinstance(c, dict):
+            b = badness(c)
+            (failing if is_failed(c) else passing).append((-b if b is not None else math.inf, n, c))
+    shown = [c for _, _, c in heapq.nsmallest(MAX_FAILING_ROWS, failing)]
+    shown += [c for _, _, c in heapq.nsmallest(max(0, WORST_ROWS - len(shown)), passing)]
+    line = f"{len(failing) + len(passing)} cases"
     if failing:
         line += f", {len(failing)} failing" + (f" (the first {MAX_FAILING_ROWS} listed)"
                                                 if len(failing) > MAX_FAILING_ROWS else "")
@@ -417,9 +416,15 @@ def single_groove_tables(r: Dict[str, Any]) -> Tuple[List[Table], List[Table]]:
                            num(get(s, "seed")), num(get(sm, "wall_s")), verdict(get(s, "pass"))])
         cases = get(s, "cases", default=[])
         cases = cases if isinstance(cases, list) else []
-        thr = number(get(th, "max_l1"))
+        thr, err_thr = number(get(th, "max_l1")), number(get(th, "max_theta_o_error_rad"))
+
+        def over(c: Any) -> bool:  # a case beyond the suite's thresholds (its cases carry no verdict)
+            l1, err = number(get(c, "l1")), number(get(c, "theta_o_error_rad"))
+            return (thr is not None and l1 is not None and l1 > thr) or (
+                err_thr is not None and err is not None and err > err_thr)
+
         shown, line = worst_first([c for c in cases if isinstance(c, dict) and "degenerate" not in c],
-                                  lambda c: number(get(c, "l1")))
+                                  lambda c: number(get(c, "l1")), over)
         rows = [[groove_of(c), num(get(c, "theta_i_deg")), num(get(c, "l1")),
                  num(ratio(get(c, "l1"), thr)), num(get(c, "theta_o_error_rad")), num(get(c, "rays")),
                  num(get(c, "bounces"))] for c in shown]

@@ -97,6 +97,14 @@ def test_failing_cases_come_first(run_dir, tmp_path):
     assert ratios == sorted(ratios, reverse=True)
     assert page.table("Reports")["rows"][1][2] == "FAIL"
     assert "1 failing" in page.text()
+    # Single-groove cases carry no verdict: those beyond the suite's max L1 are the failing ones.
+    t1 = load(run_dir / "table1.json")
+    l1 = sorted(c["l1"] for c in t1["cases"])
+    t1["thresholds"]["max_l1"] = l1[-4]  # three cases above it
+    write_json(d / "table1.json", t1)
+    page, _, _ = page_of(d, tmp_path)
+    t = page.table(f"tiny_table1: largest L1 ({len(l1)} cases, 3 failing; threshold max L1 {l1[-4]:.4g})")
+    assert [float(r[2]) for r in t["rows"][1:4]] == [float(f"{x:.4g}") for x in l1[:-4:-1]]
 
 
 HOSTILE = ["<script>alert('x')</script>", '"><img src=x onerror=alert(1)>', "a\x1b[31mred\x00nul", "line\nbreak\r",
