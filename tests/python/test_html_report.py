@@ -387,3 +387,24 @@ def test_reachable_from_the_module(run_dir, tmp_path):
     (tmp_path / "empty").mkdir()
     with pytest.raises(ValueError, match="holds no report"):
         vgroove.html_report.write(str(tmp_path / "empty"))
+
+
+def test_the_installed_command_line_finds_its_script(run_dir, tmp_path):
+    # cmake --install puts html_report.py beside plot.py in the prefix's Python package, where the
+    # installed vgroove looks for it (nothing of the build tree on the path).
+    import subprocess
+    from conftest import BIN
+    build = os.path.dirname(BIN)
+    cmake = shutil.which("cmake")
+    if cmake is None or not os.path.exists(os.path.join(build, "cmake_install.cmake")):
+        pytest.skip("no cmake or no build tree beside VGROOVE_BIN")
+    prefix = tmp_path / "prefix"
+    r = subprocess.run([cmake, "--install", build, "--prefix", str(prefix)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert len(list(prefix.rglob("vgroove/html_report.py"))) == 1
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VGROOVE_PLOT")}
+    out = tmp_path / "page.html"
+    r = subprocess.run([str(prefix / "bin" / "vgroove"), "report", str(run_dir), "--out", str(out), "--no-draw"],
+                       capture_output=True, text=True, env=env, cwd=str(tmp_path))
+    assert r.returncode == 0, r.stderr
+    assert len(check_page(str(out)).table("Reports")["rows"]) == len(KINDS) + 1
