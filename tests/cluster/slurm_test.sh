@@ -51,6 +51,8 @@ cleanup() {
   rm -rf "$t"
 }
 trap cleanup EXIT
+trap 'exit 130' INT
+trap 'exit 143' TERM
 
 # munge: a key of its own, the socket in the test's directory.
 mkdir -m 700 "$t/munge-key" "$t/state" "$t/spool"
@@ -110,6 +112,10 @@ for _ in $(seq 300); do
 done
 [[ $(sinfo -h -o %T 2>/dev/null) == idle ]] || fail "the node did not become idle: $(sinfo 2>&1 | tail -1)"
 echo "ok: slurmctld and slurmd on $host, ports $ctld_port and $slurmd_port ($SECONDS s)"
+# Should this script be killed outright (SIGKILL: no cleanup, its directory left), a watchdog in a
+# session of its own stops the daemons it started and removes the directory once the script is gone.
+setsid bash -c 'while kill -0 "$1" 2>/dev/null; do sleep 2; done; [[ -d $2 ]] || exit 0
+  kill "${@:3}" 2>/dev/null; sleep 2; rm -rf "$2"' watchdog $$ "$t" "${pids[@]}" </dev/null >/dev/null 2>&1 &
 
 # A job's state and exit code ("COMPLETED 0:0"); its reason ("DependencyNeverSatisfied").
 state() { scontrol show job "$1" | sed -n 's/.*JobState=\([A-Z_]*\) .*/\1/p;s/.* ExitCode=\([0-9:]*\).*/\1/p' | paste -sd ' '; }
