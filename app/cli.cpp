@@ -369,6 +369,19 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
   merge->add_flag("--npy", ma.npy, "energy tables: the arrays as .npy files beside the JSON");
   merge->add_flag("--force", ma.force, "overwrite existing files");
   ma.dry_run = ctx.dry_run;
+  ReportArgs ra;
+  auto* report = app.add_subcommand(
+      "report",
+      "Write one self-contained HTML page (plots embedded, no script, nothing loaded) of every report in a "
+      "directory: verdicts, the paper's figures beside ours, thresholds, worst cases, wall times, versions, "
+      "seeds and the plots of `vgroove plot` (a missing one drawn for the page). Runs python/vgroove/html_report.py.");
+  add_text(report, "directory", ra.directory, "the directory of the reports, e.g. results/")->required();
+  add_text(report, "--out", ra.out,
+           "page to write (default: DIRECTORY/index.html; refuses to overwrite without --force)");
+  report->add_flag("--force", ra.force, "overwrite an existing page");
+  report->add_flag("--no-draw", ra.no_draw, "name the plots missing beside their reports instead of drawing them");
+  ra.dry_run = ctx.dry_run;
+  ra.cancel = ctx.cancel;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -397,6 +410,7 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
     if (*bins) return cmd_bins(bi);
     if (*energy) return cmd_energy(ea);
     if (*merge) return cmd_merge(ma);
+    if (*report) return cmd_report(ra);
   } catch (const support::UserError& e) {
     print_error(e.what());
     return 2;
