@@ -1,3 +1,4 @@
+#include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
 #include "vgroove/app/python_script.h"
 #include "vgroove/support/user_error.h"
@@ -31,6 +32,22 @@ int cmd_plot(const PlotArgs& a) {
   s.dry_run = a.dry_run;
   s.cancel = a.cancel;
   return run_python_script(s);
+}
+
+void add_plot_command(CLI::App& app, Commands& commands) {
+  auto* plot = app.add_subcommand(
+      "plot",
+      "Draw a report with matplotlib (from the JSON alone, nothing recomputed): Table 1 heatmaps, the Fig. 11 "
+      "grids, the furnace, Table 2, accuracy against time and cost, check_brdf. Runs python/vgroove/plot.py "
+      "with Debian's python3 (VGROOVE_PYTHON names another); writes every figure or none.");
+  PlotArgs& pa = commands.add(plot, cmd_plot);
+  pa.cancel = commands.context().cancel;
+  add_text(plot, "report", pa.report, "report JSON (vgroove validate --out, vgroove bench accuracy --out)")->required();
+  add_text(plot, "--out", pa.out,
+           "image to write, or its base name (default: the report's name without .json); figures after "
+           "the first get a suffix (-ggx-3d, -cost)");
+  add_text(plot, "--format", pa.format, "png (default), svg or pdf");
+  plot->add_flag("--force", pa.force, "overwrite existing images");
 }
 
 }  // namespace vgroove::app

@@ -1,3 +1,4 @@
+#include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
 #include "vgroove/app/python_script.h"
 
@@ -28,6 +29,21 @@ int cmd_report(const ReportArgs& a) {
   s.dry_run = a.dry_run;
   s.cancel = a.cancel;
   return run_python_script(s);
+}
+
+void add_report_command(CLI::App& app, Commands& commands) {
+  auto* report = app.add_subcommand(
+      "report",
+      "Write one self-contained HTML page (plots embedded, no script, nothing loaded) of every report in a "
+      "directory: verdicts, the paper's figures beside ours, thresholds, worst cases, wall times, versions, "
+      "seeds and the plots of `vgroove plot` (a missing one drawn for the page). Runs python/vgroove/html_report.py.");
+  ReportArgs& ra = commands.add(report, cmd_report);
+  ra.cancel = commands.context().cancel;
+  add_text(report, "directory", ra.directory, "the directory of the reports, e.g. results/")->required();
+  add_text(report, "--out", ra.out,
+           "page to write (default: DIRECTORY/index.html; refuses to overwrite without --force)");
+  report->add_flag("--force", ra.force, "overwrite an existing page");
+  report->add_flag("--no-draw", ra.no_draw, "name the plots missing beside their reports instead of drawing them");
 }
 
 }  // namespace vgroove::app
