@@ -73,7 +73,8 @@ BrdfValue evaluate_brdf(BrdfModel model, const Dir3& i, const Dir3& o, const Brd
     return v;
   }
   if (model == BrdfModel::cook_torrance) {
-    v.value = opt.fresnel ? cook_torrance(i, o, opt.ndf, opt.alpha, opt.fresnel) : cook_torrance(i, o, opt.ndf, opt.alpha);
+    v.value =
+        opt.fresnel ? cook_torrance(i, o, opt.ndf, opt.alpha, opt.fresnel) : cook_torrance(i, o, opt.ndf, opt.alpha);
     if (opt.per_k > 0) v.by_k[0] = v.value;
     return v;
   }

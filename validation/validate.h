@@ -25,7 +25,7 @@
 namespace vgroove::validation {
 
 struct ValidateOptions {
-  std::string suite;                    // the suite file (with suite_json: the name messages give it)
+  std::string suite;  // the suite file (with suite_json: the name messages give it)
   // The suite itself, already read (Python's validate(dict)); null: read the file `suite`. The
   // file names of a set's suites are then taken relative to the current directory.
   const nlohmann::json* suite_json = nullptr;

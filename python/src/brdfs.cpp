@@ -23,8 +23,8 @@
 
 namespace vgroove::python {
 
-using validation::SurfaceDim;
 using analytic::BrdfModel;
+using validation::SurfaceDim;
 
 namespace {
 
@@ -123,24 +123,23 @@ template <class F>
 void for_pairs(std::size_t n, int threads, const Rows& wi, const Rows& wo, bool cheap, ProgressRelay& relay,
                std::atomic<bool>& cancel, F&& f) {
   const std::size_t chunk = cheap ? 4096 : 1;
-  support::parallel_for(
-      (n + chunk - 1) / chunk, support::resolve_threads(threads),
-      [&](std::size_t c) {
-        const std::size_t end = std::min(n, (c + 1) * chunk);
-        for (std::size_t j = c * chunk; j < end; ++j) {
-          if (!cheap && cancel.load(std::memory_order_relaxed)) return;
-          const double* a = wi.row(j);
-          const double* b = wo.row(j);
-          f(j, analytic::Dir3{a[0], a[1], a[2]}, analytic::Dir3{b[0], b[1], b[2]}, a, b);
-        }
-      },
-      relay.fn(chunk, n), &cancel, 1);
+  support::parallel_for((n + chunk - 1) / chunk, support::resolve_threads(threads),
+                        [&](std::size_t c) {
+                          const std::size_t end = std::min(n, (c + 1) * chunk);
+                          for (std::size_t j = c * chunk; j < end; ++j) {
+                            if (!cheap && cancel.load(std::memory_order_relaxed)) return;
+                            const double* a = wi.row(j);
+                            const double* b = wo.row(j);
+                            f(j, analytic::Dir3{a[0], a[1], a[2]}, analytic::Dir3{b[0], b[1], b[2]}, a, b);
+                          }
+                        },
+                        relay.fn(chunk, n), &cancel, 1);
 }
 
 // out[j] = f(wi_j, wo_j) (per_k: out[j * per_k + k - 1] for k = 1..per_k): the calls
 // `vgroove brdf` makes (analytic::evaluate_brdf), each case's loop on its own.
-void evaluate(const BrdfSettings& s, int per_k, const Rows& wi, const Rows& wo, std::size_t n, double* out,
-              int threads, ProgressRelay& relay, std::atomic<bool>& cancel) {
+void evaluate(const BrdfSettings& s, int per_k, const Rows& wi, const Rows& wo, std::size_t n, double* out, int threads,
+              ProgressRelay& relay, std::atomic<bool>& cancel) {
   const bool cheap = relative_cost(s.model, s.flat, s.max_k) == 1.0;
   const NdfKind ndf = s.ndf;
   const double alpha = s.alpha;
@@ -207,8 +206,8 @@ py::dict settings_dict(const std::string& model, const std::string& ndf, double 
 // its value as k = 1). wi and wo: one row or n rows each.
 py::array_t<double> brdf(const std::string& model_name, const std::string& ndf_name, double alpha, DoubleArray wi,
                          DoubleArray wo, const py::object& per_k_obj, const py::object& max_k,
-                         const std::string& dim_name, int threads, const py::object& alpha_y,
-                         const py::object& partner, const py::object& eta, const py::object& progress) {
+                         const std::string& dim_name, int threads, const py::object& alpha_y, const py::object& partner,
+                         const py::object& eta, const py::object& progress) {
   const BrdfSettings s = brdf_settings(model_name, ndf_name, alpha, dim_name, max_k, alpha_y, partner, eta);
   validation::check_threads(threads, "threads");
   ProgressRelay relay(progress);
@@ -273,8 +272,8 @@ py::object check_brdf(const py::object& f, const py::object& max_k, const std::s
   relay.set(0, 1);
   relay.flush();
   if (py::isinstance<py::str>(f)) {
-    const BrdfSettings s = brdf_settings(f.cast<std::string>(), ndf, alpha, dim, max_k, py::none(), py::none(),
-                                         py::none());
+    const BrdfSettings s =
+        brdf_settings(f.cast<std::string>(), ndf, alpha, dim, max_k, py::none(), py::none(), py::none());
     const analytic::BrdfEvalOptions eval = s.options();
     const BrdfModel model = s.model;
     const validation::BrdfFn fn = [=](const analytic::Dir3& i, const analytic::Dir3& w) {
@@ -354,8 +353,7 @@ void bind_brdfs(py::module_& m) {
   m.def("check_brdf", &check_brdf, py::arg("f"), py::arg("max_k"), py::arg("name"), py::arg("ndf"), py::arg("alpha"),
         py::arg("theta_i_deg"), py::arg("rays"), py::arg("dim"), py::arg("grooves"), py::arg("seed"),
         py::arg("theta_bins"), py::arg("phi_bins"), py::arg("flatland_bins"), py::arg("sigmas"),
-        py::arg("model_tolerance"), py::arg("quadrature_order"), py::arg("threads"),
-        py::arg("progress") = py::none());
+        py::arg("model_tolerance"), py::arg("quadrature_order"), py::arg("threads"), py::arg("progress") = py::none());
   // The orders each model sums when max_k is not given (analytic/brdf_model.h: the one table of
   // every face).
   py::dict defaults;

@@ -8,9 +8,9 @@
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/brdf_suite.h"
 
+#include <pybind11/complex.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
-#include <pybind11/complex.h>
 #include <pybind11/stl.h>
 
 #include <nlohmann/json.hpp>

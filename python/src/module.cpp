@@ -122,8 +122,8 @@ DoubleArray unit_directions(const DoubleArray& w, const char* what, bool flatlan
 Rows rows_of(const DoubleArray& w, const char* what, std::size_t n, bool flatland) {
   const bool one = w.ndim() == 2 && w.shape(0) == 1;
   if (w.ndim() != 2 || w.shape(1) != 3 || (!one && static_cast<std::size_t>(w.shape(0)) != n))
-    throw support::UserError(std::string(what) + " must be an array of shape (1, 3) or (n, 3) with n = " +
-                             std::to_string(n));
+    throw support::UserError(std::string(what) +
+                             " must be an array of shape (1, 3) or (n, 3) with n = " + std::to_string(n));
   return Rows{unit_directions(w, what, flatland), one ? std::size_t{0} : std::size_t{3}};
 }
 
@@ -137,8 +137,9 @@ Conductor conductor_of(const py::object& eta) {
   using validation::kMaxFresnelEta, validation::kMaxFresnelKappa;
   if (!(z.real() > 0.0 && z.real() <= kMaxFresnelEta && z.imag() >= 0.0 && z.imag() <= kMaxFresnelKappa))
     throw support::UserError("eta = " + support::number_text(z.real()) + " + " + support::number_text(z.imag()) +
-                             "j is out of range: real part in " + support::interval_text(0, false, kMaxFresnelEta, true) +
-                             ", imaginary part (kappa) in " + support::interval_text(0, true, kMaxFresnelKappa, true));
+                             "j is out of range: real part in " +
+                             support::interval_text(0, false, kMaxFresnelEta, true) + ", imaginary part (kappa) in " +
+                             support::interval_text(0, true, kMaxFresnelKappa, true));
   return Conductor{z.real(), z.imag()};
 }
 
@@ -206,8 +207,8 @@ PYBIND11_MODULE(_vgroove, m) {
         auto out = new_array<double>({n, 3});
         double* p = out.mutable_data();
         for (py::ssize_t j = 0; j < n; ++j) {
-          const vgroove::analytic::Dir3 d = vgroove::analytic::dir3(vgroove::deg_to_rad(theta_deg.data()[j]),
-                                                                    vgroove::deg_to_rad(phi_deg.data()[j]));
+          const vgroove::analytic::Dir3 d =
+              vgroove::analytic::dir3(vgroove::deg_to_rad(theta_deg.data()[j]), vgroove::deg_to_rad(phi_deg.data()[j]));
           p[3 * j] = d.x, p[3 * j + 1] = d.y, p[3 * j + 2] = d.z;
         }
         return out;

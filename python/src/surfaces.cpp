@@ -182,11 +182,14 @@ py::dict trace_microsurface(const Surface& s, double theta_i_deg, const py::obje
     o.theta_o_bins = flatland_bins, o.max_k = max_k, o.trace.max_bounces = mb;
     const std::int64_t chunks = sim::chunk_count(o);
     const int workers = check_memory(chunks);
-    sim::MicrosurfaceTally t = run_interruptible([&](std::atomic<bool>& cancel) {
-      return trace_chunks(
-          chunks, workers, sim::MicrosurfaceTally(o.theta_o_bins, o.max_k),
-          [&](std::int64_t c) { return sim::trace_microsurface_chunk(s.flat, o, c); }, cancel, ray_progress(chunks));
-    }, false, &relay);
+    sim::MicrosurfaceTally t = run_interruptible(
+        [&](std::atomic<bool>& cancel) {
+          return trace_chunks(
+              chunks, workers, sim::MicrosurfaceTally(o.theta_o_bins, o.max_k),
+              [&](std::int64_t c) { return sim::trace_microsurface_chunk(s.flat, o, c); }, cancel,
+              ray_progress(chunks));
+        },
+        false, &relay);
     put_fates(d, t);
     const auto rows = static_cast<py::ssize_t>(max_k + 2), bins = static_cast<py::ssize_t>(flatland_bins);
     d["by_k"] = array_from(std::move(t.by_k), {rows});
@@ -204,11 +207,14 @@ py::dict trace_microsurface(const Surface& s, double theta_i_deg, const py::obje
   o.theta_bins = theta_bins, o.phi_bins = phi_bins, o.max_k = max_k, o.trace.max_bounces = mb;
   const std::int64_t chunks = sim::chunk_count(o);
   const int workers = check_memory(chunks);
-  sim::Microsurface3dTally t = run_interruptible([&](std::atomic<bool>& cancel) {
-    return trace_chunks(
-        chunks, workers, sim::Microsurface3dTally(o.theta_bins, o.phi_bins, o.max_k),
-        [&](std::int64_t c) { return sim::trace_microsurface3d_chunk(s.three, o, c); }, cancel, ray_progress(chunks));
-  }, false, &relay);
+  sim::Microsurface3dTally t = run_interruptible(
+      [&](std::atomic<bool>& cancel) {
+        return trace_chunks(
+            chunks, workers, sim::Microsurface3dTally(o.theta_bins, o.phi_bins, o.max_k),
+            [&](std::int64_t c) { return sim::trace_microsurface3d_chunk(s.three, o, c); }, cancel,
+            ray_progress(chunks));
+      },
+      false, &relay);
   put_fates(d, t);
   const auto rows = static_cast<py::ssize_t>(max_k + 2), tb = static_cast<py::ssize_t>(theta_bins),
              pb = static_cast<py::ssize_t>(phi_bins);
