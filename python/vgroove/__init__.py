@@ -66,7 +66,7 @@ except ImportError as _e:
     if not _built:
         _why = ("its extension module vgroove._vgroove is not there (built with -DVGROOVE_PYTHON=ON when pybind11-dev "
                 "and python3-dev are installed; not in sanitizer builds)")
-    elif not any(b.endswith(s) for b in _built for s in _machinery.EXTENSION_SUFFIXES):
+    elif not set(_built) & {"_vgroove" + s for s in _machinery.EXTENSION_SUFFIXES}:
         _why = (f"its extension module is {', '.join(_built)}, built for another Python: this one "
                 f"({_sys.executable}, {_sys.version.split()[0]}) loads _vgroove{_wanted}; run the Python it was built "
                 "for (scripts/setup.sh builds for /usr/bin/python3) or build it for this one "

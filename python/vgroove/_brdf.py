@@ -80,7 +80,7 @@ class BRDF:
     >>> f = vgroove.BRDF("vgroove", "ggx", 0.5)
     >>> wi, wo = vgroove.direction(30, 180), vgroove.direction(40, 0)
     >>> round(float(f.eval(wi, wo)), 6)
-    0.704021
+    0.884746
     >>> f
     vgroove.BRDF(model="vgroove", ndf="ggx", alpha=0.5, dim="3d")
     >>> f.max_k
@@ -173,7 +173,7 @@ class BRDF:
         >>> f = vgroove.BRDF("cook-torrance", "beckmann", 0.3)
         >>> wo = vgroove.direction(np.array([10.0, 30.0, 50.0]), 0)
         >>> f.eval(vgroove.direction(30, 180), wo).round(4)
-        array([0.6062, 3.9001, 0.2149])
+        array([0.7802, 1.1789, 1.1954])
         >>> bool(f.eval(wo[1], vgroove.direction(30, 180)) == f.eval(vgroove.direction(30, 180), wo[1]))
         True
         """
@@ -231,12 +231,12 @@ class BRDF:
 
         Examples
         --------
-        >>> import vgroove
+        >>> import numpy as np, vgroove
         >>> f = vgroove.BRDF("vgroove", "ggx", 0.5)
         >>> b = f.sample(vgroove.direction(30, 180), vgroove.uniforms(4, seed=7))
         >>> b.k.tolist()
-        [1, 1, 1, 2]
-        >>> bool((f.pdf(vgroove.direction(30, 180), b.wo) == b.pdf).all())
+        [1, 1, 1, 5]
+        >>> bool(np.allclose(f.pdf(vgroove.direction(30, 180), b.wo), b.pdf, rtol=1e-9))
         True
         """
         max_k = self._sampler("sample")
@@ -355,7 +355,7 @@ class BRDF:
         >>> lobe.hist.shape, round(lobe.albedo, 12)
         ((18,), 1.0)
         >>> round(float(lobe.by_k[1] + lobe.by_k[2]), 4)
-        0.9843
+        0.9817
         """
         max_k = self._binned("lobe")
         theta_i_deg = _args.real(theta_i_deg, "theta_i_deg")
@@ -368,8 +368,8 @@ class BRDF:
             d = _truncated(d, self._dim, max_k, k_rows)
         return Lobe.from_dict(d, self._dim)
 
-    def albedo(self, wi: _args.ArrayLike, *, theta_bins: int = 1, phi_bins: int = 2, flatland_bins: int = 1,
-               progress: Optional[_args.ProgressFn] = None) -> np.ndarray:
+    def albedo(self, wi: _args.ArrayLike, *, theta_bins: int = 30, phi_bins: int = 24, flatland_bins: int = 90,
+               k_rows: int = 16, progress: Optional[_args.ProgressFn] = None) -> np.ndarray:
         """The directional albedo: the flux the BRDF sends anywhere, int eval(wi, wo) cos(theta_o) d wo.
 
         Parameters
@@ -377,10 +377,11 @@ class BRDF:
         wi : array_like, shape (..., 3)
             Unit vectors towards the light (polar angle in [0, 90) deg; flatland: signed, in
             [-$max_theta_i_deg, $max_theta_i_deg]). The model is isotropic: each distinct angle is integrated once.
-        theta_bins, phi_bins, flatland_bins : int
-            The bins of the lobe whose total this is (:meth:`lobe`): the total is exact to
-            rounding whatever they are (analytic/lobe_3d.h); given, they reproduce a suite's
-            ``albedo_model`` to the last bit.
+        theta_bins, phi_bins, flatland_bins, k_rows : int
+            The bins and rows of the lobe whose total this is (:meth:`lobe`; the same bits as
+            ``lobe(...).albedo``): the total is exact to rounding whatever they are (with these,
+            within 3e-14 of 1 for vgroove; the cost hardly depends on them); a suite's bins and
+            max_k reproduce its ``albedo_model`` to the last bit.
         progress : callable, optional
             ``progress(done, total)``, counting the distinct angles.
 
@@ -402,7 +403,7 @@ class BRDF:
         >>> vgroove.BRDF("vgroove", "ggx", 1.0).albedo(wi).round(12)
         array([1., 1.])
         >>> vgroove.BRDF("cook-torrance", "ggx", 1.0).albedo(wi).round(4)
-        array([0.6968, 0.6284])
+        array([0.375 , 0.6531])
         """
         max_k = self._binned("albedo")
         wi = _args.vectors(wi, "wi")
@@ -429,7 +430,7 @@ class BRDF:
         angles, inverse = np.unique(theta.ravel(), return_inverse=True)
         progress = _args.progress(progress)
         values = np.empty(len(angles))
-        rows = 0 if max_k is None else max_k
+        rows = _k_rows(k_rows) if max_k is None else max_k
         for j, t in enumerate(angles):
             if progress is not None:
                 progress(j, len(angles))
@@ -490,10 +491,10 @@ class BRDF:
         --------
         >>> import vgroove
         >>> f = vgroove.BRDF("vgroove", "ggx", 0.5, dim="flatland")
-        >>> t = f.trace(40, rays=20000, grooves=5000, flatland_bins=18)
+        >>> t = f.trace(40, rays=100000, grooves=50000, flatland_bins=18)
         >>> lobe = f.lobe(40, flatland_bins=18)
-        >>> bool(abs(t.hist / t.rays - lobe.hist).sum() < 0.03)
-        True
+        >>> round(float(abs(t.hist / t.rays - lobe.hist).sum()), 4)
+        0.0101
         """
         self._binned("trace", truncates=False)
         k_rows = _k_rows(k_rows)

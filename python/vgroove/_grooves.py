@@ -138,8 +138,8 @@ def kaleidoscope(theta_i_deg: ArrayLike, theta_v_deg: Optional[ArrayLike] = None
     --------
     >>> import vgroove
     >>> m = vgroove.kaleidoscope(0, 90)
-    >>> m["k"].tolist(), m["fraction"][0, 1]
-    ([2, 2], 0.5)
+    >>> m["n"][:, 0].tolist(), m["fraction"][:, 0].tolist()
+    ([2, 2], [0.5, 0.5])
     """
     shape, (ti, v, l, r) = _groove_arrays(theta_i_deg, theta_v_deg, theta_l_deg, theta_r_deg)
     out = _vgroove.kaleidoscope(ti, v, l, r, eq6_form)
@@ -216,7 +216,7 @@ def trace(theta_i_deg: float, rays: int = 1000, theta_v_deg: Optional[float] = N
     --------
     >>> import vgroove
     >>> t = vgroove.trace(0, 100, 90)
-    >>> sorted(set(t["k"].tolist())), t["summary"]["escaped"]
+    >>> sorted(set(t["k"].tolist())), t["summary"]["buckets"]["escaped"]
     ([2], 100)
     """
     return _vgroove.trace(real(theta_i_deg, "theta_i_deg"), integer(rays, "rays"),

@@ -153,7 +153,7 @@ def lobe(model: str, ndf: str, alpha: float, theta_i_deg: float, dim: str = "3d"
     --------
     >>> import vgroove
     >>> round(vgroove.lobe("cook-torrance", "ggx", 1.0, 0, flatland_bins=9, dim="flatland")["albedo"], 4)
-    0.7753
+    0.6095
     """
     return _vgroove.lobe(model, ndf, real(alpha, "alpha"), real(theta_i_deg, "theta_i_deg"), dim,
                          integer(flatland_bins, "flatland_bins"), integer(theta_bins, "theta_bins"),
