@@ -26,9 +26,9 @@ struct Pair {
 };
 
 constexpr std::size_t kMaxPairs = 10'000'000;
-// The sums that cost O(max_k^2): their largest --max-k and the default.
+// The sums that cost O(max_k^2): their largest --max-k (the defaults: analytic::default_max_k).
 constexpr int kFlatlandMaxK = validation::kMaxFlatlandBrdfK;
-constexpr int kNonsymmetricMaxK = validation::kMaxNonsymmetricBrdfK, kNonsymmetricDefaultK = 64;
+constexpr int kNonsymmetricMaxK = validation::kMaxNonsymmetricBrdfK;
 
 void check_angle(double v, double lo, bool lo_closed, double hi, bool hi_closed, const std::string& what) {
   const bool ok = std::isfinite(v) && (lo_closed ? v >= lo : v > lo) && (hi_closed ? v <= hi : v < hi);
@@ -93,12 +93,13 @@ analytic::Dir3 direction(double theta_deg, double phi_deg, bool flat) {
   return analytic::dir3(deg_to_rad(theta_deg), deg_to_rad(phi_deg));
 }
 
-// The orders summed: --max-k checked against the model's range, or the model's default.
+// The orders summed: --max-k checked against the model's range, or the model's default (the one
+// table of every face, analytic/brdf_model.h).
 int orders(const BrdfArgs& a, analytic::BrdfModel model, bool flat) {
+  if (!a.max_k_given) return analytic::default_max_k(model, flat);
   if (a.max_k < 1)
     throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, 2147483647]");
   if (model == analytic::BrdfModel::vgroove_nonsymmetric) {
-    if (!a.max_k_given) return kNonsymmetricDefaultK;
     if (a.max_k > kNonsymmetricMaxK)
       throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, " +
                                std::to_string(kNonsymmetricMaxK) +
@@ -106,7 +107,6 @@ int orders(const BrdfArgs& a, analytic::BrdfModel model, bool flat) {
     return a.max_k;
   }
   if (flat && model == analytic::BrdfModel::vgroove) {
-    if (!a.max_k_given) return kFlatlandMaxK;
     if (a.max_k > kFlatlandMaxK)
       throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, " +
                                std::to_string(kFlatlandMaxK) +

@@ -170,7 +170,7 @@ struct BrdfArgs {
   bool alpha_y_given = false;
   std::string partner = "independent";
   bool partner_given = false;
-  int max_k = 1'000'000;  // when not given: every order (3D vgroove), 4096 (flatland), 64 (nonsymmetric)
+  int max_k = 1'000'000;  // when not given: analytic::default_max_k (every order in 3D, 4096 flatland, 64 nonsymmetric)
   bool max_k_given = false;
   bool per_k = false;
   int per_k_max = 16;
