@@ -118,7 +118,8 @@ Walk3d smith_walk_3d(NdfKind ndf, double alpha, const Dir3& i, Uniform&& uniform
 // The walk with F = 1.
 template <class Uniform>
 Walk3d smith_walk_3d(NdfKind ndf, double alpha, const Dir3& i, Uniform&& uniform, int max_k = 100000) {
-  return smith_walk_3d(ndf, alpha, i, uniform, [](double) {}, max_k);
+  return smith_walk_3d(
+      ndf, alpha, i, uniform, [](double) {}, max_k);
 }
 
 // The next-event estimate after a reflection from the view v at lc = log C1(h): the phase

@@ -78,7 +78,8 @@ TEST(SmithWalk3d, CrossSlopeInvertsItsDistribution) {
           // t^-(2n+1) / pi, terms falling by 1/t^2 <= 1/4.
           F_tail = 0.0;
           double power = 1.0 / (t * t * t);
-          for (int n = 1; n <= 40; ++n, power /= t * t) F_tail += (n % 2 ? 1.0 : -1.0) * 2.0 * n / (2.0 * n + 1.0) * power;
+          for (int n = 1; n <= 40; ++n, power /= t * t)
+            F_tail += (n % 2 ? 1.0 : -1.0) * 2.0 * n / (2.0 * n + 1.0) * power;
           F_tail /= kPi;
         }
         EXPECT_NEAR(F_tail, tail, 1e-12 * tail) << "GGX alpha=" << alpha << " p=" << p << " u=" << u;
@@ -207,8 +208,7 @@ TEST(SmithWalk3d, SingleScatteringIsTheHeightCorrelatedAlbedo) {
         const double corr = albedo_single({ndf, MaskingKind::smith_height_correlated}, alpha, mu).value;
         // The binomial standard error at the expected share, floored at one path's worth (near
         // E = 1 the misses are Poisson with a mean below 1).
-        const double E1 = static_cast<double>(k1) / kPaths,
-                     se = std::sqrt(corr * (1.0 - corr) / kPaths) + 1.0 / kPaths;
+        const double E1 = static_cast<double>(k1) / kPaths, se = std::sqrt(corr * (1.0 - corr) / kPaths) + 1.0 / kPaths;
         const double sep = albedo_single({ndf, MaskingKind::smith_separable}, alpha, mu).value;
         EXPECT_NEAR(E1, corr, 5.0 * se) << ndf_name(ndf) << " alpha=" << alpha << " theta=" << theta_deg;
         if (alpha >= 1.0 && theta_deg == 80.0) {
