@@ -133,7 +133,6 @@ void integrate_facet(Run& r, const GaussLegendre& rule, int k_bands, int strata,
   }
 }
 
-
 // int_0^{pi/2} g(phi) d phi * scale into acc, g deposited by node(phi, w) with weight w into *r.rows
 // (acc itself): the 15 Kronrod nodes of each piece deposit into a piece-own vector, the 7 Gauss
 // ones into another, and their difference is the piece's error.
@@ -199,16 +198,24 @@ void integrate_phi(Node&& node, std::vector<double>& acc, double scale, const Vg
 
 }  // namespace
 
-VgrooveAlbedo vgroove_albedo(NdfKind ndf, double alpha, double mu, int channels, const ChannelReflectance& F,
-                             int max_k, const VgrooveAlbedoOptions& opt) {
+VgrooveAlbedo vgroove_albedo(NdfKind ndf, double alpha, double mu, int channels, const ChannelReflectance& F, int max_k,
+                             const VgrooveAlbedoOptions& opt) {
   assert(alpha > 0.0 && mu > 0.0 && mu <= 1.0 && max_k >= 1);
   VgrooveAlbedo out;
   out.max_k = max_k;
   out.channels = F ? channels : 1;
   const int C = out.channels;
   out.by_k.assign(static_cast<std::size_t>(max_k + 2) * C, 0.0);
-  Run r{ndf, alpha,    max_k, C, F ? &F : nullptr, std::vector<char>(C, 0), opt.tail_cutoff, &out.by_k,
-        std::vector<double>(C), std::vector<double>(C)};
+  Run r{ndf,
+        alpha,
+        max_k,
+        C,
+        F ? &F : nullptr,
+        std::vector<char>(C, 0),
+        opt.tail_cutoff,
+        &out.by_k,
+        std::vector<double>(C),
+        std::vector<double>(C)};
   if (F) {
     // A channel whose F is exactly 1 at 0, 1/4, ..., 1 is taken as F = 1 (Schlick's with F0 = 1,
     // the white furnace): no path's product moves it, so it never keeps a path going.

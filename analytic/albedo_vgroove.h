@@ -57,8 +57,8 @@ using ChannelReflectance = std::function<void(double cos_theta, double* out)>;
 struct VgrooveAlbedoOptions {
   double phi_tol = 1e-8;    // the summed |K15 - G7| (largest over the rows and channels) over phi_a
   int phi_max_pieces = 32;  // at most this many Gauss-Kronrod pieces of [0, pi/2]
-  int band_order = 8;  // Gauss-Legendre nodes per piece between the cuts
-  int k_bands = 24;    // cuts down to the grooves of k_bands reflections; the tail below
+  int band_order = 8;       // Gauss-Legendre nodes per piece between the cuts
+  int k_bands = 24;         // cuts down to the grooves of k_bands reflections; the tail below
   int tail_strata = 256;
   double tail_cutoff = 1e-15;
 };
@@ -74,7 +74,7 @@ struct VgrooveAlbedo {
 };
 
 // E_k(mu, alpha) for mu in (0, 1], alpha > 0, any NDF; F empty: one channel with F = 1.
-VgrooveAlbedo vgroove_albedo(NdfKind ndf, double alpha, double mu, int channels, const ChannelReflectance& F,
-                             int max_k, const VgrooveAlbedoOptions& opt = {});
+VgrooveAlbedo vgroove_albedo(NdfKind ndf, double alpha, double mu, int channels, const ChannelReflectance& F, int max_k,
+                             const VgrooveAlbedoOptions& opt = {});
 
 }  // namespace vgroove::analytic

@@ -37,8 +37,8 @@ TEST(AlbedoVgroove, WhiteFurnaceAndTheLobesRows) {
         EXPECT_EQ(a.row(0, 0), 0.0);
         const Lobe3d lobe = vgroove_lobe_3d(ndf, alpha, std::acos(mu), 1, 2, max_k);
         for (int k = 1; k <= max_k + 1; ++k)
-          EXPECT_NEAR(a.row(k, 0), lobe.by_k[k], 2e-7) << ndf_name(ndf) << " alpha=" << alpha << " mu=" << mu
-                                                       << " k=" << k;
+          EXPECT_NEAR(a.row(k, 0), lobe.by_k[k], 2e-7)
+              << ndf_name(ndf) << " alpha=" << alpha << " mu=" << mu << " k=" << k;
       }
 }
 
@@ -63,6 +63,20 @@ TEST(AlbedoVgroove, FirstRowIsCookTorrancesAlbedoWithTheVcavityG) {
       }
 }
 
+// The same with a conductor's F: the first row against albedo_single_fresnel of the V-cavity
+// model (the one-bounce integral over h, written independently of the grooves).
+TEST(AlbedoVgroove, FirstRowWithAConductorIsAlbedoSingleFresnel) {
+  auto F = [](double c) { return optics::fresnel_conductor(c, 0.43, 2.455); };  // gold near 550 nm
+  for (NdfKind ndf : {NdfKind::ggx, NdfKind::beckmann})
+    for (double alpha : {0.05, 1.2})
+      for (double mu : {1.0, 0.3, 0.05}) {
+        const BoundedValue e = albedo_single_fresnel({ndf, MaskingKind::vcavity}, alpha, mu, F);
+        const VgrooveAlbedo a = vgroove_albedo(
+            ndf, alpha, mu, 1, [&](double c, double* out) { out[0] = F(c); }, 2);
+        EXPECT_NEAR(a.row(1, 0), e.value, 2e-7 + e.error) << ndf_name(ndf) << " alpha=" << alpha << " mu=" << mu;
+      }
+}
+
 TEST(AlbedoVgroove, ConstantReflectanceWeighsOrderKByItsPower) {
   const int max_k = 400;
   for (double alpha : {0.3, 1.5})
@@ -76,7 +90,8 @@ TEST(AlbedoVgroove, ConstantReflectanceWeighsOrderKByItsPower) {
       // The adaptive phi_a quadrature refines the two runs apart: within its tolerance (1e-8).
       EXPECT_NEAR(a.total[0], want, 1e-8) << "alpha=" << alpha << " mu=" << mu;
       for (int k = 1; k <= 6; ++k)
-        EXPECT_NEAR(a.row(k, 0), one.row(k, 0) * std::pow(f, k), 1e-8) << "alpha=" << alpha << " mu=" << mu << " k=" << k;
+        EXPECT_NEAR(a.row(k, 0), one.row(k, 0) * std::pow(f, k), 1e-8)
+            << "alpha=" << alpha << " mu=" << mu << " k=" << k;
     }
 }
 
