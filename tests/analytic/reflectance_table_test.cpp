@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <vector>
 
 namespace vgroove::analytic {
 namespace {
@@ -27,14 +29,16 @@ TEST(ReflectanceTable, MatchesTheExactCurvesBelow1e12) {
     std::function<double(double)> F;
   };
   // Gold and silver at 450 nm, copper at 650 nm, aluminium at 443 nm (data/reference/metals.json).
-  const Curve curves[] = {
-      {"Au 450", [](double c) { return optics::fresnel_conductor(c, 1.38, 1.914); }},
-      {"Ag 450", [](double c) { return optics::fresnel_conductor(c, 0.04, 2.657); }},
-      {"Cu 650", [](double c) { return optics::fresnel_conductor(c, 0.22, 3.747); }},
-      {"Al 443", [](double c) { return optics::fresnel_conductor(c, 0.6079, 5.3676); }},
-      {"Schlick 0.04", [](double c) { return optics::fresnel_schlick(c, 0.04); }},
-      {"glass 1.5", [](double c) { return optics::fresnel_dielectric(c, 1.5); }},
-  };
+  // The twelve rows of data/reference/metals.json (Au, Ag, Cu at 450.9, 548.6, 659.5 nm; Al at
+  // 442.8, 563.57, 652.25 nm), Schlick's F and glass.
+  const double eta[12] = {1.38, 0.43, 0.14, 0.04, 0.06, 0.05, 1.24, 1.02, 0.22, 0.6079, 1.0728, 1.5724};
+  const double kappa[12] = {1.914, 2.455, 3.697, 2.657, 3.586, 4.483, 2.397, 2.577, 3.747, 5.3676, 6.7839, 7.7354};
+  std::vector<Curve> curves;
+  for (int j = 0; j < 12; ++j)
+    curves.push_back(
+        {"metals.json row", [&eta, &kappa, j](double c) { return optics::fresnel_conductor(c, eta[j], kappa[j]); }});
+  curves.push_back({"Schlick 0.04", [](double c) { return optics::fresnel_schlick(c, 0.04); }});
+  curves.push_back({"glass 1.5", [](double c) { return optics::fresnel_dielectric(c, 1.5); }});
   for (const Curve& cv : curves) {
     const ReflectanceTable t(cv.F);
     double worst = 0.0;
