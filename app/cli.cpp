@@ -8,6 +8,7 @@
 #include "vgroove/support/printable.h"
 #include "vgroove/support/std_streams.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/energy_export.h"
 #include "vgroove/validation/energy_table.h"
 #include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
@@ -356,6 +357,25 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
            "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
            "report (`vgroove merge` joins them)");
   energy->add_flag("--force", ea.force, "overwrite existing files");
+  energy->add_flag("--audit", ea.audit,
+                   "the energy audit over the grid (GGX and Beckmann; --rays: walk paths per cell): compensation "
+                   "formulas against the V-groove model and the Smith random walk (its report's /spec is a suite for "
+                   "`vgroove validate`, which shards and runs under mpirun)");
+  add_text(energy, "--export", ea.export_base,
+           "write tables engines can load to BASE.json, .npz, .h, .png, .exr (see --formats): E_ss, E_avg, the DFG "
+           "scale and bias, and with --ms-reference the exact multiple-scattering albedo per F0");
+  add_text(energy, "--layout", ea.layout, "--export's layout: cycles (32 texel ends, Cycles' table_ggx_E) or centres")
+      ->capture_default_str();
+  add_integer(energy, "--size", ea.size, "--export's texels per axis", 2, kMaxExportSize)->capture_default_str();
+  add_text(energy, "--masking", ea.masking, "--export's G2 without --ms-reference: smith, smith_separable, vcavity")
+      ->capture_default_str();
+  add_text(energy, "--ms-reference", ea.ms_reference,
+           "--export's multiple scattering: none, vgroove (V-cavity single scattering), smith_walk (Smith's; "
+           "--rays paths per texel)")
+      ->capture_default_str();
+  add_real(energy, "--ms-F0", ea.ms_F0, "--export's Schlick F0 axis, comma-separated, each in [0, 1]")->delimiter(',');
+  add_list(energy, "--formats", ea.formats, "--export's files, comma-separated: json, npz, h, png, exr")
+      ->capture_default_str();
   ea.dry_run = ctx.dry_run;
   ea.cancel = ctx.cancel;
   MergeArgs ma;

@@ -59,6 +59,9 @@ void write_energy_table(const EnergyTable& t, const std::string& out, bool npy, 
 }
 
 int cmd_energy(const EnergyArgs& a) {
+  if (a.audit && !a.export_base.empty()) throw support::UserError("--audit and --export are two runs: give one");
+  if (a.audit) return cmd_energy_audit(a);
+  if (!a.export_base.empty()) return cmd_energy_export(a);
   check_threads(a.threads, "--threads");
   EnergyGrid g;
   g.ndfs.clear(), g.dims.clear();

@@ -6,9 +6,11 @@ set -euo pipefail
 # python3-matplotlib (run; matplotlib brings PIL), python3-pytest (tests); all for Debian's
 # /usr/bin/python3. MPI (libopenmpi-dev openmpi-bin): the tests run vgroove under mpirun
 # (tests/cluster/); the default build does not need it. Boost.Math (header-only): the tests'
-# chi-square p-values. GNU parallel (scripts/cluster/) is optional.
+# chi-square p-values. libpng-dev libopenexr-dev: `vgroove energy --export`'s 16-bit PNG and
+# OpenEXR tables. GNU parallel (scripts/cluster/) is optional.
 packages=(g++ cmake ninja-build git libeigen3-dev libcli11-dev nlohmann-json3-dev
           libgtest-dev libgmock-dev libbenchmark-dev libboost-math-dev python3-jsonschema
+          libpng-dev libopenexr-dev
           pybind11-dev python3-dev python3-numpy python3-matplotlib python3-pytest
           libopenmpi-dev openmpi-bin "$@")
 missing=()

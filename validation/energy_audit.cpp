@@ -171,10 +171,11 @@ EnergyAuditWork::Fixed EnergyAuditWork::run_fixed(std::size_t cell) const {
     E_F.resize(static_cast<std::size_t>(C));
     for (int ch = 0; ch < C; ++ch) {
       const Channel& k = channels->channels()[static_cast<std::size_t>(ch)];
-      E_F[static_cast<std::size_t>(ch)] =
-          k.kind == ChannelKind::schlick
-              ? k.F0 * s.scale + s.bias
-              : analytic::albedo_single_fresnel(m, c.alpha, c.mu, [&k](double x) { return k.F(x); }, opt).value;
+      E_F[static_cast<std::size_t>(ch)] = k.kind == ChannelKind::schlick
+                                              ? k.F0 * s.scale + s.bias
+                                              : analytic::albedo_single_fresnel(
+                                                    m, c.alpha, c.mu, [&k](double x) { return k.F(x); }, opt)
+                                                    .value;
     }
   };
   single({c.ndf, analytic::MaskingKind::smith_height_correlated}, f.smith, f.smith_E_F);

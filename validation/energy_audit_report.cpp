@@ -40,25 +40,25 @@ double delta_e_2000(const double lab1[3], const double lab2[3]) {
   const double L1 = lab1[0], a1 = lab1[1], b1 = lab1[2], L2 = lab2[0], a2 = lab2[1], b2 = lab2[2];
   const double C1 = std::hypot(a1, b1), C2 = std::hypot(a2, b2), Cbar = 0.5 * (C1 + C2);
   const double Cbar7 = std::pow(Cbar, 7.0), p25 = std::pow(25.0, 7.0);
-  const double G = 0.5 * (1.0 - std::sqrt(Cbar7 / (Cbar7 + p25)));                           // Eq. (4)
-  const double a1p = (1.0 + G) * a1, a2p = (1.0 + G) * a2;                                   // Eq. (5)
-  const double C1p = std::hypot(a1p, b1), C2p = std::hypot(a2p, b2);                         // Eq. (6)
-  auto hue = [&](double b, double ap) {                                                      // Eq. (7)
+  const double G = 0.5 * (1.0 - std::sqrt(Cbar7 / (Cbar7 + p25)));    // Eq. (4)
+  const double a1p = (1.0 + G) * a1, a2p = (1.0 + G) * a2;            // Eq. (5)
+  const double C1p = std::hypot(a1p, b1), C2p = std::hypot(a2p, b2);  // Eq. (6)
+  auto hue = [&](double b, double ap) {                               // Eq. (7)
     if (b == 0.0 && ap == 0.0) return 0.0;
     const double h = std::atan2(b, ap) / kDeg;
     return h < 0.0 ? h + 360.0 : h;
   };
   const double h1p = hue(b1, a1p), h2p = hue(b2, a2p);
-  const double dLp = L2 - L1, dCp = C2p - C1p;                                               // Eq. (8), (9)
-  double dhp = 0.0;                                                                          // Eq. (10)
+  const double dLp = L2 - L1, dCp = C2p - C1p;  // Eq. (8), (9)
+  double dhp = 0.0;                             // Eq. (10)
   if (C1p * C2p != 0.0) {
     dhp = h2p - h1p;
     if (dhp > 180.0) dhp -= 360.0;
     if (dhp < -180.0) dhp += 360.0;
   }
-  const double dHp = 2.0 * std::sqrt(C1p * C2p) * std::sin(0.5 * dhp * kDeg);                // Eq. (11)
-  const double Lbp = 0.5 * (L1 + L2), Cbp = 0.5 * (C1p + C2p);                               // Eq. (12), (13)
-  double hbp = h1p + h2p;                                                                    // Eq. (14)
+  const double dHp = 2.0 * std::sqrt(C1p * C2p) * std::sin(0.5 * dhp * kDeg);  // Eq. (11)
+  const double Lbp = 0.5 * (L1 + L2), Cbp = 0.5 * (C1p + C2p);                 // Eq. (12), (13)
+  double hbp = h1p + h2p;                                                      // Eq. (14)
   if (C1p * C2p != 0.0) {
     if (std::abs(h1p - h2p) <= 180.0)
       hbp = 0.5 * (h1p + h2p);
@@ -67,15 +67,15 @@ double delta_e_2000(const double lab1[3], const double lab2[3]) {
   }
   const double T = 1.0 - 0.17 * std::cos((hbp - 30.0) * kDeg) + 0.24 * std::cos(2.0 * hbp * kDeg) +
                    0.32 * std::cos((3.0 * hbp + 6.0) * kDeg) - 0.20 * std::cos((4.0 * hbp - 63.0) * kDeg);  // (15)
-  const double dtheta = 30.0 * std::exp(-std::pow((hbp - 275.0) / 25.0, 2.0));               // Eq. (16)
+  const double dtheta = 30.0 * std::exp(-std::pow((hbp - 275.0) / 25.0, 2.0));                              // Eq. (16)
   const double Cbp7 = std::pow(Cbp, 7.0);
-  const double RC = 2.0 * std::sqrt(Cbp7 / (Cbp7 + p25));                                    // Eq. (17)
+  const double RC = 2.0 * std::sqrt(Cbp7 / (Cbp7 + p25));  // Eq. (17)
   const double l50 = (Lbp - 50.0) * (Lbp - 50.0);
-  const double SL = 1.0 + 0.015 * l50 / std::sqrt(20.0 + l50);                               // Eq. (18)
-  const double SC = 1.0 + 0.045 * Cbp, SH = 1.0 + 0.015 * Cbp * T;                           // Eq. (19), (20)
-  const double RT = -std::sin(2.0 * dtheta * kDeg) * RC;                                     // Eq. (21)
+  const double SL = 1.0 + 0.015 * l50 / std::sqrt(20.0 + l50);      // Eq. (18)
+  const double SC = 1.0 + 0.045 * Cbp, SH = 1.0 + 0.015 * Cbp * T;  // Eq. (19), (20)
+  const double RT = -std::sin(2.0 * dtheta * kDeg) * RC;            // Eq. (21)
   const double l = dLp / SL, c = dCp / SC, h = dHp / SH;
-  return std::sqrt(l * l + c * c + h * h + RT * c * h);                                      // Eq. (22)
+  return std::sqrt(l * l + c * c + h * h + RT * c * h);  // Eq. (22)
 }
 
 double delta_e_2000_linear_srgb(const double rgb_a[3], const double rgb_b[3]) {
@@ -109,8 +109,11 @@ struct Stat {
   double mean_abs() const { return n ? sum_abs / n : kNaN; }
   nlohmann::json json() const {
     if (n == 0) return nullptr;
-    return {{"worst", exact_json(worst_signed)}, {"mean_abs", exact_json(sum_abs / n)}, {"mean", exact_json(sum / n)},
-            {"count", n}, {"at", at}};
+    return {{"worst", exact_json(worst_signed)},
+            {"mean_abs", exact_json(sum_abs / n)},
+            {"mean", exact_json(sum / n)},
+            {"count", n},
+            {"at", at}};
   }
 };
 
@@ -269,11 +272,12 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
           if (!any) continue;
           nlohmann::json j;
           for (int reg = 0; reg < kNumRegions; ++reg)
-            j[kRegions[reg]] = {{"delta_e_2000", dE[reg].json()},
-                                {"ratio_minus_1", {{"R", ratio[reg][0].json()},
-                                                   {"G", ratio[reg][1].json()},
-                                                   {"B", ratio[reg][2].json()}}}};
-          colour[metal][given == "conductor" ? "conductor" : "engine_schlick"][kAuditReferences[ref]][variants[v].id] = j;
+            j[kRegions[reg]] = {
+                {"delta_e_2000", dE[reg].json()},
+                {"ratio_minus_1",
+                 {{"R", ratio[reg][0].json()}, {"G", ratio[reg][1].json()}, {"B", ratio[reg][2].json()}}}};
+          colour[metal][given == "conductor" ? "conductor" : "engine_schlick"][kAuditReferences[ref]][variants[v].id] =
+              j;
         }
   }
 
@@ -289,8 +293,9 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
     // In integers: every path that left carries exactly 2^32 units in the white channel.
     std::int64_t units = 0;
     for (int k = 0; k < R; ++k) units += t.energy[static_cast<std::size_t>(k) * C + white];
-    walk_white = std::max(walk_white, std::abs(static_cast<double>(units) / kEnergyUnit - static_cast<double>(t.paths)) /
-                                          static_cast<double>(t.paths));
+    walk_white =
+        std::max(walk_white, std::abs(static_cast<double>(units) / kEnergyUnit - static_cast<double>(t.paths)) /
+                                 static_cast<double>(t.paths));
     const double N = static_cast<double>(t.paths), p = f.smith.E;
     const double E1 = static_cast<double>(t.by_k[1]) / N;
     const double z = std::abs(E1 - p) / (std::sqrt(std::max(0.0, p * (1.0 - p)) / N) + 1.0 / N);
@@ -355,7 +360,8 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
   j["colour_space"] =
       "the three bands of a metal (~650, ~550, ~450 nm) read as linear sRGB R, G, B (an assumption, not a spectral "
       "integration), to CIE L*a*b* with the D65 white; CIE Delta E 2000 (Sharma et al. 2005)";
-  const std::vector<std::size_t> cell_shape = {s.ndfs.size(), s.alphas.size(), s.mus.size(), static_cast<std::size_t>(C)};
+  const std::vector<std::size_t> cell_shape = {s.ndfs.size(), s.alphas.size(), s.mus.size(),
+                                               static_cast<std::size_t>(C)};
   std::vector<std::size_t> row_shape = {s.ndfs.size(), s.alphas.size(), s.mus.size(), static_cast<std::size_t>(R),
                                         static_cast<std::size_t>(C)};
   nlohmann::json refs;
@@ -381,16 +387,17 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
       a[6].push_back(f.filament_dfg_y), a[7].push_back(f.cycles_E);
     }
     const std::vector<std::size_t> shape = {s.ndfs.size(), s.alphas.size(), s.mus.size()};
-    const char* names[] = {"smith_E", "smith_scale", "smith_bias", "smith_E_avg", "vcavity_E", "vcavity_E_avg",
-                           "filament_dfg_y", "cycles_E"};
+    const char* names[] = {"smith_E",   "smith_scale",   "smith_bias",     "smith_E_avg",
+                           "vcavity_E", "vcavity_E_avg", "filament_dfg_y", "cycles_E"};
     for (int q = 0; q < 8; ++q) single[names[q]] = nested(a[q], shape);
     j["single_scattering"] = single;
   }
   nlohmann::json err, summary;
   for (int v = 0; v < V; ++v)
     for (int ref = 0; ref < kRefs; ++ref) {
-      const std::vector<double> part(errors.begin() + static_cast<std::ptrdiff_t>((v * kRefs + ref) * r.size() * C),
-                                     errors.begin() + static_cast<std::ptrdiff_t>((v * kRefs + ref + 1) * r.size() * C));
+      const std::vector<double> part(
+          errors.begin() + static_cast<std::ptrdiff_t>((v * kRefs + ref) * r.size() * C),
+          errors.begin() + static_cast<std::ptrdiff_t>((v * kRefs + ref + 1) * r.size() * C));
       if (std::all_of(part.begin(), part.end(), [](double x) { return std::isnan(x); })) continue;
       err[variants[v].id][kAuditReferences[ref]] = nested(part, cell_shape);
       for (int g = 0; g < kNumGroups; ++g)
@@ -404,16 +411,25 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
   j["statement"] = statements;
   j["checks"] = {
       {"walk_white_furnace",
-       {{"pass", walk_ok}, {"largest_deviation", exact_json(walk_white)}, {"lost_paths", lost},
+       {{"pass", walk_ok},
+        {"largest_deviation", exact_json(walk_white)},
+        {"lost_paths", lost},
         {"what", "F = 1: every path leaves, so the white channel's albedo is 1 exactly"}}},
       {"walk_single_scattering",
-       {{"pass", z_ok}, {"largest_z", exact_json(walk_z)}, {"at", walk_z_at}, {"sigmas", s.sigmas},
+       {{"pass", z_ok},
+        {"largest_z", exact_json(walk_z)},
+        {"at", walk_z_at},
+        {"sigmas", s.sigmas},
         {"what", "E_1 of the walk against Smith's height-correlated E_ss by quadrature, in standard errors"}}},
       {"vgroove_white_furnace",
-       {{"pass", vg_ok}, {"largest_deviation", exact_json(vg_white)}, {"at", vg_white_at},
+       {{"pass", vg_ok},
+        {"largest_deviation", exact_json(vg_white)},
+        {"at", vg_white_at},
         {"tolerance", s.vgroove_furnace}}},
       {"vgroove_single_scattering",
-       {{"pass", vg1_ok}, {"largest_deviation", exact_json(vg_single)}, {"at", vg_single_at},
+       {{"pass", vg1_ok},
+        {"largest_deviation", exact_json(vg_single)},
+        {"at", vg_single_at},
         {"tolerance", s.vgroove_furnace},
         {"what", "the model's first row against the V-cavity E_ss by quadrature (Cook-Torrance's albedo)"}}}};
   j["lobe_shape"] =
@@ -430,15 +446,16 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
     os << "  against " << kAuditReferences[ref]
        << (ref == 0 ? " (the V-groove model; formulas fed with the V-cavity single scattering)\n"
                     : " (the Smith random walk; formulas fed with Smith's height-correlated single scattering)\n");
-    os << support::format("    %-30s %19s %9s %9s %9s %9s %9s %9s\n", "formula (feed)", "grey worst/mean",
-                          "rough", "grazing", "conduct.", "engine", "mix-bef.", "mix-aft.");
+    os << support::format("    %-30s %19s %9s %9s %9s %9s %9s %9s\n", "formula (feed)", "grey worst/mean", "rough",
+                          "grazing", "conduct.", "engine", "mix-bef.", "mix-aft.");
     for (int v = 0; v < V; ++v) {
       const Stat& g = stat(v, ref, 0, 0);
       if (g.n == 0) continue;
       os << support::format("    %-30s %+9.2e/%8.2e %9.2e %9.2e %9.2e %9.2e %9.2e %9.2e\n", variants[v].id.c_str(),
                             g.worst_signed, g.mean_abs(), stat(v, ref, 0, reg_rough).mean_abs(),
                             stat(v, ref, 0, reg_grazing).mean_abs(), stat(v, ref, 1, 0).mean_abs(),
-                            stat(v, ref, 3, 0).mean_abs(), stat(v, ref, 4, 0).mean_abs(), stat(v, ref, 5, 0).mean_abs());
+                            stat(v, ref, 3, 0).mean_abs(), stat(v, ref, 4, 0).mean_abs(),
+                            stat(v, ref, 5, 0).mean_abs());
     }
   }
   os << "  (mean |error| unless marked; rough: alpha >= " << support::number_text(s.rough_alpha)
@@ -478,9 +495,12 @@ nlohmann::json energy_audit_report_json(const EnergyAuditSuite& s, const EnergyA
   j["seed"] = s.seed;
   j["threads"] = run.threads;
   j["wall_s"] = run.wall_s;
-  j["grid"] = {{"ndf", energy_audit_json(s)["ndf"]}, {"alpha", exact_json(s.alphas)}, {"mu", exact_json(s.mus)},
-               {"layout", "arrays [ndf][alpha][mu][channel], E_by_k [ndf][alpha][mu][k][channel] (k = 0..max_k, the "
-                          "last row k > max_k)"}};
+  j["grid"] = {{"ndf", energy_audit_json(s)["ndf"]},
+               {"alpha", exact_json(s.alphas)},
+               {"mu", exact_json(s.mus)},
+               {"layout",
+                "arrays [ndf][alpha][mu][channel], E_by_k [ndf][alpha][mu][k][channel] (k = 0..max_k, the "
+                "last row k > max_k)"}};
   for (const auto& [k, v] : run.body.items()) j[k] = v;
   j["pass"] = run.pass;
   return j;
@@ -492,7 +512,8 @@ void print_energy_audit(std::ostream& os, const EnergyAuditSuite& s, const Energ
      << ", vgroove " << version_string() << " (git " << git_revision() << "), " << run.threads << " threads, wall "
      << support::format("%.2f", run.wall_s) << " s\n";
   os << run.table;
-  os << "  verdict: " << (run.pass ? "pass" : "FAIL") << " (the references' checks; the formulas' errors are results)\n";
+  os << "  verdict: " << (run.pass ? "pass" : "FAIL")
+     << " (the references' checks; the formulas' errors are results)\n";
 }
 
 }  // namespace vgroove::validation

@@ -38,7 +38,8 @@ const std::vector<FormulaVariant>& formula_variants() {
     const std::string kc = "Kulla and Conty 2017, SIGGRAPH course slides 'Energy compensation' (no equation numbers)";
     add("kulla_conty", Feed::exact, kc);
     add("turquin", Feed::exact, "Turquin 2019, ILM technical report, the compensation factor 1 + F0 (1 - E) / E");
-    const std::string cy = "Blender Cycles intern/cycles/kernel/closure/bsdf_microfacet.h, microfacet_ggx_preserve_energy";
+    const std::string cy =
+        "Blender Cycles intern/cycles/kernel/closure/bsdf_microfacet.h, microfacet_ggx_preserve_energy";
     add("cycles", Feed::exact, cy);
     add("cycles", Feed::cycles_table, cy);
     add("filament", Feed::filament_lut,

@@ -38,8 +38,8 @@ struct Channel {
   ChannelKind kind = ChannelKind::schlick;
   double F0 = 0.0;  // the normal reflectance (a conductor's from eta, kappa)
   double eta = 0.0, kappa = 0.0;
-  std::string metal;  // the symbol, for the metals' channels
-  int band = -1;      // 0, 1, 2 for the metals' wavelengths
+  std::string metal;                 // the symbol, for the metals' channels
+  int band = -1;                     // 0, 1, 2 for the metals' wavelengths
   double F(double cos_theta) const;  // exact
 };
 

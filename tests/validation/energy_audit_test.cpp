@@ -10,6 +10,7 @@
 //   white furnace (F = 1) within rounding against the walk, whose white albedo is exactly 1; no
 //   compensation loses energy
 //   everywhere; a broken walk tally (one path's white energy short) fails the white furnace check.
+#include "vgroove/validation/energy_audit.h"
 #include "tests/stats.h"
 #include "tests/test_files.h"
 #include "vgroove/analytic/albedo_single.h"
@@ -20,7 +21,6 @@
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/microsurface3d.h"
 #include "vgroove/sim/rng.h"
-#include "vgroove/validation/energy_audit.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -108,9 +108,9 @@ TEST(EngineTables, HalfPrecisionRounding) {
   EXPECT_EQ(round_to_half(1.0), 1.0);
   EXPECT_EQ(round_to_half(0.1), 0.0999755859375);
   EXPECT_EQ(round_to_half(1.0 / 3.0), 0.333251953125);
-  EXPECT_EQ(round_to_half(1.0 + 0x1.0p-11), 1.0);               // a tie, to even
+  EXPECT_EQ(round_to_half(1.0 + 0x1.0p-11), 1.0);                 // a tie, to even
   EXPECT_EQ(round_to_half(1.0 + 3 * 0x1.0p-11), 1.0 + 0x1.0p-9);  // a tie, to even
-  EXPECT_EQ(round_to_half(0x1.0p-20), 0x1.0p-20);               // subnormal range, a multiple of 2^-24
+  EXPECT_EQ(round_to_half(0x1.0p-20), 0x1.0p-20);                 // subnormal range, a multiple of 2^-24
 }
 
 // Filament: at the centre of texel (i, j) the bilinear lookup is that texel, which cmgen computed at
@@ -123,9 +123,9 @@ TEST(EngineTables, FilamentTexelCentresHoldTheNextRowsRoughness) {
   for (auto [i, j] : {std::pair{3, 10}, {64, 64}, {120, 100}}) {
     const double mu = (i + 0.5) / 128.0, r = (j + 0.5) / 128.0;
     const float coord = (static_cast<float>(j) + 1.5f) / 128.0f;
-    const double want = round_to_half(
-        analytic::albedo_single(ggx, static_cast<double>(coord * coord), static_cast<double>(static_cast<float>(mu)), opt)
-            .value);
+    const double want = round_to_half(analytic::albedo_single(ggx, static_cast<double>(coord * coord),
+                                                              static_cast<double>(static_cast<float>(mu)), opt)
+                                          .value);
     EXPECT_NEAR(filament_dfg_y(r * r, mu), want, 1e-12) << i << " " << j;
     // And not the texel's own roughness (the offset moves it by more than half precision).
     const double own = analytic::albedo_single(ggx, r * r, mu, opt).value;
@@ -148,7 +148,8 @@ TEST(EnergyAudit, VgrooveReferenceWithAConductorIsTheTracedGrooves) {
     sim::Rng rng(7, static_cast<std::uint64_t>(alpha * 10), 3);
     std::vector<double> sum(max_k + 2, 0.0), sum2(max_k + 2, 0.0);
     for (long n = 0; n < kRays; ++n) {
-      const double t = std::min(std::nextafter(0.5 * kPi, 0.0), sim::sample_theta_m_3d(ndf, alpha, sim::uniform_open(rng)));
+      const double t =
+          std::min(std::nextafter(0.5 * kPi, 0.0), sim::sample_theta_m_3d(ndf, alpha, sim::uniform_open(rng)));
       const double phi = kPi * sim::uniform_open(rng);
       const sim::Groove g = sim::make_symmetric_groove(kPi - 2.0 * t);
       // i = (-sin theta_i, 0, cos theta_i) in the frame of the groove at phi (sim::trace_groove3d).

@@ -25,8 +25,8 @@ class EnergyAuditPlan final : public PlannedSuite {
   }
   std::string memory_what(int) const override { return std::to_string(suite_.cells()) + " cells' tallies and arrays"; }
   std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>*) const override {
-    return suite_job(energy_audit_job(suite_, std::move(descriptor)), suite_, energy_audit_run_from,
-                     print_energy_audit, energy_audit_report_json);
+    return suite_job(energy_audit_job(suite_, std::move(descriptor)), suite_, energy_audit_run_from, print_energy_audit,
+                     energy_audit_report_json);
   }
 
  private:
