@@ -28,7 +28,8 @@ const std::vector<std::string> kDefaultNdfs{"ggx", "beckmann", "phong"};
 std::vector<double> grid_values(const std::vector<double>& given, int points, const std::string& flag, int most) {
   if (!given.empty()) return given;
   if (points < 1 || points > most)
-    throw support::UserError(flag + " = " + std::to_string(points) + " is out of range [1, " + std::to_string(most) + "]");
+    throw support::UserError(flag + " = " + std::to_string(points) + " is out of range [1, " + std::to_string(most) +
+                             "]");
   return midpoints(points);
 }
 
@@ -56,22 +57,21 @@ int cmd_energy_audit(const EnergyArgs& a) {
   if (a.max_k < 1 || a.max_k > kMaxAuditK)
     throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, " +
                              std::to_string(kMaxAuditK) + "] with --audit");
-  const nlohmann::json suite = {
-      {"name", "energy_audit_cli"},
-      {"kind", "energy_audit"},
-      {"description", "vgroove energy --audit"},
-      {"ndf", audit_ndfs(a.ndfs)},
-      {"alpha", grid_values(a.alpha, a.alpha_points, "--alpha-points", kMaxAlphaPoints)},
-      {"mu", grid_values(a.mu, a.mu_points, "--mu-points", kMaxMuPoints)},
-      {"walk_paths", a.rays},
-      {"seed", a.seed},
-      {"max_k", a.max_k},
-      {"grey_F0", {0.02, 0.04, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0}},
-      {"metals", {"Au", "Ag", "Cu", "Al"}},
-      {"metalness", {0.0, 0.25, 0.5, 0.75, 1.0}},
-      {"regions", {{"rough_alpha", 0.5}, {"grazing_mu", 0.25}}},
-      {"cycles_table", true},
-      {"thresholds", {{"sigmas", 5}, {"vgroove_furnace", 1e-7}}}};
+  const nlohmann::json suite = {{"name", "energy_audit_cli"},
+                                {"kind", "energy_audit"},
+                                {"description", "vgroove energy --audit"},
+                                {"ndf", audit_ndfs(a.ndfs)},
+                                {"alpha", grid_values(a.alpha, a.alpha_points, "--alpha-points", kMaxAlphaPoints)},
+                                {"mu", grid_values(a.mu, a.mu_points, "--mu-points", kMaxMuPoints)},
+                                {"walk_paths", a.rays},
+                                {"seed", a.seed},
+                                {"max_k", a.max_k},
+                                {"grey_F0", {0.02, 0.04, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0}},
+                                {"metals", {"Au", "Ag", "Cu", "Al"}},
+                                {"metalness", {0.0, 0.25, 0.5, 0.75, 1.0}},
+                                {"regions", {{"rough_alpha", 0.5}, {"grazing_mu", 0.25}}},
+                                {"cycles_table", true},
+                                {"thresholds", {{"sigmas", 5}, {"vgroove_furnace", 1e-7}}}};
   const std::string where = "vgroove energy --audit";
   // The grid's own messages (--mu, --alpha, --rays) first, then the suite's.
   if (a.rays < 1 || a.rays > kMaxAuditPaths)
@@ -111,7 +111,8 @@ int cmd_energy_export(const EnergyArgs& a) {
   EnergyExportOptions o;
   const std::vector<std::string> ndfs = a.ndfs == kDefaultNdfs ? std::vector<std::string>{"ggx"} : a.ndfs;
   if (ndfs.size() != 1)
-    throw support::UserError("--ndf has " + std::to_string(ndfs.size()) + " values; --export takes one (ggx, beckmann)");
+    throw support::UserError("--ndf has " + std::to_string(ndfs.size()) +
+                             " values; --export takes one (ggx, beckmann)");
   const auto k = ndf_from_name(ndfs.front());
   if (!k) throw support::UserError("--ndf = \"" + ndfs.front() + "\" is not one of \"ggx\", \"beckmann\"");
   o.model.ndf = *k;
@@ -122,7 +123,8 @@ int cmd_energy_export(const EnergyArgs& a) {
   else if (a.masking == "vcavity")
     o.model.masking = analytic::MaskingKind::vcavity;
   else
-    throw support::UserError("--masking = \"" + a.masking + "\" is not one of \"smith\", \"smith_separable\", \"vcavity\"");
+    throw support::UserError("--masking = \"" + a.masking +
+                             "\" is not one of \"smith\", \"smith_separable\", \"vcavity\"");
   o.layout = a.layout;
   o.size = a.size;
   o.ms_reference = a.ms_reference;
@@ -134,7 +136,9 @@ int cmd_energy_export(const EnergyArgs& a) {
   for (const std::string& f : a.formats)
     if (f != "json" && f != "npz" && f != "h" && f != "png" && f != "exr")
       throw support::UserError("--formats = \"" + f + "\" is not one of \"json\", \"npz\", \"h\", \"png\", \"exr\"");
-  auto wants = [&](const std::string& f) { return std::find(a.formats.begin(), a.formats.end(), f) != a.formats.end(); };
+  auto wants = [&](const std::string& f) {
+    return std::find(a.formats.begin(), a.formats.end(), f) != a.formats.end();
+  };
   // Every file it will write, checked before the work (none is left half-written: each is written
   // whole from memory, atomically).
   const std::string& base = a.export_base;

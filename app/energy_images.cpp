@@ -42,7 +42,8 @@ void png_take(png_structp png, png_bytep data, png_size_t n) {
 
 }  // namespace
 
-std::string png16_bytes(const std::vector<double>& values, int rows, int columns, double scale, const std::string& text) {
+std::string png16_bytes(const std::vector<double>& values, int rows, int columns, double scale,
+                        const std::string& text) {
   std::string out;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, png_fail, png_quiet);
   png_infop info = png ? png_create_info_struct(png) : nullptr;

@@ -12,7 +12,8 @@ namespace vgroove::app {
 
 // One 2D table (rows x columns, row-major) as a 16-bit grey PNG: round(v / scale * 65535), v / scale
 // clamped to [0, 1]; `text` in a tEXt chunk with the keyword "vgroove".
-std::string png16_bytes(const std::vector<double>& values, int rows, int columns, double scale, const std::string& text);
+std::string png16_bytes(const std::vector<double>& values, int rows, int columns, double scale,
+                        const std::string& text);
 // The decoded values of such a PNG (its tests), and its "vgroove" text.
 std::vector<double> png16_values(const std::string& bytes, int& rows, int& columns, std::string& text);
 

@@ -13,9 +13,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <chrono>
 #include <cmath>
-#include <cctype>
 #include <cstdio>
 #include <functional>
 
@@ -127,17 +127,17 @@ std::optional<EnergyExport> energy_export(const EnergyExportOptions& o, const su
   if (!complete || support::cancelled(cancel)) return std::nullopt;
 
   EnergyExport out;
-  const std::vector<std::string> axes2 = l.fast == analytic::FastAxis::roughness
-                                             ? std::vector<std::string>{"mu", "r"}
-                                             : std::vector<std::string>{"r", "mu"};
+  const std::vector<std::string> axes2 = l.fast == analytic::FastAxis::roughness ? std::vector<std::string>{"mu", "r"}
+                                                                                 : std::vector<std::string>{"r", "mu"};
   const std::vector<std::size_t> shape2 = l.fast == analytic::FastAxis::roughness
                                               ? std::vector<std::size_t>{std::size_t(nd), std::size_t(nr)}
                                               : std::vector<std::size_t>{std::size_t(nr), std::size_t(nd)};
   out.arrays.push_back({"E_ss", "single-scattering directional albedo, F = 1", axes2, shape2, E});
   out.arrays.push_back({"E_avg", "its cosine-weighted average 2 int E_ss mu dmu", {"r"}, {std::size_t(nr)}, E_avg});
   out.arrays.push_back(
-      {"dfg_scale", "split-sum scale: int (1 - Fc) f_ss cos, Fc = (1 - v.h)^5 (albedo with Schlick's F = F0 scale + bias)",
-       axes2, shape2, scale});
+      {"dfg_scale",
+       "split-sum scale: int (1 - Fc) f_ss cos, Fc = (1 - v.h)^5 (albedo with Schlick's F = F0 scale + bias)", axes2,
+       shape2, scale});
   out.arrays.push_back({"dfg_bias", "split-sum bias: int Fc f_ss cos", axes2, shape2, bias});
   if (ms) {
     std::vector<std::string> axes3{"F0"};
@@ -154,8 +154,9 @@ std::optional<EnergyExport> energy_export(const EnergyExportOptions& o, const su
                           "the exact multiple-scattering albedo with Schlick's F per reflection: what leaves after two "
                           "or more reflections",
                           axes3, shape3, E_ms});
-    out.arrays.push_back({"compensation", "(E_F + E_ms) / E_F, E_F = F0 dfg_scale + dfg_bias: the exact albedo over the "
-                                          "single-scattering one with the same F",
+    out.arrays.push_back({"compensation",
+                          "(E_F + E_ms) / E_F, E_F = F0 dfg_scale + dfg_bias: the exact albedo over the "
+                          "single-scattering one with the same F",
                           axes3, shape3, factor});
     if (o.ms_reference == "smith_walk")
       out.arrays.push_back({"E_ms_se", "E_ms's standard error (at most sqrt(E (1 - E) / N), the weights in [0, 1])",
@@ -186,10 +187,11 @@ std::optional<EnergyExport> energy_export(const EnergyExportOptions& o, const su
       {"r", rs},
       {"alpha", alphas}};
   m["model"] = {{"ndf", ndf_name(model.ndf)}, {"masking", analytic::masking_name(model.masking)}};
-  m["quadrature"] = {{"method", "nested adaptive Gauss-Kronrod with an error bound per value (analytic/albedo_single.h)"},
-                     {"tol", o.tol},
-                     {"largest_bound", exact_json(*std::max_element(bound.begin(), bound.end()))},
-                     {"largest_bound_E_avg", exact_json(*std::max_element(avg_bound.begin(), avg_bound.end()))}};
+  m["quadrature"] = {
+      {"method", "nested adaptive Gauss-Kronrod with an error bound per value (analytic/albedo_single.h)"},
+      {"tol", o.tol},
+      {"largest_bound", exact_json(*std::max_element(bound.begin(), bound.end()))},
+      {"largest_bound_E_avg", exact_json(*std::max_element(avg_bound.begin(), avg_bound.end()))}};
   if (ms) {
     nlohmann::json r = {{"reference", o.ms_reference},
                         {"F0", exact_json(o.ms_F0)},
@@ -206,11 +208,13 @@ std::optional<EnergyExport> energy_export(const EnergyExportOptions& o, const su
       {"json", "arrays nested, doubles exact"},
       {"npz", "numpy: one .npy member per array (float64), metadata.json beside them"},
       {"header", "C/C++: static const float arrays, row-major, dimensions as enum constants"},
-      {"png", "16-bit grey per 2D table (per F0 slice), value = round(v * 65535) / 65535 for v in [0, 1] (the "
-              "compensation factor as round(v / 4 * 65535): values up to 4), row y = direction index, column x = "
-              "roughness index; this metadata in a tEXt chunk 'vgroove'"},
-      {"exr", "OpenEXR, 32-bit float channels, one per 2D table (and F0 slice), same rows and columns; E_avg in the "
-              "header attribute 'vgroove' with this metadata"}};
+      {"png",
+       "16-bit grey per 2D table (per F0 slice), value = round(v * 65535) / 65535 for v in [0, 1] (the "
+       "compensation factor as round(v / 4 * 65535): values up to 4), row y = direction index, column x = "
+       "roughness index; this metadata in a tEXt chunk 'vgroove'"},
+      {"exr",
+       "OpenEXR, 32-bit float channels, one per 2D table (and F0 slice), same rows and columns; E_avg in the "
+       "header attribute 'vgroove' with this metadata"}};
   out.metadata = m;
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
@@ -226,7 +230,8 @@ std::string export_json_text(const EnergyExport& e) {
       std::size_t stride = 1;
       for (std::size_t d = dim + 1; d < a.shape.size(); ++d) stride *= a.shape[d];
       for (std::size_t i = 0; i < a.shape[dim]; ++i)
-        out.push_back(dim + 1 == a.shape.size() ? exact_json(a.values[offset + i]) : build(dim + 1, offset + i * stride));
+        out.push_back(dim + 1 == a.shape.size() ? exact_json(a.values[offset + i])
+                                                : build(dim + 1, offset + i * stride));
       return out;
     };
     arrays[a.name] = build(0, 0);

@@ -35,9 +35,9 @@ namespace vgroove::validation {
 
 struct EnergyExportOptions {
   analytic::MicrofacetModel model{NdfKind::ggx, analytic::MaskingKind::smith_height_correlated};
-  std::string layout = "cycles";  // "cycles" or "centres"
-  int size = 32;                  // texels per axis, in [2, kMaxExportSize]
-  double tol = 1e-8;              // the quadrature's tolerance on each value
+  std::string layout = "cycles";      // "cycles" or "centres"
+  int size = 32;                      // texels per axis, in [2, kMaxExportSize]
+  double tol = 1e-8;                  // the quadrature's tolerance on each value
   std::string ms_reference = "none";  // "none", "vgroove" or "smith_walk"
   std::vector<double> ms_F0{0.04, 0.25, 0.5, 0.75, 1.0};
   long long walk_paths = 100000;  // per texel (smith_walk)

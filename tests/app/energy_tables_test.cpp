@@ -185,7 +185,8 @@ TEST(EnergyAuditCli, RefusesShardsAndRunsASmallGrid) {
   EXPECT_NE(p.err.find("--ndf = \"phong\""), std::string::npos) << p;
   TempDir dir;
   const std::string out = dir.file("audit.json");
-  const CliRun r = vgroove("energy --audit --ndf ggx --alpha 0.6 --mu 0.3,0.9 --rays 4000 --max-k 3 --out " + quoted(out));
+  const CliRun r =
+      vgroove("energy --audit --ndf ggx --alpha 0.6 --mu 0.3,0.9 --rays 4000 --max-k 3 --out " + quoted(out));
   ASSERT_EQ(r.status, 0) << r;
   EXPECT_NE(r.out.find("against smith_walk"), std::string::npos) << r;
   const nlohmann::json j = read_json(out);
