@@ -4,6 +4,7 @@
 #include "vgroove/support/format.h"
 #include "vgroove/validation/partial_report.h"
 #include "vgroove/validation/report.h"
+#include "vgroove/validation/table_frame.h"
 
 #include <algorithm>
 #include <cmath>
@@ -487,14 +488,8 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
 }
 
 nlohmann::json energy_audit_report_json(const EnergyAuditSuite& s, const EnergyAuditRun& run) {
-  nlohmann::json j = provenance();
-  j["kind"] = "energy_audit";
-  j["suite"] = s.name;
-  j["suite_file"] = s.file;
+  nlohmann::json j = report_header({s.name, s.file, "energy_audit", s.description, s.seed}, run.threads, run.wall_s);
   j["spec"] = energy_audit_json(s);
-  j["seed"] = s.seed;
-  j["threads"] = run.threads;
-  j["wall_s"] = run.wall_s;
   j["grid"] = {{"ndf", energy_audit_json(s)["ndf"]},
                {"alpha", exact_json(s.alphas)},
                {"mu", exact_json(s.mus)},
@@ -507,13 +502,17 @@ nlohmann::json energy_audit_report_json(const EnergyAuditSuite& s, const EnergyA
 }
 
 void print_energy_audit(std::ostream& os, const EnergyAuditSuite& s, const EnergyAuditRun& run) {
-  os << "energy audit " << s.name << ": " << s.cells() << " cells (" << s.ndfs.size() << " NDFs x " << s.alphas.size()
-     << " alpha x " << s.mus.size() << " mu), " << s.walk_paths << " walk paths per cell, seed " << s.seed
-     << ", vgroove " << version_string() << " (git " << git_revision() << "), " << run.threads << " threads, wall "
-     << support::format("%.2f", run.wall_s) << " s\n";
+  print_table_title(os, s.name, "energy_audit",
+                    support::format("%zu cells (%zu NDFs x %zu alpha x %zu mu), %lld walk paths per cell, seed %llu",
+                                    s.cells(), s.ndfs.size(), s.alphas.size(), s.mus.size(), s.walk_paths,
+                                    static_cast<unsigned long long>(s.seed)),
+                    run.threads);
   os << run.table;
-  os << "  verdict: " << (run.pass ? "pass" : "FAIL")
-     << " (the references' checks; the formulas' errors are results)\n";
+  // The verdict is the references' checks; the formulas' errors are results.
+  std::size_t passed = 0, total = 0;
+  if (run.body.contains("checks"))
+    for (const auto& [name, c] : run.body["checks"].items()) ++total, passed += c.value("pass", false) ? 1 : 0;
+  print_table_close(os, passed, total, run.wall_s, "reference checks pass (the formulas' errors are results)");
 }
 
 }  // namespace vgroove::validation
