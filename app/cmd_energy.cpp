@@ -11,6 +11,7 @@
 #include "vgroove/support/atomic_file.h"
 #include "vgroove/support/npy.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/energy_export.h"
 #include "vgroove/validation/energy_table.h"
 
 #include <chrono>
@@ -61,6 +62,9 @@ void write_energy_table(const EnergyTable& t, const std::string& out, bool npy, 
 }
 
 int cmd_energy(const EnergyArgs& a) {
+  if (a.audit && !a.export_base.empty()) throw support::UserError("--audit and --export are two runs: give one");
+  if (a.audit) return cmd_energy_audit(a);
+  if (!a.export_base.empty()) return cmd_energy_export(a);
   check_threads(a.threads, "--threads");
   EnergyGrid g;
   g.ndfs.clear(), g.dims.clear();
@@ -169,6 +173,26 @@ void add_energy_command(CLI::App& app, Commands& commands) {
            "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
            "report (`vgroove merge` joins them)");
   energy->add_flag("--force", ea.force, "overwrite existing files");
+  energy->add_flag("--audit", ea.audit,
+                   "the energy audit over the grid (GGX and Beckmann; --rays: walk paths per cell): compensation "
+                   "formulas against the V-groove model and the Smith random walk (its report's /spec is a suite for "
+                   "`vgroove validate`, which shards and runs under mpirun)");
+  add_text(energy, "--export", ea.export_base,
+           "write tables engines can load to BASE.json, .npz, .h, .png, .exr (see --formats): E_ss, E_avg, the DFG "
+           "scale and bias, and with --ms-reference the exact multiple-scattering albedo per F0");
+  add_text(energy, "--layout", ea.layout, "--export's layout: cycles (32 texel ends, Cycles' table_ggx_E) or centres")
+      ->capture_default_str();
+  add_integer(energy, "--size", ea.size, "--export's texels per axis", 2, validation::kMaxExportSize)
+      ->capture_default_str();
+  add_text(energy, "--masking", ea.masking, "--export's G2 without --ms-reference: smith, smith_separable, vcavity")
+      ->capture_default_str();
+  add_text(energy, "--ms-reference", ea.ms_reference,
+           "--export's multiple scattering: none, vgroove (V-cavity single scattering), smith_walk (Smith's; "
+           "--rays paths per texel)")
+      ->capture_default_str();
+  add_real(energy, "--ms-F0", ea.ms_F0, "--export's Schlick F0 axis, comma-separated, each in [0, 1]")->delimiter(',');
+  add_list(energy, "--formats", ea.formats, "--export's files, comma-separated: json, npz, h, png, exr")
+      ->capture_default_str();
 }
 
 }  // namespace vgroove::app

@@ -199,8 +199,21 @@ struct EnergyArgs {
   std::string shard;  // "I/N": write the I-th of N parts as a partial report
   bool force = false;
   const std::atomic<bool>* cancel = nullptr;
+  // --audit: the energy audit (validation/energy_audit.h) over the grid; --rays: walk paths per cell.
+  bool audit = false;
+  // --export BASE: tables engines can load (validation/energy_export.h), BASE.json, .npz, .h, .png, .exr.
+  std::string export_base;
+  std::string layout = "cycles";
+  int size = 32;
+  std::string masking = "smith";      // smith, smith_separable, vcavity (without --ms-reference)
+  std::string ms_reference = "none";  // none, vgroove, smith_walk
+  std::vector<double> ms_F0;          // empty: 0.04, 0.25, 0.5, 0.75, 1
+  std::vector<std::string> formats{"json", "npz", "h", "png", "exr"};
 };
 int cmd_energy(const EnergyArgs& a);
+// Its --audit and --export (app/cmd_energy_tables.cpp).
+int cmd_energy_audit(const EnergyArgs& a);
+int cmd_energy_export(const EnergyArgs& a);
 void add_energy_command(CLI::App& app, Commands& commands);
 
 // `vgroove merge`: partial reports of one run (`--shard I/N`) into the run's report.

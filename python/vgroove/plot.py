@@ -22,6 +22,9 @@ One or more images per report, named after the report (or --out) with a suffix p
                                              BASE[-aniso]-NDF-DIM.png  lobe grids on the plane of incidence
     "profiles"                               BASE.png       masking G1 per facet normal: traced, V-cavity, Smith;
                                              BASE-lobes.png  lobes: traced profiles, random walk, V-groove model
+    "energy_audit"                           BASE-REF-NDF.png  per compensation formula, its albedo minus the
+                                                            exact one over (mu, alpha), the grey F0 with the
+                                                            largest |error| per cell (REF: vgroove, smith_walk)
     "table2"                                 BASE.png       the paper's bounce counts, ours, the traced ones
     `bench accuracy --out`                   BASE.png       L1 against wall time (log-log);
                                              BASE-cost.png  tracer vs model cost against theta_v
@@ -197,7 +200,8 @@ def report_kind(report: Node) -> str:
     if not isinstance(v, dict):
         raise report.fail(f"is {_kind(v)}: a report is a JSON object")
     kind = v.get("kind")
-    if kind in ("brdf", "furnace", "table2", "check_brdf", "sampling", "nonsymmetric_brdf", "profiles"):
+    if kind in ("brdf", "furnace", "table2", "check_brdf", "sampling", "nonsymmetric_brdf", "profiles",
+                "energy_audit"):
         return kind
     if "runs" in v:
         return "accuracy"
@@ -773,6 +777,115 @@ def profiles_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
     return [("", draw_masking), ("-lobes", draw_lobes)]
 
 
+# The energy audit: error maps of the compensation formulas -------------------------------------------
+
+def _number_or_nan(n: Node, lo: float = -math.inf, hi: float = math.inf) -> float:
+    """A report's exact double: a number, or "nan" where the value is undefined (a gap, not drawn)."""
+    if n.value == "nan":
+        return math.nan
+    return n.number(lo, hi)
+
+
+def energy_audit_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
+    grid = report["grid"]
+    ndfs = [n.one_of(("ggx", "beckmann")) for n in grid["ndf"].nonempty()]
+    alphas = grid["alpha"].numbers(lo=0.0, hi=2.0)
+    mus = grid["mu"].numbers(lo=0.0, hi=1.0)
+    channels = report["channels"].nonempty()
+    grey = [c for c, ch in enumerate(channels) if ch["group"].text() == "grey"]
+    if not grey:
+        raise report["channels"].fail("has no channel of group \"grey\"")
+    grey_F0 = [channels[c]["F0"].number(0.0, 1.0) for c in grey]
+    variants = [safe_text(v["id"].text(), 40) for v in report["variants"].nonempty()]
+    errors = report["errors"]
+    if not isinstance(errors.value, dict) or not errors.value:
+        raise errors.fail("is not an object of the formulas' errors")
+    refs = ("vgroove", "smith_walk")
+    # maps[(ref, ndf)] = [(variant, worst signed error over grey F0 [alpha][mu], its F0 [alpha][mu])]
+    maps: Dict[Tuple[str, str], List[Tuple[str, List[List[float]], List[List[float]]]]] = {}
+    for v, vid in enumerate(variants):
+        raw = report["variants"][v]["id"].text()
+        if not errors.has(raw):
+            continue
+        for ref in refs:
+            if not errors[raw].has(ref):
+                continue
+            by_ndf = errors[raw][ref]
+            if len(by_ndf.items()) != len(ndfs):
+                raise by_ndf.fail(f"has {len(by_ndf.items())} NDFs, the grid {len(ndfs)}")
+            for d, ndf in enumerate(ndfs):
+                e_map, f_map = [], []
+                rows = by_ndf[d].items()
+                if len(rows) != len(alphas):
+                    raise by_ndf[d].fail(f"has {len(rows)} alpha rows, the grid {len(alphas)}")
+                for a, row in enumerate(rows):
+                    cells = row.items()
+                    if len(cells) != len(mus):
+                        raise row.fail(f"has {len(cells)} mu values, the grid {len(mus)}")
+                    e_row, f_row = [], []
+                    for cell in cells:
+                        if len(cell.items()) != len(channels):
+                            raise cell.fail(f"has {len(cell.items())} channels, the report {len(channels)}")
+                        vals = [_number_or_nan(cell[c], -4.0, 4.0) for c in grey]
+                        finite = [(abs(x), x, f) for x, f in zip(vals, grey_F0) if math.isfinite(x)]
+                        if finite:
+                            _, x, f = max(finite)
+                            e_row.append(x)
+                            f_row.append(f)
+                        else:
+                            e_row.append(math.nan)
+                            f_row.append(math.nan)
+                    e_map.append(e_row)
+                    f_map.append(f_row)
+                maps.setdefault((ref, ndf), []).append((vid, e_map, f_map))
+    if not maps:
+        raise errors.fail("holds no formula's errors against vgroove or smith_walk")
+    name = safe_text(report["suite"].text())
+    what = {"vgroove": "the V-groove model (formulas fed with the V-cavity single scattering)",
+            "smith_walk": "the Smith random walk (formulas fed with Smith's height-correlated single scattering)"}
+
+    def drawer(ref: str, ndf: str, panels: List[Tuple[str, List[List[float]], List[List[float]]]]) -> Drawer:
+        def draw() -> Figure:
+            import numpy as np
+            from matplotlib.colors import TwoSlopeNorm
+            cols = min(4, len(panels))
+            rows = (len(panels) + cols - 1) // cols
+            fig = _figure(3.4 * cols + 1.2, 2.9 * rows + 1.2)
+            axes = fig.subplots(rows, cols, squeeze=False)
+            # The colour scale spans the compensated formulas' errors; the uncompensated lobe
+            # ("single", several times larger) saturates it (its panel title gives its worst).
+            def largest(ps):
+                xs = [abs(x) for _, e, _ in ps for r in e for x in r if math.isfinite(x)]
+                return max(xs) if xs else 0.0
+            lim = largest([p for p in panels if p[0] != "single"]) or largest(panels) or 1.0
+            norm = TwoSlopeNorm(0.0, -lim, lim)
+            mesh = None
+            for k, ax in enumerate(axes.flat):
+                if k >= len(panels):
+                    ax.set_axis_off()
+                    continue
+                vid, e, _ = panels[k]
+                z = np.ma.masked_invalid(np.asarray(e, dtype=float))
+                mesh = ax.pcolormesh(_edges(mus) if len(mus) > 1 else [mus[0] - 0.5, mus[0] + 0.5],
+                                     _edges(alphas) if len(alphas) > 1 else [alphas[0] - 0.5, alphas[0] + 0.5],
+                                     z, cmap="RdBu_r", norm=norm, shading="flat")
+                worst = float(np.nanmax(np.abs(z.filled(np.nan)))) if z.count() else math.nan
+                ax.set_title(f"{vid}: worst |error| {worst:.3g}", fontsize=8)
+                ax.set_xlabel("mu = cos theta", fontsize=8)
+                ax.set_ylabel("alpha", fontsize=8)
+                ax.tick_params(labelsize=7)
+            if mesh is not None:
+                cb = fig.colorbar(mesh, ax=axes, shrink=0.8, extend="both")
+                cb.set_label("albedo of the formula minus the exact one (red: too bright, blue: too dark)")
+            _suptitle(fig, f"{name}: energy compensation against {what[ref]}, {ndf}",
+                      f"each cell: the grey Schlick F0 ({', '.join(f'{f:g}' for f in grey_F0)}) with the largest "
+                      f"|error|; {_title_bits(report)}")
+            return fig
+        return draw
+
+    return [(f"-{ref.replace('_', '-')}-{ndf}", drawer(ref, ndf, panels)) for (ref, ndf), panels in maps.items()]
+
+
 # Table 2 -------------------------------------------------------------------------------------------
 
 def table2_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
@@ -924,6 +1037,7 @@ KINDS = {
     "sampling": sampling_figures,
     "nonsymmetric_brdf": nonsymmetric_figures,
     "profiles": profiles_figures,
+    "energy_audit": energy_audit_figures,
     # A new report kind adds a function here (and its name to report_kind).
 }
 

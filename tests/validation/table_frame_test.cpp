@@ -3,6 +3,7 @@
 // newline.
 #include "vgroove/validation/table_frame.h"
 #include "vgroove/validation/brdf_suite.h"
+#include "vgroove/validation/energy_audit.h"
 #include "vgroove/validation/furnace_suite.h"
 #include "vgroove/validation/model_table.h"
 #include "vgroove/validation/nonsymmetric_suite.h"
@@ -104,6 +105,12 @@ TEST(TableFrame, EveryKindEscapesAndKeepsLongNames) {
     s.name = kName;
     s.source = kName;
     expect_escaped_and_whole("table2", " threads\n", [&](std::ostream& os) { print_table2(os, s, Table2Run{}); });
+  }
+  {
+    EnergyAuditSuite s;
+    s.name = kName;
+    expect_escaped_and_whole("energy_audit", " threads\n",
+                             [&](std::ostream& os) { print_energy_audit(os, s, EnergyAuditRun{}); });
   }
 }
 
