@@ -1,3 +1,4 @@
+#include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/support/json_text.h"
@@ -187,6 +188,28 @@ int merge_accuracy(const std::vector<Part>& parts, const MergeArgs& a) {
   write_accuracy_report(set.suites.front(), suite_runs_from(j.work, merge_job_parts(j, parts), threads, -1.0), a.out,
                         a.force);
   return 0;
+}
+
+void add_bench_accuracy_command(CLI::App& bench, Commands& commands) {
+  auto* acc = bench.add_subcommand("accuracy",
+                                   "Run a suite at several ray counts and placements; report max/mean "
+                                   "L1 against rays and wall time.");
+  AccuracyArgs& ac = commands.add(acc, cmd_bench_accuracy);
+  ac.cancel = commands.context().cancel;
+  add_text(acc, "suite", ac.suite, "suite spec")->required();
+  add_integer(acc, "--rays", ac.rays, "rays per lit facet, comma-separated", 1, kMaxRays)
+      ->delimiter(',')
+      ->capture_default_str();
+  add_text(acc, "--sampling", ac.samplings,
+           "placements, comma-separated: stratified, random, breakpoints (--rays is then the grid's size)")
+      ->delimiter(',')
+      ->capture_default_str();
+  add_threads(acc, ac.threads);
+  add_text(acc, "--out", ac.out, "report JSON to write");
+  acc->add_flag("--force", ac.force, "overwrite an existing report");
+  add_text(acc, "--shard", ac.shard,
+           "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+           "report (`vgroove merge` joins them; each run's wall_s is then its summed case time)");
 }
 
 }  // namespace vgroove::app

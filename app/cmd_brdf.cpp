@@ -1,5 +1,6 @@
 #include "vgroove/analytic/brdf_model.h"
 #include "vgroove/analytic/partner_distribution.h"
+#include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
 #include "vgroove/app/progress.h"
 #include "vgroove/common/angles.h"
@@ -230,6 +231,63 @@ int cmd_brdf(const BrdfArgs& a) {
       std::printf("  %48s k = %-4d %.17g\n", "", k, values[n].by_k[static_cast<std::size_t>(k - 1)]);
   }
   return 0;
+}
+
+void add_brdf_command(CLI::App& app, Commands& commands) {
+  using validation::kMaxAlpha;
+  using validation::kMinAlpha;
+  auto* brdf = app.add_subcommand(
+      "brdf",
+      "Evaluate a BRDF at a pair of directions (or every pair of a JSON file): vgroove's multiple-scattering "
+      "model (Lee et al. 2018, Eq. 16-17), its nonsymmetric form (Eq. 21-23, partner facets by Eq. 20; "
+      "anisotropic with --alpha-y) or Cook-Torrance (Eq. 1-3, V-cavity G), F = 1. 3D: polar angles from the "
+      "normal, azimuths about it (phi_o = phi_i + 180 is the mirror side; with --alpha-y from the --alpha "
+      "axis); flatland: signed angles.");
+  BrdfArgs& ba = commands.add(brdf, cmd_brdf);
+  ba.cancel = commands.context().cancel;
+  add_text(brdf, "--model", ba.model, "vgroove, vgroove-nonsymmetric or cook-torrance")->capture_default_str();
+  add_text(brdf, "--ndf", ba.ndf, "ggx, beckmann or phong")->capture_default_str();
+  add_real(brdf, "--alpha", ba.alpha,
+           "roughness, " + support::interval_text(kMinAlpha, true, kMaxAlpha, true) +
+               "; vgroove-nonsymmetric with phong and --partner independent: below sqrt 2 (Eq. 20 needs it); "
+               "alpha_x with --alpha-y")
+      ->capture_default_str();
+  auto* brdf_alpha_y =
+      add_real(brdf, "--alpha-y", ba.alpha_y,
+               "vgroove-nonsymmetric, 3D, ggx or beckmann only: the roughness across the --alpha "
+               "axis, " +
+                   support::interval_text(kMinAlpha, true, kMaxAlpha, true) + " (default: --alpha, isotropic)");
+  auto* brdf_partner =
+      add_text(brdf, "--partner", ba.partner,
+               "vgroove-nonsymmetric only: the partner facet's tilt, independent (Eq. 20) or symmetric (equal to the "
+               "first's: the symmetric model, anisotropic with --alpha-y)")
+          ->capture_default_str();
+  add_text(brdf, "--dim", ba.dim, "3d or flatland")->capture_default_str();
+  add_real(brdf, "--theta-i-deg", ba.theta_i_deg, "light: polar angle, [0, 90) (flatland: signed, (-90, 90))")
+      ->capture_default_str();
+  add_real(brdf, "--phi-i-deg", ba.phi_i_deg, "light: azimuth, [-360, 360] (3D only)")->capture_default_str();
+  auto* theta_o = add_real(brdf, "--theta-o-deg", ba.theta_o_deg,
+                           "viewer: polar angle, [0, 90] (flatland: signed, [-90, 90]); required "
+                           "unless --directions");
+  add_real(brdf, "--phi-o-deg", ba.phi_o_deg, "viewer: azimuth, [-360, 360] (3D only)")->capture_default_str();
+  auto* brdf_max_k = add_integer(
+      brdf, "--max-k", ba.max_k,
+      "orders summed; vgroove 3D and cook-torrance: any, at no extra cost (default: all); vgroove "
+      "flatland: <= 4096, O(max_k^2) (default 4096); vgroove-nonsymmetric: <= 1024, O(max_k^2) (default 64)",
+      1, std::numeric_limits<int>::max());
+  brdf->add_flag("--per-k", ba.per_k, "also print each order k = 1..--per-k-max");
+  add_integer(brdf, "--per-k-max", ba.per_k_max, "orders printed one by one with --per-k", 1, 1000)
+      ->capture_default_str();
+  add_text(brdf, "--directions", ba.directions,
+           "JSON file {\"directions\": [{\"theta_i_deg\", \"theta_o_deg\"[, \"phi_i_deg\", "
+           "\"phi_o_deg\"]}, ...]}: evaluate at every pair");
+  brdf->add_flag("--json", ba.json, "print JSON");
+  brdf->callback([&ba, theta_o, brdf_alpha_y, brdf_partner, brdf_max_k]() {
+    ba.theta_o_given = theta_o->count() > 0;
+    ba.alpha_y_given = brdf_alpha_y->count() > 0;
+    ba.partner_given = brdf_partner->count() > 0;
+    ba.max_k_given = brdf_max_k->count() > 0;
+  });
 }
 
 }  // namespace vgroove::app

@@ -1,4 +1,6 @@
+#include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
+#include "vgroove/validation/ranges.h"
 
 #include "vgroove/app/distributed.h"
 #include "vgroove/app/mpi_world.h"
@@ -122,6 +124,52 @@ int cmd_energy(const EnergyArgs& a) {
   if (!table) return interrupted_no_report();
   write_energy_table(*table, a.out, a.npy, a.force);
   return 0;
+}
+
+void add_energy_command(CLI::App& app, Commands& commands) {
+  using validation::kMaxAlpha;
+  using validation::kMaxAlphaPoints;
+  using validation::kMaxEnergyK;
+  using validation::kMaxEnergyRays;
+  using validation::kMaxMuPoints;
+  using validation::kMinAlpha;
+  using validation::kMinMu;
+  auto* energy = app.add_subcommand(
+      "energy",
+      "Exact energy tables: the directional albedo E(mu, alpha) of V-groove surfaces per bounce order k (F = 1; "
+      "E_1 what single scattering keeps, the rest what it loses), traced with every ray in a groove of its own "
+      "drawn from the NDF, with standard errors, beside the analytic model (quadrature) and Cook-Torrance.");
+  EnergyArgs& ea = commands.add(energy, cmd_energy);
+  ea.cancel = commands.context().cancel;
+  add_list(energy, "--ndf", ea.ndfs, "NDFs, comma-separated: ggx, beckmann, phong");
+  add_list(energy, "--dim", ea.dims, "dimensions, comma-separated: flatland, 3d");
+  add_real(energy, "--mu", ea.mu,
+           "mu = cos theta_i, comma-separated, each in " + support::interval_text(kMinMu, true, 1.0, true) +
+               " (theta_i <= 89.9 deg; default: --mu-points)")
+      ->delimiter(',');
+  add_integer(energy, "--mu-points", ea.mu_points, "mu at the midpoints (i + 1/2)/n of (0, 1], n", 1, kMaxMuPoints,
+              " (the smallest midpoint 0.5/n stays >= cos 89.9 deg)")
+      ->capture_default_str();
+  add_real(energy, "--alpha", ea.alpha,
+           "roughness, comma-separated, each in " + support::interval_text(kMinAlpha, true, kMaxAlpha, true) +
+               " (default: --alpha-points)")
+      ->delimiter(',');
+  add_integer(energy, "--alpha-points", ea.alpha_points, "alpha at the midpoints (j + 1/2)/n of (0, 1], n", 1,
+              kMaxAlphaPoints, " (the smallest midpoint 0.5/n stays >= 0.01)")
+      ->capture_default_str();
+  add_integer(energy, "--rays", ea.rays, "rays per cell", 1, kMaxEnergyRays)->capture_default_str();
+  add_seed(energy, ea.seed, "seed of the rays' streams")->capture_default_str();
+  add_integer(energy, "--max-k", ea.max_k, "bounce orders tabulated one by one (a last row holds k > max-k)", 1,
+              kMaxEnergyK)
+      ->capture_default_str();
+  add_threads(energy, ea.threads);
+  add_text(energy, "--out", ea.out, "table JSON to write (refuses to overwrite without --force)");
+  energy->add_flag("--npy", ea.npy,
+                   "write the arrays as .npy files beside the JSON (OUT.E_sim.npy, ...); automatic above 65536 values");
+  add_text(energy, "--shard", ea.shard,
+           "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+           "report (`vgroove merge` joins them)");
+  energy->add_flag("--force", ea.force, "overwrite existing files");
 }
 
 }  // namespace vgroove::app

@@ -1,3 +1,4 @@
+#include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
 #include "vgroove/support/json_text.h"
 #include "vgroove/support/printable.h"
@@ -76,6 +77,22 @@ int cmd_simulate(const SimulateArgs& a) {
     return kExitInterrupted;
   }
   return write_simulation(scene, r, a.out, a.force);
+}
+
+void add_simulate_command(CLI::App& app, Commands& commands) {
+  auto* simu = app.add_subcommand("simulate",
+                                  "Run a scene (data/scenes/*.json): trace every theta_i with the effects it "
+                                  "chooses (Fresnel, histograms, energy per k); print a table, write the "
+                                  "result JSON.");
+  SimulateArgs& sa = commands.add(simu, cmd_simulate);
+  sa.cancel = commands.context().cancel;
+  add_text(simu, "scene", sa.scene, "scene spec, e.g. data/scenes/gold_groove.json")->required();
+  add_text(simu, "--out", sa.out, "result JSON to write (refuses to overwrite without --force)");
+  add_threads(simu, sa.threads);
+  simu->add_flag("--force", sa.force, "overwrite an existing result");
+  add_text(simu, "--shard", sa.shard,
+           "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+           "report (`vgroove merge` joins them)");
 }
 
 }  // namespace vgroove::app
