@@ -73,12 +73,12 @@ constexpr double kEndsTie = 1e-14;
 double width_from_every_pair(const Ends& e, double half, double S) {
   const double ab2 = 0.5 * (e.a + e.b);
   const double d[6] = {
-      std::sin(half - e.a),                                  // f_a - 0
-      std::sin(half + e.b),                                  // g_lo - 0
-      2.0 * S * e.cos_a,                                     // f_a - f_b_raw
-      2.0 * S * e.cos_b,                                     // g_lo - g_hi
-      2.0 * std::sin(half - ab2) * e.cos_half_diff,          // f_a - g_hi
-      2.0 * std::sin(half + ab2) * e.cos_half_diff,          // g_lo - f_b_raw
+      std::sin(half - e.a),                          // f_a - 0
+      std::sin(half + e.b),                          // g_lo - 0
+      2.0 * S * e.cos_a,                             // f_a - f_b_raw
+      2.0 * S * e.cos_b,                             // g_lo - g_hi
+      2.0 * std::sin(half - ab2) * e.cos_half_diff,  // f_a - g_hi
+      2.0 * std::sin(half + ab2) * e.cos_half_diff,  // g_lo - f_b_raw
   };
   // The order of the operands of each min is the same for the reversed path's permutation.
   const double w = std::min(std::min(std::min(d[0], d[1]), std::min(d[2], d[3])), std::min(d[4], d[5]));
@@ -103,8 +103,8 @@ double beam_width(const Ends& e, double theta_v, double S, double C, int k) {
     // width is the smallest of the three (the pairs' differences, as above), with a tie of the
     // lower ends decided by the products, not by the offsets.
     const double top = std::min(f_a, g_lo);
-    const bool clear = top - lower > kEndsTie && (lower == 0.0 ? std::max(f_b, g_hi) < -kEndsTie
-                                                                 : std::abs(f_b - g_hi) > kEndsTie);
+    const bool clear =
+        top - lower > kEndsTie && (lower == 0.0 ? std::max(f_b, g_hi) < -kEndsTie : std::abs(f_b - g_hi) > kEndsTie);
     if (clear) {
       w = lower == 0.0 ? e.cos_half_sum : 2.0 * S * (f_b >= g_hi ? e.cos_a : e.cos_b);
     } else {
@@ -114,9 +114,9 @@ double beam_width(const Ends& e, double theta_v, double S, double C, int k) {
   }
   const bool upper_a = f_a <= g_lo;
   const double upper = upper_a ? f_a : g_lo;
-  const bool clear = upper - lower > kEndsTie && std::abs(f_a - g_lo) > kEndsTie &&
-                     (lower == 0.0 ? std::max(f_b, g_hi) < -kEndsTie
-                                   : std::abs(f_b - g_hi) > kEndsTie && lower > kEndsTie);
+  const bool clear =
+      upper - lower > kEndsTie && std::abs(f_a - g_lo) > kEndsTie &&
+      (lower == 0.0 ? std::max(f_b, g_hi) < -kEndsTie : std::abs(f_b - g_hi) > kEndsTie && lower > kEndsTie);
   if (!clear) return width_from_every_pair(e, half, S);
   if (lower == 0.0) {
     w = upper_a ? std::sin(half - e.a) : std::sin(half + e.b);

@@ -5,9 +5,9 @@
 #include <iostream>
 #include "vgroove/app/bounce_rows.h"
 #include "vgroove/app/options.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/single_groove.h"
-#include "vgroove/support/json_text.h"
 
 namespace vgroove::app {
 

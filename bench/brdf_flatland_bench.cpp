@@ -69,8 +69,7 @@ void BM_flatland_brdf_every_m(benchmark::State& state) {
   const int max_k = static_cast<int>(state.range(0));
   for (auto _ : state)
     for (int n = 0; n < kPairs; ++n)
-      benchmark::DoNotOptimize(
-          analytic::flatland_brdf_reference(analytic::NdfKind::ggx, 0.5, p.ti[n], p.to[n], max_k));
+      benchmark::DoNotOptimize(analytic::flatland_brdf_reference(analytic::NdfKind::ggx, 0.5, p.ti[n], p.to[n], max_k));
   per_call(state);
 }
 

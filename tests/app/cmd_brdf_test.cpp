@@ -351,9 +351,8 @@ TEST(CmdBrdf, GrazingPairsAreReciprocalAndTheirFirstOrderIsCookTorrance) {
                                 {89.99999, 0.0, 89.99999, 180.0001},
                                 {89.99999999999999, 10.0, 89.99999999999999, 190.000001},
                                 {89.99999999999999, 10.0, 60.0, 200.0}};
-  const std::vector<P> flat = {{89.99999, 89.999999, 0, 0},
-                               {-89.9999999, 89.99999999999999, 0, 0},
-                               {89.99999999999999, 20.0, 0, 0}};
+  const std::vector<P> flat = {
+      {89.99999, 89.999999, 0, 0}, {-89.9999999, 89.99999999999999, 0, 0}, {89.99999999999999, 20.0, 0, 0}};
   auto file = [&](const std::vector<P>& ps, bool flatland) {
     json d = json::array();
     for (const P& p : ps)

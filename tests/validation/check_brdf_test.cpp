@@ -78,9 +78,8 @@ TEST(CheckBrdf, AValueThatIsNotABrdfsFailsAtOnceNamingItsDirections) {
         return "(" + support::number_text(d.x) + ", " + support::number_text(d.y) + ", " + support::number_text(d.z) +
                ")";
       };
-      EXPECT_EQ(std::string(e.what()), "f(wi, wo) = " + support::number_text(bad) + " at wi = " + v(at_i) +
-                                           ", wo = " + v(at_o) +
-                                           " (theta_i_deg 40): a BRDF's values must be finite and >= 0");
+      EXPECT_EQ(std::string(e.what()), "f(wi, wo) = " + support::number_text(bad) + " at wi = " + v(at_i) + ", wo = " +
+                                           v(at_o) + " (theta_i_deg 40): a BRDF's values must be finite and >= 0");
     }
     // One rule's nodes: the first bin's first rule already holds the bad value.
     EXPECT_LE(calls.load(), o.quadrature_order * o.quadrature_order) << bad;
