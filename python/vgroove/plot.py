@@ -135,11 +135,12 @@ class Node:
         return [i.number(lo, hi) for i in items]
 
     def numbers_or_gaps(self, length: int, lo: float = -math.inf, hi: float = math.inf) -> List[float]:
-        """numbers() where null is a gap (NaN, not drawn): a value the report leaves undefined."""
+        """numbers() where "nan" (or null) is a gap (NaN, not drawn): a value the report leaves undefined
+        (docs/conventions.md: NaN is written as the string "nan")."""
         items = self.items()
         if len(items) != length:
             raise self.fail(f"has {len(items)} values, needs {length}")
-        return [math.nan if i.value is None else i.number(lo, hi) for i in items]
+        return [math.nan if i.value is None or i.value == "nan" else i.number(lo, hi) for i in items]
 
     def opt_text(self, key: str, fallback: str = "?") -> str:
         return self[key].text() if self.has(key) and isinstance(self.value[key], str) else fallback

@@ -351,7 +351,8 @@ TEST(CliTable2, TheTracedPercentileExceedsTheRuleAtFewRays) {
   ASSERT_EQ(r.status, 0) << r;
   std::map<std::tuple<std::string, double, double>, std::pair<int, int>> cells;
   for (const json& e : json::parse(read_text(out)).at("entries"))
-    cells[{e.at("ndf"), e.at("alpha"), e.at("percentile")}] = {e.at("ours"), e.at("traced_percentile_k")};
+    cells[{e.at("ndf").get<std::string>(), e.at("alpha").get<double>(), e.at("percentile").get<double>()}] = {
+        e.at("ours").get<int>(), e.at("traced_percentile_k").get<int>()};
   EXPECT_EQ(cells.at({"ggx", 0.5, 95.0}), std::make_pair(4, 6));
   EXPECT_EQ(cells.at({"ggx", 0.7, 95.0}), std::make_pair(5, 9));
   EXPECT_EQ(cells.at({"ggx", 1.0, 95.0}), std::make_pair(7, 13));

@@ -93,10 +93,11 @@ def test_errors_in_the_callable(vg):
     "'vgroove'",
 ])
 def test_ctrl_c_stops_a_check_with_a_callback_within_a_second(vg, f):
-    # 300 x 300 bins (or 1000 flatland bins): the first rule alone evaluates f on every bin of every
+    # 300 x 300 bins (or 100000 flatland bins: the flatland sum's single pass takes a few us a pair,
+    # 1000 bins were done within the delay): the first rule alone evaluates f on every bin of every
     # angle (tens of seconds in all) before any refinement.
     from conftest import interrupted_after
-    dim = "dim='flatland', flatland_bins=1000, max_k=1024" if f == "'vgroove'" else "theta_bins=300, phi_bins=300"
+    dim = "dim='flatland', flatland_bins=100000, max_k=1024" if f == "'vgroove'" else "theta_bins=300, phi_bins=300"
     out, seconds = interrupted_after(f"vgroove.check_brdf({f}, 'ggx', 0.5, [0, 40], rays=10**5, grooves=10**4, "
                                      f"{dim}, threads=2)", delay=0.5)
     assert out == "interrupted"
