@@ -5,6 +5,7 @@
 #include <iostream>
 #include "vgroove/app/bounce_rows.h"
 #include "vgroove/app/options.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/single_groove.h"
 
@@ -19,7 +20,7 @@ int cmd_analytic(const AnalyticArgs& a) {
   if (a.dry_run) return 0;
   const nlohmann::json j = analytic_json(params, a.theta_i_deg, form);
   if (a.json) {
-    std::cout << j.dump(2) << "\n";
+    std::cout << support::json_text(j, 2) << "\n";
   } else {
     std::printf("analytic (Lee et al. 2018, %s): %s, theta_i %g deg; fractions of the beam entering the opening\n",
                 params.symmetric ? (a.eq6_form == "printed" ? "Eq. 4-6 as printed" : "Eq. 4-6") : "Eq. 7-9",

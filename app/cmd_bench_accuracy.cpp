@@ -1,6 +1,7 @@
 #include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
 #include "vgroove/common/angles.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/support/printable.h"
 
 #include <cstdio>
@@ -165,7 +166,7 @@ void write_accuracy_report(const Suite& suite, const std::vector<SuiteRun>& all_
     j["thresholds"] = {{"max_l1", suite.thresholds.max_l1}, {"mean_l1", suite.thresholds.mean_l1}};
     j["soonest_to_thresholds"] = fastest;
     j["cost_vs_theta_v"] = {{"theta_i_deg", 30.0}, {"rays", 20000}, {"threads", 1}, {"points", cost_json}};
-    support::write_file_atomically(out, j.dump(1) + "\n", force);
+    support::write_file_atomically(out, support::json_text(j, 1) + "\n", force);
     std::printf("report: %s\n", support::printable(out).c_str());
   }
 }

@@ -9,6 +9,7 @@
 #include "vgroove/app/outputs.h"
 #include "vgroove/app/progress.h"
 #include "vgroove/support/atomic_file.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/support/npy.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/energy_export.h"
@@ -29,7 +30,7 @@ std::optional<support::Shard> shard_from(const std::string& text, const std::str
 }
 
 void write_partial(const std::string& out, const nlohmann::json& part, bool force) {
-  support::write_file_atomically(out, part.dump() + "\n", force);
+  support::write_file_atomically(out, support::json_text(part) + "\n", force);
   const nlohmann::json& h = part["partial"];
   std::cout << "partial report: " << out << " (shard " << h["shard"]["index"] << "/" << h["shard"]["count"] << ", "
             << h["items"].size() << " of " << h["job"]["items"] << " work items, " << part["units"].size() << " units, "
@@ -55,7 +56,7 @@ void write_energy_table(const EnergyTable& t, const std::string& out, bool npy, 
   const std::vector<EnergyArray> arrays = energy_arrays(t);
   for (std::size_t n = 0; n < files.size(); ++n)
     support::write_file_atomically(files[n], support::npy_bytes(arrays[n].values, arrays[n].shape), force);
-  support::write_file_atomically(out, energy_table_json(t, files).dump(1) + "\n", force);
+  support::write_file_atomically(out, support::json_text(energy_table_json(t, files), 1) + "\n", force);
   std::cout << "table: " << out;
   if (!files.empty()) std::cout << " (arrays in " << files.size() << " .npy files beside it)";
   std::cout << "\n";

@@ -8,6 +8,7 @@
 #include "vgroove/app/progress.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/support/atomic_file.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/support/printable.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/ranges.h"
@@ -118,7 +119,7 @@ int cmd_sample(const SampleArgs& a) {
     nlohmann::json j = validation::provenance();
     j["command"] = "sample";
     j["result"] = validation::chi2_json(o);
-    support::write_file_atomically(a.out, j.dump(1) + "\n", a.force);
+    support::write_file_atomically(a.out, support::json_text(j, 1) + "\n", a.force);
     std::cout << "result: " << support::printable(a.out) << "\n";
   }
   return o.pass ? 0 : 1;

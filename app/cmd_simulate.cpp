@@ -1,5 +1,6 @@
 #include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/support/printable.h"
 
 #include "vgroove/app/distributed.h"
@@ -30,7 +31,7 @@ int write_simulation(const Scene& scene, const SimulationResult& r, const std::s
   }
   print_result_table(std::cout, scene, r);
   if (!out.empty()) {
-    support::write_file_atomically(out, result_json(scene, r).dump(1) + "\n", force);
+    support::write_file_atomically(out, support::json_text(result_json(scene, r), 1) + "\n", force);
     std::cout << "result: " << support::printable(out) << "\n";
   }
   return 0;

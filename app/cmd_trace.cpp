@@ -8,6 +8,7 @@
 #include "vgroove/app/bounce_rows.h"
 #include "vgroove/app/options.h"
 #include "vgroove/app/progress.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/single_groove.h"
@@ -34,7 +35,7 @@ int cmd_trace(const TraceArgs& a) {
     return interrupted_no_report();
   const nlohmann::json j = trace_json(params, a.theta_i_deg, a.rays, sampling, a.seed, max_bounces, tally);
   if (a.json) {
-    std::cout << j.dump(2) << "\n";
+    std::cout << support::json_text(j, 2) << "\n";
   } else {
     std::printf("trace: %s, theta_i %g deg, %ld rays (%s, seed %lld); fractions of the beam entering the opening\n",
                 groove_text(params).c_str(), a.theta_i_deg, a.rays, a.sampling.c_str(), a.seed);

@@ -1,5 +1,6 @@
 #include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/support/printable.h"
 
 #include <iostream>
@@ -39,7 +40,7 @@ int cmd_validate(const ValidateArgs& a) {
   if (res.interrupted) return interrupted_no_report();
   std::cout << res.table;
   if (!a.out.empty()) {
-    support::write_file_atomically(a.out, res.report.dump(1) + "\n", a.force);
+    support::write_file_atomically(a.out, support::json_text(res.report, 1) + "\n", a.force);
     std::cout << "report: " << support::printable(a.out) << "\n";
   }
   return res.pass ? 0 : 1;
@@ -52,7 +53,7 @@ int cmd_bins(const BinsArgs& a) {
   const BrdfSuite suite = parse_brdf_suite(j, a.suite);
   if (!a.out.empty()) support::check_writable_target(a.out, a.force, {a.suite});
   if (a.dry_run) return 0;
-  const std::string text = bin_layout_json(suite).dump(1) + "\n";
+  const std::string text = support::json_text(bin_layout_json(suite), 1) + "\n";
   if (a.out.empty()) {
     std::cout << text;
     return 0;

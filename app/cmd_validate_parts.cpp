@@ -10,6 +10,7 @@
 #include "vgroove/app/outputs.h"
 #include "vgroove/app/progress.h"
 #include "vgroove/support/atomic_file.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/support/printable.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/partial_report.h"
@@ -53,7 +54,7 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 void write_report(const std::string& out, const SuiteResult& r, bool force) {
   std::cout << r.table;
   if (out.empty()) return;
-  support::write_file_atomically(out, r.report.dump(1) + "\n", force);
+  support::write_file_atomically(out, support::json_text(r.report, 1) + "\n", force);
   std::cout << "report: " << support::printable(out) << "\n";
 }
 

@@ -4,6 +4,7 @@
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/optics/fresnel.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
@@ -26,9 +27,10 @@ py::object to_python(const nlohmann::json& j) {
     case nlohmann::json::value_t::number_unsigned:
       return py::int_(j.get<std::uint64_t>());
     case nlohmann::json::value_t::number_float: {
-      // A report file holds null where the report has NaN or infinity (nlohmann::json's dump).
+      // A report file holds "nan", "inf" or "-inf" where the report has a non-finite number
+      // (support/json_text.h, docs/conventions.md): the dict holds the same strings.
       const double x = j.get<double>();
-      return std::isfinite(x) ? py::object(py::float_(x)) : py::object(py::none());
+      return std::isfinite(x) ? py::object(py::float_(x)) : py::object(py::str(support::non_finite_text(x)));
     }
     case nlohmann::json::value_t::string:
       return py::str(j.get_ref<const std::string&>());

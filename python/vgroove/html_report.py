@@ -523,7 +523,7 @@ def sampling_tables(r: Dict[str, Any]) -> Tuple[List[Table], List[Table]]:
     var = get(r, "variance", default=[])
     vrows = [[text(get(v, "dimension", default="?")), text(get(v, "ndf", default="?")), num(get(v, "alpha")),
               num(get(v, "theta_i_deg")), text(get(v, "fresnel", default="?")), num(get(v, "samples")),
-              text(get(v, "lowest_variance", default="?")), text(get(v, "most_efficient", default="?"))]
+              text(get(v, "lowest_variance", default="?")), text(get(v, "timing", "most_efficient", default="?"))]
              for v in (var if isinstance(var, list) else []) if isinstance(v, dict)]
     fcases = get(r, "furnace", "cases", default=[])
     frows, fline = furnace_rows(fcases if isinstance(fcases, list) else [])
@@ -651,6 +651,7 @@ KIND_TITLES = {
     "profiles": "random height profiles: Smith against V-cavity", "check_brdf": "check_brdf",
     "simulate": "scene (vgroove simulate)", "sample": "importance sampling of one case (vgroove sample)",
     "energy": "energy tables (vgroove energy)",
+    "model_table": "a model's table against traced lobes (validate --model-table)",
 }
 
 
