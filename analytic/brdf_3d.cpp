@@ -36,8 +36,9 @@ bool groove_frame(const Dir3& i, const Dir3& o, GrooveFrame& p) {
   // The averages make c and i.h bitwise symmetric in (i, o) (they are equal mathematically).
   p.cos_d = 0.5 * (dot(i, h) + dot(o, h));
   p.sin_h = rho;
-  if (!(rho > 0.0)) return false;
-  const Dir3 a{h.x / rho, h.y / rho, 0.0};
+  // h = n: no cross-section; the plane (x, z) stands in for it (a = x).
+  const bool through_h = rho > 0.0;
+  const Dir3 a = through_h ? Dir3{h.x / rho, h.y / rho, 0.0} : Dir3{1.0, 0.0, 0.0};
   p.ax = a.x;
   p.ay = a.y;
   const double ia = dot(i, a), oa = dot(o, a);
@@ -52,7 +53,7 @@ bool groove_frame(const Dir3& i, const Dir3& o, GrooveFrame& p) {
   // cos((t_i + t_o)/2) = cos(t_h) = h.n and cos((t_i - t_o)/2) = (i.h)/c (h bisects i_perp and o_perp).
   p.x.cos_half_sum = h.z;
   p.x.cos_half_diff = p.cos_d / p.c;
-  return true;
+  return through_h;
 }
 
 namespace brdf_passes {
