@@ -51,6 +51,7 @@ int run_command(int argc, const char* const* argv, const CliContext& ctx) {
   add_brdf_command(app, commands);
   add_energy_command(app, commands);
   add_merge_command(app, commands);
+  add_report_command(app, commands);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

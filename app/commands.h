@@ -98,6 +98,18 @@ struct PlotArgs {
 int cmd_plot(const PlotArgs& a);
 void add_plot_command(CLI::App& app, Commands& commands);
 
+// `vgroove report`: one self-contained HTML page of the reports in a directory (html_report.py).
+struct ReportArgs {
+  bool dry_run = false;  // find the script, start nothing
+  std::string directory;
+  std::string out;  // default: DIRECTORY/index.html
+  bool force = false;
+  bool no_draw = false;  // name plots that are missing beside their reports instead of drawing them
+  const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) before the script starts: it does not start
+};
+int cmd_report(const ReportArgs& a);
+void add_report_command(CLI::App& app, Commands& commands);
+
 struct SimulateArgs {
   bool dry_run = false;  // check the values, do no work
   std::string scene;

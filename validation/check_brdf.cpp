@@ -1,5 +1,6 @@
 #include "vgroove/validation/check_brdf.h"
 #include "vgroove/support/seconds_since.h"
+#include "vgroove/validation/lobe_comparison.h"
 
 #include "vgroove/analytic/quadrature.h"
 #include "vgroove/common/angles.h"
@@ -205,27 +206,18 @@ void check_options(const CheckBrdfOptions& o) {
   check_range(o.threads >= 0 && o.threads <= 1024, "threads", o.threads, "[0, 1024]");
 }
 
-CheckBrdfCase compare_lobes(const std::vector<double>& sim, const std::vector<double>& model, double rays,
-                            double grooves, double sigmas, double model_tolerance) {
+CheckBrdfCase check_lobes(const std::vector<double>& sim, const std::vector<double>& model, double rays, double grooves,
+                          double sigmas, double model_tolerance) {
   CheckBrdfCase c;
   c.albedo_sim = sum(sim);
   c.albedo_model = sum(model);
   c.non_finite = !all_finite(model) || std::any_of(model.begin(), model.end(), [](double v) { return v < 0.0; });
-  const std::vector<double> p = normalized(model);
-  c.l1 = l1(normalized(sim), p);
-  const ExpectedL1 e = expected_l1(p, rays, grooves);
-  c.l1_expected = e.mean;
-  c.l1_threshold = e.mean + sigmas * e.sd + model_tolerance;
-  std::vector<double> clamped(model.size());
-  std::transform(model.begin(), model.end(), clamped.begin(), [](double v) { return std::clamp(v, 0.0, 1.0); });
-  c.l1_flux = l1(sim, model);
-  const ExpectedL1 ef = expected_l1(clamped, rays, grooves);
-  c.l1_flux_expected = ef.mean;
-  c.l1_flux_threshold = ef.mean + sigmas * ef.sd + model_tolerance;
-  // The albedo: a binomial fraction of N rays over G grooves, plus one ray's worth and the tolerance.
-  const double a = std::clamp(c.albedo_model, 0.0, 1.0);
-  c.albedo_threshold = sigmas * std::sqrt(a * (1.0 - a) * (1.0 / rays + 1.0 / grooves)) + 1.0 / rays + model_tolerance;
-  c.pass = !c.non_finite && std::isfinite(c.l1) && c.l1 <= c.l1_threshold && c.l1_flux <= c.l1_flux_threshold &&
+  const LobeComparison lc =
+      compare_lobes(sim, model, static_cast<int>(sim.size()), rays, grooves, sigmas, model_tolerance);
+  c.l1 = lc.shape.l1, c.l1_expected = lc.shape.expected, c.l1_threshold = lc.shape.threshold;
+  c.l1_flux = lc.joint.l1, c.l1_flux_expected = lc.joint.expected, c.l1_flux_threshold = lc.joint.threshold;
+  c.albedo_threshold = albedo_threshold(c.albedo_model, rays, grooves, sigmas, model_tolerance);
+  c.pass = !c.non_finite && std::isfinite(c.l1) && lc.shape.holds() && lc.joint.holds() &&
            std::abs(c.albedo_sim - c.albedo_model) <= c.albedo_threshold;
   return c;
 }
@@ -278,7 +270,7 @@ CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt) {
     const std::vector<double>& m = model[c].flux;
     const double N = static_cast<double>(traced[c].rays);
     // The model's side is known to within its integration error: it widens each threshold.
-    CheckBrdfCase out = compare_lobes(sim, m, N, opt.grooves, opt.sigmas, opt.model_tolerance + model[c].error);
+    CheckBrdfCase out = check_lobes(sim, m, N, opt.grooves, opt.sigmas, opt.model_tolerance + model[c].error);
     out.model_error = model[c].error;
     out.model_evals = model[c].evals;
     out.theta_i_deg = opt.theta_i_deg[c];

@@ -111,8 +111,9 @@ CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt);
 
 // The comparison itself, for a model given as flux fractions per bin (the model-table route of
 // `vgroove validate --model-table`): sim and model over the same bins, N rays over G grooves.
-CheckBrdfCase compare_lobes(const std::vector<double>& sim, const std::vector<double>& model, double rays,
-                            double grooves, double sigmas, double model_tolerance);
+// It is validation/lobe_comparison.h's compare_lobes with one row, whose joint test is the flux fractions'.
+CheckBrdfCase check_lobes(const std::vector<double>& sim, const std::vector<double>& model, double rays, double grooves,
+                          double sigmas, double model_tolerance);
 // The five bins where |sim - model| is largest, largest first, with their centres.
 std::vector<WorstBin> worst_bins(const std::vector<double>& sim, const std::vector<double>& model, SurfaceDim dim,
                                  int theta_bins, int phi_bins, int flatland_bins);

@@ -205,7 +205,7 @@ ModelTableRun model_table_run_from(const BrdfSuite& s, const ModelTable& t, long
     const LobeTally& traced = results[c].tally;
     const std::vector<double> flux = fractions(traced.hist, static_cast<double>(traced.rays));
     CheckBrdfCase out =
-        compare_lobes(flux, t.flux[c], static_cast<double>(traced.rays), s.grooves, s.sigmas, tolerance(s, k.dim));
+        check_lobes(flux, t.flux[c], static_cast<double>(traced.rays), s.grooves, s.sigmas, tolerance(s, k.dim));
     out.theta_i_deg = output_deg(k.theta_i);
     out.rays = traced.rays;
     out.sim_wall_s = traced.thread_s;

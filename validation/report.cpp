@@ -35,6 +35,18 @@ nlohmann::json provenance() {
           {"git", VGROOVE_GIT}};
 }
 
+nlohmann::json report_header(const SuiteHeader& suite, int threads, double wall_s) {
+  nlohmann::json j = provenance();
+  j["suite"] = suite.name;
+  j["suite_file"] = suite.file;
+  j["kind"] = suite.kind;
+  j["description"] = suite.description;
+  j["seed"] = suite.seed;
+  j["threads"] = threads;
+  j["wall_s"] = wall_s;
+  return j;
+}
+
 nlohmann::json groove_json(const GrooveParams& g) {
   if (g.symmetric) return {{"theta_v_deg", output_deg(g.theta_v)}};
   return {{"theta_l_deg", output_deg(g.theta_l)},

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -21,6 +22,13 @@ inline constexpr int kReportSchemaVersion = 1;
 nlohmann::json provenance();
 const char* version_string();
 const char* git_revision();
+// What names a suite in its report and table: every kind's report opens with these.
+struct SuiteHeader {
+  std::string name, file, kind, description;
+  std::uint64_t seed = 0;
+};
+// provenance() with "suite", "suite_file", "kind", "description", "seed", "threads" and "wall_s".
+nlohmann::json report_header(const SuiteHeader& suite, int threads, double wall_s);
 // Radians to degrees for output, rounded to 1e-9 deg so that 5 prints as 5, never -0.
 double output_deg(double rad);
 

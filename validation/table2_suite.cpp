@@ -14,6 +14,7 @@
 #include "vgroove/validation/partial_report.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
+#include "vgroove/validation/table_frame.h"
 
 #include <algorithm>
 #include <chrono>
@@ -186,15 +187,8 @@ Table2Run run_table2_suite(const Table2Suite& s, long rays, int threads, const s
 }
 
 nlohmann::json table2_report_json(const Table2Suite& s, const Table2Run& run) {
-  nlohmann::json j = provenance();
-  j["suite"] = s.name;
-  j["suite_file"] = s.file;
-  j["kind"] = "table2";
-  j["description"] = s.description;
-  j["seed"] = s.seed;
+  nlohmann::json j = report_header({s.name, s.file, "table2", s.description, s.seed}, run.threads, run.wall_s);
   j["rays"] = run.rays;
-  j["threads"] = run.threads;
-  j["wall_s"] = run.wall_s;
   j["source"] = s.source;
   j["assumptions"] = {
       {"percentile_measure",
@@ -229,9 +223,8 @@ nlohmann::json table2_report_json(const Table2Suite& s, const Table2Run& run) {
 }
 
 void print_table2(std::ostream& os, const Table2Suite& s, const Table2Run& run) {
-  os << support::format("%s: maximum bounces at percentiles of D (%s), vgroove %s (git %s)\n",
-                        support::printable(s.name).c_str(), support::printable(s.source).c_str(), version_string(),
-                        git_revision());
+  print_table_title(os, s.name, "table2", "maximum bounces at percentiles of D (" + support::printable(s.source) + ")",
+                    run.threads);
   os << "  cell: paper / ours (projected-area percentile, Eq. 4 at theta_i = 0) / traced percentile of k\n";
   std::string head = "  perc.  ";
   for (auto n : s.ndfs)
@@ -249,8 +242,8 @@ void print_table2(std::ostream& os, const Table2Suite& s, const Table2Run& run) 
       }
     os << row << "\n";
   }
-  os << support::format("  %d/%zu entries agree with the paper; %ld rays per traced surface; wall %.2f s\n", run.agree,
-                        run.ours.size(), run.rays, run.wall_s);
+  print_table_close(os, static_cast<std::size_t>(run.agree), run.ours.size(), run.wall_s,
+                    support::format("entries agree with the paper; %ld rays per traced surface", run.rays));
 }
 
 }  // namespace vgroove::validation

@@ -167,14 +167,14 @@ TEST(CheckBrdf, BadOptionsNameTheField) {
   EXPECT_THROW(check_options(o), support::UserError);
 }
 
-// compare_lobes on hand-made histograms: equal lobes pass; a bin moved fails.
+// check_lobes on hand-made histograms: equal lobes pass; a bin moved fails.
 TEST(CheckBrdf, CompareLobesByHand) {
   const std::vector<double> p = {0.25, 0.25, 0.25, 0.25};
-  const CheckBrdfCase same = compare_lobes(p, p, 1e6, 1e6, 5.0, 0.0);
+  const CheckBrdfCase same = check_lobes(p, p, 1e6, 1e6, 5.0, 0.0);
   EXPECT_TRUE(same.pass);
   EXPECT_EQ(same.l1, 0.0);
   const std::vector<double> moved = {0.35, 0.15, 0.25, 0.25};
-  const CheckBrdfCase off = compare_lobes(moved, p, 1e6, 1e6, 5.0, 0.0);
+  const CheckBrdfCase off = check_lobes(moved, p, 1e6, 1e6, 5.0, 0.0);
   EXPECT_NEAR(off.l1, 0.2, 1e-15);
   EXPECT_FALSE(off.pass);
 }
