@@ -64,8 +64,9 @@ bool groove_frame(const Dir3& i, const Dir3& o, GrooveFrame& p) {
   // The averages make c and i.h bitwise symmetric in (i, o) (they are equal mathematically).
   p.cos_d = len < kNearlyOpposite ? 0.5 * len : 0.5 * (dot(i, h) + dot(o, h));
   p.sin_h = rho;
-  if (!(rho > 0.0)) return false;
-  const Dir3 a{h.x / rho, h.y / rho, 0.0};
+  // h = n: no cross-section; the plane (x, z) stands in for it (a = x).
+  const bool through_h = rho > 0.0;
+  const Dir3 a = through_h ? Dir3{h.x / rho, h.y / rho, 0.0} : Dir3{1.0, 0.0, 0.0};
   p.ax = a.x;
   p.ay = a.y;
   double ia = dot(i, a), oa = dot(o, a);
@@ -88,7 +89,7 @@ bool groove_frame(const Dir3& i, const Dir3& o, GrooveFrame& p) {
   p.x.sin_half_sum = rho;
   p.x.single_from_h = h.z < kGrazingHalfVector || len < kNearlyOpposite;
   p.x.cos_half_diff = p.cos_d / p.c;
-  return true;
+  return through_h;
 }
 
 namespace brdf_passes {

@@ -110,7 +110,9 @@ struct GrooveFrame {
   double cos_d = 1.0;  // i.h = o.h
   double ax = 1.0, ay = 0.0;
 };
-// False when h = n exactly (the plane is undefined); i and o above the horizon.
+// False when h = n exactly (the plane is undefined): then cos_d and sin_h = 0 hold, and the other
+// fields are the section of the plane (x, z) (a = x). i and o above the horizon. The one frame of
+// the symmetric and nonsymmetric BRDFs and samplers.
 bool groove_frame(const Dir3& i, const Dir3& o, GrooveFrame& f);
 
 // F(cos theta_incidence) -> reflectance in [0, 1]. An empty function means F = 1.

@@ -1,5 +1,6 @@
 #include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
+#include "vgroove/support/seconds_since.h"
 #include "vgroove/validation/ranges.h"
 
 #include "vgroove/app/distributed.h"
@@ -120,7 +121,7 @@ int cmd_energy(const EnergyArgs& a) {
     if (!results) return 0;  // not rank 0: its results went there
     EnergyTable t = energy_table_from(g, std::move(*results));
     t.threads = threads;
-    t.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    t.wall_s = support::seconds_since(t0);
     write_energy_table(t, a.out, a.npy, a.force);
     return 0;
   }

@@ -2,6 +2,7 @@
 #include "vgroove/app/commands.h"
 #include "vgroove/support/json_text.h"
 #include "vgroove/support/printable.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/app/distributed.h"
 #include "vgroove/app/mpi_world.h"
@@ -68,7 +69,7 @@ int cmd_simulate(const SimulateArgs& a) {
     if (!results) return 0;  // not rank 0: its results went there
     SimulationResult r = simulation_from(scene, *results);
     r.threads = threads;
-    r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.wall_s = support::seconds_since(t0);
     return write_simulation(scene, r, a.out, a.force);
   }
   const SimulationResult r = simulate(scene, a.threads, a.cancel);

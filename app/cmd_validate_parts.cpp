@@ -3,6 +3,7 @@
 // `vgroove merge` of its parts. The report written from the parts is the single-process report
 // (timings aside).
 #include "vgroove/app/commands.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/app/distributed.h"
 #include "vgroove/app/mpi_world.h"
@@ -48,8 +49,8 @@ ValidateArgs args_from(const Part& part) {
   return a;
 }
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using support::Clock;
+using support::seconds_since;
 
 void write_report(const std::string& out, const SuiteResult& r, bool force) {
   std::cout << r.table;

@@ -1,4 +1,5 @@
 #include "vgroove/validation/brdf_suite.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/validation/part_fields.h"
 
@@ -31,19 +32,8 @@ namespace vgroove::validation {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// The procedural surface of one (NDF, alpha): flatland or 3D options have the same fields.
-template <class Options>
-Options surface_options(analytic::NdfKind ndf, double alpha, int grooves, std::uint64_t seed) {
-  Options o;
-  o.ndf = ndf;
-  o.alpha = alpha;
-  o.grooves = grooves;
-  o.seed = seed;
-  return o;
-}
+using support::Clock;
+using support::seconds_since;
 
 // The traced lobe against the model's, from the per-(row, bin) fractions of the incident flux.
 void compare(BrdfOutcome& out, const BrdfSuite& suite, const std::vector<double>& sim_joint,
@@ -57,26 +47,13 @@ void compare(BrdfOutcome& out, const BrdfSuite& suite, const std::vector<double>
   out.pass = !out.non_finite && holds;
 }
 
-sim::MicrosurfaceTraceOptions flatland_trace(const BrdfSuite& suite, const BrdfCase& c, long rays) {
-  sim::MicrosurfaceTraceOptions to;
-  to.theta_i = c.theta_i;
-  to.rays = rays;
-  to.sampling = sim::Sampling::random;
-  to.seed = suite.seed;
-  to.theta_o_bins = suite.flatland_bins;
-  to.max_k = suite.max_k;
-  return to;
-}
-
-sim::Microsurface3dTraceOptions trace_3d(const BrdfSuite& suite, const BrdfCase& c, long rays) {
-  sim::Microsurface3dTraceOptions to;
-  to.theta_i = c.theta_i;
-  to.rays = rays;
-  to.seed = suite.seed;
-  to.theta_bins = suite.theta_bins;
-  to.phi_bins = suite.phi_bins;
-  to.max_k = suite.max_k;
-  return to;
+// A case's rays and bins as the suite sets them.
+CaseRays case_rays(const BrdfSuite& suite, const BrdfCase& c, long rays) {
+  CaseRays r;
+  r.theta_i = c.theta_i, r.rays = rays, r.seed = suite.seed;
+  r.flatland_bins = suite.flatland_bins, r.theta_bins = suite.theta_bins, r.phi_bins = suite.phi_bins;
+  r.max_k = suite.max_k;
+  return r;
 }
 
 PlaneCut plane_cut(const BrdfSuite& suite, SurfaceDim dim) {
@@ -139,8 +116,6 @@ nlohmann::json suite_inputs(const BrdfSuite& s) {
 }
 
 }  // namespace
-
-const char* surface_dim_name(SurfaceDim d) { return d == SurfaceDim::flatland ? "flatland" : "3d"; }
 
 BrdfCase grid_case(const std::vector<analytic::NdfKind>& ndfs, const std::vector<double>& alphas,
                    const std::vector<double>& theta_i, const std::vector<SurfaceDim>& dims, std::size_t c) {
@@ -216,37 +191,11 @@ double brdf_run_memory_bytes(const BrdfSuite& suite, int threads, bool report) {
 
 std::shared_ptr<const BrdfWork::Context> BrdfWork::prepare(std::size_t n) const {
   const BrdfCase c = suite.case_at(n);
-  auto ctx = std::make_shared<Context>();
-  if (c.dim == SurfaceDim::flatland)
-    ctx->flat =
-        sim::make_microsurface(surface_options<sim::MicrosurfaceOptions>(c.ndf, c.alpha, suite.grooves, suite.seed));
-  else
-    ctx->three_d = sim::make_microsurface3d(
-        surface_options<sim::Microsurface3dOptions>(c.ndf, c.alpha, suite.grooves, suite.seed));
-  return ctx;
+  return std::make_shared<Context>(make_case_surface(c.dim, c.ndf, c.alpha, suite.grooves, suite.seed));
 }
 
 BinnedTally BrdfWork::run_chunks(const Context& ctx, std::size_t n, std::int64_t begin, std::int64_t end) const {
-  const auto t0 = Clock::now();
-  const BrdfCase c = suite.case_at(n);
-  BinnedTally out;
-  if (c.dim == SurfaceDim::flatland) {
-    const sim::MicrosurfaceTraceOptions to = flatland_trace(suite, c, rays);
-    sim::MicrosurfaceTally t(to.theta_o_bins, to.max_k);
-    for (std::int64_t k = begin; k < end && !support::cancelled(cancel); ++k)
-      sim::trace_microsurface_chunk(ctx.flat, to, k, t);
-    static_cast<sim::RayFates&>(out) = t;
-    out.by_k = std::move(t.by_k), out.hist = std::move(t.theta_o), out.hist_by_k = std::move(t.theta_o_by_k);
-  } else {
-    const sim::Microsurface3dTraceOptions to = trace_3d(suite, c, rays);
-    sim::Microsurface3dTally t(to.theta_bins, to.phi_bins, to.max_k);
-    for (std::int64_t k = begin; k < end && !support::cancelled(cancel); ++k)
-      sim::trace_microsurface3d_chunk(ctx.three_d, to, k, t);
-    static_cast<sim::RayFates&>(out) = t;
-    out.by_k = std::move(t.by_k), out.hist = std::move(t.hist), out.hist_by_k = std::move(t.hist_by_k);
-  }
-  out.thread_s = seconds_since(t0);
-  return out;
+  return trace_case_chunks(ctx, case_rays(suite, suite.case_at(n), rays), begin, end, cancel);
 }
 
 BrdfModel BrdfWork::run_fixed(std::size_t n) const {

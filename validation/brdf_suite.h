@@ -23,6 +23,7 @@
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/microsurface3d.h"
 #include "vgroove/support/parallel.h"
+#include "vgroove/validation/case_surface.h"
 #include "vgroove/validation/histogram_metrics.h"
 #include "vgroove/validation/lobe_outcome.h"
 #include "vgroove/validation/work_run.h"
@@ -37,9 +38,6 @@
 #include <vector>
 
 namespace vgroove::validation {
-
-enum class SurfaceDim : unsigned char { flatland, three_d };
-const char* surface_dim_name(SurfaceDim d);
 
 struct BrdfCase {
   analytic::NdfKind ndf = analytic::NdfKind::ggx;
@@ -105,12 +103,8 @@ BrdfRun run_brdf_suite(const BrdfSuite& suite, long rays, int threads, const sup
 BrdfOutcome run_brdf_case(const BrdfSuite& suite, const BrdfCase& c, long rays, support::CancelFlag cancel = nullptr);
 
 // The suite as work items (work_run.h): a unit per case, its rays in chunks (sim::kRaysPerChunk,
-// the procedural surface's streams), the analytic lobes its fixed part. The traced histograms of
-// flatland (theta_o) and 3D ((theta_o, phi_o)) have the same layout: rows k, bins.
-struct BinnedTally : sim::RayFates {
-  std::vector<std::int64_t> by_k, hist, hist_by_k;
-  double thread_s = 0.0;  // time spent tracing (a timing: never compared)
-};
+// the procedural surface's streams, case_surface.h), the analytic lobes its fixed part. The traced
+// histograms of flatland (theta_o) and 3D ((theta_o, phi_o)) have the same layout: rows k, bins.
 struct BrdfModel {
   std::vector<double> by_k, hist, hist_by_k;  // Lee et al. 2018 (flatland lobe; Eq. 16-17 in 3D)
   std::vector<double> single_hist;            // Cook-Torrance, V-cavity G
@@ -118,10 +112,7 @@ struct BrdfModel {
   double wall_s = 0.0;  // a timing
 };
 struct BrdfWork {
-  struct Context {
-    sim::Microsurface flat;
-    sim::Microsurface3d three_d;
-  };
+  using Context = CaseSurface;
   using Tally = BinnedTally;
   using Fixed = BrdfModel;
   BrdfSuite suite;

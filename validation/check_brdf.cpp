@@ -1,4 +1,5 @@
 #include "vgroove/validation/check_brdf.h"
+#include "vgroove/support/seconds_since.h"
 #include "vgroove/validation/lobe_comparison.h"
 
 #include "vgroove/analytic/quadrature.h"
@@ -23,8 +24,8 @@ namespace vgroove::validation {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using support::Clock;
+using support::seconds_since;
 
 constexpr double kPi = std::numbers::pi;
 constexpr int kWorstBins = 5;

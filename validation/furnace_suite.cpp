@@ -1,4 +1,5 @@
 #include "vgroove/validation/furnace_suite.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/analytic/brdf_flatland.h"
 #include "vgroove/analytic/hemisphere_quadrature.h"
@@ -29,8 +30,8 @@ namespace vgroove::validation {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using support::Clock;
+using support::seconds_since;
 
 // A stream per case, from its parameters (the results do not depend on the thread count).
 sim::Rng case_rng(const FurnaceSuite& s, const BrdfCase& c) {

@@ -1,4 +1,5 @@
 #include "vgroove/validation/nonsymmetric_suite.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/support/format.h"
 #include "vgroove/support/printable.h"
@@ -29,8 +30,8 @@ namespace vgroove::validation {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using support::Clock;
+using support::seconds_since;
 constexpr double kPi = std::numbers::pi;
 constexpr double kReciprocityTolerance = 1e-8;
 

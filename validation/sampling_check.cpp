@@ -1,4 +1,5 @@
 #include "vgroove/validation/sampling_check.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/analytic/brdf_nonsymmetric.h"
 #include "vgroove/analytic/quadrature.h"
@@ -20,7 +21,8 @@ namespace vgroove::validation {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using support::Clock;
+using support::seconds_since;
 
 // Thrown by a density evaluated after the cancellation flag was set: the quadratures stop at once
 // (run_chi2 and retest_chi2 catch it and say interrupted).
@@ -28,8 +30,6 @@ struct Stopped {};
 void stop_if(const std::atomic<bool>* cancel) {
   if (support::cancelled(cancel)) throw Stopped{};
 }
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 std::array<double, 4> uniforms(sim::Rng& rng) { return {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()}; }
 std::array<double, 5> uniforms5(sim::Rng& rng) {

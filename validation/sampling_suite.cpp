@@ -19,8 +19,6 @@ namespace vgroove::validation {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 // One listed case's common fields: "dimension", "ndf", "alpha", "theta_i_deg".
 BrdfCase read_case(support::JsonObject& o) {
   BrdfCase c;

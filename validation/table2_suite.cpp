@@ -1,7 +1,9 @@
 #include "vgroove/validation/table2_suite.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/support/format.h"
 #include "vgroove/support/printable.h"
+#include "vgroove/validation/case_surface.h"
 #include "vgroove/validation/part_fields.h"
 
 #include "vgroove/analytic/bounce_percentiles.h"
@@ -23,19 +25,8 @@ namespace vgroove::validation {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// The procedural surface of one (NDF, alpha): flatland or 3D options have the same fields.
-template <class Options>
-Options surface_options(analytic::NdfKind ndf, double alpha, int grooves, std::uint64_t seed) {
-  Options o;
-  o.ndf = ndf;
-  o.alpha = alpha;
-  o.grooves = grooves;
-  o.seed = seed;
-  return o;
-}
+using support::Clock;
+using support::seconds_since;
 
 }  // namespace
 
@@ -108,8 +99,9 @@ double table2_run_memory_bytes(const Table2Suite& s, int threads) {
 std::shared_ptr<const Table2Work::Context> Table2Work::prepare(std::size_t unit) const {
   const std::size_t na = suite.alphas.size();
   auto ctx = std::make_shared<Context>();
-  ctx->surface = sim::make_microsurface3d(surface_options<sim::Microsurface3dOptions>(
-      suite.ndfs[unit / na], suite.alphas[unit % na], suite.grooves, suite.seed));
+  ctx->surface =
+      make_case_surface(SurfaceDim::three_d, suite.ndfs[unit / na], suite.alphas[unit % na], suite.grooves, suite.seed)
+          .three_d;
   return ctx;
 }
 

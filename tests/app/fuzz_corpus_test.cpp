@@ -8,7 +8,7 @@
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/brdf_suite.h"
-#include "vgroove/validation/suite.h"
+#include "vgroove/validation/groove_suite.h"
 #include "vgroove/validation/table2_suite.h"
 
 #include <gtest/gtest.h>
@@ -66,7 +66,7 @@ TEST(FuzzCorpus, SuiteLoaderInputsEndInASuiteOrAUserError) {
     else if (kind == "table2")
       (void)parse_table2_suite(j, file);
     else
-      (void)parse_suite_set(j, file);
+      (void)parse_groove_suite_set(j, file);
   });
 }
 

@@ -5,13 +5,13 @@
 #include "vgroove/validation/brdf_suite.h"
 #include "vgroove/validation/energy_audit.h"
 #include "vgroove/validation/furnace_suite.h"
+#include "vgroove/validation/groove_suite.h"
+#include "vgroove/validation/groove_suite_run.h"
 #include "vgroove/validation/model_table.h"
 #include "vgroove/validation/nonsymmetric_suite.h"
 #include "vgroove/validation/profiles_suite.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/sampling_suite.h"
-#include "vgroove/validation/suite.h"
-#include "vgroove/validation/suite_run.h"
 #include "vgroove/validation/table2_suite.h"
 
 #include <gtest/gtest.h>
@@ -117,12 +117,12 @@ TEST(TableFrame, EveryKindEscapesAndKeepsLongNames) {
 // A set's summary table sizes its first column to the longest suite name: a 420-character name
 // keeps its row whole, every column after it, and the row's newline.
 TEST(TableFrame, SetSummaryKeepsLongSuiteNames) {
-  SuiteSet set;
+  GrooveSuiteSet set;
   set.name = "set";
   set.suites.resize(2);
   set.suites[0].name = "short";
   set.suites[1].name = kName;
-  std::vector<SuiteRun> runs(2);
+  std::vector<GrooveSuiteRun> runs(2);
   runs[1].summary.wall_s = 12.5;
   std::ostringstream os;
   print_set_table(os, set, runs);

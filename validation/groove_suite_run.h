@@ -1,9 +1,9 @@
-// vgroove validation: run every case of a suite and sum up against its thresholds.
+// vgroove validation: run every case of a single-groove suite and sum up against its thresholds.
 #pragma once
 
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/groove_case.h"
-#include "vgroove/validation/suite.h"
+#include "vgroove/validation/groove_suite.h"
 #include "vgroove/validation/work_run.h"
 
 #include <memory>
@@ -12,7 +12,7 @@
 
 namespace vgroove::validation {
 
-struct Summary {
+struct GrooveSuiteSummary {
   std::size_t cases = 0;             // compared: all but the degenerate ones
   std::size_t degenerate_cases = 0;  // zero-aperture grooves: listed, not compared
   std::size_t facets_compared = 0;
@@ -42,21 +42,21 @@ struct Summary {
   bool pass() const { return pass_max_l1 && pass_mean_l1 && pass_theta_o && non_finite_cases == 0; }
 };
 
-struct SuiteRun {
+struct GrooveSuiteRun {
   CaseOptions options;  // as run (after command-line overrides)
   int threads = 1;
   std::vector<CaseOutcome> cases;  // in suite order: groove outer, theta_i inner
-  Summary summary;
+  GrooveSuiteSummary summary;
   bool interrupted = false;  // cancelled before every case ran: the summary is not meaningful
 };
 
-// An upper bound of the memory run_suite needs (support/memory.h): every case's outcome, each
+// An upper bound of the memory run_groove_suite needs (support/memory.h): every case's outcome, each
 // worker's tables, and with `report` the report's JSON (document and text, ~4 kB per case).
-double run_memory_bytes(const Suite& suite, const CaseOptions& options, int threads, bool report);
+double groove_suite_memory_bytes(const GrooveSuite& suite, const CaseOptions& options, int threads, bool report);
 
 // `cancel` (may be null) is polled between chunks of cases: set it from a signal handler to stop.
-SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads,
-                   const support::ProgressFn& progress = {}, const std::atomic<bool>* cancel = nullptr);
+GrooveSuiteRun run_groove_suite(const GrooveSuite& suite, const CaseOptions& options, int threads,
+                                const support::ProgressFn& progress = {}, const std::atomic<bool>* cancel = nullptr);
 
 // Single-groove suites as work items (work_run.h): one unit per case of every suite of a set
 // (suite-major), one chunk each (a case's rays come from its own streams Rng(seed, case, facet):
@@ -69,7 +69,7 @@ struct GrooveCaseWork {
   struct Context {};
   struct Fixed {};
   using Tally = GrooveCaseTally;
-  std::vector<Suite> suites;
+  std::vector<GrooveSuite> suites;
   std::vector<CaseOptions> options;           // per suite
   std::vector<std::size_t> first;             // the first unit of each suite
   const std::atomic<bool>* cancel = nullptr;  // polled between a case's rays
@@ -82,11 +82,11 @@ struct GrooveCaseWork {
   Tally read_tally(support::JsonObject& j, std::size_t unit, const std::vector<ChunkRun>& runs) const;
   Fixed read_fixed(support::JsonObject&, std::size_t) const { return {}; }
 };
-Job<GrooveCaseWork> groove_cases_job(const std::vector<Suite>& suites, const std::vector<CaseOptions>& options,
+Job<GrooveCaseWork> groove_cases_job(const std::vector<GrooveSuite>& suites, const std::vector<CaseOptions>& options,
                                      nlohmann::json descriptor);
 // Each suite's run (cases and summary) from every unit's results; wall_s and threads are the caller's.
-std::vector<SuiteRun> suite_runs_from(const GrooveCaseWork& work,
-                                      const std::vector<UnitResult<GrooveCaseWork>>& results, int threads,
-                                      double wall_s);
+std::vector<GrooveSuiteRun> groove_suite_runs_from(const GrooveCaseWork& work,
+                                                   const std::vector<UnitResult<GrooveCaseWork>>& results, int threads,
+                                                   double wall_s);
 
 }  // namespace vgroove::validation

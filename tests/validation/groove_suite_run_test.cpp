@@ -1,6 +1,6 @@
-// Tests of validation/suite_run.h: results do not depend on the thread count, and the summary
+// Tests of validation/groove_suite_run.h: results do not depend on the thread count, and the summary
 // is what its cases say.
-#include "vgroove/validation/suite_run.h"
+#include "vgroove/validation/groove_suite_run.h"
 #include "vgroove/validation/validate.h"
 
 #include <gtest/gtest.h>
@@ -17,8 +17,8 @@ namespace {
 double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 // 5 x 11 = 55 cases: more than three chunks of 16, so 2 and 8 threads really share the work.
-Suite small_suite() {
-  Suite s;
+GrooveSuite small_suite() {
+  GrooveSuite s;
   s.file = "(in code)";
   s.name = "determinism";
   for (double v : {3.0, 17.5, 45.0, 90.0, 150.0}) s.grooves.push_back(GrooveParams::make_symmetric(deg(v)));
@@ -54,17 +54,17 @@ void expect_identical(const CaseOutcome& a, const CaseOutcome& b, std::size_t c,
   }
 }
 
-TEST(RunSuite, ResultsAreBitIdenticalForAnyThreadCount) {
-  const Suite s = small_suite();
-  const SuiteRun one = run_suite(s, s.options, 1);
+TEST(GrooveSuiteRun, ResultsAreBitIdenticalForAnyThreadCount) {
+  const GrooveSuite s = small_suite();
+  const GrooveSuiteRun one = run_groove_suite(s, s.options, 1);
   ASSERT_EQ(one.cases.size(), s.cases());
   EXPECT_EQ(one.threads, 1);
   for (int threads : {2, 8}) {
-    const SuiteRun many = run_suite(s, s.options, threads);
+    const GrooveSuiteRun many = run_groove_suite(s, s.options, threads);
     EXPECT_EQ(many.threads, threads);
     ASSERT_EQ(many.cases.size(), one.cases.size());
     for (std::size_t c = 0; c < one.cases.size(); ++c) expect_identical(one.cases[c], many.cases[c], c, threads);
-    const Summary &a = one.summary, &b = many.summary;
+    const GrooveSuiteSummary &a = one.summary, &b = many.summary;
     EXPECT_TRUE(same_bits(a.max_l1, b.max_l1)) << "threads=" << threads;
     EXPECT_TRUE(same_bits(a.mean_l1, b.mean_l1)) << "threads=" << threads;
     EXPECT_EQ(a.worst_case, b.worst_case) << "threads=" << threads;
@@ -74,10 +74,10 @@ TEST(RunSuite, ResultsAreBitIdenticalForAnyThreadCount) {
   }
 }
 
-TEST(RunSuite, CasesAreInSuiteOrderAndEachIsItsOwnRunCase) {
+TEST(GrooveSuiteRun, CasesAreInSuiteOrderAndEachIsItsOwnRunCase) {
   // Case c is (theta_v[c / n_i], theta_i[c % n_i]) with random stream c, whoever runs it.
-  const Suite s = small_suite();
-  const SuiteRun run = run_suite(s, s.options, 2);
+  const GrooveSuite s = small_suite();
+  const GrooveSuiteRun run = run_groove_suite(s, s.options, 2);
   const std::size_t ni = s.theta_i.size();
   for (std::size_t c : {std::size_t{0}, std::size_t{13}, std::size_t{54}}) {
     EXPECT_EQ(run.cases[c].groove.theta_v, s.grooves[c / ni].theta_v) << "case " << c;
@@ -86,10 +86,10 @@ TEST(RunSuite, CasesAreInSuiteOrderAndEachIsItsOwnRunCase) {
   }
 }
 
-TEST(RunSuite, SummaryIsWhatTheCasesSay) {
-  const Suite s = small_suite();
-  const SuiteRun run = run_suite(s, s.options, 2);
-  const Summary& sum = run.summary;
+TEST(GrooveSuiteRun, SummaryIsWhatTheCasesSay) {
+  const GrooveSuite s = small_suite();
+  const GrooveSuiteRun run = run_groove_suite(s, s.options, 2);
+  const GrooveSuiteSummary& sum = run.summary;
   double max_l1 = 0.0, total = 0.0, max_err = 0.0;
   std::int64_t rays = 0;
   std::size_t facets = 0;
@@ -115,12 +115,12 @@ TEST(RunSuite, SummaryIsWhatTheCasesSay) {
   EXPECT_EQ(sum.wrong_first, 0);
 }
 
-TEST(RunSuite, CancelledRunSaysSo) {
-  const Suite s = small_suite();
+TEST(GrooveSuiteRun, CancelledRunSaysSo) {
+  const GrooveSuite s = small_suite();
   const std::atomic<bool> cancel{true};
-  const SuiteRun run = run_suite(s, s.options, 2, {}, &cancel);
+  const GrooveSuiteRun run = run_groove_suite(s, s.options, 2, {}, &cancel);
   EXPECT_TRUE(run.interrupted);
-  const SuiteRun full = run_suite(s, s.options, 2);
+  const GrooveSuiteRun full = run_groove_suite(s, s.options, 2);
   EXPECT_FALSE(full.interrupted);
 }
 

@@ -1,6 +1,7 @@
-// vgroove validation: a suite spec, read strictly from JSON.
+// vgroove validation: a single-groove suite spec (Table 1, stress: grooves x theta_i, traced against
+// Eq. 4-9 groove by groove), read strictly from JSON.
 //
-// Degrees at this edge only: the spec's *_deg values become radians in Suite.
+// Degrees at this edge only: the spec's *_deg values become radians in GrooveSuite.
 #pragma once
 
 #include "vgroove/analytic/kaleidoscope_nonsymmetric.h"
@@ -62,24 +63,24 @@ struct GrooveParams {
   }
 };
 
-struct SuiteCase {
+struct GrooveSuiteCase {
   GrooveParams groove;
   double theta_i = 0.0;  // radians
 };
 
 // The cases are the grid grooves x theta_i (groove outer), then the listed ones.
-struct Suite {
+struct GrooveSuite {
   std::string file;
   std::string name;
   std::string description;
   std::vector<GrooveParams> grooves;
   std::vector<double> theta_i;  // radians
-  std::vector<SuiteCase> listed;
+  std::vector<GrooveSuiteCase> listed;
   CaseOptions options;
   Thresholds thresholds;
   std::optional<PaperFigures> paper;
   std::size_t cases() const { return grooves.size() * theta_i.size() + listed.size(); }
-  SuiteCase case_at(std::size_t c) const {
+  GrooveSuiteCase case_at(std::size_t c) const {
     const std::size_t grid = grooves.size() * theta_i.size();
     if (c < grid) return {grooves[c / theta_i.size()], theta_i[c % theta_i.size()]};
     return listed[c - grid];
@@ -88,18 +89,18 @@ struct Suite {
 
 // A suite file, or a set of them: {"name", "description", "suites": ["a.json", ...]} with paths
 // relative to the set's own file (data/suites/table1.json runs both columns of Table 1).
-struct SuiteSet {
+struct GrooveSuiteSet {
   std::string file;
   std::string name;
   std::string description;
-  std::vector<Suite> suites;
+  std::vector<GrooveSuite> suites;
 };
 
-Suite load_suite(const std::string& file);
-SuiteSet load_suite_set(const std::string& file);
+GrooveSuite load_groove_suite(const std::string& file);
+GrooveSuiteSet load_groove_suite_set(const std::string& file);
 // The same from parsed JSON; `file` names it in messages (and anchors a set's relative paths).
-Suite parse_suite(const nlohmann::json& j, const std::string& file);
-SuiteSet parse_suite_set(const nlohmann::json& j, const std::string& file);
+GrooveSuite parse_groove_suite(const nlohmann::json& j, const std::string& file);
+GrooveSuiteSet parse_groove_suite_set(const nlohmann::json& j, const std::string& file);
 
 // The bounce limit a groove of aperture theta_v (radians) gets by default: kDefaultMaxBounces, or
 // more when a narrower groove needs it: a ray in a wedge of aperture theta_v makes at most

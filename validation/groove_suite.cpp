@@ -1,4 +1,4 @@
-#include "vgroove/validation/suite.h"
+#include "vgroove/validation/groove_suite.h"
 #include "vgroove/common/angles.h"
 
 #include "vgroove/support/json_reader.h"
@@ -125,9 +125,9 @@ void check_theta_r(double deg, const std::string& what) {
                              (deg < 0.0 ? " (the right facet's normal leans left: theta_r >= 0)" : ""));
 }
 
-Suite parse_suite(const nlohmann::json& j, const std::string& file) {
+GrooveSuite parse_groove_suite(const nlohmann::json& j, const std::string& file) {
   support::JsonObject root(j, file, "");
-  Suite s;
+  GrooveSuite s;
   s.file = file;
   s.name = root.string("name");
   s.description = root.string_or("description", "");
@@ -144,7 +144,7 @@ Suite parse_suite(const nlohmann::json& j, const std::string& file) {
     if (!list.is_array()) root.fail("cases", "must be a list of {theta_v_deg | theta_l_deg, theta_r_deg; theta_i_deg}");
     for (std::size_t n = 0; n < list.size(); ++n) {
       support::JsonObject c(list[n], file, root.path("cases") + "/" + std::to_string(n));
-      SuiteCase sc;
+      GrooveSuiteCase sc;
       if (c.has("theta_v_deg")) {
         sc.groove =
             GrooveParams::make_symmetric(c.number("theta_v_deg", kMinApertureDeg, true, 180.0, true) * kRadPerDeg);
@@ -200,20 +200,22 @@ Suite parse_suite(const nlohmann::json& j, const std::string& file) {
   return s;
 }
 
-Suite load_suite(const std::string& file) {
+GrooveSuite load_groove_suite(const std::string& file) {
   const nlohmann::json j = support::read_json_file(file);
   if (j.is_object() && j.contains("suites"))
     throw support::UserError(file + ": is a set of suites (it has /suites); run it with `vgroove validate`");
-  return parse_suite(j, file);
+  return parse_groove_suite(j, file);
 }
 
-SuiteSet load_suite_set(const std::string& file) { return parse_suite_set(support::read_json_file(file), file); }
+GrooveSuiteSet load_groove_suite_set(const std::string& file) {
+  return parse_groove_suite_set(support::read_json_file(file), file);
+}
 
-SuiteSet parse_suite_set(const nlohmann::json& j, const std::string& file) {
-  SuiteSet set;
+GrooveSuiteSet parse_groove_suite_set(const nlohmann::json& j, const std::string& file) {
+  GrooveSuiteSet set;
   set.file = file;
   if (!(j.is_object() && j.contains("suites"))) {
-    set.suites.push_back(parse_suite(j, file));
+    set.suites.push_back(parse_groove_suite(j, file));
     set.name = set.suites.front().name;
     set.description = set.suites.front().description;
     return set;
@@ -230,7 +232,7 @@ SuiteSet parse_suite_set(const nlohmann::json& j, const std::string& file) {
       throw support::UserError(file + ": /suites/" + std::to_string(n) + " = " + support::value_text(list[n]) +
                                " must be a file name");
     const std::string sub = (dir / list[n].get<std::string>()).string();
-    set.suites.push_back(load_suite(sub));
+    set.suites.push_back(load_groove_suite(sub));
   }
   return set;
 }

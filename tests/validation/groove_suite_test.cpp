@@ -1,6 +1,6 @@
-// Tests of validation/suite.h: the checked-in suite loads, and each spec error is a UserError
+// Tests of validation/groove_suite.h: the checked-in suite loads, and each spec error is a UserError
 // whose message names the file, the JSON path, the value and the allowed range.
-#include "vgroove/validation/suite.h"
+#include "vgroove/validation/groove_suite.h"
 
 #include "vgroove/support/user_error.h"
 
@@ -35,16 +35,16 @@ json valid_spec() {
   })");
 }
 
-class SuiteSpec : public testing::Test {
+class GrooveSuiteSpec : public testing::Test {
  protected:
   // Writes the spec to a file of its own and loads it.
-  Suite load(const json& spec) {
+  GrooveSuite load(const json& spec) {
     write_text(file_, spec.dump(2));
-    return load_suite(file_);
+    return load_groove_suite(file_);
   }
-  Suite load_text(const std::string& text) {
+  GrooveSuite load_text(const std::string& text) {
     write_text(file_, text);
-    return load_suite(file_);
+    return load_groove_suite(file_);
   }
   // The message of the UserError that loading `spec` throws.
   std::string error_of(const std::function<void()>& f) {
@@ -64,8 +64,8 @@ class SuiteSpec : public testing::Test {
   std::string file_ = dir_.file("suite.json");
 };
 
-TEST_F(SuiteSpec, ValidSpecLoadsInRadians) {
-  const Suite s = load(valid_spec());
+TEST_F(GrooveSuiteSpec, ValidSpecLoadsInRadians) {
+  const GrooveSuite s = load(valid_spec());
   EXPECT_EQ(s.name, "small");
   EXPECT_EQ(s.file, file_);
   ASSERT_EQ(s.grooves.size(), 2u);
@@ -84,21 +84,21 @@ TEST_F(SuiteSpec, ValidSpecLoadsInRadians) {
   EXPECT_FALSE(s.paper.has_value());
 }
 
-TEST_F(SuiteSpec, RangeStopsAtToWhenStepsDoNotLandOnIt) {
+TEST_F(GrooveSuiteSpec, RangeStopsAtToWhenStepsDoNotLandOnIt) {
   json j = valid_spec();
   j["theta_i_deg"] = {{"from", 0}, {"to", 10}, {"step", 4}};
-  const Suite s = load(j);
+  const GrooveSuite s = load(j);
   ASSERT_EQ(s.theta_i.size(), 3u);  // 0, 4, 8
   EXPECT_DOUBLE_EQ(s.theta_i.back(), deg(8));
   // Steps that land on "to" up to rounding include it: -89 .. 89 by 0.1 is 1781 values.
   j["theta_i_deg"] = {{"from", -89}, {"to", 89}, {"step", 0.1}};
-  const Suite t = load(j);
+  const GrooveSuite t = load(j);
   EXPECT_EQ(t.theta_i.size(), 1781u);
   EXPECT_DOUBLE_EQ(t.theta_i.back(), deg(89));
 }
 
-TEST_F(SuiteSpec, TheCheckedInTable1SuiteLoads) {
-  const Suite s = load_suite(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/table1_symmetric.json");
+TEST_F(GrooveSuiteSpec, TheCheckedInTable1SuiteLoads) {
+  const GrooveSuite s = load_groove_suite(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/table1_symmetric.json");
   EXPECT_EQ(s.grooves.size(), 36u);   // 1 .. 176 step 5
   EXPECT_EQ(s.theta_i.size(), 179u);  // -89 .. 89 step 1
   EXPECT_EQ(s.cases(), 6444u);
@@ -113,14 +113,14 @@ TEST_F(SuiteSpec, TheCheckedInTable1SuiteLoads) {
   EXPECT_EQ(s.paper->max_l1, 0.003);
 }
 
-TEST_F(SuiteSpec, ThetaVAboveTheRangeIsNamed) {
+TEST_F(GrooveSuiteSpec, ThetaVAboveTheRangeIsNamed) {
   json j = valid_spec();
   j["groove"]["theta_v_deg"] = {30, 195};
   const std::string m = error_of(j);
   EXPECT_CONTAINS(m, file_ + ": /groove/theta_v_deg/1 = 195 is out of range [0.001, 180]");
 }
 
-TEST_F(SuiteSpec, ThetaVZeroAndRangeEndsAreChecked) {
+TEST_F(GrooveSuiteSpec, ThetaVZeroAndRangeEndsAreChecked) {
   json j = valid_spec();
   j["groove"]["theta_v_deg"] = {0};
   EXPECT_CONTAINS(error_of(j), file_ + ": /groove/theta_v_deg/0 = 0 is out of range [0.001, 180]");
@@ -130,7 +130,7 @@ TEST_F(SuiteSpec, ThetaVZeroAndRangeEndsAreChecked) {
   EXPECT_CONTAINS(error_of(j), file_ + ": /groove/theta_v_deg/from = -5 is out of range [0.001, 180]");
 }
 
-TEST_F(SuiteSpec, GrazingThetaIIsNamed) {
+TEST_F(GrooveSuiteSpec, GrazingThetaIIsNamed) {
   json j = valid_spec();
   j["theta_i_deg"] = {0, 90};
   EXPECT_CONTAINS(error_of(j), file_ + ": /theta_i_deg/1 = 90 is out of range [-89.999, 89.999]");
@@ -140,7 +140,7 @@ TEST_F(SuiteSpec, GrazingThetaIIsNamed) {
   EXPECT_CONTAINS(error_of(j), file_ + ": /theta_i_deg/from = -90 is out of range [-89.999, 89.999]");
 }
 
-TEST_F(SuiteSpec, TooFewRaysIsNamed) {
+TEST_F(GrooveSuiteSpec, TooFewRaysIsNamed) {
   json j = valid_spec();
   j["rays"] = 0;
   EXPECT_CONTAINS(error_of(j), file_ + ": /rays = 0 is out of range [1, ");
@@ -148,7 +148,7 @@ TEST_F(SuiteSpec, TooFewRaysIsNamed) {
   EXPECT_CONTAINS(error_of(j), file_ + ": /rays = -3 is out of range [1, ");
 }
 
-TEST_F(SuiteSpec, UnknownKeyIsNamed) {
+TEST_F(GrooveSuiteSpec, UnknownKeyIsNamed) {
   json j = valid_spec();
   j["roughnes"] = 0.1;
   const std::string m = error_of(j);
@@ -161,7 +161,7 @@ TEST_F(SuiteSpec, UnknownKeyIsNamed) {
   EXPECT_CONTAINS(error_of(t), file_ + ": /thresholds/max_l2 is not a known key");
 }
 
-TEST_F(SuiteSpec, WrongTypesAreNamed) {
+TEST_F(GrooveSuiteSpec, WrongTypesAreNamed) {
   json j = valid_spec();
   j["rays"] = "many";
   EXPECT_CONTAINS(error_of(j), file_ + ": /rays = \"many\" must be an integer");
@@ -179,7 +179,7 @@ TEST_F(SuiteSpec, WrongTypesAreNamed) {
   EXPECT_CONTAINS(error_of(j), file_ + ": /thresholds must be a JSON object");
 }
 
-TEST_F(SuiteSpec, BadChoicesAreNamed) {
+TEST_F(GrooveSuiteSpec, BadChoicesAreNamed) {
   json j = valid_spec();
   j["sampling"] = "sobol";
   EXPECT_CONTAINS(error_of(j), file_ + ": /sampling = \"sobol\" is not one of \"stratified\", \"random\"");
@@ -191,7 +191,7 @@ TEST_F(SuiteSpec, BadChoicesAreNamed) {
   EXPECT_CONTAINS(error_of(j), file_ + ": /eq6_form = \"fixed\" is not one of \"corrected\", \"printed\"");
 }
 
-TEST_F(SuiteSpec, MissingRequiredKeysAreNamed) {
+TEST_F(GrooveSuiteSpec, MissingRequiredKeysAreNamed) {
   for (const char* key : {"name", "kind", "groove", "theta_i_deg", "rays", "thresholds"}) {
     json j = valid_spec();
     j.erase(key);
@@ -202,7 +202,7 @@ TEST_F(SuiteSpec, MissingRequiredKeysAreNamed) {
   EXPECT_CONTAINS(error_of(j), file_ + ": /thresholds/mean_l1 is missing (required)");
 }
 
-TEST_F(SuiteSpec, EmptyAndBackwardsRangesAreErrors) {
+TEST_F(GrooveSuiteSpec, EmptyAndBackwardsRangesAreErrors) {
   json j = valid_spec();
   j["theta_i_deg"] = json::array();
   EXPECT_CONTAINS(error_of(j), file_ + ": /theta_i_deg is an empty list");
@@ -212,38 +212,38 @@ TEST_F(SuiteSpec, EmptyAndBackwardsRangesAreErrors) {
   EXPECT_CONTAINS(error_of(j), file_ + ": /theta_i_deg/step = 0 is out of range (0, inf)");
 }
 
-TEST_F(SuiteSpec, MissingFileIsNamed) {
+TEST_F(GrooveSuiteSpec, MissingFileIsNamed) {
   const std::string f = dir_.file("missing.json");
-  EXPECT_CONTAINS(error_of([&] { load_suite(f); }), f + ": cannot open the file");
+  EXPECT_CONTAINS(error_of([&] { load_groove_suite(f); }), f + ": cannot open the file");
 }
 
-TEST_F(SuiteSpec, InvalidJsonIsNamed) {
+TEST_F(GrooveSuiteSpec, InvalidJsonIsNamed) {
   EXPECT_CONTAINS(error_of([&] { load_text("{\"name\": \"small\", \"rays\": 10,"); }), file_ + ": not valid JSON");
   EXPECT_CONTAINS(error_of([&] { load_text("[1, 2]"); }), file_ + ": / must be a JSON object, found array");
 }
 
-TEST_F(SuiteSpec, TheCheckedInTable1SetHoldsBothColumns) {
+TEST_F(GrooveSuiteSpec, TheCheckedInTable1SetHoldsBothColumns) {
   const std::string file = std::string(VGROOVE_SOURCE_DIR) + "/data/suites/table1.json";
-  const SuiteSet set = load_suite_set(file);
+  const GrooveSuiteSet set = load_groove_suite_set(file);
   ASSERT_EQ(set.suites.size(), 2u);
   EXPECT_EQ(set.suites[0].name, "table1_symmetric");
   EXPECT_EQ(set.suites[0].cases(), 6444u);
-  // A set is not a suite: load_suite says so, naming the file.
-  EXPECT_CONTAINS(error_of([&] { load_suite(file); }), file + ": is a set of suites");
+  // A set is not a suite: load_groove_suite says so, naming the file.
+  EXPECT_CONTAINS(error_of([&] { load_groove_suite(file); }), file + ": is a set of suites");
 }
 
-TEST_F(SuiteSpec, ASingleSuiteIsASetOfOne) {
+TEST_F(GrooveSuiteSpec, ASingleSuiteIsASetOfOne) {
   write_text(file_, valid_spec().dump());
-  const SuiteSet set = load_suite_set(file_);
+  const GrooveSuiteSet set = load_groove_suite_set(file_);
   ASSERT_EQ(set.suites.size(), 1u);
   EXPECT_EQ(set.name, "small");
 }
 
-TEST_F(SuiteSpec, SetWithAMissingMemberNamesIt) {
+TEST_F(GrooveSuiteSpec, SetWithAMissingMemberNamesIt) {
   write_text(file_, R"({"name": "set", "suites": ["nope.json"]})");
-  EXPECT_CONTAINS(error_of([&] { load_suite_set(file_); }), dir_.file("nope.json") + ": cannot open the file");
+  EXPECT_CONTAINS(error_of([&] { load_groove_suite_set(file_); }), dir_.file("nope.json") + ": cannot open the file");
   write_text(file_, R"({"name": "set", "suites": []})");
-  EXPECT_CONTAINS(error_of([&] { load_suite_set(file_); }), file_ + ": /suites must be a non-empty list");
+  EXPECT_CONTAINS(error_of([&] { load_groove_suite_set(file_); }), file_ + ": /suites must be a non-empty list");
 }
 
 TEST(CheckAngles, CommandLineRangeMessages) {

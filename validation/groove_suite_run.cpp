@@ -1,4 +1,5 @@
-#include "vgroove/validation/suite_run.h"
+#include "vgroove/validation/groove_suite_run.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/support/format.h"
 #include "vgroove/validation/part_fields.h"
@@ -13,7 +14,7 @@
 
 namespace vgroove::validation {
 
-double run_memory_bytes(const Suite& suite, const CaseOptions& options, int threads, bool report) {
+double groove_suite_memory_bytes(const GrooveSuite& suite, const CaseOptions& options, int threads, bool report) {
   constexpr double kReportBytesPerCase = 4096;  // measured: 2.5 kB (Table 1's nonsymmetric report)
   constexpr double kTableEntryBytes = 64;       // a BeamTracer reflection, rounded up
   const double cases = static_cast<double>(suite.cases());
@@ -32,7 +33,7 @@ double run_memory_bytes(const Suite& suite, const CaseOptions& options, int thre
 }
 
 namespace {
-void summarize(const Suite& suite, SuiteRun& run);
+void summarize(const GrooveSuite& suite, GrooveSuiteRun& run);
 }  // namespace
 
 GrooveCaseTally GrooveCaseWork::run_chunks(const Context&, std::size_t unit, std::int64_t, std::int64_t) const {
@@ -40,9 +41,9 @@ GrooveCaseTally GrooveCaseWork::run_chunks(const Context&, std::size_t unit, std
   const std::size_t n =
       static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), unit) - first.begin()) - 1;
   const std::size_t c = unit - first[n];
-  const SuiteCase sc = suites[n].case_at(c);
+  const GrooveSuiteCase sc = suites[n].case_at(c);
   GrooveCaseTally t{run_case(sc.groove, sc.theta_i, options[n], c, cancel)};
-  t.thread_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  t.thread_s = support::seconds_since(t0);
   return t;
 }
 
@@ -172,7 +173,7 @@ GrooveCaseTally GrooveCaseWork::read_tally(support::JsonObject& j, std::size_t u
   return tally;
 }
 
-Job<GrooveCaseWork> groove_cases_job(const std::vector<Suite>& suites, const std::vector<CaseOptions>& options,
+Job<GrooveCaseWork> groove_cases_job(const std::vector<GrooveSuite>& suites, const std::vector<CaseOptions>& options,
                                      nlohmann::json descriptor) {
   GrooveCaseWork w{suites, options, {}};
   std::vector<support::WorkUnit> units;
@@ -180,7 +181,7 @@ Job<GrooveCaseWork> groove_cases_job(const std::vector<Suite>& suites, const std
     w.first.push_back(units.size());
     for (std::size_t c = 0; c < suites[n].cases(); ++c) {
       // Cost: per lit facet, the rays' reflections (about pi / theta_v each) at a few ns, and the model.
-      const SuiteCase sc = suites[n].case_at(c);
+      const GrooveSuiteCase sc = suites[n].case_at(c);
       const double bounces = sc.groove.degenerate() ? 0.0 : std::min(1e5, std::numbers::pi / sc.groove.theta_v + 1.0);
       support::WorkUnit u;
       u.chunk_cost =
@@ -191,19 +192,19 @@ Job<GrooveCaseWork> groove_cases_job(const std::vector<Suite>& suites, const std
   return make_job(std::move(w), std::move(units), std::move(descriptor));
 }
 
-std::vector<SuiteRun> suite_runs_from(const GrooveCaseWork& work,
-                                      const std::vector<UnitResult<GrooveCaseWork>>& results, int threads,
-                                      double wall_s) {
-  std::vector<SuiteRun> runs;
+std::vector<GrooveSuiteRun> groove_suite_runs_from(const GrooveCaseWork& work,
+                                                   const std::vector<UnitResult<GrooveCaseWork>>& results, int threads,
+                                                   double wall_s) {
+  std::vector<GrooveSuiteRun> runs;
   for (std::size_t n = 0; n < work.suites.size(); ++n) {
-    SuiteRun run;
+    GrooveSuiteRun run;
     run.options = work.options[n];
     run.threads = threads;
     double thread_s = 0.0;
     for (std::size_t c = 0; c < work.suites[n].cases(); ++c) {
       thread_s += results[work.first[n] + c].tally.thread_s;
       CaseOutcome o = results[work.first[n] + c].tally.outcome;
-      const SuiteCase sc = work.suites[n].case_at(c);
+      const GrooveSuiteCase sc = work.suites[n].case_at(c);
       o.groove = sc.groove, o.theta_i = sc.theta_i;
       run.cases.push_back(std::move(o));
     }
@@ -214,26 +215,26 @@ std::vector<SuiteRun> suite_runs_from(const GrooveCaseWork& work,
   return runs;
 }
 
-SuiteRun run_suite(const Suite& suite, const CaseOptions& options, int threads, const support::ProgressFn& progress,
-                   const std::atomic<bool>* cancel) {
+GrooveSuiteRun run_groove_suite(const GrooveSuite& suite, const CaseOptions& options, int threads,
+                                const support::ProgressFn& progress, const std::atomic<bool>* cancel) {
   const auto t0 = std::chrono::steady_clock::now();
   Job<GrooveCaseWork> job = groove_cases_job({suite}, {options}, {});
   job.work.cancel = cancel;
   const auto results = run_job(job, threads, progress, cancel);
-  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double wall_s = support::seconds_since(t0);
   if (!results) {
-    SuiteRun run;
+    GrooveSuiteRun run;
     run.options = options;
     run.threads = support::resolve_threads(threads);
     run.interrupted = true;
     return run;
   }
-  return suite_runs_from(job.work, *results, support::resolve_threads(threads), wall_s).front();
+  return groove_suite_runs_from(job.work, *results, support::resolve_threads(threads), wall_s).front();
 }
 
 namespace {
-void summarize(const Suite& suite, SuiteRun& run) {
-  Summary& s = run.summary;
+void summarize(const GrooveSuite& suite, GrooveSuiteRun& run) {
+  GrooveSuiteSummary& s = run.summary;
   // Sums in suite order: the same figures for any thread count.
   double sum_l1 = 0.0;
   bool first = true;
