@@ -4,27 +4,22 @@
 #include "vgroove/analytic/exp_log_batch.h"
 #include "vgroove/analytic/ndf.h"
 #include "vgroove/analytic/sin_batch.h"
+#include "vgroove/common/polynomial.h"
+#include "vgroove/common/simd.h"
 
 #include <cmath>
-#include <cstring>
 #include <numbers>
 
 namespace vgroove::analytic::lobe_nodes {
 
 namespace {
 
-// Four doubles (GCC and clang vector extensions); comparisons give masks, ?: selects lane by lane.
-using V = batch::V4;
+// Four doubles (common/simd.h); comparisons give masks, ?: selects lane by lane.
+using V = simd::V4;
+using simd::load;
+using simd::splat;
+using simd::store;
 
-// Always inlined: piece_terms is compiled twice (AVX2 and generic), and an out-of-line helper
-// shared by both would pass its vectors by two conventions.
-[[gnu::always_inline]] inline V splat(double x) { return V{x, x, x, x}; }
-[[gnu::always_inline]] inline V load(const double* p) {
-  V v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-[[gnu::always_inline]] inline void store(double* p, V v) { std::memcpy(p, &v, sizeof v); }
 // Lane by lane: the correctly rounded square root, as std::sqrt (no errno here: -fno-math-errno).
 [[gnu::always_inline]] inline V sqrt_v(V x) {
   return V{__builtin_sqrt(x[0]), __builtin_sqrt(x[1]), __builtin_sqrt(x[2]), __builtin_sqrt(x[3])};
@@ -51,11 +46,8 @@ using V = batch::V4;
 
 }  // namespace
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-// One copy for AVX2 and one for any x86-64, picked at start-up. AVX2 without FMA: no product is
-// fused, so both copies round alike, and as the scalar kernels.
-[[gnu::target_clones("avx2", "default")]]
-#endif
+// Both copies (common/simd.h) round as the scalar kernels.
+VGROOVE_TARGET_CLONES
 void piece_terms(const Piece& p, int n, const double* v, const double* rule_w, double* terms) {
   const bool ggx = p.ndf == NdfKind::ggx;
   const double phong_p = p.ndf == NdfKind::phong ? phong_exponent(p.alpha) : 0.0;
@@ -152,11 +144,9 @@ void piece_terms(const Piece& p, int n, const double* v, const double* rule_w, d
   }
 }
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-[[gnu::target_clones("avx2", "default")]]
-#endif
-void tail_strata(const TailStrata& t, int n, const double* table, double* theta_v, double* K, double* f_a,
-                 double* f_b, double* f_k, double* w) {
+VGROOVE_TARGET_CLONES
+void tail_strata(const TailStrata& t, int n, const double* table, double* theta_v, double* K, double* f_a, double* f_b,
+                 double* f_k, double* w) {
   const V zero = splat(0.0);
   const V st = splat(t.sin_tau), ct = splat(t.cos_tau);
   const double span = std::numbers::pi + 2.0 * t.tf;
@@ -174,12 +164,8 @@ void tail_strata(const TailStrata& t, int n, const double* table, double* theta_
       sin_m = sqrt_v((1.0 - c) * (1.0 + c));
       arg = c;
       const V z = c * c;
-      const V pz =
-          1.0 / 6 +
-          z * (3.0 / 40 +
-               z * (5.0 / 112 +
-                    z * (35.0 / 1152 +
-                         z * (63.0 / 2816 + z * (231.0 / 13312 + z * (143.0 / 10240 + z * (6435.0 / 557056)))))));
+      const V pz = horner(z, 1.0 / 6, 3.0 / 40, 5.0 / 112, 35.0 / 1152, 63.0 / 2816, 231.0 / 13312, 143.0 / 10240,
+                          6435.0 / 557056);
       h = c + c * (z * pz);
     } else {
       V x;
@@ -193,10 +179,7 @@ void tail_strata(const TailStrata& t, int n, const double* table, double* theta_
       cos_sin_of_atan_v(x, sin_m, cos_m);
       arg = x;
       const V z = x * x;
-      const V pz =
-          -1.0 / 3 +
-          z * (1.0 / 5 +
-               z * (-1.0 / 7 + z * (1.0 / 9 + z * (-1.0 / 11 + z * (1.0 / 13 + z * (-1.0 / 15 + z * (1.0 / 17)))))));
+      const V pz = horner(z, -1.0 / 3, 1.0 / 5, -1.0 / 7, 1.0 / 9, -1.0 / 11, 1.0 / 13, -1.0 / 15, 1.0 / 17);
       h = x + x * (z * pz);
     }
     for (int l = 0; l < 4; ++l) {
