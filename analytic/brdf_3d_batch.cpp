@@ -54,6 +54,7 @@
 #include "vgroove/analytic/brdf_3d_passes.h"
 #include "vgroove/analytic/exp_log_batch.h"
 #include "vgroove/analytic/kaleidoscope_solutions.h"
+#include "vgroove/analytic/ndf_visit.h"
 #include "vgroove/analytic/sin_batch.h"
 #include "vgroove/common/simd.h"
 
@@ -236,9 +237,9 @@ double brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, 
     const V w = select(live, select(sine, sine_value, value), zero);
     const V W = select(w > 0.0, w, zero);
     if (ggx) {
-      // D_cs (ndf.h) without alpha^2 / pi, and sin(theta_m) / k for k >= 2.
-      // (The quotient does not wait for the width.)
-      const V qd = alpha * alpha * S * S + C * C;
+      // GGX's D = alpha^2 / (pi q^2) (ndf_ggx.h) without alpha^2 / pi, and sin(theta_m) / k for
+      // k >= 2. (The quotient does not wait for the width.)
+      const V qd = Ggx{alpha}.q(S, C);
       const V t = W * (select(k1, one, C) / (qd * qd * k));
       t_1 += select(k1, t, zero);
       t_k += select(k1, zero, t);
@@ -264,15 +265,12 @@ double brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, 
       return;
     }
     if (beckmann) {
-      // D_cs (ndf.h) with exp from the polynomial above, where tan^2 / alpha^2 <= 32; the other
-      // lanes (add_terms' exact sines) one at a time. t = tan theta_m, D = exp(-t^2 / alpha^2) /
-      // (pi alpha^2 cos^4).
+      // Beckmann's D (ndf_beckmann.h) with exp by the polynomial, where tan^2 / alpha^2 <= 32; the
+      // other lanes (add_terms' exact sines) one at a time.
       const auto exact = C * C > 32.0 * alpha * alpha * (S * S);
       const auto here = live & ~exact;
-      const V S_here = select(here, S, one);  // other lanes' exponents stay in range
-      const V t = C / S_here, c2 = S_here * S_here;
-      const V D = batch::exp_batch(select(here, -(t * t) / (alpha * alpha), zero)) / (beckmann_norm * c2 * c2);
-      const V w_d = select(here, W, zero) * D;
+      const V S_here = select(here, S, one);  // other lanes' D stay finite
+      const V w_d = select(here, W, zero) * Beckmann{alpha}.D_cs(S_here, C);
       t_1 += select(k1, w_d, zero);
       t_k += select(k1, zero, C * w_d / k);
       W_scalar = select(exact, W, zero);

@@ -3,6 +3,7 @@
 #include "vgroove/analytic/kaleidoscope.h"
 #include "vgroove/analytic/lobe_3d_nodes.h"
 #include "vgroove/analytic/ndf.h"
+#include "vgroove/analytic/ndf_visit.h"
 #include "vgroove/analytic/quadrature.h"
 #include "vgroove/analytic/sin_batch.h"
 
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <type_traits>
 #include <vector>
 
 namespace vgroove::analytic {
@@ -265,21 +267,21 @@ int bin_fast(const LobeRun& r, const Azimuth& az, double t) {
 // The Gauss-Legendre sum of the weight times the density over one piece [b0, b1] of w (in_w) or
 // theta_m, N nodes (LobeRun::fast; the pieces of 4 and 8 nodes go to lobe_nodes::piece_terms in
 // runs, integrate_band).
-template <int N, bool kGgx>
-double piece_sum(const LobeRun& r, const Azimuth& az, FacetSide side, int k, int K, const GaussLegendre& rule,
-                 double b0, double b1, bool in_w) {
+template <int N, typename Ndf>
+double piece_sum(const Ndf& ndf, const Azimuth& az, FacetSide side, int k, int K, const GaussLegendre& rule, double b0,
+                 double b1, bool in_w) {
   double v[N], cos_m[N], sin_m[N], w[N];
   for (int q = 0; q < N; ++q) v[q] = 0.5 * (b0 + b1) + 0.5 * (b1 - b0) * rule.x[q];
   if (in_w) {
-    if constexpr (kGgx) {
-      // groove_cdf_inverse_cos_sin for GGX, inlined: tan theta_m = alpha sqrt(u / (1 - u)), u in
-      // (0, 1) at the nodes (w < sqrt(CDF(median))).
-      for (int q = 0; q < N; ++q) {
-        const double u = v[q] * v[q];
-        cos_sin_of_atan(r.alpha * std::sqrt(u / (1.0 - u)), cos_m[q], sin_m[q]);
+    // groove_cdf_inverse_cos_sin, u = w^2 in (0, 1) at the nodes (w < sqrt(CDF(median))).
+    for (int q = 0; q < N; ++q) {
+      const double u = v[q] * v[q];
+      const double t = ndf.inverse_cdf(u, [u] { return std::log1p(-u); });
+      if constexpr (Ndf::kInverseGivesTan) {
+        ndf_math::cos_sin_of_atan(t, cos_m[q], sin_m[q]);
+      } else {
+        ndf_math::cos_sin_of_one_minus_cos(t, cos_m[q], sin_m[q]);
       }
-    } else {
-      for (int q = 0; q < N; ++q) groove_cdf_inverse_cos_sin(r.ndf, r.alpha, v[q] * v[q], cos_m[q], sin_m[q]);
     }
   } else {
     for (int q = 0; q < N; ++q) sin_cos_quadrant(v[q], sin_m[q], cos_m[q]);
@@ -287,12 +289,9 @@ double piece_sum(const LobeRun& r, const Azimuth& az, FacetSide side, int k, int
   weight_piece<N>(az, side, k, K, cos_m, sin_m, w);
   double sum = 0.0;
   for (int q = 0; q < N; ++q) {
-    // The density: du = 2 w dw in w, 2 pi D cos sin d theta_m in theta_m (D_cs of ndf.h).
-    double D = 0.0;
-    if (!in_w) {
-      D = kGgx ? D_cs_ggx(cos_m[q], sin_m[q], r.alpha) : D_cs(r.ndf, cos_m[q], sin_m[q], r.alpha);
-    }
-    const double density = in_w ? 2.0 * v[q] : 2.0 * std::numbers::pi * D * cos_m[q] * sin_m[q];
+    // The density: du = 2 w dw in w, 2 pi D cos sin d theta_m in theta_m.
+    const double density =
+        in_w ? 2.0 * v[q] : 2.0 * std::numbers::pi * ndf.D_cs(cos_m[q], sin_m[q]) * cos_m[q] * sin_m[q];
     sum += rule.w[q] * w[q] * density;
   }
   return sum;
@@ -575,8 +574,9 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
           if (order >= 4) {
             sc.nodes += static_cast<std::size_t>(order);
           } else {
-            pending.sum = r.ndf == NdfKind::ggx ? piece_sum<2, true>(r, az, side, k, K_piece, rule, b0, b1, in_w)
-                                                : piece_sum<2, false>(r, az, side, k, K_piece, rule, b0, b1, in_w);
+            pending.sum = visit_ndf(r.ndf, r.alpha, [&](const auto& ndf) {
+              return piece_sum<2>(ndf, az, side, k, K_piece, rule, b0, b1, in_w);
+            });
           }
           sc.pieces.push_back(pending);
           continue;
@@ -612,36 +612,30 @@ void integrate_band(const LobeRun& r, const Azimuth& az, FacetSide side, int k, 
 }
 
 // The tail's strata in the CDF, u_q = u0 + mass (q + 1/2) / n, have 1 - u_q = mass s_q with
-// s_q = 1 - (q + 1/2) / n whatever the azimuth. The table holds what the inverse CDF needs of s_q,
-// per stratum: Phong s_q^(1/(p+2)) (cos theta_m = (1 - u)^(1/(p+2)) is mass^(1/(p+2)) times it),
-// GGX s_q, Beckmann log s_q (tan^2 theta_m = -alpha^2 log(1 - u)).
+// s_q = 1 - (q + 1/2) / n whatever the azimuth. The table holds the NDF's tail variable of s_q
+// per stratum (tail_variable: GGX s_q, Beckmann log s_q, Phong s_q^(1/(p+2)), ...), which joins the
+// azimuth's variable of the mass (tail_join) into the variable of 1 - u_q.
 // Padded to a multiple of 4 entries (lobe_nodes::tail_strata takes four at a time; the padding's
 // strata are formed and never read).
 std::vector<double> tail_strata_table(NdfKind ndf, double alpha, int n) {
   std::vector<double> t(static_cast<std::size_t>((std::max(n, 0) + 3) / 4 * 4), 0.5);
-  for (int q = 0; q < n; ++q) {
-    const double s = 1.0 - (q + 0.5) / n;
-    t[q] = ndf == NdfKind::phong ? std::pow(s, 1.0 / (phong_exponent(alpha) + 2.0))
-                                 : (ndf == NdfKind::beckmann ? std::log(s) : s);
-  }
+  visit_ndf(ndf, alpha, [&](const auto& f) {
+    for (int q = 0; q < n; ++q) t[q] = f.tail_variable(1.0 - (q + 0.5) / n);
+  });
   return t;
 }
 
 // The half-aperture h = theta_v / 2 = pi/2 - theta_m where the CDF's complement is 1 - u =
-// one_minus_u > 0 (the reference kernels' tail): the library's asin and atan of cos theta_m resp.
-// cot theta_m, formed from 1 - u itself. Not pi - 2 theta_m: its absolute rounding (~4e-16, as
-// theta_m nears pi/2) times the k ~ 1 / theta_v reflections of the groove moves Eq. (6)'s shares
-// (by 1e-8 relative at theta_v = 1e-4, Phong 2.0 with the bands stopped at k = 5).
+// one_minus_u > 0 (the reference kernels' tail): the library's asin of cos theta_m or atan of
+// cot theta_m, as the NDF's tail gives them (tail_arg), formed from 1 - u itself. Not pi - 2 theta_m:
+// its absolute rounding (~4e-16, as theta_m nears pi/2) times the k ~ 1 / theta_v reflections of
+// the groove moves Eq. (6)'s shares (by 1e-8 relative at theta_v = 1e-4, Phong 2.0 with the bands
+// stopped at k = 5).
 double tail_half_aperture_reference(NdfKind ndf, double alpha, double one_minus_u) {
-  switch (ndf) {
-    case NdfKind::ggx:
-      return std::atan(std::sqrt(one_minus_u / (1.0 - one_minus_u)) / alpha);
-    case NdfKind::beckmann:
-      return std::atan(1.0 / (alpha * std::sqrt(-std::log(one_minus_u))));
-    case NdfKind::phong:
-      return std::asin(std::pow(one_minus_u, 1.0 / (phong_exponent(alpha) + 2.0)));
-  }
-  return 0.0;
+  return visit_ndf(ndf, alpha, [&](const auto& f) {
+    const double arg = f.tail_arg(f.tail_variable(one_minus_u));
+    return std::remove_cvref_t<decltype(f)>::kTailArgIsCos ? std::asin(arg) : std::atan(arg);
+  });
 }
 
 // The tail beyond the explicit bands: midpoint rule in the CDF.
@@ -670,12 +664,10 @@ void integrate_tail(const LobeRun& r, const Azimuth& az, FacetSide side, int k_c
   };
   if (r.fast) {
     // The strata four at a time (lobe_nodes::tail_strata) from the table (tail_strata_table) and
-    // the azimuth's factor (Phong mass^(1/(p+2)), GGX and Beckmann mass resp. log mass), then both
+    // the azimuth's lead (the NDF's tail variable of the mass), then both
     // outcomes of Eq. (6) as weight_fast forms them: K reflections on [f_b, f_k], K - 1 on [f_k, f_a].
     const std::vector<double>& table = light ? r.light_tail_table : r.tail_table;
-    const double lead = r.ndf == NdfKind::phong      ? std::pow(mass, 1.0 / (phong_exponent(r.alpha) + 2.0))
-                        : r.ndf == NdfKind::beckmann ? std::log(mass)
-                                                     : mass;
+    const double lead = visit_ndf(r.ndf, r.alpha, [&](const auto& f) { return f.tail_variable(mass); });
     const int padded = static_cast<int>(table.size());
     sc.strata.resize(6 * static_cast<std::size_t>(padded));
     double *theta_v = sc.strata.data(), *Kd = theta_v + padded, *f_a = Kd + padded, *f_b = f_a + padded,
