@@ -15,11 +15,14 @@
 // Not defined for x < 0, or x = y = 0.
 #pragma once
 
+#include "vgroove/common/polynomial.h"
+#include "vgroove/common/simd.h"
+
 #include <cstdint>
 
 namespace vgroove::analytic {
 
-typedef double Double2 __attribute__((vector_size(16)));
+using Double2 = simd::V2;
 
 namespace atan_pair_detail {
 
@@ -65,7 +68,7 @@ inline constexpr double kLo[18] = {0.0,
 
 // {atan2(y[0], x[0]), atan2(y[1], x[1])} for x >= 0.
 inline Double2 atan2_pair(Double2 y, Double2 x) {
-  typedef std::int64_t Int2 __attribute__((vector_size(16)));
+  using Int2 = simd::I2;
   const Int2 sign_bit = {INT64_MIN, INT64_MIN};
   const Double2 n = reinterpret_cast<Double2>(reinterpret_cast<Int2>(y) & ~sign_bit);  // |y|
   const Int2 swap = n > x;
@@ -78,11 +81,10 @@ inline Double2 atan2_pair(Double2 y, Double2 x) {
   const Int2 j = reinterpret_cast<Int2>(shifted) - reinterpret_cast<Int2>(Double2{round_const, round_const});
   const Int2 index = j + (swap & 9);
   const Double2 r = (q - c) / (1.0 + q * c);
-  const Double2 r2 = r * r, r4 = r2 * r2;
-  const Double2 b0 = -3.333333333333333333333333e-01 + 2.000000000000000000000000e-01 * r2;
-  const Double2 b1 = -1.428571428571428571428571e-01 + 1.111111111111111111111111e-01 * r2;
-  const Double2 b2 = -9.090909090909090909090909e-02 + 7.692307692307692307692308e-02 * r2;
-  const Double2 P = (b0 + b1 * r4) + b2 * (r4 * r4);
+  const Double2 r2 = r * r;
+  const Double2 P =
+      estrin(r2, -3.333333333333333333333333e-01, 2.000000000000000000000000e-01, -1.428571428571428571428571e-01,
+             1.111111111111111111111111e-01, -9.090909090909090909090909e-02, 7.692307692307692307692308e-02);
   const Double2 atan_r = r + r * (r2 * P);
   const Double2 hi = {atan_pair_detail::kHi[index[0]], atan_pair_detail::kHi[index[1]]};
   const Double2 lo = {atan_pair_detail::kLo[index[0]], atan_pair_detail::kLo[index[1]]};

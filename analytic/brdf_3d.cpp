@@ -4,12 +4,14 @@
 #include "vgroove/analytic/brdf_3d_passes.h"
 #include "vgroove/analytic/kaleidoscope.h"
 #include "vgroove/analytic/kaleidoscope_solutions.h"
+#include "vgroove/analytic/ndf_visit.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <type_traits>
 
 namespace vgroove::analytic {
 
@@ -318,35 +320,37 @@ double cook_torrance(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, co
   return ct_at(i, o, ndf, alpha, F);
 }
 
+// The CDF and its inverse are each NDF's own (ndf_ggx.h, ndf_beckmann.h, ndf_phong.h); the inverse
+// gives tan theta_m or 1 - cos theta_m, turned here into the angle or its cosine and sine.
 double groove_cdf(NdfKind ndf, double alpha, double theta_m) {
   if (!(theta_m > 0.0)) return 0.0;
   if (!(theta_m < 0.5 * std::numbers::pi)) return 1.0;
-  const double t = std::tan(theta_m), t2 = t * t;
-  switch (ndf) {
-    case NdfKind::ggx:
-      return t2 / (alpha * alpha + t2);
-    case NdfKind::beckmann:
-      return -std::expm1(-t2 / (alpha * alpha));
-    case NdfKind::phong: {
-      // 1 - cos^(p+2), p + 2 = 2 / alpha^2; log cos = log1p(-2 sin^2(theta/2)) keeps small angles exact.
-      const double s = std::sin(0.5 * theta_m);
-      return -std::expm1((phong_exponent(alpha) + 2.0) * std::log1p(-2.0 * s * s));
-    }
-  }
-  return 0.0;
+  return visit_ndf(ndf, alpha, [&](const auto& n) { return n.cdf(theta_m); });
 }
+
+namespace {
+
+// The NDF's inverse CDF at u in (0, 1) (log(1 - u) by log1p).
+template <typename Ndf>
+double inverse_cdf(const Ndf& n, double u) {
+  return n.inverse_cdf(u, [u] { return std::log1p(-u); });
+}
+
+}  // namespace
 
 void groove_cdf_inverse_cos_sin(NdfKind ndf, double alpha, double u, double& cos_m, double& sin_m) {
   if (!(u > 0.0)) {
     cos_m = 1.0, sin_m = 0.0;
   } else if (!(u < 1.0)) {
     cos_m = 0.0, sin_m = 1.0;
-  } else if (ndf == NdfKind::phong) {
-    const double one_minus_cos = -std::expm1(std::log1p(-u) / (phong_exponent(alpha) + 2.0));
-    cos_m = 1.0 - one_minus_cos;
-    sin_m = std::sqrt(one_minus_cos * (2.0 - one_minus_cos));
   } else {
-    cos_sin_of_atan(alpha * std::sqrt(ndf == NdfKind::ggx ? u / (1.0 - u) : -std::log1p(-u)), cos_m, sin_m);
+    visit_ndf(ndf, alpha, [&](const auto& n) {
+      if constexpr (std::remove_cvref_t<decltype(n)>::kInverseGivesTan) {
+        ndf_math::cos_sin_of_atan(inverse_cdf(n, u), cos_m, sin_m);
+      } else {
+        ndf_math::cos_sin_of_one_minus_cos(inverse_cdf(n, u), cos_m, sin_m);
+      }
+    });
   }
 }
 
@@ -359,38 +363,29 @@ double groove_cdf_inverse(NdfKind ndf, double alpha, double u, double& cos_m, do
     cos_m = 0.0, sin_m = 1.0;
     return 0.5 * std::numbers::pi;
   }
-  switch (ndf) {
-    case NdfKind::ggx:
-    case NdfKind::beckmann: {
-      const double t = alpha * std::sqrt(ndf == NdfKind::ggx ? u / (1.0 - u) : -std::log1p(-u));
-      cos_sin_of_atan(t, cos_m, sin_m);
-      return std::atan(t);
+  return visit_ndf(ndf, alpha, [&](const auto& n) {
+    const double v = inverse_cdf(n, u);
+    if constexpr (std::remove_cvref_t<decltype(n)>::kInverseGivesTan) {
+      ndf_math::cos_sin_of_atan(v, cos_m, sin_m);
+      return std::atan(v);
+    } else {
+      ndf_math::cos_sin_of_one_minus_cos(v, cos_m, sin_m);
+      return 2.0 * std::asin(std::sqrt(0.5 * v));
     }
-    case NdfKind::phong: {
-      const double one_minus_cos = -std::expm1(std::log1p(-u) / (phong_exponent(alpha) + 2.0));
-      cos_m = 1.0 - one_minus_cos;
-      sin_m = std::sqrt(one_minus_cos * (2.0 - one_minus_cos));
-      return 2.0 * std::asin(std::sqrt(0.5 * one_minus_cos));
-    }
-  }
-  cos_m = 1.0, sin_m = 0.0;
-  return 0.0;
+  });
 }
 
 double groove_cdf_inverse(NdfKind ndf, double alpha, double u) {
   if (!(u > 0.0)) return 0.0;
   if (!(u < 1.0)) return 0.5 * std::numbers::pi;
-  switch (ndf) {
-    case NdfKind::ggx:
-      return std::atan(alpha * std::sqrt(u / (1.0 - u)));
-    case NdfKind::beckmann:
-      return std::atan(alpha * std::sqrt(-std::log1p(-u)));
-    case NdfKind::phong: {
-      const double one_minus_cos = -std::expm1(std::log1p(-u) / (phong_exponent(alpha) + 2.0));
-      return 2.0 * std::asin(std::sqrt(0.5 * one_minus_cos));
+  return visit_ndf(ndf, alpha, [&](const auto& n) {
+    const double v = inverse_cdf(n, u);
+    if constexpr (std::remove_cvref_t<decltype(n)>::kInverseGivesTan) {
+      return std::atan(v);
+    } else {
+      return 2.0 * std::asin(std::sqrt(0.5 * v));
     }
-  }
-  return 0.0;
+  });
 }
 
 }  // namespace vgroove::analytic

@@ -156,17 +156,5 @@ double groove_cdf_inverse(NdfKind ndf, double alpha, double u);
 double groove_cdf_inverse(NdfKind ndf, double alpha, double u, double& cos_m, double& sin_m);
 // The cosine and sine alone (no angle: no atan).
 void groove_cdf_inverse_cos_sin(NdfKind ndf, double alpha, double u, double& cos_m, double& sin_m);
-// cos and sin of atan(t), t >= 0, without overflow (the inverse CDFs of GGX and Beckmann give
-// tan theta_m).
-inline void cos_sin_of_atan(double t, double& c, double& s) {
-  if (t <= 1.0) {
-    c = 1.0 / std::sqrt(1.0 + t * t);
-    s = t * c;
-  } else {
-    const double r = 1.0 / t;
-    s = 1.0 / std::sqrt(1.0 + r * r);
-    c = r * s;
-  }
-}
 
 }  // namespace vgroove::analytic

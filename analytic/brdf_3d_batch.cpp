@@ -54,7 +54,9 @@
 #include "vgroove/analytic/brdf_3d_passes.h"
 #include "vgroove/analytic/exp_log_batch.h"
 #include "vgroove/analytic/kaleidoscope_solutions.h"
+#include "vgroove/analytic/ndf_visit.h"
 #include "vgroove/analytic/sin_batch.h"
+#include "vgroove/common/simd.h"
 
 #include <algorithm>
 #include <cmath>
@@ -67,17 +69,11 @@ namespace vgroove::analytic::brdf_passes {
 
 namespace {
 
-// Four doubles (GCC and clang vector extensions): the families (left facet odd k, left even,
-// right odd, right even; ends_of) or four candidates. Comparisons give masks of 64-bit integers.
-typedef double V __attribute__((vector_size(32)));
-
-// The helpers are always inlined: the pass is compiled twice (AVX2 and generic), and an
-// out-of-line helper shared by both would pass its vectors by two conventions.
-[[gnu::always_inline]] inline V splat(double x) { return V{x, x, x, x}; }
-template <typename Mask>
-[[gnu::always_inline]] inline V select(Mask m, V a, V b) {
-  return m ? a : b;
-}
+// Four doubles (common/simd.h): the families (left facet odd k, left even, right odd, right
+// even; ends_of) or four candidates. Comparisons give masks of 64-bit integers.
+using V = simd::V4;
+using simd::select;
+using simd::splat;
 
 // The packing of up to eight candidates into lanes: candidate c = 4 w + f is family f's
 // k_first + 2 w (w = 0, 1); for each 8-bit set of kept candidates, the kept ones in order.
@@ -136,14 +132,10 @@ void add_terms(const GrooveFrame& p, const Slots& sl, NdfKind ndf, double alpha,
 
 }  // namespace
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-// One copy for AVX2 (a vector per instruction) and one for any x86-64, picked at start-up.
-// AVX2 without FMA: no product is fused, so both copies round alike.
-[[gnu::target_clones("avx2", "default")]]
-#endif
-double
-brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_hi, NdfKind ndf, double alpha,
-             const FresnelFn& F, BeckmannTails tails) {
+// A vector per instruction in the AVX2 copy (common/simd.h).
+VGROOVE_TARGET_CLONES
+double brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_hi, NdfKind ndf, double alpha,
+                    const FresnelFn& F, BeckmannTails tails) {
   constexpr double pi = std::numbers::pi;
   const V zero = splat(0.0), one = splat(1.0);
   // Lee et al. 2018, Eq. (16) with the Jacobian of Eq. (13): each term is |i.s| G = c W times D
@@ -158,7 +150,7 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
   const auto grazing = !(pi - select(fa + fb < 0.0, -(fa + fb), fa + fb) > 1e-9);
   const bool beckmann = ndf == NdfKind::beckmann && !F;
   const bool beckmann_vector = beckmann && tails == BeckmannTails::vector;
-  if (grazing[0] | grazing[1] | grazing[2] | grazing[3]) {
+  if (simd::any(grazing)) {
     if (beckmann_vector) return std::numeric_limits<double>::quiet_NaN();
     return brdf_per_solution(p, cos_i, cos_o, k_lo, k_hi, ndf, alpha, F);
   }
@@ -186,7 +178,7 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
   int kept = 0;
   for (int f = 0; f < 4; ++f) kept |= static_cast<int>(keep_0[f] & 1) << f | static_cast<int>(keep_2[f] & 1) << (f + 4);
   const int n = __builtin_popcount(static_cast<unsigned>(kept));
-  const bool more = (keep_4[0] | keep_4[1] | keep_4[2] | keep_4[3]) != 0;
+  const bool more = simd::any(keep_4);
   const V kf0 = splat(k_first[0]), kf1 = splat(k_first[1]), kf2 = splat(k_first[2]), kf3 = splat(k_first[3]);
   const bool ggx = ndf == NdfKind::ggx && !F;
   const double beckmann_norm = std::numbers::pi * alpha * alpha;  // D_cs's pi alpha^2, for Beckmann
@@ -245,9 +237,9 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
     const V w = select(live, select(sine, sine_value, value), zero);
     const V W = select(w > 0.0, w, zero);
     if (ggx) {
-      // D_cs (ndf.h) without alpha^2 / pi, and sin(theta_m) / k for k >= 2.
-      // (The quotient does not wait for the width.)
-      const V qd = alpha * alpha * S * S + C * C;
+      // GGX's D = alpha^2 / (pi q^2) (ndf_ggx.h) without alpha^2 / pi, and sin(theta_m) / k for
+      // k >= 2. (The quotient does not wait for the width.)
+      const V qd = Ggx{alpha}.q(S, C);
       const V t = W * (select(k1, one, C) / (qd * qd * k));
       t_1 += select(k1, t, zero);
       t_k += select(k1, zero, t);
@@ -273,15 +265,12 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
       return;
     }
     if (beckmann) {
-      // D_cs (ndf.h) with exp from the polynomial above, where tan^2 / alpha^2 <= 32; the other
-      // lanes (add_terms' exact sines) one at a time. t = tan theta_m, D = exp(-t^2 / alpha^2) /
-      // (pi alpha^2 cos^4).
+      // Beckmann's D (ndf_beckmann.h) with exp by the polynomial, where tan^2 / alpha^2 <= 32; the
+      // other lanes (add_terms' exact sines) one at a time.
       const auto exact = C * C > 32.0 * alpha * alpha * (S * S);
       const auto here = live & ~exact;
-      const V S_here = select(here, S, one);  // other lanes' exponents stay in range
-      const V t = C / S_here, c2 = S_here * S_here;
-      const V D = batch::exp_batch(select(here, -(t * t) / (alpha * alpha), zero)) / (beckmann_norm * c2 * c2);
-      const V w_d = select(here, W, zero) * D;
+      const V S_here = select(here, S, one);  // other lanes' D stay finite
+      const V w_d = select(here, W, zero) * Beckmann{alpha}.D_cs(S_here, C);
       t_1 += select(k1, w_d, zero);
       t_k += select(k1, zero, C * w_d / k);
       W_scalar = select(exact, W, zero);
@@ -332,7 +321,7 @@ brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, int k_h
       const double sum = sum_1 + sum_k * inv_sin_h;
       const double y_sum =
           ((y_1[0] + y_1[1]) + (y_1[2] + y_1[3])) + ((y_k[0] + y_k[1]) + (y_k[2] + y_k[3])) * inv_sin_h;
-      const bool under = underflow[0] | underflow[1] | underflow[2] | underflow[3];
+      const bool under = simd::any(underflow);
       if (!(y_sum <= kBeckmannMeanAmplification * sum) || (under && !(sum > 1e-270 * std::max(1.0, inv_sin_h)))) {
         return std::numeric_limits<double>::quiet_NaN();
       }

@@ -16,16 +16,23 @@
 // pass's std::exp to 2.5e-14 relative at worst, where the exponent multiplies a sine's 2 ulp by up
 // to 64 (tests/analytic/brdf_3d_test.cpp; dropping ln 2's low part fails it).
 //
-// Always inlined: the callers are compiled twice (AVX2 and generic, target_clones), and an
-// out-of-line copy shared by both would pass its vectors by two conventions.
+// Always inlined, as every helper of common/simd.h: the callers are compiled twice.
 #pragma once
+
+#include "vgroove/common/polynomial.h"
+#include "vgroove/common/simd.h"
 
 #include <cstdint>
 
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"  // common/simd.h
+#endif
+
 namespace vgroove::analytic::batch {
 
-typedef double V4 __attribute__((vector_size(32)));
-typedef std::int64_t I4 __attribute__((vector_size(32)));
+using simd::I4;
+using simd::V4;
 
 // The reduction z = k ln 2 + r shared by exp_batch and expm1_batch: returns e^r - 1 =
 // r + r^2 P(r), and 2^k in two_k.
@@ -35,14 +42,12 @@ typedef std::int64_t I4 __attribute__((vector_size(32)));
   const V4 shifted = z * 1.44269504088896338700e+00 + round_const;
   const V4 kd = shifted - round_const;
   const V4 r = (z - kd * 6.93147180369123816490e-01) - kd * 1.90821492927058770002e-10;
-  const V4 r2 = r * r, r4 = r2 * r2, r8 = r4 * r4;
-  const V4 b0 = 5.000000000000000000000000e-01 + 1.666666666666666666666667e-01 * r;
-  const V4 b1 = 4.166666666666666666666667e-02 + 8.333333333333333333333333e-03 * r;
-  const V4 b2 = 1.388888888888888888888889e-03 + 1.984126984126984126984127e-04 * r;
-  const V4 b3 = 2.480158730158730158730159e-05 + 2.755731922398589065255732e-06 * r;
-  const V4 b4 = 2.755731922398589065255732e-07 + 2.505210838544171877505211e-08 * r;
-  const V4 b5 = 2.087675698786809897921009e-09 + 1.605904383682161459939238e-10 * r;
-  const V4 P = ((b0 + b1 * r2) + (b2 + b3 * r2) * r4) + (b4 + b5 * r2) * r8;
+  const V4 r2 = r * r;
+  // 1/2! + r/3! + ... + r^11/13!.
+  const V4 P = estrin(r, 5.000000000000000000000000e-01, 1.666666666666666666666667e-01, 4.166666666666666666666667e-02,
+                      8.333333333333333333333333e-03, 1.388888888888888888888889e-03, 1.984126984126984126984127e-04,
+                      2.480158730158730158730159e-05, 2.755731922398589065255732e-06, 2.755731922398589065255732e-07,
+                      2.505210838544171877505211e-08, 2.087675698786809897921009e-09, 1.605904383682161459939238e-10);
   // k from the bits of k + 1.5 2^52 (same exponent as the constant), then 2^k = (k + 1023) << 52.
   const I4 k = reinterpret_cast<I4>(shifted) - reinterpret_cast<I4>(rc);
   two_k = reinterpret_cast<V4>((k + 1023) << 52);
@@ -73,13 +78,16 @@ typedef std::int64_t I4 __attribute__((vector_size(32)));
   const auto high = m > 1.41421356237309504880;
   m = high ? 0.5 * m : m;
   e = high ? e + 1.0 : e;
-  const V4 s = (m - 1.0) / (m + 1.0), s2 = s * s, s4 = s2 * s2, s8 = s4 * s4;
-  // 1/3 + s^2/5 + ... + s^22/25, in Estrin's order.
-  const V4 a0 = 1.0 / 3 + s2 * (1.0 / 5), a1 = 1.0 / 7 + s2 * (1.0 / 9), a2 = 1.0 / 11 + s2 * (1.0 / 13);
-  const V4 a3 = 1.0 / 15 + s2 * (1.0 / 17), a4 = 1.0 / 19 + s2 * (1.0 / 21), a5 = 1.0 / 23 + s2 * (1.0 / 25);
-  const V4 P = ((a0 + a1 * s4) + (a2 + a3 * s4) * s8) + (a4 + a5 * s4) * (s8 * s8);
+  const V4 s = (m - 1.0) / (m + 1.0), s2 = s * s;
+  // 1/3 + s^2/5 + ... + s^22/25.
+  const V4 P = estrin(s2, 1.0 / 3, 1.0 / 5, 1.0 / 7, 1.0 / 9, 1.0 / 11, 1.0 / 13, 1.0 / 15, 1.0 / 17, 1.0 / 19,
+                      1.0 / 21, 1.0 / 23, 1.0 / 25);
   const V4 log_m = 2.0 * s + 2.0 * s * (s2 * P);
   return e * 6.93147180369123816490e-01 + (log_m + e * 1.90821492927058770002e-10);
 }
 
 }  // namespace vgroove::analytic::batch
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif

@@ -5,7 +5,8 @@
 // power, Beckmann's and Phong's D by exp and pow, and at nodes in w their inverse CDFs by log and
 // expm1, from the polynomials of exp_log_batch.h (within 2 ulp, plus the exponent's rounding)
 // instead of the library's; the rest is the scalar arithmetic in its order (GGX's nodes in w: the
-// same bits).
+// same bits). Each NDF's D and inverse CDF are its own templates (ndf_visit.h), the same code as
+// the scalar kernels' at double.
 #pragma once
 
 #include "vgroove/common/ndf_kind.h"

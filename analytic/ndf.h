@@ -62,8 +62,6 @@
 
 #include "vgroove/common/ndf_kind.h"
 
-#include <numbers>
-
 namespace vgroove::analytic {
 
 using vgroove::ndf_name;
@@ -90,11 +88,6 @@ double D_cs(NdfKind kind, double cos_m, double sin_m, double alpha);
 // Phong with p <= 0. The margins make it a lower bound: the sums over apertures (the samplers'
 // pdf) stop there and lose only exact zeros.
 double D_vanishing_aperture(NdfKind kind, double alpha);
-// D_cs for GGX, inline (the lobes' quadrature nodes): alpha^2 / (pi (alpha^2 cos^2 + sin^2)^2).
-inline double D_cs_ggx(double cos_m, double sin_m, double alpha) {
-  const double q = alpha * alpha * cos_m * cos_m + sin_m * sin_m;
-  return alpha * alpha / (std::numbers::pi * q * q);
-}
 
 // Flatland NDFs, D2(theta_m; alpha) over (-pi/2, pi/2), zero outside (see the header comment).
 double D2_beckmann(double theta_m, double alpha);

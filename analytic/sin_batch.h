@@ -17,6 +17,13 @@
 // compiled for any x86-64, a shared out-of-line copy would pass its vectors by two conventions.
 #pragma once
 
+#include "vgroove/common/polynomial.h"
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"  // common/simd.h
+#endif
+
 namespace vgroove::analytic {
 
 // y[m] = sin(x[m]) for m < n, x[m] in [-pi/2, pi]; x and y may be the same array.
@@ -31,24 +38,21 @@ template <typename T>
 // sin r for |r| <= pi/4: r + r (r^2 P(r^2)), P the Taylor coefficients -1/3!, ..., 1/17!.
 template <typename T>
 [[gnu::always_inline]] inline T sin_pi4(T r) {
-  const T y = r * r, y2 = y * y, y4 = y2 * y2;
-  const T b0 = -1.666666666666666666666667e-01 + 8.333333333333333333333333e-03 * y;
-  const T b1 = -1.984126984126984126984127e-04 + 2.755731922398589065255732e-06 * y;
-  const T b2 = -2.505210838544171877505211e-08 + 1.605904383682161459939238e-10 * y;
-  const T b3 = -7.647163731819816475901132e-13 + 2.811457254345520763198946e-15 * y;
-  const T P = (b0 + b1 * y2) + (b2 + b3 * y2) * y4;
+  const T y = r * r;
+  const T P = estrin(y, -1.666666666666666666666667e-01, 8.333333333333333333333333e-03,
+                     -1.984126984126984126984127e-04, 2.755731922398589065255732e-06, -2.505210838544171877505211e-08,
+                     1.605904383682161459939238e-10, -7.647163731819816475901132e-13, 2.811457254345520763198946e-15);
   return r + r * (y * P);
 }
 
 // cos r for |r| <= pi/4: (1 - r^2/2) + r^4 Q(r^2), Q the Taylor coefficients 1/4!, ..., 1/16!.
 template <typename T>
 [[gnu::always_inline]] inline T cos_pi4(T r) {
-  const T y = r * r, y2 = y * y, y4 = y2 * y2;
-  const T b0 = 4.166666666666666666666667e-02 - 1.388888888888888888888889e-03 * y;
-  const T b1 = 2.480158730158730158730159e-05 - 2.755731922398589065255732e-07 * y;
-  const T b2 = 2.087675698786809897921009e-09 - 1.147074559772972471385170e-11 * y;
-  const T Q = (b0 + b1 * y2) + (b2 + 4.779477332387385297438207e-14 * y2) * y4;
-  return (1.0 - 0.5 * y) + y2 * Q;
+  const T y = r * r;
+  const T Q = estrin(y, 4.166666666666666666666667e-02, -1.388888888888888888888889e-03, 2.480158730158730158730159e-05,
+                     -2.755731922398589065255732e-07, 2.087675698786809897921009e-09, -1.147074559772972471385170e-11,
+                     4.779477332387385297438207e-14);
+  return (1.0 - 0.5 * y) + (y * y) * Q;
 }
 
 // sin x for x in [-pi/2, pi].
@@ -73,3 +77,7 @@ template <typename T>
 }
 
 }  // namespace vgroove::analytic
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif

@@ -1,5 +1,7 @@
 #include "vgroove/sim/beam.h"
 
+#include "vgroove/common/simd.h"
+
 namespace vgroove::sim {
 
 const char* sampling_name(Sampling s) {
@@ -25,10 +27,8 @@ double rim_line_x(const Groove& g, double theta_i, const Vec2& p) {
 }
 }  // namespace
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-// An AVX2 copy (four divisions per instruction) beside the x86-64 one, picked when the program starts.
-[[gnu::target_clones("avx2", "default")]]
-#endif
+// Four divisions per instruction in the AVX2 copy (common/simd.h).
+VGROOVE_TARGET_CLONES
 void sample_positions(Sampling sampling, const Interval& iv, long j0, int count, long n, Rng& rng,
                       double* __restrict out) {
   const double lo = iv.lo, width = iv.hi - iv.lo;

@@ -7,6 +7,7 @@
 // selects, and the loop has no branch, so the compiler vectorizes it. This file is compiled with
 // -fno-trapping-math (sim/CMakeLists.txt), which lets the compiler compute both sides of a select;
 // it changes no value, only whether a floating-point exception flag may be raised.
+#include "vgroove/common/simd.h"
 #include "vgroove/sim/tracer.h"
 
 #include <cmath>
@@ -71,11 +72,8 @@ inline void block_loop(const BeamConsts& c, const double* __restrict x_rim, int 
 
 }  // namespace
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-// One copy of the loops for AVX2 (four rays per instruction) and one for any x86-64, picked when
-// the program starts. AVX2 without FMA: no product is fused, so every lane rounds as trace() does.
-[[gnu::target_clones("avx2", "default")]]
-#endif
+// Four rays per instruction in the AVX2 copy (common/simd.h); every lane rounds as trace() does.
+VGROOVE_TARGET_CLONES
 void BeamTracer::first_hits(const double* __restrict x_rim, int n, BlockHits& __restrict h) const {
   BeamConsts c;
   c.x_l = g_.rim_x(Side::left);

@@ -1,5 +1,6 @@
 #include "vgroove/sim/microsurface.h"
 
+#include "vgroove/common/simd.h"
 #include "vgroove/sim/exit_bins.h"
 
 #include <algorithm>
@@ -100,10 +101,7 @@ void MicrosurfaceTally::merge(const MicrosurfaceTally& o) {
 
 std::int64_t chunk_count(const MicrosurfaceTraceOptions& opt) { return (opt.rays + kRaysPerChunk - 1) / kRaysPerChunk; }
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-// An AVX2 copy beside the x86-64 one, picked at start-up (no FMA: both round alike).
-[[gnu::target_clones("avx2", "default")]]
-#endif
+VGROOVE_TARGET_CLONES
 void trace_microsurface_chunk(const Microsurface& surface, const MicrosurfaceTraceOptions& opt, std::int64_t chunk,
                               MicrosurfaceTally& tally) {
   assert(std::abs(opt.theta_i) < 0.5 * std::numbers::pi && opt.rays >= 0);

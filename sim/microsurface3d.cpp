@@ -1,5 +1,6 @@
 #include "vgroove/sim/microsurface3d.h"
 
+#include "vgroove/common/simd.h"
 #include "vgroove/sim/exit_bins.h"
 
 #include <algorithm>
@@ -206,10 +207,7 @@ std::int64_t chunk_count(const Microsurface3dTraceOptions& opt) {
   return (opt.rays + kRaysPerChunk - 1) / kRaysPerChunk;
 }
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-// An AVX2 copy beside the x86-64 one, picked at start-up (no FMA: both round alike).
-[[gnu::target_clones("avx2", "default")]]
-#endif
+VGROOVE_TARGET_CLONES
 void trace_microsurface3d_chunk(const Microsurface3d& surface, const Microsurface3dTraceOptions& opt,
                                 std::int64_t chunk, Microsurface3dTally& tally) {
   assert(opt.theta_i >= 0.0 && opt.theta_i < 0.5 * std::numbers::pi && opt.rays >= 0);

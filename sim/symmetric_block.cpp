@@ -3,6 +3,8 @@
 // select may be computed; no value changes.
 #include "vgroove/sim/symmetric_block.h"
 
+#include "vgroove/common/simd.h"
+
 #include <cmath>
 #include <cstring>
 
@@ -30,29 +32,17 @@ Groove symmetric_groove_from(const SymmetricGrooveData& d) {
 
 namespace {
 
-// Four lanes (GCC and clang vector extensions): comparisons give masks of 64-bit integers, 0 or -1.
-typedef double V __attribute__((vector_size(32)));
-typedef std::int64_t VI __attribute__((vector_size(32)));
-
-// The helpers are always inlined: the kernel is compiled twice (AVX2 and generic), and an
-// out-of-line helper shared by both would pass its vectors by two conventions.
-[[gnu::always_inline]] inline V load(const double* p) {
-  V v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-[[gnu::always_inline]] inline V vabs(V a) {
-  return reinterpret_cast<V>(reinterpret_cast<VI>(a) & VI{~(1LL << 63), ~(1LL << 63), ~(1LL << 63), ~(1LL << 63)});
-}
-[[gnu::always_inline]] inline V splat(double x) { return V{x, x, x, x}; }
+// Four lanes (common/simd.h): comparisons give masks of 64-bit integers, 0 or -1.
+using V = simd::V4;
+using VI = simd::I4;
+using simd::load;
+using simd::splat;
+[[gnu::always_inline]] inline V vabs(V a) { return simd::abs(a); }
 
 }  // namespace
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-// One copy for AVX2 (four rays per instruction) and one for any x86-64, picked when the program
-// starts. AVX2 without FMA: no product is fused, so every lane rounds as trace() does.
-[[gnu::target_clones("avx2", "default")]]
-#endif
+// Four rays per instruction in the AVX2 copy (common/simd.h); every lane rounds as trace() does.
+VGROOVE_TARGET_CLONES
 void first_reflections(const SymmetricBlock& in, int n, SymmetricHits& out) {
   const V zero = splat(0.0), one = splat(1.0), minus_one = splat(-1.0);
   // Lanes [j, j + 4): full groups from the block, the last partial one from copies padded with
@@ -138,11 +128,7 @@ void first_reflections(const SymmetricBlock& in, int n, SymmetricHits& out) {
 
 namespace {
 
-[[gnu::always_inline]] inline VI load_i(const std::int64_t* p) {
-  VI v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
+[[gnu::always_inline]] inline VI load_i(const std::int64_t* p) { return simd::load(p); }
 
 // One reflection of lanes [j, j + 4) of (in, h) on path 1 (next_reflections); the lanes still on
 // path 1 after it, as -1 per lane.
@@ -185,9 +171,7 @@ namespace {
 
 }  // namespace
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-[[gnu::target_clones("avx2", "default")]]
-#endif
+VGROOVE_TARGET_CLONES
 int next_reflections(const SymmetricBlock& in, int n, int max_bounces, SymmetricHits& h) {
   // Four lanes at a time, every comparison made and the results picked by selects; the last
   // partial group from copies padded with lanes on no path (-1), whose values are not stored.

@@ -350,7 +350,8 @@ TEST(CliTable2, TheTracedPercentileExceedsTheRuleAtFewRays) {
                            " --rays 10 --seed 2 --threads 2 --out " + quoted(out));
   ASSERT_EQ(r.status, 0) << r;
   std::map<std::tuple<std::string, double, double>, std::pair<int, int>> cells;
-  for (const json& e : json::parse(read_text(out)).at("entries"))
+  const json report = json::parse(read_text(out));
+  for (const json& e : report.at("entries"))
     cells[{e.at("ndf").get<std::string>(), e.at("alpha").get<double>(), e.at("percentile").get<double>()}] = {
         e.at("ours").get<int>(), e.at("traced_percentile_k").get<int>()};
   EXPECT_EQ(cells.at({"ggx", 0.5, 95.0}), std::make_pair(4, 6));
