@@ -345,6 +345,7 @@ def main():
         it += len(mutants)
         for m, o in zip(mutants, run_batch(mutants, a.memory_mib, a.call_seconds)):
             if o["kind"] == "finding":
+                os.makedirs(a.findings, exist_ok=True)
                 path = os.path.join(a.findings, "finding-" + entry_name(m))
                 with open(path, "w") as f:
                     json.dump(m, f, indent=1)
