@@ -47,7 +47,7 @@ std::string link_text(const std::string& path) {
 
 Target classify(const std::string& path, bool overwrite) {
   if (path.empty()) throw UserError("--out: the path is empty");
-  if (path.find('\0') != std::string::npos) throw UserError(printable(path) + ": a file name cannot hold a NUL byte");
+  check_file_name(path);
   // "-" means standard output to most tools; here it would be a file named "-".
   if (path == "-")
     throw UserError(

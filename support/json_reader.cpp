@@ -205,8 +205,7 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& file)
 }
 
 nlohmann::json read_json_file(const std::string& file, std::size_t max_bytes) {
-  // The system's open() would read the name only up to the NUL: another file.
-  if (file.find('\0') != std::string::npos) throw UserError(printable(file) + ": a file name cannot hold a NUL byte");
+  check_file_name(file);
   const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) throw UserError(file + ": cannot open the file (" + std::strerror(errno) + ")");
   struct stat st {};

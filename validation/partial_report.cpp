@@ -120,8 +120,7 @@ std::string hex16(std::uint64_t h) {
 std::string file_digest(const std::vector<std::string>& files) {
   std::uint64_t h = kFnvOffset;
   for (const std::string& f : files) {
-    if (f.find('\0') != std::string::npos)
-      throw support::UserError(support::printable(f) + ": a file name cannot hold a NUL byte");
+    support::check_file_name(f);
     std::ifstream in(f, std::ios::binary);
     if (!in) throw support::UserError(f + ": cannot open the file (missing or unreadable)");
     for (std::istreambuf_iterator<char> it(in), end; it != end; ++it) {
