@@ -128,8 +128,8 @@ def test_every_public_callable_has_a_numpydoc_docstring(vg):
     assert missing == []
 
 
-def test_the_examples_run():
-    import vgroove
+def test_the_examples_run(vg):
+    vgroove = vg
     finder = doctest.DocTestFinder()
     runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
     tests = [t for name in vgroove.__all__ if callable(getattr(vgroove, name))
