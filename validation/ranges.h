@@ -46,8 +46,9 @@ inline constexpr double kMaxFresnelEta = 1000.0;
 inline constexpr double kMaxFresnelKappa = 1000.0;
 // Worker threads (0: all cores).
 inline constexpr int kMaxThreads = 1024;
-// Point BRDF evaluations whose sums over bounce counts cost O(max_k^2) (`vgroove brdf`, Python
-// brdf): their largest max_k (a flatland pair at 4096 takes about 0.4 s).
+// Point BRDF evaluations' largest max_k (`vgroove brdf`, Python brdf): the flatland sum (one pass
+// over its facet solutions, a few us a pair for any max_k) and the nonsymmetric sum (O(max_k^2),
+// about 3 ms a pair at 64).
 inline constexpr int kMaxFlatlandBrdfK = 4096;
 inline constexpr int kMaxNonsymmetricBrdfK = 1024;
 // Histogram cells (bins x bounce-count rows) of one tally: each work item holds its own. Rows
