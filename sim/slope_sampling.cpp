@@ -15,6 +15,10 @@ constexpr double kHalfPi = 0.5 * std::numbers::pi;
 // alpha_p = 2/alpha^2 - 2 (slope_sampling.h).
 double phong_nu(double alpha) { return 2.0 / (alpha * alpha); }
 
+// Student-T's slope law (slope_sampling.h): nu = 2 gamma - 2 degrees of freedom, nu sigma^2 =
+// (gamma - 1) alpha^2.
+double student_t_scale2(NdfKind kind, double alpha) { return (kind.gamma - 1.0) * alpha * alpha; }
+
 // Continued fraction of the incomplete beta function (the even/odd terms d_2m, d_2m+1 of
 // Abramowitz & Stegun 26.5.8), evaluated by the modified Lentz method. Converges quickly for
 // x < (a + 1) / (a + b + 2), in about sqrt(max(a, b)) terms near that point.
@@ -64,6 +68,11 @@ double lower_tail(NdfKind kind, double alpha, double w) {
     }
     case NdfKind::phong:
       return 0.5 * incomplete_beta(0.5 * phong_nu(alpha), 0.5, c * c, s * s);
+    case NdfKind::student_t: {
+      // x = nu sigma^2 / (nu sigma^2 + tan^2) = k2 c^2 / (k2 c^2 + s^2), k2 = nu sigma^2.
+      const double k2c2 = student_t_scale2(kind, alpha) * c * c, d = k2c2 + s * s;
+      return 0.5 * incomplete_beta(kind.gamma - 1.0, 0.5, k2c2 / d, s * s / d);
+    }
   }
   return 0.0;
 }
@@ -104,6 +113,15 @@ double theta_m_pdf(NdfKind kind, double alpha, double theta_m) {
       const double front =
           std::exp(std::lgamma(0.5 * (nu + 1.0)) - std::lgamma(0.5 * nu)) / std::sqrt(std::numbers::pi);
       P = front * std::exp(-0.5 * (nu + 1.0) * std::log1p(s * s));
+      break;
+    }
+    case NdfKind::student_t: {
+      // f(t) = Gamma((nu+1)/2) / (sqrt(nu pi) Gamma(nu/2)) (1 + t^2/nu)^(-(nu+1)/2), s = sigma t:
+      // P(s) = Gamma(gamma - 1/2) / (sqrt(pi k2) Gamma(gamma - 1)) (1 + s^2/k2)^(1/2 - gamma).
+      const double k2 = student_t_scale2(kind, alpha);
+      const double front =
+          std::exp(std::lgamma(kind.gamma - 0.5) - std::lgamma(kind.gamma - 1.0)) / std::sqrt(std::numbers::pi * k2);
+      P = front * std::exp((0.5 - kind.gamma) * std::log1p(s * s / k2));
       break;
     }
   }

@@ -373,6 +373,7 @@ nlohmann::json chi2_json(const Chi2Outcome& o) {
       {"sample_s", o.sample_s},
       {"integrate_s", o.integrate_s},
       {"pass", o.pass}};
+  if (s.ndf == analytic::NdfKind::student_t) j["gamma"] = s.ndf.gamma;
   j["table"] = {{"rows", s.dim == SurfaceDim::three_d ? "cos_theta_o" : "one row"},
                 {"cols", s.dim == SurfaceDim::three_d ? "phi_o (rad)" : "theta_o (rad)"},
                 {"row_edges", t.row_edges},
@@ -509,7 +510,7 @@ nlohmann::json variance_json(const VarianceOutcome& o) {
     rows.push_back(std::move(r));
   }
   const VarianceSpec& s = o.spec;
-  return {
+  nlohmann::json v = {
       {"dimension", surface_dim_name(s.dim)},
       {"ndf", analytic::ndf_name(s.ndf)},
       {"alpha", s.alpha},
@@ -521,6 +522,8 @@ nlohmann::json variance_json(const VarianceOutcome& o) {
       {"strategies", rows},
       {"lowest_variance", o.lowest_variance},
       {"most_efficient", o.most_efficient}};
+  if (s.ndf == analytic::NdfKind::student_t) v["gamma"] = s.ndf.gamma;
+  return v;
 }
 
 }  // namespace vgroove::validation
