@@ -34,8 +34,22 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// What multiplies f cos in the integral: 1 (E_ss), 1 - Fc (the split sum's scale), Fc (its bias).
-enum class Weight { one, one_minus_schlick, schlick };
+// What multiplies f cos in the integral, a function of i.h: 1 (E_ss), 1 - Fc (the split sum's
+// scale), Fc (its bias), or a reflectance F(i.h) (albedo_single_fresnel).
+struct One {
+  double operator()(double) const { return 1.0; }
+};
+// Karis 2013: Fc = (1 - v.h)^5.
+double schlick_fc(double ih) {
+  const double c = 1.0 - ih, c2 = c * c;
+  return c2 * c2 * c;
+}
+struct OneMinusSchlick {
+  double operator()(double ih) const { return 1.0 - schlick_fc(ih); }
+};
+struct Schlick {
+  double operator()(double ih) const { return schlick_fc(ih); }
+};
 
 // Smith's Lambda from tan^2 of the direction (the forms of ndf.cpp, Heitz 2014 Sec. 3.2, without
 // the angle: the integrand has cos and sin, not theta). The test Albedo.LambdaIsNdfsLambda holds
@@ -59,8 +73,9 @@ struct Incidence {
 
 // G2 (i.h) / (mu cos theta_h) times the weight at the normal h = (sin_h cos phi, sin_h sin phi,
 // cos_h): the integrand against dP(h) (albedo_single.h).
-double integrand(const MicrofacetModel& m, double alpha, const Incidence& in, Weight w, double cos_h, double sin_h,
-                 double cos_phi) {
+template <class Weight>
+double integrand(const MicrofacetModel& m, double alpha, const Incidence& in, const Weight& w, double cos_h,
+                 double sin_h, double cos_phi) {
   const double ih = in.sin_i * sin_h * cos_phi + in.mu * cos_h;
   const double mu_o = 2.0 * ih * cos_h - in.mu;
   // Beyond the horizon (the pieces end there; rounding may put a node a little past it).
@@ -75,12 +90,7 @@ double integrand(const MicrofacetModel& m, double alpha, const Incidence& in, We
              ? 1.0 / (1.0 + in.lambda_i + lambda_o)             // Heitz 2014, Eq. (21)
              : 1.0 / ((1.0 + in.lambda_i) * (1.0 + lambda_o));  // Heitz 2014, Eq. (20)
   }
-  double weight = 1.0;
-  if (w != Weight::one) {
-    const double c = 1.0 - ih, c2 = c * c, fc = c2 * c2 * c;  // Karis 2013: Fc = (1 - v.h)^5
-    weight = w == Weight::schlick ? fc : 1.0 - fc;
-  }
-  return G2 * ih / (in.mu * cos_h) * weight;
+  return G2 * ih / (in.mu * cos_h) * w(ih);
 }
 
 // Each piece between consecutive points split into `refine` equal parts.
@@ -99,7 +109,9 @@ std::vector<double> refined(std::vector<double> cuts, int refine) {
 // estimates: 64 ulps of the value, above what reordering the sums moves (~2 ulps seen).
 double rounding(double value) { return 64.0 * std::numeric_limits<double>::epsilon() * std::abs(value); }
 
-BoundedValue integrate_albedo(const MicrofacetModel& m, double alpha, double mu, Weight w, const AlbedoOptions& opt) {
+template <class Weight>
+BoundedValue integrate_albedo(const MicrofacetModel& m, double alpha, double mu, const Weight& w,
+                              const AlbedoOptions& opt) {
   assert(model_supported(m) && alpha > 0.0 && mu > 0.0 && mu <= 1.0);
   Incidence in;
   in.mu = mu;
@@ -186,12 +198,16 @@ BoundedValue integrate_albedo(const MicrofacetModel& m, double alpha, double mu,
 }  // namespace
 
 BoundedValue albedo_single(const MicrofacetModel& m, double alpha, double mu, const AlbedoOptions& opt) {
-  return integrate_albedo(m, alpha, mu, Weight::one, opt);
+  return integrate_albedo(m, alpha, mu, One{}, opt);
+}
+
+BoundedValue albedo_single_fresnel(const MicrofacetModel& m, double alpha, double mu,
+                                   const std::function<double(double)>& F, const AlbedoOptions& opt) {
+  return integrate_albedo(m, alpha, mu, F, opt);
 }
 
 SplitSum dfg_split_sum(const MicrofacetModel& m, double alpha, double mu, const AlbedoOptions& opt) {
-  return {integrate_albedo(m, alpha, mu, Weight::one_minus_schlick, opt),
-          integrate_albedo(m, alpha, mu, Weight::schlick, opt)};
+  return {integrate_albedo(m, alpha, mu, OneMinusSchlick{}, opt), integrate_albedo(m, alpha, mu, Schlick{}, opt)};
 }
 
 BoundedValue albedo_average(const MicrofacetModel& m, double alpha, const AlbedoOptions& opt) {

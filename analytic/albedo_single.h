@@ -49,6 +49,7 @@
 #include "vgroove/analytic/quadrature.h"
 #include "vgroove/common/ndf_kind.h"
 
+#include <functional>
 #include <vector>
 
 namespace vgroove::analytic {
@@ -85,6 +86,12 @@ struct BoundedValue {
 
 // E_ss(mu, alpha), F = 1. mu in (0, 1], alpha > 0 (no upper limit; GGX at alpha 2 is fine).
 BoundedValue albedo_single(const MicrofacetModel& m, double alpha, double mu, const AlbedoOptions& opt = {});
+
+// E_ss with a reflectance: int F(i.h) f cos, F a smooth function of the cosine of the local angle
+// of incidence in [0, 1] (an exact conductor's, optics/fresnel.h); the same bound. F = Schlick's
+// gives F0 scale + bias (dfg_split_sum).
+BoundedValue albedo_single_fresnel(const MicrofacetModel& m, double alpha, double mu,
+                                   const std::function<double(double)>& F, const AlbedoOptions& opt = {});
 
 // The split-sum terms (Karis 2013) at (mu, alpha): scale = int (1 - Fc) f cos, bias = int Fc f cos,
 // Fc = (1 - i.h)^5; scale + bias = E_ss, and the albedo with Schlick's F is F0 scale + bias.

@@ -23,6 +23,34 @@ namespace {
 
 double dot(const Dir3& a, const Dir3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
+// Directions that run nearly along the groove: i.u = -o.u close to +-1, the projections' length
+// c small (then both directions graze the horizon: c >= i.n, o.n). There i.a = (i_xy . H_xy) / |H_xy|
+// and o.a, products of numbers of order 1 whose sum is of order c, carry ~1e-16 absolute from
+// the inputs alone (a unit vector in double is unit to ~1e-16), so c_i and c_o, equal for unit
+// vectors, differ by ~1e-16 / c relative, and the projected angles t_i, t_o disagree with h by
+// as much: below c ~ 1e-7 the k = 1 term was 100 times Cook-Torrance near the mirror direction.
+// Below kAlongTheGroove the two projections are formed as unit vectors have them:
+// i.a + o.a = |H_xy| and i.a - o.a = (|i_xy|^2 - |o_xy|^2) / |H_xy| = (o.z^2 - i.z^2) / |H_xy|
+// (|d_xy|^2 = 1 - d.z^2), both accurate to a few ulp of c, and i.h + o.h = |H|. Above it the
+// dot products keep their bits (their error, 1e-16 / c^2 relative, is below 1e-12 there).
+constexpr double kAlongTheGroove = 1e-2;
+
+// i nearly opposite to o (|i + o| small: both near the horizon, azimuths opposite). For unit
+// vectors i.h = o.h = |i + o| / 2; from the inputs' dot products each carries the inputs' 1e-16 as
+// 1e-16 / |i + o|^2 relative, and i.h - o.h = (|i|^2 - |o|^2) / |i + o| is all rounding (k = 1 was
+// 1.3e-8 off Cook-Torrance at |i + o| = 8e-5). Below kNearlyOpposite both take |i + o| / 2.
+constexpr double kNearlyOpposite = 1e-2;
+
+bool along_the_groove(double c_i, double c_o) { return std::max(c_i, c_o) < kAlongTheGroove; }
+
+// i.a and o.a as unit vectors have them (above), a = H_xy / |H_xy|; swapped bitwise with (i, o).
+void projections_along_the_groove(const Dir3& i, const Dir3& o, double& ia, double& oa) {
+  const double r = std::hypot(i.x + o.x, i.y + o.y);
+  const double q = (o.z - i.z) * (o.z + i.z) / r;
+  ia = 0.5 * (r + q);
+  oa = 0.5 * (r - q);
+}
+
 }  // namespace
 
 // h = (i + o)/|i + o|, a = the horizontal direction of h, so that t_h = -theta_h <= 0 and the
@@ -36,16 +64,23 @@ bool groove_frame(const Dir3& i, const Dir3& o, GrooveFrame& p) {
   h = {h.x / len, h.y / len, h.z / len};
   const double rho = std::hypot(h.x, h.y);
   // The averages make c and i.h bitwise symmetric in (i, o) (they are equal mathematically).
-  p.cos_d = 0.5 * (dot(i, h) + dot(o, h));
+  p.cos_d = len < kNearlyOpposite ? 0.5 * len : 0.5 * (dot(i, h) + dot(o, h));
   p.sin_h = rho;
-  if (!(rho > 0.0)) return false;
-  const Dir3 a{h.x / rho, h.y / rho, 0.0};
+  // h = n: no cross-section; the plane (x, z) stands in for it (a = x).
+  const bool through_h = rho > 0.0;
+  const Dir3 a = through_h ? Dir3{h.x / rho, h.y / rho, 0.0} : Dir3{1.0, 0.0, 0.0};
   p.ax = a.x;
   p.ay = a.y;
-  const double ia = dot(i, a), oa = dot(o, a);
+  double ia = dot(i, a), oa = dot(o, a);
+  double c_i = std::sqrt(ia * ia + i.z * i.z), c_o = std::sqrt(oa * oa + o.z * o.z);
+  if (along_the_groove(c_i, c_o)) {
+    projections_along_the_groove(i, o, ia, oa);
+    c_i = std::sqrt(ia * ia + i.z * i.z);
+    c_o = std::sqrt(oa * oa + o.z * o.z);
+    p.cos_d = 0.5 * len;
+  }
   p.x.t_i = std::atan2(-ia, i.z);
   p.x.t_o = std::atan2(-oa, o.z);
-  const double c_i = std::sqrt(ia * ia + i.z * i.z), c_o = std::sqrt(oa * oa + o.z * o.z);
   p.c = 0.5 * (c_i + c_o);
   p.x.sin_ti = -ia / c_i;
   p.x.cos_ti = i.z / c_i;
@@ -53,8 +88,10 @@ bool groove_frame(const Dir3& i, const Dir3& o, GrooveFrame& p) {
   p.x.cos_to = o.z / c_o;
   // cos((t_i + t_o)/2) = cos(t_h) = h.n and cos((t_i - t_o)/2) = (i.h)/c (h bisects i_perp and o_perp).
   p.x.cos_half_sum = h.z;
+  p.x.sin_half_sum = rho;
+  p.x.single_from_h = h.z < kGrazingHalfVector || len < kNearlyOpposite;
   p.x.cos_half_diff = p.cos_d / p.c;
-  return true;
+  return through_h;
 }
 
 namespace brdf_passes {
@@ -99,6 +136,8 @@ bool groove_frame_fast(const Dir3& i, const Dir3& o, GrooveFrame& p) {
   p.x.sin_to = sin_t[1];
   p.x.cos_to = cos_t[1];
   p.x.cos_half_sum = H.z * inv_len;
+  p.x.sin_half_sum = p.sin_h;
+  p.x.single_from_h = false;  // h.z > 5e-3 and |H| > 1e-2 here (above)
   p.x.cos_half_diff = p.cos_d / p.c;
   return true;
 }
@@ -126,18 +165,47 @@ double ct_at(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, const Fres
   Dir3 h{i.x + o.x, i.y + o.y, i.z + o.z};
   const double len = std::sqrt(dot(h, h));
   h = {h.x / len, h.y / len, h.z / len};
-  const double theta_h = std::atan2(std::hypot(h.x, h.y), h.z);
-  const double ih = dot(i, h), oh = dot(o, h);
+  double ih = dot(i, h), oh = dot(o, h);
+  if (len < kNearlyOpposite) ih = oh = 0.5 * len;  // (groove_frame)
+  // Directions along a groove (i.u close to +-1): i.h and o.h from the projections unit vectors
+  // have, as groove_frame takes them (i.h = (i.a) sin(theta_h) + (i.n) cos(theta_h)).
+  if (const double rho = std::hypot(h.x, h.y); rho > 0.0) {
+    const double ax = h.x / rho, ay = h.y / rho;
+    double ia = i.x * ax + i.y * ay, oa = o.x * ax + o.y * ay;
+    if (along_the_groove(std::sqrt(ia * ia + i.z * i.z), std::sqrt(oa * oa + o.z * o.z))) {
+      projections_along_the_groove(i, o, ia, oa);
+      ih = ia * rho + i.z * h.z;
+      oh = oa * rho + o.z * h.z;
+    }
+  }
   // Lee et al. 2018, Eq. (3) with the V-cavity G1 of Eq. (2).
   const double G = std::min(G1_vcavity(ih, cos_i, h.z), G1_vcavity(oh, cos_o, h.z));
   const double Fr = F ? F(ih) : 1.0;
-  // Lee et al. 2018, Eq. (1).
-  return Fr * D(ndf, theta_h, alpha) * G / (4.0 * cos_i * cos_o);
+  // Lee et al. 2018, Eq. (1). D from cos(theta_h) = h.z and sin(theta_h) themselves: the angle
+  // theta_h would round cos(theta_h) to ~1e-16 absolute, all of it when h grazes the horizon.
+  return Fr * D_cs(ndf, h.z, std::hypot(h.x, h.y), alpha) * G / (4.0 * cos_i * cos_o);
 }
 
 // Which pass sums the solutions: the batched one (brdf_3d_batch.cpp, vgroove_brdf's), each
 // solution on its own (for_each_solution), or every j of every k (for_each_solution_every_j).
 enum class Pass { batched, per_solution, every_j };
+
+// Where the batched pass is not run (brdf_3d_batch.cpp), but the per-solution pass:
+//  - a projected cosine cos(t_i) or cos(t_o) below 1e-5: the batched pass chooses the width's ends
+//    by comparing offsets of order 1 that carry ~1e-15, while the widths of a direction this close
+//    to the cross-section's horizon are below 2 cos(t) (its lit share): from 1e-6 down its choice
+//    went wrong (1.6e-4 relative at 1e-6, every value at 1e-7; Brdf3d.GrazingPairs*). The
+//    per-solution pass decides them from the widths (beam_width).
+//  - h within 0.29 deg of the cross-section's horizon (cos(t_h) < kGrazingHalfVector), or i nearly
+//    opposite to o (|i + o| < kNearlyOpposite): the per-solution pass's k = 1 term takes S and C
+//    from h (CrossSection::single_from_h), the batched one from theta_v, whose rounding there was
+//    1e-8 off Cook-Torrance at h.z ~ 1e-4, and 1.8e-9 at |i + o| = 4e-6, where the groove's azimuth
+//    (from the horizontal part of i + o, 7.6e-10) moved t_i by 5e-10.
+constexpr double kBatchedMinProjectedCos = 1e-5;
+
+bool batched_pass_holds(const GrooveFrame& p) {
+  return std::min(p.x.cos_ti, p.x.cos_to) >= kBatchedMinProjectedCos && !p.x.single_from_h;
+}
 
 double brdf_range(const Dir3& i, const Dir3& o, int k_lo, int k_hi, NdfKind ndf, double alpha, const FresnelFn& F,
                   Pass pass = Pass::batched) {
@@ -145,6 +213,13 @@ double brdf_range(const Dir3& i, const Dir3& o, int k_lo, int k_hi, NdfKind ndf,
   // Below or at the horizon: no flux (a set of measure zero; see the header).
   if (!(cos_i > 0.0 && cos_o > 0.0)) return 0.0;
   GrooveFrame p;
+  // The frame's projected cosines are at least the 3D ones (cos t = n.d / c, c <= 1) and h.z is at
+  // least (i.z + o.z) / 2 (h.z = (i.z + o.z) / |i + o|): a pair above both bounds needs no frame here.
+  if (pass == Pass::batched &&
+      (std::min(cos_i, cos_o) < kBatchedMinProjectedCos || cos_i + cos_o < 2.0 * kGrazingHalfVector)) {
+    if (groove_frame(i, o, p) && !batched_pass_holds(p))
+      return brdf_passes::brdf_per_solution(p, cos_i, cos_o, std::max(1, k_lo), k_hi, ndf, alpha, F);
+  }
   // The batched Beckmann pass first in groove_frame_fast with every term vectorized: it declines
   // (NaN) a pair whose terms' weighted amplification exceeds its bound (brdf_3d_batch.cpp), and
   // is not tried where the k = 1 term alone exceeds it (y = tan theta_h / (alpha^2 cos^2 theta_h)

@@ -42,6 +42,12 @@
 //     (the 1/sin(theta_h) of Eq. (14) diverges there; its integral over any bin is finite).
 //   - i or o at or below the horizon (cos <= 0): 0 (no flux arrives or leaves there; the set is
 //     of measure zero, and rho cos(theta_o) -> 0 there because the rims mask grazing exits).
+//     Above it, down to cos = 2.8e-16 (89.99999999999999 deg, the edge of the range the command
+//     line and Python accept; dir3 of 90 deg itself has cos 6.1e-17), rho keeps its finite limit:
+//     per k reciprocal bitwise and k = 1 Cook-Torrance to 1e-10 (Brdf3d.Grazing*: the widths'
+//     ends chosen from their products where the offsets tie, k = 1's S and C from h where h
+//     grazes, the projections of light running along the groove formed as unit vectors have
+//     them; brdf_3d.cpp, kaleidoscope_solutions.h).
 //
 // Fresnel: the plug-in F(cos) -> reflectance is applied per reflection, prod_j F(|d_j . s_j|),
 // with the 3D cosines |d_j . s_j| = c |d_j' . s_j'| from the 2D path in the cross-section.
@@ -104,7 +110,9 @@ struct GrooveFrame {
   double cos_d = 1.0;  // i.h = o.h
   double ax = 1.0, ay = 0.0;
 };
-// False when h = n exactly (the plane is undefined); i and o above the horizon.
+// False when h = n exactly (the plane is undefined): then cos_d and sin_h = 0 hold, and the other
+// fields are the section of the plane (x, z) (a = x). i and o above the horizon. The one frame of
+// the symmetric and nonsymmetric BRDFs and samplers.
 bool groove_frame(const Dir3& i, const Dir3& o, GrooveFrame& f);
 
 // F(cos theta_incidence) -> reflectance in [0, 1]. An empty function means F = 1.

@@ -91,10 +91,10 @@ constexpr PackTable kPack;
 
 // A vector's outcomes, per lane.
 struct Slots {
-  double k[4], half[4];
-  double S[4], C[4];  // cos(theta_m) = sin(theta_v/2), sin(theta_m) = cos(theta_v/2)
-  double W[4];        // the width G f_a of Eq. (6), 0 where the lane holds no outcome
-  bool left[4];       // the facet hit first
+  double k[4], half[4];       // k, theta_v / 2
+  double cos_m[4], sin_m[4];  // cos(theta_m) = sin(theta_v/2), sin(theta_m) = cos(theta_v/2)
+  double W[4];                // the width G f_a of Eq. (6), 0 where the lane holds no outcome
+  bool left[4];               // the facet hit first
 };
 
 // The terms of the live slots that need D evaluated one at a time (Beckmann, Phong, Fresnel).
@@ -107,8 +107,8 @@ void add_terms(const GrooveFrame& p, const Slots& sl, NdfKind ndf, double alpha,
   }
   for (int m = 0; m < n; ++m) {
     const int s = live[m];
-    const double C = sl.C[s], k = sl.k[s];
-    double S_D = sl.S[s], C_D = C;  // cos and sin of theta_m for D
+    const double C = sl.sin_m[s], k = sl.k[s];
+    double S_D = sl.cos_m[s], C_D = C;  // cos and sin of theta_m for D
     if (ndf == NdfKind::phong) {
       S_D = std::sin(sl.half[s]);
     } else if (ndf == NdfKind::student_t) {
@@ -283,8 +283,8 @@ double brdf_batched(const GrooveFrame& p, double cos_i, double cos_o, int k_lo, 
     for (int l = 0; l < 4; ++l) {
       sl.k[l] = k[l];
       sl.half[l] = half[l];
-      sl.S[l] = S[l];
-      sl.C[l] = C[l];
+      sl.cos_m[l] = S[l];
+      sl.sin_m[l] = C[l];
       sl.W[l] = W_scalar[l];
       sl.left[l] = f[l] < 1.5;
     }

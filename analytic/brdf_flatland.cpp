@@ -263,7 +263,7 @@ std::vector<double> peak_points(double alpha) {
 
 }  // namespace
 
-double flatland_brdf_k(NdfKind ndf, double alpha, double theta_i, double theta_o, int k) {
+double flatland_brdf_k_reference(NdfKind ndf, double alpha, double theta_i, double theta_o, int k) {
   assert(k >= 1 && alpha > 0.0);
   if (!(std::abs(theta_i) < kHalfPi && std::abs(theta_o) < kHalfPi)) return 0.0;
   // Step (d): left facets at (theta_i, theta_o), right facets by the mirror.
@@ -271,20 +271,38 @@ double flatland_brdf_k(NdfKind ndf, double alpha, double theta_i, double theta_o
   return sum / (std::cos(theta_i) * std::cos(theta_o));
 }
 
-double flatland_brdf(NdfKind ndf, double alpha, double theta_i, double theta_o, int max_k) {
+double flatland_brdf_reference(NdfKind ndf, double alpha, double theta_i, double theta_o, int max_k) {
   double s = 0.0;
-  for (int k = 1; k <= max_k; ++k) s += flatland_brdf_k(ndf, alpha, theta_i, theta_o, k);
+  for (int k = 1; k <= max_k; ++k) s += flatland_brdf_k_reference(ndf, alpha, theta_i, theta_o, k);
   return s;
 }
 
-double flatland_brdf_fast(NdfKind ndf, double alpha, double theta_i, double theta_o, int max_k) {
+namespace {
+
+// Step (d), D2(theta_s) w_k / (2k) per solution, over the solutions with k in [k_lo, k_hi], in
+// the frame where t_h <= 0 (the profile is mirror symmetric).
+double single_pass(NdfKind ndf, double alpha, double theta_i, double theta_o, int k_lo, int k_hi) {
   if (!(std::abs(theta_i) < kHalfPi && std::abs(theta_o) < kHalfPi)) return 0.0;
   const double m = theta_i + theta_o > 0.0 ? -1.0 : 1.0;
   double sum = 0.0;
-  // Step (d): D2(theta_s) w_k / (2k) per solution.
-  for_each_solution(cross_section(m * theta_i, m * theta_o), 1, max_k,
+  for_each_solution(cross_section(m * theta_i, m * theta_o), k_lo, k_hi,
                     [&](const Solution& q) { sum += D2_cs(ndf, q.S, q.C, alpha) * q.W / (2.0 * q.k); });
   return sum / (std::cos(theta_i) * std::cos(theta_o));
+}
+
+}  // namespace
+
+double flatland_brdf_k(NdfKind ndf, double alpha, double theta_i, double theta_o, int k) {
+  assert(k >= 1 && alpha > 0.0);
+  return single_pass(ndf, alpha, theta_i, theta_o, k, k);
+}
+
+double flatland_brdf(NdfKind ndf, double alpha, double theta_i, double theta_o, int max_k) {
+  return single_pass(ndf, alpha, theta_i, theta_o, 1, max_k);
+}
+
+double flatland_brdf_fast(NdfKind ndf, double alpha, double theta_i, double theta_o, int max_k) {
+  return single_pass(ndf, alpha, theta_i, theta_o, 1, max_k);
 }
 
 double flatland_brdf_single(NdfKind ndf, double alpha, double theta_i, double theta_o) {

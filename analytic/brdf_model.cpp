@@ -25,11 +25,17 @@ std::optional<BrdfModel> brdf_model_from_name(std::string_view name) {
   return std::nullopt;
 }
 
+int default_max_k(BrdfModel model, bool flatland) {
+  if (model == BrdfModel::vgroove_nonsymmetric) return kNonsymmetricDefaultMaxK;
+  if (model == BrdfModel::vgroove && flatland) return kFlatlandDefaultMaxK;
+  return kAllOrders;
+}
+
 namespace {
 double flat_angle(const Dir3& d) { return std::atan2(-d.x, d.z); }
 
 // Eq. (23) per k and summed over k = 1..max_k (the sum in the order nonsymmetric_brdf adds it).
-BrdfValue evaluate_nonsymmetric(const Dir3& i, const Dir3& o, const BrdfEvalOptions& opt) {
+BrdfValue evaluate_nonsymmetric(const Dir3& i, const Dir3& o, const BrdfEvalOptions& opt, int max_k) {
   NonsymmetricModel m;
   m.roughness = Roughness{opt.ndf, opt.alpha, opt.alpha_y > 0.0 ? opt.alpha_y : opt.alpha};
   m.partner = opt.symmetric_partner ? PartnerLaw::symmetric : PartnerLaw::independent;
@@ -37,19 +43,21 @@ BrdfValue evaluate_nonsymmetric(const Dir3& i, const Dir3& o, const BrdfEvalOpti
   v.by_k.assign(static_cast<std::size_t>(opt.per_k), 0.0);
   if (opt.flatland) {
     const double ti = flat_angle(i), to = flat_angle(o);
-    v.value = flatland_nonsymmetric_brdf(ti, to, opt.max_k, m);
+    v.value = flatland_nonsymmetric_brdf(ti, to, max_k, m);
     for (int k = 1; k <= opt.per_k; ++k)
       v.by_k[static_cast<std::size_t>(k - 1)] = flatland_nonsymmetric_brdf_k(ti, to, k, m);
     return v;
   }
-  v.value = nonsymmetric_brdf(i, o, opt.max_k, m);
-  for (int k = 1; k <= opt.per_k; ++k) v.by_k[static_cast<std::size_t>(k - 1)] = nonsymmetric_brdf_k(i, o, k, m);
+  v.value = nonsymmetric_brdf(i, o, max_k, m, opt.fresnel);
+  for (int k = 1; k <= opt.per_k; ++k)
+    v.by_k[static_cast<std::size_t>(k - 1)] = nonsymmetric_brdf_k(i, o, k, m, opt.fresnel);
   return v;
 }
 }  // namespace
 
 BrdfValue evaluate_brdf(BrdfModel model, const Dir3& i, const Dir3& o, const BrdfEvalOptions& opt) {
-  if (model == BrdfModel::vgroove_nonsymmetric) return evaluate_nonsymmetric(i, o, opt);
+  const int max_k = opt.max_k > 0 ? opt.max_k : default_max_k(model, opt.flatland);
+  if (model == BrdfModel::vgroove_nonsymmetric) return evaluate_nonsymmetric(i, o, opt, max_k);
   BrdfValue v;
   v.by_k.assign(static_cast<std::size_t>(opt.per_k), 0.0);
   if (opt.flatland) {
@@ -59,17 +67,24 @@ BrdfValue evaluate_brdf(BrdfModel model, const Dir3& i, const Dir3& o, const Brd
       if (opt.per_k > 0) v.by_k[0] = v.value;
       return v;
     }
-    v.value = flatland_brdf(opt.ndf, opt.alpha, ti, to, opt.max_k);
+    v.value = flatland_brdf(opt.ndf, opt.alpha, ti, to, max_k);
     for (int k = 1; k <= opt.per_k; ++k)
       v.by_k[static_cast<std::size_t>(k - 1)] = flatland_brdf_k(opt.ndf, opt.alpha, ti, to, k);
     return v;
   }
   if (model == BrdfModel::cook_torrance) {
-    v.value = cook_torrance(i, o, opt.ndf, opt.alpha);
+    v.value =
+        opt.fresnel ? cook_torrance(i, o, opt.ndf, opt.alpha, opt.fresnel) : cook_torrance(i, o, opt.ndf, opt.alpha);
     if (opt.per_k > 0) v.by_k[0] = v.value;
     return v;
   }
-  v.value = vgroove_brdf(i, o, opt.ndf, opt.alpha, opt.max_k);
+  if (opt.fresnel) {
+    v.value = vgroove_brdf(i, o, opt.ndf, opt.alpha, max_k, opt.fresnel);
+    for (int k = 1; k <= opt.per_k; ++k)
+      v.by_k[static_cast<std::size_t>(k - 1)] = vgroove_brdf_k(i, o, k, opt.ndf, opt.alpha, opt.fresnel);
+    return v;
+  }
+  v.value = vgroove_brdf(i, o, opt.ndf, opt.alpha, max_k);
   for (int k = 1; k <= opt.per_k; ++k)
     v.by_k[static_cast<std::size_t>(k - 1)] = vgroove_brdf_k(i, o, k, opt.ndf, opt.alpha);
   return v;

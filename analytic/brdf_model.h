@@ -22,14 +22,31 @@ enum class BrdfModel : unsigned char { vgroove, cook_torrance, vgroove_nonsymmet
 const char* brdf_model_name(BrdfModel m);  // "vgroove", "cook-torrance", "vgroove-nonsymmetric"
 std::optional<BrdfModel> brdf_model_from_name(std::string_view name);
 
+// The orders a BRDF sums when the caller does not say: the one default of every face (`vgroove
+// brdf --max-k`, BrdfEvalOptions::max_k = 0, Python's vgroove.BRDF and vgroove.brdf):
+//   vgroove, 3D             kAllOrders: every order (the single pass visits only the orders Eq. (4)
+//                           allows, so its cost does not grow with max_k, brdf_3d.h);
+//   vgroove, flatland       kFlatlandDefaultMaxK = 4096: the sum costs O(max_k^2) (about 2 s per
+//                           pair at 4096 on one core of the shared 2-core host, 3 ms at 64); the
+//                           orders beyond it come from grooves narrower than (pi + 2 |t_i|) / 4097;
+//   vgroove-nonsymmetric    kNonsymmetricDefaultMaxK = 64: Eq. (23) integrates over the partner for
+//                           each order, O(max_k^2) (GGX alpha 0.5: the values at 64 and 256 differ by
+//                           about 6e-8 relative);
+//   cook-torrance           single scattering: max_k is not read (kAllOrders is reported).
+// The samplers' defaults differ, because a pdf's cost grows with max_k: kSamplerMaxK = 16384
+// (sampling_3d.h) and kNonsymmetricSamplerMaxK = 256 (sampling_nonsymmetric.h), on every face too.
+inline constexpr int kAllOrders = 1'000'000;
+inline constexpr int kFlatlandDefaultMaxK = 4096;
+inline constexpr int kNonsymmetricDefaultMaxK = 64;
+int default_max_k(BrdfModel model, bool flatland);
+
 struct BrdfEvalOptions {
   NdfKind ndf = NdfKind::ggx;
   double alpha = 0.5;
   bool flatland = false;
-  // Orders summed: all of them by default (the symmetric 3D single pass visits only the orders
-  // Eq. (4) allows, so the cost does not grow with max_k; the flatland sum and the nonsymmetric
-  // model cost O(max_k^2): callers bound max_k there).
-  int max_k = 1'000'000;
+  // Orders summed, k = 1..max_k; 0: the model's default (default_max_k above). The flatland sum
+  // and the nonsymmetric model cost O(max_k^2): callers bound max_k there.
+  int max_k = 0;
   // Orders reported one by one, k = 1..per_k (0: none); the total includes every order up to max_k.
   int per_k = 0;
   // vgroove_nonsymmetric only. The roughness across the alpha axis, 3D, GGX and Beckmann
@@ -40,6 +57,9 @@ struct BrdfEvalOptions {
   // model, Eq. 24; with alpha_y its anisotropic form) instead of independent (Eq. 20, which for
   // Phong needs alpha < sqrt(2): std::domain_error otherwise).
   bool symmetric_partner = false;
+  // Fresnel per reflection (brdf_3d.h: prod_j F(|d_j . s_j|)), 3D only; empty: F = 1. Flatland
+  // evaluations ignore it (callers refuse it there).
+  FresnelFn fresnel;
 };
 
 struct BrdfValue {

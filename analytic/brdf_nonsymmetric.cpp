@@ -1,8 +1,8 @@
 #include "vgroove/analytic/brdf_nonsymmetric.h"
 
-#include "vgroove/analytic/adaptive_quadrature.h"
 #include "vgroove/analytic/kaleidoscope_nonsymmetric.h"
 #include "vgroove/analytic/partner_distribution.h"
+#include "vgroove/analytic/quadrature.h"
 
 #include <algorithm>
 #include <cmath>
@@ -45,32 +45,6 @@ CountWidth count_width(double t_i, double theta_l, double theta_r, int k) {
 }
 
 namespace {
-
-// The cross-section through h: 2D angles of i and o, c = |i_perp|, sin(theta_h), cos(theta_d) and
-// the azimuth of a (h's horizontal direction, so that t_h = -theta_h <= 0).
-struct Section {
-  double t_i = 0.0, t_o = 0.0, c = 1.0, sin_h = 0.0, cos_d = 1.0, phi_a = 0.0;
-};
-
-double dot(const Dir3& a, const Dir3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-
-// False when h = n exactly (no cross-section): then the plane (x, z) is returned with sin_h = 0.
-bool make_section(const Dir3& i, const Dir3& o, Section& s) {
-  Dir3 h{i.x + o.x, i.y + o.y, i.z + o.z};
-  const double len = std::sqrt(dot(h, h));
-  h = {h.x / len, h.y / len, h.z / len};
-  const double rho = std::hypot(h.x, h.y);
-  s.cos_d = 0.5 * (dot(i, h) + dot(o, h));
-  s.sin_h = rho;
-  const bool ok = rho > 0.0;
-  const Dir3 a = ok ? Dir3{h.x / rho, h.y / rho, 0.0} : Dir3{1.0, 0.0, 0.0};
-  s.phi_a = std::atan2(a.y, a.x);
-  const double ia = dot(i, a), oa = dot(o, a);
-  s.t_i = std::atan2(-ia, i.z);
-  s.t_o = std::atan2(-oa, o.z);
-  s.c = 0.5 * (std::sqrt(ia * ia + i.z * i.z) + std::sqrt(oa * oa + o.z * o.z));
-  return ok;
-}
 
 // prod_j F(c |d_j . s_j|) along the path in the groove (theta_l = -A, theta_r = B), left facet first.
 double fresnel_product(const FresnelFn& F, double t_i, double A, double B, int k, double c) {
@@ -207,7 +181,7 @@ double integrate_families(double t_i, double t_o, int k, const NonsymmetricModel
       const double lo = std::max(f.lo, (-f.C - w) / s), hi = std::min(f.hi, (-f.C + w) / s);
       for (const auto& [a, b] : pieces(t_i, f, k)) {
         const double pa = std::max(a, lo), pb = std::min(b, hi);
-        if (pb > pa) sum += integrate_adaptive(at, pa, pb, m.tolerance) / (2.0 * w);
+        if (pb > pa) sum += integrate_adaptive_parts(at, pa, pb, m.tolerance) / (2.0 * w);
       }
     } else if (m.partner == PartnerLaw::symmetric) {
       // delta(B - A): B* = -C / (1 + beta), weight 1 / |1 + beta| (Eq. 24).
@@ -218,7 +192,7 @@ double integrate_families(double t_i, double t_o, int k, const NonsymmetricModel
         const double v = at(B);
         return v > 0.0 ? v * partner_density(m, flatland, B, phi) : 0.0;
       };
-      for (const auto& [a, b] : pieces(t_i, f, k)) sum += integrate_adaptive(with_p, a, b, m.tolerance);
+      for (const auto& [a, b] : pieces(t_i, f, k)) sum += integrate_adaptive_parts(with_p, a, b, m.tolerance);
     }
   }
   return sum;
@@ -227,8 +201,8 @@ double integrate_families(double t_i, double t_o, int k, const NonsymmetricModel
 double brdf_k_3d(const Dir3& i, const Dir3& o, int k, const NonsymmetricModel& m, const FresnelFn& F) {
   const double cos_i = i.z, cos_o = o.z;
   if (!(cos_i > 0.0 && cos_o > 0.0) || k < 1) return 0.0;
-  Section s;
-  const bool ok = make_section(i, o, s);
+  GrooveFrame s;
+  const bool ok = groove_frame(i, o, s);
   if (!ok) {
     // h = n: k = 1 is the flat facet's single reflection, Cook-Torrance with G = 1 (the limit);
     // k >= 2 diverges like 1 / sin(theta_h) wherever grooves send light there.
@@ -239,12 +213,13 @@ double brdf_k_3d(const Dir3& i, const Dir3& o, int k, const NonsymmetricModel& m
     s.sin_h = 1.0;
   }
   const double jac = 1.0 / (half_slope(k) * 4.0 * s.cos_d);
+  const double phi_a = std::atan2(s.ay, s.ax);  // the azimuth of a
   double sum = 0.0;
   for (int side = 0; side < 2; ++side) {
     // side 0: the first facet leans towards a (left, azimuth phi_a); side 1: away (mirrored, phi_a + pi).
     const double sgn = side == 0 ? 1.0 : -1.0;
-    const double ti = sgn * s.t_i, to = sgn * s.t_o;
-    const double phi_s = side == 0 ? s.phi_a : s.phi_a + kPi;
+    const double ti = sgn * s.x.t_i, to = sgn * s.x.t_o;
+    const double phi_s = side == 0 ? phi_a : phi_a + kPi;
     auto term = [&](double A, double B, double width_per_len) {
       // |i.s| G D(s) |ds/do| without P (Eq. 23).
       double v = s.c * width_per_len * D_anisotropic(m.roughness, A, phi_s) * jac;

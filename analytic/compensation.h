@@ -38,6 +38,16 @@
 //     environment_map.wgsl (Fdez-Aguera with the paper's roughness-dependent Fresnel kS = F0 +
 //     (max(1 - r, F0) - F0) (1 - NdotV)^5; FssEss = kS f_ab.x + f_ab.y in the releases read, kS Ess
 //     in a later one). Commit of the stored copies not recorded.
+//   Unreal Engine: not implemented. What is documented publicly is a project setting ("Enable
+//     Energy Conservation on Material", r.Material.EnergyConservation) and the API stub
+//     FViewUniformShaderParameters::bShadingEnergyConservation ("Energy conservation."); the
+//     shaders that compute it (Engine/Shaders/Private/ShadingEnergyConservation.ush) are in Epic's
+//     access-restricted repository, not in a published source this project can cite.
+// Equation numbers: the slides, docs and engine sources above number none; Filament's is its
+// documentation's section, Fdez-Aguera's the paper's sections; Turquin's as cited, not re-read.
+// Published numbers to test against: three.js's 0.047619 (= 1/21) and Karis's constants
+// (tests/analytic/compensation_test.cpp), Cycles' table (tests/analytic/albedo_table_test.cpp);
+// the other sources print none, so their tests use values derived by hand from the printed forms.
 //
 // Conventions. mu = cos theta, in (0, 1]. E_o = E_ss(mu_o) is the albedo at the direction the
 // formula names (for the split-sum forms, the view direction, mu = NoV). alpha is the GGX/Beckmann

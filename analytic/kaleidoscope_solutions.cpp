@@ -1,5 +1,8 @@
 #include "vgroove/analytic/kaleidoscope_solutions.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace vgroove::analytic {
 
 CrossSection cross_section(double t_i, double t_o) {
@@ -12,6 +15,8 @@ CrossSection cross_section(double t_i, double t_o) {
   p.cos_to = std::cos(t_o);
   p.cos_half_sum = std::cos(0.5 * (t_i + t_o));
   p.cos_half_diff = std::cos(0.5 * (t_i - t_o));
+  p.sin_half_sum = std::abs(std::sin(0.5 * (t_i + t_o)));
+  p.single_from_h = p.cos_half_sum < kGrazingHalfVector;
   return p;
 }
 
@@ -49,10 +54,39 @@ bool outcome_possible(const Ends& e, double theta_v, int k) {
 //   f_a - g_hi = 2 sin(theta_v/2 - (a + b)/2) cos((a - b)/2),
 //   g_lo - f_b_raw = 2 sin(theta_v/2 + (a + b)/2) cos((a - b)/2),
 // so that the width keeps its relative accuracy where the two ends nearly meet, and the same
-// operations on bitwise-swapped operands make rho(i, o) = rho(o, i) to the last bits. The min/max
-// only choose the ends: their operands may carry rounding. (Remaining error: the rounding of
-// theta_v, ~ulp(k pi) / k, lost once where the ends nearly meet; measured < 1e-12 relative against
-// long double, BeamWidthIsEq6.)
+// operations on bitwise-swapped operands make rho(i, o) = rho(o, i) to the last bits.
+// Which ends hold is read from the offsets themselves where they are far apart. Each offset is a
+// sum of two products of numbers below 1 with a few ulp of error, and theta_v/2's rounding moves
+// it by at most ulp(pi) / k: within kEndsTie of each other (or of 0) their comparison may be
+// decided by rounding. There (and where the width itself is below kEndsTie) the width is the
+// smallest of the differences upper - lower over every pair of ends, each written as a product:
+// min(f_a, g_lo) - max(0, f_b_raw, g_hi) is exactly that minimum, and it needs no comparison of
+// rounded offsets. Near the horizon the offsets are 1 - O(1e-16) while the width is a product of
+// two cosines of the order of 1e-8 each: the comparisons there said nothing (Brdf3d.GrazingPairs*).
+// (Remaining error: the rounding of theta_v, ~ulp(k pi) / k, lost once where the ends nearly
+// meet; measured < 1e-12 relative against long double, BeamWidthIsEq6.)
+namespace {
+
+constexpr double kEndsTie = 1e-14;
+
+// min(f_a, g_lo) - max(0, f_b_raw, g_hi) as the smallest of its six differences, each a product.
+double width_from_every_pair(const Ends& e, double half, double S) {
+  const double ab2 = 0.5 * (e.a + e.b);
+  const double d[6] = {
+      std::sin(half - e.a),                          // f_a - 0
+      std::sin(half + e.b),                          // g_lo - 0
+      2.0 * S * e.cos_a,                             // f_a - f_b_raw
+      2.0 * S * e.cos_b,                             // g_lo - g_hi
+      2.0 * std::sin(half - ab2) * e.cos_half_diff,  // f_a - g_hi
+      2.0 * std::sin(half + ab2) * e.cos_half_diff,  // g_lo - f_b_raw
+  };
+  // The order of the operands of each min is the same for the reversed path's permutation.
+  const double w = std::min(std::min(std::min(d[0], d[1]), std::min(d[2], d[3])), std::min(d[4], d[5]));
+  return std::max(0.0, w);
+}
+
+}  // namespace
+
 double beam_width(const Ends& e, double theta_v, double S, double C, int k) {
   const double f_a = S * e.cos_a - C * e.sin_a;      // sin(theta_v/2 - a)
   const double g_lo = S * e.cos_b + C * e.sin_b;     // sin(theta_v/2 + b)
@@ -65,18 +99,25 @@ double beam_width(const Ends& e, double theta_v, double S, double C, int k) {
     // k = 1: theta_v = a - b + pi, so f_a = g_lo identically (the two upper ends coincide) and
     // every form reduces to the angles: f_a = sin((pi - a - b)/2) = cos((a + b)/2) (the 2D cosine
     // of incidence on the facet), f_a - f_b_raw = 2 S cos(a), g_lo - g_hi = 2 S cos(b). Choosing
-    // between f_a and g_lo by their rounding would break the symmetry and the accuracy.
-    if (!(std::min(f_a, g_lo) > lower)) return 0.0;
-    if (lower == 0.0) {
-      w = e.cos_half_sum;
+    // between f_a and g_lo by their rounding would break the symmetry and the accuracy; the
+    // width is the smallest of the three (the pairs' differences, as above), with a tie of the
+    // lower ends decided by the products, not by the offsets.
+    const double top = std::min(f_a, g_lo);
+    const bool clear =
+        top - lower > kEndsTie && (lower == 0.0 ? std::max(f_b, g_hi) < -kEndsTie : std::abs(f_b - g_hi) > kEndsTie);
+    if (clear) {
+      w = lower == 0.0 ? e.cos_half_sum : 2.0 * S * (f_b >= g_hi ? e.cos_a : e.cos_b);
     } else {
-      w = 2.0 * S * (f_b >= g_hi ? e.cos_a : e.cos_b);
+      w = std::min(e.cos_half_sum, 2.0 * S * std::min(e.cos_a, e.cos_b));
     }
     return std::max(0.0, w);
   }
   const bool upper_a = f_a <= g_lo;
   const double upper = upper_a ? f_a : g_lo;
-  if (!(upper > lower)) return 0.0;
+  const bool clear =
+      upper - lower > kEndsTie && std::abs(f_a - g_lo) > kEndsTie &&
+      (lower == 0.0 ? std::max(f_b, g_hi) < -kEndsTie : std::abs(f_b - g_hi) > kEndsTie && lower > kEndsTie);
+  if (!clear) return width_from_every_pair(e, half, S);
   if (lower == 0.0) {
     w = upper_a ? std::sin(half - e.a) : std::sin(half + e.b);
   } else if (f_b >= g_hi) {  // the lower end is f_b_raw

@@ -1,7 +1,7 @@
 #include "vgroove/analytic/partner_table.h"
 
-#include "vgroove/analytic/adaptive_quadrature.h"
 #include "vgroove/analytic/partner_distribution.h"
+#include "vgroove/analytic/quadrature.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,7 +20,8 @@ double exact_p(NdfKind ndf, double alpha, bool flatland, double B) {
 
 // P's mass on [a, b]: adaptive Gauss-Kronrod (no node at the ends, where Phong may be singular).
 double exact_mass(NdfKind ndf, double alpha, bool flatland, double a, double b) {
-  return integrate_adaptive([&](double B) { return exact_p(ndf, alpha, flatland, B); }, a, b, 1e-12, 1e-16, 2, 64);
+  return integrate_adaptive_parts([&](double B) { return exact_p(ndf, alpha, flatland, B); }, a, b, 1e-12, 1e-16, 2,
+                                  64);
 }
 
 }  // namespace
@@ -84,7 +85,7 @@ double partner_table_pdf(const PartnerTable& t, double B) {
 double partner_table_l1_error(const PartnerTable& t, NdfKind ndf, double alpha, bool flatland) {
   double sum = 0.0;
   for (std::size_t j = 0; j + 1 < t.B.size(); ++j)
-    sum += integrate_adaptive(
+    sum += integrate_adaptive_parts(
         [&](double B) { return std::abs(partner_table_pdf(t, B) - exact_p(ndf, alpha, flatland, B)); }, t.B[j],
         t.B[j + 1], 1e-6, 1e-15, 1, 32);
   return sum;

@@ -66,13 +66,21 @@ double integrate_mirrored(const GaussLegendre& g, F&& f, double a, double b) {
 
 // ---- Adaptive Gauss-Kronrod ---------------------------------------------------------------------
 //
-// Globally adaptive (QUADPACK's QAG strategy): every piece is integrated by the 15-point Kronrod
-// rule, its error estimated by the difference from the embedded 7-point Gauss rule, and the piece
-// with the largest estimate is bisected until the summed estimates fall below
-// max(abs_tol, rel_tol |value|) or max_pieces is reached. The estimate |K15 - G7| is used as is
-// (QUADPACK's (200 e / r)^1.5 rescaling is not applied: it is not an upper bound where the
-// integrand has jumps, which every integrand here has). Integrable end singularities and jumps
-// converge by bisection; pass the known jumps and peaks as breakpoints.
+// One rule: the 15-point Kronrod extension of the 7-point Gauss rule (Piessens et al., QUADPACK,
+// 1983: the nodes and weights of its QK15); |K15 - G7| estimates the error of the 7-point
+// estimate and the 15-point one is kept. Two globally adaptive drivers over it (QUADPACK's QAG
+// strategy: bisect the piece with the largest estimate until the summed estimates fall below the
+// tolerance or a piece budget is spent). The estimate is used as is (QUADPACK's (200 e / r)^1.5
+// rescaling is not applied: it is not an upper bound where the integrand has jumps, which every
+// integrand here has). Integrable end singularities and jumps converge by bisection; pass the
+// known jumps and peaks as breakpoints.
+//   - integrate_adaptive: from breakpoints, with the error, the evaluations and whether it
+//     converged (AdaptiveResult); the pieces summed from the largest estimate down.
+//   - integrate_adaptive_parts: from equal parts of [a, b], the value alone; the parts summed in
+//     their order along [a, b] (the nonsymmetric BRDF's and sampler's integrals over a groove
+//     family, smooth between kinks at unknown places).
+// The two sum in different orders and round their error estimates differently, so their values
+// differ in the last bits: each keeps its callers' reports as they are.
 
 struct AdaptiveResult {
   double value = 0.0;
@@ -100,13 +108,13 @@ inline constexpr double kWk[8] = {0.022935322010529224963732008058970, 0.0630920
 inline constexpr double kWg[4] = {0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
                                   0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
 
-struct Piece {
-  double a, b, value, error;
-  bool operator<(const Piece& o) const { return error < o.error; }
+// The rule on [a, b]: the Kronrod and Gauss sums k and g on [-1, 1] and the half-width h (the
+// estimates are k h and g h).
+struct KronrodGauss {
+  double k, g, h;
 };
-
 template <class F>
-Piece gauss_kronrod_15(F& f, double a, double b) {
+KronrodGauss gauss_kronrod_15(F& f, double a, double b) {
   const double c = 0.5 * (a + b), h = 0.5 * (b - a);
   const double fc = f(c);
   double k = kWk[7] * fc, g = kWg[3] * fc;
@@ -116,7 +124,17 @@ Piece gauss_kronrod_15(F& f, double a, double b) {
     k += kWk[j] * (f1 + f2);
     if (j % 2 == 1) g += kWg[j / 2] * (f1 + f2);
   }
-  return {a, b, k * h, std::abs((k - g) * h)};
+  return {k, g, h};
+}
+
+struct Piece {
+  double a, b, value, error;
+  bool operator<(const Piece& o) const { return error < o.error; }
+};
+template <class F>
+Piece kronrod_piece(F& f, double a, double b) {
+  const KronrodGauss r = gauss_kronrod_15(f, a, b);
+  return {a, b, r.k * r.h, std::abs((r.k - r.g) * r.h)};
 }
 }  // namespace detail
 
@@ -127,7 +145,7 @@ AdaptiveResult integrate_adaptive(F&& f, const std::vector<double>& points, cons
   std::priority_queue<detail::Piece> pieces;
   for (std::size_t j = 0; j + 1 < points.size(); ++j) {
     if (!(points[j + 1] > points[j])) continue;
-    pieces.push(detail::gauss_kronrod_15(f, points[j], points[j + 1]));
+    pieces.push(detail::kronrod_piece(f, points[j], points[j + 1]));
     r.evaluations += 15;
   }
   auto totals = [&]() {
@@ -148,7 +166,7 @@ AdaptiveResult integrate_adaptive(F&& f, const std::vector<double>& points, cons
     const double m = 0.5 * (p.a + p.b);
     if (!(m > p.a && m < p.b)) break;  // no room left in double
     pieces.pop();
-    const detail::Piece l = detail::gauss_kronrod_15(f, p.a, m), u = detail::gauss_kronrod_15(f, m, p.b);
+    const detail::Piece l = detail::kronrod_piece(f, p.a, m), u = detail::kronrod_piece(f, m, p.b);
     r.evaluations += 30;
     value += l.value + u.value - p.value;
     error += l.error + u.error - p.error;
@@ -165,6 +183,49 @@ AdaptiveResult integrate_adaptive(F&& f, const std::vector<double>& points, cons
 template <class F>
 AdaptiveResult integrate_adaptive(F&& f, double a, double b, const AdaptiveOptions& opt = {}) {
   return integrate_adaptive(f, std::vector<double>{a, b}, opt);
+}
+
+// int_a^b f from `initial` equal parts, halving the part with the largest estimate until the
+// summed estimate is below max(rel_tol |integral|, abs_tol) or `max_parts` parts are in use (which
+// bounds the cost when the integrand's rounding noise exceeds the tolerance, e.g. next to a
+// singular direction).
+template <class F>
+double integrate_adaptive_parts(F&& f, double a, double b, double rel_tol, double abs_tol = 0.0, int initial = 4,
+                                int max_parts = 256) {
+  if (!(b > a)) return 0.0;
+  struct Part {
+    double lo, hi, value, error;
+  };
+  auto part = [&f](double lo, double hi) {
+    const detail::KronrodGauss r = detail::gauss_kronrod_15(f, lo, hi);
+    const double k = r.k * r.h, g = r.g * r.h;
+    return Part{lo, hi, k, std::abs(k - g)};
+  };
+  std::vector<Part> parts;
+  parts.reserve(static_cast<std::size_t>(max_parts) + 2);
+  const double h = (b - a) / initial;
+  double total = 0.0, error = 0.0;
+  for (int j = 0; j < initial; ++j) {
+    parts.push_back(part(a + j * h, j + 1 == initial ? b : a + (j + 1) * h));
+    total += parts.back().value;
+    error += parts.back().error;
+  }
+  while (error > std::max(rel_tol * std::abs(total), abs_tol) && static_cast<int>(parts.size()) < max_parts) {
+    std::size_t worst = 0;
+    for (std::size_t n = 1; n < parts.size(); ++n)
+      if (parts[n].error > parts[worst].error) worst = n;
+    const Part p = parts[worst];
+    const double m = 0.5 * (p.lo + p.hi);
+    if (!(m > p.lo && m < p.hi)) break;  // the part is one ulp wide
+    parts[worst] = part(p.lo, m);
+    parts.push_back(part(m, p.hi));
+    total += parts[worst].value + parts.back().value - p.value;
+    error += parts[worst].error + parts.back().error - p.error;
+  }
+  // The sum afresh (the running total collects rounding).
+  double s = 0.0;
+  for (const Part& p : parts) s += p.value;
+  return s;
 }
 
 }  // namespace vgroove::analytic

@@ -1,9 +1,9 @@
 #include "vgroove/analytic/sampling_nonsymmetric.h"
 
-#include "vgroove/analytic/adaptive_quadrature.h"
 #include "vgroove/analytic/brdf_nonsymmetric.h"
 #include "vgroove/analytic/kaleidoscope_nonsymmetric.h"
 #include "vgroove/analytic/partner_distribution.h"
+#include "vgroove/analytic/quadrature.h"
 #include "vgroove/analytic/vndf.h"
 
 #include <algorithm>
@@ -27,8 +27,6 @@ constexpr double kAbsPerRel = 1e-3;
 // for GGX 0.5, theta_i = 30 deg, theta_o = -28 deg: 7 % of the piece): one 15-point rule over the
 // whole piece can have no node inside it, see zeros and stop (the pdf was 2 % low there).
 constexpr int kPieceParts = 4;
-
-double dot(const Dir3& a, const Dir3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
 // ---- The facet's law ----------------------------------------------------------------------------
 
@@ -112,25 +110,6 @@ double p_count(double t_i, double theta_l, double B, int k, bool printed) {
 // |d t_h / d theta_l| (Eq. 8): k/2 (k even), (k+1)/2 (k odd).
 double half_slope(int k) { return std::abs(dtheta_h_dtheta_l(k)); }
 
-// The cross-section through h (brdf_nonsymmetric.cpp's): false when h = n exactly.
-struct Section {
-  double t_i = 0.0, t_o = 0.0, sin_h = 0.0, cos_d = 1.0, phi_a = 0.0;
-};
-bool make_section(const Dir3& i, const Dir3& o, Section& s) {
-  Dir3 h{i.x + o.x, i.y + o.y, i.z + o.z};
-  const double len = std::sqrt(dot(h, h));
-  h = {h.x / len, h.y / len, h.z / len};
-  const double rho = std::hypot(h.x, h.y);
-  s.cos_d = 0.5 * (dot(i, h) + dot(o, h));
-  s.sin_h = rho;
-  if (!(rho > 0.0)) return false;
-  const Dir3 a{h.x / rho, h.y / rho, 0.0};
-  s.phi_a = std::atan2(a.y, a.x);
-  s.t_i = std::atan2(-dot(i, a), i.z);
-  s.t_o = std::atan2(-dot(o, a), o.z);
-  return true;
-}
-
 bool inside_groove(double A, double B) { return A >= 0.0 && A < kHalfPi && B >= 0.0 && B < kHalfPi; }
 
 }  // namespace
@@ -153,17 +132,18 @@ NonsymmetricSampler make_nonsymmetric_sampler(NdfKind ndf, double alpha, const S
 
 double nonsymmetric_pdf_3d_k(const NonsymmetricSampler& S, const Dir3& i, const Dir3& o, int k_lo, int k_hi) {
   if (!(i.z > 0.0 && o.z > 0.0)) return 0.0;
-  Section x;
-  if (!make_section(i, o, x)) return kInf;
+  GrooveFrame frame;
+  if (!groove_frame(i, o, frame)) return kInf;
+  const double phi_a = std::atan2(frame.ay, frame.ax);  // the azimuth of a
   const bool printed = S.opt.strategy == FacetStrategy::printed;
   double sum = 0.0;
   for (int k = std::max(1, k_lo); k <= std::min(k_hi, S.opt.max_k); ++k) {
     // |ds/do| of Eq. (23) without sin(A) / sin(theta_h) (k = 1: s = h, the ratio is 1).
-    const double jac = 1.0 / (half_slope(k) * 4.0 * x.cos_d);
+    const double jac = 1.0 / (half_slope(k) * 4.0 * frame.cos_d);
     for (int side = 0; side < 2; ++side) {
       // side 0: the first facet leans towards a (azimuth phi_a); side 1: away (mirrored).
-      const double sgn = side == 0 ? 1.0 : -1.0, ti = sgn * x.t_i, to = sgn * x.t_o;
-      const double phi_s = side == 0 ? x.phi_a : x.phi_a + kPi;
+      const double sgn = side == 0 ? 1.0 : -1.0, ti = sgn * frame.x.t_i, to = sgn * frame.x.t_o;
+      const double phi_s = side == 0 ? phi_a : phi_a + kPi;
       const double cp = std::cos(phi_s), sp = std::sin(phi_s);
       for (const PartnerPiece& piece : partner_pieces(ti, to, k)) {
         auto f = [&](double B) {
@@ -174,9 +154,10 @@ double nonsymmetric_pdf_3d_k(const NonsymmetricSampler& S, const Dir3& i, const 
           const double pB = P_theta_r(S.ndf, B, S.alpha);
           const double sa = std::sin(A);
           const double q = facet_pdf(S, i, Dir3{sa * cp, sa * sp, std::cos(A)});
-          return q * pB * p_k * (k == 1 ? 1.0 : sa / x.sin_h);
+          return q * pB * p_k * (k == 1 ? 1.0 : sa / frame.sin_h);
         };
-        sum += jac * integrate_adaptive(f, piece.lo, piece.hi, S.tolerance, kAbsPerRel * S.tolerance, kPieceParts, 512);
+        sum += jac *
+               integrate_adaptive_parts(f, piece.lo, piece.hi, S.tolerance, kAbsPerRel * S.tolerance, kPieceParts, 512);
       }
     }
   }
@@ -273,7 +254,7 @@ double nonsymmetric_failure_probability_3d(const NonsymmetricSampler& S, const D
       if (!(pB > 0.0)) return 0.0;
       return pB * dB * no_direction(G_nonsymmetric(t_i, -A, B, FacetSide::left), printed, S.opt.max_k);
     };
-    return integrate_adaptive(f, 0.0, 1.0, 0.0, 0.1 * tol, 8, 128);
+    return integrate_adaptive_parts(f, 0.0, 1.0, 0.0, 0.1 * tol, 8, 128);
   };
   auto over_tilt = [&](double psi) {
     const double phi = phi_i + psi, ax = std::cos(phi), ay = std::sin(phi);
@@ -285,10 +266,10 @@ double nonsymmetric_failure_probability_3d(const NonsymmetricSampler& S, const D
       if (!(q > 0.0)) return 0.0;
       return q * sa * dA * over_partner(A, t_i);
     };
-    return integrate_adaptive(f, 0.0, 1.0, 0.0, 0.2 * tol, 8, 128);
+    return integrate_adaptive_parts(f, 0.0, 1.0, 0.0, 0.2 * tol, 8, 128);
   };
   // Mirror symmetry about the plane of incidence.
-  return 2.0 * integrate_adaptive(over_tilt, 0.0, kPi, 0.0, 0.2 * tol, 8, 128);
+  return 2.0 * integrate_adaptive_parts(over_tilt, 0.0, kPi, 0.0, 0.2 * tol, 8, 128);
 }
 
 // ---- Flatland ---------------------------------------------------------------------------------------
@@ -311,7 +292,8 @@ double nonsymmetric_pdf_flatland_k(const NonsymmetricSampler& S, double theta_i,
           const double pB = P2_theta_r(S.ndf, B, S.alpha);
           return facet_pdf2(S, theta_i, -sgn * A) * pB * p_k;
         };
-        sum += jac * integrate_adaptive(f, piece.lo, piece.hi, S.tolerance, kAbsPerRel * S.tolerance, kPieceParts, 512);
+        sum += jac *
+               integrate_adaptive_parts(f, piece.lo, piece.hi, S.tolerance, kAbsPerRel * S.tolerance, kPieceParts, 512);
       }
     }
   }
@@ -382,9 +364,9 @@ double nonsymmetric_failure_probability_flatland(const NonsymmetricSampler& S, d
         if (!(pB > 0.0)) return 0.0;
         return pB * dB * no_direction(G_nonsymmetric(ti, -A, B, FacetSide::left), printed, S.opt.max_k);
       };
-      return q * dA * integrate_adaptive(f, 0.0, 1.0, 0.0, 0.1 * tol, 8, 256);
+      return q * dA * integrate_adaptive_parts(f, 0.0, 1.0, 0.0, 0.1 * tol, 8, 256);
     };
-    sum += integrate_adaptive(over_tilt, 0.0, 1.0, 0.0, 0.2 * tol, 8, 256);
+    sum += integrate_adaptive_parts(over_tilt, 0.0, 1.0, 0.0, 0.2 * tol, 8, 256);
   }
   return sum;
 }

@@ -1,5 +1,7 @@
+#include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
 #include "vgroove/common/angles.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/support/printable.h"
 
 #include <cstdio>
@@ -13,9 +15,9 @@
 #include "vgroove/support/memory.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/cost_curve.h"
+#include "vgroove/validation/groove_suite_run.h"
 #include "vgroove/validation/partial_report.h"
 #include "vgroove/validation/report.h"
-#include "vgroove/validation/suite_run.h"
 
 namespace vgroove::app {
 
@@ -24,10 +26,10 @@ using namespace validation;
 namespace {
 // The runs of `bench accuracy` as one job: the suite once per (sampling, rays), sampling outer.
 struct AccuracyPlan {
-  std::vector<Suite> suites;
+  std::vector<GrooveSuite> suites;
   std::vector<CaseOptions> options;
 };
-AccuracyPlan accuracy_plan(const Suite& suite, const std::vector<sim::Sampling>& samplings,
+AccuracyPlan accuracy_plan(const GrooveSuite& suite, const std::vector<sim::Sampling>& samplings,
                            const std::vector<long>& rays) {
   AccuracyPlan p;
   for (sim::Sampling smp : samplings)
@@ -47,18 +49,18 @@ nlohmann::json accuracy_descriptor(const AccuracyArgs& a) {
 
 int cmd_bench_accuracy(const AccuracyArgs& a) {
   check_threads(a.threads, "--threads");
-  const SuiteSet set = load_suite_set(a.suite);
+  const GrooveSuiteSet set = load_groove_suite_set(a.suite);
   if (set.suites.size() != 1)
     throw support::UserError(a.suite + ": is a set of " + std::to_string(set.suites.size()) +
                              " suites; `bench accuracy` takes one suite file (e.g. data/suites/table1_symmetric.json)");
-  const Suite& suite = set.suites.front();
+  const GrooveSuite& suite = set.suites.front();
   for (long r : a.rays) check_rays(r, "--rays");
   std::vector<sim::Sampling> samplings;
   for (const auto& s : a.samplings) samplings.push_back(parse_sampling(s, "--sampling", true));
   for (long r : a.rays) {
     CaseOptions o = suite.options;
     o.rays = r;
-    support::check_memory(run_memory_bytes(suite, o, a.threads, false), a.suite + ": the run",
+    support::check_memory(groove_suite_memory_bytes(suite, o, a.threads, false), a.suite + ": the run",
                           std::to_string(suite.cases()) + " cases");
   }
   const std::optional<support::Shard> shard = shard_from(a.shard, a.out);
@@ -74,17 +76,17 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
     write_partial(a.out, *part, a.force);
     return 0;
   }
-  std::vector<SuiteRun> runs;
+  std::vector<GrooveSuiteRun> runs;
   if (world().distributed()) {
     const auto job = groove_cases_job(plan.suites, plan.options, accuracy_descriptor(a));
     int threads = 0;
     const auto results = run_distributed(job, a.threads, terminal_progress("accuracy"), a.cancel, &threads);
     if (!results) return 0;  // not rank 0: its results went there
-    runs = suite_runs_from(job.work, *results, threads, -1.0);
+    runs = groove_suite_runs_from(job.work, *results, threads, -1.0);
   } else {
     for (std::size_t n = 0; n < plan.suites.size(); ++n) {
       const CaseOptions& o = plan.options[n];
-      runs.push_back(run_suite(
+      runs.push_back(run_groove_suite(
           suite, o, a.threads,
           terminal_progress(std::string(sim::sampling_name(o.sampling)) + " " + std::to_string(o.rays)), a.cancel));
       if (runs.back().interrupted) return interrupted_no_report();
@@ -94,18 +96,18 @@ int cmd_bench_accuracy(const AccuracyArgs& a) {
   return 0;
 }
 
-void write_accuracy_report(const Suite& suite, const std::vector<SuiteRun>& all_runs, const std::string& out,
-                           bool force) {
+void write_accuracy_report(const GrooveSuite& suite, const std::vector<GrooveSuiteRun>& all_runs,
+                           const std::string& out, bool force) {
   nlohmann::json runs = nlohmann::json::array();
   std::printf("accuracy against rays: suite %s (%zu cases), vgroove %s (git %s)\n",
               support::printable(suite.name).c_str(), suite.cases(), version_string(), git_revision());
   std::printf("  %-10s %10s %12s %12s %12s %10s %8s\n", "sampling", "rays/facet", "max L1", "mean L1", "rays", "wall s",
               "pass");
   const int threads_used = all_runs.empty() ? 0 : all_runs.front().threads;
-  for (const SuiteRun& run : all_runs) {
+  for (const GrooveSuiteRun& run : all_runs) {
     const sim::Sampling smp = run.options.sampling;
     const long rays = run.options.rays;
-    const Summary& s = run.summary;
+    const GrooveSuiteSummary& s = run.summary;
     std::printf("  %-10s %10ld %12.4g %12.4g %12lld %10.3f %8s\n", sim::sampling_name(smp), rays, s.max_l1, s.mean_l1,
                 static_cast<long long>(s.rays), s.wall_s, s.pass() ? "yes" : "no");
     std::fflush(stdout);
@@ -164,7 +166,7 @@ void write_accuracy_report(const Suite& suite, const std::vector<SuiteRun>& all_
     j["thresholds"] = {{"max_l1", suite.thresholds.max_l1}, {"mean_l1", suite.thresholds.mean_l1}};
     j["soonest_to_thresholds"] = fastest;
     j["cost_vs_theta_v"] = {{"theta_i_deg", 30.0}, {"rays", 20000}, {"threads", 1}, {"points", cost_json}};
-    support::write_file_atomically(out, j.dump(1) + "\n", force);
+    support::write_file_atomically(out, support::json_text(j, 1) + "\n", force);
     std::printf("report: %s\n", support::printable(out).c_str());
   }
 }
@@ -172,7 +174,7 @@ void write_accuracy_report(const Suite& suite, const std::vector<SuiteRun>& all_
 int merge_accuracy(const std::vector<Part>& parts, const MergeArgs& a) {
   const nlohmann::json& job = parts.front().header.job;
   const std::string file = input_file_of(parts.front());
-  const SuiteSet set = load_suite_set(file);
+  const GrooveSuiteSet set = load_groove_suite_set(file);
   check_input_unchanged(job, {file}, parts.front().file);
   std::vector<sim::Sampling> samplings;
   for (const auto& smp : job.at("options").at("sampling")) samplings.push_back(parse_sampling(smp, "sampling", true));
@@ -183,9 +185,31 @@ int merge_accuracy(const std::vector<Part>& parts, const MergeArgs& a) {
   const auto j = groove_cases_job(plan.suites, plan.options, job);
   int threads = 0;
   for (const Part& p : parts) threads += p.header.threads;
-  write_accuracy_report(set.suites.front(), suite_runs_from(j.work, merge_job_parts(j, parts), threads, -1.0), a.out,
-                        a.force);
+  write_accuracy_report(set.suites.front(), groove_suite_runs_from(j.work, merge_job_parts(j, parts), threads, -1.0),
+                        a.out, a.force);
   return 0;
+}
+
+void add_bench_accuracy_command(CLI::App& bench, Commands& commands) {
+  auto* acc = bench.add_subcommand("accuracy",
+                                   "Run a suite at several ray counts and placements; report max/mean "
+                                   "L1 against rays and wall time.");
+  AccuracyArgs& ac = commands.add(acc, cmd_bench_accuracy);
+  ac.cancel = commands.context().cancel;
+  add_text(acc, "suite", ac.suite, "suite spec")->required();
+  add_integer(acc, "--rays", ac.rays, "rays per lit facet, comma-separated", 1, kMaxRays)
+      ->delimiter(',')
+      ->capture_default_str();
+  add_text(acc, "--sampling", ac.samplings,
+           "placements, comma-separated: stratified, random, breakpoints (--rays is then the grid's size)")
+      ->delimiter(',')
+      ->capture_default_str();
+  add_threads(acc, ac.threads);
+  add_text(acc, "--out", ac.out, "report JSON to write");
+  acc->add_flag("--force", ac.force, "overwrite an existing report");
+  add_text(acc, "--shard", ac.shard,
+           "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+           "report (`vgroove merge` joins them; each run's wall_s is then its summed case time)");
 }
 
 }  // namespace vgroove::app

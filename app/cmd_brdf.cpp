@@ -1,9 +1,11 @@
 #include "vgroove/analytic/brdf_model.h"
 #include "vgroove/analytic/partner_distribution.h"
+#include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
 #include "vgroove/app/progress.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/support/json_reader.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/support/parallel.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/ranges.h"
@@ -25,9 +27,9 @@ struct Pair {
 };
 
 constexpr std::size_t kMaxPairs = 10'000'000;
-// The sums that cost O(max_k^2): their largest --max-k and the default.
+// The sums that cost O(max_k^2): their largest --max-k (the defaults: analytic::default_max_k).
 constexpr int kFlatlandMaxK = validation::kMaxFlatlandBrdfK;
-constexpr int kNonsymmetricMaxK = validation::kMaxNonsymmetricBrdfK, kNonsymmetricDefaultK = 64;
+constexpr int kNonsymmetricMaxK = validation::kMaxNonsymmetricBrdfK;
 
 void check_angle(double v, double lo, bool lo_closed, double hi, bool hi_closed, const std::string& what) {
   const bool ok = std::isfinite(v) && (lo_closed ? v >= lo : v > lo) && (hi_closed ? v <= hi : v < hi);
@@ -92,12 +94,13 @@ analytic::Dir3 direction(double theta_deg, double phi_deg, bool flat) {
   return analytic::dir3(deg_to_rad(theta_deg), deg_to_rad(phi_deg));
 }
 
-// The orders summed: --max-k checked against the model's range, or the model's default.
+// The orders summed: --max-k checked against the model's range, or the model's default (the one
+// table of every face, analytic/brdf_model.h).
 int orders(const BrdfArgs& a, analytic::BrdfModel model, bool flat) {
+  if (!a.max_k_given) return analytic::default_max_k(model, flat);
   if (a.max_k < 1)
     throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, 2147483647]");
   if (model == analytic::BrdfModel::vgroove_nonsymmetric) {
-    if (!a.max_k_given) return kNonsymmetricDefaultK;
     if (a.max_k > kNonsymmetricMaxK)
       throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, " +
                                std::to_string(kNonsymmetricMaxK) +
@@ -105,7 +108,6 @@ int orders(const BrdfArgs& a, analytic::BrdfModel model, bool flat) {
     return a.max_k;
   }
   if (flat && model == analytic::BrdfModel::vgroove) {
-    if (!a.max_k_given) return kFlatlandMaxK;
     if (a.max_k > kFlatlandMaxK)
       throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, " +
                                std::to_string(kFlatlandMaxK) +
@@ -182,11 +184,14 @@ int cmd_brdf(const BrdfArgs& a) {
   nlohmann::json points = nlohmann::json::array();
   std::vector<analytic::BrdfValue> values;
   values.reserve(pairs.size());
-  // A pair costs up to ~0.4 s (flatland at max_k 4096): the flag is read before each one.
+  // Up to 10^7 pairs, a pair up to ~20 ms (the nonsymmetric model at max_k 1024): progress on a
+  // terminal (app/progress.h) and the flag read before each pair.
+  const support::ProgressFn progress = pairs.size() > 1 ? terminal_progress("brdf") : support::ProgressFn{};
   for (const Pair& p : pairs) {
     if (support::cancelled(a.cancel)) return interrupted_no_report();
     values.push_back(analytic::evaluate_brdf(*model, direction(p.theta_i_deg, p.phi_i_deg, flat),
                                              direction(p.theta_o_deg, p.phi_o_deg, flat), opt));
+    if (progress) progress(values.size(), pairs.size());
   }
   if (support::cancelled(a.cancel)) return interrupted_no_report();
   const char* unit = flat ? "1/rad" : "1/sr";
@@ -205,7 +210,7 @@ int cmd_brdf(const BrdfArgs& a) {
       points.push_back(std::move(e));
     }
     j["points"] = std::move(points);
-    std::cout << j.dump(1) << "\n";
+    std::cout << support::json_text(j, 1) << "\n";
     return 0;
   }
   // Cook-Torrance is single scattering whatever --max-k says.
@@ -226,6 +231,63 @@ int cmd_brdf(const BrdfArgs& a) {
       std::printf("  %48s k = %-4d %.17g\n", "", k, values[n].by_k[static_cast<std::size_t>(k - 1)]);
   }
   return 0;
+}
+
+void add_brdf_command(CLI::App& app, Commands& commands) {
+  using validation::kMaxAlpha;
+  using validation::kMinAlpha;
+  auto* brdf = app.add_subcommand(
+      "brdf",
+      "Evaluate a BRDF at a pair of directions (or every pair of a JSON file): vgroove's multiple-scattering "
+      "model (Lee et al. 2018, Eq. 16-17), its nonsymmetric form (Eq. 21-23, partner facets by Eq. 20; "
+      "anisotropic with --alpha-y) or Cook-Torrance (Eq. 1-3, V-cavity G), F = 1. 3D: polar angles from the "
+      "normal, azimuths about it (phi_o = phi_i + 180 is the mirror side; with --alpha-y from the --alpha "
+      "axis); flatland: signed angles.");
+  BrdfArgs& ba = commands.add(brdf, cmd_brdf);
+  ba.cancel = commands.context().cancel;
+  add_text(brdf, "--model", ba.model, "vgroove, vgroove-nonsymmetric or cook-torrance")->capture_default_str();
+  add_text(brdf, "--ndf", ba.ndf, "ggx, beckmann or phong")->capture_default_str();
+  add_real(brdf, "--alpha", ba.alpha,
+           "roughness, " + support::interval_text(kMinAlpha, true, kMaxAlpha, true) +
+               "; vgroove-nonsymmetric with phong and --partner independent: below sqrt 2 (Eq. 20 needs it); "
+               "alpha_x with --alpha-y")
+      ->capture_default_str();
+  auto* brdf_alpha_y =
+      add_real(brdf, "--alpha-y", ba.alpha_y,
+               "vgroove-nonsymmetric, 3D, ggx or beckmann only: the roughness across the --alpha "
+               "axis, " +
+                   support::interval_text(kMinAlpha, true, kMaxAlpha, true) + " (default: --alpha, isotropic)");
+  auto* brdf_partner =
+      add_text(brdf, "--partner", ba.partner,
+               "vgroove-nonsymmetric only: the partner facet's tilt, independent (Eq. 20) or symmetric (equal to the "
+               "first's: the symmetric model, anisotropic with --alpha-y)")
+          ->capture_default_str();
+  add_text(brdf, "--dim", ba.dim, "3d or flatland")->capture_default_str();
+  add_real(brdf, "--theta-i-deg", ba.theta_i_deg, "light: polar angle, [0, 90) (flatland: signed, (-90, 90))")
+      ->capture_default_str();
+  add_real(brdf, "--phi-i-deg", ba.phi_i_deg, "light: azimuth, [-360, 360] (3D only)")->capture_default_str();
+  auto* theta_o = add_real(brdf, "--theta-o-deg", ba.theta_o_deg,
+                           "viewer: polar angle, [0, 90] (flatland: signed, [-90, 90]); required "
+                           "unless --directions");
+  add_real(brdf, "--phi-o-deg", ba.phi_o_deg, "viewer: azimuth, [-360, 360] (3D only)")->capture_default_str();
+  auto* brdf_max_k = add_integer(
+      brdf, "--max-k", ba.max_k,
+      "orders summed; vgroove 3D and cook-torrance: any, at no extra cost (default: all); vgroove "
+      "flatland: <= 4096, O(max_k^2) (default 4096); vgroove-nonsymmetric: <= 1024, O(max_k^2) (default 64)",
+      1, std::numeric_limits<int>::max());
+  brdf->add_flag("--per-k", ba.per_k, "also print each order k = 1..--per-k-max");
+  add_integer(brdf, "--per-k-max", ba.per_k_max, "orders printed one by one with --per-k", 1, 1000)
+      ->capture_default_str();
+  add_text(brdf, "--directions", ba.directions,
+           "JSON file {\"directions\": [{\"theta_i_deg\", \"theta_o_deg\"[, \"phi_i_deg\", "
+           "\"phi_o_deg\"]}, ...]}: evaluate at every pair");
+  brdf->add_flag("--json", ba.json, "print JSON");
+  brdf->callback([&ba, theta_o, brdf_alpha_y, brdf_partner, brdf_max_k]() {
+    ba.theta_o_given = theta_o->count() > 0;
+    ba.alpha_y_given = brdf_alpha_y->count() > 0;
+    ba.partner_given = brdf_partner->count() > 0;
+    ba.max_k_given = brdf_max_k->count() > 0;
+  });
 }
 
 }  // namespace vgroove::app

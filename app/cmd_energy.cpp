@@ -1,4 +1,7 @@
+#include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
+#include "vgroove/support/seconds_since.h"
+#include "vgroove/validation/ranges.h"
 
 #include "vgroove/app/distributed.h"
 #include "vgroove/app/mpi_world.h"
@@ -7,8 +10,10 @@
 #include "vgroove/app/outputs.h"
 #include "vgroove/app/progress.h"
 #include "vgroove/support/atomic_file.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/support/npy.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/energy_export.h"
 #include "vgroove/validation/energy_table.h"
 
 #include <chrono>
@@ -26,7 +31,7 @@ std::optional<support::Shard> shard_from(const std::string& text, const std::str
 }
 
 void write_partial(const std::string& out, const nlohmann::json& part, bool force) {
-  support::write_file_atomically(out, part.dump() + "\n", force);
+  support::write_file_atomically(out, support::json_text(part) + "\n", force);
   const nlohmann::json& h = part["partial"];
   std::cout << "partial report: " << out << " (shard " << h["shard"]["index"] << "/" << h["shard"]["count"] << ", "
             << h["items"].size() << " of " << h["job"]["items"] << " work items, " << part["units"].size() << " units, "
@@ -52,13 +57,16 @@ void write_energy_table(const EnergyTable& t, const std::string& out, bool npy, 
   const std::vector<EnergyArray> arrays = energy_arrays(t);
   for (std::size_t n = 0; n < files.size(); ++n)
     support::write_file_atomically(files[n], support::npy_bytes(arrays[n].values, arrays[n].shape), force);
-  support::write_file_atomically(out, energy_table_json(t, files).dump(1) + "\n", force);
+  support::write_file_atomically(out, support::json_text(energy_table_json(t, files), 1) + "\n", force);
   std::cout << "table: " << out;
   if (!files.empty()) std::cout << " (arrays in " << files.size() << " .npy files beside it)";
   std::cout << "\n";
 }
 
 int cmd_energy(const EnergyArgs& a) {
+  if (a.audit && !a.export_base.empty()) throw support::UserError("--audit and --export are two runs: give one");
+  if (a.audit) return cmd_energy_audit(a);
+  if (!a.export_base.empty()) return cmd_energy_export(a);
   check_threads(a.threads, "--threads");
   EnergyGrid g;
   g.ndfs.clear(), g.dims.clear();
@@ -113,7 +121,7 @@ int cmd_energy(const EnergyArgs& a) {
     if (!results) return 0;  // not rank 0: its results went there
     EnergyTable t = energy_table_from(g, std::move(*results));
     t.threads = threads;
-    t.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    t.wall_s = support::seconds_since(t0);
     write_energy_table(t, a.out, a.npy, a.force);
     return 0;
   }
@@ -121,6 +129,72 @@ int cmd_energy(const EnergyArgs& a) {
   if (!table) return interrupted_no_report();
   write_energy_table(*table, a.out, a.npy, a.force);
   return 0;
+}
+
+void add_energy_command(CLI::App& app, Commands& commands) {
+  using validation::kMaxAlpha;
+  using validation::kMaxAlphaPoints;
+  using validation::kMaxEnergyK;
+  using validation::kMaxEnergyRays;
+  using validation::kMaxMuPoints;
+  using validation::kMinAlpha;
+  using validation::kMinMu;
+  auto* energy = app.add_subcommand(
+      "energy",
+      "Exact energy tables: the directional albedo E(mu, alpha) of V-groove surfaces per bounce order k (F = 1; "
+      "E_1 what single scattering keeps, the rest what it loses), traced with every ray in a groove of its own "
+      "drawn from the NDF, with standard errors, beside the analytic model (quadrature) and Cook-Torrance.");
+  EnergyArgs& ea = commands.add(energy, cmd_energy);
+  ea.cancel = commands.context().cancel;
+  add_list(energy, "--ndf", ea.ndfs, "NDFs, comma-separated: ggx, beckmann, phong");
+  add_list(energy, "--dim", ea.dims, "dimensions, comma-separated: flatland, 3d");
+  add_real(energy, "--mu", ea.mu,
+           "mu = cos theta_i, comma-separated, each in " + support::interval_text(kMinMu, true, 1.0, true) +
+               " (theta_i <= 89.9 deg; default: --mu-points)")
+      ->delimiter(',');
+  add_integer(energy, "--mu-points", ea.mu_points, "mu at the midpoints (i + 1/2)/n of (0, 1], n", 1, kMaxMuPoints,
+              " (the smallest midpoint 0.5/n stays >= cos 89.9 deg)")
+      ->capture_default_str();
+  add_real(energy, "--alpha", ea.alpha,
+           "roughness, comma-separated, each in " + support::interval_text(kMinAlpha, true, kMaxAlpha, true) +
+               " (default: --alpha-points)")
+      ->delimiter(',');
+  add_integer(energy, "--alpha-points", ea.alpha_points, "alpha at the midpoints (j + 1/2)/n of (0, 1], n", 1,
+              kMaxAlphaPoints, " (the smallest midpoint 0.5/n stays >= 0.01)")
+      ->capture_default_str();
+  add_integer(energy, "--rays", ea.rays, "rays per cell", 1, kMaxEnergyRays)->capture_default_str();
+  add_seed(energy, ea.seed, "seed of the rays' streams")->capture_default_str();
+  add_integer(energy, "--max-k", ea.max_k, "bounce orders tabulated one by one (a last row holds k > max-k)", 1,
+              kMaxEnergyK)
+      ->capture_default_str();
+  add_threads(energy, ea.threads);
+  add_text(energy, "--out", ea.out, "table JSON to write (refuses to overwrite without --force)");
+  energy->add_flag("--npy", ea.npy,
+                   "write the arrays as .npy files beside the JSON (OUT.E_sim.npy, ...); automatic above 65536 values");
+  add_text(energy, "--shard", ea.shard,
+           "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+           "report (`vgroove merge` joins them)");
+  energy->add_flag("--force", ea.force, "overwrite existing files");
+  energy->add_flag("--audit", ea.audit,
+                   "the energy audit over the grid (GGX and Beckmann; --rays: walk paths per cell): compensation "
+                   "formulas against the V-groove model and the Smith random walk (its report's /spec is a suite for "
+                   "`vgroove validate`, which shards and runs under mpirun)");
+  add_text(energy, "--export", ea.export_base,
+           "write tables engines can load to BASE.json, .npz, .h, .png, .exr (see --formats): E_ss, E_avg, the DFG "
+           "scale and bias, and with --ms-reference the exact multiple-scattering albedo per F0");
+  add_text(energy, "--layout", ea.layout, "--export's layout: cycles (32 texel ends, Cycles' table_ggx_E) or centres")
+      ->capture_default_str();
+  add_integer(energy, "--size", ea.size, "--export's texels per axis", 2, validation::kMaxExportSize)
+      ->capture_default_str();
+  add_text(energy, "--masking", ea.masking, "--export's G2 without --ms-reference: smith, smith_separable, vcavity")
+      ->capture_default_str();
+  add_text(energy, "--ms-reference", ea.ms_reference,
+           "--export's multiple scattering: none, vgroove (V-cavity single scattering), smith_walk (Smith's; "
+           "--rays paths per texel)")
+      ->capture_default_str();
+  add_real(energy, "--ms-F0", ea.ms_F0, "--export's Schlick F0 axis, comma-separated, each in [0, 1]")->delimiter(',');
+  add_list(energy, "--formats", ea.formats, "--export's files, comma-separated: json, npz, h, png, exr")
+      ->capture_default_str();
 }
 
 }  // namespace vgroove::app

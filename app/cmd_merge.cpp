@@ -1,3 +1,4 @@
+#include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
 
 #include "vgroove/app/outputs.h"
@@ -56,6 +57,19 @@ int cmd_merge(const MergeArgs& a) {
   if (command == "validate") return merge_validate(parts, a);
   throw support::UserError("merge: " + parts.front().file + " is a part of `" + command +
                            "`, which this build cannot merge");
+}
+
+void add_merge_command(CLI::App& app, Commands& commands) {
+  auto* merge = app.add_subcommand(
+      "merge",
+      "Join the partial reports of one sharded run (--shard 1/N ... N/N) into the report the run gives in one "
+      "process, bit for bit (timings aside). Refuses parts of different runs, versions or splits, missing or "
+      "repeated shards, and damaged files.");
+  MergeArgs& ma = commands.add(merge, cmd_merge);
+  add_text(merge, "parts", ma.parts, "partial reports, in any order")->required();
+  add_text(merge, "--out", ma.out, "report to write (refuses to overwrite without --force)");
+  merge->add_flag("--npy", ma.npy, "energy tables: the arrays as .npy files beside the JSON");
+  merge->add_flag("--force", ma.force, "overwrite existing files");
 }
 
 }  // namespace vgroove::app

@@ -1,214 +1,53 @@
+#include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
-#include "vgroove/support/parallel.h"
+#include "vgroove/app/python_script.h"
 #include "vgroove/support/user_error.h"
 
-#include <fcntl.h>
-#include <sys/prctl.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <csignal>
-#include <cstdlib>
-#include <cstring>
-#include <ctime>
 #include <filesystem>
-#include <iostream>
 #include <string>
-#include <utility>
-#include <vector>
-
-extern char** environ;
 
 namespace vgroove::app {
-
-namespace {
-
-namespace fs = std::filesystem;
-
-// The plot script (python/vgroove/plot.py): beside the binary in the build tree
-// (build/python/vgroove/plot.py), or in the installed Python package (PREFIX/bin/vgroove ->
-// PREFIX/VGROOVE_PYTHON_INSTALL_DIR/vgroove/plot.py).
-std::string plot_script() {
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    for (const fs::path& p : {exe.parent_path() / "python" / "vgroove" / "plot.py",
-                              exe.parent_path().parent_path() / VGROOVE_PYTHON_INSTALL_DIR / "vgroove" / "plot.py"})
-      if (fs::is_regular_file(p, ec)) return p.string();
-  }
-  throw support::UserError(
-      "plot: the plot script (python/vgroove/plot.py) is neither beside this binary nor in its installed Python "
-      "package (" VGROOVE_PYTHON_INSTALL_DIR ")");
-}
-
-// The signals that stop a plot: Ctrl-C, kill's default and a closed terminal. While the script runs
-// the parent holds them blocked and takes them with sigtimedwait: each is passed on to the
-// script's process group, and the parent returns only once the script is gone.
-sigset_t stop_signals() {
-  sigset_t s;
-  sigemptyset(&s);
-  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&s, sig);
-  return s;
-}
-
-// Blocks the stop signals for this scope (the plot runs on the main thread alone) and, on the way
-// out, takes any still pending (sent while the script was being reaped) before unblocking them.
-class BlockedSignals {
- public:
-  BlockedSignals() : set_(stop_signals()) { pthread_sigmask(SIG_BLOCK, &set_, &old_); }
-  ~BlockedSignals() {
-    const timespec zero{0, 0};
-    while (sigtimedwait(&set_, nullptr, &zero) > 0) {
-    }
-    pthread_sigmask(SIG_SETMASK, &old_, nullptr);
-  }
-  BlockedSignals(const BlockedSignals&) = delete;
-  BlockedSignals& operator=(const BlockedSignals&) = delete;
-  const sigset_t& set() const { return set_; }
-  const sigset_t& old() const { return old_; }
-
- private:
-  sigset_t set_, old_;
-};
-
-// Starts the script in a process group of its own (a terminal's Ctrl-C reaches the parent alone,
-// which passes it on once; the script never reads the terminal, so a background group costs
-// nothing), killed with the parent if the parent dies first (PR_SET_PDEATHSIG: even a SIGKILL'd
-// vgroove leaves no script behind to write figures later). Returns its pid, or throws naming the
-// interpreter when it cannot be run.
-pid_t start_script(const std::string& python, std::vector<char*>& argv, const BlockedSignals& blocked) {
-  int fds[2];
-  if (::pipe2(fds, O_CLOEXEC) != 0)
-    throw support::UserError(std::string("plot: cannot start the plot script: ") + std::strerror(errno));
-  const pid_t parent = ::getpid();
-  const pid_t pid = ::fork();
-  if (pid < 0) {
-    const int err = errno;
-    ::close(fds[0]), ::close(fds[1]);
-    throw support::UserError(std::string("plot: cannot start the plot script: ") + std::strerror(err));
-  }
-  if (pid == 0) {  // the child: async-signal-safe calls only
-    ::close(fds[0]);
-    ::setpgid(0, 0);
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (::getppid() != parent) ::_exit(127);  // the parent died before the line above
-    // The parent's handlers would take a signal meant for the script before exec resets them.
-    for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
-      struct sigaction sa {};
-      if (::sigaction(sig, nullptr, &sa) == 0 && sa.sa_handler != SIG_IGN) std::signal(sig, SIG_DFL);
-    }
-    pthread_sigmask(SIG_SETMASK, &blocked.old(), nullptr);
-    ::execve(python.c_str(), argv.data(), environ);
-    const int err = errno;
-    (void)!::write(fds[1], &err, sizeof err);
-    ::_exit(127);
-  }
-  ::close(fds[1]);
-  ::setpgid(pid, pid);  // also here: no signal may reach the group before it exists
-  int err = 0;
-  ssize_t n;
-  while ((n = ::read(fds[0], &err, sizeof err)) < 0 && errno == EINTR) {
-  }
-  ::close(fds[0]);
-  if (n == static_cast<ssize_t>(sizeof err)) {  // exec failed: the child is gone, reap it
-    while (::waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
-    }
-    throw support::UserError("plot: cannot run " + python + " (" + std::strerror(err) +
-                             "): plots need Debian's python3 with python3-matplotlib (scripts/install-deps.sh), "
-                             "or VGROOVE_PYTHON naming an interpreter that has matplotlib");
-  }
-  return pid;
-}
-
-// Waits for the script. A stop signal is passed on to its process group; a second one, or a
-// script still running kKillAfter after the first, gets SIGKILL. Returns the wait status and the
-// first signal taken (0: none).
-std::pair<int, int> wait_script(pid_t pid, const BlockedSignals& blocked) {
-  constexpr double kKillAfter = 3.0;
-  int first = 0, status = 0;
-  timespec since{};
-  for (;;) {
-    const pid_t r = ::waitpid(pid, &status, WNOHANG);
-    if (r == pid) return {status, first};
-    if (r < 0 && errno != EINTR)
-      throw support::UserError(std::string("plot: waiting for the plot script: ") + std::strerror(errno));
-    const timespec tick{0, 20'000'000};
-    const int sig = sigtimedwait(&blocked.set(), nullptr, &tick);
-    if (sig > 0) {
-      if (first == 0) {
-        first = sig;
-        ::clock_gettime(CLOCK_MONOTONIC, &since);
-        ::kill(-pid, sig);
-      } else {
-        ::kill(-pid, SIGKILL);
-      }
-    } else if (first != 0) {
-      timespec now{};
-      ::clock_gettime(CLOCK_MONOTONIC, &now);
-      if (static_cast<double>(now.tv_sec - since.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec - since.tv_nsec) >
-          kKillAfter)
-        ::kill(-pid, SIGKILL);
-    }
-  }
-}
-
-// The script renders each figure to DIR/.NAME.tmp.PID beside its target (plot.py, render_all) and
-// removes them when interrupted; a script killed outright cannot, so the parent does.
-void remove_temporaries(const PlotArgs& a, pid_t pid) {
-  const fs::path target = a.out.empty() ? fs::path(a.report) : fs::path(a.out);
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  const std::string tail = ".tmp." + std::to_string(pid);
-  std::error_code ec;
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name.size() > tail.size() + 1 && name[0] == '.' &&
-        name.compare(name.size() - tail.size(), tail.size(), tail) == 0) {
-      std::error_code rm;
-      fs::remove(it->path(), rm);
-    }
-  }
-}
-
-// A plot stopped by a signal (0: by Ctrl-C before the script started): the same line as plot.py's,
-// and the status a shell gives a process killed by it.
-int interrupted_no_plot(int sig) {
-  std::cerr << "\nvgroove: interrupted; no plot written\n";
-  return sig == 0 ? kExitInterrupted : 128 + sig;
-}
-
-}  // namespace
 
 int cmd_plot(const PlotArgs& a) {
   if (!a.format.empty() && a.format != "png" && a.format != "svg" && a.format != "pdf")
     throw support::UserError("--format = \"" + a.format + "\" is not one of \"png\", \"svg\", \"pdf\"");
   // Drawing is matplotlib's: the work is plot.py's, run by Debian's interpreter (VGROOVE_PYTHON
   // names another). It validates the report, renders every figure and writes all or nothing.
-  const char* env = std::getenv("VGROOVE_PYTHON");
-  const std::string python = env && *env ? env : VGROOVE_PYTHON_EXECUTABLE;
-  const std::string script = plot_script();
-  std::vector<std::string> args = {python, script, a.report};
-  if (!a.out.empty()) args.insert(args.end(), {"--out", a.out});
-  if (!a.format.empty()) args.insert(args.end(), {"--format", a.format});
-  if (a.force) args.push_back("--force");
-  if (a.dry_run) return 0;  // the report is the script's to check; a dry run starts nothing
+  PythonScript s;
+  s.command = "plot";
+  s.file = "plot.py";
+  s.needs =
+      "plots need Debian's python3 with python3-matplotlib (scripts/install-deps.sh), or VGROOVE_PYTHON naming an "
+      "interpreter that has matplotlib";
+  s.nothing_written = "no plot written";
   // A report named like an option must stay the report: after "--" argparse reads no options.
-  if (!a.report.empty() && a.report[0] == '-') args.insert(args.begin() + 2, "--");
-  std::vector<char*> argv;
-  for (std::string& s : args) argv.push_back(s.data());
-  argv.push_back(nullptr);
-  const BlockedSignals blocked;
-  if (support::cancelled(a.cancel)) return interrupted_no_plot(0);  // Ctrl-C before the block
-  const pid_t pid = start_script(python, argv, blocked);
-  const auto [status, sig] = wait_script(pid, blocked);
-  if (sig != 0) {
-    remove_temporaries(a, pid);
-    // Interrupted by SIGINT, the script says so itself (KeyboardInterrupt: exit 130).
-    if (WIFEXITED(status) && WEXITSTATUS(status) == kExitInterrupted) return kExitInterrupted;
-    return interrupted_no_plot(sig);
-  }
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : 3;
+  if (!a.report.empty() && a.report[0] == '-') s.args.push_back("--");
+  s.args.push_back(a.report);
+  if (!a.out.empty()) s.args.insert(s.args.end(), {"--out", a.out});
+  if (!a.format.empty()) s.args.insert(s.args.end(), {"--format", a.format});
+  if (a.force) s.args.push_back("--force");
+  // The figures' temporaries lie beside their targets.
+  const std::filesystem::path target(a.out.empty() ? a.report : a.out);
+  s.output_dir = target.has_parent_path() ? target.parent_path().string() : ".";
+  s.dry_run = a.dry_run;
+  s.cancel = a.cancel;
+  return run_python_script(s);
+}
+
+void add_plot_command(CLI::App& app, Commands& commands) {
+  auto* plot = app.add_subcommand(
+      "plot",
+      "Draw a report with matplotlib (from the JSON alone, nothing recomputed): Table 1 heatmaps, the Fig. 11 "
+      "grids, the furnace, Table 2, accuracy against time and cost, check_brdf. Runs python/vgroove/plot.py "
+      "with Debian's python3 (VGROOVE_PYTHON names another); writes every figure or none.");
+  PlotArgs& pa = commands.add(plot, cmd_plot);
+  pa.cancel = commands.context().cancel;
+  add_text(plot, "report", pa.report, "report JSON (vgroove validate --out, vgroove bench accuracy --out)")->required();
+  add_text(plot, "--out", pa.out,
+           "image to write, or its base name (default: the report's name without .json); figures after "
+           "the first get a suffix (-ggx-3d, -cost)");
+  add_text(plot, "--format", pa.format, "png (default), svg or pdf");
+  plot->add_flag("--force", pa.force, "overwrite existing images");
 }
 
 }  // namespace vgroove::app

@@ -1,3 +1,4 @@
+#include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
 
 #include "vgroove/analytic/facet_strategy.h"
@@ -7,6 +8,7 @@
 #include "vgroove/app/progress.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/support/atomic_file.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/support/printable.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/ranges.h"
@@ -117,10 +119,62 @@ int cmd_sample(const SampleArgs& a) {
     nlohmann::json j = validation::provenance();
     j["command"] = "sample";
     j["result"] = validation::chi2_json(o);
-    support::write_file_atomically(a.out, j.dump(1) + "\n", a.force);
+    support::write_file_atomically(a.out, support::json_text(j, 1) + "\n", a.force);
     std::cout << "result: " << support::printable(a.out) << "\n";
   }
   return o.pass ? 0 : 1;
+}
+
+void add_sample_command(CLI::App& app, Commands& commands) {
+  using validation::kMaxAlpha;
+  using validation::kMaxSampleCosBins;
+  using validation::kMaxSamplePhiBins;
+  using validation::kMaxSamplerK;
+  using validation::kMaxSampleThetaBins;
+  using validation::kMaxSurfaceThetaIDeg;
+  using validation::kMinAlpha;
+  auto* smp = app.add_subcommand(
+      "sample",
+      "Importance-sample the V-groove BRDF (Lee et al. 2018, Sec. 6; symmetric or, with --model "
+      "vgroove-nonsymmetric, Eq. 23): draw --n exit directions, hold them "
+      "to the sampler's pdf by a chi-square test (cells of (cos theta_o, phi_o), flatland theta_o; pdf integrated per "
+      "cell) and report the weights rho cos / pdf; exit 1 if the chi-square rejects.");
+  SampleArgs& sma = commands.add(smp, cmd_sample);
+  sma.cancel = commands.context().cancel;
+  add_text(smp, "--ndf", sma.ndf, "normal distribution: ggx, beckmann or phong")->capture_default_str();
+  add_real(smp, "--alpha", sma.alpha, "roughness alpha, " + support::interval_text(kMinAlpha, true, kMaxAlpha, true))
+      ->capture_default_str();
+  add_real(smp, "--theta-i-deg", sma.theta_i_deg,
+           "incident angle in degrees, " + support::interval_text(0.0, true, kMaxSurfaceThetaIDeg, true))
+      ->capture_default_str();
+  add_integer(smp, "--n", sma.n, "samples", 1, kMaxRays)->capture_default_str();
+  add_text(smp, "--strategy", sma.strategy,
+           "facet distribution: printed (|s.n| D(s), the paper's), vndf (the V-cavity's visible normals), "
+           "smith-vndf (Smith-GGX visible normals; ggx only) or bounded-vndf (Tokuyoshi and Eto 2024; ggx, "
+           "3d only)")
+      ->capture_default_str();
+  add_text(smp, "--dim", sma.dim, "3d or flatland")->capture_default_str();
+  add_text(smp, "--model", sma.model,
+           "vgroove (symmetric grooves, Eq. 16) or vgroove-nonsymmetric (Eq. 23, the partner's tilt from the "
+           "tabulated inverse CDF of P(theta_r); phong alpha <= 1; its pdf costs ~1 ms: use --n ~10^4 to "
+           "10^5 and, in 3d, few cells)")
+      ->capture_default_str();
+  auto* smp_max_k = add_integer(smp, "--max-k", sma.max_k,
+                                "paths with more reflections return zero weight, counted as lost beyond max_k "
+                                "(default " +
+                                    std::to_string(analytic::kSamplerMaxK) + "; vgroove-nonsymmetric " +
+                                    std::to_string(analytic::kNonsymmetricSamplerMaxK) + ", its pdf costs O(max_k))",
+                                1, kMaxSamplerK);
+  add_seed(smp, sma.seed, "seed of the uniform numbers")->capture_default_str();
+  add_integer(smp, "--cos-bins", sma.cos_bins, "3d: cells over cos theta_o in [0, 1]", 1, kMaxSampleCosBins)
+      ->capture_default_str();
+  add_integer(smp, "--phi-bins", sma.phi_bins, "3d: cells over phi_o, even", 2, kMaxSamplePhiBins)
+      ->capture_default_str();
+  add_integer(smp, "--theta-bins", sma.theta_bins, "flatland: cells over theta_o in (-90, 90)", 1, kMaxSampleThetaBins)
+      ->capture_default_str();
+  add_text(smp, "--out", sma.out, "result JSON to write (the chi-square table, observed and expected per cell)");
+  smp->add_flag("--force", sma.force, "overwrite an existing result");
+  smp->callback([&sma, smp_max_k]() { sma.max_k_given = smp_max_k->count() > 0; });
 }
 
 }  // namespace vgroove::app

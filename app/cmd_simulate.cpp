@@ -1,5 +1,8 @@
+#include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/support/printable.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/app/distributed.h"
 #include "vgroove/app/mpi_world.h"
@@ -29,7 +32,7 @@ int write_simulation(const Scene& scene, const SimulationResult& r, const std::s
   }
   print_result_table(std::cout, scene, r);
   if (!out.empty()) {
-    support::write_file_atomically(out, result_json(scene, r).dump(1) + "\n", force);
+    support::write_file_atomically(out, support::json_text(result_json(scene, r), 1) + "\n", force);
     std::cout << "result: " << support::printable(out) << "\n";
   }
   return 0;
@@ -66,7 +69,7 @@ int cmd_simulate(const SimulateArgs& a) {
     if (!results) return 0;  // not rank 0: its results went there
     SimulationResult r = simulation_from(scene, *results);
     r.threads = threads;
-    r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.wall_s = support::seconds_since(t0);
     return write_simulation(scene, r, a.out, a.force);
   }
   const SimulationResult r = simulate(scene, a.threads, a.cancel);
@@ -75,6 +78,22 @@ int cmd_simulate(const SimulateArgs& a) {
     return kExitInterrupted;
   }
   return write_simulation(scene, r, a.out, a.force);
+}
+
+void add_simulate_command(CLI::App& app, Commands& commands) {
+  auto* simu = app.add_subcommand("simulate",
+                                  "Run a scene (data/scenes/*.json): trace every theta_i with the effects it "
+                                  "chooses (Fresnel, histograms, energy per k); print a table, write the "
+                                  "result JSON.");
+  SimulateArgs& sa = commands.add(simu, cmd_simulate);
+  sa.cancel = commands.context().cancel;
+  add_text(simu, "scene", sa.scene, "scene spec, e.g. data/scenes/gold_groove.json")->required();
+  add_text(simu, "--out", sa.out, "result JSON to write (refuses to overwrite without --force)");
+  add_threads(simu, sa.threads);
+  simu->add_flag("--force", sa.force, "overwrite an existing result");
+  add_text(simu, "--shard", sa.shard,
+           "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
+           "report (`vgroove merge` joins them)");
 }
 
 }  // namespace vgroove::app

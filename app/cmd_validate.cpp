@@ -1,4 +1,6 @@
+#include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/support/printable.h"
 
 #include <iostream>
@@ -38,7 +40,7 @@ int cmd_validate(const ValidateArgs& a) {
   if (res.interrupted) return interrupted_no_report();
   std::cout << res.table;
   if (!a.out.empty()) {
-    support::write_file_atomically(a.out, res.report.dump(1) + "\n", a.force);
+    support::write_file_atomically(a.out, support::json_text(res.report, 1) + "\n", a.force);
     std::cout << "report: " << support::printable(a.out) << "\n";
   }
   return res.pass ? 0 : 1;
@@ -51,7 +53,7 @@ int cmd_bins(const BinsArgs& a) {
   const BrdfSuite suite = parse_brdf_suite(j, a.suite);
   if (!a.out.empty()) support::check_writable_target(a.out, a.force, {a.suite});
   if (a.dry_run) return 0;
-  const std::string text = bin_layout_json(suite).dump(1) + "\n";
+  const std::string text = support::json_text(bin_layout_json(suite), 1) + "\n";
   if (a.out.empty()) {
     std::cout << text;
     return 0;
@@ -59,6 +61,41 @@ int cmd_bins(const BinsArgs& a) {
   support::write_file_atomically(a.out, text, a.force);
   std::cout << "layout: " << support::printable(a.out) << " (" << suite.cases() << " cases)\n";
   return 0;
+}
+
+void add_validate_command(CLI::App& app, Commands& commands) {
+  auto* val = app.add_subcommand("validate",
+                                 "Run a suite (sim against analytic), print the table beside the paper's "
+                                 "figures, write the report JSON; exit 1 if a threshold is exceeded.");
+  ValidateArgs& va = commands.add(val, cmd_validate);
+  va.cancel = commands.context().cancel;
+  add_text(val, "suite", va.suite, "suite spec, e.g. data/suites/table1_symmetric.json")->required();
+  add_text(val, "--out", va.out, "report JSON to write (refuses to overwrite without --force)");
+  add_integer(val, "--rays", va.rays, "rays per lit facet (default: the suite's)", 1, kMaxRays);
+  add_threads(val, va.threads);
+  add_text(val, "--sampling", va.sampling,
+           "override the suite's placement: stratified, random, or breakpoints (a grid of --rays stratified "
+           "rays, then bisection between neighbours of different outcome down to adjacent doubles: exact "
+           "fractions)");
+  add_seed(val, va.seed, "override the suite's seed");
+  add_text(val, "--eq6-form", va.eq6_form, "override the suite's form of Eq. 6: corrected or printed");
+  add_text(val, "--model-table", va.model_table,
+           "\"brdf\" suites: hold this table of a foreign model's bin-integrated lobes (layout from "
+           "`vgroove bins SUITE`) against the simulation instead of vgroove's model");
+  val->add_flag("--force", va.force, "overwrite an existing report");
+  val->add_option("--shard", va.shard,
+                  "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts of the suite's work and write it to "
+                  "--out as a partial report (`vgroove merge` joins them into this report)");
+}
+
+void add_bins_command(CLI::App& app, Commands& commands) {
+  auto* bins = app.add_subcommand("bins",
+                                  "Write a \"brdf\" suite's bin layout (cases, bin edges, frame) as JSON: fill in a "
+                                  "model's flux per bin and run `vgroove validate SUITE --model-table FILE`.");
+  BinsArgs& bi = commands.add(bins, cmd_bins);
+  add_text(bins, "suite", bi.suite, "suite spec of kind \"brdf\", e.g. data/suites/fig11.json")->required();
+  add_text(bins, "--out", bi.out, "layout JSON to write (default: stdout)");
+  bins->add_flag("--force", bi.force, "overwrite an existing file");
 }
 
 }  // namespace vgroove::app

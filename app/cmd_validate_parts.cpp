@@ -3,6 +3,7 @@
 // `vgroove merge` of its parts. The report written from the parts is the single-process report
 // (timings aside).
 #include "vgroove/app/commands.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/app/distributed.h"
 #include "vgroove/app/mpi_world.h"
@@ -10,6 +11,7 @@
 #include "vgroove/app/outputs.h"
 #include "vgroove/app/progress.h"
 #include "vgroove/support/atomic_file.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/support/printable.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/partial_report.h"
@@ -47,13 +49,13 @@ ValidateArgs args_from(const Part& part) {
   return a;
 }
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using support::Clock;
+using support::seconds_since;
 
 void write_report(const std::string& out, const SuiteResult& r, bool force) {
   std::cout << r.table;
   if (out.empty()) return;
-  support::write_file_atomically(out, r.report.dump(1) + "\n", force);
+  support::write_file_atomically(out, support::json_text(r.report, 1) + "\n", force);
   std::cout << "report: " << support::printable(out) << "\n";
 }
 

@@ -1,5 +1,7 @@
-// vgroove CLI: the subcommands, each a function from parsed options to an exit status.
-// main.cpp only parses; these validate values (UserError naming the option) and run.
+// vgroove CLI: the subcommands, each a function from parsed options to an exit status, and the
+// function that registers its subcommand and flags (add_*_command, in the same cmd_*.cpp; run_cli
+// calls them in the order of `vgroove --help`). The cmd_* functions validate values (UserError
+// naming the option) and run.
 #pragma once
 
 #include "vgroove/analytic/sampling_3d.h"
@@ -10,7 +12,13 @@
 #include <string>
 #include <vector>
 
+namespace CLI {
+class App;
+}
+
 namespace vgroove::app {
+
+class Commands;  // cli_options.h
 
 // A groove on the command line: --theta-v-deg (symmetric) or --theta-l-deg with --theta-r-deg.
 struct GrooveArgs {
@@ -32,6 +40,7 @@ struct TraceArgs {
   const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: nothing is printed
 };
 int cmd_trace(const TraceArgs& a);
+void add_trace_command(CLI::App& app, Commands& commands);
 
 struct AnalyticArgs {
   bool dry_run = false;  // check the values, do no work
@@ -41,6 +50,7 @@ struct AnalyticArgs {
   bool json = false;
 };
 int cmd_analytic(const AnalyticArgs& a);
+void add_analytic_command(CLI::App& app, Commands& commands);
 
 // An option the user did not give (any value they can give is checked).
 inline constexpr long kUnset = std::numeric_limits<long>::min();
@@ -61,6 +71,7 @@ struct ValidateArgs {
   const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: no report is written
 };
 int cmd_validate(const ValidateArgs& a);
+void add_validate_command(CLI::App& app, Commands& commands);
 
 struct AccuracyArgs {
   bool dry_run = false;  // check the values, do no work
@@ -74,6 +85,7 @@ struct AccuracyArgs {
   const std::atomic<bool>* cancel = nullptr;
 };
 int cmd_bench_accuracy(const AccuracyArgs& a);
+void add_bench_accuracy_command(CLI::App& bench, Commands& commands);  // under `vgroove bench`
 
 struct PlotArgs {
   bool dry_run = false;  // check the report, draw nothing
@@ -84,6 +96,19 @@ struct PlotArgs {
   const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) before the script starts: it does not start
 };
 int cmd_plot(const PlotArgs& a);
+void add_plot_command(CLI::App& app, Commands& commands);
+
+// `vgroove report`: one self-contained HTML page of the reports in a directory (html_report.py).
+struct ReportArgs {
+  bool dry_run = false;  // find the script, start nothing
+  std::string directory;
+  std::string out;  // default: DIRECTORY/index.html
+  bool force = false;
+  bool no_draw = false;  // name plots that are missing beside their reports instead of drawing them
+  const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) before the script starts: it does not start
+};
+int cmd_report(const ReportArgs& a);
+void add_report_command(CLI::App& app, Commands& commands);
 
 struct SimulateArgs {
   bool dry_run = false;  // check the values, do no work
@@ -95,6 +120,7 @@ struct SimulateArgs {
   const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: no result is written
 };
 int cmd_simulate(const SimulateArgs& a);
+void add_simulate_command(CLI::App& app, Commands& commands);
 
 // Importance sampling of the symmetric V-groove BRDF: n directions, their chi-square against the
 // sampler's pdf and the weights' statistics.
@@ -116,6 +142,7 @@ struct SampleArgs {
   const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop: nothing is printed or written
 };
 int cmd_sample(const SampleArgs& a);
+void add_sample_command(CLI::App& app, Commands& commands);
 
 // `vgroove bins`: a "brdf" suite's bin layout, for a foreign model's table.
 struct BinsArgs {
@@ -125,6 +152,7 @@ struct BinsArgs {
   bool force = false;
 };
 int cmd_bins(const BinsArgs& a);
+void add_bins_command(CLI::App& app, Commands& commands);
 
 // `vgroove brdf`: the BRDF at one pair of directions, or at every pair of a JSON file.
 struct BrdfArgs {
@@ -142,7 +170,7 @@ struct BrdfArgs {
   bool alpha_y_given = false;
   std::string partner = "independent";
   bool partner_given = false;
-  int max_k = 1'000'000;  // when not given: every order (3D vgroove), 4096 (flatland), 64 (nonsymmetric)
+  int max_k = 1'000'000;  // when not given: analytic::default_max_k (every order in 3D, 4096 flatland, 64 nonsymmetric)
   bool max_k_given = false;
   bool per_k = false;
   int per_k_max = 16;
@@ -151,6 +179,7 @@ struct BrdfArgs {
   const std::atomic<bool>* cancel = nullptr;  // set (by SIGINT) to stop between pairs: nothing is printed
 };
 int cmd_brdf(const BrdfArgs& a);
+void add_brdf_command(CLI::App& app, Commands& commands);
 
 // `vgroove energy`: exact energy tables E(mu, alpha) per bounce order (validation/energy_table.h).
 struct EnergyArgs {
@@ -170,8 +199,22 @@ struct EnergyArgs {
   std::string shard;  // "I/N": write the I-th of N parts as a partial report
   bool force = false;
   const std::atomic<bool>* cancel = nullptr;
+  // --audit: the energy audit (validation/energy_audit.h) over the grid; --rays: walk paths per cell.
+  bool audit = false;
+  // --export BASE: tables engines can load (validation/energy_export.h), BASE.json, .npz, .h, .png, .exr.
+  std::string export_base;
+  std::string layout = "cycles";
+  int size = 32;
+  std::string masking = "smith";      // smith, smith_separable, vcavity (without --ms-reference)
+  std::string ms_reference = "none";  // none, vgroove, smith_walk
+  std::vector<double> ms_F0;          // empty: 0.04, 0.25, 0.5, 0.75, 1
+  std::vector<std::string> formats{"json", "npz", "h", "png", "exr"};
 };
 int cmd_energy(const EnergyArgs& a);
+// Its --audit and --export (app/cmd_energy_tables.cpp).
+int cmd_energy_audit(const EnergyArgs& a);
+int cmd_energy_export(const EnergyArgs& a);
+void add_energy_command(CLI::App& app, Commands& commands);
 
 // `vgroove merge`: partial reports of one run (`--shard I/N`) into the run's report.
 struct MergeArgs {
@@ -182,6 +225,7 @@ struct MergeArgs {
   bool force = false;
 };
 int cmd_merge(const MergeArgs& a);
+void add_merge_command(CLI::App& app, Commands& commands);
 
 // Exit status of a run stopped by Ctrl-C (128 + SIGINT, as a shell reports it).
 inline constexpr int kExitInterrupted = 130;

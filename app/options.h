@@ -5,9 +5,9 @@
 #include "vgroove/analytic/kaleidoscope.h"
 #include "vgroove/app/commands.h"
 #include "vgroove/sim/beam.h"
+#include "vgroove/validation/groove_suite.h"
 #include "vgroove/validation/ranges.h"
 #include "vgroove/validation/run_options.h"
-#include "vgroove/validation/suite.h"
 
 #include <string>
 

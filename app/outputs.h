@@ -5,8 +5,8 @@
 #include "vgroove/scene/simulate.h"
 #include "vgroove/support/work_plan.h"
 #include "vgroove/validation/energy_table.h"
+#include "vgroove/validation/groove_suite_run.h"
 #include "vgroove/validation/partial_report.h"
-#include "vgroove/validation/suite_run.h"
 #include "vgroove/validation/validate.h"
 
 #include <nlohmann/json.hpp>
@@ -35,7 +35,7 @@ nlohmann::json simulate_descriptor(const scene::Scene& scene);
 int write_simulation(const scene::Scene& scene, const scene::SimulationResult& r, const std::string& out, bool force);
 
 // `bench accuracy`: the table and report of its runs (sampling outer, rays inner), and its parts merged.
-void write_accuracy_report(const validation::Suite& suite, const std::vector<validation::SuiteRun>& runs,
+void write_accuracy_report(const validation::GrooveSuite& suite, const std::vector<validation::GrooveSuiteRun>& runs,
                            const std::string& out, bool force);
 int merge_accuracy(const std::vector<validation::Part>& parts, const MergeArgs& a);
 

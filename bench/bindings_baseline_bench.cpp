@@ -1,10 +1,12 @@
 // The C++ side of the Python module's throughput check: the library calls that vgroove.trace,
-// vgroove.brdf, vgroove.kaleidoscope, vgroove.sample and vgroove.pdf make, on 10^6 rays or
-// directions, one thread, written into arrays as the bindings write them.
+// vgroove.brdf, vgroove.kaleidoscope, vgroove.sample and vgroove.pdf make (and vgroove.BRDF's
+// eval, sample and pdf, with the model's default max_k), on 10^6 rays or directions, one thread,
+// written into arrays as the bindings write them.
 // scripts/bench_python.py times the Python calls on the same inputs; the two are compared in the
 // README (Python within 10 % of these). Like the Python calls, each iteration allocates its output
 // arrays (uninitialized, as numpy.empty).
 #include "vgroove/analytic/brdf_3d.h"
+#include "vgroove/analytic/brdf_model.h"
 #include "vgroove/analytic/sampling_3d.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/sim/rng.h"
@@ -84,6 +86,20 @@ void BM_baseline_brdf_1e6(benchmark::State& state) {
 }
 BENCHMARK(BM_baseline_brdf_1e6)->Unit(benchmark::kMillisecond);
 
+// vgroove.BRDF("vgroove", "ggx", 0.5).eval(wi, wo, threads=1): the same pairs at the model's
+// default max_k (every order in 3D, analytic::default_max_k).
+void BM_baseline_brdf_default_1e6(benchmark::State& state) {
+  const auto wi = hemisphere(1), wo = hemisphere(2);
+  const int max_k = analytic::default_max_k(analytic::BrdfModel::vgroove, false);
+  for (auto _ : state) {
+    auto f = out<double>(kN);
+    for (long j = 0; j < kN; ++j) f[j] = analytic::vgroove_brdf(wi[j], wo[j], NdfKind::ggx, 0.5, max_k);
+    benchmark::DoNotOptimize(f.get());
+  }
+  state.SetItemsProcessed(state.iterations() * kN);
+}
+BENCHMARK(BM_baseline_brdf_default_1e6)->Unit(benchmark::kMillisecond);
+
 // vgroove.kaleidoscope(theta_i, 60) on 10^6 incident angles: each element's groove and angle
 // checked, both facets' lit, k, f_a, shadow and per zone n, G, fraction and theta_o.
 void BM_baseline_kaleidoscope_1e6(benchmark::State& state) {
@@ -130,8 +146,9 @@ void BM_baseline_kaleidoscope_1e6(benchmark::State& state) {
 }
 BENCHMARK(BM_baseline_kaleidoscope_1e6)->Unit(benchmark::kMillisecond);
 
-// vgroove.sample("ggx", 0.5, u, theta_i_deg=30, threads=1) on 10^6 rows of four uniform numbers
-// (the defaults: V-cavity VNDF, max_k 256): o, k, pdf and weight into arrays.
+// vgroove.sample("ggx", 0.5, u, theta_i_deg=30, threads=1) (and vgroove.BRDF().sample(wi, u) with
+// wi = direction(30, 180)) on 10^6 rows of four uniform numbers (the defaults: V-cavity VNDF,
+// max_k kSamplerMaxK): o, k, pdf, weight and beyond_max_k into arrays.
 void BM_baseline_sample_1e6(benchmark::State& state) {
   sim::Rng rng(4, 0, 0);
   std::vector<std::array<double, 4>> u(kN);
@@ -142,18 +159,21 @@ void BM_baseline_sample_1e6(benchmark::State& state) {
   for (auto _ : state) {
     auto o = out<double>(3 * kN), pdf = out<double>(kN), weight = out<double>(kN);
     auto k = out<std::int32_t>(kN);
+    auto beyond = out<bool>(kN);
     for (long j = 0; j < kN; ++j) {
       const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(i, u[j], NdfKind::ggx, 0.5, opt);
       o[3 * j] = x.o.x, o[3 * j + 1] = x.o.y, o[3 * j + 2] = x.o.z;
-      k[j] = x.k, pdf[j] = x.pdf, weight[j] = x.weight;
+      k[j] = x.k, pdf[j] = x.pdf, weight[j] = x.weight, beyond[j] = x.beyond_max_k;
     }
+    benchmark::DoNotOptimize(beyond.get());
     benchmark::DoNotOptimize(weight.get());
   }
   state.SetItemsProcessed(state.iterations() * kN);
 }
 BENCHMARK(BM_baseline_sample_1e6)->Unit(benchmark::kMillisecond);
 
-// vgroove.pdf("ggx", 0.5, wo, theta_i_deg=30, threads=1) on 10^6 directions of the hemisphere.
+// vgroove.pdf("ggx", 0.5, wo, theta_i_deg=30, threads=1) (and vgroove.BRDF().pdf(wi, wo)) on 10^6
+// directions of the hemisphere.
 void BM_baseline_pdf_1e6(benchmark::State& state) {
   const auto wo = hemisphere(2);
   const analytic::Dir3 i = analytic::dir3(30.0 * kRadPerDeg, std::numbers::pi);

@@ -3,8 +3,8 @@
 //
 // Wall time, not CPU time: the sweep runs on `threads` workers (validation/parallel.h), so the
 // speed-up from 1 to 2 threads is the ratio of the two rows' times.
-#include "vgroove/validation/suite.h"
-#include "vgroove/validation/suite_run.h"
+#include "vgroove/validation/groove_suite.h"
+#include "vgroove/validation/groove_suite_run.h"
 
 #include <benchmark/benchmark.h>
 
@@ -16,9 +16,9 @@ namespace {
 using namespace vgroove;
 
 void run_sweep(benchmark::State& state, const char* file) {
-  validation::Suite suite;
+  validation::GrooveSuite suite;
   try {
-    suite = validation::load_suite(std::string(VGROOVE_SUITES_DIR) + "/" + file);
+    suite = validation::load_groove_suite(std::string(VGROOVE_SUITES_DIR) + "/" + file);
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
     return;
@@ -27,13 +27,13 @@ void run_sweep(benchmark::State& state, const char* file) {
   double bounces_per_s = 0.0, wall_s = 0.0;
   bool pass = true;
   for (auto _ : state) {
-    const validation::SuiteRun run = validation::run_suite(suite, suite.options, threads);
+    const validation::GrooveSuiteRun run = validation::run_groove_suite(suite, suite.options, threads);
     benchmark::DoNotOptimize(run.summary);
     bounces_per_s += run.summary.bounces_per_s;
     wall_s += run.summary.wall_s;
     pass = pass && run.summary.pass();
   }
-  // As the Summary measures them (run_suite's own clock), averaged over the iterations.
+  // As the GrooveSuiteSummary measures them (run_groove_suite's own clock), averaged over the iterations.
   state.counters["bounces_per_s"] = benchmark::Counter(bounces_per_s, benchmark::Counter::kAvgIterations);
   state.counters["wall_s"] = benchmark::Counter(wall_s, benchmark::Counter::kAvgIterations);
   // A sweep that stopped passing would make the timing meaningless.

@@ -4,7 +4,7 @@
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/brdf_suite.h"
-#include "vgroove/validation/suite.h"
+#include "vgroove/validation/groove_suite.h"
 #include "vgroove/validation/table2_suite.h"
 
 #include <cstddef>
@@ -25,7 +25,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     else if (kind == "table2")
       (void)vgroove::validation::parse_table2_suite(j, file);
     else
-      (void)vgroove::validation::parse_suite_set(j, file);
+      (void)vgroove::validation::parse_groove_suite_set(j, file);
   } catch (const vgroove::support::UserError&) {
   }
   return 0;

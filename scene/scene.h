@@ -47,7 +47,7 @@
 
 #include "vgroove/sim/beam.h"
 #include "vgroove/sim/slope_sampling.h"
-#include "vgroove/validation/suite.h"
+#include "vgroove/validation/groove_suite.h"
 
 #include <nlohmann/json.hpp>
 

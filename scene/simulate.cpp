@@ -1,5 +1,6 @@
 #include "vgroove/scene/simulate.h"
 #include "vgroove/support/printable.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/support/format.h"
 #include "vgroove/validation/part_fields.h"
@@ -431,7 +432,7 @@ SimulationResult simulate(const Scene& scene, int threads, const std::atomic<boo
     r.interrupted = true;
   }
   r.threads = support::resolve_threads(threads);
-  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.wall_s = support::seconds_since(start);
   return r;
 }
 

@@ -14,6 +14,9 @@
 #   nonsymmetric_brdf  the nonsymmetric BRDF (Eq. 23) and anisotropy    results/nonsymmetric_brdf.json,
 #            vs traced nonsymmetric surfaces                            nonsymmetric_brdf.png (L1 per case),
 #                                                                       nonsymmetric_brdf[-aniso]-NDF-DIM.png (grids)
+# and then one page of them all, results/index.html (`vgroove report`: every suite's verdict, the paper's
+# figures beside ours, thresholds, worst cases, wall times, versions, seeds and the plots, in one
+# self-contained file to open in a browser or keep as a CI artifact).
 # Extra arguments go to every `vgroove validate` (e.g. --threads 1). Exit status: 0 when every
 # suite passes, 1 when a threshold is exceeded, 2 on bad input.
 set -euo pipefail
@@ -29,4 +32,5 @@ done
 for suite in table1 table1_breakpoints fig11 table2 furnace sampling nonsymmetric_brdf; do
   build/vgroove plot "results/$suite.json" --force
 done
+build/vgroove report results --out results/index.html --force
 exit "$status"

@@ -1,4 +1,5 @@
 #include "vgroove/support/atomic_file.h"
+#include "vgroove/support/printable.h"
 
 #include "vgroove/support/user_error.h"
 
@@ -46,6 +47,7 @@ std::string link_text(const std::string& path) {
 
 Target classify(const std::string& path, bool overwrite) {
   if (path.empty()) throw UserError("--out: the path is empty");
+  check_file_name(path);
   // "-" means standard output to most tools; here it would be a file named "-".
   if (path == "-")
     throw UserError(

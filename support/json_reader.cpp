@@ -1,4 +1,5 @@
 #include "vgroove/support/json_reader.h"
+#include "vgroove/support/printable.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -204,6 +205,7 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& file)
 }
 
 nlohmann::json read_json_file(const std::string& file, std::size_t max_bytes) {
+  check_file_name(file);
   const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) throw UserError(file + ": cannot open the file (" + std::strerror(errno) + ")");
   struct stat st {};

@@ -1,4 +1,5 @@
 #include "vgroove/support/printable.h"
+#include "vgroove/support/user_error.h"
 
 #include <cstdint>
 #include <cstdio>
@@ -86,6 +87,10 @@ std::string printable(std::string_view s) {
     i += n;
   }
   return out;
+}
+
+void check_file_name(const std::string& path) {
+  if (path.find('\0') != std::string::npos) throw UserError(printable(path) + ": a file name cannot hold a NUL byte");
 }
 
 }  // namespace vgroove::support

@@ -18,5 +18,8 @@ std::string printable(std::string_view s);
 // Whether s is valid UTF-8 (no overlong forms, surrogates or code points past U+10FFFF): what a
 // JSON report can hold as text.
 bool valid_utf8(std::string_view s);
+// Throws UserError unless `path` can name a file: the system reads a name only up to a NUL byte
+// (Python strings may hold one), so such a name would open another file.
+void check_file_name(const std::string& path);
 
 }  // namespace vgroove::support

@@ -1,10 +1,13 @@
 #include "vgroove/validation/brdf_suite.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/validation/part_fields.h"
 
 #include "vgroove/support/format.h"
 #include "vgroove/support/printable.h"
 #include "vgroove/validation/lobe_bins.h"
+#include "vgroove/validation/lobe_comparison.h"
+#include "vgroove/validation/plane_cut.h"
 
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/analytic/brdf_flatland.h"
@@ -16,6 +19,7 @@
 #include "vgroove/validation/partial_report.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
+#include "vgroove/validation/table_frame.h"
 
 #include <algorithm>
 #include <chrono>
@@ -28,152 +32,59 @@ namespace vgroove::validation {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using support::Clock;
+using support::seconds_since;
 
-// The procedural surface of one (NDF, alpha): flatland or 3D options have the same fields.
-template <class Options>
-Options surface_options(analytic::NdfKind ndf, double alpha, int grooves, std::uint64_t seed) {
-  Options o;
-  o.ndf = ndf;
-  o.alpha = alpha;
-  o.grooves = grooves;
-  o.seed = seed;
-  return o;
-}
-
-// The comparison shared by both dimensions, from the per-(row, bin) fractions of the incident flux.
+// The traced lobe against the model's, from the per-(row, bin) fractions of the incident flux.
 void compare(BrdfOutcome& out, const BrdfSuite& suite, const std::vector<double>& sim_joint,
              const std::vector<double>& model_joint, int bins, double model_tolerance) {
-  const int rows = suite.max_k + 2;
-  std::vector<double> sim_total(static_cast<std::size_t>(bins), 0.0), model_total(static_cast<std::size_t>(bins), 0.0);
-  for (int r = 0; r < rows; ++r)
-    for (int b = 0; b < bins; ++b) {
-      const std::size_t n = static_cast<std::size_t>(r) * bins + b;
-      sim_total[static_cast<std::size_t>(b)] += sim_joint[n];
-      model_total[static_cast<std::size_t>(b)] += model_joint[n];
-    }
   const double N = static_cast<double>(out.rays), G = static_cast<double>(suite.grooves);
-  const std::vector<double> p = normalized(model_total);
-  out.l1 = l1(normalized(sim_total), p);
-  const ExpectedL1 e = expected_l1(p, N, G);
-  out.l1_expected = e.mean;
-  out.l1_threshold = e.mean + suite.sigmas * e.sd + model_tolerance;
-  out.l1_k = l1(sim_joint, model_joint);
-  const ExpectedL1 ek = expected_l1(model_joint, N, G);
-  out.l1_k_expected = ek.mean;
-  out.l1_k_threshold = ek.mean + suite.sigmas * ek.sd + model_tolerance;
-  // The albedo: a binomial fraction of the same N rays over G grooves, plus one ray's worth
-  // (the count is an integer) and the model's tolerance.
-  const double a = std::clamp(out.albedo_model, 0.0, 1.0);
-  out.albedo_threshold = suite.sigmas * std::sqrt(a * (1.0 - a) * (1.0 / N + 1.0 / G)) + 1.0 / N + model_tolerance;
+  const bool holds =
+      take_comparison(out, compare_lobes(sim_joint, model_joint, bins, N, G, suite.sigmas, model_tolerance), N, G,
+                      suite.sigmas, model_tolerance);
   out.non_finite = !(std::isfinite(out.l1) && std::isfinite(out.l1_k) && std::isfinite(out.albedo_model) &&
                      std::isfinite(out.albedo_single) && all_finite(model_joint));
-  const bool albedo_ok = std::abs(out.albedo_sim - out.albedo_model) <= out.albedo_threshold;
-  out.pass = !out.non_finite && albedo_ok && out.l1 <= out.l1_threshold && out.l1_k <= out.l1_k_threshold;
+  out.pass = !out.non_finite && holds;
 }
 
-// The counts of a traced case.
-void take_counts(BrdfOutcome& out, const BinnedTally& t) {
-  out.rays = t.rays, out.escaped = t.escaped, out.lost = t.lost(), out.bounces = t.bounces;
-  out.max_k_seen = t.max_k_seen;
+// A case's rays and bins as the suite sets them.
+CaseRays case_rays(const BrdfSuite& suite, const BrdfCase& c, long rays) {
+  CaseRays r;
+  r.theta_i = c.theta_i, r.rays = rays, r.seed = suite.seed;
+  r.flatland_bins = suite.flatland_bins, r.theta_bins = suite.theta_bins, r.phi_bins = suite.phi_bins;
+  r.max_k = suite.max_k;
+  return r;
+}
+
+PlaneCut plane_cut(const BrdfSuite& suite, SurfaceDim dim) {
+  return dim == SurfaceDim::flatland ? PlaneCut::flatland(suite.flatland_bins)
+                                     : PlaneCut::three_d(suite.theta_bins, suite.phi_bins);
+}
+
+BrdfOutcome finish(const BrdfSuite& suite, const BrdfCase& c, const BinnedTally& t, const BrdfModel& lobe) {
+  BrdfOutcome out;
+  out.c = c;
+  const PlaneCut plane = plane_cut(suite, c.dim);
+  const int bins = plane.bins();
+  out.sim_wall_s = t.thread_s;
+  take_counts(out, t);
   out.in_flight = t.bounce_limit;
-  out.albedo_sim = static_cast<double>(t.escaped) / static_cast<double>(t.rays);
-}
-
-sim::MicrosurfaceTraceOptions flatland_trace(const BrdfSuite& suite, const BrdfCase& c, long rays) {
-  sim::MicrosurfaceTraceOptions to;
-  to.theta_i = c.theta_i;
-  to.rays = rays;
-  to.sampling = sim::Sampling::random;
-  to.seed = suite.seed;
-  to.theta_o_bins = suite.flatland_bins;
-  to.max_k = suite.max_k;
-  return to;
-}
-
-sim::Microsurface3dTraceOptions trace_3d(const BrdfSuite& suite, const BrdfCase& c, long rays) {
-  sim::Microsurface3dTraceOptions to;
-  to.theta_i = c.theta_i;
-  to.rays = rays;
-  to.seed = suite.seed;
-  to.theta_bins = suite.theta_bins;
-  to.phi_bins = suite.phi_bins;
-  to.max_k = suite.max_k;
-  return to;
-}
-
-BrdfOutcome finish_flatland(const BrdfSuite& suite, const BrdfCase& c, const BinnedTally& t, const BrdfModel& lobe) {
-  BrdfOutcome out;
-  out.c = c;
-  const int bins = suite.flatland_bins;
-  out.sim_wall_s = t.thread_s;
-  take_counts(out, t);
   out.model_wall_s = lobe.wall_s;
   out.albedo_model = lobe.albedo;
   out.albedo_single = lobe.single_albedo;
   const double N = static_cast<double>(t.rays);
   out.by_k_sim = fractions(t.by_k, N);
   out.by_k_model = lobe.by_k;
-  compare(out, suite, fractions(t.hist_by_k, N), lobe.hist_by_k, bins, suite.model_tolerance_flatland);
-
-  const double width = std::numbers::pi / bins;
-  for (int b = 0; b < bins; ++b) {
-    out.plane_theta_deg.push_back(output_deg(-0.5 * std::numbers::pi + (b + 0.5) * width));
-    out.plane_sim.push_back(static_cast<double>(t.hist[static_cast<std::size_t>(b)]) / N / width);
-    out.plane_model.push_back(lobe.hist[static_cast<std::size_t>(b)] / width);
-    out.plane_single.push_back(lobe.single_hist[static_cast<std::size_t>(b)] / width);
-  }
+  compare(out, suite, fractions(t.hist_by_k, N), lobe.hist_by_k, bins,
+          c.dim == SurfaceDim::flatland ? suite.model_tolerance_flatland : suite.model_tolerance_3d);
+  out.plane_theta_deg = plane.angles_deg();
+  out.plane_sim = plane.cut([&](std::size_t n) { return static_cast<double>(t.hist[n]) / N; });
+  out.plane_model = plane.cut([&](std::size_t n) { return lobe.hist[n]; });
+  out.plane_single = plane.cut([&](std::size_t n) { return lobe.single_hist[n]; });
   for (int k = 1; k <= std::min(kPlotK, suite.max_k); ++k) {
-    std::vector<double> s, m;
-    for (int b = 0; b < bins; ++b) {
-      s.push_back(static_cast<double>(t.hist_by_k[static_cast<std::size_t>(k) * bins + b]) / N / width);
-      m.push_back(lobe.hist_by_k[static_cast<std::size_t>(k) * bins + b] / width);
-    }
-    out.plane_sim_k.push_back(std::move(s));
-    out.plane_model_k.push_back(std::move(m));
-  }
-  return out;
-}
-
-BrdfOutcome finish_3d(const BrdfSuite& suite, const BrdfCase& c, const BinnedTally& t, const BrdfModel& lobe) {
-  BrdfOutcome out;
-  out.c = c;
-  const int tb = suite.theta_bins, pb = suite.phi_bins, bins = tb * pb;
-  out.sim_wall_s = t.thread_s;
-  take_counts(out, t);
-  out.model_wall_s = lobe.wall_s;
-  out.albedo_model = lobe.albedo;
-  out.albedo_single = lobe.single_albedo;
-  const double N = static_cast<double>(t.rays);
-  out.by_k_sim = fractions(t.by_k, N);
-  out.by_k_model = lobe.by_k;
-  compare(out, suite, fractions(t.hist_by_k, N), lobe.hist_by_k, bins, suite.model_tolerance_3d);
-
-  // The plane of incidence: phi bin pb/2 (towards the light, signed angle +theta) and phi bin 0
-  // (the mirror side, -theta), as fractions per steradian of each bin.
-  const double dt = 0.5 * std::numbers::pi / tb, dp = 2.0 * std::numbers::pi / pb;
-  auto solid_angle = [&](int t_) { return dp * (std::cos(t_ * dt) - std::cos((t_ + 1) * dt)); };
-  auto push = [&](int t_, int p_) {
-    const std::size_t n = static_cast<std::size_t>(t_) * pb + p_;
-    const double w = solid_angle(t_);
-    out.plane_sim.push_back(static_cast<double>(t.hist[n]) / N / w);
-    out.plane_model.push_back(lobe.hist[n] / w);
-    out.plane_single.push_back(lobe.single_hist[n] / w);
-  };
-  for (int t_ = tb - 1; t_ >= 0; --t_) out.plane_theta_deg.push_back(output_deg(-(t_ + 0.5) * dt)), push(t_, 0);
-  for (int t_ = 0; t_ < tb; ++t_) out.plane_theta_deg.push_back(output_deg((t_ + 0.5) * dt)), push(t_, pb / 2);
-  for (int k = 1; k <= std::min(kPlotK, suite.max_k); ++k) {
-    std::vector<double> s, m;
-    auto pushk = [&](int t_, int p_) {
-      const std::size_t n = (static_cast<std::size_t>(k) * tb + t_) * pb + p_;
-      s.push_back(static_cast<double>(t.hist_by_k[n]) / N / solid_angle(t_));
-      m.push_back(lobe.hist_by_k[n] / solid_angle(t_));
-    };
-    for (int t_ = tb - 1; t_ >= 0; --t_) pushk(t_, 0);
-    for (int t_ = 0; t_ < tb; ++t_) pushk(t_, pb / 2);
-    out.plane_sim_k.push_back(std::move(s));
-    out.plane_model_k.push_back(std::move(m));
+    const std::size_t row = static_cast<std::size_t>(k) * bins;
+    out.plane_sim_k.push_back(plane.cut([&](std::size_t n) { return static_cast<double>(t.hist_by_k[row + n]) / N; }));
+    out.plane_model_k.push_back(plane.cut([&](std::size_t n) { return lobe.hist_by_k[row + n]; }));
   }
   return out;
 }
@@ -205,8 +116,6 @@ nlohmann::json suite_inputs(const BrdfSuite& s) {
 }
 
 }  // namespace
-
-const char* surface_dim_name(SurfaceDim d) { return d == SurfaceDim::flatland ? "flatland" : "3d"; }
 
 BrdfCase grid_case(const std::vector<analytic::NdfKind>& ndfs, const std::vector<double>& alphas,
                    const std::vector<double>& theta_i, const std::vector<SurfaceDim>& dims, std::size_t c) {
@@ -282,37 +191,11 @@ double brdf_run_memory_bytes(const BrdfSuite& suite, int threads, bool report) {
 
 std::shared_ptr<const BrdfWork::Context> BrdfWork::prepare(std::size_t n) const {
   const BrdfCase c = suite.case_at(n);
-  auto ctx = std::make_shared<Context>();
-  if (c.dim == SurfaceDim::flatland)
-    ctx->flat =
-        sim::make_microsurface(surface_options<sim::MicrosurfaceOptions>(c.ndf, c.alpha, suite.grooves, suite.seed));
-  else
-    ctx->three_d = sim::make_microsurface3d(
-        surface_options<sim::Microsurface3dOptions>(c.ndf, c.alpha, suite.grooves, suite.seed));
-  return ctx;
+  return std::make_shared<Context>(make_case_surface(c.dim, c.ndf, c.alpha, suite.grooves, suite.seed));
 }
 
 BinnedTally BrdfWork::run_chunks(const Context& ctx, std::size_t n, std::int64_t begin, std::int64_t end) const {
-  const auto t0 = Clock::now();
-  const BrdfCase c = suite.case_at(n);
-  BinnedTally out;
-  if (c.dim == SurfaceDim::flatland) {
-    const sim::MicrosurfaceTraceOptions to = flatland_trace(suite, c, rays);
-    sim::MicrosurfaceTally t(to.theta_o_bins, to.max_k);
-    for (std::int64_t k = begin; k < end && !support::cancelled(cancel); ++k)
-      sim::trace_microsurface_chunk(ctx.flat, to, k, t);
-    static_cast<sim::RayFates&>(out) = t;
-    out.by_k = std::move(t.by_k), out.hist = std::move(t.theta_o), out.hist_by_k = std::move(t.theta_o_by_k);
-  } else {
-    const sim::Microsurface3dTraceOptions to = trace_3d(suite, c, rays);
-    sim::Microsurface3dTally t(to.theta_bins, to.phi_bins, to.max_k);
-    for (std::int64_t k = begin; k < end && !support::cancelled(cancel); ++k)
-      sim::trace_microsurface3d_chunk(ctx.three_d, to, k, t);
-    static_cast<sim::RayFates&>(out) = t;
-    out.by_k = std::move(t.by_k), out.hist = std::move(t.hist), out.hist_by_k = std::move(t.hist_by_k);
-  }
-  out.thread_s = seconds_since(t0);
-  return out;
+  return trace_case_chunks(ctx, case_rays(suite, suite.case_at(n), rays), begin, end, cancel);
 }
 
 BrdfModel BrdfWork::run_fixed(std::size_t n) const {
@@ -416,8 +299,7 @@ BrdfRun brdf_run_from(const BrdfSuite& suite, long, const std::vector<UnitResult
   BrdfRun run;
   for (std::size_t n = 0; n < results.size(); ++n) {
     const BrdfCase c = suite.case_at(n);
-    run.cases.push_back(c.dim == SurfaceDim::flatland ? finish_flatland(suite, c, results[n].tally, *results[n].fixed)
-                                                      : finish_3d(suite, c, results[n].tally, *results[n].fixed));
+    run.cases.push_back(finish(suite, c, results[n].tally, *results[n].fixed));
   }
   run.pass = std::all_of(run.cases.begin(), run.cases.end(), [](const BrdfOutcome& o) { return o.pass; });
   return run;
@@ -452,14 +334,8 @@ BrdfRun run_brdf_suite(const BrdfSuite& suite, long rays, int threads, const sup
 }
 
 nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run) {
-  nlohmann::json j = provenance();
-  j["suite"] = suite.name;
-  j["suite_file"] = suite.file;
-  j["kind"] = suite.kind;
-  j["description"] = suite.description;
-  j["seed"] = suite.seed;
-  j["threads"] = run.threads;
-  j["wall_s"] = run.wall_s;
+  nlohmann::json j =
+      report_header({suite.name, suite.file, suite.kind, suite.description, suite.seed}, run.threads, run.wall_s);
   j["inputs"] = suite_inputs(suite);
   nlohmann::json cases = nlohmann::json::array();
   std::int64_t rays = 0, bounces = 0;
@@ -471,45 +347,17 @@ nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run) {
     worst_ratio = std::max({worst_ratio, o.l1 / o.l1_threshold, o.l1_k / o.l1_k_threshold});
     worst_albedo = std::max(worst_albedo, std::abs(o.albedo_sim - o.albedo_model));
     worst_single = std::min(worst_single, o.albedo_single);
-    nlohmann::json c = {{"ndf", analytic::ndf_name(o.c.ndf)},
-                        {"alpha", o.c.alpha},
-                        {"theta_i_deg", output_deg(o.c.theta_i)},
-                        {"dimension", surface_dim_name(o.c.dim)},
-                        {"rays", o.rays},
-                        {"escaped", o.escaped},
-                        {"lost", o.lost},
-                        {"in_flight_at_bounce_limit", o.in_flight},
-                        {"bounces", o.bounces},
-                        {"max_k_seen", o.max_k_seen},
-                        {"sim_wall_s", o.sim_wall_s},
-                        {"model_wall_s", o.model_wall_s},
-                        {"albedo_sim", o.albedo_sim},
-                        {"albedo_model", o.albedo_model},
-                        {"albedo_cook_torrance", o.albedo_single},
-                        {"cook_torrance_energy_lost", 1.0 - o.albedo_single},
-                        {"albedo_difference", o.albedo_sim - o.albedo_model},
-                        {"albedo_threshold", o.albedo_threshold},
-                        {"by_k_sim", o.by_k_sim},
-                        {"by_k_model", o.by_k_model},
-                        {"non_finite", o.non_finite},
-                        {"pass", o.pass}};
+    nlohmann::json c = lobe_case_json(o, o.c.dim == SurfaceDim::flatland);
+    c["ndf"] = analytic::ndf_name(o.c.ndf);
+    c["alpha"] = o.c.alpha;
+    c["theta_i_deg"] = output_deg(o.c.theta_i);
+    c["dimension"] = surface_dim_name(o.c.dim);
     put_gamma(c, o.c.ndf);
-    {
-      c["l1"] = o.l1;
-      c["l1_expected"] = o.l1_expected;
-      c["l1_threshold"] = o.l1_threshold;
-      c["l1_by_k"] = o.l1_k;
-      c["l1_by_k_expected"] = o.l1_k_expected;
-      c["l1_by_k_threshold"] = o.l1_k_threshold;
-      c["plane"] = {{"theta_deg", o.plane_theta_deg},
-                    {"unit", o.c.dim == SurfaceDim::flatland ? "fraction of the flux per radian"
-                                                             : "fraction of the flux per steradian"},
-                    {"sim", o.plane_sim},
-                    {"model", o.plane_model},
-                    {"cook_torrance", o.plane_single},
-                    {"sim_by_k", o.plane_sim_k},
-                    {"model_by_k", o.plane_model_k}};
-    }
+    c["in_flight_at_bounce_limit"] = o.in_flight;
+    c["albedo_cook_torrance"] = o.albedo_single;
+    c["cook_torrance_energy_lost"] = 1.0 - o.albedo_single;
+    c["albedo_difference"] = o.albedo_sim - o.albedo_model;
+    c["plane"]["cook_torrance"] = o.plane_single;
     cases.push_back(std::move(c));
   }
   j["cases"] = std::move(cases);
@@ -528,9 +376,10 @@ nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run) {
 }
 
 void print_brdf_table(std::ostream& os, const BrdfSuite& suite, const BrdfRun& run) {
-  os << support::format("%s (%s): %zu cases, %ld rays x %d grooves each, vgroove %s (git %s), %d threads\n",
-                        support::printable(suite.name).c_str(), suite.kind.c_str(), run.cases.size(), suite.rays,
-                        suite.grooves, version_string(), git_revision(), run.threads);
+  print_table_title(
+      os, suite.name, suite.kind,
+      support::format("%zu cases, %ld rays x %d grooves each", run.cases.size(), suite.rays, suite.grooves),
+      run.threads);
   os << support::format("  %-8s %-8s %5s %7s %9s %9s %9s %9s %10s %9s %8s %5s\n", "dim", "ndf", "alpha", "theta_i",
                         "L1", "L1 thr", "L1 by k", "thr", "albedo", "CT alb", "wall s", "pass");
   for (const BrdfOutcome& o : run.cases) {
@@ -541,7 +390,7 @@ void print_brdf_table(std::ostream& os, const BrdfSuite& suite, const BrdfRun& r
   }
   std::size_t passed = 0;
   for (const auto& o : run.cases) passed += o.pass;
-  os << support::format("  %zu/%zu cases pass; wall %.2f s\n", passed, run.cases.size(), run.wall_s);
+  print_table_close(os, passed, run.cases.size(), run.wall_s);
 }
 
 }  // namespace vgroove::validation

@@ -23,7 +23,9 @@
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/microsurface3d.h"
 #include "vgroove/support/parallel.h"
+#include "vgroove/validation/case_surface.h"
 #include "vgroove/validation/histogram_metrics.h"
+#include "vgroove/validation/lobe_outcome.h"
 #include "vgroove/validation/work_run.h"
 
 #include <nlohmann/json.hpp>
@@ -36,9 +38,6 @@
 #include <vector>
 
 namespace vgroove::validation {
-
-enum class SurfaceDim : unsigned char { flatland, three_d };
-const char* surface_dim_name(SurfaceDim d);
 
 struct BrdfCase {
   analytic::NdfKind ndf = analytic::NdfKind::ggx;
@@ -74,28 +73,13 @@ struct BrdfSuite {
   BrdfCase case_at(std::size_t c) const;
 };
 
-struct BrdfOutcome {
+struct BrdfOutcome : LobeOutcome {
   BrdfCase c;
-  std::int64_t rays = 0, escaped = 0, lost = 0, bounces = 0;
   // Rays still inside after the tracer's bounce limit (10^5 reflections): grooves narrower than
   // pi / 10^5 rad, which only the roughest Phong surfaces (alpha >= 1.5, exponent < -1) draw often.
   std::int64_t in_flight = 0;
-  int max_k_seen = 0;
-  double sim_wall_s = 0.0, model_wall_s = 0.0;
-  // albedo_sim: escaped / rays.
-  double albedo_sim = 0.0, albedo_model = 0.0, albedo_single = 0.0;  // single: Cook-Torrance (V-cavity G)
-  double albedo_threshold = 0.0;
-  double l1 = 0.0, l1_expected = 0.0, l1_threshold = 0.0;        // normalized lobes, all k
-  double l1_k = 0.0, l1_k_expected = 0.0, l1_k_threshold = 0.0;  // joint (k, bin), fractions of the flux
-  std::vector<double> by_k_sim, by_k_model;                      // rows k = 0..max_k + 1
-  // The lobe on the plane of incidence for plots (flatland: every bin; 3D: the phi bins through
-  // the plane, as a signed angle: negative on the mirror side, the flatland convention), as
-  // densities: fraction per radian (flatland) or per steradian (3D).
-  std::vector<double> plane_theta_deg;
-  std::vector<double> plane_sim, plane_model, plane_single;
-  std::vector<std::vector<double>> plane_sim_k, plane_model_k;  // k = 1..kPlotK
-  bool non_finite = false;
-  bool pass = false;
+  double albedo_single = 0.0;        // Cook-Torrance (V-cavity G)
+  std::vector<double> plane_single;  // its lobe on the plane of incidence (plane_sim's points)
 };
 inline constexpr int kPlotK = 4;
 
@@ -119,12 +103,8 @@ BrdfRun run_brdf_suite(const BrdfSuite& suite, long rays, int threads, const sup
 BrdfOutcome run_brdf_case(const BrdfSuite& suite, const BrdfCase& c, long rays, support::CancelFlag cancel = nullptr);
 
 // The suite as work items (work_run.h): a unit per case, its rays in chunks (sim::kRaysPerChunk,
-// the procedural surface's streams), the analytic lobes its fixed part. The traced histograms of
-// flatland (theta_o) and 3D ((theta_o, phi_o)) have the same layout: rows k, bins.
-struct BinnedTally : sim::RayFates {
-  std::vector<std::int64_t> by_k, hist, hist_by_k;
-  double thread_s = 0.0;  // time spent tracing (a timing: never compared)
-};
+// the procedural surface's streams, case_surface.h), the analytic lobes its fixed part. The traced
+// histograms of flatland (theta_o) and 3D ((theta_o, phi_o)) have the same layout: rows k, bins.
 struct BrdfModel {
   std::vector<double> by_k, hist, hist_by_k;  // Lee et al. 2018 (flatland lobe; Eq. 16-17 in 3D)
   std::vector<double> single_hist;            // Cook-Torrance, V-cavity G
@@ -132,10 +112,7 @@ struct BrdfModel {
   double wall_s = 0.0;  // a timing
 };
 struct BrdfWork {
-  struct Context {
-    sim::Microsurface flat;
-    sim::Microsurface3d three_d;
-  };
+  using Context = CaseSurface;
   using Tally = BinnedTally;
   using Fixed = BrdfModel;
   BrdfSuite suite;

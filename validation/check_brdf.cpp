@@ -1,4 +1,6 @@
 #include "vgroove/validation/check_brdf.h"
+#include "vgroove/support/seconds_since.h"
+#include "vgroove/validation/lobe_comparison.h"
 
 #include "vgroove/analytic/quadrature.h"
 #include "vgroove/common/angles.h"
@@ -22,8 +24,8 @@ namespace vgroove::validation {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using support::Clock;
+using support::seconds_since;
 
 constexpr double kPi = std::numbers::pi;
 constexpr int kWorstBins = 5;
@@ -46,10 +48,21 @@ struct Cell {
   bool operator<(const Cell& o) const { return err < o.err; }
 };
 
+// A value of the model that is not a BRDF's (NaN, an infinity or below 0), thrown by the first
+// rule that meets one: the check fails there, naming the directions and the value.
+struct BadModelValue {
+  std::string message;
+};
+
+std::string vector_text(const double* v) {
+  return "(" + support::number_text(v[0]) + ", " + support::number_text(v[1]) + ", " + support::number_text(v[2]) + ")";
+}
+
 class BinIntegrator {
  public:
-  BinIntegrator(const BrdfBatchFn& f, const analytic::Dir3& wi, bool flat, const analytic::GaussLegendre& g)
-      : f_(f), wi_(wi), flat_(flat), g_(g) {}
+  BinIntegrator(const BrdfBatchFn& f, const analytic::Dir3& wi, bool flat, const analytic::GaussLegendre& g,
+                double theta_i_deg)
+      : f_(f), wi_(wi), flat_(flat), g_(g), theta_i_deg_(theta_i_deg) {}
 
   // The rule on [t0, t1] x [p0, p1]: f(wi, wo) cos(theta) sin(theta) (3D) or f cos(theta) (flatland).
   // The nodes' values come from one batch call, then are summed in node order.
@@ -68,6 +81,13 @@ class BinIntegrator {
     }
     f_(wis_.data(), wos_.data(), nodes, vals_.data());
     evals += static_cast<std::int64_t>(nodes);
+    // A BRDF is a density of reflected radiance: finite and non-negative (-0 included). Anything
+    // else fails the check here, before the bins are integrated or the surface traced.
+    for (std::size_t j = 0; j < nodes; ++j)
+      if (!(vals_[j] >= 0.0 && vals_[j] <= std::numeric_limits<double>::max()))
+        throw BadModelValue{"f(wi, wo) = " + support::number_text(vals_[j]) + " at wi = " + vector_text(&wis_[3 * j]) +
+                            ", wo = " + vector_text(&wos_[3 * j]) + " (theta_i_deg " +
+                            support::number_text(theta_i_deg_) + "): a BRDF's values must be finite and >= 0"};
     double s = 0.0;
     for (std::size_t a = 0, j = 0; a < m; ++a) {
       const double theta = t0 + ht * (1.0 + g_.x[a]);
@@ -116,6 +136,7 @@ class BinIntegrator {
   analytic::Dir3 wi_;
   bool flat_;
   const analytic::GaussLegendre& g_;
+  double theta_i_deg_;
   std::vector<double> wis_, wos_, vals_;
 };
 
@@ -125,18 +146,27 @@ struct ModelBins {
   std::int64_t evals = 0;
 };
 
-ModelBins model_bins(const BrdfBatchFn& f, const analytic::Dir3& wi, const CheckBrdfOptions& o,
-                     const analytic::GaussLegendre& g, const std::atomic<bool>* cancel) {
+// Whether a case's integration stops early: Ctrl-C, or an earlier case (in the options' order)
+// met a value that is not a BRDF's (its error is the one reported, whatever the thread count).
+struct CaseStop {
+  const std::atomic<bool>* cancel;
+  const std::atomic<std::size_t>* first_bad;
+  std::size_t c;
+  bool operator()() const { return support::cancelled(cancel) || first_bad->load(std::memory_order_relaxed) < c; }
+};
+
+ModelBins model_bins(const BrdfBatchFn& f, double theta_i_deg, const CheckBrdfOptions& o,
+                     const analytic::GaussLegendre& g, const CaseStop& stop) {
   const bool flat = o.dim == SurfaceDim::flatland;
-  BinIntegrator in(f, wi, flat, g);
+  BinIntegrator in(f, analytic::dir3(deg_to_rad(theta_i_deg), kPi), flat, g, theta_i_deg);
   std::priority_queue<Cell> cells;
   double err = 0.0;
-  // The first rule calls f once per bin (up to 10^6 calls; a Python callback each, or 70 ms of a
-  // flatland sum at max_k 1024): the cancel flag is read before each.
+  // The first pass calls f five times per bin (three in flatland; up to 5 x 10^6 calls, a Python
+  // callback each, or 70 ms of a flatland sum at max_k 1024): the stop is read before each bin.
   if (flat) {
     const double w = kPi / o.flatland_bins;
     for (int b = 0; b < o.flatland_bins; ++b) {
-      if (support::cancelled(cancel)) break;
+      if (stop()) break;
       const double t0 = -0.5 * kPi + b * w, t1 = t0 + w;
       cells.push(in.make(static_cast<std::size_t>(b), t0, t1, 0.0, 0.0, in.rule(t0, t1, 0.0, 0.0)));
     }
@@ -144,23 +174,16 @@ ModelBins model_bins(const BrdfBatchFn& f, const analytic::Dir3& wi, const Check
     const double dt = 0.5 * kPi / o.theta_bins, dp = 2.0 * kPi / o.phi_bins;
     for (int t = 0; t < o.theta_bins; ++t)
       for (int p = 0; p < o.phi_bins; ++p) {
-        if (support::cancelled(cancel)) break;
+        if (stop()) break;
         const double t0 = t * dt, t1 = t0 + dt, p0 = p * dp - 0.5 * dp, p1 = p0 + dp;
         cells.push(in.make(static_cast<std::size_t>(t) * o.phi_bins + p, t0, t1, p0, p1, in.rule(t0, t1, p0, p1)));
       }
   }
   std::vector<Cell> children;
   double total = 0.0;  // the running sum of the estimates (summed afresh at the end)
-  // A value that is not finite or negative fails the case (CheckBrdfCase::non_finite) whatever
-  // the refinement gives: refining it would only spend max_model_evals calls (a NaN cost 18-26 s
-  // per angle through a Python callback), so it stops at the first one.
-  bool invalid = false;
-  for (auto q = cells; !q.empty(); q.pop()) {
-    total += q.top().err;
-    invalid = invalid || !(q.top().value >= 0.0 && std::isfinite(q.top().value));
-  }
-  while (!invalid && total > o.model_tolerance && in.evals < o.max_model_evals) {
-    if (cancel && cancel->load(std::memory_order_relaxed)) break;
+  for (auto q = cells; !q.empty(); q.pop()) total += q.top().err;
+  while (total > o.model_tolerance && in.evals < o.max_model_evals) {
+    if (stop()) break;
     const Cell c = cells.top();
     cells.pop();
     total -= c.err;
@@ -168,7 +191,6 @@ ModelBins model_bins(const BrdfBatchFn& f, const analytic::Dir3& wi, const Check
     in.split(c, children);
     for (Cell& ch : children) {
       total += ch.err;
-      invalid = invalid || !(ch.value >= 0.0 && std::isfinite(ch.value));
       cells.push(std::move(ch));
     }
   }
@@ -204,27 +226,18 @@ void check_options(const CheckBrdfOptions& o) {
   check_range(o.threads >= 0 && o.threads <= 1024, "threads", o.threads, "[0, 1024]");
 }
 
-CheckBrdfCase compare_lobes(const std::vector<double>& sim, const std::vector<double>& model, double rays,
-                            double grooves, double sigmas, double model_tolerance) {
+CheckBrdfCase check_lobes(const std::vector<double>& sim, const std::vector<double>& model, double rays, double grooves,
+                          double sigmas, double model_tolerance) {
   CheckBrdfCase c;
   c.albedo_sim = sum(sim);
   c.albedo_model = sum(model);
   c.non_finite = !all_finite(model) || std::any_of(model.begin(), model.end(), [](double v) { return v < 0.0; });
-  const std::vector<double> p = normalized(model);
-  c.l1 = l1(normalized(sim), p);
-  const ExpectedL1 e = expected_l1(p, rays, grooves);
-  c.l1_expected = e.mean;
-  c.l1_threshold = e.mean + sigmas * e.sd + model_tolerance;
-  std::vector<double> clamped(model.size());
-  std::transform(model.begin(), model.end(), clamped.begin(), [](double v) { return std::clamp(v, 0.0, 1.0); });
-  c.l1_flux = l1(sim, model);
-  const ExpectedL1 ef = expected_l1(clamped, rays, grooves);
-  c.l1_flux_expected = ef.mean;
-  c.l1_flux_threshold = ef.mean + sigmas * ef.sd + model_tolerance;
-  // The albedo: a binomial fraction of N rays over G grooves, plus one ray's worth and the tolerance.
-  const double a = std::clamp(c.albedo_model, 0.0, 1.0);
-  c.albedo_threshold = sigmas * std::sqrt(a * (1.0 - a) * (1.0 / rays + 1.0 / grooves)) + 1.0 / rays + model_tolerance;
-  c.pass = !c.non_finite && std::isfinite(c.l1) && c.l1 <= c.l1_threshold && c.l1_flux <= c.l1_flux_threshold &&
+  const LobeComparison lc =
+      compare_lobes(sim, model, static_cast<int>(sim.size()), rays, grooves, sigmas, model_tolerance);
+  c.l1 = lc.shape.l1, c.l1_expected = lc.shape.expected, c.l1_threshold = lc.shape.threshold;
+  c.l1_flux = lc.joint.l1, c.l1_flux_expected = lc.joint.expected, c.l1_flux_threshold = lc.joint.threshold;
+  c.albedo_threshold = albedo_threshold(c.albedo_model, rays, grooves, sigmas, model_tolerance);
+  c.pass = !c.non_finite && std::isfinite(c.l1) && lc.shape.holds() && lc.joint.holds() &&
            std::abs(c.albedo_sim - c.albedo_model) <= c.albedo_threshold;
   return c;
 }
@@ -248,18 +261,29 @@ CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt) {
   std::vector<double> theta_i;
   for (double d : opt.theta_i_deg) theta_i.push_back(deg_to_rad(d));
 
-  // The model's bins, one work item per incidence, then the traced lobes.
+  // The model's bins, one work item per incidence, then the traced lobes. A value that is not a
+  // BRDF's stops its case and the cases after it at once; the first such case in the options'
+  // order is reported (the cases before it run on), so the error does not depend on the threads.
   std::vector<ModelBins> model(cases);
   std::vector<double> model_s(cases, 0.0);
+  std::vector<std::string> bad(cases);
+  std::atomic<std::size_t> first_bad{cases};
   const analytic::GaussLegendre rule = analytic::gauss_legendre(opt.quadrature_order);
   const bool integrated = support::parallel_for(
       cases, res.threads,
       [&](std::size_t c) {
         const auto ti = Clock::now();
-        model[c] = model_bins(f, analytic::dir3(theta_i[c], kPi), opt, rule, opt.cancel);
+        try {
+          model[c] = model_bins(f, opt.theta_i_deg[c], opt, rule, CaseStop{opt.cancel, &first_bad, c});
+        } catch (const BadModelValue& e) {
+          bad[c] = e.message;
+          for (std::size_t b = first_bad.load(); c < b && !first_bad.compare_exchange_weak(b, c);) {
+          }
+        }
         model_s[c] = seconds_since(ti);
       },
       {}, opt.cancel, 1);
+  if (first_bad.load() < cases && !support::cancelled(opt.cancel)) throw support::UserError(bad[first_bad.load()]);
   LobeSetup setup;
   setup.ndf = opt.ndf, setup.alpha = opt.alpha, setup.dim = opt.dim, setup.rays = opt.rays;
   setup.grooves = opt.grooves, setup.seed = opt.seed;
@@ -277,7 +301,7 @@ CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt) {
     const std::vector<double>& m = model[c].flux;
     const double N = static_cast<double>(traced[c].rays);
     // The model's side is known to within its integration error: it widens each threshold.
-    CheckBrdfCase out = compare_lobes(sim, m, N, opt.grooves, opt.sigmas, opt.model_tolerance + model[c].error);
+    CheckBrdfCase out = check_lobes(sim, m, N, opt.grooves, opt.sigmas, opt.model_tolerance + model[c].error);
     out.model_error = model[c].error;
     out.model_evals = model[c].evals;
     out.theta_i_deg = opt.theta_i_deg[c];

@@ -15,7 +15,10 @@
 // direction's azimuth; flatland: theta_o in (-pi/2, pi/2) in flatland_bins bins). The user's BRDF
 // is integrated over the same bins, f(wi, wo) cos(theta_o) d omega_o, by globally adaptive
 // Gauss-Legendre cubature (quadrature_order^2 nodes per cell, cells split where the error
-// estimate is largest, until the estimates sum to model_tolerance or max_model_evals is spent):
+// estimate is largest, until the estimates sum to model_tolerance or max_model_evals is spent;
+// f is evaluated on five rules per bin first, the cell's and its four quarters' (three in
+// flatland), so 3,600 rules of 16 directions per theta_i at the defaults, 57,600 evaluations, then
+// on 16 rules per cell split):
 // the fraction of the incident flux the model sends into each bin, and a bound on its error. The two are compared as
 // the Fig. 11 suite compares vgroove's own model (validation/histogram_metrics.h): the L1 distance of the normalized
 // lobes (the shape) and of the flux fractions (shape and energy), each against the error expected of a correct model at
@@ -27,6 +30,13 @@
 // (wi at azimuth pi, wo at azimuth 0 or pi) and f is per radian: the flux fraction of a bin is
 // int f(wi, wo) cos(theta_o) d theta_o. The light is white and the surface a perfect mirror
 // (F = 1): a BRDF that includes Fresnel should be checked with its Fresnel term set to 1.
+//
+// A value that is not a BRDF's, NaN, an infinity or a negative number (-0 is 0), is an error in
+// the model, not a failed comparison: check_brdf throws support::UserError at the first one it
+// meets, naming it and its directions, "f(wi, wo) = nan at wi = (0, 0, 1), wo = (x, y, z)
+// (theta_i_deg 0): a BRDF's values must be finite and >= 0", before the surface is traced. With
+// several theta_i, the first in the options' order whose integration meets one is reported, for
+// any thread count (the others after it stop).
 #pragma once
 
 #include "vgroove/analytic/brdf_3d.h"
@@ -44,7 +54,8 @@
 
 namespace vgroove::validation {
 
-// The BRDF under test: f(wi, wo), both unit vectors pointing away from the surface (see above).
+// The BRDF under test: f(wi, wo), both unit vectors pointing away from the surface (see above),
+// called once per direction pair.
 using BrdfFn = std::function<double(const analytic::Dir3& wi, const analytic::Dir3& wo)>;
 // The same, n directions at a time (for callers that evaluate arrays, such as the Python module):
 // out[j] = f(wi_j, wo_j) with wi_j = (wi[3j], wi[3j + 1], wi[3j + 2]), likewise wo_j. Called with
@@ -88,7 +99,9 @@ struct CheckBrdfCase {
   double model_error = 0.0;     // the integration's error estimate, added to every threshold
   std::int64_t model_evals = 0;
   double sim_wall_s = 0.0, model_wall_s = 0.0;
-  bool non_finite = false;  // the model returned NaN, infinity or a negative value somewhere
+  // A model bin that is not finite or is negative (compare_lobes; check_brdf throws before, at the
+  // first such value, and model tables refuse them when read).
+  bool non_finite = false;
   bool pass = false;
 };
 
@@ -105,14 +118,16 @@ struct CheckBrdfResult {
 
 // Throws support::UserError naming the option when an option is out of range.
 void check_options(const CheckBrdfOptions& opt);
+// Throws support::UserError at the first value of f that is not finite and >= 0 (above).
 CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt);
 // The same check with the model evaluated a rule's nodes at a time: the same nodes, sums and report.
 CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt);
 
 // The comparison itself, for a model given as flux fractions per bin (the model-table route of
 // `vgroove validate --model-table`): sim and model over the same bins, N rays over G grooves.
-CheckBrdfCase compare_lobes(const std::vector<double>& sim, const std::vector<double>& model, double rays,
-                            double grooves, double sigmas, double model_tolerance);
+// It is validation/lobe_comparison.h's compare_lobes with one row, whose joint test is the flux fractions'.
+CheckBrdfCase check_lobes(const std::vector<double>& sim, const std::vector<double>& model, double rays, double grooves,
+                          double sigmas, double model_tolerance);
 // The five bins where |sim - model| is largest, largest first, with their centres.
 std::vector<WorstBin> worst_bins(const std::vector<double>& sim, const std::vector<double>& model, SurfaceDim dim,
                                  int theta_bins, int phi_bins, int flatland_bins);

@@ -1,4 +1,5 @@
 #include "vgroove/validation/cost_curve.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/analytic/kaleidoscope.h"
 #include "vgroove/sim/beam.h"
@@ -12,7 +13,7 @@
 namespace vgroove::validation {
 
 namespace {
-using Clock = std::chrono::steady_clock;
+using support::Clock;
 double ns_since(Clock::time_point t0) { return std::chrono::duration<double, std::nano>(Clock::now() - t0).count(); }
 }  // namespace
 

@@ -1,4 +1,5 @@
 #include "vgroove/validation/energy_table.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/validation/part_fields.h"
 
@@ -222,7 +223,7 @@ std::optional<EnergyTable> run_energy_table(const EnergyGrid& g, int threads, co
   if (!results) return std::nullopt;
   EnergyTable t = energy_table_from(g, std::move(*results));
   t.threads = support::resolve_threads(threads);
-  t.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  t.wall_s = support::seconds_since(t0);
   return t;
 }
 

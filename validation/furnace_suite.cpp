@@ -1,4 +1,5 @@
 #include "vgroove/validation/furnace_suite.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/analytic/brdf_flatland.h"
 #include "vgroove/analytic/hemisphere_quadrature.h"
@@ -14,6 +15,7 @@
 #include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
+#include "vgroove/validation/table_frame.h"
 
 #include <algorithm>
 #include <array>
@@ -28,8 +30,8 @@ namespace vgroove::validation {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using support::Clock;
+using support::seconds_since;
 
 // A stream per case, from its parameters (the results do not depend on the thread count).
 sim::Rng case_rng(const FurnaceSuite& s, const BrdfCase& c) {
@@ -51,97 +53,126 @@ struct Mean {
   }
 };
 
-void run_3d(const FurnaceSuite& s, FurnaceOutcome& out, const BrdfUnderTest& brdf) {
-  const BrdfCase& c = out.c;
-  const analytic::Dir3 i = analytic::dir3(c.theta_i, std::numbers::pi);
-  auto rho = [&](const analytic::Dir3& o) {
-    return brdf.rho3 ? brdf.rho3(i, o) : analytic::vgroove_brdf(i, o, c.ndf, c.alpha, s.max_k);
-  };
-  // (a) Deterministic quadrature of the pointwise BRDF, polar about the mirror direction.
-  const auto t0 = Clock::now();
-  analytic::HemisphereOptions ho;
-  ho.tol = s.tolerance_3d;
-  ho.scale = c.alpha;
-  const analytic::Dir3 mirror{-i.x, -i.y, i.z};
-  const analytic::AdaptiveResult a = analytic::integrate_hemisphere(
-      mirror, [&](const analytic::Dir3& o) { return rho(o) * o.z; }, ho);
-  const analytic::AdaptiveResult ct = analytic::integrate_hemisphere(
-      mirror, [&](const analytic::Dir3& o) { return analytic::cook_torrance(i, o, c.ndf, c.alpha) * o.z; }, ho);
-  out.albedo_quadrature = a.value;
-  out.quadrature_error = a.error;
-  out.cook_torrance_quadrature = ct.value;
-  const analytic::SamplerOptions opt{s.strategy, s.max_k};
-  // The light beyond max_k reflections, over the grooves: the V-cavity sampler's failure.
-  out.flux_beyond_max_k = analytic::sampler_failure_probability_3d(
-      i, c.ndf, c.alpha, analytic::SamplerOptions{analytic::FacetStrategy::vndf, s.max_k}, 1e-8);
-  out.quadrature_s = seconds_since(t0);
-  // (b) The importance-sampled estimator.
-  const auto t1 = Clock::now();
-  sim::Rng rng = case_rng(s, c);
-  Mean m, mct;
-  for (long n = 0; n < s.samples; ++n) {
-    const std::array<double, 4> u{rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
-    const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(i, u, c.ndf, c.alpha, opt);
-    if (x.k == 0) {
-      m.add(0.0), mct.add(0.0);
-      continue;
-    }
-    m.add(rho(x.o) * x.o.z / x.pdf);
-    mct.add(analytic::cook_torrance(i, x.o, c.ndf, c.alpha) * x.o.z / x.pdf);
+// What the 3D and flatland cases differ in: the BRDF under test and Cook-Torrance at an exit
+// direction, the quadrature over exits, the sampler and its failure share, and the traced surface.
+struct ThreeD {
+  using Exit = analytic::Dir3;
+  static auto rho(const FurnaceSuite& s, const BrdfCase& c, const BrdfUnderTest& brdf) {
+    return [&s, &c, &brdf, i = analytic::dir3(c.theta_i, std::numbers::pi)](const Exit& o) {
+      return brdf.rho3 ? brdf.rho3(i, o) : analytic::vgroove_brdf(i, o, c.ndf, c.alpha, s.max_k);
+    };
   }
-  out.albedo_estimate = m.mean();
-  out.standard_error = m.standard_error();
-  out.cook_torrance_estimate = mct.mean();
-  out.cook_torrance_standard_error = mct.standard_error();
-  out.estimate_s = seconds_since(t1);
-  // The sanity line: a traced procedural surface.
-  const auto t2 = Clock::now();
-  sim::Microsurface3dOptions so;
-  so.ndf = c.ndf, so.alpha = c.alpha, so.grooves = s.grooves, so.seed = s.seed;
-  sim::Microsurface3dTraceOptions to;
-  to.theta_i = c.theta_i, to.rays = s.rays, to.seed = s.seed;
-  to.theta_bins = 1, to.phi_bins = 2, to.max_k = 1;
-  const sim::Microsurface3dTally t = sim::trace_microsurface3d(sim::make_microsurface3d(so), to);
-  out.rays = t.rays;
-  out.in_flight = t.bounce_limit;
-  out.albedo_sim = static_cast<double>(t.escaped + t.bounce_limit) / static_cast<double>(t.rays);
-  out.sim_s = seconds_since(t2);
-}
-
-void run_flatland(const FurnaceSuite& s, FurnaceOutcome& out, const BrdfUnderTest& brdf) {
-  const BrdfCase& c = out.c;
-  auto rho = [&](double to) {
-    return brdf.rho2 ? brdf.rho2(c.theta_i, to) : analytic::flatland_brdf_fast(c.ndf, c.alpha, c.theta_i, to, s.max_k);
+  static double cook_torrance(const BrdfCase& c, const Exit& o) {
+    return analytic::cook_torrance(analytic::dir3(c.theta_i, std::numbers::pi), o, c.ndf, c.alpha);
+  }
+  static double cos_o(const Exit& o) { return o.z; }
+  // The integral of f(o) cos(theta_o) over the exits, polar about the mirror direction.
+  template <class F>
+  static analytic::AdaptiveResult integrate(const FurnaceSuite& s, const BrdfCase& c, F&& f) {
+    const analytic::Dir3 i = analytic::dir3(c.theta_i, std::numbers::pi);
+    analytic::HemisphereOptions ho;
+    ho.tol = s.tolerance_3d;
+    ho.scale = c.alpha;
+    return analytic::integrate_hemisphere(
+        {-i.x, -i.y, i.z}, [&](const Exit& o) { return f(o) * o.z; }, ho);
+  }
+  // The light beyond max_k reflections, over the grooves: the V-cavity sampler's failure.
+  static double beyond_max_k(const FurnaceSuite& s, const BrdfCase& c) {
+    return analytic::sampler_failure_probability_3d(analytic::dir3(c.theta_i, std::numbers::pi), c.ndf, c.alpha,
+                                                    analytic::SamplerOptions{analytic::FacetStrategy::vndf, s.max_k},
+                                                    1e-8);
+  }
+  struct Drawn {
+    int k;
+    Exit o;
+    double pdf;
   };
-  const auto t0 = Clock::now();
+  static Drawn sample(const FurnaceSuite& s, const BrdfCase& c, const std::array<double, 4>& u) {
+    const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(analytic::dir3(c.theta_i, std::numbers::pi), u,
+                                                                    c.ndf, c.alpha, {s.strategy, s.max_k});
+    return {x.k, x.o, x.pdf};
+  }
+  static sim::Microsurface3dTally trace(const FurnaceSuite& s, const BrdfCase& c) {
+    sim::Microsurface3dOptions so;
+    so.ndf = c.ndf, so.alpha = c.alpha, so.grooves = s.grooves, so.seed = s.seed;
+    sim::Microsurface3dTraceOptions to;
+    to.theta_i = c.theta_i, to.rays = s.rays, to.seed = s.seed;
+    to.theta_bins = 1, to.phi_bins = 2, to.max_k = 1;
+    return sim::trace_microsurface3d(sim::make_microsurface3d(so), to);
+  }
+};
+
+struct Flatland {
+  using Exit = double;  // theta_o
+  static auto rho(const FurnaceSuite& s, const BrdfCase& c, const BrdfUnderTest& brdf) {
+    return [&s, &c, &brdf](Exit to) {
+      return brdf.rho2 ? brdf.rho2(c.theta_i, to)
+                       : analytic::flatland_brdf_fast(c.ndf, c.alpha, c.theta_i, to, s.max_k);
+    };
+  }
+  static double cook_torrance(const BrdfCase& c, Exit to) {
+    return analytic::flatland_brdf_single(c.ndf, c.alpha, c.theta_i, to);
+  }
+  static double cos_o(Exit to) { return std::cos(to); }
   // A tenth of the tolerance is asked for: Gauss-Kronrod's estimates are not bounds at the BRDF's
   // jumps (errors up to twice the estimate were seen at 1e-9).
-  const analytic::AdaptiveResult a = analytic::integrate_half_circle(
-      c.theta_i, [&](double to) { return rho(to) * std::cos(to); }, c.alpha, 0.1 * s.tolerance_flatland, 20000);
-  const analytic::AdaptiveResult ct = analytic::integrate_half_circle(
-      c.theta_i,
-      [&](double to) { return analytic::flatland_brdf_single(c.ndf, c.alpha, c.theta_i, to) * std::cos(to); }, c.alpha,
-      0.1 * s.tolerance_flatland, 20000);
+  template <class F>
+  static analytic::AdaptiveResult integrate(const FurnaceSuite& s, const BrdfCase& c, F&& f) {
+    return analytic::integrate_half_circle(
+        c.theta_i, [&](Exit to) { return f(to) * std::cos(to); }, c.alpha, 0.1 * s.tolerance_flatland, 20000);
+  }
+  static double beyond_max_k(const FurnaceSuite& s, const BrdfCase& c) {
+    return analytic::sampler_failure_probability_flatland(
+        c.theta_i, c.ndf, c.alpha, analytic::SamplerOptions{analytic::FacetStrategy::vndf, s.max_k}, 1e-12);
+  }
+  struct Drawn {
+    int k;
+    Exit o;
+    double pdf;
+  };
+  static Drawn sample(const FurnaceSuite& s, const BrdfCase& c, const std::array<double, 4>& u) {
+    const analytic::VgrooveSampleFlatland x =
+        analytic::sample_vgroove_flatland(c.theta_i, u, c.ndf, c.alpha, {s.strategy, s.max_k});
+    return {x.k, x.theta_o, x.pdf};
+  }
+  static sim::MicrosurfaceTally trace(const FurnaceSuite& s, const BrdfCase& c) {
+    sim::MicrosurfaceOptions so;
+    so.ndf = c.ndf, so.alpha = c.alpha, so.grooves = s.grooves, so.seed = s.seed;
+    sim::MicrosurfaceTraceOptions to;
+    to.theta_i = c.theta_i, to.rays = s.rays, to.sampling = sim::Sampling::random, to.seed = s.seed;
+    to.theta_o_bins = 1, to.max_k = 1;
+    return sim::trace_microsurface(sim::make_microsurface(so), to);
+  }
+};
+
+// One case's figures: (a) the pointwise BRDF by deterministic quadrature, (b) the importance-sampled
+// estimator, and the sanity line of a traced procedural surface.
+template <class Dim>
+void run_case(const FurnaceSuite& s, FurnaceOutcome& out, const BrdfUnderTest& brdf) {
+  const BrdfCase& c = out.c;
+  const auto rho = Dim::rho(s, c, brdf);
+  const auto t0 = Clock::now();
+  const analytic::AdaptiveResult a = Dim::integrate(s, c, rho);
+  const analytic::AdaptiveResult ct =
+      Dim::integrate(s, c, [&](const typename Dim::Exit& o) { return Dim::cook_torrance(c, o); });
   out.albedo_quadrature = a.value;
   out.quadrature_error = a.error;
   out.cook_torrance_quadrature = ct.value;
-  const analytic::SamplerOptions opt{s.strategy, s.max_k};
-  out.flux_beyond_max_k = analytic::sampler_failure_probability_flatland(
-      c.theta_i, c.ndf, c.alpha, analytic::SamplerOptions{analytic::FacetStrategy::vndf, s.max_k}, 1e-12);
+  out.flux_beyond_max_k = Dim::beyond_max_k(s, c);
   out.quadrature_s = seconds_since(t0);
   const auto t1 = Clock::now();
   sim::Rng rng = case_rng(s, c);
   Mean m, mct;
   for (long n = 0; n < s.samples; ++n) {
     const std::array<double, 4> u{rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
-    const analytic::VgrooveSampleFlatland x = analytic::sample_vgroove_flatland(c.theta_i, u, c.ndf, c.alpha, opt);
+    const typename Dim::Drawn x = Dim::sample(s, c, u);
     if (x.k == 0) {
       m.add(0.0), mct.add(0.0);
       continue;
     }
-    const double cos_o = std::cos(x.theta_o);
-    m.add(rho(x.theta_o) * cos_o / x.pdf);
-    mct.add(analytic::flatland_brdf_single(c.ndf, c.alpha, c.theta_i, x.theta_o) * cos_o / x.pdf);
+    const double cos_o = Dim::cos_o(x.o);
+    m.add(rho(x.o) * cos_o / x.pdf);
+    mct.add(Dim::cook_torrance(c, x.o) * cos_o / x.pdf);
   }
   out.albedo_estimate = m.mean();
   out.standard_error = m.standard_error();
@@ -149,12 +180,7 @@ void run_flatland(const FurnaceSuite& s, FurnaceOutcome& out, const BrdfUnderTes
   out.cook_torrance_standard_error = mct.standard_error();
   out.estimate_s = seconds_since(t1);
   const auto t2 = Clock::now();
-  sim::MicrosurfaceOptions so;
-  so.ndf = c.ndf, so.alpha = c.alpha, so.grooves = s.grooves, so.seed = s.seed;
-  sim::MicrosurfaceTraceOptions to;
-  to.theta_i = c.theta_i, to.rays = s.rays, to.sampling = sim::Sampling::random, to.seed = s.seed;
-  to.theta_o_bins = 1, to.max_k = 1;
-  const sim::MicrosurfaceTally t = sim::trace_microsurface(sim::make_microsurface(so), to);
+  const auto t = Dim::trace(s, c);
   out.rays = t.rays;
   out.in_flight = t.bounce_limit;
   out.albedo_sim = static_cast<double>(t.escaped + t.bounce_limit) / static_cast<double>(t.rays);
@@ -221,9 +247,9 @@ FurnaceOutcome run_furnace_case(const FurnaceSuite& suite, const BrdfCase& c, co
   FurnaceOutcome out;
   out.c = c;
   if (c.dim == SurfaceDim::three_d)
-    run_3d(suite, out, brdf);
+    run_case<ThreeD>(suite, out, brdf);
   else
-    run_flatland(suite, out, brdf);
+    run_case<Flatland>(suite, out, brdf);
   const double tol = c.dim == SurfaceDim::three_d ? suite.tolerance_3d : suite.tolerance_flatland;
   const double n = static_cast<double>(suite.samples), f = out.flux_beyond_max_k;
   out.finite = std::isfinite(out.albedo_quadrature) && std::isfinite(out.albedo_estimate) &&
@@ -268,14 +294,8 @@ FurnaceRun furnace_run_from(const FurnaceSuite&, const std::vector<UnitResult<Fu
 }
 
 nlohmann::json furnace_report_json(const FurnaceSuite& suite, const FurnaceRun& run) {
-  nlohmann::json j = provenance();
-  j["suite"] = suite.name;
-  j["suite_file"] = suite.file;
-  j["kind"] = "furnace";
-  j["description"] = suite.description;
-  j["seed"] = suite.seed;
-  j["threads"] = run.threads;
-  j["wall_s"] = run.wall_s;
+  nlohmann::json j =
+      report_header({suite.name, suite.file, "furnace", suite.description, suite.seed}, run.threads, run.wall_s);
   j["inputs"] = suite_inputs(suite);
   j["columns"] = {
       {"albedo_quadrature",
@@ -343,11 +363,11 @@ nlohmann::json furnace_report_json(const FurnaceSuite& suite, const FurnaceRun& 
 }
 
 void print_furnace_table(std::ostream& os, const FurnaceSuite& suite, const FurnaceRun& run) {
-  os << support::format(
-      "%s (furnace): %zu cases; Eq. 17 (N = %d) by quadrature and by %ld samples (%s), vgroove %s (git %s), "
-      "%d threads\n",
-      support::printable(suite.name).c_str(), run.cases.size(), suite.max_k, suite.samples,
-      analytic::strategy_name(suite.strategy), version_string(), git_revision(), run.threads);
+  print_table_title(
+      os, suite.name, "furnace",
+      support::format("%zu cases; Eq. 17 (N = %d) by quadrature and by %ld samples (%s)", run.cases.size(), suite.max_k,
+                      suite.samples, analytic::strategy_name(suite.strategy)),
+      run.threads);
   os << support::format("  %-8s %-8s %5s %7s %12s %10s %10s %12s %10s %10s %10s %7s %5s\n", "dim", "ndf", "alpha",
                         "theta_i", "albedo quad", "beyond N", "energy-1", "albedo est", "est-1", "CT quad", "CT est",
                         "sim", "pass");
@@ -360,7 +380,7 @@ void print_furnace_table(std::ostream& os, const FurnaceSuite& suite, const Furn
   }
   std::size_t passed = 0;
   for (const auto& o : run.cases) passed += o.pass;
-  os << support::format("  %zu/%zu cases pass; wall %.2f s\n", passed, run.cases.size(), run.wall_s);
+  print_table_close(os, passed, run.cases.size(), run.wall_s);
 }
 
 }  // namespace vgroove::validation

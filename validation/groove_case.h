@@ -9,7 +9,7 @@
 // larger of its facets'.
 #pragma once
 
-#include "vgroove/validation/suite.h"
+#include "vgroove/validation/groove_suite.h"
 
 #include <atomic>
 #include <cstdint>

@@ -1,4 +1,5 @@
 #include "vgroove/validation/model_table.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/common/angles.h"
 #include "vgroove/support/format.h"
@@ -20,7 +21,8 @@ namespace vgroove::validation {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using support::Clock;
+using support::seconds_since;
 
 int bins_of(const BrdfSuite& s, SurfaceDim d) {
   return d == SurfaceDim::flatland ? s.flatland_bins : s.theta_bins * s.phi_bins;
@@ -136,42 +138,17 @@ ModelTable parse_model_table(const nlohmann::json& j, const std::string& file, c
 
 std::shared_ptr<const ModelTableWork::Context> ModelTableWork::prepare(std::size_t c) const {
   const BrdfCase k = suite.case_at(c);
-  auto ctx = std::make_shared<Context>();
-  if (k.dim == SurfaceDim::flatland) {
-    sim::MicrosurfaceOptions so;
-    so.ndf = k.ndf, so.alpha = k.alpha, so.grooves = suite.grooves, so.seed = suite.seed;
-    ctx->flat = sim::make_microsurface(so);
-  } else {
-    sim::Microsurface3dOptions so;
-    so.ndf = k.ndf, so.alpha = k.alpha, so.grooves = suite.grooves, so.seed = suite.seed;
-    ctx->three_d = sim::make_microsurface3d(so);
-  }
-  return ctx;
+  return std::make_shared<Context>(make_case_surface(k.dim, k.ndf, k.alpha, suite.grooves, suite.seed));
 }
 
 LobeTally ModelTableWork::run_chunks(const Context& ctx, std::size_t c, std::int64_t begin, std::int64_t end) const {
-  const BrdfCase k = suite.case_at(c);
-  const auto t0 = Clock::now();
+  CaseRays r;
+  r.theta_i = suite.case_at(c).theta_i, r.rays = rays, r.seed = suite.seed;
+  r.flatland_bins = suite.flatland_bins, r.theta_bins = suite.theta_bins, r.phi_bins = suite.phi_bins;
+  r.max_k = 0;  // the histogram alone
+  BinnedTally t = trace_case_chunks(ctx, r, begin, end, cancel);
   LobeTally out;
-  out.hist.assign(static_cast<std::size_t>(bins_of(suite, k.dim)), 0);
-  for (std::int64_t chunk = begin; chunk < end && !support::cancelled(cancel); ++chunk) {
-    std::vector<std::int64_t> hist;
-    if (k.dim == SurfaceDim::flatland) {
-      sim::MicrosurfaceTraceOptions to;
-      to.theta_i = k.theta_i, to.rays = rays, to.seed = suite.seed, to.theta_o_bins = suite.flatland_bins;
-      to.max_k = 0;
-      sim::MicrosurfaceTally t = sim::trace_microsurface_chunk(ctx.flat, to, chunk);
-      hist = std::move(t.theta_o), out.rays += t.rays;
-    } else {
-      sim::Microsurface3dTraceOptions to;
-      to.theta_i = k.theta_i, to.rays = rays, to.seed = suite.seed;
-      to.theta_bins = suite.theta_bins, to.phi_bins = suite.phi_bins, to.max_k = 0;
-      sim::Microsurface3dTally t = sim::trace_microsurface3d_chunk(ctx.three_d, to, chunk);
-      hist = std::move(t.hist), out.rays += t.rays;
-    }
-    for (std::size_t n = 0; n < out.hist.size(); ++n) out.hist[n] += hist[n];
-  }
-  out.thread_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  out.hist = std::move(t.hist), out.rays = t.rays, out.thread_s = t.thread_s;
   return out;
 }
 
@@ -228,7 +205,7 @@ ModelTableRun model_table_run_from(const BrdfSuite& s, const ModelTable& t, long
     const LobeTally& traced = results[c].tally;
     const std::vector<double> flux = fractions(traced.hist, static_cast<double>(traced.rays));
     CheckBrdfCase out =
-        compare_lobes(flux, t.flux[c], static_cast<double>(traced.rays), s.grooves, s.sigmas, tolerance(s, k.dim));
+        check_lobes(flux, t.flux[c], static_cast<double>(traced.rays), s.grooves, s.sigmas, tolerance(s, k.dim));
     out.theta_i_deg = output_deg(k.theta_i);
     out.rays = traced.rays;
     out.sim_wall_s = traced.thread_s;
@@ -247,7 +224,7 @@ ModelTableRun run_model_table(const BrdfSuite& s, const ModelTable& t, long rays
   if (results) run = model_table_run_from(s, t, rays, *results);
   run.rays = rays > 0 ? rays : s.rays;
   run.threads = support::resolve_threads(threads);
-  run.wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  run.wall_s = seconds_since(t0);
   run.interrupted = !results;
   run.pass = run.pass && !run.interrupted;
   return run;

@@ -60,10 +60,7 @@ struct LobeTally {
   double thread_s = 0.0;  // time spent tracing (a timing: never compared)
 };
 struct ModelTableWork {
-  struct Context {
-    sim::Microsurface flat;
-    sim::Microsurface3d three_d;
-  };
+  using Context = CaseSurface;
   struct Fixed {};
   using Tally = LobeTally;
   BrdfSuite suite;

@@ -1,8 +1,11 @@
 #include "vgroove/validation/nonsymmetric_suite.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/support/format.h"
 #include "vgroove/support/printable.h"
 #include "vgroove/validation/lobe_bins.h"
+#include "vgroove/validation/lobe_comparison.h"
+#include "vgroove/validation/plane_cut.h"
 
 #include "vgroove/analytic/brdf_nonsymmetric.h"
 #include "vgroove/analytic/lobe_nonsymmetric.h"
@@ -13,6 +16,7 @@
 #include "vgroove/validation/histogram_metrics.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
+#include "vgroove/validation/table_frame.h"
 
 #include <algorithm>
 #include <chrono>
@@ -26,8 +30,8 @@ namespace vgroove::validation {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using support::Clock;
+using support::seconds_since;
 constexpr double kPi = std::numbers::pi;
 constexpr double kReciprocityTolerance = 1e-8;
 
@@ -40,38 +44,19 @@ analytic::NonsymmetricModel model_of(const NonsymmetricCase& c, bool symmetric) 
 
 const char* partner_name(bool symmetric) { return symmetric ? "symmetric" : "independent"; }
 
-// The comparison of the traced joint (row, bin) fractions with the model's: L1 of the normalized
-// lobes and of the joint fractions against their expected values at N rays over G grooves.
+// The traced joint (row, bin) fractions against the model's (compare_lobes), and the shape of the
+// other partner law's model against the same trace.
 void compare(NonsymmetricOutcome& out, const NonsymmetricSuite& suite, const std::vector<double>& sim_joint,
              const std::vector<double>& model_joint, const std::vector<double>& other_joint, int bins,
              double tolerance) {
-  const int rows = suite.max_k + 2;
-  std::vector<double> sim_total(static_cast<std::size_t>(bins), 0.0), model_total(sim_total), other_total(sim_total);
-  for (int r = 0; r < rows; ++r)
-    for (int b = 0; b < bins; ++b) {
-      const std::size_t n = static_cast<std::size_t>(r) * bins + b;
-      sim_total[static_cast<std::size_t>(b)] += sim_joint[n];
-      model_total[static_cast<std::size_t>(b)] += model_joint[n];
-      other_total[static_cast<std::size_t>(b)] += other_joint[n];
-    }
   const double N = static_cast<double>(out.rays), G = static_cast<double>(suite.grooves);
-  const std::vector<double> p = normalized(model_total), s = normalized(sim_total);
-  out.l1 = l1(s, p);
-  const ExpectedL1 e = expected_l1(p, N, G);
-  out.l1_expected = e.mean;
-  out.l1_threshold = e.mean + suite.sigmas * e.sd + tolerance;
-  out.l1_k = l1(sim_joint, model_joint);
-  const ExpectedL1 ek = expected_l1(model_joint, N, G);
-  out.l1_k_expected = ek.mean;
-  out.l1_k_threshold = ek.mean + suite.sigmas * ek.sd + tolerance;
-  out.l1_other = l1(s, normalized(other_total));
+  const LobeComparison c = compare_lobes(sim_joint, model_joint, bins, N, G, suite.sigmas, tolerance);
+  const bool holds = take_comparison(out, c, N, G, suite.sigmas, tolerance);
+  out.l1_other = l1(c.sim_shape, normalized(bin_totals(other_joint, bins)));
   out.other_rejected = out.l1_other > out.l1_threshold;
-  const double a = std::clamp(out.albedo_model, 0.0, 1.0);
-  out.albedo_threshold = suite.sigmas * std::sqrt(a * (1.0 - a) * (1.0 / N + 1.0 / G)) + 1.0 / N + tolerance;
   out.non_finite = !(std::isfinite(out.l1) && std::isfinite(out.l1_k) && std::isfinite(out.albedo_model) &&
                      all_finite(model_joint) && all_finite(other_joint));
-  out.pass = !out.non_finite && std::abs(out.albedo_sim - out.albedo_model) <= out.albedo_threshold &&
-             out.l1 <= out.l1_threshold && out.l1_k <= out.l1_k_threshold;
+  out.pass = !out.non_finite && holds;
 }
 
 // All chunks of rays merged in order, as sim's trace_nonsymmetric_microsurface(3d) do (the same
@@ -82,13 +67,6 @@ Tally trace_chunks(const Surface& surface, const Options& to, Tally total, Chunk
   const std::int64_t n = sim::chunk_count(to);
   for (std::int64_t c = 0; c < n && !support::cancelled(cancel); ++c) total.merge(chunk(surface, to, c));
   return total;
-}
-
-template <class Tally>
-void take_counts(NonsymmetricOutcome& out, const Tally& t) {
-  out.rays = t.rays, out.escaped = t.escaped, out.lost = t.lost(), out.bounces = t.bounces;
-  out.max_k_seen = t.max_k_seen;
-  out.albedo_sim = static_cast<double>(t.escaped) / static_cast<double>(t.rays);
 }
 
 sim::NonsymmetricSurfaceOptions surface_options(const NonsymmetricSuite& suite, const NonsymmetricCase& c) {
@@ -104,92 +82,84 @@ sim::NonsymmetricSurfaceOptions surface_options(const NonsymmetricSuite& suite, 
   return o;
 }
 
-NonsymmetricOutcome run_flatland(const NonsymmetricSuite& suite, const NonsymmetricCase& c, long rays,
-                                 support::CancelFlag cancel) {
-  NonsymmetricOutcome out;
-  out.c = c;
-  const int bins = suite.flatland_bins;
-  const auto t0 = Clock::now();
-  const sim::NonsymmetricMicrosurface surface = sim::make_nonsymmetric_microsurface(surface_options(suite, c));
-  sim::MicrosurfaceTraceOptions to;
-  to.theta_i = c.theta_i;
-  to.rays = rays;
-  to.sampling = sim::Sampling::random;
-  to.seed = suite.seed;
-  to.theta_o_bins = bins;
-  to.max_k = suite.max_k;
-  const sim::MicrosurfaceTally t = trace_chunks(surface, to, sim::MicrosurfaceTally(to.theta_o_bins, to.max_k),
-                                                sim::trace_nonsymmetric_microsurface_chunk, cancel);
-  out.sim_wall_s = seconds_since(t0);
-  if (support::cancelled(cancel)) return out;
-  take_counts(out, t);
-  const auto t1 = Clock::now();
-  analytic::NonsymmetricLobeOptions lo = analytic::flatland_options();
-  lo.cancel = cancel;
-  const analytic::FlatlandLobe lobe =
-      analytic::flatland_nonsymmetric_lobe(model_of(c, c.symmetric), c.theta_i, bins, suite.max_k, lo);
-  const analytic::FlatlandLobe other =
-      analytic::flatland_nonsymmetric_lobe(model_of(c, !c.symmetric), c.theta_i, bins, suite.max_k, lo);
-  out.model_wall_s = seconds_since(t1);
-  if (support::cancelled(cancel)) return out;
-  out.albedo_model = lobe.albedo;
-  const double N = static_cast<double>(t.rays);
-  out.by_k_sim = fractions(t.by_k, N);
-  out.by_k_model = lobe.by_k;
-  out.by_k_other = other.by_k;
-  compare(out, suite, fractions(t.theta_o_by_k, N), lobe.theta_o_by_k, other.theta_o_by_k, bins,
-          suite.model_tolerance_flatland);
-  const double width = kPi / bins;
-  for (int b = 0; b < bins; ++b) {
-    const auto s = static_cast<std::size_t>(b);
-    out.plane_theta_deg.push_back(output_deg(-0.5 * kPi + (b + 0.5) * width));
-    out.plane_sim.push_back(static_cast<double>(t.theta_o[s]) / N / width);
-    out.plane_model.push_back(lobe.theta_o[s] / width);
-    out.plane_other.push_back(other.theta_o[s] / width);
+// What the flatland and 3D cases differ in: the surface, its trace and tally, the model's lobe and
+// where each keeps its histograms, the tolerance and the plane of incidence.
+struct Flatland {
+  static sim::NonsymmetricMicrosurface surface(const sim::NonsymmetricSurfaceOptions& o) {
+    return sim::make_nonsymmetric_microsurface(o);
   }
-  for (int k = 1; k <= std::min(suite.plane_k, suite.max_k); ++k) {
-    std::vector<double> a, m, o;
-    for (int b = 0; b < bins; ++b) {
-      const std::size_t n = static_cast<std::size_t>(k) * bins + b;
-      a.push_back(static_cast<double>(t.theta_o_by_k[n]) / N / width);
-      m.push_back(lobe.theta_o_by_k[n] / width);
-      o.push_back(other.theta_o_by_k[n] / width);
-    }
-    out.plane_sim_k.push_back(std::move(a));
-    out.plane_model_k.push_back(std::move(m));
-    out.plane_other_k.push_back(std::move(o));
+  static sim::MicrosurfaceTally trace(const sim::NonsymmetricMicrosurface& surface, const NonsymmetricSuite& suite,
+                                      const NonsymmetricCase& c, long rays, support::CancelFlag cancel) {
+    sim::MicrosurfaceTraceOptions to;
+    to.theta_i = c.theta_i;
+    to.rays = rays;
+    to.sampling = sim::Sampling::random;
+    to.seed = suite.seed;
+    to.theta_o_bins = suite.flatland_bins;
+    to.max_k = suite.max_k;
+    return trace_chunks(surface, to, sim::MicrosurfaceTally(to.theta_o_bins, to.max_k),
+                        sim::trace_nonsymmetric_microsurface_chunk, cancel);
   }
-  return out;
-}
+  static analytic::FlatlandLobe lobe(const NonsymmetricSuite& suite, const NonsymmetricCase& c, bool symmetric,
+                                     support::CancelFlag cancel) {
+    analytic::NonsymmetricLobeOptions lo = analytic::flatland_options();
+    lo.cancel = cancel;
+    return analytic::flatland_nonsymmetric_lobe(model_of(c, symmetric), c.theta_i, suite.flatland_bins, suite.max_k,
+                                                lo);
+  }
+  static const auto& hist(const sim::MicrosurfaceTally& t) { return t.theta_o; }
+  static const auto& hist_by_k(const sim::MicrosurfaceTally& t) { return t.theta_o_by_k; }
+  static const auto& hist(const analytic::FlatlandLobe& l) { return l.theta_o; }
+  static const auto& hist_by_k(const analytic::FlatlandLobe& l) { return l.theta_o_by_k; }
+  static double tolerance(const NonsymmetricSuite& suite) { return suite.model_tolerance_flatland; }
+  static PlaneCut plane(const NonsymmetricSuite& suite) { return PlaneCut::flatland(suite.flatland_bins); }
+};
 
-NonsymmetricOutcome run_3d(const NonsymmetricSuite& suite, const NonsymmetricCase& c, long rays,
-                           support::CancelFlag cancel) {
+struct ThreeD {
+  static sim::NonsymmetricMicrosurface3d surface(const sim::NonsymmetricSurfaceOptions& o) {
+    return sim::make_nonsymmetric_microsurface3d(o);
+  }
+  static sim::Microsurface3dTally trace(const sim::NonsymmetricMicrosurface3d& surface, const NonsymmetricSuite& suite,
+                                        const NonsymmetricCase& c, long rays, support::CancelFlag cancel) {
+    sim::Microsurface3dTraceOptions to;
+    to.theta_i = c.theta_i;
+    to.rays = rays;
+    to.seed = suite.seed;
+    to.theta_bins = suite.theta_bins;
+    to.phi_bins = suite.phi_bins;
+    to.max_k = suite.max_k;
+    return trace_chunks(surface, to, sim::Microsurface3dTally(to.theta_bins, to.phi_bins, to.max_k),
+                        sim::trace_nonsymmetric_microsurface3d_chunk, cancel);
+  }
+  static analytic::Lobe3d lobe(const NonsymmetricSuite& suite, const NonsymmetricCase& c, bool symmetric,
+                               support::CancelFlag cancel) {
+    analytic::NonsymmetricLobeOptions lo;
+    lo.cancel = cancel;
+    return analytic::nonsymmetric_lobe_3d(model_of(c, symmetric), c.theta_i, kPi - c.phi_i, suite.theta_bins,
+                                          suite.phi_bins, suite.max_k, lo);
+  }
+  static const auto& hist(const sim::Microsurface3dTally& t) { return t.hist; }
+  static const auto& hist_by_k(const sim::Microsurface3dTally& t) { return t.hist_by_k; }
+  static const auto& hist(const analytic::Lobe3d& l) { return l.hist; }
+  static const auto& hist_by_k(const analytic::Lobe3d& l) { return l.hist_by_k; }
+  static double tolerance(const NonsymmetricSuite& suite) { return suite.model_tolerance_3d; }
+  static PlaneCut plane(const NonsymmetricSuite& suite) { return PlaneCut::three_d(suite.theta_bins, suite.phi_bins); }
+};
+
+// One case: the surface traced, both partner laws' lobes, the comparison and the plane of incidence.
+template <class Dim>
+NonsymmetricOutcome run_case(const NonsymmetricSuite& suite, const NonsymmetricCase& c, long rays,
+                             support::CancelFlag cancel) {
   NonsymmetricOutcome out;
   out.c = c;
-  const int tb = suite.theta_bins, pb = suite.phi_bins, bins = tb * pb;
   const auto t0 = Clock::now();
-  const sim::NonsymmetricMicrosurface3d surface = sim::make_nonsymmetric_microsurface3d(surface_options(suite, c));
-  sim::Microsurface3dTraceOptions to;
-  to.theta_i = c.theta_i;
-  to.rays = rays;
-  to.seed = suite.seed;
-  to.theta_bins = tb;
-  to.phi_bins = pb;
-  to.max_k = suite.max_k;
-  const sim::Microsurface3dTally t =
-      trace_chunks(surface, to, sim::Microsurface3dTally(to.theta_bins, to.phi_bins, to.max_k),
-                   sim::trace_nonsymmetric_microsurface3d_chunk, cancel);
+  const auto t = Dim::trace(Dim::surface(surface_options(suite, c)), suite, c, rays, cancel);
   out.sim_wall_s = seconds_since(t0);
   if (support::cancelled(cancel)) return out;
   take_counts(out, t);
   const auto t1 = Clock::now();
-  const double axes = kPi - c.phi_i;
-  analytic::NonsymmetricLobeOptions lo;
-  lo.cancel = cancel;
-  const analytic::Lobe3d lobe =
-      analytic::nonsymmetric_lobe_3d(model_of(c, c.symmetric), c.theta_i, axes, tb, pb, suite.max_k, lo);
-  const analytic::Lobe3d other =
-      analytic::nonsymmetric_lobe_3d(model_of(c, !c.symmetric), c.theta_i, axes, tb, pb, suite.max_k, lo);
+  const auto lobe = Dim::lobe(suite, c, c.symmetric, cancel);
+  const auto other = Dim::lobe(suite, c, !c.symmetric, cancel);
   out.model_wall_s = seconds_since(t1);
   if (support::cancelled(cancel)) return out;
   out.albedo_model = lobe.albedo;
@@ -197,28 +167,20 @@ NonsymmetricOutcome run_3d(const NonsymmetricSuite& suite, const NonsymmetricCas
   out.by_k_sim = fractions(t.by_k, N);
   out.by_k_model = lobe.by_k;
   out.by_k_other = other.by_k;
-  compare(out, suite, fractions(t.hist_by_k, N), lobe.hist_by_k, other.hist_by_k, bins, suite.model_tolerance_3d);
-  // The plane of incidence: phi bin pb/2 (towards the light, +theta) and bin 0 (mirror side, -theta).
-  const double dt = 0.5 * kPi / tb, dp = 2.0 * kPi / pb;
-  auto solid_angle = [&](int t_) { return dp * (std::cos(t_ * dt) - std::cos((t_ + 1) * dt)); };
-  auto cut = [&](auto&& value, std::vector<double>& into) {
-    for (int t_ = tb - 1; t_ >= 0; --t_) into.push_back(value(static_cast<std::size_t>(t_) * pb) / solid_angle(t_));
-    for (int t_ = 0; t_ < tb; ++t_) into.push_back(value(static_cast<std::size_t>(t_) * pb + pb / 2) / solid_angle(t_));
-  };
-  for (int t_ = tb - 1; t_ >= 0; --t_) out.plane_theta_deg.push_back(output_deg(-(t_ + 0.5) * dt));
-  for (int t_ = 0; t_ < tb; ++t_) out.plane_theta_deg.push_back(output_deg((t_ + 0.5) * dt));
-  cut([&](std::size_t n) { return static_cast<double>(t.hist[n]) / N; }, out.plane_sim);
-  cut([&](std::size_t n) { return lobe.hist[n]; }, out.plane_model);
-  cut([&](std::size_t n) { return other.hist[n]; }, out.plane_other);
+  const PlaneCut plane = Dim::plane(suite);
+  const int bins = plane.bins();
+  compare(out, suite, fractions(Dim::hist_by_k(t), N), Dim::hist_by_k(lobe), Dim::hist_by_k(other), bins,
+          Dim::tolerance(suite));
+  out.plane_theta_deg = plane.angles_deg();
+  out.plane_sim = plane.cut([&](std::size_t n) { return static_cast<double>(Dim::hist(t)[n]) / N; });
+  out.plane_model = plane.cut([&](std::size_t n) { return Dim::hist(lobe)[n]; });
+  out.plane_other = plane.cut([&](std::size_t n) { return Dim::hist(other)[n]; });
   for (int k = 1; k <= std::min(suite.plane_k, suite.max_k); ++k) {
-    const std::size_t off = static_cast<std::size_t>(k) * bins;
-    std::vector<double> a, m, o;
-    cut([&](std::size_t n) { return static_cast<double>(t.hist_by_k[off + n]) / N; }, a);
-    cut([&](std::size_t n) { return lobe.hist_by_k[off + n]; }, m);
-    cut([&](std::size_t n) { return other.hist_by_k[off + n]; }, o);
-    out.plane_sim_k.push_back(std::move(a));
-    out.plane_model_k.push_back(std::move(m));
-    out.plane_other_k.push_back(std::move(o));
+    const std::size_t row = static_cast<std::size_t>(k) * bins;
+    out.plane_sim_k.push_back(
+        plane.cut([&](std::size_t n) { return static_cast<double>(Dim::hist_by_k(t)[row + n]) / N; }));
+    out.plane_model_k.push_back(plane.cut([&](std::size_t n) { return Dim::hist_by_k(lobe)[row + n]; }));
+    out.plane_other_k.push_back(plane.cut([&](std::size_t n) { return Dim::hist_by_k(other)[row + n]; }));
   }
   return out;
 }
@@ -282,48 +244,22 @@ void check_partner_laws(support::JsonObject& o, const std::vector<analytic::NdfK
 }
 
 nlohmann::json case_json(const NonsymmetricOutcome& o) {
-  return {{"ndf", analytic::ndf_name(o.c.ndf)},
-          {"alpha_x", o.c.alpha_x},
-          {"alpha_y", o.c.alpha_y},
-          {"theta_i_deg", output_deg(o.c.theta_i)},
-          {"phi_i_deg", output_deg(o.c.phi_i)},
-          {"dimension", surface_dim_name(o.c.dim)},
-          {"partner", partner_name(o.c.symmetric)},
-          {"anisotropic_block", o.c.anisotropic},
-          {"rays", o.rays},
-          {"escaped", o.escaped},
-          {"lost", o.lost},
-          {"bounces", o.bounces},
-          {"max_k_seen", o.max_k_seen},
-          {"sim_wall_s", o.sim_wall_s},
-          {"model_wall_s", o.model_wall_s},
-          {"albedo_sim", o.albedo_sim},
-          {"albedo_model", o.albedo_model},
-          {"albedo_threshold", o.albedo_threshold},
-          {"l1", o.l1},
-          {"l1_expected", o.l1_expected},
-          {"l1_threshold", o.l1_threshold},
-          {"l1_by_k", o.l1_k},
-          {"l1_by_k_expected", o.l1_k_expected},
-          {"l1_by_k_threshold", o.l1_k_threshold},
-          {"other_partner", partner_name(!o.c.symmetric)},
-          {"l1_other_model", o.l1_other},
-          {"other_model_rejected", o.other_rejected},
-          {"by_k_sim", o.by_k_sim},
-          {"by_k_model", o.by_k_model},
-          {"by_k_other_model", o.by_k_other},
-          {"plane",
-           {{"theta_deg", o.plane_theta_deg},
-            {"unit", o.c.dim == SurfaceDim::flatland ? "fraction of the flux per radian"
-                                                     : "fraction of the flux per steradian"},
-            {"sim", o.plane_sim},
-            {"model", o.plane_model},
-            {"other_model", o.plane_other},
-            {"sim_by_k", o.plane_sim_k},
-            {"model_by_k", o.plane_model_k},
-            {"other_model_by_k", o.plane_other_k}}},
-          {"non_finite", o.non_finite},
-          {"pass", o.pass}};
+  nlohmann::json c = lobe_case_json(o, o.c.dim == SurfaceDim::flatland);
+  c["ndf"] = analytic::ndf_name(o.c.ndf);
+  c["alpha_x"] = o.c.alpha_x;
+  c["alpha_y"] = o.c.alpha_y;
+  c["theta_i_deg"] = output_deg(o.c.theta_i);
+  c["phi_i_deg"] = output_deg(o.c.phi_i);
+  c["dimension"] = surface_dim_name(o.c.dim);
+  c["partner"] = partner_name(o.c.symmetric);
+  c["anisotropic_block"] = o.c.anisotropic;
+  c["other_partner"] = partner_name(!o.c.symmetric);
+  c["l1_other_model"] = o.l1_other;
+  c["other_model_rejected"] = o.other_rejected;
+  c["by_k_other_model"] = o.by_k_other;
+  c["plane"]["other_model"] = o.plane_other;
+  c["plane"]["other_model_by_k"] = o.plane_other_k;
+  return c;
 }
 
 }  // namespace
@@ -396,7 +332,8 @@ NonsymmetricSuite parse_nonsymmetric_suite(const nlohmann::json& j, const std::s
 
 NonsymmetricOutcome run_nonsymmetric_case(const NonsymmetricSuite& suite, const NonsymmetricCase& c, long rays,
                                           const std::atomic<bool>* cancel) {
-  return c.dim == SurfaceDim::flatland ? run_flatland(suite, c, rays, cancel) : run_3d(suite, c, rays, cancel);
+  return c.dim == SurfaceDim::flatland ? run_case<Flatland>(suite, c, rays, cancel)
+                                       : run_case<ThreeD>(suite, c, rays, cancel);
 }
 
 double nonsymmetric_run_memory_bytes(const NonsymmetricSuite& suite, int threads, bool report) {
@@ -495,14 +432,8 @@ NonsymmetricRun run_nonsymmetric_suite(const NonsymmetricSuite& suite, long rays
 }
 
 nlohmann::json nonsymmetric_report_json(const NonsymmetricSuite& suite, const NonsymmetricRun& run) {
-  nlohmann::json j = provenance();
-  j["suite"] = suite.name;
-  j["suite_file"] = suite.file;
-  j["kind"] = "nonsymmetric_brdf";
-  j["description"] = suite.description;
-  j["seed"] = suite.seed;
-  j["threads"] = run.threads;
-  j["wall_s"] = run.wall_s;
+  nlohmann::json j = report_header({suite.name, suite.file, "nonsymmetric_brdf", suite.description, suite.seed},
+                                   run.threads, run.wall_s);
   nlohmann::json ti = nlohmann::json::array(), ati = nlohmann::json::array(), phi = nlohmann::json::array();
   for (double t : suite.theta_i) ti.push_back(output_deg(t));
   for (double t : suite.aniso_theta_i) ati.push_back(output_deg(t));
@@ -563,10 +494,10 @@ nlohmann::json nonsymmetric_report_json(const NonsymmetricSuite& suite, const No
 }
 
 void print_nonsymmetric_table(std::ostream& os, const NonsymmetricSuite& suite, const NonsymmetricRun& run) {
-  os << support::format(
-      "%s (nonsymmetric_brdf): %zu cases, %ld rays x %d grooves each, vgroove %s (git %s), %d threads\n",
-      support::printable(suite.name).c_str(), run.cases.size(), suite.rays, suite.grooves, version_string(),
-      git_revision(), run.threads);
+  print_table_title(
+      os, suite.name, "nonsymmetric_brdf",
+      support::format("%zu cases, %ld rays x %d grooves each", run.cases.size(), suite.rays, suite.grooves),
+      run.threads);
   os << support::format("  %-8s %-8s %5s %5s %7s %6s %-11s %8s %8s %8s %8s %8s %-8s %8s %5s\n", "dim", "ndf", "ax",
                         "ay", "theta_i", "phi_i", "partner", "L1", "L1 thr", "L1 by k", "thr", "other L1", "other",
                         "wall s", "pass");
@@ -588,10 +519,10 @@ void print_nonsymmetric_table(std::ostream& os, const NonsymmetricSuite& suite, 
     passed += o.pass;
     rejected += o.other_rejected;
   }
-  os << support::format(
-      "  reciprocity: %zu/%zu rows below 1e-8, worst relative asymmetry %.2e\n"
-      "  %zu/%zu cases pass; the other partner law's model rejected in %zu; wall %.2f s\n",
-      recip_pass, run.reciprocity.size(), worst, passed, run.cases.size(), rejected, run.wall_s);
+  os << support::format("  reciprocity: %zu/%zu rows below 1e-8, worst relative asymmetry %.2e\n", recip_pass,
+                        run.reciprocity.size(), worst);
+  print_table_close(os, passed, run.cases.size(), run.wall_s,
+                    support::format("cases pass; the other partner law's model rejected in %zu", rejected));
 }
 
 }  // namespace vgroove::validation

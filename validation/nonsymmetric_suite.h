@@ -76,21 +76,12 @@ struct NonsymmetricSuite {
   std::vector<NonsymmetricCase> cases() const;  // the grid (dimension, ndf, alpha, theta_i), then the block
 };
 
-struct NonsymmetricOutcome {
+struct NonsymmetricOutcome : LobeOutcome {
   NonsymmetricCase c;
-  std::int64_t rays = 0, escaped = 0, lost = 0, bounces = 0;
-  int max_k_seen = 0;
-  double sim_wall_s = 0.0, model_wall_s = 0.0;
-  double albedo_sim = 0.0, albedo_model = 0.0, albedo_threshold = 0.0;
-  double l1 = 0.0, l1_expected = 0.0, l1_threshold = 0.0;        // normalized lobes, all k
-  double l1_k = 0.0, l1_k_expected = 0.0, l1_k_threshold = 0.0;  // joint (k, bin) fractions
   double l1_other = 0.0;        // the traced lobe against the other partner law's model (normalized)
   bool other_rejected = false;  // l1_other > l1_threshold
-  std::vector<double> by_k_sim, by_k_model, by_k_other;
-  std::vector<double> plane_theta_deg, plane_sim, plane_model, plane_other;
-  std::vector<std::vector<double>> plane_sim_k, plane_model_k, plane_other_k;  // k = 1..plane_k
-  bool non_finite = false;
-  bool pass = false;
+  std::vector<double> by_k_other, plane_other;
+  std::vector<std::vector<double>> plane_other_k;  // k = 1..plane_k
 };
 
 struct ReciprocityRow {
@@ -105,16 +96,9 @@ struct ReciprocityRow {
 // Their members for a shard part (outcome_fields.h); the case and the row's surface are the suite's.
 template <class F>
 void fields(NonsymmetricOutcome& o, F&& f) {
-  f("rays", o.rays), f("escaped", o.escaped), f("lost", o.lost), f("bounces", o.bounces);
-  f("max_k_seen", o.max_k_seen), f("sim_wall_s", o.sim_wall_s), f("model_wall_s", o.model_wall_s);
-  f("albedo_sim", o.albedo_sim), f("albedo_model", o.albedo_model), f("albedo_threshold", o.albedo_threshold);
-  f("l1", o.l1), f("l1_expected", o.l1_expected), f("l1_threshold", o.l1_threshold);
-  f("l1_k", o.l1_k), f("l1_k_expected", o.l1_k_expected), f("l1_k_threshold", o.l1_k_threshold);
-  f("l1_other", o.l1_other), f("other_rejected", o.other_rejected);
-  f("by_k_sim", o.by_k_sim), f("by_k_model", o.by_k_model), f("by_k_other", o.by_k_other);
-  f("plane_theta_deg", o.plane_theta_deg), f("plane_sim", o.plane_sim), f("plane_model", o.plane_model);
-  f("plane_other", o.plane_other), f("plane_sim_k", o.plane_sim_k), f("plane_model_k", o.plane_model_k);
-  f("plane_other_k", o.plane_other_k), f("non_finite", o.non_finite), f("pass", o.pass);
+  lobe_fields(o, f);
+  f("l1_other", o.l1_other), f("other_rejected", o.other_rejected), f("by_k_other", o.by_k_other);
+  f("plane_other", o.plane_other), f("plane_other_k", o.plane_other_k);
 }
 template <class F>
 void fields(ReciprocityRow& r, F&& f) {

@@ -1,4 +1,5 @@
 #include "vgroove/validation/partial_report.h"
+#include "vgroove/support/printable.h"
 
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/user_error.h"
@@ -119,6 +120,7 @@ std::string hex16(std::uint64_t h) {
 std::string file_digest(const std::vector<std::string>& files) {
   std::uint64_t h = kFnvOffset;
   for (const std::string& f : files) {
+    support::check_file_name(f);
     std::ifstream in(f, std::ios::binary);
     if (!in) throw support::UserError(f + ": cannot open the file (missing or unreadable)");
     for (std::istreambuf_iterator<char> it(in), end; it != end; ++it) {

@@ -4,6 +4,7 @@
 #include "vgroove/support/printable.h"
 #include "vgroove/validation/profiles_suite.h"
 #include "vgroove/validation/report.h"
+#include "vgroove/validation/table_frame.h"
 
 #include <cmath>
 #include <cstdio>
@@ -110,14 +111,8 @@ nlohmann::json surface_json(const ProfilesSuite& suite, const ProfilesCase& c, c
 }  // namespace
 
 nlohmann::json profiles_report_json(const ProfilesSuite& suite, const ProfilesRun& run) {
-  nlohmann::json j = provenance();
-  j["suite"] = suite.name;
-  j["suite_file"] = suite.file;
-  j["kind"] = "profiles";
-  j["description"] = suite.description;
-  j["seed"] = suite.seed;
-  j["threads"] = run.threads;
-  j["wall_s"] = run.wall_s;
+  nlohmann::json j =
+      report_header({suite.name, suite.file, "profiles", suite.description, suite.seed}, run.threads, run.wall_s);
   nlohmann::json ndfs = nlohmann::json::array(), theta = nlohmann::json::array(), surfaces = nlohmann::json::array();
   for (auto n : suite.ndfs) ndfs.push_back(analytic::ndf_name(n));
   for (double t : suite.theta) theta.push_back(output_deg(t));
@@ -182,11 +177,12 @@ nlohmann::json profiles_report_json(const ProfilesSuite& suite, const ProfilesRu
 }
 
 void print_profiles_table(std::ostream& os, const ProfilesSuite& suite, const ProfilesRun& run) {
-  os << support::format(
-      "%s (profiles): %zu cases x %zu surfaces, %d realizations of %d segments, %ld rays per beam, %ld walk "
-      "paths, vgroove %s (git %s), %d threads\n",
-      support::printable(suite.name).c_str(), run.cases.size(), suite.surfaces.size(), suite.realizations,
-      suite.segments, suite.rays, suite.walk_paths, version_string(), git_revision(), run.threads);
+  print_table_title(os, suite.name, "profiles",
+                    support::format("%zu cases x %zu surfaces, %d realizations of %d segments, %ld rays per beam, %ld "
+                                    "walk paths",
+                                    run.cases.size(), suite.surfaces.size(), suite.realizations, suite.segments,
+                                    suite.rays, suite.walk_paths),
+                    run.threads);
   os << "  G1, G2: projected-area-weighted mean |traced - model| over the normal bins (noise: what a right model "
         "shows)\n  lobe: the largest z over k of the L1 distance of each k's lobe (<= sigmas: within noise)\n";
   os << "  lit: the lit fraction per unit macro length, traced (its error) / Smith / V-cavity; arc: per unit arc "
@@ -208,7 +204,7 @@ void print_profiles_table(std::ostream& os, const ProfilesSuite& suite, const Pr
     }
   std::size_t passed = 0;
   for (const auto& o : run.cases) passed += o.pass;
-  os << support::format("  %zu/%zu cases pass; wall %.2f s\n", passed, run.cases.size(), run.wall_s);
+  print_table_close(os, passed, run.cases.size(), run.wall_s);
 }
 
 }  // namespace vgroove::validation

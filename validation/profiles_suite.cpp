@@ -1,4 +1,5 @@
 #include "vgroove/validation/profiles_suite.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/analytic/brdf_flatland.h"
 #include "vgroove/analytic/smith_walk_flatland.h"
@@ -22,8 +23,8 @@ namespace vgroove::validation {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using support::Clock;
+using support::seconds_since;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Streams of the suite's seeds: profiles, beams, walk paths.

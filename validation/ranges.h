@@ -45,6 +45,10 @@ inline constexpr int kMaxGrooves = 10'000'000;
 // The tracer's bounce limit: its default, and the largest a file or option may set.
 inline constexpr int kDefaultMaxBounces = 100'000;
 inline constexpr int kMaxBounces = 100'000'000;
+// A conductor's complex index eta + i kappa (Python's vgroove.BRDF(eta=...)): eta in (0, 1000],
+// kappa in [0, 1000] (the scenes' Fresnel channels take the same).
+inline constexpr double kMaxFresnelEta = 1000.0;
+inline constexpr double kMaxFresnelKappa = 1000.0;
 // Worker threads (0: all cores).
 inline constexpr int kMaxThreads = 1024;
 // Point BRDF evaluations whose sums over bounce counts cost O(max_k^2) (`vgroove brdf`, Python

@@ -35,6 +35,18 @@ nlohmann::json provenance() {
           {"git", VGROOVE_GIT}};
 }
 
+nlohmann::json report_header(const SuiteHeader& suite, int threads, double wall_s) {
+  nlohmann::json j = provenance();
+  j["suite"] = suite.name;
+  j["suite_file"] = suite.file;
+  j["kind"] = suite.kind;
+  j["description"] = suite.description;
+  j["seed"] = suite.seed;
+  j["threads"] = threads;
+  j["wall_s"] = wall_s;
+  return j;
+}
+
 nlohmann::json groove_json(const GrooveParams& g) {
   if (g.symmetric) return {{"theta_v_deg", output_deg(g.theta_v)}};
   return {{"theta_l_deg", output_deg(g.theta_l)},
@@ -87,8 +99,8 @@ nlohmann::json case_json(const CaseOutcome& c) {
   return jc;
 }
 
-nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
-  const Summary& s = run.summary;
+nlohmann::json report_json(const GrooveSuite& suite, const GrooveSuiteRun& run) {
+  const GrooveSuiteSummary& s = run.summary;
   nlohmann::json j = provenance();
   j["suite"] = suite.name;
   j["suite_file"] = suite.file;
@@ -164,8 +176,8 @@ nlohmann::json report_json(const Suite& suite, const SuiteRun& run) {
   return j;
 }
 
-void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run) {
-  const Summary& s = run.summary;
+void print_table(std::ostream& os, const GrooveSuite& suite, const GrooveSuiteRun& run) {
+  const GrooveSuiteSummary& s = run.summary;
   os << "vgroove " << VGROOVE_VERSION << " (git " << VGROOVE_GIT << ")  suite " << support::printable(suite.name)
      << ": " << s.cases << " cases"
      << (s.degenerate_cases ? " (+" + std::to_string(s.degenerate_cases) + " degenerate, not compared)" : "") << ", "
@@ -213,7 +225,7 @@ void print_table(std::ostream& os, const Suite& suite, const SuiteRun& run) {
   os << (s.pass() ? "PASS" : "FAIL") << "\n";
 }
 
-nlohmann::json report_json(const SuiteSet& set, const std::vector<SuiteRun>& runs) {
+nlohmann::json report_json(const GrooveSuiteSet& set, const std::vector<GrooveSuiteRun>& runs) {
   if (set.suites.size() == 1) return report_json(set.suites.front(), runs.front());
   nlohmann::json j = provenance();
   j["suite"] = set.name;
@@ -233,7 +245,7 @@ nlohmann::json report_json(const SuiteSet& set, const std::vector<SuiteRun>& run
   return j;
 }
 
-void print_set_table(std::ostream& os, const SuiteSet& set, const std::vector<SuiteRun>& runs) {
+void print_set_table(std::ostream& os, const GrooveSuiteSet& set, const std::vector<GrooveSuiteRun>& runs) {
   for (std::size_t n = 0; n < runs.size(); ++n) {
     if (n) os << "\n";
     print_table(os, set.suites[n], runs[n]);
@@ -241,14 +253,14 @@ void print_set_table(std::ostream& os, const SuiteSet& set, const std::vector<Su
   if (runs.size() < 2) return;
   // The first column as wide as the longest suite name (22 at least).
   int width = 22;
-  for (const Suite& su : set.suites) width = std::max(width, static_cast<int>(su.name.size()));
+  for (const GrooveSuite& su : set.suites) width = std::max(width, static_cast<int>(su.name.size()));
   os << "\n" << support::printable(set.name) << ": the paper's figures beside ours\n";
   os << "  " << std::string("column") + std::string(width - 6, ' ')
      << " paper max L1  ours max L1   paper mean L1  ours mean L1   cases   wall s\n";
   bool pass = true;
   for (std::size_t n = 0; n < runs.size(); ++n) {
-    const Suite& su = set.suites[n];
-    const Summary& s = runs[n].summary;
+    const GrooveSuite& su = set.suites[n];
+    const GrooveSuiteSummary& s = runs[n].summary;
     pass = pass && s.pass();
     os << "  ";
     os << support::format("%-*s %12.4g %12.4g %14.4g %13.4g %7zu %8.3f\n", width, support::printable(su.name).c_str(),

@@ -75,7 +75,7 @@ GrooveParams groove_from_degrees(std::optional<double> theta_v_deg, std::optiona
   return p;
 }
 
-CaseOptions options_with_overrides(const Suite& suite, std::optional<long> rays,
+CaseOptions options_with_overrides(const GrooveSuite& suite, std::optional<long> rays,
                                    const std::optional<std::string>& sampling,
                                    const std::optional<std::string>& eq6_form, std::optional<long long> seed,
                                    const OptionNames& names) {

@@ -6,7 +6,7 @@
 
 #include "vgroove/analytic/kaleidoscope.h"
 #include "vgroove/sim/beam.h"
-#include "vgroove/validation/suite.h"
+#include "vgroove/validation/groove_suite.h"
 
 #include <optional>
 #include <string>
@@ -39,7 +39,7 @@ GrooveParams groove_from_degrees(std::optional<double> theta_v_deg, std::optiona
                                  std::optional<double> theta_r_deg, const OptionNames& names);
 
 // A suite's case options with overrides (unset: the suite's).
-CaseOptions options_with_overrides(const Suite& suite, std::optional<long> rays,
+CaseOptions options_with_overrides(const GrooveSuite& suite, std::optional<long> rays,
                                    const std::optional<std::string>& sampling,
                                    const std::optional<std::string>& eq6_form, std::optional<long long> seed,
                                    const OptionNames& names);

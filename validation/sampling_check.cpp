@@ -1,4 +1,5 @@
 #include "vgroove/validation/sampling_check.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/analytic/brdf_nonsymmetric.h"
 #include "vgroove/analytic/quadrature.h"
@@ -20,7 +21,8 @@ namespace vgroove::validation {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using support::Clock;
+using support::seconds_since;
 
 // Thrown by a density evaluated after the cancellation flag was set: the quadratures stop at once
 // (run_chi2 and retest_chi2 catch it and say interrupted).
@@ -28,8 +30,6 @@ struct Stopped {};
 void stop_if(const std::atomic<bool>* cancel) {
   if (support::cancelled(cancel)) throw Stopped{};
 }
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 std::array<double, 4> uniforms(sim::Rng& rng) { return {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()}; }
 std::array<double, 5> uniforms5(sim::Rng& rng) {
@@ -369,11 +369,13 @@ nlohmann::json chi2_json(const Chi2Outcome& o) {
       {"weight_variance", o.weight_variance},
       {"weight_samples", o.weight_samples},
       {"weight_standard_error", std::sqrt(o.weight_variance / static_cast<double>(std::max(1L, o.weight_samples)))},
-      {"ns_per_sample", 1e9 * o.sample_s / static_cast<double>(s.samples)},
       {"sample_s", o.sample_s},
       {"integrate_s", o.integrate_s},
       {"pass", o.pass}};
   if (s.ndf == analytic::NdfKind::student_t) j["gamma"] = s.ndf.gamma;
+  // Rates from the wall time (report.h: durations end in _s, what is derived from them is under
+  // "timing"; neither is compared between runs).
+  j["timing"] = {{"ns_per_sample", 1e9 * o.sample_s / static_cast<double>(s.samples)}};
   j["table"] = {{"rows", s.dim == SurfaceDim::three_d ? "cos_theta_o" : "one row"},
                 {"cols", s.dim == SurfaceDim::three_d ? "phi_o (rad)" : "theta_o (rad)"},
                 {"row_edges", t.row_edges},
@@ -500,14 +502,17 @@ VarianceOutcome run_variance(const VarianceSpec& spec, const std::atomic<bool>* 
 }
 
 nlohmann::json variance_json(const VarianceOutcome& o) {
-  nlohmann::json rows = nlohmann::json::array();
+  // The statistics of the weights, the same bits for any thread count and load; the cost per
+  // sample and what follows from it (the efficiency 1 / (variance x time), infinite where the
+  // variance is 0, and the strategy it favours) under "timing", which runs are not compared on.
+  nlohmann::json rows = nlohmann::json::array(), timing = nlohmann::json::array();
   for (const StrategyStats& s : o.rows) {
-    nlohmann::json r = {{"strategy", s.strategy},         {"mean_weight", s.mean},
-                        {"variance", s.variance},         {"standard_error", s.standard_error},
-                        {"no_direction", s.no_direction}, {"ns_per_sample", s.ns_per_sample}};
-    // Zero variance (the V-cavity strategy with F = 1): infinite efficiency, written as null.
-    r["efficiency"] = std::isfinite(s.efficiency) ? nlohmann::json(s.efficiency) : nlohmann::json(nullptr);
-    rows.push_back(std::move(r));
+    rows.push_back({{"strategy", s.strategy},
+                    {"mean_weight", s.mean},
+                    {"variance", s.variance},
+                    {"standard_error", s.standard_error},
+                    {"no_direction", s.no_direction}});
+    timing.push_back({{"strategy", s.strategy}, {"ns_per_sample", s.ns_per_sample}, {"efficiency", s.efficiency}});
   }
   const VarianceSpec& s = o.spec;
   nlohmann::json v = {
@@ -521,7 +526,7 @@ nlohmann::json variance_json(const VarianceOutcome& o) {
       {"fresnel", s.schlick_f0 < 1.0 ? "schlick F0 = " + std::to_string(s.schlick_f0) : std::string("none (F = 1)")},
       {"strategies", rows},
       {"lowest_variance", o.lowest_variance},
-      {"most_efficient", o.most_efficient}};
+      {"timing", {{"strategies", timing}, {"most_efficient", o.most_efficient}}}};
   if (s.ndf == analytic::NdfKind::student_t) v["gamma"] = s.ndf.gamma;
   return v;
 }

@@ -7,6 +7,7 @@
 #include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
+#include "vgroove/validation/table_frame.h"
 
 #include <algorithm>
 #include <chrono>
@@ -17,8 +18,6 @@
 namespace vgroove::validation {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 // One listed case's common fields: "dimension", "ndf", "alpha", "theta_i_deg", and Student-T's
 // "gamma".
@@ -202,14 +201,8 @@ SamplingRun sampling_run_from(const SamplingSuite&, const std::vector<UnitResult
 }
 
 nlohmann::json sampling_report_json(const SamplingSuite& suite, const SamplingRun& run) {
-  nlohmann::json j = provenance();
-  j["suite"] = suite.name;
-  j["suite_file"] = suite.file;
-  j["kind"] = "sampling";
-  j["description"] = suite.description;
-  j["seed"] = suite.seed;
-  j["threads"] = run.threads;
-  j["wall_s"] = run.wall_s;
+  nlohmann::json j =
+      report_header({suite.name, suite.file, "sampling", suite.description, suite.seed}, run.threads, run.wall_s);
   nlohmann::json chi = nlohmann::json::array(), var = nlohmann::json::array();
   for (const Chi2Outcome& o : run.chi_square) chi.push_back(chi2_json(o));
   for (const VarianceOutcome& o : run.variance) var.push_back(variance_json(o));
@@ -235,8 +228,7 @@ nlohmann::json sampling_report_json(const SamplingSuite& suite, const SamplingRu
 }
 
 void print_sampling_table(std::ostream& os, const SamplingSuite& suite, const SamplingRun& run) {
-  os << support::format("%s (sampling): vgroove %s (git %s), %d threads\n", support::printable(suite.name).c_str(),
-                        version_string(), git_revision(), run.threads);
+  print_table_title(os, suite.name, "sampling", "", run.threads);
   os << "  chi-square against the sampler's pdf (level " << (suite.chi_square.empty() ? 0.0 : suite.chi_square[0].level)
      << " over " << suite.chi_square.size() << " tests, Sidak)\n";
   os << support::format("  %-8s %-8s %5s %7s %-13s %9s %9s %5s %9s %10s %10s %5s\n", "dim", "ndf", "alpha", "theta_i",
@@ -265,7 +257,7 @@ void print_sampling_table(std::ostream& os, const SamplingSuite& suite, const Sa
   print_furnace_table(os, suite.furnace, fr);
   std::size_t chi_pass = 0;
   for (const auto& o : run.chi_square) chi_pass += o.pass;
-  os << support::format("  %zu/%zu chi-square cases pass; wall %.2f s\n", chi_pass, run.chi_square.size(), run.wall_s);
+  print_table_close(os, chi_pass, run.chi_square.size(), run.wall_s, "chi-square cases pass");
 }
 
 }  // namespace vgroove::validation

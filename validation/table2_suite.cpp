@@ -1,7 +1,9 @@
 #include "vgroove/validation/table2_suite.h"
+#include "vgroove/support/seconds_since.h"
 
 #include "vgroove/support/format.h"
 #include "vgroove/support/printable.h"
+#include "vgroove/validation/case_surface.h"
 #include "vgroove/validation/part_fields.h"
 
 #include "vgroove/analytic/bounce_percentiles.h"
@@ -12,6 +14,7 @@
 #include "vgroove/validation/partial_report.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
+#include "vgroove/validation/table_frame.h"
 
 #include <algorithm>
 #include <chrono>
@@ -22,19 +25,8 @@ namespace vgroove::validation {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// The procedural surface of one (NDF, alpha): flatland or 3D options have the same fields.
-template <class Options>
-Options surface_options(analytic::NdfKind ndf, double alpha, int grooves, std::uint64_t seed) {
-  Options o;
-  o.ndf = ndf;
-  o.alpha = alpha;
-  o.grooves = grooves;
-  o.seed = seed;
-  return o;
-}
+using support::Clock;
+using support::seconds_since;
 
 }  // namespace
 
@@ -107,8 +99,9 @@ double table2_run_memory_bytes(const Table2Suite& s, int threads) {
 std::shared_ptr<const Table2Work::Context> Table2Work::prepare(std::size_t unit) const {
   const std::size_t na = suite.alphas.size();
   auto ctx = std::make_shared<Context>();
-  ctx->surface = sim::make_microsurface3d(surface_options<sim::Microsurface3dOptions>(
-      suite.ndfs[unit / na], suite.alphas[unit % na], suite.grooves, suite.seed));
+  ctx->surface =
+      make_case_surface(SurfaceDim::three_d, suite.ndfs[unit / na], suite.alphas[unit % na], suite.grooves, suite.seed)
+          .three_d;
   return ctx;
 }
 
@@ -194,15 +187,8 @@ Table2Run run_table2_suite(const Table2Suite& s, long rays, int threads, const s
 }
 
 nlohmann::json table2_report_json(const Table2Suite& s, const Table2Run& run) {
-  nlohmann::json j = provenance();
-  j["suite"] = s.name;
-  j["suite_file"] = s.file;
-  j["kind"] = "table2";
-  j["description"] = s.description;
-  j["seed"] = s.seed;
+  nlohmann::json j = report_header({s.name, s.file, "table2", s.description, s.seed}, run.threads, run.wall_s);
   j["rays"] = run.rays;
-  j["threads"] = run.threads;
-  j["wall_s"] = run.wall_s;
   j["source"] = s.source;
   j["assumptions"] = {
       {"percentile_measure",
@@ -237,9 +223,8 @@ nlohmann::json table2_report_json(const Table2Suite& s, const Table2Run& run) {
 }
 
 void print_table2(std::ostream& os, const Table2Suite& s, const Table2Run& run) {
-  os << support::format("%s: maximum bounces at percentiles of D (%s), vgroove %s (git %s)\n",
-                        support::printable(s.name).c_str(), support::printable(s.source).c_str(), version_string(),
-                        git_revision());
+  print_table_title(os, s.name, "table2", "maximum bounces at percentiles of D (" + support::printable(s.source) + ")",
+                    run.threads);
   os << "  cell: paper / ours (projected-area percentile, Eq. 4 at theta_i = 0) / traced percentile of k\n";
   std::string head = "  perc.  ";
   for (auto n : s.ndfs)
@@ -257,8 +242,8 @@ void print_table2(std::ostream& os, const Table2Suite& s, const Table2Run& run) 
       }
     os << row << "\n";
   }
-  os << support::format("  %d/%zu entries agree with the paper; %ld rays per traced surface; wall %.2f s\n", run.agree,
-                        run.ours.size(), run.rays, run.wall_s);
+  print_table_close(os, static_cast<std::size_t>(run.agree), run.ours.size(), run.wall_s,
+                    support::format("entries agree with the paper; %ld rays per traced surface", run.rays));
 }
 
 }  // namespace vgroove::validation

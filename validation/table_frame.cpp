@@ -13,8 +13,8 @@ void print_table_title(std::ostream& os, std::string_view name, std::string_view
   os << support::format("vgroove %s (git %s), %d threads\n", version_string(), git_revision(), threads);
 }
 
-void print_table_close(std::ostream& os, std::size_t passed, std::size_t total, double wall_s) {
-  os << support::format("  %zu/%zu cases pass; wall %.2f s\n", passed, total, wall_s);
+void print_table_close(std::ostream& os, std::size_t passed, std::size_t total, double wall_s, std::string_view what) {
+  os << support::format("  %zu/%zu ", passed, total) << what << support::format("; wall %.2f s\n", wall_s);
 }
 
 }  // namespace vgroove::validation

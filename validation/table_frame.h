@@ -19,7 +19,8 @@ namespace vgroove::validation {
 void print_table_title(std::ostream& os, std::string_view name, std::string_view kind, const std::string& detail,
                        int threads);
 
-// "  P/N cases pass; wall W s\n".
-void print_table_close(std::ostream& os, std::size_t passed, std::size_t total, double wall_s);
+// "  P/N <what>; wall W s\n" ("cases pass" unless a kind counts something else).
+void print_table_close(std::ostream& os, std::size_t passed, std::size_t total, double wall_s,
+                       std::string_view what = "cases pass");
 
 }  // namespace vgroove::validation

@@ -1,33 +1,14 @@
 #include "vgroove/validation/traced_lobe.h"
 
-#include "vgroove/sim/microsurface.h"
-#include "vgroove/sim/microsurface3d.h"
 #include "vgroove/support/parallel.h"
+#include "vgroove/validation/case_surface.h"
 #include "vgroove/validation/histogram_metrics.h"
-
-#include <chrono>
 
 namespace vgroove::validation {
 
-namespace {
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-}  // namespace
-
 std::vector<TracedLobe> trace_lobes(const LobeSetup& s, const std::vector<double>& theta_i, int threads,
                                     const std::atomic<bool>* cancel) {
-  const bool flat = s.dim == SurfaceDim::flatland;
-  sim::Microsurface flat_surface;
-  sim::Microsurface3d surface3d;
-  if (flat) {
-    sim::MicrosurfaceOptions so;
-    so.ndf = s.ndf, so.alpha = s.alpha, so.grooves = s.grooves, so.seed = s.seed;
-    flat_surface = sim::make_microsurface(so);
-  } else {
-    sim::Microsurface3dOptions so;
-    so.ndf = s.ndf, so.alpha = s.alpha, so.grooves = s.grooves, so.seed = s.seed;
-    surface3d = sim::make_microsurface3d(so);
-  }
+  const CaseSurface surface = make_case_surface(s.dim, s.ndf, s.alpha, s.grooves, s.seed);
   const std::int64_t chunks = (static_cast<std::int64_t>(s.rays) + sim::kRaysPerChunk - 1) / sim::kRaysPerChunk;
   const std::size_t items = theta_i.size() * static_cast<std::size_t>(chunks);
   std::vector<std::vector<std::int64_t>> hist(items);
@@ -36,23 +17,14 @@ std::vector<TracedLobe> trace_lobes(const LobeSetup& s, const std::vector<double
   const bool complete = support::parallel_for(
       items, support::resolve_threads(threads),
       [&](std::size_t item) {
-        const auto t0 = Clock::now();
         const std::size_t c = item / static_cast<std::size_t>(chunks);
         const std::int64_t chunk = static_cast<std::int64_t>(item % static_cast<std::size_t>(chunks));
-        if (flat) {
-          sim::MicrosurfaceTraceOptions to;
-          to.theta_i = theta_i[c], to.rays = s.rays, to.seed = s.seed, to.theta_o_bins = s.flatland_bins;
-          to.max_k = 0;
-          sim::MicrosurfaceTally t = sim::trace_microsurface_chunk(flat_surface, to, chunk);
-          hist[item] = std::move(t.theta_o), rays[item] = t.rays;
-        } else {
-          sim::Microsurface3dTraceOptions to;
-          to.theta_i = theta_i[c], to.rays = s.rays, to.seed = s.seed;
-          to.theta_bins = s.theta_bins, to.phi_bins = s.phi_bins, to.max_k = 0;
-          sim::Microsurface3dTally t = sim::trace_microsurface3d_chunk(surface3d, to, chunk);
-          hist[item] = std::move(t.hist), rays[item] = t.rays;
-        }
-        secs[item] = seconds_since(t0);
+        CaseRays r;
+        r.theta_i = theta_i[c], r.rays = s.rays, r.seed = s.seed;
+        r.flatland_bins = s.flatland_bins, r.theta_bins = s.theta_bins, r.phi_bins = s.phi_bins;
+        r.max_k = 0;  // the histogram alone
+        BinnedTally t = trace_case_chunks(surface, r, chunk, chunk + 1);
+        hist[item] = std::move(t.hist), rays[item] = t.rays, secs[item] = t.thread_s;
       },
       {}, cancel, 1);
   if (!complete) return {};

@@ -21,9 +21,9 @@ ValidationPlan plan_validation(const ValidateOptions& a) {
   ValidationPlan plan;
   plan.threads = a.threads;
   // Read once: the suite may come from a pipe.
-  const nlohmann::json j = support::read_json_file(a.suite);
+  const nlohmann::json j = a.suite_json ? *a.suite_json : support::read_json_file(a.suite);
   plan.suite = find_kind(j).plan(j, a.suite, overrides_of(a));
-  plan.inputs = {a.suite};
+  if (!a.suite_json) plan.inputs = {a.suite};
   for (std::string& f : plan.suite->extra_inputs()) plan.inputs.push_back(std::move(f));
   support::check_memory(plan.suite->memory_bytes(a.threads, true), a.suite + ": the run",
                         plan.suite->memory_what(a.threads));

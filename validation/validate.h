@@ -25,7 +25,10 @@
 namespace vgroove::validation {
 
 struct ValidateOptions {
-  std::string suite;                    // the suite file
+  std::string suite;  // the suite file (with suite_json: the name messages give it)
+  // The suite itself, already read (Python's validate(dict)); null: read the file `suite`. The
+  // file names of a set's suites are then taken relative to the current directory.
+  const nlohmann::json* suite_json = nullptr;
   std::optional<long> rays;             // per lit facet (single grooves) or per case (rough surfaces)
   int threads = 0;                      // 0: all cores; the figures do not depend on it
   std::optional<std::string> sampling;  // single grooves only: "stratified" or "random"

@@ -24,6 +24,7 @@
 
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/parallel.h"
+#include "vgroove/support/seconds_since.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/support/work_plan.h"
 #include "vgroove/validation/partial_report.h"
@@ -309,7 +310,7 @@ std::optional<nlohmann::json> run_job_part(const Job<Work>& job, const support::
   h.threads = support::resolve_threads(threads);
   auto part = run_work_items(job.work, job.items, h.items, threads, progress, cancel);
   if (!part) return std::nullopt;
-  h.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  h.wall_s = support::seconds_since(t0);
   return partial_report_json(h, part_results_json<Work>(*part));
 }
 

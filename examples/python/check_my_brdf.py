@@ -6,9 +6,10 @@ compensation term (Kulla and Conty 2017, "Revisiting Physically Based Shading at
 
     f_ms(wi, wo) = (1 - E(mu_i)) (1 - E(mu_o)) / (pi (1 - E_avg)),
 
-where E(mu) is Cook-Torrance's directional albedo and E_avg = 2 int E(mu) mu dmu. It restores the
-energy Cook-Torrance loses, but spreads it as a diffuse lobe; light that really bounces between
-the facets of a V-groove leaves in particular directions (vgroove's Eq. 16). check_brdf traces a
+where E(mu) is Cook-Torrance's directional albedo (vgroove.BRDF("cook-torrance", ...).albedo) and
+E_avg = 2 int E(mu) mu dmu. It restores the energy Cook-Torrance loses, but spreads it as a
+diffuse lobe; light that really bounces between the facets of a V-groove leaves in particular
+directions (vgroove's Eq. 16). check_brdf traces a
 procedural V-groove surface of the same NDF and says per incident angle whether the BRDF's lobe
 and albedo agree with the traced light within what the sample count allows.
 
@@ -27,38 +28,22 @@ import vgroove as vg
 
 
 def cook_torrance(alpha):
-    return lambda wi, wo: vg.brdf("cook_torrance", "ggx", alpha, wi, wo)
-
-
-def directional_albedo(f, mu, order=48):
-    """E(mu) = int f(wi, wo) cos(theta_o) d omega_o for wi at cos(theta_i) = mu (Gauss-Legendre)."""
-    x, w = np.polynomial.legendre.leggauss(order)
-    theta = (x + 1) * np.pi / 4  # [0, pi/2]
-    phi = (x + 1) * np.pi        # [0, 2 pi]
-    wt = np.outer(w * np.pi / 4, w * np.pi)
-    t, p = np.meshgrid(theta, phi, indexing="ij")
-    wo = np.stack([np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)], -1).reshape(-1, 3)
-    out = []
-    for m in np.atleast_1d(mu):
-        ti = np.arccos(np.clip(m, 0.0, 1.0))
-        wi = np.array([-np.sin(ti), 0.0, np.cos(ti)])
-        v = f(np.broadcast_to(wi, wo.shape), wo).reshape(t.shape)
-        out.append(np.sum(wt * v * np.cos(t) * np.sin(t)))
-    return np.array(out)
+    return vg.BRDF("cook-torrance", "ggx", alpha).eval
 
 
 def kulla_conty(alpha, table=64):
-    """Cook-Torrance plus the Kulla-Conty multiple-scattering lobe, vectorized over directions."""
-    ct = cook_torrance(alpha)
+    """Cook-Torrance plus the Kulla-Conty multiple-scattering lobe, vectorized over directions.
+    E(mu), Cook-Torrance's directional albedo, is exact (vgroove.BRDF.albedo: its lobe's total)."""
+    ct = vg.BRDF("cook-torrance", "ggx", alpha)
     mu = np.linspace(1e-3, 1.0, table)
-    E = np.clip(directional_albedo(ct, mu), 0.0, 1.0)
+    E = ct.albedo(vg.direction(np.degrees(np.arccos(mu)), 180.0))
     E_avg = 2.0 * np.trapz(E * mu, mu)
 
     def f(wi, wo):
         ei = np.interp(np.clip(wi[:, 2], 0, 1), mu, E)
         eo = np.interp(np.clip(wo[:, 2], 0, 1), mu, E)
         ms = (1.0 - ei) * (1.0 - eo) / (np.pi * (1.0 - E_avg))
-        return ct(wi, wo) + np.where((wi[:, 2] > 0) & (wo[:, 2] > 0), ms, 0.0)
+        return ct.eval(wi, wo) + np.where((wi[:, 2] > 0) & (wo[:, 2] > 0), ms, 0.0)
 
     return f
 

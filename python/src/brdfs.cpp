@@ -1,6 +1,8 @@
-// vgroove Python module: BRDFs over arrays of directions (vgroove's Eq. 16-17 and Cook-Torrance,
-// 3D and flatland) and check_brdf: a BRDF of the user's, a vectorized Python callable, held
-// against the exact simulation (validation/check_brdf.h), a batch of directions per call.
+// vgroove Python module: BRDFs over arrays of directions (vgroove's Eq. 16-17, its nonsymmetric
+// form Eq. 21-23 and Cook-Torrance, 3D and flatland, with a conductor's Fresnel in 3D), the
+// settings vgroove.BRDF checks when it is made, and check_brdf: a BRDF of the user's, a vectorized
+// Python callable, held against the exact simulation (validation/check_brdf.h), a batch of
+// directions per call.
 #include "common.h"
 
 #include "vgroove/validation/spec_lists.h"
@@ -21,11 +23,10 @@
 
 namespace vgroove::python {
 
-namespace {
-
+using analytic::BrdfModel;
 using validation::SurfaceDim;
 
-using analytic::BrdfModel;
+namespace {
 
 // The sums that cost O(max_k^2) and their largest max_k: `vgroove brdf`'s (validation/ranges.h;
 // test_surfaces.py holds the two messages equal).
@@ -47,108 +48,191 @@ int brdf_orders(long long max_k, BrdfModel model, bool flat) {
   return static_cast<int>(max_k);
 }
 
-// Eq. (20)'s partner law exists for Phong below alpha = sqrt(2) only (ERRATA E-NS1): the command
-// line's refusal.
-void check_partner_law(BrdfModel model, NdfKind ndf, double alpha) {
-  if (model == BrdfModel::vgroove_nonsymmetric && !analytic::partner_law_exists(ndf, alpha))
-    throw support::UserError("alpha = " + support::number_text(alpha) + " is out of range " +
-                             support::interval_text(0, false, std::sqrt(2.0), false) +
-                             " with model vgroove-nonsymmetric ndf phong (Eq. 20's partner law needs alpha < "
-                             "sqrt(2))");
-}
-
 // The cost of one direction relative to the 3D sum (which costs the same for any max_k): the
-// flatland and nonsymmetric sums grow as max_k^2 (about 0.4 s per direction at max_k 4096).
+// flatland and nonsymmetric sums grow as max_k^2 (about 0.4-2 s per direction at max_k 4096).
 double relative_cost(BrdfModel model, bool flat, int max_k) {
   if (model == BrdfModel::cook_torrance || (model == BrdfModel::vgroove && !flat)) return 1.0;
   return std::max(1.0, static_cast<double>(max_k) * max_k / 256.0);
 }
 
-// f(wi_j, wo_j) for j < n into out (per_k: out[j * max_k + k - 1] for k = 1..max_k). The cancel
-// flag is read before each direction (one may take 0.4 s), so a chunk stops within one of them.
-void evaluate(BrdfModel model, NdfKind ndf, double alpha, SurfaceDim dim, bool per_k, int max_k, const double* wi,
-              const double* wo, std::size_t n, double* out, int threads, std::atomic<bool>& cancel) {
-  const std::size_t chunk = 4096;
-  const std::size_t chunks = (n + chunk - 1) / chunk;
-  const bool cheap = relative_cost(model, dim == SurfaceDim::flatland, max_k) == 1.0;
-  analytic::BrdfEvalOptions opt;
-  opt.ndf = ndf, opt.alpha = alpha, opt.flatland = dim == SurfaceDim::flatland, opt.max_k = max_k;
-  opt.per_k = per_k ? max_k : 0;
-  support::parallel_for(
-      chunks, support::resolve_threads(threads),
-      [&](std::size_t c) {
-        const std::size_t end = std::min(n, (c + 1) * chunk);
-        for (std::size_t j = c * chunk; j < end; ++j) {
-          if (!cheap && cancel.load(std::memory_order_relaxed)) return;
-          const double* a = wi + 3 * j;
-          const double* b = wo + 3 * j;
-          const analytic::Dir3 i{a[0], a[1], a[2]}, o{b[0], b[1], b[2]};
-          if (model == BrdfModel::vgroove_nonsymmetric) {
-            // Eq. 21-23 with the independent partner law of Eq. 20 (analytic/brdf_model.h).
-            const analytic::BrdfValue v = analytic::evaluate_brdf(model, i, o, opt);
-            if (per_k)
-              std::copy(v.by_k.begin(), v.by_k.end(), out + j * static_cast<std::size_t>(max_k));
-            else
-              out[j] = v.value;
-            continue;
-          }
-          if (dim == SurfaceDim::flatland) {
-            const double ti = flat_angle(a), to = flat_angle(b);
-            if (model == BrdfModel::cook_torrance) {
-              out[j] = analytic::flatland_brdf_single(ndf, alpha, ti, to);
-            } else if (per_k) {
-              for (int k = 1; k <= max_k; ++k)
-                out[j * static_cast<std::size_t>(max_k) + static_cast<std::size_t>(k - 1)] =
-                    analytic::flatland_brdf_k(ndf, alpha, ti, to, k);
-            } else {
-              out[j] = analytic::flatland_brdf(ndf, alpha, ti, to, max_k);
-            }
-            continue;
-          }
-          if (model == BrdfModel::cook_torrance) {
-            out[j] = analytic::cook_torrance(i, o, ndf, alpha);
-          } else if (per_k) {
-            for (int k = 1; k <= max_k; ++k)
-              out[j * static_cast<std::size_t>(max_k) + static_cast<std::size_t>(k - 1)] =
-                  analytic::vgroove_brdf_k(i, o, k, ndf, alpha);
-          } else {
-            out[j] = analytic::vgroove_brdf(i, o, ndf, alpha, max_k);
-          }
-        }
-      },
-      {}, &cancel, 1);
+}  // namespace
+
+BrdfSettings brdf_settings(const std::string& model_name, const std::string& ndf_name, double alpha,
+                           const std::string& dim_name, const py::object& max_k, const py::object& alpha_y,
+                           const py::object& partner, const py::object& eta) {
+  BrdfSettings s;
+  s.model = parse_brdf_model(model_name, true);
+  s.ndf = parse_ndf(ndf_name);
+  check_alpha(alpha);
+  s.alpha = alpha;
+  s.flat = parse_dim(dim_name) == SurfaceDim::flatland;
+  const bool nonsym = s.model == BrdfModel::vgroove_nonsymmetric;
+  const std::string model_text = "(model = \"" + model_name + "\")";
+  if (!partner.is_none()) {
+    const std::string p = partner.cast<std::string>();
+    if (p != "independent" && p != "symmetric")
+      throw support::UserError("partner = \"" + p + "\" is not one of \"independent\", \"symmetric\"");
+    if (!nonsym) throw support::UserError("partner applies to model vgroove-nonsymmetric only " + model_text);
+    s.symmetric_partner = p == "symmetric";
+  }
+  if (!alpha_y.is_none()) {
+    const double ay = alpha_y.cast<double>();
+    if (!nonsym) throw support::UserError("alpha_y applies to model vgroove-nonsymmetric only " + model_text);
+    if (s.flat) throw support::UserError("alpha_y applies to dim 3d only (flatland has one roughness)");
+    if (s.ndf == NdfKind::phong)
+      throw support::UserError("alpha_y applies to ndf ggx and beckmann only (Phong has no elliptical form)");
+    if (!(ay >= validation::kMinAlpha && ay <= validation::kMaxAlpha))
+      throw support::UserError("alpha_y = " + support::number_text(ay) + " is out of range " +
+                               support::interval_text(validation::kMinAlpha, true, validation::kMaxAlpha, true));
+    s.alpha_y = ay;
+  }
+  // Eq. (20)'s partner law exists for Phong below alpha = sqrt(2) only (ERRATA E-NS1): the command
+  // line's refusal.
+  if (nonsym && !s.symmetric_partner && !analytic::partner_law_exists(s.ndf, alpha))
+    throw support::UserError("alpha = " + support::number_text(alpha) + " is out of range " +
+                             support::interval_text(0, false, std::sqrt(2.0), false) +
+                             " with model vgroove-nonsymmetric ndf phong (Eq. 20's partner law needs alpha < "
+                             "sqrt(2))");
+  s.max_k_given = !max_k.is_none();
+  s.max_k = s.max_k_given ? brdf_orders(to_count(max_k, "max_k", std::numeric_limits<long long>::min(),
+                                                 std::numeric_limits<long long>::max()),
+                                        s.model, s.flat)
+                          : analytic::default_max_k(s.model, s.flat);
+  if (!eta.is_none()) {
+    if (s.flat) throw support::UserError("eta applies to dim 3d only (the flatland BRDFs have no Fresnel term)");
+    s.fresnel = conductor_of(eta);
+  }
+  return s;
 }
 
+analytic::BrdfEvalOptions BrdfSettings::options() const {
+  analytic::BrdfEvalOptions o;
+  o.ndf = ndf, o.alpha = alpha, o.flatland = flat, o.max_k = max_k;
+  if (model == BrdfModel::vgroove_nonsymmetric) o.alpha_y = alpha_y > 0.0 ? alpha_y : alpha;
+  o.symmetric_partner = symmetric_partner;
+  if (fresnel) o.fresnel = fresnel->fn();
+  return o;
+}
+
+namespace {
+
+// f(j, i, o, wi_row, wo_row) for j < n in chunks of 4096 on `threads` threads, or one by one where
+// a direction may be slow (0.4-2 s at flatland max_k 4096): the cancel flag is read before each of
+// those, so the work stops within one of them, and progress counts directions as they are done.
+template <class F>
+void for_pairs(std::size_t n, int threads, const Rows& wi, const Rows& wo, bool cheap, ProgressRelay& relay,
+               std::atomic<bool>& cancel, F&& f) {
+  const std::size_t chunk = cheap ? 4096 : 1;
+  support::parallel_for((n + chunk - 1) / chunk, support::resolve_threads(threads),
+                        [&](std::size_t c) {
+                          const std::size_t end = std::min(n, (c + 1) * chunk);
+                          for (std::size_t j = c * chunk; j < end; ++j) {
+                            if (!cheap && cancel.load(std::memory_order_relaxed)) return;
+                            const double* a = wi.row(j);
+                            const double* b = wo.row(j);
+                            f(j, analytic::Dir3{a[0], a[1], a[2]}, analytic::Dir3{b[0], b[1], b[2]}, a, b);
+                          }
+                        },
+                        relay.fn(chunk, n), &cancel, 1);
+}
+
+// out[j] = f(wi_j, wo_j) (per_k: out[j * per_k + k - 1] for k = 1..per_k): the calls
+// `vgroove brdf` makes (analytic::evaluate_brdf), each case's loop on its own.
+void evaluate(const BrdfSettings& s, int per_k, const Rows& wi, const Rows& wo, std::size_t n, double* out, int threads,
+              ProgressRelay& relay, std::atomic<bool>& cancel) {
+  const bool cheap = relative_cost(s.model, s.flat, s.max_k) == 1.0;
+  const NdfKind ndf = s.ndf;
+  const double alpha = s.alpha;
+  const int max_k = s.max_k;
+  const auto stride = static_cast<std::size_t>(per_k);
+  auto run = [&](auto&& f) { for_pairs(n, threads, wi, wo, cheap, relay, cancel, f); };
+  if (s.model == BrdfModel::vgroove_nonsymmetric || s.fresnel) {
+    // Eq. 21-23 (independent partner law of Eq. 20, or B = A; anisotropic with alpha_y), and the
+    // symmetric models with Fresnel: analytic::evaluate_brdf, as the command line calls it.
+    analytic::BrdfEvalOptions opt = s.options();
+    opt.per_k = per_k;
+    const BrdfModel model = s.model;
+    return run([&](std::size_t j, const analytic::Dir3& i, const analytic::Dir3& o, const double*, const double*) {
+      const analytic::BrdfValue v = analytic::evaluate_brdf(model, i, o, opt);
+      if (per_k > 0)
+        std::copy(v.by_k.begin(), v.by_k.end(), out + j * stride);
+      else
+        out[j] = v.value;
+    });
+  }
+  if (s.flat) {
+    if (s.model == BrdfModel::cook_torrance)
+      return run([&](std::size_t j, const analytic::Dir3&, const analytic::Dir3&, const double* a, const double* b) {
+        out[j] = analytic::flatland_brdf_single(ndf, alpha, flat_angle(a), flat_angle(b));
+      });
+    if (per_k > 0)
+      return run([&](std::size_t j, const analytic::Dir3&, const analytic::Dir3&, const double* a, const double* b) {
+        const double ti = flat_angle(a), to = flat_angle(b);
+        for (int k = 1; k <= per_k; ++k)
+          out[j * stride + static_cast<std::size_t>(k - 1)] = analytic::flatland_brdf_k(ndf, alpha, ti, to, k);
+      });
+    return run([&](std::size_t j, const analytic::Dir3&, const analytic::Dir3&, const double* a, const double* b) {
+      out[j] = analytic::flatland_brdf(ndf, alpha, flat_angle(a), flat_angle(b), max_k);
+    });
+  }
+  if (s.model == BrdfModel::cook_torrance)
+    return run([&](std::size_t j, const analytic::Dir3& i, const analytic::Dir3& o, const double*, const double*) {
+      out[j] = analytic::cook_torrance(i, o, ndf, alpha);
+    });
+  if (per_k > 0)
+    return run([&](std::size_t j, const analytic::Dir3& i, const analytic::Dir3& o, const double*, const double*) {
+      for (int k = 1; k <= per_k; ++k)
+        out[j * stride + static_cast<std::size_t>(k - 1)] = analytic::vgroove_brdf_k(i, o, k, ndf, alpha);
+    });
+  run([&](std::size_t j, const analytic::Dir3& i, const analytic::Dir3& o, const double*, const double*) {
+    out[j] = analytic::vgroove_brdf(i, o, ndf, alpha, max_k);
+  });
+}
+
+// The settings as vgroove.BRDF keeps them: the canonical names and the orders resolved.
+py::dict settings_dict(const std::string& model, const std::string& ndf, double alpha, const std::string& dim,
+                       const py::object& max_k, const py::object& alpha_y, const py::object& partner,
+                       const py::object& eta) {
+  const BrdfSettings s = brdf_settings(model, ndf, alpha, dim, max_k, alpha_y, partner, eta);
+  py::dict d;
+  d["model"] = analytic::brdf_model_name(s.model);
+  d["ndf"] = ndf_name(s.ndf);
+  d["dim"] = s.flat ? "flatland" : "3d";
+  d["max_k"] = s.max_k;
+  return d;
+}
+
+// per_k: 0 (the sums) or the orders k = 1..per_k, each on its own (per_k <= max_k; Cook-Torrance:
+// its value as k = 1). wi and wo: one row or n rows each.
 py::array_t<double> brdf(const std::string& model_name, const std::string& ndf_name, double alpha, DoubleArray wi,
-                         DoubleArray wo, bool per_k, long long max_k_in, const std::string& dim_name, int threads) {
-  const BrdfModel model = parse_brdf_model(model_name, true);
-  const NdfKind ndf = parse_ndf(ndf_name);
-  check_alpha(alpha);
-  const SurfaceDim dim = parse_dim(dim_name);
-  const bool flat = dim == SurfaceDim::flatland;
-  check_partner_law(model, ndf, alpha);
-  const int max_k = brdf_orders(max_k_in, model, flat);
+                         DoubleArray wo, const py::object& per_k_obj, const py::object& max_k,
+                         const std::string& dim_name, int threads, const py::object& alpha_y, const py::object& partner,
+                         const py::object& eta, const py::object& progress) {
+  const BrdfSettings s = brdf_settings(model_name, ndf_name, alpha, dim_name, max_k, alpha_y, partner, eta);
   validation::check_threads(threads, "threads");
-  if (wi.ndim() != 2 || wi.shape(1) != 3 || wo.ndim() != 2 || wo.shape(1) != 3 || wi.shape(0) != wo.shape(0))
+  ProgressRelay relay(progress);
+  if (wi.ndim() != 2 || wi.shape(1) != 3 || wo.ndim() != 2 || wo.shape(1) != 3)
     throw support::UserError("wi and wo must be arrays of shape (n, 3)");
-  const std::size_t n = static_cast<std::size_t>(wi.shape(0));
-  wi = unit_directions(wi, "wi", flat);
-  wo = unit_directions(wo, "wo", flat);
-  const int k_out = per_k ? (model == BrdfModel::cook_torrance ? 1 : max_k) : 1;
-  if (per_k && static_cast<double>(n) * k_out > 1e9)
-    throw support::UserError("per_k with max_k = " + std::to_string(max_k) + " over " + std::to_string(n) +
+  const std::size_t n = static_cast<std::size_t>(std::max(wi.shape(0), wo.shape(0)));
+  const Rows a = rows_of(wi, "wi", n, s.flat), b = rows_of(wo, "wo", n, s.flat);
+  // Cook-Torrance per k: its value as the only column, k = 1.
+  const bool ct = s.model == BrdfModel::cook_torrance;
+  int per_k = static_cast<int>(to_count(per_k_obj, "per_k", 0, ct ? std::numeric_limits<int>::max() : s.max_k));
+  if (ct) per_k = std::min(per_k, 1);
+  if (per_k > 0 && static_cast<double>(n) * per_k > 1e9)
+    throw support::UserError("per_k with " + std::to_string(per_k) + " orders over " + std::to_string(n) +
                              " directions needs more than 10^9 values");
-  py::array_t<double> out = per_k ? new_array<double>({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(k_out)})
-                                  : new_array<double>({static_cast<py::ssize_t>(n)});
+  py::array_t<double> out = per_k > 0
+                                ? new_array<double>({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(per_k)})
+                                : new_array<double>({static_cast<py::ssize_t>(n)});
   double* po = out.mutable_data();
-  const double *pi = wi.data(), *pw = wo.data();
+  if (ct) per_k = 0;  // the value fills the column
   run_interruptible(
       [&](std::atomic<bool>& cancel) {
-        evaluate(model, ndf, alpha, dim, per_k && model != BrdfModel::cook_torrance, max_k, pi, pw, n, po, threads,
-                 cancel);
+        evaluate(s, per_k, a, b, n, po, threads, relay, cancel);
         return 0;
       },
-      static_cast<double>(n) * relative_cost(model, flat, max_k) < 2048.0);
+      static_cast<double>(n) * relative_cost(s.model, s.flat, s.max_k) < 2048.0, &relay);
   return out;
 }
 
@@ -164,7 +248,7 @@ validation::CheckBrdfOptions check_options(const std::string& name, const std::s
   o.theta_i_deg = theta_i_deg;
   o.rays = static_cast<long>(to_count(rays, "rays", 1, validation::kMaxRays));
   o.dim = parse_dim(dim);
-  o.grooves = static_cast<int>(to_count(grooves, "grooves", 1, 10'000'000));
+  o.grooves = static_cast<int>(to_count(grooves, "grooves", 1, validation::kMaxGrooves));
   o.seed = static_cast<std::uint64_t>(to_seed(seed, "seed"));
   o.theta_bins = theta_bins, o.phi_bins = phi_bins, o.flatland_bins = flatland_bins;
   o.sigmas = sigmas, o.model_tolerance = model_tolerance, o.quadrature_order = quadrature_order;
@@ -174,37 +258,35 @@ validation::CheckBrdfOptions check_options(const std::string& name, const std::s
 }
 
 // f: a Python callable f(wi, wo) -> values, wi and wo float arrays of shape (n, 3); or the name
-// of a built-in model (parse_brdf_model), evaluated in C++ one direction at a time.
-py::object check_brdf(const py::object& f, long long max_k, const std::string& name, const std::string& ndf,
+// of a built-in model (brdf_settings), evaluated in C++ one direction at a time. Progress: the
+// check reports its start (0 of 1) and its end (1 of 1).
+py::object check_brdf(const py::object& f, const py::object& max_k, const std::string& name, const std::string& ndf,
                       double alpha, const std::vector<double>& theta_i_deg, const py::object& rays,
                       const std::string& dim, const py::object& grooves, const py::object& seed, int theta_bins,
                       int phi_bins, int flatland_bins, double sigmas, double model_tolerance, int quadrature_order,
-                      int threads) {
+                      int threads, const py::object& progress) {
   validation::CheckBrdfOptions o =
       check_options(name, ndf, alpha, theta_i_deg, rays, dim, grooves, seed, theta_bins, phi_bins, flatland_bins,
                     sigmas, model_tolerance, quadrature_order, threads);
+  ProgressRelay relay(progress);
+  relay.set(0, 1);
+  relay.flush();
   if (py::isinstance<py::str>(f)) {
-    const BrdfModel model = parse_brdf_model(f.cast<std::string>(), true);
-    const bool flat = o.dim == SurfaceDim::flatland;
-    check_partner_law(model, o.ndf, o.alpha);
-    analytic::BrdfEvalOptions eval;
-    eval.ndf = o.ndf, eval.alpha = alpha, eval.flatland = flat, eval.max_k = brdf_orders(max_k, model, flat);
-    const NdfKind kind = o.ndf;
-    const int mk = eval.max_k;
+    const BrdfSettings s =
+        brdf_settings(f.cast<std::string>(), ndf, alpha, dim, max_k, py::none(), py::none(), py::none());
+    const analytic::BrdfEvalOptions eval = s.options();
+    const BrdfModel model = s.model;
     const validation::BrdfFn fn = [=](const analytic::Dir3& i, const analytic::Dir3& w) {
-      if (model == BrdfModel::vgroove_nonsymmetric) return analytic::evaluate_brdf(model, i, w, eval).value;
-      if (flat) {
-        const double ti = std::atan2(-i.x, i.z), to = std::atan2(-w.x, w.z);
-        return model == BrdfModel::cook_torrance ? analytic::flatland_brdf_single(kind, alpha, ti, to)
-                                                 : analytic::flatland_brdf(kind, alpha, ti, to, mk);
-      }
-      return model == BrdfModel::cook_torrance ? analytic::cook_torrance(i, w, kind, alpha)
-                                               : analytic::vgroove_brdf(i, w, kind, alpha, mk);
+      return analytic::evaluate_brdf(model, i, w, eval).value;
     };
-    const validation::CheckBrdfResult r = run_interruptible([&](std::atomic<bool>& cancel) {
-      o.cancel = &cancel;
-      return validation::check_brdf(fn, o);
-    });
+    const validation::CheckBrdfResult r = run_interruptible(
+        [&](std::atomic<bool>& cancel) {
+          o.cancel = &cancel;
+          validation::CheckBrdfResult res = validation::check_brdf(fn, o);
+          relay.set(1, 1);
+          return res;
+        },
+        false, &relay);
     return to_python(r.to_json());
   }
   if (!PyCallable_Check(f.ptr()))
@@ -247,11 +329,15 @@ py::object check_brdf(const py::object& f, long long max_k, const std::string& n
       std::fill(out, out + n, 0.0);
     }
   };
-  const validation::CheckBrdfResult r = run_interruptible([&](std::atomic<bool>& cancel) {
-    stop = &cancel;
-    o.cancel = &cancel;
-    return validation::check_brdf(batch, o);
-  });
+  const validation::CheckBrdfResult r = run_interruptible(
+      [&](std::atomic<bool>& cancel) {
+        stop = &cancel;
+        o.cancel = &cancel;
+        validation::CheckBrdfResult res = validation::check_brdf(batch, o);
+        relay.set(1, 1);
+        return res;
+      },
+      false, &relay);
   if (error) std::rethrow_exception(error);
   return to_python(r.to_json());
 }
@@ -259,12 +345,23 @@ py::object check_brdf(const py::object& f, long long max_k, const std::string& n
 }  // namespace
 
 void bind_brdfs(py::module_& m) {
+  m.def("brdf_settings", &settings_dict, py::arg("model"), py::arg("ndf"), py::arg("alpha"), py::arg("dim"),
+        py::arg("max_k"), py::arg("alpha_y"), py::arg("partner"), py::arg("eta"));
   m.def("brdf", &brdf, py::arg("model"), py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("wo"),
-        py::arg("per_k"), py::arg("max_k"), py::arg("dim"), py::arg("threads"));
+        py::arg("per_k"), py::arg("max_k"), py::arg("dim"), py::arg("threads"), py::arg("alpha_y") = py::none(),
+        py::arg("partner") = py::none(), py::arg("eta") = py::none(), py::arg("progress") = py::none());
   m.def("check_brdf", &check_brdf, py::arg("f"), py::arg("max_k"), py::arg("name"), py::arg("ndf"), py::arg("alpha"),
         py::arg("theta_i_deg"), py::arg("rays"), py::arg("dim"), py::arg("grooves"), py::arg("seed"),
         py::arg("theta_bins"), py::arg("phi_bins"), py::arg("flatland_bins"), py::arg("sigmas"),
-        py::arg("model_tolerance"), py::arg("quadrature_order"), py::arg("threads"));
+        py::arg("model_tolerance"), py::arg("quadrature_order"), py::arg("threads"), py::arg("progress") = py::none());
+  // The orders each model sums when max_k is not given (analytic/brdf_model.h: the one table of
+  // every face).
+  py::dict defaults;
+  for (BrdfModel model : {BrdfModel::vgroove, BrdfModel::vgroove_nonsymmetric, BrdfModel::cook_torrance})
+    for (bool flat : {false, true})
+      defaults[py::make_tuple(analytic::brdf_model_name(model), flat ? "flatland" : "3d")] =
+          analytic::default_max_k(model, flat);
+  m.attr("BRDF_MAX_K") = defaults;
 }
 
 }  // namespace vgroove::python

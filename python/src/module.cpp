@@ -1,13 +1,17 @@
 // vgroove Python module vgroove._vgroove: the extension under the package vgroove (python/vgroove).
 #include "common.h"
 
+#include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/common/angles.h"
+#include "vgroove/optics/fresnel.h"
+#include "vgroove/support/json_text.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
 
 #include <cmath>
+#include <complex>
 #include <new>
 
 namespace vgroove::python {
@@ -23,9 +27,10 @@ py::object to_python(const nlohmann::json& j) {
     case nlohmann::json::value_t::number_unsigned:
       return py::int_(j.get<std::uint64_t>());
     case nlohmann::json::value_t::number_float: {
-      // A report file holds null where the report has NaN or infinity (nlohmann::json's dump).
+      // A report file holds "nan", "inf" or "-inf" where the report has a non-finite number
+      // (support/json_text.h, docs/conventions.md): the dict holds the same strings.
       const double x = j.get<double>();
-      return std::isfinite(x) ? py::object(py::float_(x)) : py::object(py::none());
+      return std::isfinite(x) ? py::object(py::float_(x)) : py::object(py::str(support::non_finite_text(x)));
     }
     case nlohmann::json::value_t::string:
       return py::str(j.get_ref<const std::string&>());
@@ -116,6 +121,30 @@ DoubleArray unit_directions(const DoubleArray& w, const char* what, bool flatlan
   return copy ? *copy : w;
 }
 
+Rows rows_of(const DoubleArray& w, const char* what, std::size_t n, bool flatland) {
+  const bool one = w.ndim() == 2 && w.shape(0) == 1;
+  if (w.ndim() != 2 || w.shape(1) != 3 || (!one && static_cast<std::size_t>(w.shape(0)) != n))
+    throw support::UserError(std::string(what) +
+                             " must be an array of shape (1, 3) or (n, 3) with n = " + std::to_string(n));
+  return Rows{unit_directions(w, what, flatland), one ? std::size_t{0} : std::size_t{3}};
+}
+
+analytic::FresnelFn Conductor::fn() const {
+  const double e = eta, k = kappa;
+  return [e, k](double cos_theta) { return optics::fresnel_conductor(cos_theta, e, k); };
+}
+
+Conductor conductor_of(const py::object& eta) {
+  const std::complex<double> z = eta.cast<std::complex<double>>();
+  using validation::kMaxFresnelEta, validation::kMaxFresnelKappa;
+  if (!(z.real() > 0.0 && z.real() <= kMaxFresnelEta && z.imag() >= 0.0 && z.imag() <= kMaxFresnelKappa))
+    throw support::UserError("eta = " + support::number_text(z.real()) + " + " + support::number_text(z.imag()) +
+                             "j is out of range: real part in " +
+                             support::interval_text(0, false, kMaxFresnelEta, true) + ", imaginary part (kappa) in " +
+                             support::interval_text(0, true, kMaxFresnelKappa, true));
+  return Conductor{z.real(), z.imag()};
+}
+
 void check_alpha(double alpha) {
   if (!(alpha >= validation::kMinAlpha && alpha <= validation::kMaxAlpha))
     throw support::UserError("alpha = " + support::number_text(alpha) + " is out of range " +
@@ -142,15 +171,51 @@ PYBIND11_MODULE(_vgroove, m) {
   });
   m.attr("__version__") = vgroove::validation::version_string();
   m.attr("git_revision") = vgroove::validation::git_revision();
-  // The ranges the module enforces (validation/ranges.h), for the package's docstrings.
+  // The ranges the module enforces (validation/ranges.h), for the package's docstrings (python/
+  // vgroove/_ranges.py fills them in; tests/python/test_docs.py holds this table against ranges.h).
+  namespace v = vgroove::validation;
   py::dict ranges;
-  ranges["min_aperture_deg"] = vgroove::validation::kMinApertureDeg;
-  ranges["max_theta_i_deg"] = vgroove::validation::kMaxThetaIDeg;
-  ranges["min_alpha"] = vgroove::validation::kMinAlpha;
-  ranges["max_alpha"] = vgroove::validation::kMaxAlpha;
-  ranges["max_surface_theta_i_deg"] = vgroove::validation::kMaxSurfaceThetaIDeg;
+  ranges["min_aperture_deg"] = v::kMinApertureDeg;
+  ranges["max_theta_i_deg"] = v::kMaxThetaIDeg;
+  ranges["max_surface_theta_i_deg"] = v::kMaxSurfaceThetaIDeg;
+  ranges["min_alpha"] = v::kMinAlpha;
+  ranges["max_alpha"] = v::kMaxAlpha;
+  ranges["max_rays"] = v::kMaxRays;
+  ranges["max_seed"] = v::kMaxSeed;
+  ranges["max_grooves"] = v::kMaxGrooves;
+  ranges["default_max_bounces"] = v::kDefaultMaxBounces;
+  ranges["max_bounces"] = v::kMaxBounces;
+  ranges["max_threads"] = v::kMaxThreads;
+  ranges["max_flatland_k"] = v::kMaxFlatlandBrdfK;
+  ranges["max_nonsymmetric_k"] = v::kMaxNonsymmetricBrdfK;
+  ranges["min_histogram_k"] = v::kMinHistogramK;
+  ranges["max_histogram_k"] = v::kMaxHistogramK;
+  ranges["max_flatland_bins"] = v::kMaxFlatlandBins;
+  ranges["max_theta_bins"] = v::kMaxThetaBins;
+  ranges["max_phi_bins"] = v::kMaxPhiBins;
+  ranges["max_sampler_k"] = v::kMaxSamplerK;
+  ranges["max_fresnel_eta"] = v::kMaxFresnelEta;
+  ranges["max_fresnel_kappa"] = v::kMaxFresnelKappa;
   ranges["unit_tolerance"] = kUnitTolerance;
   m.attr("ranges") = ranges;
+  // The command line's directions (`vgroove brdf --theta-i-deg ... --phi-i-deg ...`): dir3 of the
+  // angles in radians, deg * (pi / 180), so that the same degrees give the same bits.
+  m.def(
+      "direction",
+      [](DoubleArray theta_deg, DoubleArray phi_deg) {
+        if (theta_deg.ndim() != 1 || phi_deg.ndim() != 1 || theta_deg.shape(0) != phi_deg.shape(0))
+          throw vgroove::support::UserError("theta_deg and phi_deg must be arrays of shape (n,)");
+        const auto n = theta_deg.shape(0);
+        auto out = new_array<double>({n, 3});
+        double* p = out.mutable_data();
+        for (py::ssize_t j = 0; j < n; ++j) {
+          const vgroove::analytic::Dir3 d =
+              vgroove::analytic::dir3(vgroove::deg_to_rad(theta_deg.data()[j]), vgroove::deg_to_rad(phi_deg.data()[j]));
+          p[3 * j] = d.x, p[3 * j + 1] = d.y, p[3 * j + 2] = d.z;
+        }
+        return out;
+      },
+      py::arg("theta_deg"), py::arg("phi_deg"));
   m.def("output_deg", py::vectorize([](double rad) { return vgroove::validation::output_deg(rad); }),
         "Radians to degrees rounded to 1e-9 deg, as every report and --json output prints them.");
   bind_grooves(m);

@@ -88,12 +88,16 @@ analytic::NonsymmetricSampler nonsymmetric_sampler(NdfKind ndf, double alpha, co
   }
 }
 
-// The light: rows of wi (n x 3), or the angles theta_i_deg (n) of the suites' convention (azimuth
-// 180 deg: dir3(theta_i, pi) in 3D; in flatland the signed angle itself), as radians = deg * pi/180.
+// The light: rows of wi (n x 3, or one row for all), or the angles theta_i_deg (n, or one for all)
+// of the suites' convention (azimuth 180 deg: dir3(theta_i, pi) in 3D; in flatland the signed angle
+// itself), as radians = deg * pi/180.
 struct Light {
   const double* wi = nullptr;
   const double* theta_i_deg = nullptr;
-  double angle(std::size_t j) const { return wi ? flat_angle(wi + 3 * j) : theta_i_deg[j] * kRadPerDeg; }
+  std::size_t step = 1;  // 0: one light for every row
+  const double* w(std::size_t j) const { return wi + 3 * step * j; }
+  double deg(std::size_t j) const { return theta_i_deg[step * j]; }
+  double angle(std::size_t j) const { return wi ? flat_angle(w(j)) : deg(j) * kRadPerDeg; }
 };
 
 // Row j's light direction in 3D, read by one thread row after row: a run of equal angles (a scalar
@@ -102,8 +106,11 @@ class LightCursor {
  public:
   explicit LightCursor(const Light& l) : l_(l) {}
   analytic::Dir3 dir(std::size_t j) {
-    if (l_.wi) return {l_.wi[3 * j], l_.wi[3 * j + 1], l_.wi[3 * j + 2]};
-    const double t = l_.theta_i_deg[j];
+    if (l_.wi) {
+      const double* w = l_.w(j);
+      return {w[0], w[1], w[2]};
+    }
+    const double t = l_.deg(j);
     if (!(t == t_)) t_ = t, d_ = analytic::dir3(t * kRadPerDeg, std::numbers::pi);
     return d_;
   }
@@ -117,8 +124,8 @@ class LightCursor {
 // The light's range: `vgroove sample --theta-i-deg`'s [0, kMaxSurfaceThetaIDeg] (the brdf and
 // furnace suites'), in flatland signed, [-89.9, 89.9] (the mirror image). A direction wi is held to
 // it by its polar angle (flatland: its signed angle) rounded to 1e-9 deg as reports print angles,
-// so that direction(89.9, 180) is taken.
-Light light_of(const std::optional<DoubleArray>& wi, std::optional<DoubleArray>& wi_unit,
+// so that direction(89.9, 180) is taken. One row (or one angle) serves every row of the call.
+Light light_of(const std::optional<DoubleArray>& wi, std::optional<Rows>& wi_unit,
                const std::optional<DoubleArray>& theta_i_deg, std::size_t n, bool flat) {
   Light l;
   if (wi.has_value() == theta_i_deg.has_value())
@@ -127,11 +134,12 @@ Light light_of(const std::optional<DoubleArray>& wi, std::optional<DoubleArray>&
   const double lo = flat ? -hi : 0.0;
   const std::string range = support::interval_text(lo, true, hi, true);
   if (wi) {
-    if (wi->ndim() != 2 || wi->shape(1) != 3 || static_cast<std::size_t>(wi->shape(0)) != n)
+    if (wi->ndim() != 2 || wi->shape(1) != 3 || (wi->shape(0) != 1 && static_cast<std::size_t>(wi->shape(0)) != n))
       throw support::UserError("wi must be an array of shape (n, 3) with n = " + std::to_string(n));
-    wi_unit = unit_directions(*wi, "wi", flat);
-    const double* w = wi_unit->data();
-    for (std::size_t j = 0; j < n; ++j) {
+    wi_unit = rows_of(*wi, "wi", n, flat);
+    const std::size_t rows = static_cast<std::size_t>(wi->shape(0));
+    const double* w = wi_unit->w.data();
+    for (std::size_t j = 0; j < rows; ++j) {
       const double* d = w + 3 * j;
       const double t = validation::output_deg(flat ? flat_angle(d) : std::atan2(std::hypot(d[0], d[1]), d[2]));
       if (!(t >= lo && t <= hi))
@@ -140,43 +148,47 @@ Light light_of(const std::optional<DoubleArray>& wi, std::optional<DoubleArray>&
                                  support::number_text(t) + " deg from the normal, out of range " + range);
     }
     l.wi = w;
+    l.step = rows == 1 ? 0 : 1;
   } else {
-    if (theta_i_deg->ndim() != 1 || static_cast<std::size_t>(theta_i_deg->shape(0)) != n)
+    const std::size_t rows = theta_i_deg->ndim() == 1 ? static_cast<std::size_t>(theta_i_deg->shape(0)) : 0;
+    if (rows != 1 && rows != n)
       throw support::UserError("theta_i_deg must be an array of shape (n,) with n = " + std::to_string(n));
-    for (std::size_t j = 0; j < n; ++j) {
+    for (std::size_t j = 0; j < rows; ++j) {
       const double t = theta_i_deg->data()[j];
       if (!(t >= lo && t <= hi))
         throw support::UserError("theta_i_deg[" + std::to_string(j) + "] = " + support::number_text(t) +
                                  " is out of range " + range);
     }
     l.theta_i_deg = theta_i_deg->data();
+    l.step = rows == 1 ? 0 : 1;
   }
   return l;
 }
 
-// Runs row(j, cursor) for j < n in chunks of 4096 on `threads` threads, without the GIL (Ctrl-C
-// stops it); each chunk reads the light with its own cursor.
+// Runs row(j, cursor) for j < n in chunks of 4096 rows (16 where a row costs milliseconds: the
+// nonsymmetric pdf) on `threads` threads, without the GIL (Ctrl-C stops it between chunks); each
+// chunk reads the light with its own cursor. Progress counts rows.
 template <class Row>
-void for_rows(std::size_t n, int threads, const Light& light, Row&& row) {
+void for_rows(std::size_t n, int threads, const Light& light, ProgressRelay& relay, bool slow, Row&& row) {
+  const std::size_t chunk = slow ? 16 : 4096;
   run_interruptible(
       [&](std::atomic<bool>& cancel) {
-        const std::size_t chunk = 4096;
         support::parallel_for((n + chunk - 1) / chunk, support::resolve_threads(threads),
                               [&](std::size_t c) {
                                 LightCursor cursor(light);
                                 const std::size_t end = std::min(n, (c + 1) * chunk);
                                 for (std::size_t j = c * chunk; j < end; ++j) row(j, cursor);
                               },
-                              {}, &cancel, 1);
+                              relay.fn(chunk, n), &cancel, 1);
         return 0;
       },
-      n < 2048);
+      n < (slow ? 2 : 2048), &relay);
 }
 
 py::dict sample(const std::string& model, const std::string& ndf_name, double alpha,
                 const std::optional<DoubleArray>& wi, const std::optional<DoubleArray>& theta_i_deg, DoubleArray u,
                 const std::string& strategy, long long max_k, double tolerance, const std::string& dim_name,
-                int threads) {
+                int threads, const py::object& eta, const py::object& progress) {
   const bool nonsym = parse_sampler_model(model);
   const NdfKind ndf = sampler_ndf(ndf_name);
   check_alpha(alpha);
@@ -188,9 +200,16 @@ py::dict sample(const std::string& model, const std::string& ndf_name, double al
     throw support::UserError("u must be an array of shape (n, " + std::to_string(m) + ")");
   const std::size_t n = static_cast<std::size_t>(u.shape(0));
   const bool flat = dim == SurfaceDim::flatland;
-  std::optional<DoubleArray> wi_unit;
+  std::optional<Rows> wi_unit;
   const Light light = light_of(wi, wi_unit, theta_i_deg, n, flat);
   check_uniforms(u.data(), n, static_cast<std::size_t>(m));
+  // A conductor's Fresnel term in the weights (3D; the directions and pdf do not depend on it).
+  analytic::FresnelFn F;
+  if (!eta.is_none()) {
+    if (flat) throw support::UserError("eta applies to dim 3d only (the flatland samplers have no Fresnel term)");
+    F = conductor_of(eta).fn();
+  }
+  ProgressRelay relay(progress);
   const analytic::NonsymmetricSampler ns =
       nonsym ? nonsymmetric_sampler(ndf, alpha, opt, flat, tolerance) : analytic::NonsymmetricSampler{};
   const auto sn = static_cast<py::ssize_t>(n);
@@ -204,7 +223,7 @@ py::dict sample(const std::string& model, const std::string& ndf_name, double al
   std::int32_t* pk = k.mutable_data();
   double *pp = pdf.mutable_data(), *pw = weight.mutable_data();
   const double* pu = u.data();
-  for_rows(n, threads, light, [&](std::size_t j, LightCursor& cursor) {
+  for_rows(n, threads, light, relay, nonsym, [&](std::size_t j, LightCursor& cursor) {
     if (nonsym) {
       const double* v = pu + 5 * j;
       const std::array<double, 5> uj{v[0], v[1], v[2], v[3], v[4]};
@@ -213,7 +232,7 @@ py::dict sample(const std::string& model, const std::string& ndf_name, double al
         po[3 * j] = -std::sin(x.theta_o), po[3 * j + 1] = 0.0, po[3 * j + 2] = std::cos(x.theta_o);
         pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight, pb[j] = x.beyond_max_k;
       } else {
-        const analytic::VgrooveSample3d x = analytic::sample_nonsymmetric_3d(ns, cursor.dir(j), uj);
+        const analytic::VgrooveSample3d x = analytic::sample_nonsymmetric_3d(ns, cursor.dir(j), uj, F);
         po[3 * j] = x.o.x, po[3 * j + 1] = x.o.y, po[3 * j + 2] = x.o.z;
         pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight, pb[j] = x.beyond_max_k;
       }
@@ -225,7 +244,7 @@ py::dict sample(const std::string& model, const std::string& ndf_name, double al
       po[3 * j] = -std::sin(x.theta_o), po[3 * j + 1] = 0.0, po[3 * j + 2] = std::cos(x.theta_o);
       pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight, pb[j] = x.beyond_max_k;
     } else {
-      const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(cursor.dir(j), uj, ndf, alpha, opt);
+      const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(cursor.dir(j), uj, ndf, alpha, opt, F);
       po[3 * j] = x.o.x, po[3 * j + 1] = x.o.y, po[3 * j + 2] = x.o.z;
       pk[j] = x.k, pp[j] = x.pdf, pw[j] = x.weight, pb[j] = x.beyond_max_k;
     }
@@ -242,7 +261,7 @@ py::dict sample(const std::string& model, const std::string& ndf_name, double al
 py::array_t<double> pdf(const std::string& model, const std::string& ndf_name, double alpha,
                         const std::optional<DoubleArray>& wi, const std::optional<DoubleArray>& theta_i_deg,
                         DoubleArray wo, const std::string& strategy, long long max_k, double tolerance,
-                        const std::string& dim_name, int threads) {
+                        const std::string& dim_name, int threads, const py::object& progress) {
   const bool nonsym = parse_sampler_model(model);
   const NdfKind ndf = sampler_ndf(ndf_name);
   check_alpha(alpha);
@@ -252,15 +271,16 @@ py::array_t<double> pdf(const std::string& model, const std::string& ndf_name, d
   if (wo.ndim() != 2 || wo.shape(1) != 3) throw support::UserError("wo must be an array of shape (n, 3)");
   const std::size_t n = static_cast<std::size_t>(wo.shape(0));
   const bool flat = dim == SurfaceDim::flatland;
-  std::optional<DoubleArray> wi_unit;
+  std::optional<Rows> wi_unit;
   const Light light = light_of(wi, wi_unit, theta_i_deg, n, flat);
   wo = unit_directions(wo, "wo", flat);
+  ProgressRelay relay(progress);
   const analytic::NonsymmetricSampler ns =
       nonsym ? nonsymmetric_sampler(ndf, alpha, opt, flat, tolerance) : analytic::NonsymmetricSampler{};
   auto out = new_array<double>({static_cast<py::ssize_t>(n)});
   double* po = out.mutable_data();
   const double* pw = wo.data();
-  for_rows(n, threads, light, [&](std::size_t j, LightCursor& cursor) {
+  for_rows(n, threads, light, relay, nonsym, [&](std::size_t j, LightCursor& cursor) {
     const double* o = pw + 3 * j;
     if (nonsym) {
       po[j] = flat ? analytic::nonsymmetric_pdf_flatland(ns, light.angle(j), flat_angle(o))
@@ -302,9 +322,11 @@ py::array_t<double> uniforms(const py::object& n_obj, const py::object& seed_obj
 
 void bind_sampling(py::module_& m) {
   m.def("sample", &sample, py::arg("model"), py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("theta_i_deg"),
-        py::arg("u"), py::arg("strategy"), py::arg("max_k"), py::arg("tolerance"), py::arg("dim"), py::arg("threads"));
+        py::arg("u"), py::arg("strategy"), py::arg("max_k"), py::arg("tolerance"), py::arg("dim"), py::arg("threads"),
+        py::arg("eta") = py::none(), py::arg("progress") = py::none());
   m.def("pdf", &pdf, py::arg("model"), py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("theta_i_deg"),
-        py::arg("wo"), py::arg("strategy"), py::arg("max_k"), py::arg("tolerance"), py::arg("dim"), py::arg("threads"));
+        py::arg("wo"), py::arg("strategy"), py::arg("max_k"), py::arg("tolerance"), py::arg("dim"), py::arg("threads"),
+        py::arg("progress") = py::none());
   // The samplers' default max_k (analytic/sampling_3d.h, analytic/sampling_nonsymmetric.h).
   m.attr("SAMPLER_MAX_K") = analytic::kSamplerMaxK;
   m.attr("NONSYMMETRIC_SAMPLER_MAX_K") = analytic::kNonsymmetricSamplerMaxK;

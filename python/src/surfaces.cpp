@@ -88,7 +88,8 @@ void put_fates(py::dict& d, const Tally& t) {
 // tallies are held at once, whatever the number of rays; the sums are merged at the end. The counts
 // are integers: they do not depend on which chunks met in which sum, nor on the thread count.
 template <class Tally, class Chunk>
-Tally trace_chunks(std::int64_t chunks, int workers, Tally total, const Chunk& chunk, std::atomic<bool>& cancel) {
+Tally trace_chunks(std::int64_t chunks, int workers, Tally total, const Chunk& chunk, std::atomic<bool>& cancel,
+                   const support::ProgressFn& progress) {
   std::mutex mu;
   std::vector<Tally> pool;
   const bool complete = support::parallel_for(
@@ -104,7 +105,7 @@ Tally trace_chunks(std::int64_t chunks, int workers, Tally total, const Chunk& c
         std::lock_guard<std::mutex> lock(mu);
         pool.push_back(std::move(t));
       },
-      {}, &cancel, 1);
+      progress, &cancel, 1);
   if (!complete) return total;
   for (const Tally& p : pool) total.merge(p);
   return total;
@@ -149,13 +150,19 @@ void check_bins(bool flat, int flatland_bins, int theta_bins, int phi_bins, int 
 
 py::dict trace_microsurface(const Surface& s, double theta_i_deg, const py::object& rays_obj,
                             const py::object& seed_obj, const std::string& sampling, int flatland_bins, int theta_bins,
-                            int phi_bins, int max_k, const py::object& max_bounces, int threads) {
+                            int phi_bins, int max_k, const py::object& max_bounces, int threads,
+                            const py::object& progress) {
   const long long rays = to_count(rays_obj, "rays", 1, validation::kMaxRays);
   const long long seed = seed_obj.is_none() ? s.seed : to_seed(seed_obj, "seed");
   const int mb = static_cast<int>(to_count(max_bounces, "max_bounces", 1, validation::kMaxBounces));
   validation::check_threads(threads, "threads");
   const bool flat = s.dim == SurfaceDim::flatland;
   check_bins(flat, flatland_bins, theta_bins, phi_bins, max_k);
+  ProgressRelay relay(progress);  // counts rays (by chunks)
+  auto ray_progress = [&](std::int64_t chunks) {
+    return relay.fn(static_cast<std::size_t>((rays + chunks - 1) / std::max<std::int64_t>(chunks, 1)),
+                    static_cast<std::size_t>(rays));
+  };
   py::dict d;
   // The tallies held at once (trace_chunks), checked against the memory this process may use.
   auto check_memory = [&](std::int64_t chunks) {
@@ -175,11 +182,14 @@ py::dict trace_microsurface(const Surface& s, double theta_i_deg, const py::obje
     o.theta_o_bins = flatland_bins, o.max_k = max_k, o.trace.max_bounces = mb;
     const std::int64_t chunks = sim::chunk_count(o);
     const int workers = check_memory(chunks);
-    sim::MicrosurfaceTally t = run_interruptible([&](std::atomic<bool>& cancel) {
-      return trace_chunks(
-          chunks, workers, sim::MicrosurfaceTally(o.theta_o_bins, o.max_k),
-          [&](std::int64_t c) { return sim::trace_microsurface_chunk(s.flat, o, c); }, cancel);
-    });
+    sim::MicrosurfaceTally t = run_interruptible(
+        [&](std::atomic<bool>& cancel) {
+          return trace_chunks(
+              chunks, workers, sim::MicrosurfaceTally(o.theta_o_bins, o.max_k),
+              [&](std::int64_t c) { return sim::trace_microsurface_chunk(s.flat, o, c); }, cancel,
+              ray_progress(chunks));
+        },
+        false, &relay);
     put_fates(d, t);
     const auto rows = static_cast<py::ssize_t>(max_k + 2), bins = static_cast<py::ssize_t>(flatland_bins);
     d["by_k"] = array_from(std::move(t.by_k), {rows});
@@ -197,11 +207,14 @@ py::dict trace_microsurface(const Surface& s, double theta_i_deg, const py::obje
   o.theta_bins = theta_bins, o.phi_bins = phi_bins, o.max_k = max_k, o.trace.max_bounces = mb;
   const std::int64_t chunks = sim::chunk_count(o);
   const int workers = check_memory(chunks);
-  sim::Microsurface3dTally t = run_interruptible([&](std::atomic<bool>& cancel) {
-    return trace_chunks(
-        chunks, workers, sim::Microsurface3dTally(o.theta_bins, o.phi_bins, o.max_k),
-        [&](std::int64_t c) { return sim::trace_microsurface3d_chunk(s.three, o, c); }, cancel);
-  });
+  sim::Microsurface3dTally t = run_interruptible(
+      [&](std::atomic<bool>& cancel) {
+        return trace_chunks(
+            chunks, workers, sim::Microsurface3dTally(o.theta_bins, o.phi_bins, o.max_k),
+            [&](std::int64_t c) { return sim::trace_microsurface3d_chunk(s.three, o, c); }, cancel,
+            ray_progress(chunks));
+      },
+      false, &relay);
   put_fates(d, t);
   const auto rows = static_cast<py::ssize_t>(max_k + 2), tb = static_cast<py::ssize_t>(theta_bins),
              pb = static_cast<py::ssize_t>(phi_bins);
@@ -213,8 +226,10 @@ py::dict trace_microsurface(const Surface& s, double theta_i_deg, const py::obje
 
 // The model's lobe over the suites' bins: fractions of the incident flux. Ctrl-C stops it between
 // quadrature nodes (a 200 x 200-bin 3D lobe takes ~9 s, 10^5 flatland bins at max_k 1000 ~14 s).
+// Progress: its start (0 of 1) and its end (1 of 1); the lobe's loops report nothing finer.
 py::dict lobe(const std::string& model_name, const std::string& ndf_name, double alpha, double theta_i_deg,
-              const std::string& dim_name, int flatland_bins, int theta_bins, int phi_bins, int max_k) {
+              const std::string& dim_name, int flatland_bins, int theta_bins, int phi_bins, int max_k,
+              const py::object& progress) {
   const NdfKind ndf = parse_ndf(ndf_name);
   check_alpha(alpha);
   const SurfaceDim dim = parse_dim(dim_name);
@@ -234,14 +249,21 @@ py::dict lobe(const std::string& model_name, const std::string& ndf_name, double
   support::check_memory((flat ? 1.0 : 2.0) * one + ct_rows, "lobe",
                         cells_text(flat, flatland_bins, theta_bins, phi_bins, lobe_k) + " histogram cells");
   const double ti = theta_i_deg * kRadPerDeg;
+  ProgressRelay relay(progress);
+  relay.set(0, 1);
+  relay.flush();
   py::dict d;
   if (flat) {
-    analytic::FlatlandLobe l = run_interruptible([&](std::atomic<bool>& cancel) {
-      analytic::FlatlandLobeOptions opt;
-      opt.cancel = &cancel;
-      return ct ? analytic::flatland_single_lobe(ndf, alpha, ti, flatland_bins)
-                : analytic::flatland_lobe(ndf, alpha, ti, flatland_bins, max_k, opt);
-    });
+    analytic::FlatlandLobe l = run_interruptible(
+        [&](std::atomic<bool>& cancel) {
+          analytic::FlatlandLobeOptions opt;
+          opt.cancel = &cancel;
+          analytic::FlatlandLobe r = ct ? analytic::flatland_single_lobe(ndf, alpha, ti, flatland_bins)
+                                        : analytic::flatland_lobe(ndf, alpha, ti, flatland_bins, max_k, opt);
+          relay.set(1, 1);
+          return r;
+        },
+        false, &relay);
     const auto rows = static_cast<py::ssize_t>(l.max_k + 2), bins = static_cast<py::ssize_t>(l.bins);
     d["by_k"] = array_from(std::move(l.by_k), {rows});
     d["theta_o"] = array_from(std::move(l.theta_o), {bins});
@@ -249,14 +271,17 @@ py::dict lobe(const std::string& model_name, const std::string& ndf_name, double
     d["albedo"] = l.albedo;
     return d;
   }
-  analytic::Lobe3d l = run_interruptible([&](std::atomic<bool>& cancel) {
-    analytic::Lobe3dOptions opt;
-    opt.cancel = &cancel;
-    // Cook-Torrance (V-cavity G) is the vgroove lobe's k = 1 row (Eq. 25), as the "brdf" suites take it.
-    analytic::Lobe3d v = analytic::vgroove_lobe_3d(ndf, alpha, ti, theta_bins, phi_bins, lobe_k, opt);
-    if (ct) return analytic::cook_torrance_lobe_3d_from(v);
-    return v;
-  });
+  analytic::Lobe3d l = run_interruptible(
+      [&](std::atomic<bool>& cancel) {
+        analytic::Lobe3dOptions opt;
+        opt.cancel = &cancel;
+        // Cook-Torrance (V-cavity G) is the vgroove lobe's k = 1 row (Eq. 25), as the "brdf" suites take it.
+        analytic::Lobe3d v = analytic::vgroove_lobe_3d(ndf, alpha, ti, theta_bins, phi_bins, lobe_k, opt);
+        relay.set(1, 1);
+        if (ct) return analytic::cook_torrance_lobe_3d_from(v);
+        return v;
+      },
+      false, &relay);
   const auto rows = static_cast<py::ssize_t>(l.max_k + 2), tb = static_cast<py::ssize_t>(theta_bins),
              pb = static_cast<py::ssize_t>(phi_bins);
   d["by_k"] = array_from(std::move(l.by_k), {rows});
@@ -296,9 +321,10 @@ void bind_surfaces(py::module_& m) {
         py::arg("dim"));
   m.def("trace_microsurface", &trace_microsurface, py::arg("surface"), py::arg("theta_i_deg"), py::arg("rays"),
         py::arg("seed"), py::arg("sampling"), py::arg("flatland_bins"), py::arg("theta_bins"), py::arg("phi_bins"),
-        py::arg("max_k"), py::arg("max_bounces"), py::arg("threads"));
+        py::arg("max_k"), py::arg("max_bounces"), py::arg("threads"), py::arg("progress") = py::none());
   m.def("lobe", &lobe, py::arg("model"), py::arg("ndf"), py::arg("alpha"), py::arg("theta_i_deg"), py::arg("dim"),
-        py::arg("flatland_bins"), py::arg("theta_bins"), py::arg("phi_bins"), py::arg("max_k"));
+        py::arg("flatland_bins"), py::arg("theta_bins"), py::arg("phi_bins"), py::arg("max_k"),
+        py::arg("progress") = py::none());
 }
 
 }  // namespace vgroove::python

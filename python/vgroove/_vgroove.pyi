@@ -1,6 +1,7 @@
 # Type stubs of vgroove._vgroove, the C++ core under the package vgroove. Use the package's
-# functions (vgroove/__init__.py: units and conventions in their docstrings); these take
-# flattened, already broadcast arrays and every option explicitly.
+# functions and vgroove.BRDF (units and conventions in their docstrings); these take flattened,
+# already broadcast arrays (or one row for every item) and every option explicitly. Kept in step
+# with the extension by tests/python/test_stubs.py (names and parameters).
 from typing import Any, Callable, Optional, Sequence, Union
 
 import numpy as np
@@ -9,7 +10,13 @@ import numpy.typing as npt
 __version__: str
 git_revision: str
 ranges: dict[str, float]
+BRDF_MAX_K: dict[tuple[str, str], int]
+SAMPLER_MAX_K: int
+NONSYMMETRIC_SAMPLER_MAX_K: int
 
+Progress = Optional[Callable[[int, int], Any]]
+
+def direction(theta_deg: npt.NDArray[np.float64], phi_deg: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
 def output_deg(rad: npt.ArrayLike) -> Any: ...
 
 def kaleidoscope(theta_i_deg: npt.NDArray[np.float64], theta_v_deg: Optional[npt.NDArray[np.float64]],
@@ -42,24 +49,29 @@ class Microsurface:
 def microsurface(ndf: str, alpha: float, grooves: int, seed: int, dim: str) -> Microsurface: ...
 def trace_microsurface(surface: Microsurface, theta_i_deg: float, rays: int, seed: Optional[int], sampling: str,
                        flatland_bins: int, theta_bins: int, phi_bins: int, max_k: int, max_bounces: int,
-                       threads: int) -> dict[str, Any]: ...
+                       threads: int, progress: Progress = None) -> dict[str, Any]: ...
 def lobe(model: str, ndf: str, alpha: float, theta_i_deg: float, dim: str, flatland_bins: int, theta_bins: int,
-         phi_bins: int, max_k: int) -> dict[str, Any]: ...
+         phi_bins: int, max_k: int, progress: Progress = None) -> dict[str, Any]: ...
 
-def brdf(model: str, ndf: str, alpha: float, wi: npt.NDArray[np.float64], wo: npt.NDArray[np.float64], per_k: bool,
-         max_k: int, dim: str, threads: int) -> npt.NDArray[np.float64]: ...
-def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], npt.ArrayLike], str], max_k: int, name: str, ndf: str,
-               alpha: float, theta_i_deg: Sequence[float], rays: int, dim: str, grooves: int, seed: int,
+def brdf_settings(model: str, ndf: str, alpha: float, dim: str, max_k: Optional[int], alpha_y: Optional[float],
+                  partner: Optional[str], eta: Optional[complex]) -> dict[str, Any]: ...
+def brdf(model: str, ndf: str, alpha: float, wi: npt.NDArray[np.float64], wo: npt.NDArray[np.float64], per_k: int,
+         max_k: Optional[int], dim: str, threads: int, alpha_y: Optional[float] = None, partner: Optional[str] = None,
+         eta: Optional[complex] = None, progress: Progress = None) -> npt.NDArray[np.float64]: ...
+def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], npt.ArrayLike], str], max_k: Optional[int], name: str,
+               ndf: str, alpha: float, theta_i_deg: Sequence[float], rays: int, dim: str, grooves: int, seed: int,
                theta_bins: int, phi_bins: int, flatland_bins: int, sigmas: float, model_tolerance: float,
-               quadrature_order: int, threads: int) -> dict[str, Any]: ...
+               quadrature_order: int, threads: int, progress: Progress = None) -> dict[str, Any]: ...
 
 def validate(path: str, rays: Optional[int], threads: int, sampling: Optional[str], eq6_form: Optional[str],
-             seed: Optional[int], model_table: Optional[str], verbose: bool) -> dict[str, Any]: ...
+             seed: Optional[int], model_table: Optional[str], verbose: bool, suite_json: Optional[str] = None,
+             progress: Progress = None) -> dict[str, Any]: ...
 
 def sample(model: str, ndf: str, alpha: float, wi: Optional[npt.NDArray[np.float64]],
            theta_i_deg: Optional[npt.NDArray[np.float64]], u: npt.NDArray[np.float64], strategy: str, max_k: int,
-           tolerance: float, dim: str, threads: int) -> dict[str, np.ndarray]: ...
+           tolerance: float, dim: str, threads: int, eta: Optional[complex] = None,
+           progress: Progress = None) -> dict[str, np.ndarray]: ...
 def pdf(model: str, ndf: str, alpha: float, wi: Optional[npt.NDArray[np.float64]],
         theta_i_deg: Optional[npt.NDArray[np.float64]], wo: npt.NDArray[np.float64], strategy: str, max_k: int,
-        tolerance: float, dim: str, threads: int) -> npt.NDArray[np.float64]: ...
+        tolerance: float, dim: str, threads: int, progress: Progress = None) -> npt.NDArray[np.float64]: ...
 def uniforms(n: int, seed: int, a: int, b: int, dims: int) -> npt.NDArray[np.float64]: ...

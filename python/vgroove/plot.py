@@ -22,11 +22,15 @@ One or more images per report, named after the report (or --out) with a suffix p
                                              BASE[-aniso]-NDF-DIM.png  lobe grids on the plane of incidence
     "profiles"                               BASE.png       masking G1 per facet normal: traced, V-cavity, Smith;
                                              BASE-lobes.png  lobes: traced profiles, random walk, V-groove model
+    "energy_audit"                           BASE-REF-NDF.png  per compensation formula, its albedo minus the
+                                                            exact one over (mu, alpha), the grey F0 with the
+                                                            largest |error| per cell (REF: vgroove, smith_walk)
     "table2"                                 BASE.png       the paper's bounce counts, ours, the traced ones
     `bench accuracy --out`                   BASE.png       L1 against wall time (log-log);
                                              BASE-cost.png  tracer vs model cost against theta_v
     check_brdf reports                       BASE.png       L1 and albedo against their thresholds per theta_i,
                                                             and the worst bins
+    `validate --model-table` reports         BASE-NDF-DIM.png  the same per (NDF, dimension), a series per alpha
 
 The report is validated before anything is drawn: a field that is missing, of the wrong type,
 an empty or short array, null or a non-finite number is a one-line error (ValueError; the
@@ -134,11 +138,12 @@ class Node:
         return [i.number(lo, hi) for i in items]
 
     def numbers_or_gaps(self, length: int, lo: float = -math.inf, hi: float = math.inf) -> List[float]:
-        """numbers() where null is a gap (NaN, not drawn): a value the report leaves undefined."""
+        """numbers() where "nan" (or null) is a gap (NaN, not drawn): a value the report leaves undefined
+        (docs/conventions.md: NaN is written as the string "nan")."""
         items = self.items()
         if len(items) != length:
             raise self.fail(f"has {len(items)} values, needs {length}")
-        return [math.nan if i.value is None else i.number(lo, hi) for i in items]
+        return [math.nan if i.value is None or i.value == "nan" else i.number(lo, hi) for i in items]
 
     def opt_text(self, key: str, fallback: str = "?") -> str:
         return self[key].text() if self.has(key) and isinstance(self.value[key], str) else fallback
@@ -197,7 +202,8 @@ def report_kind(report: Node) -> str:
     if not isinstance(v, dict):
         raise report.fail(f"is {_kind(v)}: a report is a JSON object")
     kind = v.get("kind")
-    if kind in ("brdf", "furnace", "table2", "check_brdf", "sampling", "nonsymmetric_brdf", "profiles"):
+    if kind in ("brdf", "furnace", "table2", "check_brdf", "sampling", "nonsymmetric_brdf", "profiles",
+                "energy_audit", "model_table"):
         return kind
     if "runs" in v:
         return "accuracy"
@@ -518,9 +524,10 @@ def sampling_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
     variance = []
     for v in report["variance"].items():
         strategies = []
-        for r in v["strategies"].nonempty():
+        rows, timing = v["strategies"].nonempty(), v["timing"]["strategies"]
+        for n, r in enumerate(rows):
             strategies.append((safe_text(r["strategy"].text(), 16), r["variance"].number(0.0),
-                               r["ns_per_sample"].number(0.0)))
+                               timing[n]["ns_per_sample"].number(0.0)))
         ns = " nonsym." if v.has("model") and v["model"].text() == "vgroove-nonsymmetric" else ""
         variance.append({"label": f"{v['dimension'].one_of(_DIMS)}{ns} {_ndf_label(v)} "
                                   f"a {v['alpha'].number(0.0, 2.0):g} ti {v['theta_i_deg'].number(-90.0, 90.0):g}\n"
@@ -779,6 +786,115 @@ def profiles_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
     return [("", draw_masking), ("-lobes", draw_lobes)]
 
 
+# The energy audit: error maps of the compensation formulas -------------------------------------------
+
+def _number_or_nan(n: Node, lo: float = -math.inf, hi: float = math.inf) -> float:
+    """A report's exact double: a number, or "nan" where the value is undefined (a gap, not drawn)."""
+    if n.value == "nan":
+        return math.nan
+    return n.number(lo, hi)
+
+
+def energy_audit_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
+    grid = report["grid"]
+    ndfs = [n.one_of(("ggx", "beckmann")) for n in grid["ndf"].nonempty()]
+    alphas = grid["alpha"].numbers(lo=0.0, hi=2.0)
+    mus = grid["mu"].numbers(lo=0.0, hi=1.0)
+    channels = report["channels"].nonempty()
+    grey = [c for c, ch in enumerate(channels) if ch["group"].text() == "grey"]
+    if not grey:
+        raise report["channels"].fail("has no channel of group \"grey\"")
+    grey_F0 = [channels[c]["F0"].number(0.0, 1.0) for c in grey]
+    variants = [safe_text(v["id"].text(), 40) for v in report["variants"].nonempty()]
+    errors = report["errors"]
+    if not isinstance(errors.value, dict) or not errors.value:
+        raise errors.fail("is not an object of the formulas' errors")
+    refs = ("vgroove", "smith_walk")
+    # maps[(ref, ndf)] = [(variant, worst signed error over grey F0 [alpha][mu], its F0 [alpha][mu])]
+    maps: Dict[Tuple[str, str], List[Tuple[str, List[List[float]], List[List[float]]]]] = {}
+    for v, vid in enumerate(variants):
+        raw = report["variants"][v]["id"].text()
+        if not errors.has(raw):
+            continue
+        for ref in refs:
+            if not errors[raw].has(ref):
+                continue
+            by_ndf = errors[raw][ref]
+            if len(by_ndf.items()) != len(ndfs):
+                raise by_ndf.fail(f"has {len(by_ndf.items())} NDFs, the grid {len(ndfs)}")
+            for d, ndf in enumerate(ndfs):
+                e_map, f_map = [], []
+                rows = by_ndf[d].items()
+                if len(rows) != len(alphas):
+                    raise by_ndf[d].fail(f"has {len(rows)} alpha rows, the grid {len(alphas)}")
+                for a, row in enumerate(rows):
+                    cells = row.items()
+                    if len(cells) != len(mus):
+                        raise row.fail(f"has {len(cells)} mu values, the grid {len(mus)}")
+                    e_row, f_row = [], []
+                    for cell in cells:
+                        if len(cell.items()) != len(channels):
+                            raise cell.fail(f"has {len(cell.items())} channels, the report {len(channels)}")
+                        vals = [_number_or_nan(cell[c], -4.0, 4.0) for c in grey]
+                        finite = [(abs(x), x, f) for x, f in zip(vals, grey_F0) if math.isfinite(x)]
+                        if finite:
+                            _, x, f = max(finite)
+                            e_row.append(x)
+                            f_row.append(f)
+                        else:
+                            e_row.append(math.nan)
+                            f_row.append(math.nan)
+                    e_map.append(e_row)
+                    f_map.append(f_row)
+                maps.setdefault((ref, ndf), []).append((vid, e_map, f_map))
+    if not maps:
+        raise errors.fail("holds no formula's errors against vgroove or smith_walk")
+    name = safe_text(report["suite"].text())
+    what = {"vgroove": "the V-groove model (formulas fed with the V-cavity single scattering)",
+            "smith_walk": "the Smith random walk (formulas fed with Smith's height-correlated single scattering)"}
+
+    def drawer(ref: str, ndf: str, panels: List[Tuple[str, List[List[float]], List[List[float]]]]) -> Drawer:
+        def draw() -> Figure:
+            import numpy as np
+            from matplotlib.colors import TwoSlopeNorm
+            cols = min(4, len(panels))
+            rows = (len(panels) + cols - 1) // cols
+            fig = _figure(3.4 * cols + 1.2, 2.9 * rows + 1.2)
+            axes = fig.subplots(rows, cols, squeeze=False)
+            # The colour scale spans the compensated formulas' errors; the uncompensated lobe
+            # ("single", several times larger) saturates it (its panel title gives its worst).
+            def largest(ps):
+                xs = [abs(x) for _, e, _ in ps for r in e for x in r if math.isfinite(x)]
+                return max(xs) if xs else 0.0
+            lim = largest([p for p in panels if p[0] != "single"]) or largest(panels) or 1.0
+            norm = TwoSlopeNorm(0.0, -lim, lim)
+            mesh = None
+            for k, ax in enumerate(axes.flat):
+                if k >= len(panels):
+                    ax.set_axis_off()
+                    continue
+                vid, e, _ = panels[k]
+                z = np.ma.masked_invalid(np.asarray(e, dtype=float))
+                mesh = ax.pcolormesh(_edges(mus) if len(mus) > 1 else [mus[0] - 0.5, mus[0] + 0.5],
+                                     _edges(alphas) if len(alphas) > 1 else [alphas[0] - 0.5, alphas[0] + 0.5],
+                                     z, cmap="RdBu_r", norm=norm, shading="flat")
+                worst = float(np.nanmax(np.abs(z.filled(np.nan)))) if z.count() else math.nan
+                ax.set_title(f"{vid}: worst |error| {worst:.3g}", fontsize=8)
+                ax.set_xlabel("mu = cos theta", fontsize=8)
+                ax.set_ylabel("alpha", fontsize=8)
+                ax.tick_params(labelsize=7)
+            if mesh is not None:
+                cb = fig.colorbar(mesh, ax=axes, shrink=0.8, extend="both")
+                cb.set_label("albedo of the formula minus the exact one (red: too bright, blue: too dark)")
+            _suptitle(fig, f"{name}: energy compensation against {what[ref]}, {ndf}",
+                      f"each cell: the grey Schlick F0 ({', '.join(f'{f:g}' for f in grey_F0)}) with the largest "
+                      f"|error|; {_title_bits(report)}")
+            return fig
+        return draw
+
+    return [(f"-{ref.replace('_', '-')}-{ndf}", drawer(ref, ndf, panels)) for (ref, ndf), panels in maps.items()]
+
+
 # Table 2 -------------------------------------------------------------------------------------------
 
 def table2_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
@@ -869,55 +985,89 @@ def accuracy_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
     return [("", draw_accuracy)] + ([("-cost", draw_cost)] if cost else [])
 
 
-# check_brdf -----------------------------------------------------------------------------------------
+# check_brdf and model tables --------------------------------------------------------------------
+# A BRDF of the user's (check_brdf) or a table of its bin fluxes (validate --model-table) against
+# the traced lobes: per incidence the L1 distances over their thresholds, the albedos, and the
+# bins where the two differ most.
 
-def check_brdf_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
-    cases = []
-    for c in report["cases"].nonempty():
-        worst = [(w["theta_o_deg"].number(-90.0, 90.0), w["phi_o_deg"].number(-180.0, 180.0), w["sim"].number(),
-                  w["model"].number()) for w in c["worst_bins"].items()]
-        cases.append({
-            "theta_i": c["theta_i_deg"].number(-90.0, 90.0), "l1": c["l1"].number(), "l1_thr": c["l1_threshold"].number(),
+def _verdict_case(c: Node) -> Dict[str, Any]:
+    worst = [(w["theta_o_deg"].number(-90.0, 90.0), w["phi_o_deg"].number(-180.0, 180.0), w["sim"].number(),
+              w["model"].number()) for w in c["worst_bins"].items()]
+    return {"theta_i": c["theta_i_deg"].number(-90.0, 90.0), "l1": c["l1"].number(), "l1_thr": c["l1_threshold"].number(),
             "flux": c["l1_flux"].number(), "flux_thr": c["l1_flux_threshold"].number(),
             "a_sim": c["albedo_sim"].number(), "a_model": c["albedo_model"].number(),
-            "a_thr": c["albedo_threshold"].number(), "pass": c["pass"].boolean(), "worst": worst})
-    name = safe_text(report["name"].text()) if report.has("name") else "check_brdf"
-    inputs = report["inputs"] if report.has("inputs") else None
-    what = ""
-    if inputs is not None and inputs.has("ndf") and inputs.has("alpha"):
-        what = f" ({safe_text(inputs['ndf'].text(), 12)}, alpha {inputs['alpha'].number():g})"
+            "a_thr": c["albedo_threshold"].number(), "pass": c["pass"].boolean(), "worst": worst}
 
+
+def _verdict_drawer(report: Node, title: str, series: Dict[str, List[Dict[str, Any]]], model: str) -> Drawer:
+    """Three panels for the cases of one or more series (a label each: an alpha, or "" alone)."""
     def draw() -> Figure:
         import numpy as np
         fig = _figure(12.0, 4.2)
         a1, a2, a3 = fig.subplots(1, 3)
-        t = np.array([c["theta_i"] for c in cases])
-        a1.plot(t, [c["l1"] / c["l1_thr"] if c["l1_thr"] > 0 else 0 for c in cases], "o-", label="lobe shape")
-        a1.plot(t, [c["flux"] / c["flux_thr"] if c["flux_thr"] > 0 else 0 for c in cases], "s-", label="flux per bin")
+        colors = ["#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2"]
+        for n, (label, cases) in enumerate(series.items()):
+            cases = sorted(cases, key=lambda c: c["theta_i"])
+            col = colors[n % len(colors)]
+            tag = f" ({label})" if label else ""
+            t = np.array([c["theta_i"] for c in cases])
+            a1.plot(t, [c["l1"] / c["l1_thr"] if c["l1_thr"] > 0 else 0 for c in cases], "o-", color=col,
+                    label=f"lobe shape{tag}")
+            a1.plot(t, [c["flux"] / c["flux_thr"] if c["flux_thr"] > 0 else 0 for c in cases], "s--", color=col,
+                    label=f"flux per bin{tag}")
+            a2.errorbar(t, [c["a_sim"] for c in cases], yerr=[c["a_thr"] for c in cases], fmt="o", capsize=3,
+                        color=col, label=f"traced (+- threshold){tag}")
+            a2.plot(t, [c["a_model"] for c in cases], "x-", color=col, alpha=0.7, label=f"{model}{tag}")
+            for c in cases:
+                for w in c["worst"]:
+                    a3.scatter(w[1], w[0], s=12 + 4000 * abs(w[2] - w[3]), alpha=0.5,
+                               color="#d62728" if w[3] > w[2] else "#1f77b4")
         a1.axhline(1.0, color="red", lw=1)
         a1.set_xlabel("theta_i (deg)")
         a1.set_ylabel("L1 / threshold (> 1 fails)")
-        a1.legend(fontsize=8)
-        a2.errorbar(t, [c["a_sim"] for c in cases], yerr=[c["a_thr"] for c in cases], fmt="o", capsize=3,
-                    label="traced (+- threshold)")
-        a2.plot(t, [c["a_model"] for c in cases], "x-", color="#d62728", label="the BRDF checked")
+        a1.legend(fontsize=7)
         a2.set_xlabel("theta_i (deg)")
         a2.set_ylabel("albedo (fraction of the incident flux)")
-        a2.legend(fontsize=8)
-        for c in cases:
-            for w in c["worst"]:
-                a3.scatter(w[1], w[0], s=12 + 4000 * abs(w[2] - w[3]), alpha=0.5,
-                           color="#d62728" if w[3] > w[2] else "#1f77b4")
+        a2.legend(fontsize=7)
         a3.set_xlim(-180, 180)
         a3.set_ylim(-90, 90)
         a3.set_xlabel("phi_o (deg; 0: mirror side)")
         a3.set_ylabel("theta_o (deg)")
         a3.set_title("worst bins (red: model too high, blue: too low)", fontsize=8)
-        verdict = "PASS" if all(c["pass"] for c in cases) else "FAIL"
-        _suptitle(fig, f"{name}{what}: {verdict}", _title_bits(report))
+        verdict = "PASS" if all(c["pass"] for cs in series.values() for c in cs) else "FAIL"
+        _suptitle(fig, f"{title}: {verdict}", _title_bits(report))
         return fig
 
-    return [("", draw)]
+    return draw
+
+
+def check_brdf_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
+    cases = [_verdict_case(c) for c in report["cases"].nonempty()]
+    name = safe_text(report["name"].text()) if report.has("name") else "check_brdf"
+    inputs = report["inputs"] if report.has("inputs") else None
+    what = ""
+    if inputs is not None and inputs.has("ndf") and inputs.has("alpha"):
+        what = f" ({safe_text(inputs['ndf'].text(), 12)}, alpha {inputs['alpha'].number():g})"
+    return [("", _verdict_drawer(report, f"{name}{what}", {"": cases}, "the BRDF checked"))]
+
+
+def model_table_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
+    """`vgroove validate SUITE --model-table TABLE`: one figure per NDF and dimension, a series per
+    alpha. The table itself (its cases hold only fluxes) is not a report."""
+    if not report["cases"].nonempty()[0].has("albedo_sim"):
+        raise report.fail("is a model table, not a report: draw the report of "
+                          "`vgroove validate SUITE --model-table TABLE --out REPORT`")
+    groups: Dict[Tuple[str, str], Dict[str, List[Dict[str, Any]]]] = {}
+    for c in report["cases"].nonempty():
+        ndf = c["ndf"].one_of(_NDFS)
+        dim = c["dimension"].one_of(_DIMS)
+        alpha = c["alpha"].number(0.0, 2.0)
+        groups.setdefault((ndf, dim), {}).setdefault(f"alpha {alpha:g}", []).append(_verdict_case(c))
+    name = safe_text(report["suite"].text())
+    model = safe_text(report["model"].text(), 40) if report.has("model") else "the model table"
+    return [(f"-{ndf}-{dim}", _verdict_drawer(report, f"{name}, {ndf} {dim}: {model} against the traced lobes",
+                                              series, model or "the model table"))
+            for (ndf, dim), series in groups.items()]
 
 
 KINDS = {
@@ -930,6 +1080,8 @@ KINDS = {
     "sampling": sampling_figures,
     "nonsymmetric_brdf": nonsymmetric_figures,
     "profiles": profiles_figures,
+    "energy_audit": energy_audit_figures,
+    "model_table": model_table_figures,
     # A new report kind adds a function here (and its name to report_kind).
 }
 

@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # One vgroove run split over a Slurm job array: array task I of N runs `COMMAND --shard I/N` and
 # writes PARTS/part-I.json; a merge job, started when every task has succeeded (afterok), joins the
-# parts into REPORT. A task that fails leaves its part missing, the merge job never starts (Slurm
-# cancels it as DependencyNeverSatisfied), and no report is written. Resubmit the failed tasks
-# with --array=I,... and the same PARTS, then the merge by hand (`vgroove merge PARTS/*.json`).
+# parts into REPORT. A task that fails leaves its part missing and is recorded FAILED with its exit
+# code (its messages in PARTS/slurm-ARRAY_I.out); the merge job never starts (submitted with
+# --kill-on-invalid-dep=yes, Slurm cancels it: CANCELLED, Reason=DependencyNeverSatisfied), and no
+# report is written. `scontrol show job ARRAY` (or sacct) lists the tasks' states. Resubmit the
+# failed tasks with --array=I,... and the same PARTS, then the merge by hand (`vgroove merge
+# PARTS/*.json`).
 #
 #   scripts/cluster/slurm_shards.sh N REPORT [sbatch options...] -- COMMAND...
 #   scripts/cluster/slurm_shards.sh 64 fig11.json --time=02:00:00 --cpus-per-task=32 -- \
@@ -38,6 +41,6 @@ array=$("$sbatch" --parsable --job-name=vgroove-shards --array=1-"$n" --output="
   "${opts[@]}" --wrap "$task")
 array=${array%%;*}
 merge="exec $(q1 "$vgroove") merge $(q1 "$parts")/part-*.json --out $(q1 "$report")"
-merge_id=$("$sbatch" --parsable --job-name=vgroove-merge --dependency=afterok:"$array" --output="$parts/slurm-merge-%j.out" \
-  --wrap "$merge")
+merge_id=$("$sbatch" --parsable --job-name=vgroove-merge --dependency=afterok:"$array" --kill-on-invalid-dep=yes \
+  --output="$parts/slurm-merge-%j.out" --wrap "$merge")
 echo "submitted: array job $array ($n shards into $parts/), merge job ${merge_id%%;*} (into $report)"

@@ -256,3 +256,24 @@ TEST(Albedo, ExtremesAreFinite) {
         EXPECT_LE(e.value, 1.0 + e.error) << name(m) << " alpha=" << alpha << " mu=" << mu;
       }
 }
+
+// The albedo with a reflectance: F = 1 is E_ss, Schlick's F is F0 scale + bias (the split sum,
+// integrated with its own weights), each within the bounds; a reflectance below 1 lowers it.
+TEST(Albedo, WithAReflectanceIsTheSplitSumForSchlicksF) {
+  for (const va::MicrofacetModel& m : kModels)
+    for (double alpha : {0.05, 0.5, 1.5})
+      for (double mu : {0.02, 0.4, 1.0}) {
+        const va::BoundedValue e = va::albedo_single(m, alpha, mu);
+        const va::BoundedValue one = va::albedo_single_fresnel(m, alpha, mu, [](double) { return 1.0; });
+        EXPECT_EQ(one.value, e.value) << name(m);
+        const double F0 = 0.3;
+        const va::SplitSum s = va::dfg_split_sum(m, alpha, mu);
+        const va::BoundedValue f = va::albedo_single_fresnel(m, alpha, mu, [&](double c) {
+          const double x = 1.0 - c;
+          return F0 + (1.0 - F0) * x * x * x * x * x;
+        });
+        EXPECT_NEAR(f.value, F0 * s.scale.value + s.bias.value, f.error + s.scale.error + s.bias.error)
+            << name(m) << " alpha=" << alpha << " mu=" << mu;
+        EXPECT_LT(f.value, e.value) << name(m);
+      }
+}

@@ -8,7 +8,7 @@
 #include "vgroove/analytic/kaleidoscope_nonsymmetric.h"
 #include "vgroove/analytic/partner_distribution.h"
 
-#include "vgroove/analytic/adaptive_quadrature.h"
+#include "vgroove/analytic/quadrature.h"
 
 #include "tests/stats.h"
 
@@ -170,7 +170,7 @@ TEST(NonsymmetricBrdf, SingleReflectionIsCookTorrance) {
       const double rho = std::hypot(h.x, h.y), ax = h.x / rho, ay = h.y / rho;
       const double t_i = std::atan2(-(i.x * ax + i.y * ay), i.z), theta_h = std::atan2(rho, h.z);
       // Split adaptively: the share has kinks in B (where the partner's rim starts to shadow).
-      const double G1 = va::integrate_adaptive(
+      const double G1 = va::integrate_adaptive_parts(
           [&](double B) {
             const va::NonsymmetricPrediction p = va::G_nonsymmetric(t_i, -theta_h, B, va::FacetSide::left);
             double s = 0.0;

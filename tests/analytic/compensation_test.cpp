@@ -251,3 +251,24 @@ TEST(Compensation, FiniteAtTheExtremes) {
   // alpha -> 0: E = E_avg = 1 exactly gives no lobe rather than 0/0.
   EXPECT_EQ(va::kulla_conty_f_ms(1.0, 1.0, 1.0), 0.0);
 }
+
+// Cycles' factor at points derived by hand from its source's two lines (Fms = Fss E_avg / (1 - Fss
+// (1 - E_avg)), factor = 1 + Fms (1 - E) / E): E = 0.5, E_avg = 0.6, Fss = 0.5 gives Fms = 0.3 /
+// 0.8 = 0.375 and 1.375; E = 0.8, E_avg = 0.9, Fss = 0.3 gives Fms = 0.27 / 0.97 and 1 + 0.25 Fms =
+// 1.0695876288659794. (Cycles publishes no such numbers; its table is checked in albedo_table_test.)
+TEST(EngineForms, CyclesFactorAtHandDerivedPoints) {
+  EXPECT_NEAR(va::cycles_energy_factor(0.5, 0.6, 0.5), 1.375, 1e-15);
+  EXPECT_NEAR(va::cycles_energy_factor(0.8, 0.9, 0.3), 1.0 + 0.25 * 0.27 / 0.97, 1e-15);
+}
+
+// Bevy's roughness-dependent Fresnel at a point derived by hand: F0 = 0.04, r = 0.5, mu = 0.5:
+// Fr = max(1 - r, F0) - F0 = 0.46, kS = 0.04 + 0.46 / 32 = 0.054375; with scale 0.6 and bias 0.1,
+// FssEss = 0.132625, E_ms = 0.3, F_avg = 0.04 + 0.96 / 21, F_ms = FssEss F_avg / (1 - E_ms F_avg), and
+// the total FssEss + F_ms E_ms = 0.13612536656891494. Where F0 >= 1 - r, Fr = 0 and kS = F0: the
+// plain split sum (F0 = 0.5, r = 0.9).
+TEST(FdezAguera, RoughnessFresnelAtAHandDerivedPoint) {
+  const va::SplitSumScattering a = va::fdez_aguera_roughness_fresnel(0.04, 0.6, 0.1, 0.5, 0.5);
+  EXPECT_NEAR(a.single, 0.132625, 1e-15);
+  EXPECT_NEAR(a.total(), 0.13612536656891494, 1e-15);
+  EXPECT_EQ(va::fdez_aguera_roughness_fresnel(0.5, 0.6, 0.1, 0.9, 0.2).total(), va::fdez_aguera(0.5, 0.6, 0.1).total());
+}

@@ -4,7 +4,7 @@
 // suite's options against refined runs (the suites' model_tolerance), and anisotropy.
 #include "vgroove/analytic/lobe_nonsymmetric.h"
 
-#include "vgroove/analytic/adaptive_quadrature.h"
+#include "vgroove/analytic/quadrature.h"
 
 #include "tests/analytic/nonsymmetric_mass.h"
 
@@ -95,7 +95,7 @@ TEST(NonsymmetricLobe, FlatlandBinsAreEq23Integrated) {
     for (int k = 1; k <= 3; ++k) {
       for (int b = 0; b < bins; ++b) {
         const double lo = -0.5 * kPi + b * kPi / bins, hi = lo + kPi / bins;
-        const double v = va::integrate_adaptive(
+        const double v = va::integrate_adaptive_parts(
             [&](double to) { return va::flatland_nonsymmetric_brdf_k(ti, to, k, m) * std::cos(to); }, lo, hi, 1e-6,
             1e-10, 8, 400);
         const double w = lobe.theta_o_by_k[static_cast<std::size_t>(k) * bins + b];
@@ -196,7 +196,7 @@ TEST(NonsymmetricLobe, FlatlandBinsMatchEq23PerBinAtTheSuitesOptions) {
       int worst_bin = -1;
       for (int b = 0; b < bins; ++b) {
         const double lo = -0.5 * kPi + b * kPi / bins, hi = lo + kPi / bins;
-        const double v = va::integrate_adaptive(
+        const double v = va::integrate_adaptive_parts(
             [&](double to) { return va::flatland_nonsymmetric_brdf_k(ti, to, r.k, m) * std::cos(to); }, lo, hi, 1e-9,
             1e-12, 4, 400);
         const double d = std::abs(lobe.theta_o_by_k[static_cast<std::size_t>(r.k) * bins + b] - v);

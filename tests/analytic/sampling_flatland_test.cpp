@@ -25,9 +25,9 @@ std::array<double, 4> uniforms(std::mt19937_64& g) {
 }
 
 // rho2 cos from the single pass over the paths (the one the samplers' weights use) against
-// flatland_brdf (brdf_flatland.cpp: per k, every m, Eq. 6 through G_kaleidoscopic). 1e-10: the
+// flatland_brdf_reference (brdf_flatland.cpp: per k, every m, Eq. 6 through G_kaleidoscopic). 1e-10: the
 // single pass writes Eq. 6's widths as products of sines (kaleidoscope_solutions.h), which keep
-// their relative accuracy where the ends nearly meet; flatland_brdf's differences of sines lose
+// their relative accuracy where the ends nearly meet; the reference's differences of sines lose
 // up to ~1e-11 there (brdf_3d.cpp measured 3e-11 for the same form against long double).
 TEST(SamplingFlatland, SinglePassBrdfIsFlatlandBrdf) {
   std::mt19937_64 g(51);
@@ -37,7 +37,7 @@ TEST(SamplingFlatland, SinglePassBrdfIsFlatlandBrdf) {
     const double alpha = 0.05 + 0.75 * (U(g) + 1.0);
     const double ti = 0.5 * std::numbers::pi * 0.999 * U(g), to = 0.5 * std::numbers::pi * 0.999 * U(g);
     const double a = vgroove_pdf_and_brdf_flatland(ti, to, ndf, alpha, SamplerOptions{FacetStrategy::vndf, 24}).rho_cos;
-    const double b = flatland_brdf(ndf, alpha, ti, to, 24) * std::cos(to);
+    const double b = flatland_brdf_reference(ndf, alpha, ti, to, 24) * std::cos(to);
     EXPECT_NEAR(a, b, 1e-10 * b) << ndf_name(ndf) << " alpha=" << alpha << " theta_i=" << ti << " theta_o=" << to;
   }
 }

@@ -339,5 +339,26 @@ TEST(Cli, SampleNonsymmetric) {
   EXPECT_FALSE(j.at("result").at("reject").get<bool>());
 }
 
+// Table 2's traced percentile is an estimate from a finite sample: the rule bounds the light's
+// percentile (P(b <= N) >= q, Table2.TheRuleBoundsTheLightsPercentileByTheseMargins), not every
+// sample's. At 10 rays per surface and seed 2 it shows more than the rule in four cells (the
+// README said it never does); the suite still passes (its verdict is the paper against the rule).
+TEST(CliTable2, TheTracedPercentileExceedsTheRuleAtFewRays) {
+  TempDir dir;
+  const std::string out = dir.file("t2.json");
+  const CliRun r = vgroove("validate " + quoted(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/table2.json") +
+                           " --rays 10 --seed 2 --threads 2 --out " + quoted(out));
+  ASSERT_EQ(r.status, 0) << r;
+  std::map<std::tuple<std::string, double, double>, std::pair<int, int>> cells;
+  const json report = json::parse(read_text(out));
+  for (const json& e : report.at("entries"))
+    cells[{e.at("ndf").get<std::string>(), e.at("alpha").get<double>(), e.at("percentile").get<double>()}] = {
+        e.at("ours").get<int>(), e.at("traced_percentile_k").get<int>()};
+  EXPECT_EQ(cells.at({"ggx", 0.5, 95.0}), std::make_pair(4, 6));
+  EXPECT_EQ(cells.at({"ggx", 0.7, 95.0}), std::make_pair(5, 9));
+  EXPECT_EQ(cells.at({"ggx", 1.0, 95.0}), std::make_pair(7, 13));
+  EXPECT_EQ(cells.at({"phong", 1.0, 95.0}), std::make_pair(7, 13));
+}
+
 }  // namespace
 }  // namespace vgroove::validation

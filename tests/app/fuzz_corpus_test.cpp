@@ -1,12 +1,14 @@
 // Replays the inputs the fuzzers found interesting (tests/fuzz/corpus/, grown by scripts/fuzz.sh)
 // through the same entry points, without libFuzzer: each must end in a result or a UserError
-// (loader), or in exit status 0, 1 or 2 (command line), never in a crash or another exception.
+// (loader), or in exit status 0, 1 or 2 (command line, merge of shard parts), never in a crash or
+// another exception.
+#include "fuzz/part_merge.h"
 #include "vgroove/app/cli.h"
 #include "vgroove/scene/scene.h"
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/brdf_suite.h"
-#include "vgroove/validation/suite.h"
+#include "vgroove/validation/groove_suite.h"
 #include "vgroove/validation/table2_suite.h"
 
 #include <gtest/gtest.h>
@@ -64,7 +66,7 @@ TEST(FuzzCorpus, SuiteLoaderInputsEndInASuiteOrAUserError) {
     else if (kind == "table2")
       (void)parse_table2_suite(j, file);
     else
-      (void)parse_suite_set(j, file);
+      (void)parse_groove_suite_set(j, file);
   });
 }
 
@@ -98,6 +100,32 @@ TEST(FuzzCorpus, CommandLinesEndInADocumentedStatus) {
   }
   std::cout.rdbuf(out);
   std::cerr.rdbuf(err);
+}
+
+// Shard parts (part_merge_fuzz): each corpus text merged alone and beside each real part of
+// tests/fuzz/parts/. The real parts are among the corpus, so some merges get through and write a
+// report (the replay reaches the tally readers, not only the first checks).
+TEST(FuzzCorpus, ShardPartsEndInADocumentedStatus) {
+  const auto files = corpus("part_merge_fuzz");
+  ASSERT_FALSE(files.empty());
+  std::vector<std::string> texts;
+  for (const auto& f : files) texts.push_back(read_all(f));
+  std::ostringstream sink;
+  auto* out = std::cout.rdbuf(sink.rdbuf());
+  auto* err = std::cerr.rdbuf(sink.rdbuf());
+  int merged = 0;
+  {
+    fuzz::PartMergeDir dir(std::string(VGROOVE_SOURCE_DIR) + "/tests/fuzz/parts");
+    EXPECT_GE(dir.parts().size(), 10u);
+    for (std::size_t n = 0; n < texts.size(); ++n)
+      for (const int status : dir.merge_statuses(texts[n])) {
+        EXPECT_TRUE(status >= 0 && status <= 2) << files[n] << " gave exit status " << status;
+        merged += status == 0 || status == 1;
+      }
+  }
+  std::cout.rdbuf(out);
+  std::cerr.rdbuf(err);
+  EXPECT_GE(merged, 5) << texts.size() << " inputs";
 }
 
 }  // namespace

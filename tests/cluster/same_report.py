@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """same_report.py A B: exit 0 when the two report JSON files are equal value for value (floats bit for
-bit) once the timings are set aside: keys named threads, or ending in _s (a duration in seconds:
-wall_s, sim_s, sample_s, ...), or holding a rate (*_per_s, *ns_per_*, *_per_hour, a sampling
-strategy's efficiency = 1 / (variance x time)), and what is chosen by wall time (bench accuracy's
-soonest_to_thresholds: the placement that reaches the thresholds first; sampling's most_efficient). Otherwise print the first difference (its JSON path) and exit 1.
+bit) once the timings are set aside: keys named threads or timing (what a report derives from wall
+time: rates, a sampling strategy's efficiency = 1 / (variance x time), the strategy it favours), or
+ending in _s (a duration in seconds: wall_s, sim_s, sample_s, ...), or holding a rate (*_per_s,
+*ns_per_*, *_per_hour), and what is chosen by wall time (bench accuracy's soonest_to_thresholds:
+the placement that reaches the thresholds first). Otherwise print the first difference (its JSON
+path) and exit 1.
 With --provenance-aside the version and git revision that made each report are set aside too (two builds
 compared: scripts/compare_reports.sh)."""
 import json
@@ -14,7 +16,7 @@ PROVENANCE = set()
 
 
 def timing(key):
-    return key in PROVENANCE or key in ("threads", "soonest_to_thresholds", "efficiency", "most_efficient") \
+    return key in PROVENANCE or key in ("threads", "timing", "soonest_to_thresholds") \
         or key.endswith("_s") or "ns_per" in key or key.endswith("_per_hour")
 
 

@@ -59,7 +59,8 @@ FAKE_SLURM_STATE=$t/state2 SBATCH=$t/bin/sbatch \
 echo "ok: slurm_shards.sh: failed tasks, no report"
 
 if ! command -v parallel >/dev/null; then
-  echo "skipped: GNU parallel is not installed (apt-get install parallel)"
+  [[ ${VGROOVE_NO_SKIP:-} != 1 ]] || fail "GNU parallel is not installed (VGROOVE_NO_SKIP=1 forbids skipping)"
+  echo "skipped: GNU parallel is not installed (apt-get install parallel; scripts/install-deps.sh installs it)"
   exit 77
 fi
 bash "$src/scripts/cluster/parallel_shards.sh" 4 2 1 "$t/parallel.json" -- "$bin" validate "$t/table1.json" >/dev/null

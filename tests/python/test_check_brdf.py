@@ -2,6 +2,8 @@
 verdict); vgroove's own BRDF passes, Cook-Torrance fails at alpha = 1 (it loses the multiply
 scattered light); errors in the callable surface as themselves."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -66,9 +68,21 @@ def test_errors_in_the_callable(vg):
         vg.check_brdf(lambda wi, wo: np.zeros(len(wi)), theta_i_deg=[0, 90], rays=10, grooves=10)
     with pytest.raises(ValueError, match=r"^f = 3 must be a callable"):
         vg.check_brdf(3, rays=10, grooves=10)
-    # NaN from the model is a failed case, not a crash.
-    r = vg.check_brdf(lambda wi, wo: np.full(len(wi), np.nan), rays=1000, grooves=100, theta_i_deg=[0])
-    assert not r["pass"] and r["cases"][0]["non_finite"]
+    # A value that is not a BRDF's (NaN, an infinity, a negative number) is a ValueError at the first
+    # call that returns it, naming it and its directions (validation/check_brdf.h); it was a failed
+    # case reported after the first rule over every bin (3,600 calls). -0 is 0.
+    for bad, text in ((np.nan, "nan"), (-1.0, "-1"), (np.inf, "inf"), (-np.inf, "-inf")):
+        calls = []
+
+        def f(wi, wo):
+            calls.append(len(wi))
+            return np.full(len(wi), bad)
+        with pytest.raises(ValueError, match=r"^f\(wi, wo\) = " + re.escape(text) + r" at wi = \(-0, 0, 1\), "
+                           r"wo = \([^)]*\) \(theta_i_deg 0\): a BRDF's values must be finite and >= 0$"):
+            vg.check_brdf(f, rays=1000, grooves=100, theta_i_deg=[0])
+        assert calls == [16], calls
+    r = vg.check_brdf(lambda wi, wo: np.full(len(wi), -0.0), rays=1000, grooves=100, theta_i_deg=[0])
+    assert not r["pass"] and not r["cases"][0]["non_finite"]
 
 
 @pytest.mark.parametrize("f", [
@@ -79,10 +93,11 @@ def test_errors_in_the_callable(vg):
     "'vgroove'",
 ])
 def test_ctrl_c_stops_a_check_with_a_callback_within_a_second(vg, f):
-    # 300 x 300 bins (or 1000 flatland bins): the first rule alone evaluates f on every bin of every
+    # 300 x 300 bins (or 100000 flatland bins: the flatland sum's single pass takes a few us a pair,
+    # 1000 bins were done within the delay): the first rule alone evaluates f on every bin of every
     # angle (tens of seconds in all) before any refinement.
     from conftest import interrupted_after
-    dim = "dim='flatland', flatland_bins=1000, max_k=1024" if f == "'vgroove'" else "theta_bins=300, phi_bins=300"
+    dim = "dim='flatland', flatland_bins=100000, max_k=1024" if f == "'vgroove'" else "theta_bins=300, phi_bins=300"
     out, seconds = interrupted_after(f"vgroove.check_brdf({f}, 'ggx', 0.5, [0, 40], rays=10**5, grooves=10**4, "
                                      f"{dim}, threads=2)", delay=0.5)
     assert out == "interrupted"

@@ -36,6 +36,16 @@ TEST(JsonObject, ReadsRequiredAndOptionalValues) {
   EXPECT_NO_THROW(o.finish());
 }
 
+// A path with a NUL byte (Python strings may hold one) is refused, not opened up to the NUL (the
+// file "a" here, which exists), and named whole: the NUL as the text \x00, not the end of what().
+TEST(JsonFile, APathWithANulByteIsRefusedAndNamedWhole) {
+  TempDir dir;
+  const std::string a = dir.file("a");
+  write_text(a, "{}");
+  EXPECT_EQ(user_error_of([&] { read_json_file(a + '\0' + "b.json"); }),
+            a + "\\x00b.json: a file name cannot hold a NUL byte");
+}
+
 TEST(JsonObject, MissingRequiredKeyNamesFileAndPath) {
   const json j = json::parse(R"({"groove": {}})");
   JsonObject o(j, "s.json", "");

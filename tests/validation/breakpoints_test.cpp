@@ -4,8 +4,8 @@
 #include "vgroove/sim/zones.h"
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/groove_case.h"
-#include "vgroove/validation/suite.h"
-#include "vgroove/validation/suite_run.h"
+#include "vgroove/validation/groove_suite.h"
+#include "vgroove/validation/groove_suite_run.h"
 
 #include <gtest/gtest.h>
 
@@ -75,13 +75,13 @@ FacetCheck check_facet(const GrooveParams& p, const sim::Groove& g, double theta
 // (ERRATA E1) the symmetric column disagrees in most facets.
 TEST(Breakpoints, ZonesFoundAreTheModelsZonesOnTheTable1Grid) {
   for (const char* file : {"table1_symmetric.json", "table1_nonsymmetric.json"}) {
-    const Suite s = load_suite(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/" + file);
+    const GrooveSuite s = load_groove_suite(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/" + file);
     std::atomic<long> facets{0}, mismatches{0};
     std::mutex m;
     double worst = 0.0;
     std::string first_bad;
     support::parallel_for(s.cases(), 2, [&](std::size_t c) {
-      const SuiteCase sc = s.case_at(c);
+      const GrooveSuiteCase sc = s.case_at(c);
       if (sc.groove.degenerate()) return;
       const sim::Groove g = make_groove(sc.groove);
       for (sim::Side side : {sim::Side::left, sim::Side::right}) {
@@ -102,10 +102,10 @@ TEST(Breakpoints, ZonesFoundAreTheModelsZonesOnTheTable1Grid) {
     w << worst;
     RecordProperty(std::string("worst_") + file, w.str());
   }
-  const Suite s = load_suite(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/table1_symmetric.json");
+  const GrooveSuite s = load_groove_suite(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/table1_symmetric.json");
   long printed_mismatches = 0, facets = 0;
   for (std::size_t c = 0; c < s.cases(); c += 7) {
-    const SuiteCase sc = s.case_at(c);
+    const GrooveSuiteCase sc = s.case_at(c);
     const sim::Groove g = make_groove(sc.groove);
     const FacetCheck fc = check_facet(sc.groove, g, sc.theta_i, sim::Side::left, analytic::Eq6Form::printed);
     facets += fc.zones_model > 0;
@@ -155,7 +155,7 @@ TEST(Breakpoints, AZoneNarrowerThanTheGridSpacingIsFound) {
 
 // The suite runner with breakpoints: every figure the same for 1, 2 and 8 threads.
 TEST(Breakpoints, ResultsAreIdenticalForAnyThreadCount) {
-  Suite s;
+  GrooveSuite s;
   s.file = "(in code)";
   s.name = "breakpoints";
   for (double v : {1.0, 17.5, 60.0, 150.0}) s.grooves.push_back(GrooveParams::make_symmetric(deg(v)));
@@ -164,10 +164,10 @@ TEST(Breakpoints, ResultsAreIdenticalForAnyThreadCount) {
   s.options.rays = 8;
   s.options.sampling = sim::Sampling::breakpoints;
   s.thresholds = {1e-12, 1e-13, 1e-9};
-  const SuiteRun one = run_suite(s, s.options, 1);
+  const GrooveSuiteRun one = run_groove_suite(s, s.options, 1);
   EXPECT_TRUE(one.summary.pass()) << one.summary.max_l1;
   for (int threads : {2, 8}) {
-    const SuiteRun many = run_suite(s, s.options, threads);
+    const GrooveSuiteRun many = run_groove_suite(s, s.options, threads);
     ASSERT_EQ(many.cases.size(), one.cases.size());
     for (std::size_t c = 0; c < one.cases.size(); ++c) {
       const CaseOutcome &a = one.cases[c], &b = many.cases[c];

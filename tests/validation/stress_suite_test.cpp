@@ -1,7 +1,7 @@
 // The stress suite (data/suites/stress.json) as a test: apertures 0.01..180 deg, grazing light,
 // light parallel to a facet, Eq. 4's floor boundaries, facets at 0 and 90 deg, rays aimed exactly
 // at vertices. It must pass its thresholds, with every ray accounted for and no NaN anywhere.
-#include "vgroove/validation/suite_run.h"
+#include "vgroove/validation/groove_suite_run.h"
 
 #include <gtest/gtest.h>
 
@@ -11,10 +11,10 @@ namespace vgroove::validation {
 namespace {
 
 TEST(StressSuite, PassesWithEveryRayAccountedForAndNoNaN) {
-  const Suite suite = load_suite(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/stress.json");
+  const GrooveSuite suite = load_groove_suite(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/stress.json");
   ASSERT_TRUE(suite.options.probe_vertices);
-  const SuiteRun run = run_suite(suite, suite.options, 2);
-  const Summary& s = run.summary;
+  const GrooveSuiteRun run = run_groove_suite(suite, suite.options, 2);
+  const GrooveSuiteSummary& s = run.summary;
   EXPECT_TRUE(s.pass()) << "max L1 " << s.max_l1 << ", mean L1 " << s.mean_l1 << ", theta_o error "
                         << s.max_theta_o_error;
   EXPECT_EQ(s.non_finite_cases, 0u);

@@ -3,14 +3,15 @@
 // newline.
 #include "vgroove/validation/table_frame.h"
 #include "vgroove/validation/brdf_suite.h"
+#include "vgroove/validation/energy_audit.h"
 #include "vgroove/validation/furnace_suite.h"
+#include "vgroove/validation/groove_suite.h"
+#include "vgroove/validation/groove_suite_run.h"
 #include "vgroove/validation/model_table.h"
 #include "vgroove/validation/nonsymmetric_suite.h"
 #include "vgroove/validation/profiles_suite.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/sampling_suite.h"
-#include "vgroove/validation/suite.h"
-#include "vgroove/validation/suite_run.h"
 #include "vgroove/validation/table2_suite.h"
 
 #include <gtest/gtest.h>
@@ -103,20 +104,25 @@ TEST(TableFrame, EveryKindEscapesAndKeepsLongNames) {
     Table2Suite s;
     s.name = kName;
     s.source = kName;
-    expect_escaped_and_whole("table2", std::string("(git ") + git_revision() + ")\n",
-                             [&](std::ostream& os) { print_table2(os, s, Table2Run{}); });
+    expect_escaped_and_whole("table2", " threads\n", [&](std::ostream& os) { print_table2(os, s, Table2Run{}); });
+  }
+  {
+    EnergyAuditSuite s;
+    s.name = kName;
+    expect_escaped_and_whole("energy_audit", " threads\n",
+                             [&](std::ostream& os) { print_energy_audit(os, s, EnergyAuditRun{}); });
   }
 }
 
 // A set's summary table sizes its first column to the longest suite name: a 420-character name
 // keeps its row whole, every column after it, and the row's newline.
 TEST(TableFrame, SetSummaryKeepsLongSuiteNames) {
-  SuiteSet set;
+  GrooveSuiteSet set;
   set.name = "set";
   set.suites.resize(2);
   set.suites[0].name = "short";
   set.suites[1].name = kName;
-  std::vector<SuiteRun> runs(2);
+  std::vector<GrooveSuiteRun> runs(2);
   runs[1].summary.wall_s = 12.5;
   std::ostringstream os;
   print_set_table(os, set, runs);

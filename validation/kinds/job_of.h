@@ -6,6 +6,7 @@
 //     -> SuiteResult, or std::optional<SuiteResult> (nothing: cancelled while finishing)
 #pragma once
 
+#include "vgroove/support/seconds_since.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/kinds/kinds.h"
 #include "vgroove/validation/suite_kind.h"
@@ -28,7 +29,7 @@ class JobOf final : public SuiteJob {
     const auto t0 = std::chrono::steady_clock::now();
     auto results = run_job(job_, threads, progress, cancel);
     if (!results) return std::nullopt;
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double wall = support::seconds_since(t0);
     return finish_(*results, support::resolve_threads(threads), wall, report);
   }
 

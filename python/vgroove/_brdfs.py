@@ -1,0 +1,164 @@
+"""BRDFs over arrays of directions, and a BRDF of the user's held against the exact simulation
+(validation/check_brdf.h)."""
+
+from __future__ import annotations
+
+from typing import Callable, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _vgroove
+from ._args import ProgressFn, integer, opt_integer, progress as _progress, real, reals, rows, vectors
+from ._ranges import fill_ranges
+
+#: The orders each model sums when max_k is not given, by (model, dim): the one table of every face
+#: (analytic/brdf_model.h, analytic::default_max_k; ``vgroove brdf --max-k``, vgroove.BRDF, brdf()).
+BRDF_MAX_K: dict = dict(_vgroove.BRDF_MAX_K)
+#: The orders per_k=True reports when max_k is not given (``vgroove brdf --per-k``'s --per-k-max).
+PER_K_ORDERS = 16
+
+
+def brdf(model: str, ndf: str, alpha: float, wi: np.ndarray, wo: np.ndarray, per_k: Union[bool, int] = False, *,
+         max_k: Optional[int] = None, dim: str = "3d", threads: int = 0,
+         progress: Optional[ProgressFn] = None) -> np.ndarray:
+    """A BRDF over arrays of directions: ``vgroove brdf`` vectorized (:class:`vgroove.BRDF` holds
+    the same with the nonsymmetric model's options and Fresnel).
+
+    Parameters
+    ----------
+    model : {"vgroove", "vgroove-nonsymmetric", "cook-torrance"}
+        ``"vgroove"``: Lee et al. 2018, Eq. 16-17 (3D, analytic/brdf_3d.h) or its flatland analogue
+        (analytic/brdf_flatland.h). ``"vgroove-nonsymmetric"``: Eq. 21-23 with the independent
+        partner law of Eq. 20 (isotropic; Phong needs alpha < sqrt(2)). ``"cook-torrance"`` (also
+        ``"cook_torrance"``): Eq. 1-3 with the V-cavity G (the k = 1 term).
+    ndf : {"ggx", "beckmann", "phong"}
+    alpha : float
+        Roughness in [$min_alpha, $max_alpha].
+    wi, wo : array_like, shape (..., 3)
+        Unit vectors towards the light and the viewer; shapes broadcast to S + (3,). Flatland: in
+        the plane y = 0.
+    per_k : bool or int
+        False: the sums. True: the orders k = 1..max_k each on its own (1..$per_k_orders when
+        max_k is None); an int: that many orders.
+    max_k : int, optional
+        The orders summed; None: the model's default, the same on every face (:data:`BRDF_MAX_K`:
+        every order in 3D, $flatland_max_k in flatland, $nonsymmetric_max_k for the nonsymmetric
+        model, whose sums cost O(max_k^2) per direction, about 2 s at 4096). Ranges: [1, 2^31 -
+        1], at most $max_flatland_k in flatland and $max_nonsymmetric_k for the nonsymmetric model.
+    dim : {"3d", "flatland"}
+    threads : int
+        In [0, $max_threads] (0: all cores), without the GIL.
+    progress : callable, optional
+        ``progress(done, total)``, counting directions.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape S (per_k: S + (orders,); Cook-Torrance S + (1,)): values in 1/sr (3D) or 1/rad
+        (flatland), F = 1, 0 below the horizon.
+
+    Raises
+    ------
+    ValueError
+        ``vgroove brdf``'s messages for the same input, with the argument's name.
+
+    Examples
+    --------
+    >>> import vgroove
+    >>> wi, wo = vgroove.direction(30, 180), vgroove.direction(40, 0)
+    >>> round(float(vgroove.brdf("vgroove", "ggx", 0.5, wi, wo)), 6)
+    0.884746
+    >>> vgroove.brdf("vgroove", "ggx", 0.5, wi, wo, per_k=True).shape
+    (16,)
+    """
+    wi, wo = vectors(wi, "wi"), vectors(wo, "wo")
+    shape = np.broadcast_shapes(wi.shape, wo.shape)[:-1]
+    max_k = opt_integer(max_k, "max_k")
+    if isinstance(per_k, (bool, np.bool_)):
+        orders = (PER_K_ORDERS if max_k is None else max_k) if per_k else 0
+    else:
+        orders = integer(per_k, "per_k")
+    out = _vgroove.brdf(model, ndf, real(alpha, "alpha"), rows(wi, shape, 3), rows(wo, shape, 3), orders, max_k, dim,
+                        integer(threads, "threads"), progress=_progress(progress))
+    return out.reshape(shape + out.shape[1:])
+
+
+def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], np.ndarray], str], ndf: str = "ggx", alpha: float = 0.5,
+               theta_i_deg: Sequence[float] = (0, 20, 40, 60, 80), rays: int = 1000000, *, dim: str = "3d",
+               grooves: int = 250000, seed: int = 1, theta_bins: int = 30, phi_bins: int = 24,
+               flatland_bins: int = 90, sigmas: float = 5.0, model_tolerance: float = 1e-4,
+               quadrature_order: int = 4, threads: int = 0, name: str = "check_brdf", max_k: Optional[int] = None,
+               progress: Optional[ProgressFn] = None) -> dict:
+    """Holds a BRDF against vgroove's exact simulation (validation/check_brdf.h; same verdict,
+    thresholds and report as the C++ API ``vgroove::validation::check_brdf``).
+
+    Per theta_i the procedural surface of (ndf, alpha, grooves, seed) is traced with ``rays`` rays
+    into the bins, the BRDF is integrated over the same bins (Gauss-Legendre, quadrature_order
+    per axis), and the L1 distances of the normalized lobes and of the flux fractions, and the
+    albedo, are compared with what a correct model shows at this sample count (+ sigmas standard
+    deviations + model_tolerance).
+
+    Parameters
+    ----------
+    f : callable or str
+        ``f(wi, wo) -> values``, vectorized: wi and wo float arrays (n, 3) (unit vectors, the light
+        at azimuth 180 deg), n values in 1/sr (1/rad in flatland) with F = 1. It is called with
+        the nodes of one cell's Gauss-Legendre rule at a time (quadrature_order^2 directions in
+        3D, quadrature_order in flatland), at least once per bin and incident angle. Or the name
+        of a model of :func:`brdf`, evaluated in C++ (``max_k`` as there). Ctrl-C stops the check
+        within one evaluation of f (f is not called again).
+    ndf, alpha
+        The traced surface's NDF and roughness in [$min_alpha, $max_alpha].
+    theta_i_deg : sequence of float
+        Incident angles, each in [0, 90).
+    rays : int
+        Per theta_i, in [1, $max_rays].
+    dim : {"3d", "flatland"}
+    grooves, seed
+        The surface (:func:`vgroove.microsurface`).
+    theta_bins, phi_bins, flatland_bins
+        The bins (:func:`vgroove.trace_microsurface`).
+    sigmas, model_tolerance, quadrature_order
+        The thresholds' standard deviations, the integration's target error, nodes per axis.
+    threads : int
+        In [0, $max_threads] (0: all cores); the report does not depend on it.
+    name : str
+        Names the report.
+    max_k : int, optional
+        With a model's name: as in :func:`brdf`.
+    progress : callable, optional
+        ``progress(done, total)``: the start (0 of 1) and the end (1 of 1).
+
+    Returns
+    -------
+    dict
+        The report: "cases" (per theta_i: errors, thresholds, worst bins, pass), "pass",
+        provenance.
+
+    Raises
+    ------
+    ValueError
+        An argument out of range; f not callable, or returning the wrong shape (the exception f
+        raises is raised as it is).
+
+    Examples
+    --------
+    >>> import vgroove
+    >>> ct = lambda wi, wo: vgroove.brdf("cook-torrance", "ggx", 1.0, wi, wo)
+    >>> r = vgroove.check_brdf(ct, "ggx", 1.0, [0], rays=20000, grooves=5000, theta_bins=6, phi_bins=4)
+    >>> r["pass"], round(r["cases"][0]["albedo_model"], 2)
+    (False, 0.37)
+    """
+    return _vgroove.check_brdf(f, opt_integer(max_k, "max_k"), name, ndf, real(alpha, "alpha"),
+                               [float(t) for t in np.atleast_1d(reals(theta_i_deg, "theta_i_deg"))],
+                               integer(rays, "rays"), dim, integer(grooves, "grooves"), integer(seed, "seed"),
+                               integer(theta_bins, "theta_bins"), integer(phi_bins, "phi_bins"),
+                               integer(flatland_bins, "flatland_bins"), real(sigmas, "sigmas"),
+                               real(model_tolerance, "model_tolerance"), integer(quadrature_order, "quadrature_order"),
+                               integer(threads, "threads"), _progress(progress))
+
+
+for _f in (brdf, check_brdf):
+    _f.__doc__ = fill_ranges(_f.__doc__, dict(per_k_orders=PER_K_ORDERS,
+                                              flatland_max_k=BRDF_MAX_K[("vgroove", "flatland")],
+                                              nonsymmetric_max_k=BRDF_MAX_K[("vgroove-nonsymmetric", "3d")]))

@@ -1,0 +1,225 @@
+"""Importance sampling of the V-groove BRDF (Lee et al. 2018, Sec. 6) over arrays, the density of
+the directions it draws, and the uniform numbers of vgroove's deterministic streams (sim/rng.h).
+vgroove.BRDF.sample and vgroove.BRDF.pdf make the same calls with the light first."""
+
+from __future__ import annotations
+
+from typing import Optional, Sequence
+
+import numpy as np
+
+from . import _vgroove
+from ._args import ArrayLike, ProgressFn, integer, progress as _progress, real, reals
+from ._ranges import fill_ranges
+
+#: The symmetric samplers' default max_k (analytic/sampling_3d.h, kSamplerMaxK; ``vgroove sample``'s).
+SAMPLER_MAX_K: int = _vgroove.SAMPLER_MAX_K
+#: The nonsymmetric sampler's default max_k (analytic/sampling_nonsymmetric.h; its pdf costs O(max_k)).
+NONSYMMETRIC_SAMPLER_MAX_K: int = _vgroove.NONSYMMETRIC_SAMPLER_MAX_K
+
+
+def _sampler_max_k(max_k: Optional[int], model: str) -> int:
+    """max_k as given, or the model's default (``vgroove sample --max-k``'s)."""
+    if max_k is None:
+        return NONSYMMETRIC_SAMPLER_MAX_K if model == "vgroove-nonsymmetric" else SAMPLER_MAX_K
+    return integer(max_k, "max_k")
+
+
+def _light(wi, theta_i_deg):
+    """The light as the extension takes it: (batch shape, wi, theta_i_deg) with wi an array
+    (..., 3) or theta_i_deg an array of angles."""
+    if (wi is None) == (theta_i_deg is None):
+        raise ValueError("give the light as either wi (unit vectors) or theta_i_deg, not both or neither")
+    if wi is not None:
+        wi = reals(wi, "wi")
+        if wi.shape[-1:] != (3,):
+            raise ValueError(f"wi must be an array of unit vectors, shape (..., 3); got {wi.shape}")
+        return wi.shape[:-1], wi, None
+    t = reals(theta_i_deg, "theta_i_deg")
+    return t.shape, None, t
+
+
+def _light_rows(wi, ti, shape):
+    """The light flattened to rows over `shape`: one row (or angle) when it is the same for all."""
+    if wi is not None:
+        if wi.size == 3:
+            return np.ascontiguousarray(wi.reshape(1, 3)), None
+        return np.ascontiguousarray(np.broadcast_to(wi, shape + (3,))).reshape(-1, 3), None
+    if ti.size == 1:
+        return None, np.ascontiguousarray(ti.reshape(1))
+    return None, np.ascontiguousarray(np.broadcast_to(ti, shape)).reshape(-1)
+
+
+def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = None,
+           theta_i_deg: Optional[ArrayLike] = None, strategy: str = "vndf", max_k: Optional[int] = None,
+           dim: str = "3d", model: str = "vgroove", tolerance: float = 1e-9, threads: int = 0,
+           progress: Optional[ProgressFn] = None) -> dict:
+    """Importance-samples the V-groove BRDF (Lee et al. 2018, Sec. 6): one exit direction per row
+    of uniform numbers (:meth:`vgroove.BRDF.sample` takes the light first and returns a
+    :class:`vgroove.SampleBatch`).
+
+    Parameters
+    ----------
+    ndf : {"ggx", "beckmann", "phong"}
+    alpha : float
+        Roughness in [$min_alpha, $max_alpha].
+    u : array_like, shape (..., 4) or (..., 5)
+        Uniform numbers in [0, 1) (:func:`uniforms` gives vgroove's streams): four per sample for
+        ``model="vgroove"``, five for ``"vgroove-nonsymmetric"``.
+    wi : array_like, shape (..., 3), optional
+        Unit vectors towards the light (flatland: in the plane y = 0), held to the range of
+        theta_i_deg by the angle from the normal rounded to 1e-9 deg.
+    theta_i_deg : array_like, optional
+        Or the light's angles (the suites' light at azimuth 180 deg, the bits ``vgroove sample
+        --theta-i-deg`` uses), in [0, $max_surface_theta_i_deg] deg (flatland: signed, in
+        [-$max_surface_theta_i_deg, $max_surface_theta_i_deg]). Exactly one of wi and theta_i_deg; the batch shapes broadcast to S.
+    strategy : {"vndf", "printed", "smith-vndf", "bounded-vndf"}
+        How the facet met first is drawn: the V-cavity's visible normals (samples the BRDF
+        exactly, weight 1 with F = 1), the paper's |s.n| D(s), Smith's VNDF (GGX), bounded VNDF
+        (GGX, 3D).
+    max_k : int, optional
+        Paths of more reflections return zero weight (``beyond_max_k``), in [1, $max_sampler_k];
+        None: ``vgroove sample --max-k``'s default, $sampler_max_k (:data:`SAMPLER_MAX_K`: fewer
+        than one sample in 10^7 lost for GGX and Beckmann at any alpha and Phong up to alpha 1,
+        analytic/sampling_3d.h), $nonsymmetric_sampler_max_k for the nonsymmetric model, whose pdf
+        costs O(max_k).
+    dim : {"3d", "flatland"}
+    model : {"vgroove", "vgroove-nonsymmetric"}
+        Symmetric grooves (analytic/sampling_3d.h, sampling_flatland.h) or Eq. 21-23 with the
+        independent partner law of Eq. 20 (analytic/sampling_nonsymmetric.h; Phong needs alpha <= 1).
+    tolerance : float
+        The nonsymmetric pdf's relative tolerance per piece, in [1e-12, 0.01] (about a
+        millisecond a sample at 1e-9; ``vgroove sample`` uses 1e-6).
+    threads : int
+        In [0, $max_threads] (0: all cores), without the GIL; the values do not depend on it.
+    progress : callable, optional
+        ``progress(done, total)``, counting samples.
+
+    Returns
+    -------
+    dict
+        Arrays over S: ``wo`` (S + (3,), unit vectors; the mirror direction on a zero-weight
+        return), ``k`` (int32 reflections; 0: no direction), ``pdf`` (density of wo per steradian,
+        per radian in flatland; 0 on a zero-weight return), ``weight`` (rho cos(theta_o) / pdf,
+        F = 1) and ``beyond_max_k`` (bool: a zero-weight return because the drawn path has more
+        than max_k reflections; its mean is the share lost to max_k).
+
+    Raises
+    ------
+    ValueError
+        ``vgroove sample``'s messages for the same input, with the argument's name.
+
+    Examples
+    --------
+    >>> import vgroove
+    >>> x = vgroove.sample("ggx", 0.5, vgroove.uniforms(1000, seed=1), theta_i_deg=30)
+    >>> x["wo"].shape, bool(abs(x["weight"].mean() - 1) < 1e-12)
+    ((1000, 3), True)
+    """
+    m = 5 if model == "vgroove-nonsymmetric" else 4
+    u = reals(u, "u")
+    if u.shape[-1:] != (m,):
+        raise ValueError(f"u must be an array of uniform numbers, shape (..., {m}); got {u.shape}")
+    lshape, wi_, ti = _light(wi, theta_i_deg)
+    shape = np.broadcast_shapes(u.shape[:-1], lshape)
+    u = np.ascontiguousarray(np.broadcast_to(u, shape + (m,))).reshape(-1, m)
+    wi_, ti = _light_rows(wi_, ti, shape)
+    out = _vgroove.sample(model, ndf, real(alpha, "alpha"), wi_, ti, u, strategy, _sampler_max_k(max_k, model),
+                          real(tolerance, "tolerance"), dim, integer(threads, "threads"),
+                          progress=_progress(progress))
+    return {key: a.reshape(shape + a.shape[1:]) for key, a in out.items()}
+
+
+def pdf(ndf: str, alpha: float, wo: np.ndarray, *, wi: Optional[np.ndarray] = None,
+        theta_i_deg: Optional[ArrayLike] = None, strategy: str = "vndf", max_k: Optional[int] = None,
+        dim: str = "3d", model: str = "vgroove", tolerance: float = 1e-9, threads: int = 0,
+        progress: Optional[ProgressFn] = None) -> np.ndarray:
+    """The density of the directions :func:`sample` produces (:meth:`vgroove.BRDF.pdf` takes the
+    light first).
+
+    Parameters
+    ----------
+    ndf, alpha
+        As in :func:`sample`.
+    wo : array_like, shape (..., 3)
+        Unit vectors towards the viewer (flatland: in the plane y = 0).
+    wi, theta_i_deg, strategy, max_k, dim, model, tolerance, threads
+        As in :func:`sample`; the shapes broadcast to S.
+    progress : callable, optional
+        ``progress(done, total)``, counting directions.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape S: per steradian (per radian in flatland), the sum over every path of k <= max_k
+        reflections that ends at wo (analytic/sampling_3d.h); 0 below the horizon, +inf exactly
+        at the mirror direction in 3D (where the BRDF diverges too). With ``strategy="vndf"`` the
+        symmetric model's pdf equals rho(wi, wo) cos(theta_o) (F = 1).
+
+    Raises
+    ------
+    ValueError
+        As :func:`sample`.
+
+    Examples
+    --------
+    >>> import vgroove
+    >>> p = vgroove.pdf("ggx", 0.5, vgroove.direction(40, 0), theta_i_deg=30, max_k=64)
+    >>> rho = vgroove.brdf("vgroove", "ggx", 0.5, vgroove.direction(30, 180), vgroove.direction(40, 0), max_k=64)
+    >>> bool(abs(p - rho * vgroove.direction(40, 0)[2]) < 1e-12 * p)
+    True
+    """
+    wo = reals(wo, "wo")
+    if wo.shape[-1:] != (3,):
+        raise ValueError(f"wo must be an array of unit vectors, shape (..., 3); got {wo.shape}")
+    lshape, wi_, ti = _light(wi, theta_i_deg)
+    shape = np.broadcast_shapes(wo.shape[:-1], lshape)
+    wo = np.ascontiguousarray(np.broadcast_to(wo, shape + (3,))).reshape(-1, 3)
+    wi_, ti = _light_rows(wi_, ti, shape)
+    return _vgroove.pdf(model, ndf, real(alpha, "alpha"), wi_, ti, wo, strategy, _sampler_max_k(max_k, model),
+                        real(tolerance, "tolerance"), dim, integer(threads, "threads"),
+                        progress=_progress(progress)).reshape(shape)
+
+
+def uniforms(n: int, seed: int = 1, stream: Sequence[int] = (0, 0), dims: int = 4) -> np.ndarray:
+    """Uniform numbers in [0, 1) from vgroove's deterministic stream sim::Rng(seed, stream[0],
+    stream[1]) (sim/rng.h), drawn row after row.
+
+    Parameters
+    ----------
+    n : int
+        Rows, in [0, $max_rays].
+    seed : int
+        In [0, 2^63 - 1].
+    stream : (int, int)
+        ``vgroove sample --seed S`` draws its samples' four numbers from the stream (S, (0x5a3d,
+        0)) in 3D and (S, (0x5a3d, 1)) in flatland.
+    dims : int
+        Numbers per row, in [1, 64].
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (n, dims).
+
+    Raises
+    ------
+    ValueError
+        An argument out of range.
+
+    Examples
+    --------
+    >>> import vgroove
+    >>> u = vgroove.uniforms(3, seed=1)
+    >>> u.shape, bool(((u >= 0) & (u < 1)).all())
+    ((3, 4), True)
+    """
+    if len(stream) != 2:
+        raise ValueError(f"stream = {tuple(stream)!r} must be two integers")
+    return _vgroove.uniforms(integer(n, "n"), integer(seed, "seed"), integer(stream[0], "stream[0]"),
+                             integer(stream[1], "stream[1]"), integer(dims, "dims"))
+
+
+for _f in (sample, pdf, uniforms):
+    _f.__doc__ = fill_ranges(_f.__doc__, dict(sampler_max_k=SAMPLER_MAX_K,
+                                              nonsymmetric_sampler_max_k=NONSYMMETRIC_SAMPLER_MAX_K))
