@@ -9,8 +9,9 @@
 //   (a Student-t of 2 gamma - 2 degrees of freedom in the slope);
 //   Lambda = A t z^(gamma - 3/2) - I_z(gamma - 1, 1/2) / 2, t = |tan theta_o|, z = c t^2 / (c t^2 + 1).
 // Accuracy: the double forms to a few ulp (Lambda: a few ulp times 4 gamma at small t), the vector
-// forms within 2 ulp times gamma of them. Held by tests/analytic/ndf_student_t_test.cpp (normalization,
-// the flatland marginal, Lambda's integral and Smith's projected area, the limits and their rates).
+// forms within 2 ulp times 2 + gamma |log y| of them (y^gamma by exp and log polynomials). Held by
+// tests/analytic/ndf_student_t_test.cpp (normalization, the flatland marginal, Lambda's integral and Smith's projected
+// area, the limits and their rates).
 #pragma once
 
 #include "vgroove/analytic/ndf_math.h"

@@ -153,10 +153,15 @@ double solve_tail(NdfKind kind, double alpha, double u) {
     if (T == u) return w;
     (T > u ? lo : hi) = w;
     const double p = theta_m_pdf(kind, alpha, -w);
-    double next = (T > 0.0 && p > 0.0) ? w + std::log(T / u) * T / p : 0.5 * (lo + hi);
+    const bool newton = T > 0.0 && p > 0.0;
+    double next = newton ? w + std::log(T / u) * T / p : 0.5 * (lo + hi);
+    // Converged when Newton's step is below the rounding of w. Tested before the bracket: at the
+    // root the step rounds to w itself, an end of the bracket, which the bisection below would
+    // take as a step outside it (and bisect some 50 more times, to within 2 ulps of the root).
+    if (newton && std::abs(next - w) <= 4e-16 * w) return next >= lo && next <= hi ? next : w;
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    // Converged when the step is below rounding of w, or the bracket is one or two ulps wide.
-    if (std::abs(next - w) <= 4e-16 * next || hi - lo <= 4e-16 * hi) return next;
+    // Or the bracket is one or two ulps wide.
+    if (hi - lo <= 4e-16 * hi) return next;
     w = next;
   }
   return w;

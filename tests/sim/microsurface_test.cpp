@@ -203,7 +203,8 @@ TEST_P(SlopeSampling, SamplesFollowThePdf) {
     expected[j] = n * tanh_sinh([&](double t) { return theta_m_pdf(kind, alpha, t); }, edges[j], edges[j + 1]);
   std::vector<std::int64_t> observed(bins, 0);
   // Student-T's tail in the stream (0 for the other NDFs: their streams are as without it).
-  const std::uint64_t stream = static_cast<std::uint64_t>(kind.family) | static_cast<std::uint64_t>(kind.gamma * 10) << 8;
+  const std::uint64_t stream = static_cast<std::uint64_t>(kind.family) | static_cast<std::uint64_t>(kind.gamma * 10)
+                                                                             << 8;
   Rng rng(20180611, stream, static_cast<std::uint64_t>(alpha * 1000));
   for (int i = 0; i < n; ++i) {
     const double t = sample_theta_m(kind, alpha, rng.uniform());
