@@ -15,6 +15,7 @@
 #pragma once
 
 #include "vgroove/analytic/ndf_math.h"
+#include "vgroove/common/log_gamma_ratio.h"
 
 #include <cmath>
 #include <numbers>
@@ -43,11 +44,10 @@ struct StudentT {
     return ndf_math::pow(y(cos_m, sin_m), gamma) / (std::numbers::pi * alpha * alpha * c2 * c2);
   }
   double D(double theta_m) const { return D_cs(std::cos(theta_m), std::sin(theta_m)); }
-  // D2's factor sqrt(gamma - 1) Gamma(gamma - 1/2) / (sqrt(pi) Gamma(gamma) alpha), the Gammas
-  // through lgamma (they overflow beyond gamma ~ 171).
+  // D2's factor sqrt(gamma - 1) Gamma(gamma - 1/2) / (sqrt(pi) Gamma(gamma) alpha), the Gammas'
+  // ratio through log_gamma_ratio (each overflows beyond gamma ~ 171).
   double D2_norm() const {
-    return std::sqrt(gamma - 1.0) * std::exp(std::lgamma(gamma - 0.5) - std::lgamma(gamma)) /
-           (std::sqrt(std::numbers::pi) * alpha);
+    return std::sqrt(gamma - 1.0) * std::exp(log_gamma_ratio(gamma, -0.5)) / (std::sqrt(std::numbers::pi) * alpha);
   }
   template <typename T>
   [[gnu::always_inline]] T D2_cs(T cos_m, T sin_m) const {
@@ -89,7 +89,7 @@ struct StudentT {
     const double t = std::abs(std::tan(theta_o));
     if (t == 0.0) return 0.0;
     const double ct2 = c * t * t, z = ct2 / (ct2 + 1.0), one_minus_z = 1.0 / (ct2 + 1.0);
-    const double A = (gamma - 1.0) * sqrt_c * std::exp(std::lgamma(gamma - 0.5) - std::lgamma(gamma)) /
+    const double A = (gamma - 1.0) * sqrt_c * std::exp(log_gamma_ratio(gamma, -0.5)) /
                      (std::sqrt(std::numbers::pi) * (2.0 * gamma - 3.0));
     return A * t * std::pow(z, gamma - 1.5) - 0.5 * incomplete_beta(gamma - 1.0, 0.5, z, one_minus_z);
   }

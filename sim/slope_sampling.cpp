@@ -1,5 +1,7 @@
 #include "vgroove/sim/slope_sampling.h"
 
+#include "vgroove/common/log_gamma_ratio.h"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -85,10 +87,14 @@ double incomplete_beta(double a, double b, double x, double one_minus_x) {
   if (!(one_minus_x > 0.0)) return 1.0;
   // I_x(a, b) = x^a (1-x)^b / (a B(a, b)) * cf(a, b, x), or by I_x(a, b) = 1 - I_{1-x}(b, a) on
   // the side where the fraction converges slowly (Abramowitz & Stegun 26.5.8, 26.5.2).
-  const double ln_front =
-      std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log(one_minus_x);
-  if (x < (a + 1.0) / (a + b + 2.0)) return std::exp(ln_front) * beta_continued_fraction(a, b, x) / a;
-  return 1.0 - std::exp(ln_front) * beta_continued_fraction(b, a, one_minus_x) / b;
+  // 1 / B(a, b) through the larger one's Gamma ratio (no lgamma cancellation) where the smaller is
+  // at most 1; x^a (1 - x)^b by pow (exp(a log x) scales log x's last-bit error by a log x).
+  const double ln_inverse_beta = std::min(a, b) <= 1.0
+                                     ? log_gamma_ratio(std::max(a, b), std::min(a, b)) - std::lgamma(std::min(a, b))
+                                     : std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b);
+  const double front = std::exp(ln_inverse_beta) * std::pow(x, a) * std::pow(one_minus_x, b);
+  if (x < (a + 1.0) / (a + b + 2.0)) return front * beta_continued_fraction(a, b, x) / a;
+  return 1.0 - front * beta_continued_fraction(b, a, one_minus_x) / b;
 }
 
 double theta_m_pdf(NdfKind kind, double alpha, double theta_m) {
@@ -109,9 +115,8 @@ double theta_m_pdf(NdfKind kind, double alpha, double theta_m) {
     }
     case NdfKind::phong: {
       const double nu = phong_nu(alpha);
-      // Gamma through lgamma: Gamma(nu/2) overflows for alpha below about 0.08.
-      const double front =
-          std::exp(std::lgamma(0.5 * (nu + 1.0)) - std::lgamma(0.5 * nu)) / std::sqrt(std::numbers::pi);
+      // The Gammas through their ratio: Gamma(nu/2) overflows for alpha below about 0.08.
+      const double front = std::exp(log_gamma_ratio(0.5 * nu, 0.5)) / std::sqrt(std::numbers::pi);
       P = front * std::exp(-0.5 * (nu + 1.0) * std::log1p(s * s));
       break;
     }
@@ -119,8 +124,7 @@ double theta_m_pdf(NdfKind kind, double alpha, double theta_m) {
       // f(t) = Gamma((nu+1)/2) / (sqrt(nu pi) Gamma(nu/2)) (1 + t^2/nu)^(-(nu+1)/2), s = sigma t:
       // P(s) = Gamma(gamma - 1/2) / (sqrt(pi k2) Gamma(gamma - 1)) (1 + s^2/k2)^(1/2 - gamma).
       const double k2 = student_t_scale2(kind, alpha);
-      const double front =
-          std::exp(std::lgamma(kind.gamma - 0.5) - std::lgamma(kind.gamma - 1.0)) / std::sqrt(std::numbers::pi * k2);
+      const double front = std::exp(log_gamma_ratio(kind.gamma - 1.0, 0.5)) / std::sqrt(std::numbers::pi * k2);
       P = front * std::exp((0.5 - kind.gamma) * std::log1p(s * s / k2));
       break;
     }
