@@ -1,0 +1,275 @@
+#include "vgroove/sim/dielectric_groove.h"
+
+#include "vgroove/optics/fresnel.h"
+#include "vgroove/optics/snell.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace vgroove::sim {
+
+namespace {
+
+std::string number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+bool is_facet(Part p) { return p == Part::left_facet || p == Part::right_facet; }
+
+Medium other_medium(Medium m) { return m == Medium::above ? Medium::below : Medium::above; }
+
+}  // namespace
+
+const char* medium_name(Medium m) { return m == Medium::above ? "above" : "below"; }
+
+double exit_angle(const DielectricExit& e) {
+  return e.side == Medium::above ? std::atan2(-e.dir.x(), e.dir.y()) : std::atan2(e.dir.x(), -e.dir.y());
+}
+
+void DielectricResult::clear() {
+  exits.clear();
+  left[0] = left[1] = 0.0;
+  cut = bounce_limit = vertex = 0.0;
+  paths_cut = 0;
+  max_k = 0;
+  pending.clear();
+}
+
+DielectricGrooveTracer::DielectricGrooveTracer(const Groove& g, const DielectricOptions& opt) : g_(g), opt_(opt) {
+  if (!(opt.eta > 0.0 && opt.eta < std::numeric_limits<double>::infinity()))
+    throw std::invalid_argument("eta = " + number_text(opt.eta) + " is out of range (0, inf)");
+  if (!(opt.min_weight >= 0.0 && opt.min_weight < 1.0))
+    throw std::invalid_argument("min_weight = " + number_text(opt.min_weight) + " is out of range [0, 1)");
+  if (opt.max_interactions < 0)
+    throw std::invalid_argument("max_interactions = " + std::to_string(opt.max_interactions) +
+                                " is out of range [0, 2147483647]");
+}
+
+bool DielectricGrooveTracer::first_from_above(const Ray2& ray, Pending& p, bool& vertex) const {
+  // sim::trace's first hit, operation for operation, for rays through the opening; the flat parts
+  // for the others (their crossing of the rim line is their hit).
+  const double x_rim = ray.origin.x();
+  const double x_l = g_.rim_x(Side::left), x_r = g_.rim_x(Side::right);
+  if (!(x_rim > x_l && x_rim < x_r)) {
+    if (x_rim < x_l || x_rim > x_r) {
+      p.on = x_rim < x_l ? Part::left_flat : Part::right_flat;
+      p.pos = x_rim;
+      return true;
+    }
+    vertex = true;  // a rim exactly, or NaN
+    return false;
+  }
+  const Facet& fl = g_[Side::left];
+  const Facet& fr = g_[Side::right];
+  const Vec2& d = ray.dir;
+  const double sn = cross(ray.origin, d);
+  const double den_l = cross(fl.edge, d), den_r = cross(fr.edge, d);
+  const bool away_l = sn * den_l < 0.0, away_r = sn * den_r < 0.0;
+  Side on;
+  double s;
+  if (away_r & !away_l) {
+    on = Side::left;
+    s = detail::hit_facet_with(ray.origin, fl, sn, den_l);
+  } else if (away_l & !away_r) {
+    on = Side::right;
+    s = detail::hit_facet_with(ray.origin, fr, sn, den_r);
+  } else {
+    const detail::FacetHit hl = detail::hit_facet_from_rim_line(ray.origin, d, fl);
+    const detail::FacetHit hr = detail::hit_facet_from_rim_line(ray.origin, d, fr);
+    if (hl.s >= 0.0 && (hr.s < 0.0 || hl.t_num / hl.t_den <= hr.t_num / hr.t_den))
+      on = Side::left, s = hl.s;
+    else
+      on = Side::right, s = hr.s;
+  }
+  if (!(s >= 0.0)) {  // entered the opening yet met no facet: a vertex by rounding (as sim::trace)
+    vertex = true;
+    return false;
+  }
+  p.on = static_cast<Part>(on);
+  p.pos = s;
+  return true;
+}
+
+bool DielectricGrooveTracer::first_from_below(const Ray2& ray, Pending& p) const {
+  // The line o + t d meets the interface first at its smallest t, whatever its sign: the light
+  // comes from y = -inf. The flat parts lie on the rim line, met at t = 0 where the line crosses it
+  // outside the opening; the facets where 0 <= u <= length for u = cross(o, d) / cross(e, d).
+  const Vec2& o = ray.origin;
+  const Vec2& d = ray.dir;
+  double best_t = std::numeric_limits<double>::infinity();
+  bool found = false;
+  const double x_l = g_.rim_x(Side::left), x_r = g_.rim_x(Side::right);
+  if (o.x() <= x_l || o.x() >= x_r) {
+    best_t = 0.0;
+    found = true;
+    p.on = o.x() <= x_l ? Part::left_flat : Part::right_flat;
+    p.pos = o.x();
+  }
+  for (int f = 0; f < 2; ++f) {
+    const Facet& fa = g_.facet[f];
+    const double den = cross(fa.edge, d);
+    if (den == 0.0) continue;
+    const double u = cross(o, d) / den;
+    if (!(u >= 0.0 && u <= fa.length)) continue;
+    const double t = cross(o, fa.edge) / den;
+    if (t < best_t || !found) {
+      best_t = t;
+      found = true;
+      p.on = static_cast<Part>(f);
+      p.pos = u;
+    }
+  }
+  return found;
+}
+
+bool DielectricGrooveTracer::advance(Part on, double pos, const Vec2& d, Medium medium, Pending& p) const {
+  if (medium == Medium::above) {
+    if (!is_facet(on)) return false;  // upward from the rim line: nothing above it
+    // Inside the groove: sim::trace's step from facet f to the other facet o (detail::bounce after
+    // its reflection), the same operations in the same order.
+    const Facet& f = g_.facet[static_cast<int>(on)];
+    const Facet& o = g_.facet[1 - static_cast<int>(on)];
+    const double den = cross(o.edge, d);
+    if (!(den * f.turn_to_other > 0.0)) return false;  // t <= 0: leaves through the opening
+    const double c = cross(f.edge, d);
+    if (c * den < 0.0 || pos * std::abs(c) > o.length * std::abs(den)) return false;  // passes the other facet
+    p.pos = pos * (c / den);
+    p.on = static_cast<Part>(1 - static_cast<int>(on));
+    return true;
+  }
+  // Below: the nearest crossing with the other three parts, t > 0.
+  const double H = g_.rim_height;
+  const Vec2 o = is_facet(on) ? Vec2(pos * g_.facet[static_cast<int>(on)].edge) : Vec2(pos, H);
+  double best_t = std::numeric_limits<double>::infinity();
+  bool found = false;
+  for (int f = 0; f < 2; ++f) {
+    if (static_cast<int>(on) == f) continue;
+    const Facet& fa = g_.facet[f];
+    const double den = cross(fa.edge, d);
+    if (den == 0.0) continue;
+    const double t = cross(o, fa.edge) / den;
+    if (!(t > 0.0 && t < best_t)) continue;
+    const double u = cross(o, d) / den;
+    if (!(u >= 0.0 && u <= fa.length)) continue;
+    best_t = t;
+    found = true;
+    p.on = static_cast<Part>(f);
+    p.pos = u;
+  }
+  if (d.y() != 0.0) {
+    const double t = (H - o.y()) / d.y();
+    if (t > 0.0 && t < best_t) {
+      const double x = o.x() + t * d.x();
+      const Part flat = x <= g_.rim_x(Side::left) ? Part::left_flat : Part::right_flat;
+      if (flat != on && (x <= g_.rim_x(Side::left) || x >= g_.rim_x(Side::right))) {
+        found = true;
+        p.on = flat;
+        p.pos = x;
+      }
+    }
+  }
+  return found;
+}
+
+DielectricResult& DielectricGrooveTracer::trace(const Ray2& ray, Medium from, Rng& rng, DielectricResult& out) const {
+  out.clear();
+  const double dy = ray.dir.y();
+  if (from == Medium::above ? !(dy < 0.0 && dy >= -1.0) : !(dy > 0.0 && dy <= 1.0))
+    throw std::invalid_argument("ray.dir.y = " + number_text(dy) + " is out of range " +
+                                (from == Medium::above ? "[-1, 0) for light from above" : "(0, 1] for light from below"));
+  Pending p0{ray.dir, 0.0, 1.0, 0, 0, Part::left_facet, from};
+  bool vertex = false;
+  const bool hit = from == Medium::above ? first_from_above(ray, p0, vertex) : first_from_below(ray, p0);
+  if (!hit) {
+    // Met nothing (a line through a vertex by rounding, or NaN): a vertex hit, never dropped.
+    out.vertex = 1.0;
+    return out;
+  }
+  const Part first = p0.on;
+  const double eta = opt_.eta, inv_eta = 1.0 / eta;
+  const double x_l = g_.rim_x(Side::left), x_r = g_.rim_x(Side::right);
+  const bool split = opt_.branching == Branching::split;
+  std::vector<Pending>& pending = out.pending;
+  pending.push_back(p0);
+  while (!pending.empty()) {
+    const Pending h = pending.back();
+    pending.pop_back();
+    const bool facet = is_facet(h.on);
+    const Facet* fa = facet ? &g_.facet[static_cast<int>(h.on)] : nullptr;
+    if (facet ? (h.pos == 0.0 || h.pos == fa->length) : h.pos == (h.on == Part::left_flat ? x_l : x_r)) {
+      out.vertex += h.w;  // exactly on the apex or a rim: reflection and refraction undefined
+      continue;
+    }
+    if (h.k == opt_.max_interactions) {
+      out.bounce_limit += h.w;
+      out.max_k = std::max(out.max_k, h.k);
+      continue;
+    }
+    const Vec2 n = facet ? fa->normal : Vec2(0.0, 1.0);  // towards medium 1
+    const double eta_rel = h.in == Medium::above ? eta : inv_eta;
+    const Vec2 m = h.in == Medium::above ? n : Vec2(-n);  // the normal on the incident side
+    double F = 1.0;
+    Vec2 t_dir = Vec2::Zero();
+    if (!opt_.conductor_limit && optics::refract(h.d, m, eta_rel, t_dir)) {
+      const double cos_i = std::abs(h.d.dot(n));
+      switch (opt_.polarization) {
+        case Polarization::unpolarized:
+          F = optics::fresnel_dielectric(cos_i, eta_rel);
+          break;
+        case Polarization::s:
+          F = optics::fresnel_dielectric_polarized(cos_i, eta_rel).s;
+          break;
+        case Polarization::p:
+          F = optics::fresnel_dielectric_polarized(cos_i, eta_rel).p;
+          break;
+      }
+    }
+    // The branches: reflected (weight w F, stays in its medium) and refracted (w (1 - F), crosses).
+    double w_branch[2];
+    if (split) {
+      w_branch[0] = h.w * F;
+      w_branch[1] = h.w * (1.0 - F);
+    } else {
+      const bool reflect = F >= 1.0 || rng.uniform() < F;
+      w_branch[0] = reflect ? h.w : 0.0;
+      w_branch[1] = reflect ? 0.0 : h.w;
+    }
+    for (int b = 0; b < 2; ++b) {
+      const double w = w_branch[b];
+      if (!(w > 0.0)) continue;
+      const int k = h.k + 1;
+      if (w < opt_.min_weight) {
+        out.cut += w;
+        ++out.paths_cut;
+        out.max_k = std::max(out.max_k, k);
+        continue;
+      }
+      const Vec2 d = b == 0 ? (facet ? fa->reflect(h.d) : Vec2(h.d.x(), -h.d.y())) : t_dir;
+      const Medium medium = b == 0 ? h.in : other_medium(h.in);
+      const std::uint64_t path = h.path | (b == 1 && h.k < 64 ? std::uint64_t{1} << h.k : 0);
+      Pending next{d, 0.0, w, path, k, h.on, medium};
+      if (advance(h.on, h.pos, d, medium, next)) {
+        pending.push_back(next);
+        continue;
+      }
+      DielectricExit e;
+      e.dir = d;
+      e.weight = w;
+      e.path = path;
+      e.k = k;
+      e.side = medium;
+      e.first = first;
+      out.exits.push_back(e);
+      out.left[static_cast<int>(medium)] += w;
+      out.max_k = std::max(out.max_k, k);
+    }
+  }
+  return out;
+}
+
+}  // namespace vgroove::sim
