@@ -180,8 +180,9 @@ DielectricResult& DielectricGrooveTracer::trace(const Ray2& ray, Medium from, Rn
   out.clear();
   const double dy = ray.dir.y();
   if (from == Medium::above ? !(dy < 0.0 && dy >= -1.0) : !(dy > 0.0 && dy <= 1.0))
-    throw std::invalid_argument("ray.dir.y = " + number_text(dy) + " is out of range " +
-                                (from == Medium::above ? "[-1, 0) for light from above" : "(0, 1] for light from below"));
+    throw std::invalid_argument(
+        "ray.dir.y = " + number_text(dy) + " is out of range " +
+        (from == Medium::above ? "[-1, 0) for light from above" : "(0, 1] for light from below"));
   Pending p0{ray.dir, 0.0, 1.0, 0, 0, Part::left_facet, from};
   bool vertex = false;
   const bool hit = from == Medium::above ? first_from_above(ray, p0, vertex) : first_from_below(ray, p0);
@@ -203,6 +204,7 @@ DielectricResult& DielectricGrooveTracer::trace(const Ray2& ray, Medium from, Rn
     const Facet* fa = facet ? &g_.facet[static_cast<int>(h.on)] : nullptr;
     if (facet ? (h.pos == 0.0 || h.pos == fa->length) : h.pos == (h.on == Part::left_flat ? x_l : x_r)) {
       out.vertex += h.w;  // exactly on the apex or a rim: reflection and refraction undefined
+      out.max_k = std::max(out.max_k, h.k);
       continue;
     }
     if (h.k == opt_.max_interactions) {

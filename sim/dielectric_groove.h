@@ -70,9 +70,9 @@ struct DielectricExit {
   // Bit j set: interaction j (0-based) refracted (T); clear: reflected (R). Kept for j < 64; the
   // bits of longer paths are their first 64 interactions'.
   std::uint64_t path = 0;
-  int k = 0;                     // interactions
-  Medium side = Medium::above;   // the medium it left into
-  Part first = Part::left_facet; // the part the ray hit first
+  int k = 0;                      // interactions
+  Medium side = Medium::above;    // the medium it left into
+  Part first = Part::left_facet;  // the part the ray hit first
 };
 
 // The exit angle from the normal of the exit side (n above, -n below), counter-clockwise
@@ -102,7 +102,7 @@ struct DielectricResult {
   double bounce_limit = 0.0;    // energy of paths still in play after max_interactions
   double vertex = 0.0;          // energy of paths that hit the apex or a rim exactly
   std::int64_t paths_cut = 0;
-  int max_k = 0;                // most interactions of any path (exits and ends alike)
+  int max_k = 0;  // most interactions of any path (exits and ends alike)
   double total() const { return left[0] + left[1] + cut + bounce_limit + vertex; }
   void clear();
   std::vector<detail::PendingHit> pending;  // the splitting's work list, kept for reuse

@@ -9,8 +9,7 @@
 namespace vgroove::sim {
 
 DielectricTally::DielectricTally(int n_bins) : n_bins_(n_bins) {
-  if (n_bins < 1)
-    throw std::invalid_argument("bins = " + std::to_string(n_bins) + " is out of range [1, 2147483647]");
+  if (n_bins < 1) throw std::invalid_argument("bins = " + std::to_string(n_bins) + " is out of range [1, 2147483647]");
 }
 
 int DielectricTally::bin_of(double angle) const {
@@ -45,8 +44,8 @@ void DielectricTally::add(const DielectricResult& r) {
 
 void DielectricTally::merge(const DielectricTally& o) {
   if (o.n_bins_ != n_bins_)
-    throw std::invalid_argument("bins = " + std::to_string(o.n_bins_) + " is out of range [" +
-                                std::to_string(n_bins_) + ", " + std::to_string(n_bins_) + "] (merging tallies)");
+    throw std::invalid_argument("bins = " + std::to_string(o.n_bins_) + " is out of range [" + std::to_string(n_bins_) +
+                                ", " + std::to_string(n_bins_) + "] (merging tallies)");
   rays_ += o.rays_;
   for (int side = 0; side < 2; ++side) {
     left_[side] += o.left_[side];

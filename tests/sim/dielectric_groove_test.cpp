@@ -9,9 +9,10 @@
 // (from -n, counter-clockwise positive: the light lies along (sin theta_i, -cos theta_i)) travels
 // along direction_at(theta_i) = (-sin theta_i, cos theta_i). Either way Snell's law reads
 // sin(exit_angle) = sin(theta_i) / eta_rel for the light that crosses.
-#include "vgroove/optics/fresnel.h"
-#include "vgroove/sim/beam.h"
 #include "vgroove/sim/dielectric_groove.h"
+#include "vgroove/optics/fresnel.h"
+#include "vgroove/optics/snell.h"
+#include "vgroove/sim/beam.h"
 #include "vgroove/sim/dielectric_tally.h"
 #include "vgroove/sim/tally.h"
 #include "vgroove/sim/tracer.h"
@@ -26,6 +27,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace vgroove::sim {
@@ -150,8 +152,8 @@ TEST(DielectricGroove, AFlatInterfaceIsFresnelAndSnell) {
           opt.eta = eta;
           opt.polarization = pol;
           const double R = pol == Polarization::s ? h.Rs : pol == Polarization::p ? h.Rp : 0.5 * (h.Rs + h.Rp);
-          const std::string where = "eta " + std::to_string(eta) + " from " + medium_name(from) + " theta " +
-                                    std::to_string(theta_deg);
+          const std::string where =
+              "eta " + std::to_string(eta) + " from " + medium_name(from) + " theta " + std::to_string(theta_deg);
           for (const Groove* gr : {&g, &flat}) {
             const double x = gr == &g ? flat_x(d) : 0.1;
             // Both sides round their inputs differently (the tracer takes cos theta_i = |d.y|, the
@@ -159,8 +161,7 @@ TEST(DielectricGroove, AFlatInterfaceIsFresnelAndSnell) {
             // of eps into eps / cos_t near the critical angle: tolerances of a few eps times
             // (1 + 1 / cos_t), ten times more for the groove of zero slope (its facets lie at
             // 6e-17 rad from the rim line, cos(pi / 2) rounded). Total internal reflection is exact.
-            const double tol =
-                h.tir ? 0.0 : (gr == &g ? 4e-16 : 4e-15) * (1.0 + 1.0 / h.cos_t);
+            const double tol = h.tir ? 0.0 : (gr == &g ? 4e-16 : 4e-15) * (1.0 + 1.0 / h.cos_t);
             const DielectricResult r = trace_one(*gr, opt, x, d, from);
             const int back = static_cast<int>(from);
             EXPECT_NEAR(r.left[back], R, tol) << where;
@@ -265,9 +266,12 @@ void expect_same_tallies(const Tally& a, const Tally& b, const std::string& wher
 }
 
 TEST(DielectricGroove, ConductorLimitIsTheConductorTracerBitForBit) {
-  const std::vector<Groove> grooves = {make_symmetric_groove(deg(2.0)),   make_symmetric_groove(deg(30.0)),
-                                       make_symmetric_groove(deg(60.0)),  make_symmetric_groove(deg(90.0)),
-                                       make_symmetric_groove(deg(137.0)), make_symmetric_groove(deg(179.9)),
+  const std::vector<Groove> grooves = {make_symmetric_groove(deg(2.0)),
+                                       make_symmetric_groove(deg(30.0)),
+                                       make_symmetric_groove(deg(60.0)),
+                                       make_symmetric_groove(deg(90.0)),
+                                       make_symmetric_groove(deg(137.0)),
+                                       make_symmetric_groove(deg(179.9)),
                                        make_nonsymmetric_groove(deg(-10.0), deg(70.0)),
                                        make_nonsymmetric_groove(deg(-80.0), deg(5.0))};
   for (std::size_t gi = 0; gi < grooves.size(); ++gi) {
@@ -297,12 +301,84 @@ TEST(DielectricGroove, ConductorLimitIsTheConductorTracerBitForBit) {
         const Ray2 apex{Vec2(g.rim_height * dir.x() / dir.y(), g.rim_height), dir};
         ta.add(trace(g, apex, topt));
         tb.add(as_trace_result(tr.trace(apex, Medium::above, rng, r)));
-        const std::string where = "groove " + std::to_string(gi) + " theta_i " + std::to_string(theta_deg) +
-                                  " max_k " + std::to_string(max_k);
+        const std::string where = "groove " + std::to_string(gi) + " theta_i " + std::to_string(theta_deg) + " max_k " +
+                                  std::to_string(max_k);
         expect_same_tallies(ta, tb, where);
         EXPECT_GT(ta.escaped + ta.bounce_limit, n / 2) << where;
       }
     }
+  }
+}
+
+// The same at the zones' edges: between two stratified rays whose outcomes differ (bounce count,
+// first facet, termination), bisection on sim::trace down to adjacent doubles finds the edge, where
+// the outcome hangs on the last rounding of the position along the facets; both rays there must
+// come out of the conductor limit exactly as out of sim::trace.
+TEST(DielectricGroove, ConductorLimitAgreesAtTheZoneEdges) {
+  const std::vector<Groove> grooves = {make_symmetric_groove(deg(7.0)), make_symmetric_groove(deg(45.0)),
+                                       make_symmetric_groove(deg(100.0)),
+                                       make_nonsymmetric_groove(deg(-25.0), deg(40.0))};
+  int edges = 0;
+  for (const Groove& g : grooves)
+    for (double theta_deg : {-70.0, -20.0, 10.0, 55.0}) {
+      DielectricOptions opt;
+      opt.conductor_limit = true;
+      const DielectricGrooveTracer tr(g, opt);
+      const Vec2 dir = beam_direction(deg(theta_deg));
+      const Interval iv = opening(g);
+      Rng rng(7, 0, 0);
+      DielectricResult r;
+      auto key = [&](double x) {
+        const TraceResult t = trace(g, beam_ray(g, dir, x));
+        return std::make_tuple(t.bounces, static_cast<int>(t.first), static_cast<int>(t.how));
+      };
+      auto same = [&](double x) {
+        const TraceResult a = trace(g, beam_ray(g, dir, x));
+        const TraceResult b = as_trace_result(tr.trace(beam_ray(g, dir, x), Medium::above, rng, r));
+        return a.how == b.how && a.bounces == b.bounces && (a.how != Termination::escaped || a.first == b.first) &&
+               same_bits(a.exit_dir.x(), b.exit_dir.x()) && same_bits(a.exit_dir.y(), b.exit_dir.y());
+      };
+      const long n = 256;
+      for (long j = 0; j + 1 < n; ++j) {
+        double lo = sample_position(Sampling::stratified, iv, j, n, rng);
+        double hi = sample_position(Sampling::stratified, iv, j + 1, n, rng);
+        const auto k_lo = key(lo);
+        if (key(hi) == k_lo) continue;
+        while (std::nextafter(lo, hi) < hi) {
+          const double mid = 0.5 * (lo + hi);
+          if (mid <= lo || mid >= hi) break;
+          (key(mid) == k_lo ? lo : hi) = mid;
+        }
+        ++edges;
+        EXPECT_TRUE(same(lo)) << "theta_i " << theta_deg << " x " << lo;
+        EXPECT_TRUE(same(hi)) << "theta_i " << theta_deg << " x " << hi;
+      }
+    }
+  EXPECT_GE(edges, 12);
+}
+
+// Snell's total internal reflection is Fresnel's: refract() refuses exactly where
+// fresnel_dielectric gives 1 for that reason, in a sweep across the critical angle to the last bit.
+TEST(DielectricGroove, SnellAndFresnelAgreeOnTotalInternalReflection) {
+  for (double eta : {1.0 / 1.33, 1.0 / 1.5, 1.0 / 2.4}) {
+    const double c_crit = std::sqrt(1.0 - eta * eta);
+    int tir = 0, crossing = 0;
+    double c = c_crit * (1.0 - 1e-14);
+    for (int i = 0; i < 400; ++i, c = std::nextafter(c, 1.0)) {
+      const Vec2 d(std::sqrt(1.0 - c * c), -c), m(0.0, 1.0);
+      Vec2 t;
+      const bool crosses = optics::refract(d, m, eta, t);
+      const double F = optics::fresnel_dielectric(std::abs(d.y()), eta);
+      EXPECT_EQ(crosses, F < 1.0) << "eta " << eta << " cos " << c;
+      if (crosses) {
+        ++crossing;
+        EXPECT_TRUE(std::isfinite(t.x()) && std::isfinite(t.y()) && t.y() < 0.0);
+      } else {
+        ++tir;
+      }
+    }
+    EXPECT_GT(tir, 0);
+    EXPECT_GT(crossing, 0);
   }
 }
 
