@@ -36,6 +36,7 @@ void DielectricResult::clear() {
   left[0] = left[1] = 0.0;
   cut = bounce_limit = vertex = 0.0;
   paths_cut = 0;
+  interactions = 0;
   max_k = 0;
   pending.clear();
 }
@@ -212,6 +213,7 @@ DielectricResult& DielectricGrooveTracer::trace(const Ray2& ray, Medium from, Rn
       out.max_k = std::max(out.max_k, h.k);
       continue;
     }
+    ++out.interactions;
     const Vec2 n = facet ? fa->normal : Vec2(0.0, 1.0);  // towards medium 1
     const double eta_rel = h.in == Medium::above ? eta : inv_eta;
     const Vec2 m = h.in == Medium::above ? n : Vec2(-n);  // the normal on the incident side

@@ -102,7 +102,8 @@ struct DielectricResult {
   double bounce_limit = 0.0;    // energy of paths still in play after max_interactions
   double vertex = 0.0;          // energy of paths that hit the apex or a rim exactly
   std::int64_t paths_cut = 0;
-  int max_k = 0;  // most interactions of any path (exits and ends alike)
+  std::int64_t interactions = 0;  // hits at which Fresnel and Snell were evaluated, over all paths
+  int max_k = 0;                  // most interactions of any path (exits and ends alike)
   double total() const { return left[0] + left[1] + cut + bounce_limit + vertex; }
   void clear();
   std::vector<detail::PendingHit> pending;  // the splitting's work list, kept for reuse
