@@ -1,7 +1,6 @@
 #include "vgroove/sim/dielectric_groove.h"
 
-#include "vgroove/optics/fresnel.h"
-#include "vgroove/optics/snell.h"
+#include "vgroove/sim/dielectric_interaction.h"
 
 #include <cmath>
 #include <cstdio>
@@ -41,7 +40,9 @@ void DielectricResult::clear() {
   pending.clear();
 }
 
-DielectricGrooveTracer::DielectricGrooveTracer(const Groove& g, const DielectricOptions& opt) : g_(g), opt_(opt) {
+namespace detail {
+
+void check_dielectric_options(const DielectricOptions& opt) {
   if (!(opt.eta > 0.0 && opt.eta < std::numeric_limits<double>::infinity()))
     throw std::invalid_argument("eta = " + number_text(opt.eta) + " is out of range (0, inf)");
   if (!(opt.min_weight >= 0.0 && opt.min_weight < 1.0))
@@ -49,6 +50,20 @@ DielectricGrooveTracer::DielectricGrooveTracer(const Groove& g, const Dielectric
   if (opt.max_interactions < 0)
     throw std::invalid_argument("max_interactions = " + std::to_string(opt.max_interactions) +
                                 " is out of range [0, 2147483647]");
+}
+
+void check_light_direction(const Vec2& dir, Medium from) {
+  const double dy = dir.y();
+  if (from == Medium::above ? !(dy < 0.0 && dy >= -1.0) : !(dy > 0.0 && dy <= 1.0))
+    throw std::invalid_argument(
+        "ray.dir.y = " + number_text(dy) + " is out of range " +
+        (from == Medium::above ? "[-1, 0) for light from above" : "(0, 1] for light from below"));
+}
+
+}  // namespace detail
+
+DielectricGrooveTracer::DielectricGrooveTracer(const Groove& g, const DielectricOptions& opt) : g_(g), opt_(opt) {
+  detail::check_dielectric_options(opt);
 }
 
 bool DielectricGrooveTracer::first_from_above(const Ray2& ray, Pending& p, bool& vertex) const {
@@ -179,11 +194,7 @@ bool DielectricGrooveTracer::advance(Part on, double pos, const Vec2& d, Medium 
 
 DielectricResult& DielectricGrooveTracer::trace(const Ray2& ray, Medium from, Rng& rng, DielectricResult& out) const {
   out.clear();
-  const double dy = ray.dir.y();
-  if (from == Medium::above ? !(dy < 0.0 && dy >= -1.0) : !(dy > 0.0 && dy <= 1.0))
-    throw std::invalid_argument(
-        "ray.dir.y = " + number_text(dy) + " is out of range " +
-        (from == Medium::above ? "[-1, 0) for light from above" : "(0, 1] for light from below"));
+  detail::check_light_direction(ray.dir, from);
   Pending p0{ray.dir, 0.0, 1.0, 0, 0, Part::left_facet, from};
   bool vertex = false;
   const bool hit = from == Medium::above ? first_from_above(ray, p0, vertex) : first_from_below(ray, p0);
@@ -215,24 +226,8 @@ DielectricResult& DielectricGrooveTracer::trace(const Ray2& ray, Medium from, Rn
     }
     ++out.interactions;
     const Vec2 n = facet ? fa->normal : Vec2(0.0, 1.0);  // towards medium 1
-    const double eta_rel = h.in == Medium::above ? eta : inv_eta;
-    const Vec2 m = h.in == Medium::above ? n : Vec2(-n);  // the normal on the incident side
-    double F = 1.0;
     Vec2 t_dir = Vec2::Zero();
-    if (!opt_.conductor_limit && optics::refract(h.d, m, eta_rel, t_dir)) {
-      const double cos_i = std::abs(h.d.dot(n));
-      switch (opt_.polarization) {
-        case Polarization::unpolarized:
-          F = optics::fresnel_dielectric(cos_i, eta_rel);
-          break;
-        case Polarization::s:
-          F = optics::fresnel_dielectric_polarized(cos_i, eta_rel).s;
-          break;
-        case Polarization::p:
-          F = optics::fresnel_dielectric_polarized(cos_i, eta_rel).p;
-          break;
-      }
-    }
+    const double F = detail::fresnel_split(h.d, n, h.in, eta, inv_eta, opt_, t_dir);
     // The branches: reflected (weight w F, stays in its medium) and refracted (w (1 - F), crosses).
     double w_branch[2];
     if (split) {
