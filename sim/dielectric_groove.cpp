@@ -80,29 +80,9 @@ bool DielectricGrooveTracer::first_from_above(const Ray2& ray, Pending& p, bool&
     vertex = true;  // a rim exactly, or NaN
     return false;
   }
-  const Facet& fl = g_[Side::left];
-  const Facet& fr = g_[Side::right];
-  const Vec2& d = ray.dir;
-  const double sn = cross(ray.origin, d);
-  const double den_l = cross(fl.edge, d), den_r = cross(fr.edge, d);
-  const bool away_l = sn * den_l < 0.0, away_r = sn * den_r < 0.0;
   Side on;
-  double s;
-  if (away_r & !away_l) {
-    on = Side::left;
-    s = detail::hit_facet_with(ray.origin, fl, sn, den_l);
-  } else if (away_l & !away_r) {
-    on = Side::right;
-    s = detail::hit_facet_with(ray.origin, fr, sn, den_r);
-  } else {
-    const detail::FacetHit hl = detail::hit_facet_from_rim_line(ray.origin, d, fl);
-    const detail::FacetHit hr = detail::hit_facet_from_rim_line(ray.origin, d, fr);
-    if (hl.s >= 0.0 && (hr.s < 0.0 || hl.t_num / hl.t_den <= hr.t_num / hr.t_den))
-      on = Side::left, s = hl.s;
-    else
-      on = Side::right, s = hr.s;
-  }
-  if (!(s >= 0.0)) {  // entered the opening yet met no facet: a vertex by rounding (as sim::trace)
+  double s = -1.0;
+  if (!detail::first_facet_hit(g_, ray, on, s)) {  // met no facet: a vertex by rounding (as sim::trace)
     vertex = true;
     return false;
   }
@@ -146,15 +126,8 @@ bool DielectricGrooveTracer::first_from_below(const Ray2& ray, Pending& p) const
 bool DielectricGrooveTracer::advance(Part on, double pos, const Vec2& d, Medium medium, Pending& p) const {
   if (medium == Medium::above) {
     if (!is_facet(on)) return false;  // upward from the rim line: nothing above it
-    // Inside the groove: sim::trace's step from facet f to the other facet o (detail::bounce after
-    // its reflection), the same operations in the same order.
-    const Facet& f = g_.facet[static_cast<int>(on)];
-    const Facet& o = g_.facet[1 - static_cast<int>(on)];
-    const double den = cross(o.edge, d);
-    if (!(den * f.turn_to_other > 0.0)) return false;  // t <= 0: leaves through the opening
-    const double c = cross(f.edge, d);
-    if (c * den < 0.0 || pos * std::abs(c) > o.length * std::abs(den)) return false;  // passes the other facet
-    p.pos = pos * (c / den);
+    // Inside the groove: sim::trace's step from facet to facet.
+    if (!detail::step_to_other_facet(g_, static_cast<Side>(on), pos, d, p.pos)) return false;
     p.on = static_cast<Part>(1 - static_cast<int>(on));
     return true;
   }
