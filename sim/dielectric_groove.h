@@ -90,7 +90,8 @@ struct PendingHit {
   std::uint64_t path;
   int k;
   Part on;
-  Medium in;  // the medium the path travels in
+  Medium in;       // the medium the path travels in
+  int groove = 0;  // which groove of a surface (sim/dielectric_microsurface.h)
 };
 }  // namespace detail
 
