@@ -140,7 +140,8 @@ DielectricResult& DielectricSurfaceTracer::run(const Hit& first, const Vec2& d0,
       if (medium == Medium::above) {
         double s_next;
         if (detail::step_to_other_facet(g, side, h.pos, d, s_next)) {
-          pending.push_back(detail::PendingHit{d, s_next, w, path, k, static_cast<Part>(other(side)), medium, h.groove});
+          pending.push_back(
+              detail::PendingHit{d, s_next, w, path, k, static_cast<Part>(other(side)), medium, h.groove});
           continue;
         }
       } else {
@@ -149,7 +150,8 @@ DielectricResult& DielectricSurfaceTracer::run(const Hit& first, const Vec2& d0,
         Hit next{};
         bool unresolved = false;
         if (march(p, h.groove, d, h.groove, side, next, unresolved)) {
-          pending.push_back(detail::PendingHit{d, next.s, w, path, k, static_cast<Part>(next.side), medium, next.groove});
+          pending.push_back(
+              detail::PendingHit{d, next.s, w, path, k, static_cast<Part>(next.side), medium, next.groove});
           continue;
         }
         if (unresolved) {

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -77,10 +78,11 @@ TEST(DielectricSurface, ConductorLimitIsTodaysMicrosurfaceTally) {
         MicrosurfaceTally mine(to.theta_o_bins, to.max_k);
         Rng rng(1, 0, 0);
         DielectricResult r;
-        for_each_landing(m.grooves, to.theta_i, to.sampling, to.rays, to.seed, 0, [&](const Groove& g, const Ray2& ray) {
-          const int j = static_cast<int>(&g - m.grooves.data());
-          mine.add(as_trace_result(tr.trace_from_above(j, ray, rng, r)));
-        });
+        for_each_landing(m.grooves, to.theta_i, to.sampling, to.rays, to.seed, 0,
+                         [&](const Groove& g, const Ray2& ray) {
+                           const int j = static_cast<int>(&g - m.grooves.data());
+                           mine.add(as_trace_result(tr.trace_from_above(j, ray, rng, r)));
+                         });
         const std::string where = "alpha " + std::to_string(alpha) + " theta_i " + std::to_string(theta_deg);
         expect_same(mine, trace_microsurface_chunk(m, to, 0), where);
         expect_same(mine, trace_microsurface_chunk_reference(m, to, 0), where + " (reference)");
@@ -110,6 +112,64 @@ TEST(DielectricSurface, EtaOnePassesStraightThrough) {
       EXPECT_EQ(r.exits[0].dir, up);
     });
   }
+}
+
+// The surface's geometry below and above, checked by a count made without the tracer: at eta = 1
+// a ray goes straight on and interacts once at every crossing of its line with the surface, so
+// its single exit's k is the number of the surface polyline's segments its line crosses. The
+// polyline here is built from the grooves' slopes alone (groove n: (n, 0), (n + 1/2,
+// -tan(theta_m) / 2), (n + 1, 0)), and a crossing is a segment whose ends lie strictly on either
+// side of the line.
+int crossings(const Microsurface& m, const Vec2& p0, const Vec2& d) {
+  const long G = static_cast<long>(m.grooves.size());
+  double depth = 0.0;
+  for (double t : m.theta_m) depth = std::max(depth, 0.5 * std::tan(t));
+  // The line's x between y = 0 and y = -depth, and a groove more on each side.
+  const double xa = p0.x() + (0.0 - p0.y()) / d.y() * d.x(), xb = p0.x() + (-depth - p0.y()) / d.y() * d.x();
+  const long n_lo = static_cast<long>(std::floor(std::min(xa, xb))) - 1;
+  const long n_hi = static_cast<long>(std::floor(std::max(xa, xb))) + 1;
+  auto side = [&](const Vec2& q) { return cross(d, q - p0); };
+  int count = 0;
+  for (long n = n_lo; n <= n_hi; ++n) {
+    const double dep = 0.5 * std::tan(m.theta_m[static_cast<std::size_t>(((n % G) + G) % G)]);
+    const Vec2 a(static_cast<double>(n), 0.0), b(static_cast<double>(n) + 0.5, -dep),
+        c(static_cast<double>(n) + 1.0, 0.0);
+    if (side(a) * side(b) < 0.0) ++count;
+    if (side(b) * side(c) < 0.0) ++count;
+  }
+  return count;
+}
+
+TEST(DielectricSurface, EtaOneCrossesTheSurfaceWhereItsLineDoes) {
+  const Microsurface m = surface_of(NdfKind::ggx, 0.9, 100, 4);
+  DielectricOptions opt;
+  opt.eta = 1.0;
+  const DielectricSurfaceTracer tr(m, opt);
+  Rng rng(1, 0, 0);
+  DielectricResult r;
+  int most = 0;
+  for (double theta_deg : {-85.0, -40.0, 5.0, 60.0, 88.0})
+    for (int q = 0; q < 400; ++q) {
+      const double x = 100.0 * (q + 0.37) / 400.0;
+      // From below, crossing y = -depth_max at x.
+      const Vec2 up = direction_at(deg(theta_deg));
+      tr.trace_from_below(x, up, rng, r);
+      ASSERT_EQ(r.exits.size(), 1u);
+      const int want_up = crossings(m, Vec2(x, -tr.depth_max()), up);
+      EXPECT_EQ(r.exits[0].k, want_up) << "from below, theta " << theta_deg << " x " << x;
+      // From above, landing at x on the peaks' line: groove floor(x), at f = x - floor(x) across its opening.
+      const Vec2 down = -direction_at(deg(theta_deg));
+      const int j = static_cast<int>(std::floor(x));
+      const Groove& g = m.grooves[static_cast<std::size_t>(j)];
+      const double f = x - j;
+      const double xu = g.rim_x(Side::left) + f * (g.rim_x(Side::right) - g.rim_x(Side::left));
+      tr.trace_from_above(j, Ray2{Vec2(xu, g.rim_height), down}, rng, r);
+      ASSERT_EQ(r.exits.size(), 1u);
+      const int want_down = crossings(m, Vec2(x, 0.0), down);
+      EXPECT_EQ(r.exits[0].k, want_down) << "from above, theta " << theta_deg << " x " << x;
+      most = std::max({most, want_up, want_down});
+    }
+  EXPECT_GE(most, 5);  // lines that cross several grooves
 }
 
 // Whether a path met the surface while travelling in medium 2 after its first interaction.
@@ -199,9 +259,8 @@ std::pair<Cells, Cells> split_against_random(const Microsurface& m, double theta
     }
   };
   if (from == Medium::above) {
-    for_each_landing(m.grooves, theta, Sampling::stratified, n, 0, 0, [&](const Groove& g, const Ray2& ray) {
-      one(static_cast<int>(&g - m.grooves.data()), ray, 0.0);
-    });
+    for_each_landing(m.grooves, theta, Sampling::stratified, n, 0, 0,
+                     [&](const Groove& g, const Ray2& ray) { one(static_cast<int>(&g - m.grooves.data()), ray, 0.0); });
   } else {
     const double G = static_cast<double>(m.grooves.size());
     for (long q = 0; q < n; ++q) one(0, Ray2{}, G * (static_cast<double>(q) + 0.5) / static_cast<double>(n));
