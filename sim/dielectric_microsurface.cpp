@@ -77,12 +77,16 @@ DielectricResult& DielectricSurfaceTracer::trace_from_below(double x, const Vec2
                                                             DielectricResult& out) const {
   out.clear();
   detail::check_light_direction(dir, Medium::below);
+  if (!std::isfinite(x)) {
+    out.vertex = 1.0;  // no number: never dropped
+    return out;
+  }
   const double G = static_cast<double>(surface_.grooves.size());
   const double xw = x - std::floor(x / G) * G;  // into [0, G] (G itself by rounding: groove G is groove 0)
   const long n0 = static_cast<long>(std::floor(xw));
   Hit first{};
   bool unresolved = false;
-  if (!std::isfinite(x) || !march(Vec2(xw, -depth_max_), n0, dir, -1, Side::left, first, unresolved)) {
+  if (!march(Vec2(xw, -depth_max_), n0, dir, -1, Side::left, first, unresolved)) {
     out.vertex = 1.0;  // met nothing: a vertex by rounding (or no number), never dropped
     return out;
   }
