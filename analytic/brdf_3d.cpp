@@ -1,10 +1,10 @@
 #include "vgroove/analytic/brdf_3d.h"
 
-#include "vgroove/analytic/atan_pair.h"
-#include "vgroove/analytic/brdf_3d_passes.h"
+#include "vgroove/analytic/detail/atan_pair.h"
+#include "vgroove/analytic/detail/brdf_3d_passes.h"
+#include "vgroove/analytic/detail/ndf_visit.h"
 #include "vgroove/analytic/kaleidoscope.h"
 #include "vgroove/analytic/kaleidoscope_solutions.h"
-#include "vgroove/analytic/ndf_visit.h"
 
 #include <algorithm>
 #include <array>

@@ -51,11 +51,11 @@
 //
 // Values: the same as the per-solution pass within 1e-12 relative (tests/analytic/brdf_3d_test.cpp,
 // BatchedPassEqualsPerSolutionPass). Cost: bench/brdf_bench.cpp.
-#include "vgroove/analytic/brdf_3d_passes.h"
-#include "vgroove/analytic/exp_log_batch.h"
+#include "vgroove/analytic/detail/brdf_3d_passes.h"
+#include "vgroove/analytic/detail/exp_log_batch.h"
+#include "vgroove/analytic/detail/ndf_visit.h"
+#include "vgroove/analytic/detail/sin_batch.h"
 #include "vgroove/analytic/kaleidoscope_solutions.h"
-#include "vgroove/analytic/ndf_visit.h"
-#include "vgroove/analytic/sin_batch.h"
 #include "vgroove/common/simd.h"
 
 #include <algorithm>

@@ -8,9 +8,9 @@
 // ACM TOG 37(6), 2018. Sec. 5.1 (Eq. 10-17), Sec. 7.1 (Fig. 11).
 #include "vgroove/analytic/lobe_3d.h"
 
-#include "vgroove/analytic/lobe_3d_run.h"
+#include "vgroove/analytic/detail/lobe_3d_run.h"
+#include "vgroove/analytic/detail/ndf_visit.h"
 #include "vgroove/analytic/ndf.h"
-#include "vgroove/analytic/ndf_visit.h"
 #include "vgroove/analytic/quadrature.h"
 
 #include <algorithm>

@@ -6,7 +6,7 @@
 //
 // Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces".
 // ACM TOG 37(6), 2018. Eq. (4)-(6).
-#include "vgroove/analytic/lobe_3d_run.h"
+#include "vgroove/analytic/detail/lobe_3d_run.h"
 
 #include <algorithm>
 #include <cmath>

@@ -11,10 +11,10 @@
 //
 // Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces".
 // ACM TOG 37(6), 2018. Eq. (4)-(6), Sec. 5.1 (Eq. 10-17).
-#include "vgroove/analytic/lobe_3d_nodes.h"
-#include "vgroove/analytic/lobe_3d_run.h"
-#include "vgroove/analytic/ndf_visit.h"
-#include "vgroove/analytic/sin_batch.h"
+#include "vgroove/analytic/detail/lobe_3d_nodes.h"
+#include "vgroove/analytic/detail/lobe_3d_run.h"
+#include "vgroove/analytic/detail/ndf_visit.h"
+#include "vgroove/analytic/detail/sin_batch.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,10 +6,10 @@
 //
 // Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces".
 // ACM TOG 37(6), 2018. Eq. (1)-(6), Sec. 5.1 (Eq. 10-17).
+#include "vgroove/analytic/detail/lobe_3d_run.h"
+#include "vgroove/analytic/detail/ndf_visit.h"
 #include "vgroove/analytic/kaleidoscope.h"
-#include "vgroove/analytic/lobe_3d_run.h"
 #include "vgroove/analytic/ndf.h"
-#include "vgroove/analytic/ndf_visit.h"
 
 #include <algorithm>
 #include <cmath>

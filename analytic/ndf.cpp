@@ -1,6 +1,6 @@
 #include "vgroove/analytic/ndf.h"
 
-#include "vgroove/analytic/ndf_visit.h"
+#include "vgroove/analytic/detail/ndf_visit.h"
 
 #include <algorithm>
 #include <cassert>

@@ -20,7 +20,7 @@ struct NdfKind {
   static constexpr NdfFamily student_t = NdfFamily::student_t;
 
   NdfFamily family = NdfFamily::ggx;
-  // Student-T's tail (analytic/ndf_student_t.h), gamma > 1.5: 2 is GGX, infinity Beckmann. 0 for
+  // Student-T's tail (analytic/detail/ndf_student_t.h), gamma > 1.5: 2 is GGX, infinity Beckmann. 0 for
   // the other families.
   double gamma = 0.0;
 

@@ -7,7 +7,7 @@
 // so that a part names its input file as it is there). PartMergeDir copies them into a temporary
 // directory and works there; each text is written as fuzz.part.json and merged alone and with each
 // real part in turn (`vgroove merge fuzz.part.json P --out merged.json --force`), so that a text
-// close to a real part reaches the tally readers and the merge itself (validation/part_fields.h,
+// close to a real part reaches the tally readers and the merge itself (validation/detail/part_fields.h,
 // work_run.h). Every merge must end in exit status 0, 1 or 2 (3 is an exception that escaped).
 #pragma once
 

@@ -3,7 +3,7 @@
 #include "vgroove/support/seconds_since.h"
 
 #include "vgroove/support/format.h"
-#include "vgroove/validation/part_fields.h"
+#include "vgroove/validation/detail/part_fields.h"
 
 #include "vgroove/analytic/kaleidoscope_fresnel.h"
 #include "vgroove/optics/fresnel.h"

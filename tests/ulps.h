@@ -1,5 +1,5 @@
 // Distance in units in the last place, for the tests of the polynomial sines and arctangents
-// (analytic/sin_batch.h, analytic/atan_pair.h) against long double.
+// (analytic/detail/sin_batch.h, analytic/detail/atan_pair.h) against long double.
 #pragma once
 
 #include <cmath>

@@ -1,7 +1,7 @@
 #include "vgroove/validation/brdf_suite.h"
 #include "vgroove/support/seconds_since.h"
 
-#include "vgroove/validation/part_fields.h"
+#include "vgroove/validation/detail/part_fields.h"
 
 #include "vgroove/support/format.h"
 #include "vgroove/support/printable.h"

@@ -9,7 +9,7 @@
 #include "vgroove/sim/rng.h"
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/user_error.h"
-#include "vgroove/validation/part_fields.h"
+#include "vgroove/validation/detail/part_fields.h"
 #include "vgroove/validation/partial_report.h"
 #include "vgroove/validation/spec_lists.h"
 

@@ -1,7 +1,7 @@
 #include "vgroove/validation/energy_table.h"
 #include "vgroove/support/seconds_since.h"
 
-#include "vgroove/validation/part_fields.h"
+#include "vgroove/validation/detail/part_fields.h"
 
 #include "vgroove/analytic/brdf_flatland.h"
 #include "vgroove/analytic/lobe_3d.h"

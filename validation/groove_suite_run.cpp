@@ -2,7 +2,7 @@
 #include "vgroove/support/seconds_since.h"
 
 #include "vgroove/support/format.h"
-#include "vgroove/validation/part_fields.h"
+#include "vgroove/validation/detail/part_fields.h"
 
 #include "vgroove/validation/partial_report.h"
 

@@ -6,8 +6,8 @@
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/printable.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/detail/part_fields.h"
 #include "vgroove/validation/histogram_metrics.h"
-#include "vgroove/validation/part_fields.h"
 #include "vgroove/validation/report.h"
 
 #include <chrono>

@@ -35,7 +35,7 @@ inline constexpr long long kMaxSeed = std::numeric_limits<long long>::max();
 // Roughness of procedural surfaces: the range the slope samplers and the BRDFs are tested on.
 inline constexpr double kMinAlpha = 0.01;
 inline constexpr double kMaxAlpha = 2.0;
-// Student-T's tail gamma (analytic/ndf_student_t.h): above 1.5, where its mean slope and Smith's
+// Student-T's tail gamma (analytic/detail/ndf_student_t.h): above 1.5, where its mean slope and Smith's
 // Lambda are finite; up to 10^4, where it lies within x^2 / 2 10^-4 of Beckmann (x = tan^2 / alpha^2)
 // and its forms are tested (tests/analytic/ndf_student_t_test.cpp).
 inline constexpr double kMinStudentTGamma = 1.5;  // exclusive

@@ -4,7 +4,7 @@
 #include "vgroove/support/format.h"
 #include "vgroove/support/printable.h"
 #include "vgroove/validation/case_surface.h"
-#include "vgroove/validation/part_fields.h"
+#include "vgroove/validation/detail/part_fields.h"
 
 #include "vgroove/analytic/bounce_percentiles.h"
 #include "vgroove/common/angles.h"

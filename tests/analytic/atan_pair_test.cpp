@@ -1,5 +1,5 @@
-// Tests of atan2_pair (analytic/atan_pair.h), the groove frame's two angles in the batched GGX pass.
-#include "vgroove/analytic/atan_pair.h"
+// Tests of atan2_pair (analytic/detail/atan_pair.h), the groove frame's two angles in the batched GGX pass.
+#include "vgroove/analytic/detail/atan_pair.h"
 
 #include "tests/ulps.h"
 

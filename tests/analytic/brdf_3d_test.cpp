@@ -1,6 +1,6 @@
 // Tests of the 3D V-groove BRDF (Lee et al. 2018, Eq. 13-17) and Cook-Torrance (Eq. 1-3).
 #include "vgroove/analytic/brdf_3d.h"
-#include "vgroove/analytic/brdf_3d_passes.h"
+#include "vgroove/analytic/detail/brdf_3d_passes.h"
 #include "vgroove/analytic/lobe_3d.h"
 #include "vgroove/common/angles.h"
 

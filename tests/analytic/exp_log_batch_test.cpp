@@ -1,6 +1,6 @@
-// Tests of the polynomial exp and log (analytic/exp_log_batch.h), four lanes at a time, against
+// Tests of the polynomial exp and log (analytic/detail/exp_log_batch.h), four lanes at a time, against
 // long double: the batched BRDF pass's Beckmann terms and the lobe's nodes rest on them.
-#include "vgroove/analytic/exp_log_batch.h"
+#include "vgroove/analytic/detail/exp_log_batch.h"
 
 #include "tests/ulps.h"
 

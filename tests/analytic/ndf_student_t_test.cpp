@@ -1,4 +1,4 @@
-// Tests of analytic/ndf_student_t.h, the Student-T NDF (Ribardiere et al. 2017), each form against
+// Tests of analytic/detail/ndf_student_t.h, the Student-T NDF (Ribardiere et al. 2017), each form against
 // what it was derived from: normalization by quadrature (3D and flatland), the flatland form as
 // the marginal of the 3D slope law, Lambda against its defining integral and against Smith's
 // projected-area constraint (Heitz 2014, Eq. (5)) in 2D and 3D, the CDF against the integral of
@@ -6,7 +6,7 @@
 // 1 + 1/alpha^2 is Phong, and gamma -> infinity tends to Beckmann at the rate 1/gamma with the
 // coefficient of the expansion (x^2/2 - x in 3D, x = tan^2 / alpha^2). The vector forms (four
 // lanes) against the double ones. incomplete_beta against Boost.Math.
-#include "vgroove/analytic/ndf_student_t.h"
+#include "vgroove/analytic/detail/ndf_student_t.h"
 
 #include "tests/stats.h"
 #include "vgroove/analytic/brdf_3d.h"

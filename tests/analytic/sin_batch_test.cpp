@@ -1,5 +1,5 @@
-// Tests of the batch sine (analytic/sin_batch.h) that the batched BRDF pass uses.
-#include "vgroove/analytic/sin_batch.h"
+// Tests of the batch sine (analytic/detail/sin_batch.h) that the batched BRDF pass uses.
+#include "vgroove/analytic/detail/sin_batch.h"
 
 #include "tests/ulps.h"
 

@@ -9,6 +9,13 @@ src=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
+# The modules' detail/ headers (what only their own sources include) are not installed, and the
+# installed headers compile without them: the consumer below includes the public ones.
+if find "$work/prefix/include/vgroove" -path '*/detail*' | grep -q .; then
+  echo "installed detail headers:" >&2
+  find "$work/prefix/include/vgroove" -path '*/detail*' >&2
+  exit 1
+fi
 cmake -S "$src/examples/cmake-consumer" -B "$work/build" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/build" >/dev/null
 "$work/build/vgroove_consumer"

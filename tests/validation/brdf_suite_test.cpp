@@ -82,7 +82,7 @@ TEST(BrdfSuite, BadSpecsNameTheFieldAndRange) {
   EXPECT_USER_ERROR(parse_table2_suite(t2, "t.json"), "t.json: /paper/max_bounces/1 must be a list of 9 integers");
 }
 
-// Student-T (analytic/ndf_student_t.h) travels as "student_t" in "ndf" with its tails in "gamma",
+// Student-T (analytic/detail/ndf_student_t.h) travels as "student_t" in "ndf" with its tails in "gamma",
 // one NDF per gamma; "gamma" is required with it, refused without it, and its range is
 // validation/ranges.h's; the kinds that do not model Student-T refuse its name.
 TEST(MicrosurfaceSuite, StudentTTakesItsGammaList) {

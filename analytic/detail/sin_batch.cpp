@@ -1,4 +1,4 @@
-#include "vgroove/analytic/sin_batch.h"
+#include "vgroove/analytic/detail/sin_batch.h"
 
 #include "vgroove/common/simd.h"
 

@@ -8,7 +8,7 @@
 //   Lambda = (-1 + sqrt(1 + alpha^2 tan^2)) / 2.
 #pragma once
 
-#include "vgroove/analytic/ndf_math.h"
+#include "vgroove/analytic/detail/ndf_math.h"
 
 #include <cmath>
 #include <numbers>

@@ -7,7 +7,7 @@
 //   Lambda = (erf(a) - 1) / 2 + exp(-a^2) / (2 a sqrt(pi)), a = 1 / (alpha |tan theta_o|).
 #pragma once
 
-#include "vgroove/analytic/ndf_math.h"
+#include "vgroove/analytic/detail/ndf_math.h"
 
 #include <cmath>
 #include <numbers>

@@ -14,7 +14,7 @@
 // area, the limits and their rates).
 #pragma once
 
-#include "vgroove/analytic/ndf_math.h"
+#include "vgroove/analytic/detail/ndf_math.h"
 #include "vgroove/common/log_gamma_ratio.h"
 
 #include <cmath>

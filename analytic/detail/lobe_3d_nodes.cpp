@@ -1,8 +1,8 @@
-#include "vgroove/analytic/lobe_3d_nodes.h"
+#include "vgroove/analytic/detail/lobe_3d_nodes.h"
 
-#include "vgroove/analytic/exp_log_batch.h"
-#include "vgroove/analytic/ndf_visit.h"
-#include "vgroove/analytic/sin_batch.h"
+#include "vgroove/analytic/detail/exp_log_batch.h"
+#include "vgroove/analytic/detail/ndf_visit.h"
+#include "vgroove/analytic/detail/sin_batch.h"
 #include "vgroove/common/polynomial.h"
 #include "vgroove/common/simd.h"
 

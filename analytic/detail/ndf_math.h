@@ -10,7 +10,7 @@
 // or nearly so values: the vector kernels agree with the scalar ones within rounding, not bit for bit.
 #pragma once
 
-#include "vgroove/analytic/exp_log_batch.h"
+#include "vgroove/analytic/detail/exp_log_batch.h"
 #include "vgroove/common/simd.h"
 
 #include <cmath>

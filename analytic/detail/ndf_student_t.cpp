@@ -1,4 +1,4 @@
-#include "vgroove/analytic/ndf_student_t.h"
+#include "vgroove/analytic/detail/ndf_student_t.h"
 
 #include "vgroove/common/log_gamma_ratio.h"
 

@@ -7,7 +7,7 @@
 // consistent (the fates add up to the rays, the bounce rows and histogram bins to the escaped
 // rays, each row and bin of the joint histogram to its margins). A tally that breaks any of these
 // is a UserError naming the part and the path; nothing damaged reaches a report.
-// Test: tests/validation/part_fields_test.cpp (every mutation of real parts refused or harmless).
+// Test: tests/validation/detail/part_fields_test.cpp (every mutation of real parts refused or harmless).
 #pragma once
 
 #include "vgroove/sim/ndf_grooves.h"

@@ -1,4 +1,4 @@
-#include "vgroove/validation/part_fields.h"
+#include "vgroove/validation/detail/part_fields.h"
 
 #include "vgroove/validation/partial_report.h"
 

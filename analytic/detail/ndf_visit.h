@@ -4,10 +4,10 @@
 // lambda or template runs every NDF's own formulas. A new NDF is its file and one line here.
 #pragma once
 
-#include "vgroove/analytic/ndf_beckmann.h"
-#include "vgroove/analytic/ndf_ggx.h"
-#include "vgroove/analytic/ndf_phong.h"
-#include "vgroove/analytic/ndf_student_t.h"
+#include "vgroove/analytic/detail/ndf_beckmann.h"
+#include "vgroove/analytic/detail/ndf_ggx.h"
+#include "vgroove/analytic/detail/ndf_phong.h"
+#include "vgroove/analytic/detail/ndf_student_t.h"
 #include "vgroove/common/ndf_kind.h"
 
 namespace vgroove::analytic {

@@ -8,7 +8,7 @@
 // No closed-form Lambda: Phong is not shape invariant (Heitz 2014, Sec. 3.2).
 #pragma once
 
-#include "vgroove/analytic/ndf_math.h"
+#include "vgroove/analytic/detail/ndf_math.h"
 #include "vgroove/common/log_gamma_ratio.h"
 
 #include <cmath>
