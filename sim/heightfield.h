@@ -63,9 +63,9 @@ double heightfield_bytes(int n);
 inline constexpr std::uint64_t kHeightfieldStream = 0x6866696c6c64ULL;  // "hfilld"
 
 struct GaussianHeightfieldOptions {
-  int n = 256;                       // power of two in [2, 65536]
-  double alpha_x = 0.5;              // Beckmann roughness along x, > 0
-  double alpha_y = 0.5;              // along y, > 0
+  int n = 256;                      // power of two in [2, 65536]
+  double alpha_x = 0.5;             // Beckmann roughness along x, > 0
+  double alpha_y = 0.5;             // along y, > 0
   double correlation_length = 8.0;  // l_x in cells, in [2, n / 8]
   std::uint64_t seed = 0;
 };

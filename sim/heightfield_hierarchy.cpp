@@ -28,7 +28,8 @@ HeightfieldHierarchy make_heightfield_hierarchy(const Heightfield& f) {
         const HeightBounds& b = m.node(k - 1, 2 * i + 1, 2 * j);
         const HeightBounds& c = m.node(k - 1, 2 * i, 2 * j + 1);
         const HeightBounds& d = m.node(k - 1, 2 * i + 1, 2 * j + 1);
-        lk[static_cast<std::size_t>(j) * s + i] = {std::min({a.lo, b.lo, c.lo, d.lo}), std::max({a.hi, b.hi, c.hi, d.hi})};
+        lk[static_cast<std::size_t>(j) * s + i] = {std::min({a.lo, b.lo, c.lo, d.lo}),
+                                                   std::max({a.hi, b.hi, c.hi, d.hi})};
       }
   }
   return m;

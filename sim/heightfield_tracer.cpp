@@ -28,9 +28,9 @@ struct Tri {
 
 // The incident triangles of a hit feature (1, 2 or 6), and the feature itself.
 struct Feature {
-  int kind = 0;                      // 0 interior, 1 edge, 2 vertex
-  std::array<std::int64_t, 2> p{};   // the vertex (kind 2) or the edge's first vertex (kind 1)
-  std::array<std::int64_t, 2> q{};   // the edge's second vertex (kind 1)
+  int kind = 0;                     // 0 interior, 1 edge, 2 vertex
+  std::array<std::int64_t, 2> p{};  // the vertex (kind 2) or the edge's first vertex (kind 1)
+  std::array<std::int64_t, 2> q{};  // the edge's second vertex (kind 1)
   std::array<Tri, 6> tris{};
   int count = 0;
 };
@@ -205,8 +205,8 @@ Feature feature_of(const Tri& t, const WatertightHit& h, const std::array<std::a
     f.kind = 2;
     f.p = !u0 ? c[0] : (!v0 ? c[1] : c[2]);
     const std::int64_t gx = f.p[0], gy = f.p[1];
-    f.tris = {Tri{gx, gy, 0}, Tri{gx, gy, 1}, Tri{gx - 1, gy, 0}, Tri{gx - 1, gy - 1, 1}, Tri{gx - 1, gy - 1, 0},
-              Tri{gx, gy - 1, 1}};
+    f.tris = {Tri{gx, gy, 0},         Tri{gx, gy, 1},         Tri{gx - 1, gy, 0},
+              Tri{gx - 1, gy - 1, 1}, Tri{gx - 1, gy - 1, 0}, Tri{gx, gy - 1, 1}};
     f.count = 6;
     return f;
   }
@@ -318,7 +318,8 @@ HeightfieldRayResult trace_ray(const HeightfieldSurface& s, const Vec3& org0, co
       const Vec3 nrm = tr.normal(refl);
       const double dn = tr.dir.dot(nrm);
       const double nn = nrm.squaredNorm();
-      if constexpr (!std::is_same_v<Reflectance, UnitF>) res.throughput *= F(std::abs(dn) / std::sqrt(nn * tr.dir.squaredNorm()));
+      if constexpr (!std::is_same_v<Reflectance, UnitF>)
+        res.throughput *= F(std::abs(dn) / std::sqrt(nn * tr.dir.squaredNorm()));
       tr.dir = tr.dir - (2.0 * dn / nn) * nrm;
       if (++res.bounces > opt.max_bounces) {
         res.how = HeightfieldFate::bounce_limit;

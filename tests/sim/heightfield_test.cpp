@@ -18,9 +18,9 @@
 #include "vgroove/sim/heightfield.h"
 #include "vgroove/sim/heightfield_hierarchy.h"
 
+#include <gtest/gtest.h>
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
-#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
@@ -57,8 +57,7 @@ TEST_P(GaussianHeightfieldStats, SlopeVarianceRmsHeightAndCorrelationMatchThePar
   const Case c = GetParam();
   double sigma = 0.0, l_y = 0.0;
   expected_parameters(c, sigma, l_y);
-  const GaussianHeightfieldParameters p =
-      gaussian_heightfield_parameters({256, c.alpha_x, c.alpha_y, c.l_x, 0});
+  const GaussianHeightfieldParameters p = gaussian_heightfield_parameters({256, c.alpha_x, c.alpha_y, c.l_x, 0});
   EXPECT_NEAR(p.sigma, sigma, 1e-12 * sigma);
   EXPECT_NEAR(p.l_y, l_y, 1e-9 * l_y);
   const int n = 256, seeds = 8;
@@ -80,7 +79,9 @@ TEST_P(GaussianHeightfieldStats, SlopeVarianceRmsHeightAndCorrelationMatchThePar
   sy2 /= cells;
   h2 /= cells;
   hh /= cells;
-  auto C = [&](double dx, double dy) { return sigma * sigma * std::exp(-dx * dx / (c.l_x * c.l_x) - dy * dy / (l_y * l_y)); };
+  auto C = [&](double dx, double dy) {
+    return sigma * sigma * std::exp(-dx * dx / (c.l_x * c.l_x) - dy * dy / (l_y * l_y));
+  };
   auto Kx = [&](double dx, double dy) { return 2.0 * C(dx, dy) - C(dx + 1, dy) - C(dx - 1, dy); };
   auto Ky = [&](double dx, double dy) { return 2.0 * C(dx, dy) - C(dx, dy + 1) - C(dx, dy - 1); };
   const double reach = 7.0 * std::max(c.l_x, l_y);
@@ -118,11 +119,13 @@ TEST_P(GaussianHeightfieldNdf, TriangleSlopesFollowBeckmann) {
   const double sd_x = c.alpha_x / std::sqrt(2.0), sd_y = c.alpha_y / std::sqrt(2.0);
   std::vector<double> sum(bins * bins, 0.0), sum2(bins * bins, 0.0);
   for (int s = 0; s < fields; ++s) {
-    const Heightfield f = make_gaussian_heightfield({n, c.alpha_x, c.alpha_y, c.l_x, 1000u + static_cast<std::uint64_t>(s)});
+    const Heightfield f =
+        make_gaussian_heightfield({n, c.alpha_x, c.alpha_y, c.l_x, 1000u + static_cast<std::uint64_t>(s)});
     std::vector<double> count(bins * bins, 0.0);
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        const double h00 = f.height(i, j), h10 = f.height(i + 1, j), h01 = f.height(i, j + 1), h11 = f.height(i + 1, j + 1);
+        const double h00 = f.height(i, j), h10 = f.height(i + 1, j), h01 = f.height(i, j + 1),
+                     h11 = f.height(i + 1, j + 1);
         // lower: (h10 - h00, h11 - h10); upper: (h11 - h01, h01 - h00) (sim/heightfield.h)
         count[static_cast<std::size_t>(bin_of((h10 - h00) / sd_x) * bins + bin_of((h11 - h10) / sd_y))] += 1.0;
         count[static_cast<std::size_t>(bin_of((h11 - h01) / sd_x) * bins + bin_of((h01 - h00) / sd_y))] += 1.0;
@@ -162,7 +165,8 @@ TEST(GaussianHeightfield, OutOfRangeParametersAreRefused) {
   EXPECT_THROW(make_gaussian_heightfield({64, 0.0, 0.5, 4.0, 0}), std::invalid_argument);
   EXPECT_THROW(make_gaussian_heightfield({64, 0.5, 0.5, 1.5, 0}), std::invalid_argument);  // l < 2
   EXPECT_THROW(make_gaussian_heightfield({64, 0.5, 0.5, 9.0, 0}), std::invalid_argument);  // l > n / 8
-  EXPECT_THROW(make_gaussian_heightfield({64, 0.1, 2.0, 4.0, 0}), std::invalid_argument);  // alpha_y / alpha_x too large
+  EXPECT_THROW(make_gaussian_heightfield({64, 0.1, 2.0, 4.0, 0}),
+               std::invalid_argument);  // alpha_y / alpha_x too large
 }
 
 TEST(ValidationHeightfields, FlatAndVGrooveHeights) {
