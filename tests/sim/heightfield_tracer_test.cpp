@@ -247,7 +247,8 @@ TEST(HeightfieldTracer, EdgeAndVertexRaysTakeTheLimitOfOneSide) {
   const V3 down(0, 0, -1);
   // Offsets towards the interiors of the triangles around a vertex, and to both sides of each kind
   // of edge (horizontal, vertical, diagonal).
-  const std::vector<V3> around_vertex = {V3(2, 1, 0), V3(1, 2, 0), V3(-1, 1, 0), V3(-2, -1, 0), V3(-1, -2, 0), V3(1, -1, 0)};
+  const std::vector<V3> around_vertex = {V3(2, 1, 0),   V3(1, 2, 0),   V3(-1, 1, 0),
+                                         V3(-2, -1, 0), V3(-1, -2, 0), V3(1, -1, 0)};
   int checked = 0;
   for (int j = 0; j < 32; j += 3)
     for (int i = 0; i < 32; i += 3) {
@@ -290,9 +291,9 @@ TEST(HeightfieldTracer, ExactEdgeRaysNeverHitTheirEdgeTwice) {
           const HeightfieldRayResult r = trace_heightfield_ray(s, at, down);
           const HeightfieldRayResult a = trace_heightfield_ray(s, at + 1e-9 * side, down);
           const HeightfieldRayResult b = trace_heightfield_ray(s, at - 1e-9 * side, down);
-          const bool ok = r.how == HeightfieldFate::escaped &&
-                          ((a.bounces == r.bounces && (a.o - r.o).norm() < 1e-12) ||
-                           (b.bounces == r.bounces && (b.o - r.o).norm() < 1e-12));
+          const bool ok =
+              r.how == HeightfieldFate::escaped && ((a.bounces == r.bounces && (a.o - r.o).norm() < 1e-12) ||
+                                                    (b.bounces == r.bounces && (b.o - r.o).norm() < 1e-12));
           if (!ok) {
             ++mismatches;
             ADD_FAILURE() << "seed " << seed << " at " << at.transpose() << ": k = " << r.bounces << " (sides "
@@ -330,7 +331,8 @@ TEST(HeightfieldTracer, TwoThreadsMergedInChunkOrderGiveTheSameBits) {
   const std::int64_t chunks = heightfield_chunk_count(opt);
   std::vector<HeightfieldTally> parts(static_cast<std::size_t>(chunks));
   std::thread other([&] {
-    for (std::int64_t c = 1; c < chunks; c += 2) parts[static_cast<std::size_t>(c)] = trace_heightfield_chunk(s, opt, c);
+    for (std::int64_t c = 1; c < chunks; c += 2)
+      parts[static_cast<std::size_t>(c)] = trace_heightfield_chunk(s, opt, c);
   });
   for (std::int64_t c = 0; c < chunks; c += 2) parts[static_cast<std::size_t>(c)] = trace_heightfield_chunk(s, opt, c);
   other.join();

@@ -11,8 +11,8 @@
 
 #include "vgroove/sim/rng.h"
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include <cmath>
 #include <iostream>
