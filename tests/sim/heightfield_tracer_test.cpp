@@ -307,6 +307,46 @@ TEST(HeightfieldTracer, ExactEdgeRaysNeverHitTheirEdgeTwice) {
   EXPECT_EQ(mismatches, 0);
 }
 
+// The hierarchy only chooses which triangles are tested: with every level below the root replaced
+// by the root's bounds (nothing pruned inside a period), every ray gives the same bits.
+TEST(HeightfieldTracer, HierarchyPrunesWithoutChangingAnyAnswer) {
+  const HeightfieldSurface s = make_heightfield_surface(make_gaussian_heightfield({64, 1.0, 0.6, 4.0, 17}));
+  HeightfieldSurface flat_bounds = s;
+  for (int k = 0; k + 1 < flat_bounds.hierarchy.levels; ++k)
+    for (HeightBounds& b : flat_bounds.hierarchy.level[static_cast<std::size_t>(k)]) b = s.hierarchy.root();
+  Rng rng(15, 0, 0);
+  int multiple = 0;
+  for (int q = 0; q < 4000; ++q) {
+    const double theta = q % 4 == 3 ? deg(89.9) : deg(88.0 * rng.uniform());
+    // Every fourth ray along a diagonal (d_x = d_y exactly): through period corners.
+    const double phi = q % 4 == 2 ? 1.25 * kPi : 2.0 * kPi * rng.uniform();
+    V3 d = -dir_of(theta, phi);
+    if (q % 4 == 2) d.y() = d.x();
+    const V3 org(64.0 * rng.uniform(), 64.0 * rng.uniform(), s.hierarchy.root().hi + 0.25);
+    const HeightfieldRayResult a = trace_heightfield_ray(s, org, d);
+    const HeightfieldRayResult b = trace_heightfield_ray(flat_bounds, org, d);
+    ASSERT_EQ(a.how, HeightfieldFate::escaped);
+    EXPECT_EQ(a.bounces, b.bounces) << q;
+    EXPECT_EQ(a.o, b.o) << q;
+    EXPECT_EQ(a.edge_hits, b.edge_hits) << q;
+    multiple += a.bounces > 1;
+  }
+  EXPECT_GT(multiple, 100);
+}
+
+TEST(HeightfieldTracer, BounceLimitIsItsOwnBucket) {
+  const HeightfieldSurface s = make_heightfield_surface(make_gaussian_heightfield({64, 1.0, 1.0, 4.0, 2}));
+  HeightfieldTraceOptions opt;
+  opt.rays = 4000;
+  opt.ray.max_bounces = 1;
+  const HeightfieldTally t = trace_heightfield(s, opt);
+  EXPECT_EQ(t.lost, 0);
+  EXPECT_GT(t.bounce_limit, 0);
+  EXPECT_EQ(t.escaped + t.bounce_limit, t.rays);
+  EXPECT_EQ(t.by_k[1], t.escaped);
+  EXPECT_EQ(t.energy(), static_cast<double>(t.escaped));
+}
+
 TEST(HeightfieldTracer, WholePeriodsApartGiveTheSameRay) {
   const HeightfieldSurface s = make_heightfield_surface(make_gaussian_heightfield({32, 0.6, 0.6, 4.0, 9}));
   Rng rng(14, 0, 0);
