@@ -1,6 +1,6 @@
 #include "vgroove/sim/heightfield_tracer.h"
 
-#include "vgroove/optics/fresnel.h"
+#include "vgroove/sim/effects.h"
 #include "vgroove/sim/rng.h"
 #include "vgroove/sim/triangle_watertight.h"
 
@@ -256,15 +256,6 @@ bool enters(const Feature& f, const std::array<std::array<std::int64_t, 2>, 3>& 
   return side_d == 0.0 || (side_d > 0.0) == (side_r > 0.0);
 }
 
-// F = 1: no cosine, no product.
-struct UnitF {
-  double operator()(double) const { return 1.0; }
-};
-struct ConductorF {
-  double eta, kappa;
-  double operator()(double c) const { return optics::fresnel_conductor(std::min(c, 1.0), eta, kappa); }
-};
-
 template <class Reflectance>
 HeightfieldRayResult trace_ray(const HeightfieldSurface& s, const Vec3& org0, const Vec3& dir0,
                                const HeightfieldRayOptions& opt, const Reflectance& F) {
@@ -318,8 +309,9 @@ HeightfieldRayResult trace_ray(const HeightfieldSurface& s, const Vec3& org0, co
       const Vec3 nrm = tr.normal(refl);
       const double dn = tr.dir.dot(nrm);
       const double nn = nrm.squaredNorm();
-      if constexpr (!std::is_same_v<Reflectance, UnitF>)
-        res.throughput *= F(std::abs(dn) / std::sqrt(nn * tr.dir.squaredNorm()));
+      // F = 1: no cosine, no product. The cosine is clamped to 1 against rounding.
+      if constexpr (!std::is_same_v<Reflectance, UnitReflectance>)
+        res.throughput *= F(std::min(1.0, std::abs(dn) / std::sqrt(nn * tr.dir.squaredNorm())));
       tr.dir = tr.dir - (2.0 * dn / nn) * nrm;
       if (++res.bounces > opt.max_bounces) {
         res.how = HeightfieldFate::bounce_limit;
@@ -350,8 +342,17 @@ HeightfieldSurface make_heightfield_surface(Heightfield f) {
 
 HeightfieldRayResult trace_heightfield_ray(const HeightfieldSurface& s, const Vec3& org, const Vec3& dir,
                                            const HeightfieldRayOptions& opt) {
-  if (opt.fresnel.conductor) return trace_ray(s, org, dir, opt, ConductorF{opt.fresnel.eta, opt.fresnel.kappa});
-  return trace_ray(s, org, dir, opt, UnitF{});
+  switch (opt.fresnel.kind) {
+    case HeightfieldReflectance::unit:
+      break;
+    case HeightfieldReflectance::conductor:
+      return trace_ray(s, org, dir, opt, ConductorReflectance{opt.fresnel.eta, opt.fresnel.kappa});
+    case HeightfieldReflectance::dielectric:
+      return trace_ray(s, org, dir, opt, DielectricReflectance{opt.fresnel.eta});
+    case HeightfieldReflectance::schlick:
+      return trace_ray(s, org, dir, opt, SchlickReflectance{opt.fresnel.F0});
+  }
+  return trace_ray(s, org, dir, opt, UnitReflectance{});
 }
 
 HeightfieldTally::HeightfieldTally(int theta_bins_, int phi_bins_, int max_k_, double phi_i_)

@@ -63,11 +63,13 @@ struct HeightfieldSurface {
 };
 HeightfieldSurface make_heightfield_surface(Heightfield f);
 
-// F = 1 (none), or a conductor's Fresnel reflectance at each bounce's local angle
-// (optics::fresnel_conductor, as sim/effects.h's ConductorReflectance).
+// The reflectance at each bounce's local angle, the throughput their product (Lee et al. 2018,
+// Eq. 11): the functors of sim/effects.h. F = 1 (unit) costs nothing per bounce.
+enum class HeightfieldReflectance : unsigned char { unit, conductor, dielectric, schlick };
 struct HeightfieldFresnel {
-  bool conductor = false;
-  double eta = 1.0, kappa = 0.0;
+  HeightfieldReflectance kind = HeightfieldReflectance::unit;
+  double eta = 1.0, kappa = 0.0;  // conductor: eta + i kappa; dielectric: eta
+  double F0 = 1.0;                // schlick
 };
 
 struct HeightfieldRayOptions {

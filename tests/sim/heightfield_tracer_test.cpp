@@ -74,7 +74,7 @@ TEST(HeightfieldTracer, FlatFieldIsAMirrorToTheBit) {
   }
 }
 
-TEST(HeightfieldTracer, FlatFieldTallyAndConductorEnergy) {
+TEST(HeightfieldTracer, FlatFieldTallyAndFresnelEnergy) {
   const HeightfieldSurface s = make_heightfield_surface(make_flat_heightfield(8));
   HeightfieldTraceOptions opt;
   opt.theta_i = deg(30.0);
@@ -88,10 +88,16 @@ TEST(HeightfieldTracer, FlatFieldTallyAndConductorEnergy) {
   // rounding may put it in 29) and phi bin 0.
   const std::int64_t mirror = t.hist_by_k[t.index(1, 30, 0)] + t.hist_by_k[t.index(1, 29, 0)];
   EXPECT_EQ(mirror, opt.rays);
-  opt.ray.fresnel = HeightfieldFresnel{true, 0.2, 3.0};
+  opt.ray.fresnel = HeightfieldFresnel{HeightfieldReflectance::conductor, 0.2, 3.0};
   t = trace_heightfield(s, opt);
   const double F = optics::fresnel_conductor(std::cos(opt.theta_i), 0.2, 3.0);
   EXPECT_NEAR(t.energy_by_k[1], F * static_cast<double>(opt.rays), 1e-9 * opt.rays);
+  opt.ray.fresnel = HeightfieldFresnel{HeightfieldReflectance::dielectric, 1.5};
+  t = trace_heightfield(s, opt);
+  EXPECT_NEAR(t.energy_by_k[1], optics::fresnel_dielectric(std::cos(opt.theta_i), 1.5) * opt.rays, 1e-9 * opt.rays);
+  opt.ray.fresnel = HeightfieldFresnel{HeightfieldReflectance::schlick, 1.0, 0.0, 0.04};
+  t = trace_heightfield(s, opt);
+  EXPECT_NEAR(t.energy_by_k[1], optics::fresnel_schlick(std::cos(opt.theta_i), 0.04) * opt.rays, 1e-9 * opt.rays);
 }
 
 TEST(HeightfieldTracer, RightAngleGroovesLitAlongTheAxisReturnTwoBouncesToTheMirror) {
@@ -366,7 +372,7 @@ TEST(HeightfieldTracer, TwoThreadsMergedInChunkOrderGiveTheSameBits) {
   HeightfieldTraceOptions opt;
   opt.theta_i = deg(60.0);
   opt.rays = 5 * kHeightfieldRaysPerChunk / 2;
-  opt.ray.fresnel = HeightfieldFresnel{true, 0.2, 3.0};
+  opt.ray.fresnel = HeightfieldFresnel{HeightfieldReflectance::conductor, 0.2, 3.0};
   const HeightfieldTally one = trace_heightfield(s, opt);
   const std::int64_t chunks = heightfield_chunk_count(opt);
   std::vector<HeightfieldTally> parts(static_cast<std::size_t>(chunks));
