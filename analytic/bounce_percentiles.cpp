@@ -1,5 +1,6 @@
 #include "vgroove/analytic/bounce_percentiles.h"
 
+#include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/analytic/kaleidoscope.h"
 #include "vgroove/analytic/quadrature.h"
 
@@ -77,6 +78,8 @@ double theta_m_quantile(NdfKind ndf, double alpha, double q, PercentileMeasure m
       return std::atan(alpha * std::sqrt(-std::log1p(-q)));
     case NdfKind::phong:
       return std::acos(std::pow(1.0 - q, 1.0 / (phong_exponent(alpha) + 2.0)));
+    case NdfKind::student_t:
+      return groove_cdf_inverse(ndf, alpha, q);
   }
   return 0.0;
 }

@@ -111,6 +111,10 @@ void add_terms(const GrooveFrame& p, const Slots& sl, NdfKind ndf, double alpha,
     double S_D = sl.cos_m[s], C_D = C;  // cos and sin of theta_m for D
     if (ndf == NdfKind::phong) {
       S_D = std::sin(sl.half[s]);
+    } else if (ndf == NdfKind::student_t) {
+      // D = y^gamma turns the polynomial's ulp of tan theta_m into up to 2 gamma ulp: std::sin, std::cos.
+      S_D = std::sin(sl.half[s]);
+      C_D = std::cos(sl.half[s]);
     } else if (ndf == NdfKind::beckmann && C * C > 32.0 * alpha * alpha * (S_D * S_D)) {
       // exp(-x), x = tan^2 / alpha^2 > 32, turns the polynomial's ulp into x ulp: std::sin, std::cos.
       S_D = std::sin(sl.half[s]);

@@ -104,6 +104,7 @@ struct Laws {
   double phong_p = 0.0;  // alpha_p
   double phong_K = 0.0;  // D2 = K cos^p
   Laws(NdfKind n, double a, bool flat, PartnerLaw part) : ndf(n), alpha(a), flatland(flat), partner(part) {
+    assert(ndf != NdfKind::student_t);  // no nonsymmetric model for Student-T (partner_law_exists)
     if (partner == PartnerLaw::independent)
       norm_p = flatland ? P2_theta_r_normalization(ndf, alpha) : P_theta_r_normalization(ndf, alpha);
     if (ndf == NdfKind::phong) {
@@ -126,6 +127,8 @@ struct Laws {
       }
       case NdfKind::phong:
         return (flatland ? phong_K : (phong_p + 2.0) / (2.0 * kPi)) * std::pow(c, phong_p);
+      case NdfKind::student_t:
+        break;  // the nonsymmetric model has no partner law for Student-T (partner_law_exists)
     }
     return 0.0;
   }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace vgroove::analytic {
@@ -91,8 +92,15 @@ double Lambda_ggx(double theta_o, double alpha) {
 }
 
 double Lambda(NdfKind kind, double theta_o, double alpha) {
-  assert(kind == NdfKind::beckmann || kind == NdfKind::ggx);
-  return kind == NdfKind::ggx ? Lambda_ggx(theta_o, alpha) : Lambda_beckmann(theta_o, alpha);
+  assert(kind != NdfKind::phong);
+  assert(alpha > 0.0);
+  return visit_ndf(kind, alpha, [&](const auto& ndf) {
+    if constexpr (requires { ndf.Lambda(theta_o); }) {
+      return ndf.Lambda(theta_o);
+    } else {
+      return std::numeric_limits<double>::quiet_NaN();  // Phong: no closed form
+    }
+  });
 }
 
 double G1_smith_beckmann(double theta_o, double alpha) {

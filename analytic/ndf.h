@@ -53,7 +53,8 @@
 //             K = Gamma((p+3)/2) / (sqrt(pi) Gamma((p+2)/2)), p = alpha_p: a Student-t with
 //             nu = p + 2 = 2/a^2 degrees of freedom scaled by 1/sqrt(nu) = a/sqrt(2).
 // So all three 2D slope laws are (a/sqrt(2)) t_nu, with nu = 2 (GGX), nu = 2/a^2 (Phong) and
-// nu -> infinity (Beckmann); Phong tends to Beckmann as a -> 0 and equals GGX at a = 1.
+// nu -> infinity (Beckmann); Phong tends to Beckmann as a -> 0 and equals GGX at a = 1. Student-T
+// (ndf_student_t.h), whose 3D slopes are a bivariate t of tail gamma, has nu = 2 gamma - 2.
 // In angles:
 //   D2_beckmann = exp(-tan^2/a^2) / (sqrt(pi) a cos^3),
 //   D2_ggx      = a^2 / (2 (a^2 cos^2 + sin^2)^(3/2)),
@@ -109,11 +110,12 @@ double G1_vcavity_inplane(double theta_o, double theta_h);
 //   Beckmann: Lambda = (erf(a) - 1)/2 + exp(-a^2) / (2 a sqrt(pi)),
 //   GGX:      Lambda = (-1 + sqrt(1 + 1/a^2)) / 2.
 // Lambda(0) = 0. The same in flatland with D2 (see the header comment). Phong has no closed form
-// (it is not shape invariant: Heitz 2014, Sec. 3.2) and is left out.
+// (it is not shape invariant: Heitz 2014, Sec. 3.2) and is left out. Student-T's is in
+// ndf_student_t.h.
 double Lambda_beckmann(double theta_o, double alpha);
 double Lambda_ggx(double theta_o, double alpha);
-// Either of the two by kind (beckmann or ggx). They depend on |tan theta_o| only, so the same
-// value serves the direction reversed (theta_o + pi).
+// Any of them by kind (beckmann, ggx or student_t; not phong). They depend on |tan theta_o| only,
+// so the same value serves the direction reversed (theta_o + pi).
 double Lambda(NdfKind kind, double theta_o, double alpha);
 
 // Heitz 2014, Eq. (10): Smith's G1(o, m) = chi+(o.m) / (1 + Lambda(o)). These return the value

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "vgroove/analytic/ndf_math.h"
+#include "vgroove/common/log_gamma_ratio.h"
 
 #include <cmath>
 #include <numbers>
@@ -28,10 +29,8 @@ struct Phong {
     return D_c(cos_m);
   }
   double D(double theta_m) const { return D_c(std::cos(theta_m)); }
-  // K through lgamma: both Gammas overflow for alpha below about 0.08 (p/2 > 171).
-  double D2_norm() const {
-    return std::exp(std::lgamma(0.5 * (p + 3.0)) - std::lgamma(0.5 * (p + 2.0))) / std::sqrt(std::numbers::pi);
-  }
+  // K through log_gamma_ratio: both Gammas overflow for alpha below about 0.08 (p/2 > 171).
+  double D2_norm() const { return std::exp(log_gamma_ratio(0.5 * (p + 2.0), 0.5)) / std::sqrt(std::numbers::pi); }
   template <typename T>
   [[gnu::always_inline]] T D2_cs(T cos_m, T) const {
     return D2_norm() * ndf_math::pow(cos_m, p);

@@ -18,6 +18,7 @@ bool inside(double theta_r) { return theta_r >= 0.0 && theta_r < 0.5 * std::numb
 
 bool partner_law_exists(NdfKind ndf, double alpha) {
   if (!(alpha > 0.0)) return false;
+  if (ndf == NdfKind::student_t) return false;  // not written for Student-T
   return ndf != NdfKind::phong || phong_exponent(alpha) > -1.0;
 }
 
@@ -35,6 +36,8 @@ double P_theta_r_normalization(NdfKind ndf, double alpha) {
       const double p = phong_exponent(alpha);
       return (p + 2.0) / (8.0 * sqrt_pi) * std::exp(std::lgamma(0.5 * (p + 1.0)) - std::lgamma(0.5 * (p + 4.0)));
     }
+    case NdfKind::student_t:
+      break;  // refused by require_partner_law
   }
   return 0.0;
 }
@@ -66,6 +69,8 @@ double P_theta_r_printed(NdfKind ndf, double theta_r, double alpha) {
           std::exp(std::lgamma(0.5 * (p + 1.0)) + std::lgamma(0.5 * (p + 3.0)) - std::lgamma(0.5 * (p + 4.0)));
       break;
     }
+    case NdfKind::student_t:
+      break;  // refused by require_partner_law
   }
   const double s = std::sin(theta_r);
   return c * D(ndf, theta_r, alpha) * s * s;
@@ -85,6 +90,8 @@ double P2_theta_r_normalization(NdfKind ndf, double alpha) {
           std::exp(std::lgamma(0.5 * (p + 3.0)) - std::lgamma(0.5 * (p + 2.0))) / std::sqrt(std::numbers::pi);
       return K / (p + 1.0);
     }
+    case NdfKind::student_t:
+      break;  // refused by require_partner_law
   }
   return 0.0;
 }

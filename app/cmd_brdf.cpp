@@ -27,7 +27,8 @@ struct Pair {
 };
 
 constexpr std::size_t kMaxPairs = 10'000'000;
-// The sums that cost O(max_k^2): their largest --max-k (the defaults: analytic::default_max_k).
+// The flatland and nonsymmetric sums' largest --max-k (validation/ranges.h; the defaults:
+// analytic::default_max_k).
 constexpr int kFlatlandMaxK = validation::kMaxFlatlandBrdfK;
 constexpr int kNonsymmetricMaxK = validation::kMaxNonsymmetricBrdfK;
 
@@ -110,8 +111,7 @@ int orders(const BrdfArgs& a, analytic::BrdfModel model, bool flat) {
   if (flat && model == analytic::BrdfModel::vgroove) {
     if (a.max_k > kFlatlandMaxK)
       throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, " +
-                               std::to_string(kFlatlandMaxK) +
-                               "] with --dim flatland (the flatland sum costs O(max_k^2))");
+                               std::to_string(kFlatlandMaxK) + "] with --dim flatland");
   }
   return a.max_k;
 }
@@ -270,11 +270,12 @@ void add_brdf_command(CLI::App& app, Commands& commands) {
                            "viewer: polar angle, [0, 90] (flatland: signed, [-90, 90]); required "
                            "unless --directions");
   add_real(brdf, "--phi-o-deg", ba.phi_o_deg, "viewer: azimuth, [-360, 360] (3D only)")->capture_default_str();
-  auto* brdf_max_k = add_integer(
-      brdf, "--max-k", ba.max_k,
-      "orders summed; vgroove 3D and cook-torrance: any, at no extra cost (default: all); vgroove "
-      "flatland: <= 4096, O(max_k^2) (default 4096); vgroove-nonsymmetric: <= 1024, O(max_k^2) (default 64)",
-      1, std::numeric_limits<int>::max());
+  auto* brdf_max_k =
+      add_integer(brdf, "--max-k", ba.max_k,
+                  "orders summed; vgroove 3D and cook-torrance: any, at no extra cost (default: all); vgroove "
+                  "flatland: <= 4096, one pass whatever max_k (default 4096); vgroove-nonsymmetric: <= 1024, "
+                  "O(max_k^2) (default 64)",
+                  1, std::numeric_limits<int>::max());
   brdf->add_flag("--per-k", ba.per_k, "also print each order k = 1..--per-k-max");
   add_integer(brdf, "--per-k-max", ba.per_k_max, "orders printed one by one with --per-k", 1, 1000)
       ->capture_default_str();

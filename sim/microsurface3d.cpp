@@ -27,6 +27,12 @@ double theta_m_pdf_3d(NdfKind kind, double alpha, double theta_m) {
     }
     case NdfKind::phong:  // (p + 2) cos^(p+1) sin, p + 2 = 2/a^2
       return (2.0 / a2) * std::pow(c, 2.0 / a2 - 1.0) * s;
+    case NdfKind::student_t: {
+      // dP/dtheta = 2 (gamma - 1) tan / (k2 cos^2) (1 + tan^2/k2)^-gamma, with 1 + tan^2/k2 =
+      // (k2 c^2 + s^2) / (k2 c^2): 2 (gamma - 1) s / (k2 c^3) (k2 c^2 / (k2 c^2 + s^2))^gamma.
+      const double g = kind.gamma, k2 = (g - 1.0) * a2, k2c2 = k2 * c * c;
+      return 2.0 * (g - 1.0) * s / (k2 * c * c * c) * std::pow(k2c2 / (k2c2 + s * s), g);
+    }
   }
   return 0.0;
 }
@@ -44,6 +50,10 @@ double theta_m_cdf_3d(NdfKind kind, double alpha, double theta_m) {
     }
     case NdfKind::phong:
       return -std::expm1((2.0 / a2) * std::log(c));  // 1 - cos^(p+2)
+    case NdfKind::student_t: {
+      const double g = kind.gamma, t = s / c;
+      return -std::expm1((1.0 - g) * std::log1p(t * t / ((g - 1.0) * a2)));
+    }
   }
   return 0.0;
 }
@@ -59,6 +69,11 @@ double sample_theta_m_3d(NdfKind kind, double alpha, double u) {
       // cos theta = (1 - u)^(a^2/2); 1 - cos theta = 2 sin^2(theta/2) keeps small angles exact.
       const double w = -std::expm1(0.5 * alpha * alpha * std::log1p(-u));
       return 2.0 * std::asin(std::sqrt(0.5 * w));
+    }
+    case NdfKind::student_t: {
+      // (1 + tan^2/k2)^(1 - gamma) = 1 - u: tan^2 = k2 ((1 - u)^(-1/(gamma - 1)) - 1).
+      const double g = kind.gamma;
+      return std::atan(std::sqrt((g - 1.0) * alpha * alpha * std::expm1(std::log1p(-u) / (1.0 - g))));
     }
   }
   return 0.0;

@@ -25,6 +25,8 @@
 //   GGX:      D = alpha^2 / (pi cos^4 (alpha^2 + x)^2),  P(theta) = x / (alpha^2 + x),
 //   Beckmann: D = exp(-x / alpha^2) / (pi alpha^2 cos^4),  P(theta) = 1 - exp(-x / alpha^2),
 //   Phong:    D = (p + 2) cos^p / (2 pi), p = 2/alpha^2 - 2,  P(theta) = 1 - cos^(p+2) theta.
+//   Student-T (slope_sampling.h), tail gamma, k2 = (gamma - 1) alpha^2:
+//             D = (1 + x / k2)^-gamma / (pi alpha^2 cos^4),  P(theta) = 1 - (1 + x / k2)^(1 - gamma).
 // (d/dtheta of x/(alpha^2 + x) is alpha^2 x' / (alpha^2 + x)^2 with x' = 2 tan / cos^2; the other
 // two likewise.) The inverses: tan theta = alpha sqrt(u / (1 - u)), tan theta = alpha
 // sqrt(-log(1 - u)), cos theta = (1 - u)^(alpha^2 / 2).

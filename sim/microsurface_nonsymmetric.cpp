@@ -24,6 +24,7 @@ double wrap_two_pi(double phi) {
 // A unit-roughness isotropic slope magnitude with the radial law of P22 (sim/microsurface3d.h: tan
 // theta = alpha sqrt(u / (1 - u)) for GGX, alpha sqrt(-log(1 - u)) for Beckmann, at alpha = 1).
 double unit_slope(NdfKind kind, double u) {
+  assert(kind == NdfKind::ggx || kind == NdfKind::beckmann);
   return kind == NdfKind::ggx ? std::sqrt(u / (1.0 - u)) : std::sqrt(-std::log1p(-u));
 }
 

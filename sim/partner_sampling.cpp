@@ -60,6 +60,7 @@ double solve_kepler(double u) {
 
 bool theta_r_law_exists(NdfKind kind, double alpha) {
   if (!(alpha > 0.0)) return false;
+  if (kind == NdfKind::student_t) return false;  // not written for Student-T
   return kind != NdfKind::phong || phong_p(alpha) > -1.0;
 }
 
@@ -104,6 +105,8 @@ double theta_r_pdf_3d(NdfKind kind, double alpha, double theta_r) {
       const double ln_beta = std::lgamma(1.5) + std::lgamma(0.5 * (p + 1.0)) - std::lgamma(0.5 * (p + 4.0));
       return 2.0 * std::exp(p * std::log(c) - ln_beta) * s * s;
     }
+    case NdfKind::student_t:
+      break;  // no partner law for Student-T (theta_r_law_exists)
   }
   return 0.0;
 }
@@ -124,6 +127,8 @@ double theta_r_cdf_3d(NdfKind kind, double alpha, double theta_r) {
     }
     case NdfKind::phong:
       return incomplete_beta(1.5, 0.5 * (phong_p(alpha) + 1.0), s * s, c * c);
+    case NdfKind::student_t:
+      break;  // no partner law for Student-T (theta_r_law_exists)
   }
   return 0.0;
 }
@@ -144,6 +149,8 @@ double sample_theta_r_3d(NdfKind kind, double alpha, Rng& rng) {
       const double X = sample_gamma_three_halves(rng), Y = sample_gamma(0.5 * (phong_p(alpha) + 1.0), rng);
       return std::atan2(std::sqrt(X), std::sqrt(Y));
     }
+    case NdfKind::student_t:
+      break;  // no partner law for Student-T (theta_r_law_exists)
   }
   return 0.0;
 }
@@ -166,6 +173,8 @@ double theta_r_pdf(NdfKind kind, double alpha, double theta_r) {
       const double p = phong_p(alpha);
       return (p + 1.0) * std::pow(c, p) * s;
     }
+    case NdfKind::student_t:
+      break;  // no partner law for Student-T (theta_r_law_exists)
   }
   return 0.0;
 }
@@ -184,6 +193,8 @@ double theta_r_cdf(NdfKind kind, double alpha, double theta_r) {
       return 1.0 - alpha * c / std::sqrt(alpha * alpha * c * c + s * s);
     case NdfKind::phong:
       return -std::expm1((phong_p(alpha) + 1.0) * std::log(c));
+    case NdfKind::student_t:
+      break;  // no partner law for Student-T (theta_r_law_exists)
   }
   return 0.0;
 }
@@ -203,6 +214,8 @@ double sample_theta_r(NdfKind kind, double alpha, double u) {
       const double one_minus_cos = -std::expm1(std::log1p(-u) / (phong_p(alpha) + 1.0));
       return 2.0 * std::asin(std::sqrt(0.5 * one_minus_cos));
     }
+    case NdfKind::student_t:
+      break;  // no partner law for Student-T (theta_r_law_exists)
   }
   return 0.0;
 }

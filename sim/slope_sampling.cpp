@@ -1,5 +1,7 @@
 #include "vgroove/sim/slope_sampling.h"
 
+#include "vgroove/common/log_gamma_ratio.h"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -14,6 +16,10 @@ constexpr double kHalfPi = 0.5 * std::numbers::pi;
 // Degrees of freedom of Phong's slope law: nu = alpha_p + 2 with Walter et al.'s
 // alpha_p = 2/alpha^2 - 2 (slope_sampling.h).
 double phong_nu(double alpha) { return 2.0 / (alpha * alpha); }
+
+// Student-T's slope law (slope_sampling.h): nu = 2 gamma - 2 degrees of freedom, nu sigma^2 =
+// (gamma - 1) alpha^2.
+double student_t_scale2(NdfKind kind, double alpha) { return (kind.gamma - 1.0) * alpha * alpha; }
 
 // Continued fraction of the incomplete beta function (the even/odd terms d_2m, d_2m+1 of
 // Abramowitz & Stegun 26.5.8), evaluated by the modified Lentz method. Converges quickly for
@@ -64,6 +70,11 @@ double lower_tail(NdfKind kind, double alpha, double w) {
     }
     case NdfKind::phong:
       return 0.5 * incomplete_beta(0.5 * phong_nu(alpha), 0.5, c * c, s * s);
+    case NdfKind::student_t: {
+      // x = nu sigma^2 / (nu sigma^2 + tan^2) = k2 c^2 / (k2 c^2 + s^2), k2 = nu sigma^2.
+      const double k2c2 = student_t_scale2(kind, alpha) * c * c, d = k2c2 + s * s;
+      return 0.5 * incomplete_beta(kind.gamma - 1.0, 0.5, k2c2 / d, s * s / d);
+    }
   }
   return 0.0;
 }
@@ -76,10 +87,14 @@ double incomplete_beta(double a, double b, double x, double one_minus_x) {
   if (!(one_minus_x > 0.0)) return 1.0;
   // I_x(a, b) = x^a (1-x)^b / (a B(a, b)) * cf(a, b, x), or by I_x(a, b) = 1 - I_{1-x}(b, a) on
   // the side where the fraction converges slowly (Abramowitz & Stegun 26.5.8, 26.5.2).
-  const double ln_front =
-      std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log(one_minus_x);
-  if (x < (a + 1.0) / (a + b + 2.0)) return std::exp(ln_front) * beta_continued_fraction(a, b, x) / a;
-  return 1.0 - std::exp(ln_front) * beta_continued_fraction(b, a, one_minus_x) / b;
+  // 1 / B(a, b) through the larger one's Gamma ratio (no lgamma cancellation) where the smaller is
+  // at most 1; x^a (1 - x)^b by pow (exp(a log x) scales log x's last-bit error by a log x).
+  const double ln_inverse_beta = std::min(a, b) <= 1.0
+                                     ? log_gamma_ratio(std::max(a, b), std::min(a, b)) - std::lgamma(std::min(a, b))
+                                     : std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b);
+  const double front = std::exp(ln_inverse_beta) * std::pow(x, a) * std::pow(one_minus_x, b);
+  if (x < (a + 1.0) / (a + b + 2.0)) return front * beta_continued_fraction(a, b, x) / a;
+  return 1.0 - front * beta_continued_fraction(b, a, one_minus_x) / b;
 }
 
 double theta_m_pdf(NdfKind kind, double alpha, double theta_m) {
@@ -100,10 +115,17 @@ double theta_m_pdf(NdfKind kind, double alpha, double theta_m) {
     }
     case NdfKind::phong: {
       const double nu = phong_nu(alpha);
-      // Gamma through lgamma: Gamma(nu/2) overflows for alpha below about 0.08.
-      const double front =
-          std::exp(std::lgamma(0.5 * (nu + 1.0)) - std::lgamma(0.5 * nu)) / std::sqrt(std::numbers::pi);
+      // The Gammas through their ratio: Gamma(nu/2) overflows for alpha below about 0.08.
+      const double front = std::exp(log_gamma_ratio(0.5 * nu, 0.5)) / std::sqrt(std::numbers::pi);
       P = front * std::exp(-0.5 * (nu + 1.0) * std::log1p(s * s));
+      break;
+    }
+    case NdfKind::student_t: {
+      // f(t) = Gamma((nu+1)/2) / (sqrt(nu pi) Gamma(nu/2)) (1 + t^2/nu)^(-(nu+1)/2), s = sigma t:
+      // P(s) = Gamma(gamma - 1/2) / (sqrt(pi k2) Gamma(gamma - 1)) (1 + s^2/k2)^(1/2 - gamma).
+      const double k2 = student_t_scale2(kind, alpha);
+      const double front = std::exp(log_gamma_ratio(kind.gamma - 1.0, 0.5)) / std::sqrt(std::numbers::pi * k2);
+      P = front * std::exp((0.5 - kind.gamma) * std::log1p(s * s / k2));
       break;
     }
   }
@@ -135,10 +157,15 @@ double solve_tail(NdfKind kind, double alpha, double u) {
     if (T == u) return w;
     (T > u ? lo : hi) = w;
     const double p = theta_m_pdf(kind, alpha, -w);
-    double next = (T > 0.0 && p > 0.0) ? w + std::log(T / u) * T / p : 0.5 * (lo + hi);
+    const bool newton = T > 0.0 && p > 0.0;
+    double next = newton ? w + std::log(T / u) * T / p : 0.5 * (lo + hi);
+    // Converged when Newton's step is below the rounding of w. Tested before the bracket: at the
+    // root the step rounds to w itself, an end of the bracket, which the bisection below would
+    // take as a step outside it (and bisect some 50 more times, to within 2 ulps of the root).
+    if (newton && std::abs(next - w) <= 4e-16 * w) return next >= lo && next <= hi ? next : w;
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    // Converged when the step is below rounding of w, or the bracket is one or two ulps wide.
-    if (std::abs(next - w) <= 4e-16 * next || hi - lo <= 4e-16 * hi) return next;
+    // Or the bracket is one or two ulps wide.
+    if (hi - lo <= 4e-16 * hi) return next;
     w = next;
   }
   return w;

@@ -26,6 +26,13 @@
 //   GGX:      T = (1 - x / sqrt(1 + x^2)) / 2, x = |tan theta| / alpha.
 //   Phong:    T = I_{cos^2 theta}(nu/2, 1/2) / 2 (the Student-t tail: the regularized incomplete
 //             beta function at nu / (nu + t^2) = 1 / (1 + s^2) = cos^2 theta).
+//   Student-T (Ribardiere et al. 2017, "STD: Student's t-Distribution of Slopes for Microfacet
+//             Based BSDFs", CGF 36(2)), tail gamma > 1.5: its 3D slopes have the bivariate t law
+//             (1 + |s|^2/k2)^-gamma, k2 = (gamma - 1) alpha^2, whose marginal along an axis is
+//             proportional to (1 + s^2/k2)^(1/2 - gamma): a Student-t with nu = 2 gamma - 2 and
+//             nu sigma^2 = k2, sigma = alpha/sqrt(2) (gamma = 2: GGX; gamma = 1 + 1/alpha^2: Phong),
+//             P(s) = Gamma(gamma - 1/2) / (sqrt(pi k2) Gamma(gamma - 1)) (1 + s^2/k2)^(1/2 - gamma),
+//             T = I_x(gamma - 1, 1/2) / 2, x = k2 / (k2 + tan^2 theta).
 #pragma once
 
 #include "vgroove/common/ndf_kind.h"
@@ -42,7 +49,7 @@ double theta_m_pdf(NdfKind kind, double alpha, double theta_m);
 double theta_m_cdf(NdfKind kind, double alpha, double theta_m);
 
 // The inverse of theta_m_cdf: u in [0, 1] to theta_m in [-pi/2, pi/2], monotone; u = 1/2 gives 0.
-// GGX in closed form, Beckmann and Phong by safeguarded Newton iteration on the log of the tail,
+// GGX in closed form, the others by safeguarded Newton iteration on the log of the tail,
 // to about 1e-15 rad (relative in the tails).
 double sample_theta_m(NdfKind kind, double alpha, double u);
 

@@ -98,21 +98,21 @@ std::int64_t brdf_model_cost_ns(const BrdfSuite& s, const BrdfCase& c) {
 }
 
 nlohmann::json suite_inputs(const BrdfSuite& s) {
-  nlohmann::json ndfs = nlohmann::json::array(), dims = nlohmann::json::array(), ti = nlohmann::json::array();
-  for (auto n : s.ndfs) ndfs.push_back(analytic::ndf_name(n));
+  nlohmann::json dims = nlohmann::json::array(), ti = nlohmann::json::array();
   for (auto d : s.dims) dims.push_back(surface_dim_name(d));
   for (double t : s.theta_i) ti.push_back(output_deg(t));
-  return {{"ndf", ndfs},
-          {"alpha", s.alphas},
-          {"theta_i_deg", ti},
-          {"dimensions", dims},
-          {"grooves", s.grooves},
-          {"flatland_bins", s.flatland_bins},
-          {"theta_bins", s.theta_bins},
-          {"phi_bins", s.phi_bins},
-          {"max_k", s.max_k},
-          {"sigmas", s.sigmas},
-          {"model_tolerance", {{"flatland", s.model_tolerance_flatland}, {"3d", s.model_tolerance_3d}}}};
+  nlohmann::json in = {{"alpha", s.alphas},
+                       {"theta_i_deg", ti},
+                       {"dimensions", dims},
+                       {"grooves", s.grooves},
+                       {"flatland_bins", s.flatland_bins},
+                       {"theta_bins", s.theta_bins},
+                       {"phi_bins", s.phi_bins},
+                       {"max_k", s.max_k},
+                       {"sigmas", s.sigmas},
+                       {"model_tolerance", {{"flatland", s.model_tolerance_flatland}, {"3d", s.model_tolerance_3d}}}};
+  put_ndfs(in, s.ndfs);
+  return in;
 }
 
 }  // namespace
@@ -137,7 +137,7 @@ BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
   s.name = root.string("name");
   s.description = root.string_or("description", "");
   s.kind = root.one_of("kind", {"brdf"});
-  s.ndfs = read_ndfs(root);
+  s.ndfs = read_ndfs(root, true);
   s.alphas = read_numbers(root, "alpha", kMinAlpha, true, kMaxAlpha, true);
   for (double d : read_numbers(root, "theta_i_deg", 0.0, true, kMaxSurfaceThetaIDeg, true))
     s.theta_i.push_back(d * kRadPerDeg);
@@ -352,6 +352,7 @@ nlohmann::json brdf_report_json(const BrdfSuite& suite, const BrdfRun& run) {
     c["alpha"] = o.c.alpha;
     c["theta_i_deg"] = output_deg(o.c.theta_i);
     c["dimension"] = surface_dim_name(o.c.dim);
+    put_gamma(c, o.c.ndf);
     c["in_flight_at_bounce_limit"] = o.in_flight;
     c["albedo_cook_torrance"] = o.albedo_single;
     c["cook_torrance_energy_lost"] = 1.0 - o.albedo_single;
@@ -383,7 +384,7 @@ void print_brdf_table(std::ostream& os, const BrdfSuite& suite, const BrdfRun& r
                         "L1", "L1 thr", "L1 by k", "thr", "albedo", "CT alb", "wall s", "pass");
   for (const BrdfOutcome& o : run.cases) {
     os << support::format("  %-8s %-8s %5.2f %7.2f %9.5f %9.5f %9.5f %9.5f %10.7f %9.5f %8.3f %5s\n",
-                          surface_dim_name(o.c.dim), analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta_i),
+                          surface_dim_name(o.c.dim), ndf_label(o.c.ndf).c_str(), o.c.alpha, output_deg(o.c.theta_i),
                           o.l1, o.l1_threshold, o.l1_k, o.l1_k_threshold, o.albedo_sim, o.albedo_single,
                           o.sim_wall_s + o.model_wall_s, o.pass ? "yes" : "NO");
   }

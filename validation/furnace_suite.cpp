@@ -35,8 +35,10 @@ using support::seconds_since;
 
 // A stream per case, from its parameters (the results do not depend on the thread count).
 sim::Rng case_rng(const FurnaceSuite& s, const BrdfCase& c) {
-  const std::uint64_t key = std::bit_cast<std::uint64_t>(c.alpha) ^ (std::bit_cast<std::uint64_t>(c.theta_i) * 31u);
-  return sim::Rng(s.seed, key, (static_cast<std::uint64_t>(c.dim) << 8) | static_cast<std::uint64_t>(c.ndf));
+  // Student-T's gamma mixed in (0 for the other NDFs: their keys are as without it).
+  const std::uint64_t key = std::bit_cast<std::uint64_t>(c.alpha) ^ (std::bit_cast<std::uint64_t>(c.theta_i) * 31u) ^
+                            (std::bit_cast<std::uint64_t>(c.ndf.gamma) * 131u);
+  return sim::Rng(s.seed, key, (static_cast<std::uint64_t>(c.dim) << 8) | static_cast<std::uint64_t>(c.ndf.family));
 }
 
 struct Mean {
@@ -186,21 +188,17 @@ void run_case(const FurnaceSuite& s, FurnaceOutcome& out, const BrdfUnderTest& b
 }
 
 nlohmann::json suite_inputs(const FurnaceSuite& s) {
-  nlohmann::json ndfs = nlohmann::json::array(), dims = nlohmann::json::array(), ti = nlohmann::json::array();
-  for (auto n : s.ndfs) ndfs.push_back(analytic::ndf_name(n));
+  nlohmann::json dims = nlohmann::json::array(), ti = nlohmann::json::array();
   for (auto d : s.dims) dims.push_back(surface_dim_name(d));
   for (double t : s.theta_i) ti.push_back(output_deg(t));
-  return {{"ndf", ndfs},
-          {"alpha", s.alphas},
-          {"theta_i_deg", ti},
-          {"dimensions", dims},
-          {"max_k", s.max_k},
-          {"samples", s.samples},
-          {"strategy", analytic::strategy_name(s.strategy)},
-          {"rays", s.rays},
-          {"grooves", s.grooves},
-          {"sigmas", s.sigmas},
-          {"quadrature_tolerance", {{"flatland", s.tolerance_flatland}, {"3d", s.tolerance_3d}}}};
+  nlohmann::json in = {
+      {"alpha", s.alphas},    {"theta_i_deg", ti},
+      {"dimensions", dims},   {"max_k", s.max_k},
+      {"samples", s.samples}, {"strategy", analytic::strategy_name(s.strategy)},
+      {"rays", s.rays},       {"grooves", s.grooves},
+      {"sigmas", s.sigmas},   {"quadrature_tolerance", {{"flatland", s.tolerance_flatland}, {"3d", s.tolerance_3d}}}};
+  put_ndfs(in, s.ndfs);
+  return in;
 }
 
 }  // namespace
@@ -214,7 +212,7 @@ FurnaceSuite parse_furnace_suite(const nlohmann::json& j, const std::string& fil
   s.name = root.string("name");
   s.description = root.string_or("description", "");
   root.one_of("kind", {"furnace"});
-  s.ndfs = read_ndfs(root);
+  s.ndfs = read_ndfs(root, true);
   s.alphas = read_numbers(root, "alpha", kMinAlpha, true, kMaxAlpha, true);
   for (double d : read_numbers(root, "theta_i_deg", 0.0, true, kMaxSurfaceThetaIDeg, true))
     s.theta_i.push_back(d * kRadPerDeg);
@@ -324,32 +322,34 @@ nlohmann::json furnace_report_json(const FurnaceSuite& suite, const FurnaceRun& 
       worst_estimate_sigmas =
           std::max(worst_estimate_sigmas, std::abs(o.albedo_estimate + o.flux_beyond_max_k - 1.0) / o.standard_error);
     lowest_ct = std::min(lowest_ct, o.cook_torrance_quadrature);
-    cases.push_back({{"ndf", analytic::ndf_name(o.c.ndf)},
-                     {"alpha", o.c.alpha},
-                     {"theta_i_deg", output_deg(o.c.theta_i)},
-                     {"dimension", surface_dim_name(o.c.dim)},
-                     {"albedo_quadrature", o.albedo_quadrature},
-                     {"quadrature_error_estimate", o.quadrature_error},
-                     {"flux_beyond_max_k", o.flux_beyond_max_k},
-                     {"energy_error", energy},
-                     {"albedo_estimate", o.albedo_estimate},
-                     {"standard_error", o.standard_error},
-                     {"estimate_error", o.albedo_estimate + o.flux_beyond_max_k - 1.0},
-                     {"cook_torrance_quadrature", o.cook_torrance_quadrature},
-                     {"cook_torrance_estimate", o.cook_torrance_estimate},
-                     {"cook_torrance_standard_error", o.cook_torrance_standard_error},
-                     {"cook_torrance_energy_lost", 1.0 - o.cook_torrance_quadrature},
-                     {"albedo_sim", o.albedo_sim},
-                     {"rays", o.rays},
-                     {"in_flight_at_bounce_limit", o.in_flight},
-                     {"quadrature_s", o.quadrature_s},
-                     {"estimate_s", o.estimate_s},
-                     {"sim_s", o.sim_s},
-                     {"energy_ok", o.energy_ok},
-                     {"estimate_ok", o.estimate_ok},
-                     {"cook_torrance_ok", o.cook_torrance_ok},
-                     {"sim_ok", o.sim_ok},
-                     {"pass", o.pass}});
+    nlohmann::json c = {{"ndf", analytic::ndf_name(o.c.ndf)},
+                        {"alpha", o.c.alpha},
+                        {"theta_i_deg", output_deg(o.c.theta_i)},
+                        {"dimension", surface_dim_name(o.c.dim)},
+                        {"albedo_quadrature", o.albedo_quadrature},
+                        {"quadrature_error_estimate", o.quadrature_error},
+                        {"flux_beyond_max_k", o.flux_beyond_max_k},
+                        {"energy_error", energy},
+                        {"albedo_estimate", o.albedo_estimate},
+                        {"standard_error", o.standard_error},
+                        {"estimate_error", o.albedo_estimate + o.flux_beyond_max_k - 1.0},
+                        {"cook_torrance_quadrature", o.cook_torrance_quadrature},
+                        {"cook_torrance_estimate", o.cook_torrance_estimate},
+                        {"cook_torrance_standard_error", o.cook_torrance_standard_error},
+                        {"cook_torrance_energy_lost", 1.0 - o.cook_torrance_quadrature},
+                        {"albedo_sim", o.albedo_sim},
+                        {"rays", o.rays},
+                        {"in_flight_at_bounce_limit", o.in_flight},
+                        {"quadrature_s", o.quadrature_s},
+                        {"estimate_s", o.estimate_s},
+                        {"sim_s", o.sim_s},
+                        {"energy_ok", o.energy_ok},
+                        {"estimate_ok", o.estimate_ok},
+                        {"cook_torrance_ok", o.cook_torrance_ok},
+                        {"sim_ok", o.sim_ok},
+                        {"pass", o.pass}};
+    put_gamma(c, o.c.ndf);
+    cases.push_back(std::move(c));
   }
   j["cases"] = std::move(cases);
   j["summary"] = {{"cases", run.cases.size()},
@@ -373,7 +373,7 @@ void print_furnace_table(std::ostream& os, const FurnaceSuite& suite, const Furn
                         "sim", "pass");
   for (const FurnaceOutcome& o : run.cases) {
     os << support::format("  %-8s %-8s %5.2f %7.2f %12.9f %10.3e %10.1e %12.9f %10.1e %10.6f %10.6f %7.5f %5s\n",
-                          surface_dim_name(o.c.dim), analytic::ndf_name(o.c.ndf), o.c.alpha, output_deg(o.c.theta_i),
+                          surface_dim_name(o.c.dim), ndf_label(o.c.ndf).c_str(), o.c.alpha, output_deg(o.c.theta_i),
                           o.albedo_quadrature, o.flux_beyond_max_k, o.albedo_quadrature + o.flux_beyond_max_k - 1.0,
                           o.albedo_estimate, o.albedo_estimate + o.flux_beyond_max_k - 1.0, o.cook_torrance_quadrature,
                           o.cook_torrance_estimate, o.albedo_sim, o.pass ? "yes" : "NO");

@@ -35,6 +35,11 @@ inline constexpr long long kMaxSeed = std::numeric_limits<long long>::max();
 // Roughness of procedural surfaces: the range the slope samplers and the BRDFs are tested on.
 inline constexpr double kMinAlpha = 0.01;
 inline constexpr double kMaxAlpha = 2.0;
+// Student-T's tail gamma (analytic/ndf_student_t.h): above 1.5, where its mean slope and Smith's
+// Lambda are finite; up to 10^4, where it lies within x^2 / 2 10^-4 of Beckmann (x = tan^2 / alpha^2)
+// and its forms are tested (tests/analytic/ndf_student_t_test.cpp).
+inline constexpr double kMinStudentTGamma = 1.5;  // exclusive
+inline constexpr double kMaxStudentTGamma = 1e4;
 // Grooves of a procedural surface.
 inline constexpr int kMaxGrooves = 10'000'000;
 // The tracer's bounce limit: its default, and the largest a file or option may set.
@@ -46,8 +51,9 @@ inline constexpr double kMaxFresnelEta = 1000.0;
 inline constexpr double kMaxFresnelKappa = 1000.0;
 // Worker threads (0: all cores).
 inline constexpr int kMaxThreads = 1024;
-// Point BRDF evaluations whose sums over bounce counts cost O(max_k^2) (`vgroove brdf`, Python
-// brdf): their largest max_k (a flatland pair at 4096 takes about 0.4 s).
+// Point BRDF evaluations' largest max_k (`vgroove brdf`, Python brdf): the flatland sum (one pass
+// over its facet solutions, a few us a pair for any max_k) and the nonsymmetric sum (O(max_k^2),
+// about 3 ms a pair at 64).
 inline constexpr int kMaxFlatlandBrdfK = 4096;
 inline constexpr int kMaxNonsymmetricBrdfK = 1024;
 // Histogram cells (bins x bounce-count rows) of one tally: each work item holds its own. Rows

@@ -372,6 +372,7 @@ nlohmann::json chi2_json(const Chi2Outcome& o) {
       {"sample_s", o.sample_s},
       {"integrate_s", o.integrate_s},
       {"pass", o.pass}};
+  if (s.ndf == analytic::NdfKind::student_t) j["gamma"] = s.ndf.gamma;
   // Rates from the wall time (report.h: durations end in _s, what is derived from them is under
   // "timing"; neither is compared between runs).
   j["timing"] = {{"ns_per_sample", 1e9 * o.sample_s / static_cast<double>(s.samples)}};
@@ -514,7 +515,7 @@ nlohmann::json variance_json(const VarianceOutcome& o) {
     timing.push_back({{"strategy", s.strategy}, {"ns_per_sample", s.ns_per_sample}, {"efficiency", s.efficiency}});
   }
   const VarianceSpec& s = o.spec;
-  return {
+  nlohmann::json v = {
       {"dimension", surface_dim_name(s.dim)},
       {"ndf", analytic::ndf_name(s.ndf)},
       {"alpha", s.alpha},
@@ -526,6 +527,8 @@ nlohmann::json variance_json(const VarianceOutcome& o) {
       {"strategies", rows},
       {"lowest_variance", o.lowest_variance},
       {"timing", {{"strategies", timing}, {"most_efficient", o.most_efficient}}}};
+  if (s.ndf == analytic::NdfKind::student_t) v["gamma"] = s.ndf.gamma;
+  return v;
 }
 
 }  // namespace vgroove::validation

@@ -19,11 +19,14 @@ namespace vgroove::validation {
 
 namespace {
 
-// One listed case's common fields: "dimension", "ndf", "alpha", "theta_i_deg".
+// One listed case's common fields: "dimension", "ndf", "alpha", "theta_i_deg", and Student-T's
+// "gamma".
 BrdfCase read_case(support::JsonObject& o) {
   BrdfCase c;
   c.dim = o.one_of("dimension", {"flatland", "3d"}) == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d;
-  c.ndf = *ndf_from_name(o.one_of("ndf", {"ggx", "beckmann", "phong"}));
+  const std::string ndf = o.one_of("ndf", {"ggx", "beckmann", "phong", "student_t"});
+  const double gamma = ndf == "student_t" ? o.number("gamma", kMinStudentTGamma, false, kMaxStudentTGamma, true) : 0.0;
+  c.ndf = *ndf_from_name(ndf, gamma);
   c.alpha = o.number("alpha", kMinAlpha, true, kMaxAlpha, true);
   c.theta_i = o.number("theta_i_deg", 0.0, true, kMaxSurfaceThetaIDeg, true) * kRadPerDeg;
   return c;
@@ -43,6 +46,8 @@ analytic::FacetStrategy read_strategy(support::JsonObject& o, const BrdfCase& c)
 bool read_nonsymmetric(support::JsonObject& o, const BrdfCase& c) {
   const std::string fallback = "vgroove";
   const bool ns = o.one_of("model", {"vgroove", "vgroove-nonsymmetric"}, &fallback) == "vgroove-nonsymmetric";
+  if (ns && c.ndf == analytic::NdfKind::student_t)
+    o.fail("model", "= \"vgroove-nonsymmetric\" has no partner law for student_t (vgroove only)");
   if (ns && c.ndf == analytic::NdfKind::phong && c.alpha > 1.0)
     o.fail("alpha", "= " + std::to_string(c.alpha) +
                         " is out of range for model vgroove-nonsymmetric with phong (the partner law's table needs "
@@ -231,14 +236,14 @@ void print_sampling_table(std::ostream& os, const SamplingSuite& suite, const Sa
   for (const Chi2Outcome& o : run.chi_square) {
     const Chi2Spec& s = o.spec;
     os << support::format("  %-8s %-8s %5.2f %7.2f %-13s %9ld %9.1f %5d %9.3g %10.1e %10.6f %5s\n",
-                          surface_dim_name(s.dim), analytic::ndf_name(s.ndf), s.alpha, output_deg(s.theta_i),
+                          surface_dim_name(s.dim), ndf_label(s.ndf).c_str(), s.alpha, output_deg(s.theta_i),
                           analytic::strategy_name(s.strategy), s.samples, o.test.statistic, o.test.dof, o.test.p_value,
                           o.normalization_error, o.weight_mean, o.pass ? "yes" : "NO");
   }
   os << "  variance of the weight rho cos / pdf per strategy (F = 1 or Schlick F0), ns per sample\n";
   for (const VarianceOutcome& o : run.variance) {
     const VarianceSpec& s = o.spec;
-    os << support::format("  %-8s %-8s %5.2f %7.2f F0 %4.2f:", surface_dim_name(s.dim), analytic::ndf_name(s.ndf),
+    os << support::format("  %-8s %-8s %5.2f %7.2f F0 %4.2f:", surface_dim_name(s.dim), ndf_label(s.ndf).c_str(),
                           s.alpha, output_deg(s.theta_i), s.schlick_f0);
     for (const StrategyStats& r : o.rows) {
       os << support::format(" %s %.3g (%.0f ns)", r.strategy.c_str(), r.variance, r.ns_per_sample);

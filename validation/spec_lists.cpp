@@ -1,5 +1,7 @@
 #include "vgroove/validation/spec_lists.h"
 
+#include "vgroove/support/format.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -40,10 +42,45 @@ std::vector<double> read_numbers(support::JsonObject& o, const std::string& key,
   return out;
 }
 
-std::vector<analytic::NdfKind> read_ndfs(support::JsonObject& o) {
+std::vector<analytic::NdfKind> read_ndfs(support::JsonObject& o, bool student_t) {
+  std::vector<std::string> allowed{"ggx", "beckmann", "phong"};
+  if (student_t) allowed.push_back("student_t");
+  const std::vector<std::string> names = read_names(o, "ndf", allowed);
+  std::vector<double> gammas{0.0};
+  if (std::find(names.begin(), names.end(), "student_t") != names.end())
+    gammas = read_numbers(o, "gamma", kMinStudentTGamma, false, kMaxStudentTGamma, true);
   std::vector<analytic::NdfKind> out;
-  for (const auto& s : read_names(o, "ndf", {"ggx", "beckmann", "phong"})) out.push_back(*ndf_from_name(s));
+  for (const auto& s : names)
+    for (double g : gammas) {
+      out.push_back(*ndf_from_name(s, g));
+      if (s != "student_t") break;
+    }
   return out;
+}
+
+void put_ndfs(nlohmann::json& inputs, const std::vector<analytic::NdfKind>& ndfs) {
+  nlohmann::json names = nlohmann::json::array(), gammas = nlohmann::json::array();
+  bool named = false;
+  for (analytic::NdfKind n : ndfs) {
+    if (n != analytic::NdfKind::student_t) {
+      names.push_back(analytic::ndf_name(n));
+      continue;
+    }
+    if (!named) names.push_back(analytic::ndf_name(n));
+    named = true;
+    if (std::find(gammas.begin(), gammas.end(), n.gamma) == gammas.end()) gammas.push_back(n.gamma);
+  }
+  inputs["ndf"] = std::move(names);
+  if (named) inputs["gamma"] = std::move(gammas);
+}
+
+void put_gamma(nlohmann::json& c, analytic::NdfKind ndf) {
+  if (ndf == analytic::NdfKind::student_t) c["gamma"] = ndf.gamma;
+}
+
+std::string ndf_label(analytic::NdfKind ndf) {
+  if (ndf != analytic::NdfKind::student_t) return analytic::ndf_name(ndf);
+  return support::format("t%g", ndf.gamma);
 }
 
 }  // namespace vgroove::validation

@@ -28,12 +28,12 @@ using validation::SurfaceDim;
 
 namespace {
 
-// The sums that cost O(max_k^2) and their largest max_k: `vgroove brdf`'s (validation/ranges.h;
+// The flatland and nonsymmetric sums' largest max_k: `vgroove brdf`'s (validation/ranges.h;
 // test_surfaces.py holds the two messages equal).
 constexpr int kFlatlandMaxK = validation::kMaxFlatlandBrdfK;
 constexpr int kNonsymmetricMaxK = validation::kMaxNonsymmetricBrdfK;
 
-// max_k checked as `vgroove brdf --max-k` is: [1, 2^31 - 1], the O(max_k^2) sums bounded.
+// max_k checked as `vgroove brdf --max-k` is: [1, 2^31 - 1], the flatland and nonsymmetric sums bounded.
 int brdf_orders(long long max_k, BrdfModel model, bool flat) {
   if (max_k < 1 || max_k > std::numeric_limits<int>::max())
     throw support::UserError("max_k = " + std::to_string(max_k) + " is out of range [1, " +
@@ -44,7 +44,7 @@ int brdf_orders(long long max_k, BrdfModel model, bool flat) {
                              "] with model vgroove-nonsymmetric (the sum costs O(max_k^2))");
   if (flat && model == BrdfModel::vgroove && max_k > kFlatlandMaxK)
     throw support::UserError("max_k = " + std::to_string(max_k) + " is out of range [1, " +
-                             std::to_string(kFlatlandMaxK) + "] with dim flatland (the flatland sum costs O(max_k^2))");
+                             std::to_string(kFlatlandMaxK) + "] with dim flatland");
   return static_cast<int>(max_k);
 }
 

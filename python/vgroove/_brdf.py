@@ -43,9 +43,9 @@ class BRDF:
         The orders summed, k = 1..max_k. None: the model's default, the same on every face (the
         command line, C++ ``analytic::default_max_k``, Python; :data:`vgroove.BRDF_MAX_K`): every
         order ($all_orders) for ``"vgroove"`` in 3D, whose sum costs the same for any max_k;
-        $flatland_max_k in flatland and $nonsymmetric_max_k for ``"vgroove-nonsymmetric"``, whose
-        sums cost O(max_k^2) per direction (about 2 s a direction at 4096 on one core, 3 ms at
-        64). Ranges: [1, 2^31 - 1], at most $max_flatland_k in flatland and $max_nonsymmetric_k
+        $flatland_max_k in flatland (one pass over the facet solutions, a few us a direction for any
+        max_k) and $nonsymmetric_max_k for ``"vgroove-nonsymmetric"``, whose sum costs O(max_k^2)
+        per direction (about 1 ms at 64). Ranges: [1, 2^31 - 1], at most $max_flatland_k in flatland and $max_nonsymmetric_k
         for the nonsymmetric model. The samplers' default is $sampler_max_k
         ($nonsymmetric_sampler_max_k for the nonsymmetric model; their pdf costs O(max_k)), in [1,
         $max_sampler_k]. :meth:`lobe`, :meth:`albedo` and :meth:`trace` hold every order when

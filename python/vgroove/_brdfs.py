@@ -43,7 +43,7 @@ def brdf(model: str, ndf: str, alpha: float, wi: np.ndarray, wo: np.ndarray, per
     max_k : int, optional
         The orders summed; None: the model's default, the same on every face (:data:`BRDF_MAX_K`:
         every order in 3D, $flatland_max_k in flatland, $nonsymmetric_max_k for the nonsymmetric
-        model, whose sums cost O(max_k^2) per direction, about 2 s at 4096). Ranges: [1, 2^31 -
+        model, whose sum costs O(max_k^2) per direction, about 1 ms at 64). Ranges: [1, 2^31 -
         1], at most $max_flatland_k in flatland and $max_nonsymmetric_k for the nonsymmetric model.
     dim : {"3d", "flatland"}
     threads : int

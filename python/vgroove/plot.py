@@ -325,7 +325,7 @@ def _edges(centres):
 def brdf_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
     groups: Dict[Tuple[str, str], List[Dict[str, Any]]] = {}
     for c in report["cases"].nonempty():
-        ndf = c["ndf"].one_of(("ggx", "beckmann", "phong"))
+        ndf = _ndf_label(c)
         dim = c["dimension"].one_of(("flatland", "3d"))
         pl = c["plane"]
         th = pl["theta_deg"].numbers(lo=-90.0, hi=90.0)
@@ -384,8 +384,14 @@ def _brdf_grid(report: Node, name: str, ndf: str, dim: str, panels: List[Dict[st
 
 # Furnace ------------------------------------------------------------------------------------------
 
-_NDFS = ("ggx", "beckmann", "phong")
+_NDFS = ("ggx", "beckmann", "phong", "student_t")
 _DIMS = ("flatland", "3d")
+
+
+def _ndf_label(c: Node) -> str:
+    """A case's NDF, Student-T with its tail gamma ("student_t-g1.6")."""
+    ndf = c["ndf"].one_of(_NDFS)
+    return ndf if ndf != "student_t" else f"student_t-g{c['gamma'].number(1.5, 1e4):g}"
 
 
 def _furnace_cases(cases: List[Node]) -> Dict[Tuple[str, str], Dict[float, List[Dict[str, float]]]]:
@@ -393,7 +399,7 @@ def _furnace_cases(cases: List[Node]) -> Dict[Tuple[str, str], Dict[float, List[
     (dimension, ndf) and alpha."""
     rows: Dict[Tuple[str, str], Dict[float, List[Dict[str, float]]]] = {}
     for c in cases:
-        key = (c["dimension"].one_of(_DIMS), c["ndf"].one_of(_NDFS))
+        key = (c["dimension"].one_of(_DIMS), _ndf_label(c))
         p = {"theta_i": c["theta_i_deg"].number(-90.0, 90.0), "quad": c["albedo_quadrature"].number(-1.0, 3.0),
              "beyond": c["flux_beyond_max_k"].number(-1.0, 2.0), "energy": c["energy_error"].number(-2.0, 2.0),
              "est": c["albedo_estimate"].number(-1.0, 3.0), "se": c["standard_error"].number(0.0),
@@ -508,7 +514,7 @@ def sampling_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
         if len(obs) != nr or len(exp) != nr:
             raise t.fail(f"has {len(obs)} observed and {len(exp)} expected rows, needs {nr}")
         tests.append({
-            "dim": c["dimension"].one_of(_DIMS), "ndf": c["ndf"].one_of(_NDFS), "alpha": c["alpha"].number(0.0, 2.0),
+            "dim": c["dimension"].one_of(_DIMS), "ndf": _ndf_label(c), "alpha": c["alpha"].number(0.0, 2.0),
             "theta_i": c["theta_i_deg"].number(-90.0, 90.0), "strategy": safe_text(c["strategy"].text(), 16),
             "model": " nonsymmetric" if c.has("model") and c["model"].text() == "vgroove-nonsymmetric" else "",
             "samples": c["samples"].number(1.0), "p": c["p_value"].number(0.0, 1.0), "dof": c["dof"].number(0.0),
@@ -523,7 +529,7 @@ def sampling_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
             strategies.append((safe_text(r["strategy"].text(), 16), r["variance"].number(0.0),
                                timing[n]["ns_per_sample"].number(0.0)))
         ns = " nonsym." if v.has("model") and v["model"].text() == "vgroove-nonsymmetric" else ""
-        variance.append({"label": f"{v['dimension'].one_of(_DIMS)}{ns} {v['ndf'].one_of(_NDFS)} "
+        variance.append({"label": f"{v['dimension'].one_of(_DIMS)}{ns} {_ndf_label(v)} "
                                   f"a {v['alpha'].number(0.0, 2.0):g} ti {v['theta_i_deg'].number(-90.0, 90.0):g}\n"
                                   f"{safe_text(v['fresnel'].text(), 24)}", "rows": strategies})
 

@@ -198,6 +198,17 @@ TEST_P(LobeKernels, CookTorranceIsTheK1Row) {
   EXPECT_NEAR(hist, row.albedo, 1e-14);
 }
 
+// Student-T (ndf_student_t.h): a heavy tail near its limit, GGX's 2.5 neighbour and a light one.
+INSTANTIATE_TEST_SUITE_P(StudentT, LobeKernels,
+                         ::testing::Values(LobeCase{vgroove::student_t_ndf(1.6), 0.5, 40.0},
+                                           LobeCase{vgroove::student_t_ndf(2.5), 1.0, 0.0},
+                                           LobeCase{vgroove::student_t_ndf(8.0), 0.3, 80.0}),
+                         [](const ::testing::TestParamInfo<LobeCase>& i) {
+                           return "g" + std::to_string(static_cast<int>(i.param.ndf.gamma * 10)) + "_" +
+                                  std::to_string(static_cast<int>(i.param.alpha * 10)) + "_" +
+                                  std::to_string(static_cast<int>(i.param.theta_i_deg));
+                         });
+
 INSTANTIATE_TEST_SUITE_P(Cases, LobeKernels,
                          ::testing::Values(LobeCase{va::NdfKind::ggx, 0.5, 40.0}, LobeCase{va::NdfKind::ggx, 1.0, 0.0},
                                            LobeCase{va::NdfKind::beckmann, 0.3, 80.0},
@@ -207,3 +218,24 @@ INSTANTIATE_TEST_SUITE_P(Cases, LobeKernels,
                                   std::to_string(static_cast<int>(i.param.alpha * 10)) + "_" +
                                   std::to_string(static_cast<int>(i.param.theta_i_deg));
                          });
+
+// The fast tail's strata against the reference's for Student-T (its tail variable log(1 - u) and
+// cot theta_m = 1 / sqrt(c expm1(-v / (gamma - 1))), ndf_student_t.h), where its power-law tail
+// carries flux beyond the bands stopped at k = 5 (max_k 4): per bin within 1e-13, as the other NDFs
+// (LobeTail.FastStrataEqualTheReferenceWhereTheTailIsHeavy), the albedo 1 to 1e-13.
+TEST(LobeTail, StudentTFastStrataEqualTheReference) {
+  va::Lobe3dOptions fast = coarse();
+  fast.k_bands = 5;
+  va::Lobe3dOptions ref = fast;
+  ref.reference_kernels = true;
+  for (const auto& [gamma, alpha] : {std::pair{1.6, 1.0}, std::pair{2.5, 0.5}, std::pair{20.0, 2.0}}) {
+    const va::NdfKind ndf = vgroove::student_t_ndf(gamma);
+    const va::Lobe3d a = va::vgroove_lobe_3d(ndf, alpha, deg(40.0), 12, 8, 4, fast);
+    const va::Lobe3d b = va::vgroove_lobe_3d(ndf, alpha, deg(40.0), 12, 8, 4, ref);
+    EXPECT_LE(max_bin_difference(a, b), 1e-13) << gamma;
+    EXPECT_NEAR(a.albedo, 1.0, 1e-13) << gamma;
+    EXPECT_GT(a.by_k.back(), 1e-3) << gamma << ": the tail carries flux";
+    RecordProperty("worst_bin_difference_g" + std::to_string(static_cast<int>(gamma * 10)),
+                   std::to_string(max_bin_difference(a, b)));
+  }
+}

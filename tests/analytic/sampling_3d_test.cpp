@@ -87,8 +87,8 @@ TEST(Sampling3d, SampledPathIsAmongThePdfsPaths) {
   std::uniform_real_distribution<double> U(0.0, 1.0);
   for (FacetStrategy st : kStrategies)
     for (int trial = 0; trial < 1500; ++trial) {
-      const NdfKind ndf =
-          st == FacetStrategy::smith_vndf || st == FacetStrategy::bounded_vndf ? NdfKind::ggx : kNdfs[trial % 3];
+      const NdfKind ndf = st == FacetStrategy::smith_vndf || st == FacetStrategy::bounded_vndf ? NdfKind{NdfKind::ggx}
+                                                                                               : kNdfs[trial % 3];
       const double alpha = 0.05 + 1.5 * U(g);
       const Dir3 i = dir3(0.5 * std::numbers::pi * U(g), 2.0 * std::numbers::pi * U(g));
       const SamplerOptions opt{st, 64};

@@ -9,7 +9,7 @@ import pytest
 
 SMALL = dict(rays=20000, grooves=20000)
 # vgroove's 3D albedo reaches 1 at high roughness only with a large bounce limit (its single pass
-# costs the same for any max_k); the flatland sum visits every k, so it is kept short there.
+# costs the same for any max_k); flatland is kept to 64 orders, as check_brdf_test.cpp does.
 MAX_K = 10**6
 MAX_K_FLATLAND = 64
 

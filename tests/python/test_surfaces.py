@@ -179,8 +179,7 @@ def test_brdf_takes_the_command_lines_models(vg):
                               "--per-k", "--per-k-max", 64, "--json")
             np.testing.assert_allclose(ns[j], theirs["points"][0]["value"], rtol=1e-12, err_msg=dim)
             np.testing.assert_allclose(per_k[j], theirs["points"][0]["by_k"], rtol=1e-12, atol=1e-300, err_msg=dim)
-    # The command line's default max_k for this model is 64; Python's is 16 for every model (the
-    # flatland and nonsymmetric sums cost O(max_k^2) per direction).
+    # The command line's default max_k for this model is 64, and Python's (vg.BRDF_MAX_K).
     assert vg.brdf("vgroove-nonsymmetric", "ggx", 0.5, wi, wo).shape == (2,)
     with pytest.raises(ValueError) as e:
         vg.brdf("vgroove-nonsymmetric", "phong", 1.5, wi, wo)

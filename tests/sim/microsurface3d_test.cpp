@@ -34,12 +34,17 @@ using namespace vgroove::test_stats;  // tanh_sinh, gamma_q, ChiSquare, chi_squa
 double deg(double d) { return d * std::numbers::pi / 180.0; }
 
 const NdfKind kKinds[] = {NdfKind::beckmann, NdfKind::ggx, NdfKind::phong};
+// Student-T (microsurface3d.h) at a heavy tail near its limit 1.5, GGX's 2, and a light one.
+const NdfKind kStudentTs[] = {student_t_ndf(1.6), student_t_ndf(2.0), student_t_ndf(8.0)};
 const double kAlphas[] = {0.2, 0.6, 1.0};
 
 class Sampling3d : public testing::TestWithParam<std::tuple<NdfKind, double>> {};
 
 std::string kind_alpha_name(const testing::TestParamInfo<std::tuple<NdfKind, double>>& info) {
-  return std::string(ndf_name(std::get<0>(info.param))) + "_alpha" +
+  const NdfKind kind = std::get<0>(info.param);
+  std::string gamma;
+  if (kind == NdfKind::student_t) gamma = "_g" + std::to_string(static_cast<int>(std::round(kind.gamma * 10)));
+  return std::string(ndf_name(kind)) + gamma + "_alpha" +
          std::to_string(static_cast<int>(std::round(std::get<1>(info.param) * 100)));
 }
 
@@ -113,6 +118,27 @@ TEST_P(Sampling3d, GroovesFollowThePdf) {
 
 INSTANTIATE_TEST_SUITE_P(Grid, Sampling3d, testing::Combine(testing::ValuesIn(kKinds), testing::ValuesIn(kAlphas)),
                          kind_alpha_name);
+// Student-T on its own (9 cases, two tests each at the level above: 1e-3 over them).
+INSTANTIATE_TEST_SUITE_P(StudentT, Sampling3d,
+                         testing::Combine(testing::ValuesIn(kStudentTs), testing::ValuesIn(kAlphas)), kind_alpha_name);
+
+// gamma = 2 is GGX and gamma = 1 + 1/alpha^2 Phong (microsurface3d.h): pdf, cdf and the sampler.
+TEST(Sampling3d, StudentTIsGgxAtTwoAndPhongAtOnePlusInverseAlphaSquared) {
+  for (double alpha : {0.3, 0.8}) {
+    const NdfKind p = student_t_ndf(1.0 + 1.0 / (alpha * alpha));
+    for (double t_deg : {5.0, 30.0, 60.0, 85.0}) {
+      const double t = deg(t_deg);
+      EXPECT_NEAR(theta_m_pdf_3d(student_t_ndf(2.0), alpha, t) / theta_m_pdf_3d(NdfKind::ggx, alpha, t), 1.0, 1e-14);
+      EXPECT_NEAR(theta_m_cdf_3d(student_t_ndf(2.0), alpha, t), theta_m_cdf_3d(NdfKind::ggx, alpha, t), 1e-14);
+      EXPECT_NEAR(theta_m_pdf_3d(p, alpha, t) / theta_m_pdf_3d(NdfKind::phong, alpha, t), 1.0, 1e-13);
+      EXPECT_NEAR(theta_m_cdf_3d(p, alpha, t), theta_m_cdf_3d(NdfKind::phong, alpha, t), 1e-14);
+    }
+    for (double u : {1e-9, 0.1, 0.5, 0.99}) {
+      EXPECT_NEAR(sample_theta_m_3d(student_t_ndf(2.0), alpha, u), sample_theta_m_3d(NdfKind::ggx, alpha, u), 1e-14);
+      EXPECT_NEAR(sample_theta_m_3d(p, alpha, u), sample_theta_m_3d(NdfKind::phong, alpha, u), 1e-14);
+    }
+  }
+}
 
 // ---------------------------------------------------------------------------------------------
 // One groove.

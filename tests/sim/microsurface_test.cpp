@@ -88,12 +88,16 @@ TEST(TestHelpers, ChiSquareSurvivalFunction) {
 }
 
 const NdfKind kKinds[] = {NdfKind::beckmann, NdfKind::ggx, NdfKind::phong};
+// Student-T (slope_sampling.h) at a heavy tail near its limit 1.5, GGX's 2, and a light one.
+const NdfKind kStudentTs[] = {student_t_ndf(1.6), student_t_ndf(2.0), student_t_ndf(8.0)};
 const double kAlphas[] = {0.05, 0.3, 0.5, 1.0, 2.0};
 
 using KindAlpha = std::tuple<NdfKind, double>;
 std::string kind_alpha_name(const testing::TestParamInfo<KindAlpha>& info) {
   std::ostringstream os;
-  os << ndf_name(std::get<0>(info.param)) << "_a" << std::get<1>(info.param);
+  os << ndf_name(std::get<0>(info.param));
+  if (std::get<0>(info.param) == NdfKind::student_t) os << "_g" << std::get<0>(info.param).gamma;
+  os << "_a" << std::get<1>(info.param);
   std::string s = os.str();
   std::replace(s.begin(), s.end(), '.', 'p');
   return s;
@@ -198,7 +202,10 @@ TEST_P(SlopeSampling, SamplesFollowThePdf) {
   for (int j = 0; j < bins; ++j)
     expected[j] = n * tanh_sinh([&](double t) { return theta_m_pdf(kind, alpha, t); }, edges[j], edges[j + 1]);
   std::vector<std::int64_t> observed(bins, 0);
-  Rng rng(20180611, static_cast<std::uint64_t>(kind), static_cast<std::uint64_t>(alpha * 1000));
+  // Student-T's tail in the stream (0 for the other NDFs: their streams are as without it).
+  const std::uint64_t stream = static_cast<std::uint64_t>(kind.family) | static_cast<std::uint64_t>(kind.gamma * 10)
+                                                                             << 8;
+  Rng rng(20180611, stream, static_cast<std::uint64_t>(alpha * 1000));
   for (int i = 0; i < n; ++i) {
     const double t = sample_theta_m(kind, alpha, rng.uniform());
     const auto it = std::upper_bound(edges.begin(), edges.end(), t);
@@ -212,6 +219,26 @@ TEST_P(SlopeSampling, SamplesFollowThePdf) {
 
 INSTANTIATE_TEST_SUITE_P(Grid, SlopeSampling, testing::Combine(testing::ValuesIn(kKinds), testing::ValuesIn(kAlphas)),
                          kind_alpha_name);
+// Student-T on its own (15 cases at the same level each: 1e-3 over them).
+INSTANTIATE_TEST_SUITE_P(StudentT, SlopeSampling,
+                         testing::Combine(testing::ValuesIn(kStudentTs), testing::ValuesIn(kAlphas)), kind_alpha_name);
+
+// gamma = 2 is GGX, and gamma = 1 + 1/alpha^2 is Phong (the same slope laws, slope_sampling.h): the
+// pdf, the cdf and the samples agree to rounding, the samples by another route (Newton on the
+// t law's tail against GGX's closed form and Phong's Newton).
+TEST(SlopeSampling, StudentTIsGgxAtTwoAndPhongAtOnePlusInverseAlphaSquared) {
+  for (double alpha : {0.3, 0.8})
+    for (double t_deg : {-80.0, -30.0, 0.0, 10.0, 60.0}) {
+      const double t = t_deg * std::numbers::pi / 180.0;
+      EXPECT_NEAR(theta_m_pdf(student_t_ndf(2.0), alpha, t) / theta_m_pdf(NdfKind::ggx, alpha, t), 1.0, 1e-14) << t_deg;
+      EXPECT_NEAR(theta_m_cdf(student_t_ndf(2.0), alpha, t), theta_m_cdf(NdfKind::ggx, alpha, t), 1e-14) << t_deg;
+      const NdfKind p = student_t_ndf(1.0 + 1.0 / (alpha * alpha));
+      EXPECT_NEAR(theta_m_pdf(p, alpha, t) / theta_m_pdf(NdfKind::phong, alpha, t), 1.0, 1e-13) << t_deg;
+      EXPECT_NEAR(theta_m_cdf(p, alpha, t), theta_m_cdf(NdfKind::phong, alpha, t), 1e-14) << t_deg;
+    }
+  for (double u : {1e-9, 0.02, 0.4, 0.6, 0.999})
+    EXPECT_NEAR(sample_theta_m(student_t_ndf(2.0), 0.5, u), sample_theta_m(NdfKind::ggx, 0.5, u), 1e-14) << u;
+}
 
 // ---------------------------------------------------------------------------------------------
 // Microsurface.
@@ -253,7 +280,9 @@ TEST(Microsurface, GroovesCoverTheLengthAsTheNdfSays) {
   // Equal widths: the fraction of the macrosurface under grooves with |theta_m| < t is the
   // fraction of grooves, expected cdf(t) - cdf(-t); binomial, 5 sigma.
   constexpr int g = 20000;
-  for (NdfKind kind : kKinds) {
+  std::vector<NdfKind> kinds(std::begin(kKinds), std::end(kKinds));
+  kinds.insert(kinds.end(), std::begin(kStudentTs), std::end(kStudentTs));
+  for (NdfKind kind : kinds) {
     const Microsurface m = make_microsurface({kind, 0.5, g, 7});
     ASSERT_EQ(m.grooves.size(), static_cast<std::size_t>(g));
     for (double x : {0.2, 0.7, 1.5, 3.0}) {
@@ -277,7 +306,9 @@ TEST(Microsurface, AlbedoIsOneAndEveryRayIsAccounted) {
   // reflections); vertex hits have probability ~1e-16 per ray and no groove here needs more than
   // the bounce limit.
   constexpr std::int64_t rays = 50000;
-  for (NdfKind kind : kKinds) {
+  std::vector<NdfKind> kinds(std::begin(kKinds), std::end(kKinds));
+  kinds.insert(kinds.end(), std::begin(kStudentTs), std::end(kStudentTs));
+  for (NdfKind kind : kinds) {
     const Microsurface m = make_microsurface({kind, 0.5, 4000, 11});
     for (double ti : {0.0, 40.0, 80.0}) {
       MicrosurfaceTraceOptions o;

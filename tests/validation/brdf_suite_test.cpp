@@ -82,6 +82,47 @@ TEST(BrdfSuite, BadSpecsNameTheFieldAndRange) {
   EXPECT_USER_ERROR(parse_table2_suite(t2, "t.json"), "t.json: /paper/max_bounces/1 must be a list of 9 integers");
 }
 
+// Student-T (analytic/ndf_student_t.h) travels as "student_t" in "ndf" with its tails in "gamma",
+// one NDF per gamma; "gamma" is required with it, refused without it, and its range is
+// validation/ranges.h's; the kinds that do not model Student-T refuse its name.
+TEST(MicrosurfaceSuite, StudentTTakesItsGammaList) {
+  const std::string dir = std::string(VGROOVE_SOURCE_DIR) + "/data/suites/";
+  const json st = json::parse(testing_files::read_text(dir + "fig11_student_t.json"));
+  const BrdfSuite s = parse_brdf_suite(st, "st.json");
+  ASSERT_EQ(s.ndfs.size(), 2u);
+  EXPECT_EQ(s.ndfs[0], vgroove::student_t_ndf(1.6));
+  EXPECT_EQ(s.ndfs[1], vgroove::student_t_ndf(4.0));
+  EXPECT_NE(s.ndfs[0], s.ndfs[1]);
+  EXPECT_EQ(s.cases(), 2u * 2u * 3u * 2u);
+  EXPECT_EQ(s.case_at(s.cases() - 1).ndf, vgroove::student_t_ndf(4.0));
+  json j = st;
+  j["ndf"] = {"ggx", "student_t", "phong"};
+  const BrdfSuite mixed = parse_brdf_suite(j, "st.json");
+  ASSERT_EQ(mixed.ndfs.size(), 4u);
+  EXPECT_EQ(mixed.ndfs[0], analytic::NdfKind::ggx);
+  EXPECT_EQ(mixed.ndfs[2], vgroove::student_t_ndf(4.0));
+  EXPECT_EQ(mixed.ndfs[3], analytic::NdfKind::phong);
+  j = st;
+  j.erase("gamma");
+  EXPECT_USER_ERROR(parse_brdf_suite(j, "f.json"), "f.json: /gamma");
+  j = st;
+  j["gamma"] = {1.5};
+  EXPECT_USER_ERROR(parse_brdf_suite(j, "f.json"), "f.json: /gamma/0 = 1.5 is out of range (1.5, 10000]");
+  j = st;
+  j["gamma"] = {3, 20000};
+  EXPECT_USER_ERROR(parse_brdf_suite(j, "f.json"), "f.json: /gamma/1 = 20000 is out of range (1.5, 10000]");
+  j = fig11_spec();
+  j["gamma"] = {3};
+  EXPECT_USER_ERROR(parse_brdf_suite(j, "f.json"), "f.json: /gamma is not a known key");
+  json t2 = json::parse(testing_files::read_text(dir + "table2.json"));
+  t2["ndf"] = {"student_t"};
+  EXPECT_USER_ERROR(parse_table2_suite(t2, "t.json"),
+                    "t.json: /ndf/0 = \"student_t\" is not one of \"ggx\", \"beckmann\", \"phong\"");
+  const FurnaceSuite f = parse_furnace_suite(json::parse(testing_files::read_text(dir + "furnace_student_t.json")),
+                                             "furnace_student_t.json");
+  EXPECT_EQ(f.cases(), 2u * 4u * 3u * 2u);
+}
+
 // The expected-L1 rule against a direct simulation of multinomial histograms: the mean L1 of
 // 400 histograms of N = 20000 draws from p agrees with sum sqrt(2 v / pi) (v = p (1 - p) / N) to
 // the Monte Carlo error of the mean (sd / sqrt(400)) plus the normal approximation's own error,

@@ -155,8 +155,8 @@ TEST(CheckBrdf, VgrooveModelPassesFlatland) {
   o.dim = SurfaceDim::flatland;
   const CheckBrdfResult r = check_brdf(
       [&](const analytic::Dir3& wi, const analytic::Dir3& wo) {
-        // Flatland directions lie in y = 0: the signed 2D angle of (x, 0, z) is atan2(-x, z). The
-        // flatland sum costs O(max_k^2) per evaluation; k > 64 carries < 2e-4 of the flux here.
+        // Flatland directions lie in y = 0: the signed 2D angle of (x, 0, z) is atan2(-x, z); k > 64
+        // carries < 2e-4 of the flux here.
         return analytic::flatland_brdf(o.ndf, o.alpha, std::atan2(-wi.x, wi.z), std::atan2(-wo.x, wo.z), 64);
       },
       o);

@@ -93,7 +93,7 @@ TEST(NdfCross, SamplesFollowAnalyticD2Cos) {
       for (int j = 0; j < bins; ++j)
         expected[j] = n * tanh_sinh([&](double v) { return d2_cos(k, alpha, v); }, edges[j], edges[j + 1]);
       std::vector<std::int64_t> observed(bins, 0);
-      sim::Rng rng(424242, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(alpha * 1000));
+      sim::Rng rng(424242, static_cast<std::uint64_t>(k.family), static_cast<std::uint64_t>(alpha * 1000));
       for (int i = 0; i < n; ++i) {
         const double t = sim::sample_theta_m(k, alpha, rng.uniform());
         const auto it = std::upper_bound(edges.begin(), edges.end(), t);
