@@ -8,12 +8,13 @@ set -euo pipefail
 # all for Debian's /usr/bin/python3. MPI (libopenmpi-dev openmpi-bin): the tests run vgroove under mpirun
 # (tests/cluster/); the default build does not need it. Boost.Math (header-only): the tests'
 # chi-square p-values. libpng-dev libopenexr-dev: `vgroove energy --export`'s 16-bit PNG and
-# OpenEXR tables. The tests of scripts/cluster/ run GNU parallel (parallel) and a single-node
+# OpenEXR tables. libembree-dev: bench/heightfield_embree_bench.cpp (optional: built when found).
+# The tests of scripts/cluster/ run GNU parallel (parallel) and a single-node
 # Slurm of their own (munge slurmctld slurmd slurm-client); the test of `vgroove report` loads the
 # page in headless Chromium (chromium). None of these is needed to build or run vgroove.
 packages=(g++ cmake ninja-build git libeigen3-dev libcli11-dev nlohmann-json3-dev
           libgtest-dev libgmock-dev libbenchmark-dev libboost-math-dev python3-jsonschema
-          libpng-dev libopenexr-dev
+          libpng-dev libopenexr-dev libembree-dev
           pybind11-dev python3-dev python3-numpy python3-matplotlib python3-pytest python3-tqdm python3-venv
           python3-pip
           libopenmpi-dev openmpi-bin parallel munge slurmctld slurmd slurm-client chromium "$@")
