@@ -50,6 +50,7 @@
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/energy_formulas.h"
 #include "vgroove/validation/energy_materials.h"
+#include "vgroove/validation/ranges.h"
 #include "vgroove/validation/work_run.h"
 
 #include <nlohmann/json.hpp>
@@ -64,8 +65,6 @@ namespace vgroove::validation {
 
 inline constexpr const char* kAuditReferences[] = {"vgroove", "smith_walk"};
 inline constexpr std::int64_t kAuditPathsPerChunk = 8192;
-inline constexpr long long kMaxAuditPaths = 1'000'000'000;  // the energy sums stay below 2^63 / 2^32 per row
-inline constexpr int kMaxAuditK = 64;
 
 struct EnergyAuditCell {
   NdfKind ndf = NdfKind::ggx;

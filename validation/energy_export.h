@@ -22,6 +22,7 @@
 #include "vgroove/analytic/albedo_single.h"
 #include "vgroove/analytic/albedo_table.h"
 #include "vgroove/support/parallel.h"
+#include "vgroove/validation/ranges.h"
 
 #include <nlohmann/json.hpp>
 
@@ -44,7 +45,6 @@ struct EnergyExportOptions {
   std::uint64_t seed = 1;
   int threads = 0;
 };
-inline constexpr int kMaxExportSize = 1024;
 
 // A UserError naming the flag for what is out of range.
 void check_energy_export(const EnergyExportOptions& o);

@@ -57,14 +57,6 @@ struct EnergyGrid {
   EnergyCell cell_at(std::size_t c) const;
 };
 
-// The grid's limits (checked by check_energy_grid, named by the command line's flags).
-inline constexpr long long kMaxEnergyRays = 10'000'000'000LL;
-inline constexpr int kMaxEnergyK = 1000;
-inline constexpr std::size_t kMaxGridPoints = 4096;
-// --mu-points: the smallest midpoint 0.5 / n stays >= kMinMu.
-inline constexpr int kMaxMuPoints = 286;
-// --alpha-points: the midpoints (j + 1/2)/n stay in the alpha range (0.5/n >= kMinAlpha).
-inline constexpr int kMaxAlphaPoints = 50;
 // (i + 1/2) / n for i = 0..n-1: the midpoints of n equal steps of (0, 1].
 std::vector<double> midpoints(int n);
 // A UserError naming the flag for a value out of range: --mu in (0, 1], --alpha in (0, 2], ...

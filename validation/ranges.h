@@ -3,6 +3,7 @@
 // accepted in all, and each range is one where the model and the tracer are tested to agree).
 #pragma once
 
+#include <cstddef>
 #include <limits>
 
 namespace vgroove::validation {
@@ -72,5 +73,20 @@ inline constexpr int kMaxSamplerK = 100'000;
 inline constexpr int kMaxSampleCosBins = 1000;
 inline constexpr int kMaxSamplePhiBins = 1000;
 inline constexpr int kMaxSampleThetaBins = 10'000;
+
+// `vgroove energy`'s grid (check_energy_grid, named by the command line's flags): traced rays per
+// cell, the bounce orders, the cells.
+inline constexpr long long kMaxEnergyRays = 10'000'000'000LL;
+inline constexpr int kMaxEnergyK = 1000;
+inline constexpr std::size_t kMaxGridPoints = 4096;
+// --mu-points: the smallest midpoint 0.5 / n stays >= kMinMu.
+inline constexpr int kMaxMuPoints = 286;
+// --alpha-points: the midpoints (j + 1/2)/n stay in the alpha range (0.5/n >= kMinAlpha).
+inline constexpr int kMaxAlphaPoints = 50;
+// --audit: walk paths per cell (the energy sums stay below 2^63 / 2^32 per row) and bounce orders.
+inline constexpr long long kMaxAuditPaths = 1'000'000'000;
+inline constexpr int kMaxAuditK = 64;
+// --export's texels per axis.
+inline constexpr int kMaxExportSize = 1024;
 
 }  // namespace vgroove::validation

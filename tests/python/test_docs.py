@@ -35,7 +35,7 @@ def header_constants():
         text = f.read()
     out = {}
     for name, value in re.findall(r"inline constexpr [\w: ]+? (k\w+) = ([^;]+);", text):
-        value = value.replace("'", "").strip()
+        value = re.sub(r"(?<=\d)[uUlL]+$", "", value.replace("'", "").strip())  # 10'000LL -> 10000
         if value == "std::numeric_limits<long long>::max()":
             out[name] = 2 ** 63 - 1
         else:
