@@ -20,8 +20,6 @@ std::string number_text(double v) {
 
 bool is_facet(Part p) { return p == Part::left_facet || p == Part::right_facet; }
 
-Medium other_medium(Medium m) { return m == Medium::above ? Medium::below : Medium::above; }
-
 }  // namespace
 
 const char* medium_name(Medium m) { return m == Medium::above ? "above" : "below"; }
@@ -203,14 +201,7 @@ DielectricResult& DielectricGrooveTracer::trace(const Ray2& ray, Medium from, Rn
     const double F = detail::fresnel_split(h.d, n, h.in, eta, inv_eta, opt_, t_dir);
     // The branches: reflected (weight w F, stays in its medium) and refracted (w (1 - F), crosses).
     double w_branch[2];
-    if (split) {
-      w_branch[0] = h.w * F;
-      w_branch[1] = h.w * (1.0 - F);
-    } else {
-      const bool reflect = F >= 1.0 || rng.uniform() < F;
-      w_branch[0] = reflect ? h.w : 0.0;
-      w_branch[1] = reflect ? 0.0 : h.w;
-    }
+    detail::branch_weights(split, F, h.w, rng, w_branch);
     for (int b = 0; b < 2; ++b) {
       const double w = w_branch[b];
       if (!(w > 0.0)) continue;
@@ -222,8 +213,8 @@ DielectricResult& DielectricGrooveTracer::trace(const Ray2& ray, Medium from, Rn
         continue;
       }
       const Vec2 d = b == 0 ? (facet ? fa->reflect(h.d) : Vec2(h.d.x(), -h.d.y())) : t_dir;
-      const Medium medium = b == 0 ? h.in : other_medium(h.in);
-      const std::uint64_t path = h.path | (b == 1 && h.k < 64 ? std::uint64_t{1} << h.k : 0);
+      const Medium medium = b == 0 ? h.in : detail::other_medium(h.in);
+      const std::uint64_t path = detail::branch_path(h.path, h.k, b);
       Pending next{d, 0.0, w, path, k, h.on, medium};
       if (advance(h.on, h.pos, d, medium, next)) {
         pending.push_back(next);

@@ -9,8 +9,31 @@
 #include "vgroove/sim/tracer.h"
 
 #include <cmath>
+#include <cstdint>
 
 namespace vgroove::sim::detail {
+
+inline Medium other_medium(Medium m) { return m == Medium::above ? Medium::below : Medium::above; }
+
+// The two branches of a hit of weight w with reflected share F: [0] reflected, [1] refracted.
+// Splitting gives each its share; the random choice gives all of w to one, reflected with
+// probability F (drawn from rng only where F < 1).
+inline void branch_weights(bool split, double F, double w, Rng& rng, double out[2]) {
+  if (split) {
+    out[0] = w * F;
+    out[1] = w * (1.0 - F);
+    return;
+  }
+  const bool reflect = F >= 1.0 || rng.uniform() < F;
+  out[0] = reflect ? w : 0.0;
+  out[1] = reflect ? 0.0 : w;
+}
+
+// A path's R/T signature after branch b at its k-th interaction (bit k set for a refraction; the
+// first 64 interactions recorded).
+inline std::uint64_t branch_path(std::uint64_t path, int k, int b) {
+  return path | (b == 1 && k < 64 ? std::uint64_t{1} << k : 0);
+}
 
 // A path along d in medium `in` meets a part of unit normal n (towards medium 1). Returns F, the
 // reflected share (1 under total internal reflection and in the conductor limit), and sets t to

@@ -120,14 +120,7 @@ DielectricResult& DielectricSurfaceTracer::run(const Hit& first, const Vec2& d0,
     Vec2 t_dir = Vec2::Zero();
     const double F = detail::fresnel_split(h.d, fa.normal, h.in, eta, inv_eta, opt_, t_dir);
     double w_branch[2];
-    if (split) {
-      w_branch[0] = h.w * F;
-      w_branch[1] = h.w * (1.0 - F);
-    } else {
-      const bool reflect = F >= 1.0 || rng.uniform() < F;
-      w_branch[0] = reflect ? h.w : 0.0;
-      w_branch[1] = reflect ? 0.0 : h.w;
-    }
+    detail::branch_weights(split, F, h.w, rng, w_branch);
     for (int b = 0; b < 2; ++b) {
       const double w = w_branch[b];
       if (!(w > 0.0)) continue;
@@ -139,8 +132,8 @@ DielectricResult& DielectricSurfaceTracer::run(const Hit& first, const Vec2& d0,
         continue;
       }
       const Vec2 d = b == 0 ? fa.reflect(h.d) : t_dir;
-      const Medium medium = b == 0 ? h.in : (h.in == Medium::above ? Medium::below : Medium::above);
-      const std::uint64_t path = h.path | (b == 1 && h.k < 64 ? std::uint64_t{1} << h.k : 0);
+      const Medium medium = b == 0 ? h.in : detail::other_medium(h.in);
+      const std::uint64_t path = detail::branch_path(h.path, h.k, b);
       if (medium == Medium::above) {
         double s_next;
         if (detail::step_to_other_facet(g, side, h.pos, d, s_next)) {
