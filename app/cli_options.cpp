@@ -2,6 +2,7 @@
 
 #include "vgroove/app/options.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/support/work_plan.h"
 #include "vgroove/validation/ranges.h"
 
 namespace vgroove::app {
@@ -35,6 +36,13 @@ CLI::Option* add_threads(CLI::App* app, int& v) {
 }
 CLI::Option* add_seed(CLI::App* app, long long& v, const std::string& help) {
   return add_integer(app, "--seed", v, help, 0, validation::kMaxSeed);
+}
+
+CLI::Option* add_shard(CLI::App* app, std::string& v, const std::string& joined) {
+  return add_text(app, "--shard", v,
+                  "I/N, 1 <= I <= N <= " + std::to_string(support::kMaxShards) +
+                      ": run only the I-th of N parts of the work and write it to --out as a partial report (" +
+                      joined + ")");
 }
 
 void add_groove_options(CLI::App* app, GrooveArgs& g) {

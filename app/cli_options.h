@@ -43,6 +43,9 @@ CLI::Option* add_list(CLI::App* app, const std::string& name, std::vector<T>& v,
 }
 CLI::Option* add_threads(CLI::App* app, int& v);
 CLI::Option* add_seed(CLI::App* app, long long& v, const std::string& help);
+// --shard I/N (its range: support::kMaxShards); `joined` says what `vgroove merge` makes of the
+// parts.
+CLI::Option* add_shard(CLI::App* app, std::string& v, const std::string& joined);
 // --theta-v-deg for a symmetric groove, or --theta-l-deg with --theta-r-deg for a nonsymmetric one.
 void add_groove_options(CLI::App* app, GrooveArgs& g);
 

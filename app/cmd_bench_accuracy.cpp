@@ -207,9 +207,7 @@ void add_bench_accuracy_command(CLI::App& bench, Commands& commands) {
   add_threads(acc, ac.threads);
   add_text(acc, "--out", ac.out, "report JSON to write");
   acc->add_flag("--force", ac.force, "overwrite an existing report");
-  add_text(acc, "--shard", ac.shard,
-           "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
-           "report (`vgroove merge` joins them; each run's wall_s is then its summed case time)");
+  add_shard(acc, ac.shard, "`vgroove merge` joins them; each run's wall_s is then its summed case time");
 }
 
 }  // namespace vgroove::app

@@ -100,7 +100,8 @@ analytic::Dir3 direction(double theta_deg, double phi_deg, bool flat) {
 int orders(const BrdfArgs& a, analytic::BrdfModel model, bool flat) {
   if (!a.max_k_given) return analytic::default_max_k(model, flat);
   if (a.max_k < 1)
-    throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, 2147483647]");
+    throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, " +
+                             std::to_string(std::numeric_limits<int>::max()) + "]");
   if (model == analytic::BrdfModel::vgroove_nonsymmetric) {
     if (a.max_k > kNonsymmetricMaxK)
       throw support::UserError("--max-k = " + std::to_string(a.max_k) + " is out of range [1, " +
@@ -155,8 +156,9 @@ int cmd_brdf(const BrdfArgs& a) {
   check_angle(a.alpha, validation::kMinAlpha, true, validation::kMaxAlpha, true, "--alpha");
   check_nonsymmetric_options(a, *model, *ndf, flat);
   const int max_k = orders(a, *model, flat);
-  if (a.per_k_max < 1 || a.per_k_max > 1000)
-    throw support::UserError("--per-k-max = " + std::to_string(a.per_k_max) + " is out of range [1, 1000]");
+  if (a.per_k_max < 1 || a.per_k_max > validation::kMaxPrintedK)
+    throw support::UserError("--per-k-max = " + std::to_string(a.per_k_max) + " is out of range [1, " +
+                             std::to_string(validation::kMaxPrintedK) + "]");
   std::vector<Pair> pairs;
   if (!a.directions.empty()) {
     if (a.theta_o_given)
@@ -273,11 +275,14 @@ void add_brdf_command(CLI::App& app, Commands& commands) {
   auto* brdf_max_k =
       add_integer(brdf, "--max-k", ba.max_k,
                   "orders summed; vgroove 3D and cook-torrance: any, at no extra cost (default: all); vgroove "
-                  "flatland: <= 4096, one pass whatever max_k (default 4096); vgroove-nonsymmetric: <= 1024, "
-                  "O(max_k^2) (default 64)",
+                  "flatland: <= " +
+                      std::to_string(kFlatlandMaxK) + ", one pass whatever max_k (default " +
+                      std::to_string(analytic::default_max_k(analytic::BrdfModel::vgroove, true)) +
+                      "); vgroove-nonsymmetric: <= " + std::to_string(kNonsymmetricMaxK) + ", O(max_k^2) (default " +
+                      std::to_string(analytic::default_max_k(analytic::BrdfModel::vgroove_nonsymmetric, false)) + ")",
                   1, std::numeric_limits<int>::max());
   brdf->add_flag("--per-k", ba.per_k, "also print each order k = 1..--per-k-max");
-  add_integer(brdf, "--per-k-max", ba.per_k_max, "orders printed one by one with --per-k", 1, 1000)
+  add_integer(brdf, "--per-k-max", ba.per_k_max, "orders printed one by one with --per-k", 1, validation::kMaxPrintedK)
       ->capture_default_str();
   add_text(brdf, "--directions", ba.directions,
            "JSON file {\"directions\": [{\"theta_i_deg\", \"theta_o_deg\"[, \"phi_i_deg\", "

@@ -171,9 +171,7 @@ void add_energy_command(CLI::App& app, Commands& commands) {
   add_text(energy, "--out", ea.out, "table JSON to write (refuses to overwrite without --force)");
   energy->add_flag("--npy", ea.npy,
                    "write the arrays as .npy files beside the JSON (OUT.E_sim.npy, ...); automatic above 65536 values");
-  add_text(energy, "--shard", ea.shard,
-           "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
-           "report (`vgroove merge` joins them)");
+  add_shard(energy, ea.shard, "`vgroove merge` joins them");
   energy->add_flag("--force", ea.force, "overwrite existing files");
   energy->add_flag("--audit", ea.audit,
                    "the energy audit over the grid (GGX and Beckmann; --rays: walk paths per cell): compensation "

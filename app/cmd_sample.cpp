@@ -39,7 +39,8 @@ int cmd_sample(const SampleArgs& a) {
   if (!(a.theta_i_deg >= 0.0 && a.theta_i_deg <= validation::kMaxSurfaceThetaIDeg))
     out_of_range("--theta-i-deg", a.theta_i_deg,
                  support::interval_text(0.0, true, validation::kMaxSurfaceThetaIDeg, true));
-  if (a.n < 1 || a.n > validation::kMaxRays) out_of_range("--n", static_cast<double>(a.n), "[1, 1000000000]");
+  if (a.n < 1 || a.n > validation::kMaxRays)
+    out_of_range("--n", static_cast<double>(a.n), support::interval_text(1, true, validation::kMaxRays, true));
   if (a.dim != "3d" && a.dim != "flatland")
     throw support::UserError("--dim = \"" + a.dim + "\" is not one of \"3d\", \"flatland\"");
   const bool flatland = a.dim == "flatland";

@@ -91,9 +91,7 @@ void add_simulate_command(CLI::App& app, Commands& commands) {
   add_text(simu, "--out", sa.out, "result JSON to write (refuses to overwrite without --force)");
   add_threads(simu, sa.threads);
   simu->add_flag("--force", sa.force, "overwrite an existing result");
-  add_text(simu, "--shard", sa.shard,
-           "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts and write it to --out as a partial "
-           "report (`vgroove merge` joins them)");
+  add_shard(simu, sa.shard, "`vgroove merge` joins them");
 }
 
 }  // namespace vgroove::app

@@ -83,9 +83,7 @@ void add_validate_command(CLI::App& app, Commands& commands) {
            "\"brdf\" suites: hold this table of a foreign model's bin-integrated lobes (layout from "
            "`vgroove bins SUITE`) against the simulation instead of vgroove's model");
   val->add_flag("--force", va.force, "overwrite an existing report");
-  val->add_option("--shard", va.shard,
-                  "I/N, 1 <= I <= N <= 100000: run only the I-th of N parts of the suite's work and write it to "
-                  "--out as a partial report (`vgroove merge` joins them into this report)");
+  add_shard(val, va.shard, "`vgroove merge` joins them into this report");
 }
 
 void add_bins_command(CLI::App& app, Commands& commands) {

@@ -155,7 +155,7 @@ BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
   }
   {
     support::JsonObject t = root.object("thresholds");
-    s.sigmas = t.number("sigmas", 0.0, false, 100.0, true);
+    s.sigmas = t.number("sigmas", 0.0, false, kMaxSigmas, true);
     support::JsonObject m = t.object("model_tolerance");
     s.model_tolerance_flatland = m.number("flatland", 0.0, true, 2.0, true);
     s.model_tolerance_3d = m.number("3d", 0.0, true, 2.0, true);

@@ -7,6 +7,7 @@
 #include "vgroove/support/parallel.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/histogram_metrics.h"
+#include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
 #include "vgroove/validation/spec_lists.h"
 #include "vgroove/validation/traced_lobe.h"
@@ -211,19 +212,25 @@ ModelBins model_bins(const BrdfBatchFn& f, double theta_i_deg, const CheckBrdfOp
 }  // namespace
 
 void check_options(const CheckBrdfOptions& o) {
-  check_range(o.alpha > 0.0 && o.alpha <= kMaxAlpha, "alpha", o.alpha, "(0, 2]");
+  // Each range from validation/ranges.h, the one table every face reads.
+  const auto within = [](double v, double lo, bool lo_closed, double hi, bool hi_closed, const char* what) {
+    const bool ok = (lo_closed ? v >= lo : v > lo) && (hi_closed ? v <= hi : v < hi);
+    check_range(ok, what, v, support::interval_text(lo, lo_closed, hi, hi_closed));
+  };
+  within(o.alpha, kMinAlpha, true, kMaxAlpha, true, "alpha");
   if (o.theta_i_deg.empty()) throw support::UserError("theta_i_deg: give at least one incident angle");
-  for (double t : o.theta_i_deg) check_range(t >= 0.0 && t < 90.0, "theta_i_deg", t, "[0, 90)");
-  check_range(o.rays >= 1 && o.rays <= kMaxRays, "rays", static_cast<double>(o.rays), "[1, 1000000000]");
-  check_range(o.grooves >= 1 && o.grooves <= 10'000'000, "grooves", o.grooves, "[1, 10000000]");
-  check_range(o.theta_bins >= 1 && o.theta_bins <= 1000, "theta_bins", o.theta_bins, "[1, 1000]");
-  check_range(o.phi_bins >= 2 && o.phi_bins <= 1000 && o.phi_bins % 2 == 0, "phi_bins", o.phi_bins, "[2, 1000], even");
-  check_range(o.flatland_bins >= 1 && o.flatland_bins <= 100'000, "flatland_bins", o.flatland_bins, "[1, 100000]");
-  check_range(o.sigmas > 0.0 && o.sigmas <= 100.0, "sigmas", o.sigmas, "(0, 100]");
-  check_range(o.model_tolerance >= 0.0 && o.model_tolerance <= 1.0, "model_tolerance", o.model_tolerance, "[0, 1]");
-  check_range(o.quadrature_order >= 1 && o.quadrature_order <= 64, "quadrature_order", o.quadrature_order, "[1, 64]");
+  for (double t : o.theta_i_deg) within(t, 0.0, true, 90.0, false, "theta_i_deg");
+  within(static_cast<double>(o.rays), 1, true, static_cast<double>(kMaxRays), true, "rays");
+  within(o.grooves, 1, true, kMaxGrooves, true, "grooves");
+  within(o.theta_bins, 1, true, kMaxCheckBrdfThetaBins, true, "theta_bins");
+  check_range(o.phi_bins >= 2 && o.phi_bins <= kMaxCheckBrdfPhiBins && o.phi_bins % 2 == 0, "phi_bins", o.phi_bins,
+              support::interval_text(2, true, kMaxCheckBrdfPhiBins, true) + ", even");
+  within(o.flatland_bins, 1, true, kMaxFlatlandBins, true, "flatland_bins");
+  within(o.sigmas, 0.0, false, kMaxSigmas, true, "sigmas");
+  within(o.model_tolerance, 0.0, true, 1.0, true, "model_tolerance");
+  within(o.quadrature_order, 1, true, kMaxGaussLegendreOrder, true, "quadrature_order");
   check_range(o.max_model_evals >= 1, "max_model_evals", static_cast<double>(o.max_model_evals), "[1, 2^63)");
-  check_range(o.threads >= 0 && o.threads <= 1024, "threads", o.threads, "[0, 1024]");
+  within(o.threads, 0, true, kMaxThreads, true, "threads");
 }
 
 CheckBrdfCase check_lobes(const std::vector<double>& sim, const std::vector<double>& model, double rays, double grooves,

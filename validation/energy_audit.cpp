@@ -76,7 +76,7 @@ EnergyAuditSuite parse_energy_audit(const nlohmann::json& j, const std::string& 
   s.cycles_table = root.boolean_or("cycles_table", true);
   {
     support::JsonObject t = root.object("thresholds");
-    s.sigmas = t.number("sigmas", 0.0, false, 100.0, true);
+    s.sigmas = t.number("sigmas", 0.0, false, kMaxSigmas, true);
     s.vgroove_furnace = t.number("vgroove_furnace", 1e-15, true, 0.1, true);
     t.finish();
   }

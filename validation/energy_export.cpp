@@ -36,13 +36,15 @@ void check_energy_export(const EnergyExportOptions& o) {
                              "\" is not one of \"none\", \"vgroove\", \"smith_walk\"");
   if (o.model.ndf == NdfKind::phong)
     throw support::UserError("--ndf = phong: the export takes ggx or beckmann (Smith's G2 needs Lambda)");
-  if (o.ms_reference != "none" && (o.ms_F0.empty() || o.ms_F0.size() > 64))
-    throw support::UserError("--ms-F0 has " + std::to_string(o.ms_F0.size()) + " values, out of range [1, 64]");
+  if (o.ms_reference != "none" && (o.ms_F0.empty() || o.ms_F0.size() > kMaxExportF0))
+    throw support::UserError("--ms-F0 has " + std::to_string(o.ms_F0.size()) + " values, out of range [1, " +
+                             std::to_string(kMaxExportF0) + "]");
   for (double F0 : o.ms_F0)
     if (!(F0 >= 0.0 && F0 <= 1.0))
       throw support::UserError("--ms-F0 = " + support::number_text(F0) + " is out of range [0, 1]");
-  if (o.walk_paths < 1 || o.walk_paths > 1'000'000'000)
-    throw support::UserError("--rays = " + std::to_string(o.walk_paths) + " is out of range [1, 1000000000]");
+  if (o.walk_paths < 1 || o.walk_paths > kMaxAuditPaths)
+    throw support::UserError("--rays = " + std::to_string(o.walk_paths) + " is out of range [1, " +
+                             std::to_string(kMaxAuditPaths) + "]");
 }
 
 analytic::TableLayout export_layout(const EnergyExportOptions& o) {

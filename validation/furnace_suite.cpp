@@ -232,7 +232,7 @@ FurnaceSuite parse_furnace_suite(const nlohmann::json& j, const std::string& fil
   s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
   {
     support::JsonObject t = root.object("thresholds");
-    s.sigmas = t.number("sigmas", 0.0, false, 100.0, true);
+    s.sigmas = t.number("sigmas", 0.0, false, kMaxSigmas, true);
     support::JsonObject q = t.object("quadrature_tolerance");
     s.tolerance_flatland = q.number("flatland", 1e-15, true, 0.1, true);
     s.tolerance_3d = q.number("3d", 1e-15, true, 0.1, true);

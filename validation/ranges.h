@@ -52,11 +52,19 @@ inline constexpr double kMaxFresnelEta = 1000.0;
 inline constexpr double kMaxFresnelKappa = 1000.0;
 // Worker threads (0: all cores).
 inline constexpr int kMaxThreads = 1024;
+// A threshold's standard deviations (suites' and check_brdf's sigmas), in (0, kMaxSigmas].
+inline constexpr double kMaxSigmas = 100.0;
 // Point BRDF evaluations' largest max_k (`vgroove brdf`, Python brdf): the flatland sum (one pass
 // over its facet solutions, a few us a pair for any max_k) and the nonsymmetric sum (O(max_k^2),
 // about 3 ms a pair at 64).
 inline constexpr int kMaxFlatlandBrdfK = 4096;
 inline constexpr int kMaxNonsymmetricBrdfK = 1024;
+// `vgroove brdf --per-k`: the orders printed one by one (--per-k-max).
+inline constexpr int kMaxPrintedK = 1000;
+// The nonsymmetric sampler's partner table (Python sample/pdf of vgroove-nonsymmetric): its
+// relative tolerance per integrated piece.
+inline constexpr double kMinPartnerTolerance = 1e-12;
+inline constexpr double kMaxPartnerTolerance = 1e-2;
 // Histogram cells (bins x bounce-count rows) of one tally: each work item holds its own. Rows
 // k = 0..max_k (and one for larger k), max_k at most kMaxHistogramK.
 inline constexpr long long kMaxHistogramCells = 1'000'000;
@@ -73,6 +81,11 @@ inline constexpr int kMaxSamplerK = 100'000;
 inline constexpr int kMaxSampleCosBins = 1000;
 inline constexpr int kMaxSamplePhiBins = 1000;
 inline constexpr int kMaxSampleThetaBins = 10'000;
+// check_brdf: its 3D lobe's theta_o and phi_o cells (each integrated by a Gauss-Legendre rule of
+// at most kMaxGaussLegendreOrder points per axis).
+inline constexpr int kMaxCheckBrdfThetaBins = 1000;
+inline constexpr int kMaxCheckBrdfPhiBins = 1000;
+inline constexpr int kMaxGaussLegendreOrder = 64;
 
 // `vgroove energy`'s grid (check_energy_grid, named by the command line's flags): traced rays per
 // cell, the bounce orders, the cells.
@@ -86,7 +99,8 @@ inline constexpr int kMaxAlphaPoints = 50;
 // --audit: walk paths per cell (the energy sums stay below 2^63 / 2^32 per row) and bounce orders.
 inline constexpr long long kMaxAuditPaths = 1'000'000'000;
 inline constexpr int kMaxAuditK = 64;
-// --export's texels per axis.
+// --export's texels per axis, and its F0 axis's values (--ms-F0).
 inline constexpr int kMaxExportSize = 1024;
+inline constexpr std::size_t kMaxExportF0 = 64;
 
 }  // namespace vgroove::validation

@@ -14,6 +14,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -66,7 +67,44 @@ analytic::AdaptiveOptions cell_options(long samples) {
   return o;
 }
 
-// The cells and the histogram of the sampled directions.
+// A sampled direction as the histogram sees it: its order k (0: no direction), whether it went
+// beyond max_k, its weight (where weighed) and its cell (where k > 0).
+struct Drawn {
+  int k = 0;
+  bool beyond_max_k = false;
+  double weight = 0.0;
+  std::size_t cell = 0;
+};
+
+// The histogram of the sampled directions and the weights' moments, in either dimension:
+// `make_draw()` gives the dimension's draw(rng, weigh) (made inside the timing: the nonsymmetric
+// sampler builds its partner table there); the stream is the dimension's.
+template <class MakeDraw>
+void sample_cells(Chi2Outcome& out, std::uint64_t stream, MakeDraw make_draw, const std::atomic<bool>* cancel) {
+  const Chi2Spec& s = out.spec;
+  Chi2Table& t = out.table;
+  t.observed.assign(static_cast<std::size_t>(t.rows) * static_cast<std::size_t>(t.cols), 0.0);
+  const auto t0 = Clock::now();
+  sim::Rng rng(s.seed, 0x5a3d, stream);
+  Moments w;
+  const auto draw = make_draw();
+  const long weighted = s.nonsymmetric ? std::min(s.samples, kNonsymmetricWeightSamples) : s.samples;
+  for (long n = 0; n < s.samples; ++n) {
+    stop_if(cancel);
+    const Drawn x = draw(rng, n < weighted);
+    if (n < weighted) w.add(x.weight);
+    if (x.k == 0) {
+      t.observed_none += 1.0;
+      if (x.beyond_max_k) out.observed_beyond_max_k += 1.0;
+      continue;
+    }
+    t.observed[x.cell] += 1.0;
+  }
+  out.sample_s = seconds_since(t0);
+  w.into(out, weighted);
+}
+
+// 3D: cells over cos(theta_o) x phi_o.
 void sample_3d(Chi2Outcome& out, const std::atomic<bool>* cancel) {
   const Chi2Spec& s = out.spec;
   Chi2Table& t = out.table;
@@ -74,41 +112,35 @@ void sample_3d(Chi2Outcome& out, const std::atomic<bool>* cancel) {
   t.cols = s.phi_bins;
   for (int r = 0; r <= t.rows; ++r) t.row_edges.push_back(static_cast<double>(r) / t.rows);
   for (int c = 0; c <= t.cols; ++c) t.col_edges.push_back(-std::numbers::pi + 2.0 * std::numbers::pi * c / t.cols);
-  t.observed.assign(static_cast<std::size_t>(t.rows * t.cols), 0.0);
   const analytic::Dir3 i = analytic::dir3(s.theta_i, std::numbers::pi);
   const analytic::SamplerOptions opt{s.strategy, s.max_k};
-  const auto t0 = Clock::now();
-  sim::Rng rng(s.seed, 0x5a3d, 0);
-  Moments w;
-  const analytic::NonsymmetricSampler ns = s.nonsymmetric ? nonsymmetric_sampler(s) : analytic::NonsymmetricSampler{};
-  const long weighted = s.nonsymmetric ? std::min(s.samples, kNonsymmetricWeightSamples) : s.samples;
-  for (long n = 0; n < s.samples; ++n) {
-    stop_if(cancel);
-    analytic::VgrooveSample3d x;
-    if (s.nonsymmetric) {
-      const std::array<double, 5> u = uniforms5(rng);
-      const analytic::NonsymmetricDraw3d d = analytic::draw_nonsymmetric_3d(ns, i, u);
-      x.o = d.o;
-      x.k = d.k;
-      x.beyond_max_k = d.beyond_max_k;
-      if (n < weighted) w.add(analytic::sample_nonsymmetric_3d(ns, i, u).weight);
-    } else {
-      x = analytic::sample_vgroove_3d(i, uniforms(rng), s.ndf, s.alpha, opt);
-      w.add(x.weight);
-    }
-    if (x.k == 0) {
-      t.observed_none += 1.0;
-      if (x.beyond_max_k) out.observed_beyond_max_k += 1.0;
-      continue;
-    }
-    const int r = std::clamp(static_cast<int>(x.o.z * t.rows), 0, t.rows - 1);
-    const double phi = std::atan2(x.o.y, x.o.x);
-    const int c =
-        std::clamp(static_cast<int>((phi + std::numbers::pi) / (2.0 * std::numbers::pi) * t.cols), 0, t.cols - 1);
-    t.observed[static_cast<std::size_t>(r * t.cols + c)] += 1.0;
-  }
-  out.sample_s = seconds_since(t0);
-  w.into(out, weighted);
+  sample_cells(
+      out, 0,
+      [&] {
+        const analytic::NonsymmetricSampler ns =
+            s.nonsymmetric ? nonsymmetric_sampler(s) : analytic::NonsymmetricSampler{};
+        return [&s, &t, i, opt, ns](sim::Rng& rng, bool weigh) {
+          Drawn d;
+          analytic::Dir3 o{};
+          if (s.nonsymmetric) {
+            const std::array<double, 5> u = uniforms5(rng);
+            const analytic::NonsymmetricDraw3d x = analytic::draw_nonsymmetric_3d(ns, i, u);
+            o = x.o, d.k = x.k, d.beyond_max_k = x.beyond_max_k;
+            if (weigh) d.weight = analytic::sample_nonsymmetric_3d(ns, i, u).weight;
+          } else {
+            const analytic::VgrooveSample3d x = analytic::sample_vgroove_3d(i, uniforms(rng), s.ndf, s.alpha, opt);
+            o = x.o, d.k = x.k, d.beyond_max_k = x.beyond_max_k, d.weight = x.weight;
+          }
+          if (d.k == 0) return d;
+          const int r = std::clamp(static_cast<int>(o.z * t.rows), 0, t.rows - 1);
+          const double phi = std::atan2(o.y, o.x);
+          const int c =
+              std::clamp(static_cast<int>((phi + std::numbers::pi) / (2.0 * std::numbers::pi) * t.cols), 0, t.cols - 1);
+          d.cell = static_cast<std::size_t>(r * t.cols + c);
+          return d;
+        };
+      },
+      cancel);
 }
 
 // The expected counts: the density integrated over each cell.
@@ -183,6 +215,7 @@ void expect_3d(Chi2Outcome& out, const HeldDensity* held, const std::atomic<bool
                                      : analytic::sampler_beyond_max_k_probability_3d(i, s.ndf, s.alpha, opt, 1e-9);
 }
 
+// Flatland: cells over theta_o in [-90, 90] deg.
 void sample_flatland(Chi2Outcome& out, const std::atomic<bool>* cancel) {
   const Chi2Spec& s = out.spec;
   Chi2Table& t = out.table;
@@ -190,38 +223,32 @@ void sample_flatland(Chi2Outcome& out, const std::atomic<bool>* cancel) {
   t.cols = s.theta_bins;
   t.row_edges = {0.0, 1.0};
   for (int c = 0; c <= t.cols; ++c) t.col_edges.push_back(-0.5 * std::numbers::pi + std::numbers::pi * c / t.cols);
-  t.observed.assign(static_cast<std::size_t>(t.cols), 0.0);
   const analytic::SamplerOptions opt{s.strategy, s.max_k};
-  const auto t0 = Clock::now();
-  sim::Rng rng(s.seed, 0x5a3d, 1);
-  Moments w;
-  const analytic::NonsymmetricSampler ns = s.nonsymmetric ? nonsymmetric_sampler(s) : analytic::NonsymmetricSampler{};
-  const long weighted = s.nonsymmetric ? std::min(s.samples, kNonsymmetricWeightSamples) : s.samples;
-  for (long n = 0; n < s.samples; ++n) {
-    stop_if(cancel);
-    analytic::VgrooveSampleFlatland x;
-    if (s.nonsymmetric) {
-      const std::array<double, 5> u = uniforms5(rng);
-      const analytic::NonsymmetricDrawFlatland d = analytic::draw_nonsymmetric_flatland(ns, s.theta_i, u);
-      x.theta_o = d.theta_o;
-      x.k = d.k;
-      x.beyond_max_k = d.beyond_max_k;
-      if (n < weighted) w.add(analytic::sample_nonsymmetric_flatland(ns, s.theta_i, u).weight);
-    } else {
-      x = analytic::sample_vgroove_flatland(s.theta_i, uniforms(rng), s.ndf, s.alpha, opt);
-      w.add(x.weight);
-    }
-    if (x.k == 0) {
-      t.observed_none += 1.0;
-      if (x.beyond_max_k) out.observed_beyond_max_k += 1.0;
-      continue;
-    }
-    const int c =
-        std::clamp(static_cast<int>((x.theta_o + 0.5 * std::numbers::pi) / std::numbers::pi * t.cols), 0, t.cols - 1);
-    t.observed[static_cast<std::size_t>(c)] += 1.0;
-  }
-  out.sample_s = seconds_since(t0);
-  w.into(out, weighted);
+  sample_cells(
+      out, 1,
+      [&] {
+        const analytic::NonsymmetricSampler ns =
+            s.nonsymmetric ? nonsymmetric_sampler(s) : analytic::NonsymmetricSampler{};
+        return [&s, &t, opt, ns](sim::Rng& rng, bool weigh) {
+          Drawn d;
+          double theta_o = 0.0;
+          if (s.nonsymmetric) {
+            const std::array<double, 5> u = uniforms5(rng);
+            const analytic::NonsymmetricDrawFlatland x = analytic::draw_nonsymmetric_flatland(ns, s.theta_i, u);
+            theta_o = x.theta_o, d.k = x.k, d.beyond_max_k = x.beyond_max_k;
+            if (weigh) d.weight = analytic::sample_nonsymmetric_flatland(ns, s.theta_i, u).weight;
+          } else {
+            const analytic::VgrooveSampleFlatland x =
+                analytic::sample_vgroove_flatland(s.theta_i, uniforms(rng), s.ndf, s.alpha, opt);
+            theta_o = x.theta_o, d.k = x.k, d.beyond_max_k = x.beyond_max_k, d.weight = x.weight;
+          }
+          if (d.k == 0) return d;
+          d.cell = static_cast<std::size_t>(std::clamp(
+              static_cast<int>((theta_o + 0.5 * std::numbers::pi) / std::numbers::pi * t.cols), 0, t.cols - 1));
+          return d;
+        };
+      },
+      cancel);
 }
 
 void expect_flatland(Chi2Outcome& out, const HeldDensity* held, const std::atomic<bool>* cancel) {

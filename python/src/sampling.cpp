@@ -73,8 +73,10 @@ bool parse_sampler_model(const std::string& m) {
 // The nonsymmetric sampler (its partner table), or UserError where the partner law does not exist.
 analytic::NonsymmetricSampler nonsymmetric_sampler(NdfKind ndf, double alpha, const analytic::SamplerOptions& opt,
                                                    bool flat, double tolerance) {
-  if (!(tolerance >= 1e-12 && tolerance <= 1e-2))
-    throw support::UserError("tolerance = " + support::number_text(tolerance) + " is out of range [1e-12, 0.01]");
+  if (!(tolerance >= validation::kMinPartnerTolerance && tolerance <= validation::kMaxPartnerTolerance))
+    throw support::UserError(
+        "tolerance = " + support::number_text(tolerance) + " is out of range " +
+        support::interval_text(validation::kMinPartnerTolerance, true, validation::kMaxPartnerTolerance, true));
   if (ndf == NdfKind::phong && alpha > 1.0)
     throw support::UserError("alpha = " + support::number_text(alpha) +
                              " is out of range (0, 1] for model vgroove-nonsymmetric with ndf phong (the partner "

@@ -745,6 +745,7 @@ TEST(CliInput, NewCommandsReadOptionsStrictly) {
       {"energy --max-k 1001", "--max-k = 1001 is out of range [1, 1000]"},
       {"energy --threads 2000", "--threads = 2000 is out of range [0, 1024]"},
       {"energy --shard ''", "--shard = \"\" is empty"},
+      {"validate x.json --shard ''", "--shard = \"\" is empty"},
       {"energy --shard 3/2 --out " + quoted(out), "--shard = 3/2 is out of range"},
       {"energy --shard +1/2 --out " + quoted(out), "--shard = \"+1/2\" is not of the form"},
       {"merge ''", "parts = \"\" is empty"},

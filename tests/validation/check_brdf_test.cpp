@@ -184,7 +184,15 @@ TEST(CheckBrdf, BadOptionsNameTheField) {
     check_options(o);
     FAIL() << "alpha 3 accepted";
   } catch (const support::UserError& e) {
-    EXPECT_STREQ(e.what(), "alpha = 3 is out of range (0, 2]");
+    EXPECT_STREQ(e.what(), "alpha = 3 is out of range [0.01, 2]");
+  }
+  // The one alpha range of every face (validation/ranges.h), below as above.
+  o.alpha = 0.005;
+  try {
+    check_options(o);
+    FAIL() << "alpha 0.005 accepted";
+  } catch (const support::UserError& e) {
+    EXPECT_STREQ(e.what(), "alpha = 0.005 is out of range [0.01, 2]");
   }
   o = {};
   o.theta_i_deg = {10, 90};
