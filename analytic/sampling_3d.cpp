@@ -2,6 +2,7 @@
 
 #include "vgroove/analytic/sampler_failure_share.h"
 
+#include "vgroove/analytic/detail/smith_vndf.h"
 #include "vgroove/analytic/kaleidoscope.h"
 #include "vgroove/analytic/kaleidoscope_solutions.h"
 #include "vgroove/analytic/quadrature.h"
@@ -31,7 +32,7 @@ Dir3 sample_facet(const Dir3& i, const std::array<double, 4>& u, NdfKind ndf, do
     case FacetStrategy::vndf:
       return sample_vcavity_vndf(ndf, alpha, i, u[0], u[1], u[2]);
     case FacetStrategy::smith_vndf:
-      return sample_ggx_vndf(alpha, i, u[0], u[1]);
+      return sample_smith_vndf(ndf, alpha, i, u[0], u[1]);
     case FacetStrategy::bounded_vndf:
       return sample_ggx_bounded_vndf(alpha, i, u[0], u[1]);
   }
@@ -64,11 +65,11 @@ struct StrategyTerm {
   double alpha;
   FacetStrategy strategy;
   double smith_norm, bounded_norm;  // the denominators of Tokuyoshi and Eto 2024, Eq. (8), (10)
-  StrategyTerm(const Dir3& i_, double alpha_, FacetStrategy s)
+  StrategyTerm(const Dir3& i_, NdfKind ndf, double alpha_, FacetStrategy s)
       : i(i_),
         alpha(alpha_),
         strategy(s),
-        smith_norm(s == FacetStrategy::smith_vndf ? ggx_vndf_norm(alpha_, i_) : 1.0),
+        smith_norm(s == FacetStrategy::smith_vndf ? smith_vndf_norm(ndf, alpha_, i_) : 1.0),
         bounded_norm(s == FacetStrategy::bounded_vndf ? ggx_bounded_vndf_norm(alpha_, i_) : 1.0) {}
   double operator()(const GrooveFrame& f, const Solution& q, double D) const {
     switch (strategy) {
@@ -105,7 +106,7 @@ PdfAndBrdf vgroove_pdf_and_brdf_3d(const Dir3& i, const Dir3& o, NdfKind ndf, do
   GrooveFrame f;
   if (!groove_frame(i, o, f)) return {kInf, kInf};
   PdfAndBrdf r;
-  const StrategyTerm term(i, alpha, opt.strategy);
+  const StrategyTerm term(i, ndf, alpha, opt.strategy);
   for_each_solution(
       f.x, 1, opt.max_k,
       [&](const Solution& q) {
@@ -126,7 +127,7 @@ double vgroove_pdf_3d_k(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha,
   GrooveFrame f;
   if (!groove_frame(i, o, f)) return k_hi >= 2 ? kInf : 0.0;
   double pdf = 0.0;
-  const StrategyTerm term(i, alpha, opt.strategy);
+  const StrategyTerm term(i, ndf, alpha, opt.strategy);
   for_each_solution(
       f.x, std::max(1, k_lo), std::min(k_hi, opt.max_k),
       [&](const Solution& q) { pdf += term(f, q, D_cs(ndf, q.S, q.C, alpha)) * jacobian(f, q); },
@@ -193,7 +194,8 @@ double failure_integral(const Dir3& i, NdfKind ndf, double alpha, const SamplerO
   // ds / (d theta_v d psi) = sin(theta_s) / 2. q is written with cos(theta_s) = sin(v/2) and
   // |i.s| = c f_a from Eq. (6), not from the vector s: near vertical facets (v -> 0) theta_s no
   // longer resolves v, and D ~ cos^p (Phong, p < 0) would carry the rounding into the integral.
-  const double smith_norm = ggx_vndf_norm(alpha, i), bounded_norm = ggx_bounded_vndf_norm(alpha, i);
+  const double smith_norm = opt.strategy == FacetStrategy::smith_vndf ? smith_vndf_norm(ndf, alpha, i) : 1.0;
+  const double bounded_norm = ggx_bounded_vndf_norm(alpha, i);
   auto integrand = [&](double theta_v, double psi) {
     const double S = std::sin(0.5 * theta_v), C = std::cos(0.5 * theta_v);  // cos, sin of theta_s
     const double theta_m = 0.5 * (std::numbers::pi - theta_v);
@@ -213,7 +215,7 @@ double failure_integral(const Dir3& i, NdfKind ndf, double alpha, const SamplerO
         q = D * g.c * (p.f_b > 0.0 ? 2.0 * S * std::cos(g.t_i) : p.f_a) / i.z;
         break;
       case FacetStrategy::smith_vndf:
-        q = 2.0 * D * g.c * p.f_a / smith_norm;  // Tokuyoshi and Eto 2024, Eq. (8)
+        q = 2.0 * D * g.c * p.f_a / smith_norm;  // Tokuyoshi and Eto 2024, Eq. (8); smith_vndf.h
         break;
       case FacetStrategy::bounded_vndf:
         q = ggx_bounded_vndf_covers(alpha, i, s) ? 2.0 * D * g.c * p.f_a / bounded_norm : 0.0;  // Eq. (10)

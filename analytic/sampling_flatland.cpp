@@ -1,5 +1,6 @@
 #include "vgroove/analytic/sampling_flatland.h"
 
+#include "vgroove/analytic/detail/smith_vndf.h"
 #include "vgroove/analytic/kaleidoscope.h"
 #include "vgroove/analytic/kaleidoscope_solutions.h"
 #include "vgroove/analytic/quadrature.h"
@@ -25,7 +26,7 @@ double sample_facet2(double theta_i, const std::array<double, 4>& u, NdfKind ndf
       return sample_vcavity_vndf2(ndf, alpha, theta_i, u[0], u[1], u[2]);
     case FacetStrategy::smith_vndf:
     case FacetStrategy::bounded_vndf:  // no flatland bounded VNDF (facet_strategy.h): refused by the callers
-      return sample_ggx_vndf2(alpha, theta_i, u[0], u[1]);
+      return sample_smith_vndf2(ndf, alpha, theta_i, u[0], u[1]);
   }
   return 0.0;
 }
@@ -38,7 +39,7 @@ double facet_pdf2(double theta_i, double theta_s, NdfKind ndf, double alpha, Fac
       return vcavity_vndf2_pdf(ndf, alpha, theta_i, theta_s);
     case FacetStrategy::smith_vndf:
     case FacetStrategy::bounded_vndf:
-      return ggx_vndf2_pdf(alpha, theta_i, theta_s);
+      return smith_vndf2_pdf(ndf, alpha, theta_i, theta_s);
   }
   return 0.0;
 }
@@ -151,7 +152,7 @@ double failure_integral(double theta_i, NdfKind ndf, double alpha, const Sampler
   // Eq. (6), not from theta_s: near vertical facets (v -> 0) theta_s = pi/2 - v/2 no longer
   // resolves v, and D2 ~ cos^p (Phong, p < 0) would carry the rounding into the tail's integral.
   const double ci = std::cos(theta_i);
-  const double g1 = opt.strategy == FacetStrategy::smith_vndf ? G1_smith_ggx(theta_i, alpha) : 1.0;
+  const double g1 = opt.strategy == FacetStrategy::smith_vndf ? smith_g1(ndf, alpha, theta_i) : 1.0;
   auto integrand = [&](double theta_v, FacetSide side) {
     const double S = std::sin(0.5 * theta_v), C = std::cos(0.5 * theta_v);  // cos, sin of theta_s
     const double D2v = D2_cs(ndf, S, C, alpha);

@@ -1,6 +1,7 @@
 #include "vgroove/analytic/sampling_nonsymmetric.h"
 
 #include "vgroove/analytic/brdf_nonsymmetric.h"
+#include "vgroove/analytic/detail/smith_vndf.h"
 #include "vgroove/analytic/kaleidoscope_nonsymmetric.h"
 #include "vgroove/analytic/partner_distribution.h"
 #include "vgroove/analytic/quadrature.h"
@@ -37,7 +38,7 @@ Dir3 sample_facet(const NonsymmetricSampler& S, const Dir3& i, const std::array<
     case FacetStrategy::vndf:
       return sample_vcavity_vndf(S.ndf, S.alpha, i, u[0], u[1], u[2]);
     case FacetStrategy::smith_vndf:
-      return sample_ggx_vndf(S.alpha, i, u[0], u[1]);
+      return sample_smith_vndf(S.ndf, S.alpha, i, u[0], u[1]);
     case FacetStrategy::bounded_vndf:
       return sample_ggx_bounded_vndf(S.alpha, i, u[0], u[1]);
   }
@@ -51,7 +52,7 @@ double facet_pdf(const NonsymmetricSampler& S, const Dir3& i, const Dir3& s) {
     case FacetStrategy::vndf:
       return vcavity_vndf_pdf(S.ndf, S.alpha, i, s);
     case FacetStrategy::smith_vndf:
-      return ggx_vndf_pdf(S.alpha, i, s);
+      return smith_vndf_pdf(S.ndf, S.alpha, i, s);
     case FacetStrategy::bounded_vndf:
       return ggx_bounded_vndf_pdf(S.alpha, i, s);
   }
@@ -66,7 +67,7 @@ double sample_facet2(const NonsymmetricSampler& S, double theta_i, const std::ar
       return sample_vcavity_vndf2(S.ndf, S.alpha, theta_i, u[0], u[1], u[2]);
     case FacetStrategy::smith_vndf:
     case FacetStrategy::bounded_vndf:  // refused by make_nonsymmetric_sampler in flatland
-      return sample_ggx_vndf2(S.alpha, theta_i, u[0], u[1]);
+      return sample_smith_vndf2(S.ndf, S.alpha, theta_i, u[0], u[1]);
   }
   return 0.0;
 }
@@ -79,7 +80,7 @@ double facet_pdf2(const NonsymmetricSampler& S, double theta_i, double theta_s) 
       return vcavity_vndf2_pdf(S.ndf, S.alpha, theta_i, theta_s);
     case FacetStrategy::smith_vndf:
     case FacetStrategy::bounded_vndf:
-      return ggx_vndf2_pdf(S.alpha, theta_i, theta_s);
+      return smith_vndf2_pdf(S.ndf, S.alpha, theta_i, theta_s);
   }
   return 0.0;
 }

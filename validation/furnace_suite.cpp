@@ -226,7 +226,8 @@ FurnaceSuite parse_furnace_suite(const nlohmann::json& j, const std::string& fil
     for (SurfaceDim d : s.dims)
       if (!analytic::strategy_supports(s.strategy, n, d == SurfaceDim::flatland))
         root.fail("strategy", "= \"" + strategy + "\" does not exist for " + analytic::ndf_name(n) + " in " +
-                                  surface_dim_name(d) + " (smith-vndf: GGX only; bounded-vndf: GGX in 3D only)");
+                                  surface_dim_name(d) +
+                                  " (smith-vndf: GGX or Student-T only; bounded-vndf: GGX in 3D only)");
   s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
   s.grooves = static_cast<int>(root.integer("grooves", 1, 10'000'000));
   s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));

@@ -37,7 +37,8 @@ analytic::FacetStrategy read_strategy(support::JsonObject& o, const BrdfCase& c)
   const analytic::FacetStrategy s = *analytic::strategy_from_name(name);
   if (!analytic::strategy_supports(s, c.ndf, c.dim == SurfaceDim::flatland))
     o.fail("strategy", "= \"" + name + "\" does not exist for " + analytic::ndf_name(c.ndf) + " in " +
-                           surface_dim_name(c.dim) + " (smith-vndf: GGX only; bounded-vndf: GGX in 3D only)");
+                           surface_dim_name(c.dim) +
+                           " (smith-vndf: GGX or Student-T only; bounded-vndf: GGX in 3D only)");
   return s;
 }
 
