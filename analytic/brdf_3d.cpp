@@ -28,7 +28,7 @@ double dot(const Dir3& a, const Dir3& b) { return a.x * b.x + a.y * b.y + a.z * 
 // and o.a, products of numbers of order 1 whose sum is of order c, carry ~1e-16 absolute from
 // the inputs alone (a unit vector in double is unit to ~1e-16), so c_i and c_o, equal for unit
 // vectors, differ by ~1e-16 / c relative, and the projected angles t_i, t_o disagree with h by
-// as much: below c ~ 1e-7 the k = 1 term was 100 times Cook-Torrance near the mirror direction.
+// as much: below c ~ 1e-7 the k = 1 term would be 100 times Cook-Torrance near the mirror direction.
 // Below kAlongTheGroove the two projections are formed as unit vectors have them:
 // i.a + o.a = |H_xy| and i.a - o.a = (|i_xy|^2 - |o_xy|^2) / |H_xy| = (o.z^2 - i.z^2) / |H_xy|
 // (|d_xy|^2 = 1 - d.z^2), both accurate to a few ulp of c, and i.h + o.h = |H|. Above it the
