@@ -100,8 +100,8 @@ namespace brdf_passes {
 // H = i + o = 2 (i.h) h without normalizing it first (a = H_xy / |H_xy|, i.a = (i_x H_x + i_y H_y) / |H_xy|,
 // i.h = |H| / 2), the two angles from atan2_pair (at once, within 3 ulp), the quotients as
 // products by reciprocals. groove_frame costs about one Cook-Torrance evaluation, mostly in its
-// chain hypot -> a -> i.a -> atan2; with this one the batched GGX evaluation takes ~125 ns
-// instead of ~180 (README, "The BRDF's cost"). Symmetric in (i, o) as groove_frame is.
+// chain hypot -> a -> i.a -> atan2 (what each frame costs: docs/performance.md, "The BRDF's cost
+// against Cook-Torrance"). Symmetric in (i, o) as groove_frame is.
 // Only where both are well conditioned; elsewhere groove_frame, bit for bit:
 //  - h within 1e-100 of n: sqrt(H_x^2 + H_y^2) would lose the precision hypot keeps;
 //  - i.z + o.z <= 1e-2: i.h = (i.H + o.H) / (2 |H|) in the library's frame loses 2 eps / |H|

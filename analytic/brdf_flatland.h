@@ -27,7 +27,7 @@ namespace vgroove::analytic {
 // the ends nearly meet and at the horizon.
 double flatland_brdf_k(NdfKind ndf, double alpha, double theta_i, double theta_o, int k);
 // Sum over k = 1..max_k in one pass over those solutions, whatever max_k is: the cost of a few k
-// (at max_k 4096, ~2 us a pair where visiting every k and m took ~0.4 s).
+// (docs/performance.md, BM_flatland_brdf).
 double flatland_brdf(NdfKind ndf, double alpha, double theta_i, double theta_o, int max_k);
 // The same as flatland_brdf (the name the furnace suite uses).
 double flatland_brdf_fast(NdfKind ndf, double alpha, double theta_i, double theta_o, int max_k);

@@ -40,7 +40,7 @@ struct NonsymmetricLobeOptions {
 // The light at theta_i in (-pi/2, pi/2) (flatland, signed) or [0, pi/2) (3D, azimuth pi).
 // axes_azimuth: 3D, the azimuth of the alpha_x axis in the lobe's frame (light at pi); a light at
 // azimuth phi_i over the roughness axes is axes_azimuth = pi - phi_i.
-// Flatland's options: within ~1e-6 per bin of Eq. (23) integrated at 90 bins, ~30-170 ms per case.
+// Flatland's options: within ~1e-6 per bin of Eq. (23) integrated at 90 bins (cost: docs/performance.md).
 NonsymmetricLobeOptions flatland_options();
 
 FlatlandLobe flatland_nonsymmetric_lobe(const NonsymmetricModel& m, double theta_i, int bins, int max_k,
