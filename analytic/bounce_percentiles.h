@@ -1,23 +1,13 @@
-// vgroove analytic: how many bounces a rough surface's grooves ask for — the rule behind Table 2 of
+// vgroove analytic: how many bounces a rough surface's grooves ask for, the rule behind Table 2 of
 // Lee, Jarabo, Jeon, Gutierrez, Kim, "Practical Multiple Scattering for Rough Surfaces", ACM TOG
-// 37(6), 2018 (Sec. 8, "Number of bounces").
-//
-// The paper's rule, as far as it is printed: "as theta_v decreases ... the number of bounces
-// increase. Following this relationship, we analyze the number of bounces for different
-// percentiles of D(s)". It does not say in which measure the percentile is taken, at which
-// incident angle the bounce count is read, or how Phong's exponent follows alpha. These choices
-// reproduce all 27 printed values (tests/analytic/bounce_percentiles_test.cpp):
-//   - the percentile q of the facet angle theta_m in the projected-area measure D(s) cos(theta_s) ds
-//     (the fraction of the macrosurface under facets steeper than theta_m is 1 - q; it is also the
-//     paper's sampling pdf |s.n| D(s), Sec. 6), in closed form:
-//       GGX:      tan^2 theta_m = alpha^2 q / (1 - q)          (CDF tan^2 / (alpha^2 + tan^2)),
-//       Beckmann: tan^2 theta_m = -alpha^2 ln(1 - q)           (CDF 1 - exp(-tan^2 / alpha^2)),
-//       Phong:    cos theta_m = (1 - q)^(1 / (alpha_p + 2))    (CDF 1 - cos^(alpha_p + 2)),
-//     with alpha_p = 2 / alpha^2 - 2 (Walter et al. 2007, as analytic/ndf.h);
-//   - the groove of that facet angle, aperture theta_v = pi - 2 theta_m, lit at normal incidence:
-//     N = Eq. (4) at theta_i = 0, floor(pi / theta_v) + 1, the largest count its rays make.
-// Other readings are computed too (solid-angle measure D(s) ds; the flatland measure D2 cos), so
-// the report can show that they do not reproduce the table.
+// 37(6), 2018 (Sec. 8). The reading that reproduces all 27 printed values: the percentile q of
+// the facet angle in the projected-area measure D(s) cos(theta_s) ds (closed-form quantiles per
+// NDF), the groove of that facet angle lit at normal incidence, N = Eq. (4) at theta_i = 0,
+// floor(pi / theta_v) + 1. Other readings (solid-angle measure, flatland D2 cos) are computed too,
+// so the report can show that they do not reproduce the table.
+// Tests: tests/analytic/bounce_percentiles_test.cpp (Table2.ProjectedAreaPercentileAtNormalIncidenceReproducesAll27,
+// Table2.ClosedFormQuantilesInvertTheNdf, Table2.OtherMeasuresDisagreeSomewhere, Table2.GgxAlphaOneHandValue).
+// Derivation: docs/derivations/kaleidoscope.md.
 #pragma once
 
 #include "vgroove/analytic/ndf.h"

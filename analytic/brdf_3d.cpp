@@ -28,7 +28,7 @@ double dot(const Dir3& a, const Dir3& b) { return a.x * b.x + a.y * b.y + a.z * 
 // and o.a, products of numbers of order 1 whose sum is of order c, carry ~1e-16 absolute from
 // the inputs alone (a unit vector in double is unit to ~1e-16), so c_i and c_o, equal for unit
 // vectors, differ by ~1e-16 / c relative, and the projected angles t_i, t_o disagree with h by
-// as much: below c ~ 1e-7 the k = 1 term was 100 times Cook-Torrance near the mirror direction.
+// as much: below c ~ 1e-7 the k = 1 term would be 100 times Cook-Torrance near the mirror direction.
 // Below kAlongTheGroove the two projections are formed as unit vectors have them:
 // i.a + o.a = |H_xy| and i.a - o.a = (|i_xy|^2 - |o_xy|^2) / |H_xy| = (o.z^2 - i.z^2) / |H_xy|
 // (|d_xy|^2 = 1 - d.z^2), both accurate to a few ulp of c, and i.h + o.h = |H|. Above it the
@@ -100,8 +100,8 @@ namespace brdf_passes {
 // H = i + o = 2 (i.h) h without normalizing it first (a = H_xy / |H_xy|, i.a = (i_x H_x + i_y H_y) / |H_xy|,
 // i.h = |H| / 2), the two angles from atan2_pair (at once, within 3 ulp), the quotients as
 // products by reciprocals. groove_frame costs about one Cook-Torrance evaluation, mostly in its
-// chain hypot -> a -> i.a -> atan2; with this one the batched GGX evaluation takes ~125 ns
-// instead of ~180 (README, "The BRDF's cost"). Symmetric in (i, o) as groove_frame is.
+// chain hypot -> a -> i.a -> atan2 (what each frame costs: docs/performance.md, "The BRDF's cost
+// against Cook-Torrance"). Symmetric in (i, o) as groove_frame is.
 // Only where both are well conditioned; elsewhere groove_frame, bit for bit:
 //  - h within 1e-100 of n: sqrt(H_x^2 + H_y^2) would lose the precision hypot keeps;
 //  - i.z + o.z <= 1e-2: i.h = (i.H + o.H) / (2 |H|) in the library's frame loses 2 eps / |H|

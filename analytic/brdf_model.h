@@ -26,9 +26,9 @@ std::optional<BrdfModel> brdf_model_from_name(std::string_view name);
 // brdf --max-k`, BrdfEvalOptions::max_k = 0, Python's vgroove.BRDF and vgroove.brdf):
 //   vgroove, 3D             kAllOrders: every order (the single pass visits only the orders Eq. (4)
 //                           allows, so its cost does not grow with max_k, brdf_3d.h);
-//   vgroove, flatland       kFlatlandDefaultMaxK = 4096: the sum costs O(max_k^2) (about 2 s per
-//                           pair at 4096 on one core of the shared 2-core host, 3 ms at 64); the
-//                           orders beyond it come from grooves narrower than (pi + 2 |t_i|) / 4097;
+//   vgroove, flatland       kFlatlandDefaultMaxK = 4096: one pass over the facet solutions Eq. (4)
+//                           allows, whatever max_k (docs/performance.md); the orders beyond it come from grooves
+//                           narrower than (pi + 2 |t_i|) / 4097;
 //   vgroove-nonsymmetric    kNonsymmetricDefaultMaxK = 64: Eq. (23) integrates over the partner for
 //                           each order, O(max_k^2) (GGX alpha 0.5: the values at 64 and 256 differ by
 //                           about 6e-8 relative);
@@ -44,8 +44,8 @@ struct BrdfEvalOptions {
   NdfKind ndf = NdfKind::ggx;
   double alpha = 0.5;
   bool flatland = false;
-  // Orders summed, k = 1..max_k; 0: the model's default (default_max_k above). The flatland sum
-  // and the nonsymmetric model cost O(max_k^2): callers bound max_k there.
+  // Orders summed, k = 1..max_k; 0: the model's default (default_max_k above). The nonsymmetric
+  // model costs O(max_k^2); callers bound max_k there and in flatland (validation/ranges.h).
   int max_k = 0;
   // Orders reported one by one, k = 1..per_k (0: none); the total includes every order up to max_k.
   int per_k = 0;

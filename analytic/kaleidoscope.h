@@ -1,24 +1,16 @@
-// vgroove analytic: the kaleidoscopic V-groove model for symmetric grooves.
-//
-// Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces".
-// ACM TOG 37(6), 2018. Sec. 4.1, Eq. (4)-(6), App. B.
-//
-// Sign convention (the same as sim/geometry.h, written again here because analytic/ must not
-// include sim/): angles from the macrosurface normal n, counter-clockwise positive; a direction
-// at angle theta is (-sin theta, cos theta). theta_i is the direction towards the light, theta_o
-// the exit direction (a flat mirror gives theta_o = -theta_i). The groove's apex is the origin;
-// its left facet runs to the rim a at angle +theta_v/2, the right facet to b at -theta_v/2, both
-// of unit length (the paper's bounding circle).
-//
-// The paper's equations are written for light that hits the left facet first; the right facet
-// is its mirror image (theta_i -> -theta_i, and theta_o -> -theta_o on the way back).
-//
-// Offsets: f(p) = i_perp . p with i_perp = (-cos theta_i, -sin theta_i), the perpendicular of i
-// oriented so that the left rim has f_a > 0 whenever the left facet is lit. For a point at angle
-// theta on the unit circle, f = sin(theta - theta_i).
-//
-// The printed Eq. (6) clamps only f_b; the corrected form clamps f_k too (see
-// docs/ERRATA.md, E1). Both are available, so a suite can report the printed form's error.
+// vgroove analytic: the kaleidoscopic V-groove model for symmetric grooves: the bounce count
+// (Eq. 4), the exit angle (Eq. 5) and the shares of the beam per count (Eq. 6, printed and
+// corrected, ERRATA E1). Lee, Jarabo, Jeon, Gutierrez, Kim, "Practical Multiple Scattering for
+// Rough Surfaces", ACM TOG 37(6), 2018, Sec. 4.1, Eq. (4)-(6), App. B. Conventions (as
+// sim/geometry.h): angles from n, counter-clockwise positive, a direction at theta is (-sin theta,
+// cos theta); theta_i towards the light; the apex at the origin, unit facets; the right facet
+// first is the mirror image of the left. Holds: the shares are fractions that sum to 1, the lit
+// widths of both facets make the opening, hand values, the narrowest grooves do not overflow.
+// Tests: tests/analytic/kaleidoscope_test.cpp (BounceCount.HandPoints, ExitAngle.HandPoints,
+// GKaleidoscopic.RightAngleGrooveAt30DegreesByHand, GKaleidoscopic.PrintedFormGivesANegativeShareAtNormalIncidence,
+// ModelGrid.SharesAreFractionsThatSumToOne, EqFourBoundary.FractionsPerBounceCountAreContinuous);
+// against the tracer: tests/validation/groove_case_test.cpp.
+// Derivation: docs/derivations/kaleidoscope.md.
 #pragma once
 
 #include "vgroove/common/side.h"

@@ -1,23 +1,14 @@
-// vgroove analytic: the kaleidoscopic model for nonsymmetric V-grooves.
-//
-// Lee et al. 2018, "Practical Multiple Scattering for Rough Surfaces", Sec. 4.2, Eq. (7)-(9).
-// Conventions as in analytic/kaleidoscope.h (angles from n, counter-clockwise positive).
-//
-// The paper's facet angles theta_l and theta_r are the angles of the facets' inward normals s_l,
-// s_r from n, with these signs: the left facet's normal leans right, theta_l < 0, the right
-// facet's leans left, theta_r > 0 (a symmetric groove has theta_l = -theta_r = -|theta_s|). Only
-// these signs make the printed aperture theta_v = |pi + theta_l - theta_r| equal pi - 2|theta_s| and
-// Eq. (8) reduce to Eq. (5) in the symmetric limit. The left facet runs from the apex along the
-// angle theta_l + pi/2, the right one along theta_r - pi/2. Both rims lie at one height (Sec. 5: all
-// peaks on the macrosurface), so the facets' lengths are in the ratio
-// l_L : l_R = sin(theta_r) : sin(-theta_l); the longer one has unit length. Each facet's rim and
-// its images in the unfolded fan lie on its own circle (Fig. 5a).
-//
-// Unfolded fan for light hitting the left facet first: vertex P_j at angle theta_l + pi/2 + j theta_v,
-// on the left facet's circle for even j and the right facet's for odd j; P_0 = a. A ray of offset
-// f (f(p) = i_perp . p as in the symmetric model) makes at least j + 1 reflections when f <= f(P_j)
-// and it already made j. The paper's transition points, not printed, follow (docs/ERRATA.md,
-// E2): k_2 = P_1, k_b = P_{k_b - 1}, k_a = P_{k_b}.
+// vgroove analytic: the kaleidoscopic model for nonsymmetric V-grooves: Lee et al. 2018,
+// "Practical Multiple Scattering for Rough Surfaces", Sec. 4.2, Eq. (7)-(9). Conventions as in
+// analytic/kaleidoscope.h. The facet angles are those of the inward normals: theta_l < 0 (the left
+// facet leans right), theta_r > 0, aperture theta_v = |pi + theta_l - theta_r|; only these signs
+// reduce Eq. (8) to Eq. (5) in the symmetric limit. Both rims at one height, the longer facet of
+// unit length. The transition points, not printed, follow from the unfolded fan (ERRATA E2).
+// Tests: tests/analytic/kaleidoscope_nonsymmetric_test.cpp (KaleidoscopeNonsymmetric.SymmetricGroovesReduceToEq4To6,
+// KaleidoscopeNonsymmetric.SharesAreFractionsThatSumToOne, KaleidoscopeNonsymmetric.MirrorImageSwapsTheFacets,
+// KaleidoscopeNonsymmetric.RightAngleCornerHandValues), against the tracer
+// tests/validation/nonsymmetric_test.cpp (NonsymmetricTrace.RandomGroovesOffTheGrid).
+// Derivation: docs/derivations/kaleidoscope.md.
 #pragma once
 
 #include "vgroove/analytic/kaleidoscope.h"

@@ -1,36 +1,16 @@
 // vgroove analytic: the inverse of the symmetric kaleidoscope. For the light at t_i and an exit at
 // t_o in a groove's cross-section, every (facet hit first, bounce count k, aperture theta_v) of
 // Eq. (5) whose outcome of exactly k reflections has a non-empty beam in Eq. (6), with the beam's
-// width. The 3D BRDF (brdf_3d.h, Eq. 16), the flatland BRDF and the pdfs of the samplers
-// (sampling_3d.h, sampling_flatland.h) are sums over these solutions.
-//
-// Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces".
-// ACM TOG 37(6), 2018. Sec. 4.1, Eq. (4)-(6); Sec. 5.1, Eq. (15)-(16).
-//
-// Conventions: those of kaleidoscope.h (2D angles from n, counter-clockwise positive; the left
-// facet's normal at -theta_m, the right one's at +theta_m, theta_v = pi - 2 theta_m). The frame is
-// chosen so that t_h = (t_i + t_o)/2 <= 0: then the k = 1 solution (s = h) is the left facet.
-//
-// Derivation of the width (beam_width) and of the single pass (for_each_solution): brdf_3d.cpp
-// wrote them first; they are unchanged here.
-//   Width. With f(theta) = sin(theta - a) the offset of the point at angle theta on the unit
-//   circle, Eq. (6) needs f_a = f(theta_v/2), f_b = max(0, f(-theta_v/2)) and f at the transition
-//   point theta_v (K - 1/2), K from Eq. (4); the k-outcome is [f_b, f_k] for K = k and [f_k, f_a]
-//   for K = k + 1. Eq. (5), k theta_v = a + pi - b + 2 pi j, turns the transition points into
-//     f(theta_v (k - 1/2)) = sin(theta_v/2 + b) =: g_lo,   f(theta_v (k + 1/2)) = -sin(theta_v/2 - b) =: g_hi,
-//   and both cases of Eq. (6) are one intersection
-//     W = min(f_a, g_lo) - max(0, f_b_raw, g_hi),   f_b_raw = -sin(theta_v/2 + a),
-//   valid while K in {k, k + 1}. The reversed path (o -> i) has a' = -b, b' = -a, the same
-//   theta_v and k, so its four offsets are these four, permuted: W is reciprocal term by term.
-//   Each difference of sines is written as a product (sin x + sin y = 2 sin((x+y)/2) cos((x-y)/2))
-//   so that W keeps its relative accuracy where the ends nearly meet.
-//   Single pass. For one facet and one parity of k the ends (a, b) are fixed and theta_v = X / k,
-//   X = a - b + (2 j + 1) pi. Eq. (4) allows the k-outcome only for K in {k, k + 1}, i.e.
-//   k |X - span| <= X (span = pi + 2a, up to the ends), and theta_v <= pi needs k >= X / pi. With
-//   X - span = 2 pi j - (a + b) and |a + b| < pi, only j = 0 can meet both, and then k runs over
-//   [X / pi, X / |a + b|]: a handful of k for most (t_i, t_o), many only near a = -b (narrow
-//   grooves send their light back near +-t_i). j = +-1 and one k beyond each end are visited too,
-//   against rounding; outcome_possible decides.
+// width. The 3D BRDF (brdf_3d.h, Eq. 16), the flatland BRDF and the samplers' pdfs sum over these.
+// Lee et al. 2018 ("Practical Multiple Scattering for Rough Surfaces", ACM TOG 37(6)), Sec. 4.1,
+// Eq. (4)-(6); Sec. 5.1, Eq. (15)-(16). Conventions of kaleidoscope.h; the frame has t_h <= 0.
+// beam_width is one intersection of four offsets that the reversed path permutes (reciprocal term
+// by term), differences of sines written as products (relative accuracy where the ends meet);
+// for_each_solution visits j = 0 and k in [X / pi, X / |a + b|] (plus neighbours against rounding).
+// Tests: tests/analytic/brdf_3d_test.cpp (Brdf3d.BeamWidthIsEq6, Brdf3d.BeamWidthIsEq6AtTheHorizon,
+// Brdf3d.SinglePassEqualsPerKEvaluation), tests/analytic/brdf_flatland_test.cpp
+// (FlatlandBrdf.SinglePassEqualsEveryMReference).
+// Derivation: docs/derivations/brdf_3d.md.
 #pragma once
 
 #include "vgroove/analytic/kaleidoscope.h"

@@ -1,64 +1,17 @@
-// vgroove analytic: normal distribution functions (NDFs) in 3D and in flatland, and the masking
-// functions that go with them.
-//
-// Papers (cited below by first author and year):
-//   Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces".
-//     ACM TOG 37(6), 2018. Sec. 3, Eq. (2); Sec. 5.1, Eq. (10) (D weighted by projected area);
-//     App. C builds P(theta_r) on these D (analytic/partner_distribution.h).
-//   Heitz. "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs".
-//     JCGT 3(2), 2014. Eq. (5) (projected-area constraint), Eq. (10) (Smith G1), Sec. 3.2
-//     (Beckmann and GGX D and Lambda), Eq. (24) (V-cavity G1), App. A (Lambda from the slopes).
-//   Walter, Marschner, Li, Torrance. "Microfacet Models for Refraction through Rough Surfaces".
-//     EGSR 2007. Sec. 5: Beckmann, Phong and GGX D, and the Phong exponent for a Beckmann width,
-//     alpha_p = 2 alpha^-2 - 2. This paper is not in ../shared/papers: its section is cited from
-//     the literature, not re-read; the formulas are checked by the tests instead (normalization,
-//     D(0) = 1/(pi alpha^2) for all three, Phong -> Beckmann as alpha -> 0). Beckmann's and GGX's
-//     D are also printed in Heitz 2014, Sec. 3.2.
-//
-// Sign convention (the same as sim/geometry.h, written again because analytic/ must not include
-// sim/): angles from the macrosurface normal n, counter-clockwise positive; a direction at angle
-// theta is (-sin theta, cos theta). A facet of slope s = dh/dx has the normal (-s, 1)/|.|, which
-// is the direction at theta_m = atan(s): slope and normal angle are related by s = tan(theta_m).
-//
-// Normalization.
-//   3D: integral over the hemisphere of D(m) cos(theta_m) dm = 1 (Heitz 2014, Eq. (5) with
-//       theta_o = 0: the microfacets' projected area is the macrosurface's), i.e.
-//       2 pi int_0^{pi/2} D(theta) cos(theta) sin(theta) dtheta = 1.
-//   2D: int_{-pi/2}^{pi/2} D2(theta) cos(theta) dtheta = 1: D2(theta) dtheta is the length of
-//       profile with normals in dtheta per unit length of macrosurface, and cos(theta) projects it.
-//
-// From slopes to normals. Let P(s) be the density of the slope s over the macrosurface length
-// (a 1D profile) or P22(sx, sy) over its area (3D). Since dx = cos(theta) dl and ds = dtheta /
-// cos^2(theta),
-//   2D: D2(theta) = P(tan theta) / cos^3(theta),
-//   3D: D(m)      = P22(tan theta_m, phi) / cos^4(theta_m)   (Heitz 2014, Sec. 3.2).
-//
-// The flatland forms chosen here. A 2D profile is taken to be a straight cut through the
-// isotropic 3D surface; its slopes along the cut are distributed as the marginal of P22 along one
-// axis, P(s) = int P22(s, t) dt. This choice has two properties the tests check:
-//   - it is one rule for the three NDFs (no form is picked per NDF), and Beckmann's marginal is
-//     the 1D Gaussian in tan(theta);
-//   - Smith's Lambda depends on P22 only through this marginal along the view's azimuth (Heitz
-//     2014, App. A), so the flatland Smith G1 with D2 equals the 3D Smith G1 with D: the 2D
-//     projected-area constraint int G1 <o, m> D2 dtheta_m = cos(theta_o) holds with Heitz's
-//     closed-form Lambda.
-// The marginals (s = tan theta):
-//   Beckmann: P22 = exp(-|s|^2/a^2) / (pi a^2)        -> P(s) = exp(-s^2/a^2) / (sqrt(pi) a),
-//             a Gaussian of standard deviation a/sqrt(2).
-//   GGX:      P22 = 1 / (pi a^2 (1 + |s|^2/a^2)^2)    -> P(s) = (1 + s^2/a^2)^(-3/2) / (2 a),
-//             from int (c^2 + t^2/a^2)^-2 dt = pi a / (2 c^3), c^2 = 1 + s^2/a^2: a Student-t
-//             with 2 degrees of freedom scaled by a/sqrt(2). (Not the 1D Cauchy density: that
-//             is the marginal of the radial law (1 + |s|^2/a^2)^(-3/2), not of GGX's power -2.)
-//   Phong:    P22 = (p+2)/(2 pi) (1 + |s|^2)^(-(p+4)/2) -> P(s) = K (1 + s^2)^(-(p+3)/2),
-//             K = Gamma((p+3)/2) / (sqrt(pi) Gamma((p+2)/2)), p = alpha_p: a Student-t with
-//             nu = p + 2 = 2/a^2 degrees of freedom scaled by 1/sqrt(nu) = a/sqrt(2).
-// So all three 2D slope laws are (a/sqrt(2)) t_nu, with nu = 2 (GGX), nu = 2/a^2 (Phong) and
-// nu -> infinity (Beckmann); Phong tends to Beckmann as a -> 0 and equals GGX at a = 1. Student-T
-// (ndf_student_t.h), whose 3D slopes are a bivariate t of tail gamma, has nu = 2 gamma - 2.
-// In angles:
-//   D2_beckmann = exp(-tan^2/a^2) / (sqrt(pi) a cos^3),
-//   D2_ggx      = a^2 / (2 (a^2 cos^2 + sin^2)^(3/2)),
-//   D2_phong    = K cos^p(theta)    (the 2D Phong lobe is again a power of the cosine).
+// vgroove analytic: normal distribution functions in 3D and flatland (Beckmann, GGX, Phong,
+// Student-T) and their masking functions (Smith G1 and Lambda, V-cavity G1). Lee et al. 2018,
+// Eq. (2), (10); Heitz, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs",
+// JCGT 3(2), 2014, Eq. (5), (10), (24), Sec. 3.2, App. A; Walter, Marschner, Li, Torrance,
+// "Microfacet Models for Refraction through Rough Surfaces", EGSR 2007, Sec. 5.
+// Normalization: 3D 2 pi int D cos sin = 1, flatland int D2 cos = 1. The flatland slope law is the
+// marginal of the 3D one along an axis, so the flatland Smith G1 with D2 equals the 3D one with D.
+// Angles from n, counter-clockwise positive, a direction at theta is (-sin theta, cos theta).
+// Holds: both normalizations and the projected-area constraints by quadrature, hand values (D(0) =
+// 1/(pi alpha^2)), Phong -> Beckmann as alpha^2. Tests: tests/analytic/ndf_test.cpp
+// (NdfNormalization.ProjectedAreaIsOne3D, NdfNormalization.ProjectedLengthIsOne2D,
+// NdfHandValues.*, SmithG1.ProjectedAreaIsConservedIn2D, SmithG1.ProjectedAreaIsConservedIn3D,
+// G1VCavity.ProjectedAreaIsConserved, PhongBeckmann.L1DistanceShrinksAsAlphaSquared).
+// Derivation: docs/derivations/ndf.md (the Student-T forms: docs/derivations/student_t.md).
 #pragma once
 
 #include "vgroove/common/ndf_kind.h"

@@ -1,24 +1,15 @@
-// vgroove analytic: the tabulated inverse CDF of P(theta_r) (Eq. 20, partner_distribution.h), the
-// partner law a nonsymmetric V-groove sampler draws the second facet's tilt from (Lee et al. 2018,
-// Sec. 6: "we tabulate its inverse CDF, and sample it in runtime using binary search"), in 3D (P)
-// and flatland (P2).
-//
-// The table is a density of its own, so that a sampler's pdf can be exact for what it draws: P_tab
-// is piecewise linear in B between the nodes atan(alpha tan(pi j / (2 N))) (dense where D lives,
-// for every alpha) merged with the uniform nodes pi j / (2 N), j = 0..N (the heavy tails of GGX at
-// small alpha), with P_tab(B_j) = P(B_j), scaled to integrate to 1. Its CDF is
-// piecewise quadratic: sample_partner finds the cell by binary search over the CDF at the nodes and
-// solves the quadratic in it (one square root). partner_table_pdf(B) is P_tab(B).
-//
-// The table's error is int |P_tab - P| dB (partner_table_l1_error, per cell by adaptive
-// Gauss-Kronrod): the largest change of the expectation of any function bounded by 1 when P_tab
-// replaces P. With the default N = 2048 it is below 1e-5 for every NDF with 0.01 <= alpha <= 2
-// (Phong: alpha <= 1) (tests/analytic/partner_table_test.cpp; ~h^2, the interpolation error of a
-// smooth density).
-//
-// Phong with alpha > 1 (exponent p < 0) has P ~ (pi/2 - B)^p, singular at pi/2 and, as p -> -1
-// (alpha -> sqrt(2)), with nearly all its mass within ulps of pi/2: no table of nodes bounds its
-// error, and make_partner_table refuses it (std::domain_error).
+// vgroove analytic: the tabulated inverse CDF of P(theta_r) (Eq. 20, partner_distribution.h) that
+// a nonsymmetric sampler draws the partner's tilt from (Lee et al. 2018, "Practical Multiple
+// Scattering for Rough Surfaces", Sec. 6: tabulated inverse CDF, binary search), 3D (P) and
+// flatland (P2). The table is a density of its own: P_tab piecewise linear between nodes dense
+// where D lives and uniform nodes, scaled to integrate to 1, its CDF piecewise quadratic
+// (sample_partner: binary search, one square root); partner_table_pdf(B) = P_tab(B).
+// Accuracy: int |P_tab - P| dB (partner_table_l1_error) below 1e-5 at the default N = 2048 for
+// every NDF with 0.01 <= alpha <= 2 (Phong: alpha <= 1; Phong above 1 is refused).
+// Tests: tests/analytic/partner_table_test.cpp (PartnerTable.ErrorIsBounded,
+// PartnerTable.CoarseTableExceedsTheBound, PartnerTable.IsADensity, PartnerTable.SampleInvertsTheCdf,
+// PartnerTable.RefusesPhongWithoutAPartnerLaw).
+// Derivation: docs/derivations/nonsymmetric.md.
 #pragma once
 
 #include "vgroove/analytic/ndf.h"

@@ -1,22 +1,15 @@
 // vgroove analytic: importance sampling of the flatland symmetric V-groove BRDF (brdf_flatland.h),
-// the density of the exit angles it produces, and the weight rho2 cos / pdf. F = 1.
-//
-// Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces".
-// ACM TOG 37(6), 2018. Sec. 6, written for flatland as brdf_flatland.h writes Eq. (10)-(17).
-//
-// The routine is sampling_3d.h's in one dimension less: a facet angle theta_s from the strategy
-// (vndf.h: D2 cos for the printed one, the V-cavity's or the Smith-GGX visible normals), the groove
-// of aperture pi - 2 |theta_s| with theta_s its left facet (theta_s < 0) or its right one, Eq. (4)
-// and (6) at theta_i, u3 choosing the outcome (printed: G = width / f_a, the share f_b / f_a and
-// unlit facets giving no direction; the others: width / (f_a - f_b)), and theta_o from Eq. (5).
-// The density of theta_o sums every path that ends there with the flatland Jacobian
-// |d theta_s / d theta_o| = 1 / (2k) (brdf_flatland.h, step c):
+// the density of the exit angles it produces and the weight rho2 cos / pdf; F = 1. Lee et al.
+// 2018 ("Practical Multiple Scattering for Rough Surfaces"), Sec. 6 written for flatland: the
+// routine of sampling_3d.h in one dimension less, with the flatland Jacobian 1 / (2k):
 //   pdf(theta_o) = sum_k sum_m q(theta_sm) P(k | theta_sm) / (2k),
-// and for the V-cavity's visible normals it equals rho2 cos(theta_o). The paths are those of
-// kaleidoscope_solutions.h in the frame where t_h <= 0 (the profile is mirror symmetric).
-// Zero-weight returns as in 3D: the printed strategy's shadowed or unlit draws, paths beyond
-// max_k, exits at |theta_o| >= pi/2 by rounding, |theta_i| >= pi/2. No flatland direction is
-// singular (the Jacobian 1/(2k) is bounded).
+// equal to rho2 cos(theta_o) for the V-cavity's visible normals. Zero-weight returns as in 3D;
+// no flatland direction is singular.
+// Tests: tests/analytic/sampling_flatland_test.cpp (SamplingFlatland.VcavityPdfIsTheBrdfTimesCosine,
+// SamplingFlatland.PdfIntegratesToOneMinusTheFailureProbability, SamplingFlatland.WeightIsEvalCosOverPdf,
+// SamplingFlatland.PrintedPIsNotADensity, SamplingFlatland.HardCases,
+// SamplingFlatland.DefaultMaxKLosesFewerThanOneSampleInTenMillion), tests/analytic/sampling_chi2_test.cpp.
+// Derivation: docs/derivations/sampling.md.
 #pragma once
 
 #include "vgroove/analytic/facet_strategy.h"

@@ -26,7 +26,7 @@ constexpr double kAbsPerRel = 1e-3;
 // The parts a B-piece starts from, as Eq. (23)'s evaluation (brdf_nonsymmetric.cpp). A zone of k
 // reflections can hold light on a small part of a piece only (e.g. k = 3 from the mirrored facet
 // for GGX 0.5, theta_i = 30 deg, theta_o = -28 deg: 7 % of the piece): one 15-point rule over the
-// whole piece can have no node inside it, see zeros and stop (the pdf was 2 % low there).
+// whole piece can have no node inside it, see zeros and stop (the pdf would be 2 % low there).
 constexpr int kPieceParts = 4;
 
 // ---- The facet's law ----------------------------------------------------------------------------

@@ -1,54 +1,15 @@
-// vgroove analytic: the Smith multiple-scattering random walk of Heitz, Hanika, d'Eon and
-// Dachsbacher ("Multiple-Scattering Microfacet BSDFs with the Smith Model", ACM TOG 35(4), 2016)
-// in 3D, for a conductor with any reflectance (F = 1 the white furnace), isotropic Beckmann and
-// GGX. A model, not a simulation: a pure function of the uniform numbers its caller supplies.
-//
-// What it shares with the flatland walk (analytic/smith_walk_flatland.h, whose header derives
-// both): the state (the travel direction and lc = log C1(h) <= 0 at the last intersection), the
-// free path (walk_free_path: Smith's Lambda depends only on |tan theta| of the travel direction,
-// so the flatland formula serves 3D with theta the polar angle of the direction), and the
-// sampling of the slope along the view's azimuth (below).
-//
-// Phase function (Heitz et al. 2016, Sec. 5): at an intersection the facet normal m is drawn from
-// the normals visible from v = -d (the direction the ray came from), up or down,
-//   D_v(m) = <v, m>+ D(m) / A(v),
-// and the ray leaves mirrored, o = 2 <v, m> m - v, keeping F(<v, m>) of its energy. In the frame
-// turned about n so that v = (s, 0, v_z), s = |v_xy| >= 0, a normal with slopes (p, q) is m =
-// (-p, -q, 1) / sqrt(1 + p^2 + q^2) and <v, m> D(m) d omega_m = (v_z - s p) P22(p, q) dp dq, since
-// D d omega_m cos(theta_m) = P22 dp dq and cos(theta_m) = 1 / sqrt(1 + p^2 + q^2). So
-//   - p has the density (a + b p)+ P(p) / A with a = v_z, b = -s and P the marginal of P22 along
-//     x: the flatland visible slopes at the flatland view theta_v = atan2(-s, v_z) (the flatland
-//     direction theta is the 3D (-sin theta, 0, cos theta), analytic/ndf.h), sampled by
-//     sample_visible_normal, and A(v) = visible_projected_length(theta_v), which is
-//     v_z (1 + Lambda(v)) for an upward v and |v_z| Lambda(-v) for a downward one;
-//   - q given p has the density P22(p, q) / P(p), which does not depend on v:
-//       Beckmann: P22 = e^{-(p^2 + q^2) / alpha^2} / (pi alpha^2): q ~ N(0, alpha^2 / 2),
-//         q = alpha erfinv(2 u - 1);
-//       GGX: P22 = (1 + (p^2 + q^2) / alpha^2)^-2 / (pi alpha^2): q = alpha c t, c^2 = 1 + p^2 /
-//         alpha^2, t with the density (2 / pi) (1 + t^2)^-2, whose distribution function is
-//         1/2 + (atan t + t / (1 + t^2)) / pi = 1/2 + (gamma + sin gamma) / (2 pi), gamma = 2
-//         atan t. With delta = pi - |gamma|: delta - sin delta = 2 pi min(u, 1 - u), t = +-cot(
-//         delta / 2) (+ for u > 1/2), solved by Newton's method (delta - sin delta is convex and
-//         increasing on (0, pi]; its series near 0 avoids the cancellation).
-// Both are exact (Heitz et al.'s published code draws GGX's q from a rational fit instead).
-//
-// The walk: the ray enters travelling along -i from above the surface (lc = 0) and alternates a
-// free path and a reflection until a free path leaves. The bounce count k and the exit direction o
-// are the walk's outcome; with F = 1 every walk leaves with probability 1 (the white furnace), so
-// the fraction of walks leaving after k reflections is the albedo of order k, E_k(i), and E_1 is
-// the single-scattering albedo with the height-correlated G2 (Heitz 2014, Eq. 21; the first hit's
-// C1 is xi^{1 / (1 + Lambda(i))}, and it leaves with E[C1^Lambda(o)] = (1 + Lambda(i)) / (1 +
-// Lambda(i) + Lambda(o))). With a reflectance F each walk carries prod_j F(<v_j, m_j>), the
-// conductor's energy (Heitz et al. 2016, Sec. 6).
-//
-// Its BRDF by next-event estimation (Heitz et al. 2016, Sec. 4.3, the estimator of their Fig. 5):
-// after each reflection j at lc_j from v_j, the contribution of leaving at once towards o is
-//   phase(v_j, o) G1(o, h_j) = D_v(h) / (4 <v_j, h>) * C1(h_j)^Lambda(o),   h = (v_j + o) / |.|,
-// an unbiased estimate of sum_k f_k(i, o) cos(theta_o) with the k-th term f_k's; the tests
-// integrate it over o and compare with the sampled E_k.
-//
-// Conventions: analytic/brdf_3d.h (n = (0, 0, 1), Dir3 unit vectors, i and o pointing away from
-// the surface). Beckmann and GGX only (Phong has no closed-form Lambda).
+// vgroove analytic: the Smith multiple-scattering random walk of Heitz, Hanika, d'Eon, Dachsbacher
+// ("Multiple-Scattering Microfacet BSDFs with the Smith Model", ACM TOG 35(4), 2016) in 3D, for a
+// conductor with any reflectance (F = 1 the white furnace), isotropic Beckmann and GGX, and its
+// BRDF by next-event estimation (Sec. 4.3). It shares the free path and the visible slope along the
+// view's azimuth with the flatland walk (analytic/smith_walk_flatland.h); the cross slope is drawn
+// exactly (Beckmann by erfinv, GGX by Newton on delta - sin delta). A model, not a simulation: a
+// pure function of the uniform numbers its caller supplies. E_1 is Smith's height-correlated
+// E_ss (Heitz 2014, Eq. 21). Conventions: analytic/brdf_3d.h.
+// Tests: tests/analytic/smith_walk_3d_test.cpp (SmithWalk3d.CrossSlopeInvertsItsDistribution,
+// SmithWalk3d.VisibleNormalPdfIsNormalizedAndIsHeitzsGgxVndf, SmithWalk3d.SingleScatteringIsTheHeightCorrelatedAlbedo,
+// SmithWalk3d.NextEventEstimatesIntegrateToTheSampledOrders, SmithWalk3d.HardCasesStayFinite).
+// Derivation: docs/derivations/smith_walk.md.
 #pragma once
 
 #include "vgroove/analytic/brdf_3d.h"

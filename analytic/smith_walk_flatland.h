@@ -1,57 +1,17 @@
-// vgroove analytic: the Smith multiple-scattering random walk of Heitz, Hanika, d'Eon and
-// Dachsbacher ("Multiple-Scattering Microfacet BSDFs with the Smith Model", ACM TOG 35(4), 2016),
-// written for flatland, for a conductor with F = 1. A model, not a simulation: a pure function of
-// the uniform numbers its caller supplies (no generator in analytic/).
-//
-// The microsurface of the walk is Smith's: heights h with any distribution function C1 and slopes
-// independent of the heights, the flatland slope law of the NDF (analytic/ndf.h). The walk's
-// state is the ray's direction and C1(h) at its last intersection; it never needs h itself, so it
-// keeps lc = log C1(h) <= 0 (lc = 0: above the whole surface).
-//
-// Free paths (Heitz et al. 2016, Sec. 4; derived again here in flatland). A ray at height h going
-// up along a direction with Smith's Lambda escapes without meeting the surface with probability
-// G1(h) = C1(h)^Lambda (Smith's shadowing at a height; its 2D form has the same Lambda, since
-// Smith's Lambda only depends on the slopes along the ray's azimuth, analytic/ndf.h), and
-// otherwise meets it below the height where C1 = C1(h) / xi^(1/Lambda) for xi uniform: with
-// xi in (0, 1),
-//   up:    leaves when log xi < Lambda lc, else lc' = lc - log(xi) / Lambda;
-//   down:  always meets the surface, lc' = lc + log(xi) / (1 + Lambda_rev),
-// Lambda_rev of the reversed (upward) direction. (A downward direction's own Lambda is
-// -1 - Lambda_rev; both branches are C1(h') = C1(h) xi^(-1/Lambda).) A level ray stays at its
-// height and does not leave (Lambda infinite).
-//
-// Phase function. At an intersection the facet normal is drawn from the distribution of normals
-// visible from where the ray comes from, v = -d (Heitz et al. 2016, Sec. 5; Heitz and d'Eon 2014):
-//   D_v(m) = (cos(theta_v - m))+ D2(m) / A(v),   A(v) = int (cos(theta_v - m))+ D2(m) dm,
-// for any v, up or down; the ray leaves the facet mirrored, theta' = 2 m - theta_v. In slope
-// space (s = tan m, D2 dm = P(s) ds / cos m, cos(theta_v - m) = cos m (a + b s) with a = cos
-// theta_v, b = sin theta_v) the visible slopes have the density (a + b s)+ P(s) / A. For b > 0
-// the support is s > s0 = -a / b and the upper tail U(s) = int_s^inf (a + b t) P(t) dt is:
-//   Beckmann (P = e^{-s^2/alpha^2} / (alpha sqrt pi), x = s / alpha):
-//     U = (a / 2) erfc(x) + b alpha e^{-x^2} / (2 sqrt pi);
-//   GGX (P = (1 + s^2/alpha^2)^{-3/2} / (2 alpha), x = s / alpha = tan phi):
-//     U = (a / 2) (1 - sin phi) + (b alpha / 2) cos phi,
-// and A = U(s0). For an upward v this is A = cos theta_v (1 + Lambda(v)) (the projected-area
-// constraint, Heitz 2014 Eq. 5); for a downward one A = |cos theta_v| Lambda(-v). Sampling inverts
-// U(s) = (1 - u) A: GGX in closed form,
-//   s = alpha tan(psi - pi/2 + 2 asin(sqrt(u w / 2))),  psi = atan2(b alpha, a),
-//   R = sqrt(a^2 + b^2 alpha^2), w = (R + a) / R,
-// (with a sin phi - b alpha cos phi = R sin(phi - psi), and phi running from psi - pi/2 at s0 to
-// pi/2); Beckmann by safeguarded Newton iteration on U. b < 0 is the mirror image (s -> -s).
-//
-// The walk: the ray enters travelling along -i from above the surface (lc = 0), and alternates a
-// free path and a reflection until a free path leaves; the number of reflections is the bounce
-// count k, the last direction the exit direction o. The single-scattering part (k = 1) is the
-// flatland microfacet BRDF with the height-correlated masking-shadowing function (Heitz 2014,
-// Eq. 21):
-//   rho_1 cos(theta_o) = D2(h) cos(theta_i - h) / (2 cos theta_i (1 + Lambda(i) + Lambda(o))),
-//   h = (theta_i + theta_o) / 2,
-// (the first hit's C1 is xi^{1 / (1 + Lambda(i))}, and E[C1^Lambda(o)] = (1 + Lambda(i)) /
-// (1 + Lambda(i) + Lambda(o))); the tests check the walk against it.
-//
-// Conventions (analytic/ndf.h): angles from the macrosurface normal, counter-clockwise positive,
-// the direction at theta is (-sin theta, cos theta); travel directions may point anywhere, angles
-// in (-pi, pi]. Beckmann and GGX only (Phong has no closed-form Lambda).
+// vgroove analytic: the Smith multiple-scattering random walk of Heitz, Hanika, d'Eon, Dachsbacher
+// ("Multiple-Scattering Microfacet BSDFs with the Smith Model", ACM TOG 35(4), 2016, Sec. 4-5)
+// in flatland, for a conductor with F = 1: free paths from C1(h)^Lambda, facet normals from the
+// visible slopes (GGX in closed form, Beckmann by safeguarded Newton). A model, not a simulation:
+// a pure function of the uniform numbers its caller supplies. Beckmann and GGX only.
+// Holds: the visible projected length is the projected-area constraint (Heitz 2014, Eq. 5); the
+// visible-slope sampler inverts its distribution; the walk's k = 1 part is the flatland microfacet
+// BRDF with the height-correlated G (Heitz 2014, Eq. 21) within statistics; hard cases finite.
+// Tests: tests/analytic/smith_walk_flatland_test.cpp
+// (SmithWalkFlatland.VisibleProjectedLengthIsTheProjectedAreaConstraint,
+// SmithWalkFlatland.VisibleNormalSamplerInvertsItsDistribution, SmithWalkFlatland.FreePathsByHand,
+// SmithWalkFlatland.SingleScatteringIsTheHeightCorrelatedMicrofacetBrdf,
+// SmithWalkFlatland.HardCasesStayFinite).
+// Derivation: docs/derivations/smith_walk.md.
 #pragma once
 
 #include "vgroove/analytic/ndf.h"

@@ -1,35 +1,17 @@
 // vgroove analytic: distributions of facet normals to sample from, in 3D and in flatland, each a
-// matched pair sample_x(u) / x_pdf(x): pure functions of uniform numbers in [0, 1).
-//
-// Papers:
-//   Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces".
-//     ACM TOG 37(6), 2018. Sec. 6: the facet is drawn from p(s) = |s.n| D(s).
-//   Heitz and d'Eon. "Importance Sampling Microfacet-Based BSDFs using the Distribution of Visible
-//     Normals". CGF 33(4), 2014: the distribution of visible normals D_i(s) = G1(i, s) <i.s> D(s) /
-//     <i.n>, for the V-cavity and the Smith microsurfaces. For the V-cavity they sample it by
-//     drawing s from |s.n| D(s) and replacing it by its mirror image s' (azimuth + pi) with
-//     probability <i.s'> / (<i.s> + <i.s'>). (Not in ../shared/papers: the algorithm is cited
-//     from the paper's abstract and the literature, and checked here by chi-square tests.)
-//   Dupuy and Benyoub. "Sampling Visible GGX Normals with Spherical Caps". CGF 42(8), 2023, as
-//     restated by Tokuyoshi and Eto 2024, Sec. 2.2: the Smith-GGX VNDF (Heitz 2018's
-//     distribution) from a uniform point on a spherical cap in the unit-roughness space.
-//   Tokuyoshi and Eto. "Bounded VNDF Sampling for the Smith-GGX BRDF". PACMCGIT 7(1), 2024
-//     (../shared/papers/tokuyoshi-eto2024-bounded-vndf.md): Eq. (5)-(6) the lower bound -k i_z of
-//     the cap for reflections, Eq. (10) its pdf.
-//
-// Why the V-cavity's visible normals matter here: the symmetric V-groove microsurface IS a
-// V-cavity surface (grooves with coplanar ridges, each a V-cavity of Eq. 2), so the facet that a
-// ray of direction -i meets first is distributed exactly as the V-cavity VNDF: a groove takes the
-// share 2 D cos(theta_m) sin(theta_m) d theta_m d phi of the light (its opening), and of it the
-// facet s the share <i.s> G1(i, s) / (2 cos(theta_m) <i.n>) (its lit width over the opening).
-// The Smith VNDF is the visible normals of another microsurface; it is a proposal here, valid
-// wherever it covers the facets the BRDF needs, not the grooves' own distribution.
-//
-// Conventions: 3D as brdf_3d.h (n = (0, 0, 1), Dir3 unit vectors pointing away from the
-// surface). Flatland as ndf.h (a direction at angle theta is (-sin theta, cos theta)); a flatland
-// direction theta is the 3D direction (-sin theta, 0, cos theta), and the flatland laws are the
-// marginals of the 3D ones along x (ndf.h: D2 is the marginal of the slopes; with i in the (x, z)
-// plane the same holds for <i.s> D and for the Smith VNDF, whose G1 is the same in both).
+// matched pair sample_x(u) / x_pdf(x): |s.n| D(s) (Lee et al. 2018, Sec. 6), the V-cavity's
+// visible normals (Heitz and d'Eon, "Importance Sampling Microfacet-Based BSDFs using the
+// Distribution of Visible Normals", CGF 33(4), 2014), the Smith-GGX VNDF by spherical caps (Dupuy
+// and Benyoub, CGF 42(8), 2023) and its bounded cap (Tokuyoshi and Eto, "Bounded VNDF Sampling for
+// the Smith-GGX BRDF", PACMCGIT 7(1), 2024, Eq. 5-6, 10). The symmetric V-groove surface is a
+// V-cavity surface, so its first-hit facets follow the V-cavity VNDF exactly; the Smith VNDF is a
+// proposal here. Conventions: 3D as brdf_3d.h, flatland as ndf.h (the marginals along x).
+// Holds: every density integrates to 1; the V-cavity VNDF is the grooves' lit widths; the bounded
+// cap keeps every reflection above the horizon.
+// Tests: tests/analytic/vndf_test.cpp (Vndf.DensitiesIntegrateToOne, Vndf.FlatlandDensitiesIntegrateToOne,
+// Vndf.VcavityVisibleNormalsAreTheLitWidths, Vndf.BoundedCapHoldsEveryReflectionAboveTheHorizon,
+// Vndf.BoundedLowerBoundHandValues), tests/analytic/sampling_chi2_test.cpp.
+// Derivation: docs/derivations/sampling.md.
 #pragma once
 
 #include "vgroove/analytic/brdf_3d.h"

@@ -1,19 +1,12 @@
-// vgroove common: four doubles at a time (GCC and clang vector extensions), for the kernels that
-// take four rays, angles or quadrature nodes per instruction (sim's block tracers, analytic's
-// batched BRDF pass and lobe nodes). Arithmetic on V4 is lane by lane and rounds as double does;
-// a comparison gives a mask of 64-bit integers (0 or -1) and select(mask, a, b) takes a's lanes
-// where the mask is set.
-//
-// VGROOVE_TARGET_CLONES before a function compiles it twice, for AVX2 (four lanes per instruction)
-// and for any x86-64 (SSE2 pairs), and picks the copy when the program starts (GCC on x86-64; a
-// plain function elsewhere). AVX2 does not include FMA, and the libraries are built with
-// -ffp-contract=off (analytic/ and sim/ CMakeLists.txt): no product is fused in either copy, so
-// both round alike and as the scalar code does.
-//
-// The helpers are always inlined: the callers are compiled twice, and an out-of-line helper shared
-// by both copies would pass its vectors by two conventions. GCC's note on that (-Wpsabi) is
-// silenced for them here and with -Wno-psabi on the files whose own functions take vectors: none
-// of them crosses a library boundary.
+// vgroove common: four doubles at a time (GCC and clang vector extensions) for the kernels that
+// take four rays, angles or quadrature nodes per instruction. V4 arithmetic is lane by lane and
+// rounds as double does; comparisons give masks, select(mask, a, b) picks lanes.
+// VGROOVE_TARGET_CLONES compiles a function for AVX2 and for any x86-64 and picks one at start-up;
+// the libraries build with -ffp-contract=off, so both copies round alike and as the scalar code.
+// Helpers are always inlined. Held by the kernels' bit-for-bit tests:
+// tests/sim/symmetric_block_test.cpp (SymmetricBlock.EveryRayIsTracesBitForBit),
+// tests/analytic/brdf_3d_test.cpp (Brdf3d.BatchedPassEqualsPerSolutionPass).
+// Derivation: docs/derivations/numerics.md.
 #pragma once
 
 #include <cstdint>

@@ -1,23 +1,15 @@
-// vgroove optics: Fresnel reflectance of a smooth interface, for unpolarized light.
-//
-// Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces".
-// ACM TOG 37(6), 2018, Eq. (11): the energy a k-bounce path keeps is the product of F at each
-// bounce's local angle (and Eq. (23)'s R term for nonsymmetric grooves). The paper uses "the
-// standard Fresnel reflection equation"; this file writes it out.
-//
-// A leaf module (<cmath>, <complex> only): both sim/ and analytic/ may include it.
-//
-// Conventions. cos_theta_i is the cosine of the angle between the incident ray and the surface
-// normal, in [0, 1] (callers pass |d . n|); values a rounding outside are clamped into [0, 1].
-// eta + i kappa is the index of the far medium relative to the near one (kappa >= 0 absorbs).
-// The unpolarized reflectance is the mean of the s and p power reflectances,
-//   F = (|r_s|^2 + |r_p|^2) / 2,
-// and the amplitudes follow from w = n cos(theta_t) = sqrt(n^2 - sin^2 theta_i) (Snell's law,
-// n = eta + i kappa):
-//   r_s = (cos theta_i - w) / (cos theta_i + w),   r_p = (n^2 cos theta_i - w) / (n^2 cos theta_i + w).
-// (r_p's sign convention varies between texts; |r_p|^2 does not.) The principal square root
-// gives Im w >= 0, the wave that decays into an absorbing medium, and for kappa = 0, eta < 1
-// beyond the critical angle w = i |w| (total internal reflection, |r_s| = |r_p| = 1).
+// vgroove optics: Fresnel reflectance of a smooth interface, for unpolarized light, and Schlick's
+// approximation. Lee et al. 2018 ("Practical Multiple Scattering for Rough Surfaces", ACM TOG
+// 37(6)), Eq. (11) and Eq. (23)'s R term use "the standard Fresnel reflection equation", written
+// out here: F = (|r_s|^2 + |r_p|^2) / 2 with w = sqrt(n^2 - sin^2 theta_i), n = eta + i kappa the
+// far medium's index relative to the near one (principal root: decay into an absorber, total
+// internal reflection for kappa = 0, eta < 1). cos_theta_i in [0, 1] (a rounding outside is
+// clamped). A leaf module (<cmath>, <complex>): sim/ and analytic/ may both include it.
+// Tests: tests/optics/fresnel_test.cpp (Fresnel.NormalIncidenceIsTheClosedForm,
+// Fresnel.TotalInternalReflectionBeyondTheCriticalAngle, Fresnel.BrewsterAngleZeroesThePPolarization,
+// Fresnel.HandDerivedValuesAtFortyFiveDegrees, Fresnel.ConductorAgreesWithTheRealArithmeticForm,
+// Fresnel.ExtremeIndicesGiveFiniteFractions), tests/optics/metals_reference_test.cpp.
+// Derivation: docs/derivations/kaleidoscope.md.
 #pragma once
 
 namespace vgroove::optics {

@@ -1,48 +1,14 @@
-// vgroove scene: a scene spec (data/scenes/*.json), read strictly: what to trace, from where,
-// with which effects, and what to record. `vgroove simulate SCENE.json` runs it (simulate.h).
-//
-// Schema (every key is listed; anything else is an error naming its JSON path):
-//   {
-//     "scene": "gold_groove",                       required, non-empty string
-//     "note": "...",                                optional string (where the constants come from)
-//     "geometry":                                   required, one of
-//       {"kind": "groove", "theta_v_deg": 90}                       symmetric, theta_v in [0.001, 180]
-//       {"kind": "groove", "theta_l_deg": -30, "theta_r_deg": 45}   nonsymmetric (Lee et al. 2018, Fig. 5):
-//                                                   theta_l in [-90, 0], theta_r in [0, 90], aperture
-//                                                   180 + theta_l - theta_r >= 0.001
-//       {"kind": "microsurface", "ndf": "ggx" | "beckmann" | "phong", "alpha": 0.5,
-//        "grooves": 10000, "seed": 1}               sim/microsurface.h; alpha in [0.01, 2] (the range the
-//                                                   slope sampler is tested on), grooves in [1, 10000000],
-//                                                   seed in [0, 2^63 - 1] (default 0)
-//     "light": {                                    required
-//       "theta_i_deg": [0, 30, 60],                 non-empty list, each in [-89.999, 89.999]
-//       "rays": 100000,                             per theta_i, [1, 1000000000]: across the groove's
-//                                                   opening, or across the whole microsurface
-//       "sampling": "stratified" | "random",        optional, default "stratified"
-//       "seed": 1},                                 optional, [0, 2^63 - 1], default 1
-//     "effects": {                                  required
-//       "fresnel":                                  required, one of
-//         {"kind": "none"}                          perfect mirrors: nothing is computed per bounce
-//         {"kind": "conductor", "channels": [{"name": "r", "eta": 0.2, "kappa": 3.0}, ...]}
-//         {"kind": "conductor", "wavelengths": [{"lambda_nm": 550, "eta": 0.4, "kappa": 2.4}, ...]}
-//                                                   exact unpolarized conductor Fresnel (optics/fresnel.h)
-//                                                   of eta + i kappa, eta in (0, 1000], kappa in [0, 1000];
-//                                                   lambda_nm in (0, 100000] names its channel "<lambda>nm"
-//         {"kind": "schlick", "channels": [{"name": "r", "F0": 0.9}, ...]}   F0 in [0, 1]
-//                                                   1 to 64 channels, names unique and non-empty
-//       "record": {                                 optional; counts per bounce count k are always kept
-//                                                   (k = 0..4096, larger k in one row ">4096")
-//         "theta_o_histograms": {"bins": 90, "max_k": 16},   optional: exit-angle histograms over
-//                                                   (-90, 90) deg, bins in [1, 100000], one total and one
-//                                                   per k = 0..max_k ([0, 1000], default 16; larger k share
-//                                                   a last row); bins x (max_k + 2) <= 1000000
-//         "energy_per_k": true},                    optional, default false: the energy per k per channel
-//                                                   (needs a Fresnel effect: without one it is the count)
-//       "max_bounces": 100000}                      optional, [1, 100000000]: rays still inside are counted
-//   }                                               in their own bucket, never dropped
-//
+// vgroove scene: a scene spec (data/scenes/*.json), read strictly: what to trace (one groove,
+// symmetric or nonsymmetric, or a microsurface), from where (theta_i list, rays, stratified or
+// random, seed), with which effects (no Fresnel, exact conductor per channel or wavelength, or
+// Schlick), and what to record (counts per k always; optional theta_o histograms and energy per
+// k). `vgroove simulate SCENE.json` runs it (simulate.h). Every key and its range is listed in
+// docs/derivations/scene.md and docs/schemas/; any other key is an error naming its JSON path.
 // Energy: Lee et al. 2018, Eq. (11): a path keeps the product of F at its bounces' local angles.
 // Degrees at this edge only: the spec's *_deg values become radians in Scene.
+// Tests: tests/scene/scene_test.cpp (SceneSpec.UnknownKey, SceneSpec.OutOfRange,
+// SceneSpec.NotOneOfTheChoices, SceneSpec.MissingRequiredKey, SceneSpec.InconsistentCombinations,
+// SceneSpec.CheckedInScenesParse, SceneSpec.HistogramSizeIsBounded).
 #pragma once
 
 #include "vgroove/sim/beam.h"

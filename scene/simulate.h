@@ -1,31 +1,15 @@
-// vgroove scene: run a scene (scene.h) and report what it asked to record.
-//
-// Only what is asked for is computed. The tracer loop is instantiated once per (observer,
-// histograms on/off, energy per k on/off) and the combination is picked once per run:
-//   - fresnel none: sim::NoBounceObserver, which compiles away: the loop is the bare tracer plus
-//     an integer count per ray;
-//   - conductor or Schlick over C channels: one observer carrying the C reflectances, which takes
-//     the local cosine |d . n| once per bounce and multiplies C throughputs (Lee et al. 2018,
-//     Eq. (11)). One pass with C reflectances rather than C passes with one: the path (the
-//     intersections) is shared by all channels, only the Fresnel term is per channel.
-//
-// Rays. Per theta_i, `rays` landing points: across the groove's opening (a single groove), or
-// across the whole macrosurface (a microsurface: the groove under the point, then the point's
-// fraction across that groove's opening, as sim::trace_microsurface). Stratified: the midpoints
-// of `rays` equal strata; random: uniform in (0, 1) from Rng(seed, sim::kRayStream, chunk), the
-// rays cut into chunks of sim::kRaysPerChunk. Every theta_i uses the same landing points (common
-// random numbers), so a microsurface scene with fresnel none reproduces sim::trace_microsurface.
-//
-// Determinism. The work items are runs of a theta_i's chunks (SimulateWork below); each chunk
-// fills its own tally, the counts are integers, and the energies of a theta_i are added in chunk
-// order, so the results (the energy sums included) are bit-identical for any thread count, shard
-// or MPI split.
-//
-// Cost, measured (Release, 1 thread, a 10 deg groove, 4 x 10^6 rays, 4.8 x 10^7 reflections,
-// best of 3 on the shared 2-core machine): fresnel none 0.52 s (11 ns per reflection); conductor
-// with 1 channel 4.7-5.0 s (the complex square root of the exact conductor Fresnel dominates);
-// conductor over 3 channels in one pass 9.9 s, against 14.6 s for 3 one-channel passes; Schlick
-// over 3 channels 1.1 s. So one observer carrying C reflectances is the cheaper choice.
+// vgroove scene: run a scene (scene.h) and report what it asked to record. Only what is asked for
+// is computed: the tracer loop is instantiated per (observer, histograms, energy per k) and the
+// combination picked once per run; without Fresnel the observer compiles away; with C channels
+// one observer carries the C reflectances (Lee et al. 2018, Eq. 11: a path keeps prod_j F).
+// Rays: stratified midpoints or uniform draws from Rng(seed, sim::kRayStream, chunk), the same
+// landing points for every theta_i (a microsurface scene without Fresnel reproduces
+// sim::trace_microsurface). Chunk tallies added in chunk order: bit-identical for any thread
+// count, shard or MPI split. Costs: docs/performance.md.
+// Tests: tests/scene/scene_test.cpp (Simulate.ConductorGrooveEnergyMatchesTheModelStratified,
+// Simulate.ConductorGrooveEnergyMatchesTheModelRandom, Simulate.MicrosurfaceCountsMatchTraceMicrosurface,
+// Simulate.BitIdenticalForAnyThreadCount, Simulate.RecordsAreConsistent).
+// Derivation: docs/derivations/scene.md.
 #pragma once
 
 #include "vgroove/scene/scene.h"

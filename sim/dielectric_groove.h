@@ -1,24 +1,16 @@
-// vgroove sim: exact 2D tracing of light across one V-groove that separates two dielectrics.
-//
-// The interface is the groove's two facets (sim/groove.h) and the flat rim line on either side of
-// its opening, y = rim_height for x <= rim_x(left) and for x >= rim_x(right): one groove in an
-// otherwise flat interface (docs/derivations/dielectric_groove.md). Medium 1 (index n1) lies above
-// it, medium 2 (n2) below; eta = n2 / n1. Light arrives from above or from below; at every hit the
-// ray splits by the exact dielectric Fresnel reflectance at its local angle (optics/fresnel.h),
-// reflected by mirror reflection on the part hit and refracted by Snell's law (optics/snell.h), or
-// reflected whole under total internal reflection. A ray refracted into medium 2 travels on and may
-// meet the interface again from below (a facet's underside, the flat parts): traced, never
-// dropped. A ray that meets nothing more leaves: into medium 1 (upward, side above) or into
-// medium 2 (downward, side below).
-//
-// Inside the groove (medium 1 between the facets) a ray goes from facet to facet by sim::trace's
-// own arithmetic (the position as a distance s from the apex along the facet, no epsilon offsets,
-// the part just hit excluded), so with F forced to 1 (DielectricOptions::conductor_limit) every
-// path is sim::trace's ray, bit for bit. Below the interface positions are points, and the next
-// hit is the nearest crossing with the other three parts.
-//
-// Conservation: with no absorption, the energy that left (both sides) + the energy cut + the
-// energy at the bounce limit + the energy of vertex hits = 1 per ray, to rounding.
+// vgroove sim: exact 2D tracing of light across one V-groove that separates two dielectrics: the
+// groove's two facets (sim/groove.h) and the flat rim line on either side, medium 1 (n1) above,
+// medium 2 (n2) below, eta = n2 / n1, light from above or below. At every hit the ray splits by the
+// exact dielectric Fresnel reflectance at its local angle (optics/fresnel.h), reflected and
+// refracted by Snell's law (optics/snell.h), or reflects whole under total internal reflection;
+// refracted light is traced on, never dropped. Between the facets a ray follows sim::trace's own
+// arithmetic, so with F forced to 1 (DielectricOptions::conductor_limit) every path is sim::trace's
+// bit for bit. Conservation: left (both sides) + cut + bounce limit + vertex hits = 1 per ray, to
+// rounding. Tests: tests/sim/dielectric_groove_test.cpp (DielectricGroove.EnergyIsConservedToRounding,
+// DielectricGroove.ConductorLimitIsTheConductorTracerBitForBit, DielectricGroove.AFlatInterfaceIsFresnelAndSnell,
+// DielectricGroove.BeyondTheCriticalAngleEverythingReflects, DielectricGroove.GrazingLightNeverGivesNaN,
+// DielectricGroove.RefractedLightMeetsTheInterfaceAgainFromBelow).
+// Derivation: docs/derivations/dielectric_groove.md.
 #pragma once
 
 #include "vgroove/sim/groove.h"

@@ -1,25 +1,16 @@
 // vgroove sim: exact 2D tracing of light across a procedural V-groove surface (sim/microsurface.h)
-// that separates two dielectrics.
-//
-// The surface. The microsurface's G symmetric grooves side by side, each one groove width wide,
-// peaks on the line y = 0, repeated periodically along x (groove n is groove n mod G). Groove j,
-// built with unit facets (make_symmetric_groove), is scaled by c_j = 1 / (2 rim_x) to unit width:
-// a point (x, y) of its own frame lies at (j + 1/2 + c_j x, c_j (y - rim_height)) on the surface.
-// Scaling and shifting turn no direction, so directions are the same in both frames.
-//
-// Medium 1 (n1) lies above the surface, medium 2 (n2) below; eta = n2 / n1. Hits as in
-// sim/dielectric_groove.h (exact Fresnel at the local angle, Snell, total internal reflection;
-// split or random branching). In medium 1 a path stays inside its groove (all peaks on one line)
-// and goes from facet to facet by sim::trace's arithmetic in the groove's own frame, so in the
-// conductor limit every ray is sim::trace's in that groove, bit for bit, and the tallies are those
-// of trace_microsurface_chunk_reference. In medium 2 a path runs below the surface across any
-// number of grooves: the grooves along its way are tested in order (each groove's facets lie over
-// its own width, so the first groove hit holds the nearest hit), until it meets a facet's
-// underside or runs downward below the deepest apex, where it has left into medium 2.
-//
-// Light from above lands in a groove as for sim::trace_microsurface (sim::for_each_landing gives
-// the groove and the ray in its frame). Light from below is given by where its line crosses the
-// line y = -depth_max() (no facet lies below it), at x in groove widths.
+// that separates two dielectrics (medium 1, index n1, above; medium 2, n2, below; eta = n2 / n1).
+// Hits as in sim/dielectric_groove.h (exact Fresnel at the local angle, Snell, total internal
+// reflection; split or random branching). In medium 1 a path stays in its groove and follows
+// sim::trace's arithmetic in the groove's frame, so the conductor limit is
+// trace_microsurface_chunk_reference's tally bit for bit; in medium 2 it runs below the surface
+// across any number of grooves (tested in order) until it meets an underside or leaves downward.
+// Holds: the conductor limit bit for bit; eta = 1 passes straight through; energy conserved and
+// refracted light traced on; split and random branching agree in distribution.
+// Tests: tests/sim/dielectric_microsurface_test.cpp (DielectricSurface.ConductorLimitIsTodaysMicrosurfaceTally,
+// DielectricSurface.EtaOnePassesStraightThrough, DielectricSurface.EnergyIsConservedAndRefractedLightIsTracedOn,
+// DielectricSurface.SplittingAndRandomBranchingAgreeInDistribution, DielectricSurface.BadInputIsRefused).
+// Derivation: docs/derivations/dielectric_groove.md.
 #pragma once
 
 #include "vgroove/sim/dielectric_groove.h"

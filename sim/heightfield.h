@@ -1,45 +1,17 @@
 // vgroove sim: periodic heightfields on an N x N grid, the explicit random surfaces traced in 3D
-// by sim/heightfield_tracer.h.
-//
-// Geometry. Vertex (i, j), 0 <= i, j < N, sits at (i, j, h[j N + i]) in cell units (the grid
-// spacing is 1, heights in the same unit); the surface repeats with period N along x and y, so
-// vertex (i + a N, j + b N) has the height of (i, j). Cell (i, j) spans [i, i+1] x [j, j+1] and
-// holds two triangles split along its diagonal from (i, j) to (i+1, j+1):
-//   lower (half 0): (i, j), (i+1, j), (i+1, j+1)     upper (half 1): (i, j), (i+1, j+1), (i, j+1)
-// both counter-clockwise seen from above. A triangle's plane has the gradient (s_x, s_y) of its
-// finite differences (lower: (h10 - h00, h11 - h10), upper: (h11 - h01, h01 - h00)) and the
-// upward normal (-s_x, -s_y, 1) / |.|; every triangle covers half a cell of the macrosurface, so
-// counting triangles is weighting their normals by projected area: the histogram of the
-// triangles' gradients is the slope distribution P22(s) = D(m) cos^4 theta_m.
-//
-// Gaussian surfaces (Beckmann slopes). Heights are a stationary Gaussian process with the
-// autocorrelation C(dx, dy) = sigma^2 exp(-dx^2 / l_x^2 - dy^2 / l_y^2). The slope along x of the
-// continuous surface has the variance -C_xx(0) = 2 sigma^2 / l_x^2; the triangles' slopes are
-// finite differences over one cell, with the variance 2 (C(0) - C(1, 0)) = 2 sigma^2 (1 -
-// exp(-1 / l_x^2)). Beckmann's D with roughness alpha_x has the slope variance alpha_x^2 / 2 per
-// axis (P22 = exp(-s_x^2 / alpha_x^2 - s_y^2 / alpha_y^2) / (pi alpha_x alpha_y)), so the field
-// takes
-//   sigma^2 = alpha_x^2 / (4 (1 - exp(-1 / l_x^2))),   l_y = 1 / sqrt(-log(1 - alpha_y^2 / (4 sigma^2))),
-// and its triangles' slopes are Gaussian with the variances alpha_x^2 / 2 and alpha_y^2 / 2
-// exactly (up to the synthesis' sums, below). One triangle's two slopes are correlated by
-// -(1 - q) / 2, q = exp(-1 / l^2) (isotropic: -0.0078 at l = 8 cells): the diagonal split's
-// one departure from Beckmann, which a longer correlation length shrinks as 1 / (2 l^2).
-//
-// Synthesis. White noise w (one standard normal per vertex, Rng(seed, kHeightfieldStream, row))
-// convolved circularly with the separable kernel g(x, y) = c exp(-2 x^2 / l_x^2 - 2 y^2 / l_y^2),
-// c = 2 sigma / sqrt(pi l_x l_y): the sum over u of g(x - u) g(y - u) is the Riemann sum of a
-// Gaussian of standard deviation l / (2 sqrt 2) cells, which equals the integral, C, to a relative
-// 2 exp(-pi^2 l^2 / 4) (1e-17 at l = 4; l >= 2 is required). The kernel is wrapped over the
-// period and cut at 8 of its standard deviations (l/2): the cut drops exp(-32) of its weight.
-//
-// Validation fields: a flat field (all heights equal) and one V-groove family (grooves along y,
-// the profile along x a triangle wave of slope +-s, period 2 P cells, ridges at height P s and
-// bottoms at 0), which the lifted tracer (sim/microsurface3d.h) traces exactly.
-//
-// Memory: 8 bytes per cell for the heights (N^2 doubles); the synthesis holds two more N^2
-// arrays while it runs (16 bytes per cell). With the min-max hierarchy
-// (sim/heightfield_hierarchy.h, 21.3 bytes per cell) a field takes 29.3 bytes per cell:
-// 4096^2 is 492 MB (508 MB peak with the synthesis temporaries, 0.77 GB), 2048^2 is 123 MB.
+// by sim/heightfield_tracer.h: two triangles per cell (split along the diagonal), period N along x
+// and y, counting triangles weights their normals by projected area. Gaussian fields have the
+// autocorrelation sigma^2 exp(-dx^2 / l_x^2 - dy^2 / l_y^2) with sigma and l_y chosen so that the
+// triangles' finite-difference slopes are Gaussian with the Beckmann variances alpha_x^2 / 2 and
+// alpha_y^2 / 2 exactly (one triangle's two slopes correlate by -(1 - q) / 2, q = exp(-1 / l^2)),
+// synthesized by circular convolution of white noise (relative 2 exp(-pi^2 l^2 / 4); l >= 2).
+// Validation fields: flat, and one V-groove family the lifted tracer traces exactly. Memory with
+// the hierarchy: 29.3 bytes per cell (4096^2: 492 MB). Deterministic per seed.
+// Tests: tests/sim/heightfield_test.cpp
+// (GaussianHeightfieldStats.SlopeVarianceRmsHeightAndCorrelationMatchTheParameters,
+// GaussianHeightfieldNdf.TriangleSlopesFollowBeckmann,
+// GaussianHeightfield.IsDeterministicPerSeedAndDiffersBetweenSeeds, ValidationHeightfields.FlatAndVGrooveHeights,
+// HeightfieldMemory.BytesPerCellAsStated). Derivation: docs/derivations/heightfield.md.
 #pragma once
 
 #include <cstdint>

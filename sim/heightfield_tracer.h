@@ -1,49 +1,17 @@
 // vgroove sim: the exact 3D tracer of a periodic heightfield (sim/heightfield.h) in double
 // precision: the field's triangles (two per cell), descended through the min-max hierarchy
 // (sim/heightfield_hierarchy.h) over the periodic tiling, met by the watertight ray-triangle test
-// (sim/triangle_watertight.h), reflected specularly.
-//
-// Frame: the macrosurface normal is (0, 0, 1); the light at i = dir(theta_i, phi_i) (the
-// direction3 convention of sim/microsurface3d.h); rays travel along -i. A parallel beam crosses
-// the plane z = max height + 1 uniformly over one period [0, n)^2, which is uniform over the
-// macrosurface.
-//
-// What is exact and what is rounded. Which triangle a ray meets is decided by the watertight
-// test: the triangles' vertices have integer x, y (exact, also in every periodic image: the ray's
-// origin is moved by whole periods, which is exact) and the field's heights, so no ray passes
-// between two triangles. The hierarchy only chooses which triangles are tested: its boxes are
-// widened by 2^-20 cells and its heights by 2^-20 max(1, |h|) so that rounding in the slab
-// distances never skips a triangle (a widened box costs a test, never an answer). Hit points and
-// reflected directions are rounded (as in the 2D tracer).
-//
-// No epsilons. A hit is on a triangle's interior, on an edge (one barycentric weight exactly 0)
-// or on a vertex (two). The ray leaves the hit point and no triangle touching the hit feature (1,
-// 2 or 6 of them) is tested on its next segment: a ray leaving a point of a planar triangle's
-// boundary cannot meet that plane again, so this drops only the zero-distance self-hits (a ray
-// leaving an interior point is handled the same way with its one triangle).
-// Front-face culling (a ray in the air meets triangles only from above) and t > 0 already reject
-// most zero-distance hits; the rule catches the rest: a ray leaving an edge point, rounded to
-// the far side of the neighbour's plane, met it again at t ~ 1e-16 in 3 of 122880 rays exactly
-// on the edges of rough fields (tests/sim/heightfield_tracer_test.cpp). Edge and vertex hits
-// are counted and reflected by the limit of the neighbouring interior hits: reflect off the
-// triangle hit; then, while the direction points into one of the touching triangles (its xy
-// sector at the feature, decided by exact sign tests on integer edges) from below its plane
-// (d . n < 0), reflect off that one too, counting each reflection as a bounce. A concave edge
-// (a valley) so gives the wedge's two or more reflections, a convex one (a ridge) one.
-//
-// Buckets (every ray in exactly one): escaped (going up above the field's max height; binned),
-// bounce_limit (more than max_bounces reflections), lost (found below the field's min height, or
-// a horizontal ray that meets nothing over max_tiles periods: neither is expected; tests require
-// lost = 0).
-//
-// Determinism. The rays are cut into chunks of kHeightfieldRaysPerChunk; chunk c draws from
-// Rng(seed, kHeightfieldRayStream, c) and its tally depends only on (surface, options, c). The
-// counts are integers; the energies are sums of doubles, added ray by ray within a chunk and
-// chunk by chunk in chunk order by trace_heightfield (a caller running chunks on several threads
-// keeps the per-chunk tallies and merges them in chunk order: the same bits for any thread count).
-//
-// Memory: the surface holds the field and its hierarchy, 29.3 bytes per cell (sim/heightfield.h:
-// heightfield_bytes); 4096^2: 492 MB. Tracing allocates only the tally.
+// (sim/triangle_watertight.h), reflected specularly. No epsilons: no ray passes between two
+// triangles; the widened hierarchy never skips a triangle; edge and vertex hits are counted and
+// reflected by the limit of the neighbouring interior hits; the triangles touching the feature
+// just hit are not tested again. Buckets: escaped (binned), bounce_limit, lost (expected 0).
+// Deterministic per chunk, merged in chunk order: the same bits for any thread count. Memory:
+// 29.3 bytes per cell (heightfield_bytes). Tests: tests/sim/heightfield_tracer_test.cpp
+// (HeightfieldTracer.FlatFieldIsAMirrorToTheBit, HeightfieldTracer.VGrooveFamilyMatchesTheLiftedTracer,
+// HeightfieldTracer.EdgeAndVertexRaysTakeTheLimitOfOneSide,
+// HeightfieldTracer.ExactEdgeRaysNeverHitTheirEdgeTwice, HeightfieldTracer.HierarchyPrunesWithoutChangingAnyAnswer,
+// HeightfieldEnergy.EveryRayLeavesAndEnergyIsExactlyOne,
+// HeightfieldTracer.TwoThreadsMergedInChunkOrderGiveTheSameBits). Derivation: docs/derivations/heightfield.md.
 #pragma once
 
 #include "vgroove/sim/heightfield.h"

@@ -1,34 +1,18 @@
 // vgroove sim: a procedural flatland microsurface of many symmetric V-grooves, and the light it
-// scatters, traced exactly.
-//
-// Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces". ACM TOG
-// 37(6), 2018: Sec. 5 (each facet belongs to one V-groove; all peaks lie on the macrosurface, so
-// shadowing, masking and interreflection stay inside one groove) and Sec. 7.1 (brute-force
-// simulation on procedural microsurfaces, Fig. 11).
-//
-// The surface. G grooves side by side, peaks on the line y = 0 (the macrosurface), each spanning
-// the same width W = 1/G of it. Groove j is symmetric with facet normals at -theta_j (its left
-// facet) and +theta_j (its right facet), so its aperture is theta_v = pi - 2 theta_j. Each facet
-// covers half the groove's width on the macrosurface.
-//
-// Why theta_j = |sample_theta_m(u_j)|. The NDF says which fraction of the macrosurface's length
-// lies under facets with normals in d theta: D2(theta) cos(theta) d theta, the density that
-// sample_theta_m draws from. The grooves have equal widths, so groove j carries the fraction 1/G
-// of the length, split equally between +theta_j and -theta_j. Drawing |theta_j| from the folded
-// density 2 D2 cos (D2 is even) and splitting it in two halves gives back D2 cos on each side.
-// (Had the facets equal lengths instead, a groove's width would be 2 L cos theta_j and the draw
-// would need the density proportional to D2 alone: the width is what the draw has to weight.)
-//
-// Tracing. A ray from theta_i lands at a point of the macrosurface drawn uniformly (a parallel
-// beam crosses a line uniformly), falls into the groove under that point and is traced with
-// sim::trace in that groove; it cannot reach another groove, since it leaves through the
-// groove's own opening (all peaks on one line). Grooves are built with unit facets and the ray's
-// landing point is scaled to their opening: reflection does not depend on scale.
-//
-// Determinism. Groove j's angle comes from Rng(surface seed, kGrooveStream, j); the rays are cut
-// into chunks of kRaysPerChunk, chunk c drawing from Rng(ray seed, kRayStream, c). A chunk's tally
-// depends only on (surface, options, c), and tallies hold integer counts, so any split of the
-// chunks over threads, merged in any order, gives bit-identical results.
+// scatters, traced exactly. Lee et al. 2018 ("Practical Multiple Scattering for Rough Surfaces",
+// ACM TOG 37(6)), Sec. 5 (each facet belongs to one groove, all peaks on the macrosurface) and
+// Sec. 7.1 (brute-force simulation, Fig. 11). G grooves of equal width 1/G; groove j has facet
+// normals at -+theta_j, theta_j = |sample_theta_m(u_j)| drawn from 2 D2 cos (the width is what the
+// draw weights). A ray lands uniformly on the macrosurface and is traced with sim::trace in the
+// groove under it (it cannot reach another). Deterministic: groove j from Rng(surface seed,
+// kGrooveStream, j), chunk c from Rng(ray seed, kRayStream, c); any split gives the same bits.
+// Holds: the grooves cover the length as the NDF says; every ray is accounted (albedo 1); mirror
+// symmetry and reciprocity within statistics; chunk order does not matter.
+// Tests: tests/sim/microsurface_test.cpp (Microsurface.GroovesCoverTheLengthAsTheNdfSays,
+// Microsurface.AlbedoIsOneAndEveryRayIsAccounted, Microsurface.MirrorSymmetry,
+// MicrosurfaceReciprocity.TracedFlatlandSurfaceIsReciprocalWithinStatistics,
+// Microsurface.ResultsDoNotDependOnHowChunksAreMerged).
+// Derivation: docs/derivations/microsurface.md.
 #pragma once
 
 #include "vgroove/sim/beam.h"

@@ -1,54 +1,16 @@
 // vgroove sim: a 3D microsurface of infinitely long symmetric V-grooves whose facet normals follow
 // a 3D NDF, traced exactly with the 2D tracer in each groove's cross-section and lifted back to 3D
-// (DESIGN.md, "3D from 2D").
-//
-// Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces". ACM TOG
-// 37(6), 2018: Sec. 3 and 5.1 (a surface of V-grooves, all ridges on the macrosurface), Sec. 7.1
-// (brute-force simulation, Fig. 11). Derived here independently of analytic/ (never included).
-//
-// Frame. Macrosurface normal n = (0, 0, 1); the direction at polar angle theta and azimuth phi is
-// (sin theta cos phi, sin theta sin phi, cos theta). The light is at i = dir(theta_i, pi), so its
-// mirror direction is at phi = 0. Directions point away from the surface; rays travel along -i.
-//
-// The surface. G grooves of equal macro area, all ridges in the plane z = 0. Groove j has the
-// horizontal direction a = (cos phi_a, sin phi_a, 0) across it, its axis u = n x a, and facet
-// normals s = dir(theta_m, phi_a), s' = dir(theta_m, phi_a + pi): aperture pi - 2 theta_m.
-//
-// Why (theta_m, phi_a) has the density 2 D(theta_m) cos(theta_m) sin(theta_m) on [0, pi/2) x
-// [0, pi). The NDF D (3D, 2 pi int D cos sin dtheta = 1) says which fraction of the macrosurface's
-// area lies under facet normals in the solid angle ds: D(s) cos(theta_s) ds, with ds = sin dtheta
-// dphi. A groove at phi_a holds normals at phi_a and phi_a + pi, half its area each, so folding
-// phi in [0, 2 pi) onto the groove azimuth in [0, pi) doubles the density: 2 D cos sin dtheta dphi_a.
-// The grooves have equal macro areas, so each is drawn from that law: phi_a uniform on [0, pi)
-// and theta_m with the density p(theta) = 2 pi D(theta) cos(theta) sin(theta), whose integrals
-// are in closed form (x = tan^2 theta):
-//   GGX:      D = alpha^2 / (pi cos^4 (alpha^2 + x)^2),  P(theta) = x / (alpha^2 + x),
-//   Beckmann: D = exp(-x / alpha^2) / (pi alpha^2 cos^4),  P(theta) = 1 - exp(-x / alpha^2),
-//   Phong:    D = (p + 2) cos^p / (2 pi), p = 2/alpha^2 - 2,  P(theta) = 1 - cos^(p+2) theta.
-//   Student-T (slope_sampling.h), tail gamma, k2 = (gamma - 1) alpha^2:
-//             D = (1 + x / k2)^-gamma / (pi alpha^2 cos^4),  P(theta) = 1 - (1 + x / k2)^(1 - gamma).
-// (d/dtheta of x/(alpha^2 + x) is alpha^2 x' / (alpha^2 + x)^2 with x' = 2 tan / cos^2; the other
-// two likewise.) The inverses: tan theta = alpha sqrt(u / (1 - u)), tan theta = alpha
-// sqrt(-log(1 - u)), cos theta = (1 - u)^(alpha^2 / 2).
-//
-// Tracing. A parallel beam from i lands on each groove in proportion to its macro area (all
-// ridges on z = 0, so no groove shadows another), uniformly across its opening. Inside a groove
-// reflections keep the travel direction's component along u and act in the cross-section plane
-// (x-axis a, y-axis n, the 2D convention of sim/geometry.h: the direction at signed angle t is
-// (-sin t, cos t)) as in 2D. The projected incident direction (i.a, i.n) / |.| has the 2D angle
-// t_i = atan2(-(i.a), i.n); the groove seen in the cross-section is the 2D symmetric groove of
-// aperture pi - 2 theta_m (its facet normals (sin theta_m, cos theta_m) and (-sin theta_m,
-// cos theta_m) are the 2D directions at -theta_m and +theta_m). A ray crosses the rim line at a
-// uniform point of the opening (the beam's cross-section maps affinely onto it) and is traced with
-// sim::trace; the unit 2D exit direction (e_x, e_y) lifts to
-//   o = sqrt(1 - (i.u)^2) (e_x a + e_y n) - (i.u) u,
-// a unit vector (|(i.a, i.n)| = sqrt(1 - (i.u)^2)) whose u-component is that of the reflected
-// travel direction; a flat groove returns the mirror direction, and (i + o) has no u-component.
-//
-// Determinism. Groove j's (theta_m, phi_a) come from Rng(surface seed, kGroove3dStream, j); the
-// rays are cut into chunks of kRaysPerChunk, chunk c drawing from Rng(ray seed, kRay3dStream, c).
-// A chunk's tally depends only on (surface, options, c) and holds integer counts, so any split of
-// the chunks over threads, merged in any order, gives bit-identical results.
+// (DESIGN.md, "3D from 2D"). Lee et al. 2018 ("Practical Multiple Scattering for Rough Surfaces"),
+// Sec. 3, 5.1 and 7.1 (Fig. 11). Derived independently of analytic/ (never included).
+// Grooves: phi_a uniform on [0, pi), theta_m with the density 2 pi D cos sin (closed-form CDFs and
+// inverses per NDF); exits lift as o = sqrt(1 - (i.u)^2) (e_x a + e_y n) - (i.u) u. The light is at
+// i = dir(theta_i, pi). Deterministic: any split of chunks over threads gives the same bits.
+// Holds: the groove law by chi-square; every ray leaves (albedo 1); the lift matches 3D
+// reflections; chunk order does not matter.
+// Tests: tests/sim/microsurface3d_test.cpp (Sampling3d.GroovesFollowThePdf,
+// Sampling3d.SampleInvertsTheCdf, Microsurface3dLift.MatchesThreeDimensionalReflections,
+// Microsurface3d.AlbedoIsOneAndEveryRayIsAccounted, Microsurface3d.DeterministicAcrossChunkOrders).
+// Derivation: docs/derivations/microsurface.md.
 #pragma once
 
 #include "vgroove/sim/microsurface.h"

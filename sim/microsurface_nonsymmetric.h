@@ -1,52 +1,18 @@
 // vgroove sim: procedural microsurfaces of nonsymmetric V-grooves (flatland and 3D, isotropic or
-// anisotropic), and the light they scatter, traced exactly.
-//
-// Lee, Jarabo, Jeon, Gutierrez, Kim. "Practical Multiple Scattering for Rough Surfaces". ACM TOG
-// 37(6), 2018: Sec. 5.2 (nonsymmetric grooves, Eq. 18-20: the second facet's tilt independent of
-// the first, drawn from P(theta_r)), Fig. 7 (anisotropic Beckmann), Fig. 8 (symmetric against
-// nonsymmetric). Derived here independently of analytic/ (never included).
-//
-// The grooves. Each groove has two facets whose normals lie in its cross-section: the one whose
-// normal leans towards +a (the "left" facet of sim/groove.h, normal angle theta_l = -A) and the
-// one leaning towards -a (right, theta_r = +B). Both rims lie on the macrosurface (all peaks on
-// one plane: light never leaves its groove), every groove spans the same macro width (flatland)
-// or area (3D), and its facet lengths follow from the equal rim heights (make_nonsymmetric_groove).
-//
-// Which (A, B). Lee et al.'s construction (Eq. 18-19; tests/sim/partner_sampling_test.cpp checks
-// it) gives each groove a first facet of fixed projected width, its tilt a from the NDF's tilt law
-// q, and a second facet of tilt b from Eq. (20), r = q tan / E_q[tan], whose width tan a / tan b
-// follows. Its grooves cover the macrosurface with the shape density (per macro area)
-//   q(a) r(b) (1 + tan a / tan b) / 2 = (q(a) r(b) + r(a) q(b)) / 2,
-// since q(a) tan a r(b) / tan b = r(a) q(b) E_q[tan] / E_q[tan] (r / tan = q / E_q[tan]). So the same
-// surface, with every groove of equal width, is drawn as: one facet's tilt from q, the other's
-// from r, independently, on a side chosen with probability 1/2. In 3D the side is the azimuth:
-// the facet from q leans towards a = (cos phi_a, sin phi_a, 0) with phi_a uniform on [0, 2 pi),
-// which covers both assignments (the groove at phi_a + pi with its facets swapped is the same
-// groove). In flatland a fair coin picks it. Every facet of the surface then has its normal
-// distributed by the NDF in projected area, and the tilt of its partner by r, independently of
-// its own: the population of Lee et al.'s Eq. (21).
-//
-// Anisotropy (3D, Beckmann and GGX: elliptical slope laws P22(m) = P(|(m_x / alpha_x, m_y /
-// alpha_y)|) / (alpha_x alpha_y)). The facet from q is the facet of a slope m drawn from P22: a
-// unit-roughness isotropic slope scaled by (alpha_x, alpha_y); its normal's azimuth is that of
-// -m, its tilt atan |m|. Along an azimuth phi the elliptical law is the isotropic one of roughness
-// alpha(phi), 1/alpha(phi)^2 = cos^2(phi)/alpha_x^2 + sin^2(phi)/alpha_y^2, up to a constant, so
-// the azimuths have the density ~ alpha(phi)^2, the tilt given phi is q at alpha(phi), and the
-// partner's tilt is drawn from r at alpha(phi) (Sec. 5.2: "P(theta_r | phi_v)"). The roughness
-// axes sit at the azimuth `axes_azimuth` of the tally's frame (the light at azimuth pi): a light at
-// azimuth phi_i over the roughness axes is axes_azimuth = pi - phi_i.
-//
-// Partner::symmetric draws B = A: symmetric grooves with the same azimuth law (the symmetric model
-// of anisotropic surfaces; isotropic, the law of sim/microsurface.h and sim/microsurface3d.h).
-//
-// Tracing and tallies: as sim/microsurface.h (flatland: the beam lands uniformly on the
-// macrosurface, for_each_landing) and sim/microsurface3d.h (3D: a groove uniformly, a point across
-// its opening uniformly, trace_groove3d in its cross-section, lifted back), into the same tallies.
-//
-// Determinism. Groove j's angles come from Rng(seed, stream, j) (its own stream whatever it
-// draws); the rays are cut into chunks of kRaysPerChunk, chunk c drawing from Rng(ray seed,
-// stream, c). Tallies hold integer counts, so any split of the chunks over threads, merged in any
-// order, gives bit-identical results.
+// anisotropic), and the light they scatter, traced exactly. Lee et al. 2018 ("Practical Multiple
+// Scattering for Rough Surfaces", ACM TOG 37(6)), Sec. 5.2 (Eq. 18-20), Fig. 7-8; derived here
+// independently of analytic/ (never included). Each groove: one facet's tilt from the NDF's tilt
+// law q, the other's from r = q tan / E_q[tan] (Eq. 20), independently, on a side chosen with
+// probability 1/2 (3D: the azimuth); anisotropic Beckmann and GGX by scaled slopes, the partner at
+// alpha(phi). Partner::symmetric draws B = A. Traced as sim/microsurface.h (flatland) and
+// sim/microsurface3d.h (3D) into the same tallies; bit-identical for any chunk split.
+// Holds: every facet's normal follows D in projected area and its partner's tilt Eq. (20)
+// independently; every ray leaves and is counted; chunk order does not matter.
+// Tests: tests/sim/microsurface_nonsymmetric_test.cpp
+// (NonsymmetricPopulation.FacetFollowsTheNdfAndItsPartnerEq20Independently,
+// NonsymmetricPopulation.AnisotropicSlopesAndPartners, NonsymmetricMicrosurface.EveryRayLeavesAndIsCounted,
+// NonsymmetricMicrosurface.ChunkOrderDoesNotMatter), tests/sim/partner_sampling_test.cpp.
+// Derivation: docs/derivations/nonsymmetric.md.
 #pragma once
 
 #include "vgroove/sim/microsurface.h"

@@ -1,20 +1,12 @@
 // vgroove sim: the rough surface's infinite limit: every ray falls into a V-groove of its own,
-// drawn from the NDF, and is traced exactly (flatland, or in 3D in the groove's cross-section
-// and lifted back). What it measures are expectations over the NDF itself, with no finite set of
-// grooves behind them: the fraction of the rays leaving after k reflections is a multinomial
-// share of N independent rays, with standard error sqrt(p (1 - p) / N) and nothing else.
-//
-// It is the procedural surfaces' process (sim/microsurface.h, sim/microsurface3d.h) with one
-// groove per ray: a ray lands on a groove with probability proportional to its macro width, and
-// the grooves there have equal widths, so the groove under a ray is a draw from the same law the
-// surfaces draw their grooves from (flatland |theta_m| from the density 2 D2 cos; 3D theta_m from
-// 2 pi D cos sin and the azimuth phi_a uniform on [0, pi)), and the landing point is uniform
-// across its opening.
-//
-// Determinism. Chunk c of a stream draws from Rng(splitmix64(seed ^ kNdfGrooveStream), stream, c)
-// (three uniforms per ray in 3D, two in flatland: the groove, then the landing point); a chunk's
-// counts depend on (options, stream, c) only, and they are integers, so any split of the chunks
-// merges to the same totals.
+// drawn from the NDF (flatland |theta_m| from 2 D2 cos; 3D theta_m from 2 pi D cos sin, phi_a
+// uniform on [0, pi)), landing uniformly across its opening, and is traced exactly (3D in the
+// groove's cross-section, lifted back): the process of sim/microsurface.h and
+// sim/microsurface3d.h with one groove per ray. Its fractions are multinomial shares of N
+// independent rays, standard error sqrt(p (1 - p) / N) and nothing else. Deterministic: chunk c
+// from Rng(splitmix64(seed ^ kNdfGrooveStream), stream, c), integer counts.
+// Tests: through validation/energy_table.h (tests/cluster/shards_test.sh, tests/cluster/mpi_test.sh).
+// Derivation: docs/derivations/microsurface.md.
 #pragma once
 
 #include "vgroove/common/ndf_kind.h"

@@ -1,23 +1,13 @@
-// vgroove sim: a periodic polyline height profile, the geometry the polyline tracer runs on.
-//
-// A profile y = h(x) given by its vertices (x_v, y_v), v = 0..n, with x strictly increasing and
-// the last vertex the first one moved by one period: x_n = x_0 + period, y_n = y_0. Segment j runs
-// from vertex j to vertex j + 1; the profile repeats with the period in both directions. The
-// macrosurface is the x axis, angles and directions as in sim/geometry.h: segment j's unit normal
-// points up (n.y > 0) and is the direction at angle theta_m = atan(slope) from the macrosurface
-// normal.
-//
-// Exactness of the period. The tracer meets the copies of a vertex one or more periods away at
-// x_v + m period. When every x_v and the period are multiples of one power of two small enough
-// that these sums stay below 2^53 of it (the generators in sim/random_profile.h and
-// vgroove_polyline below make them so), the shifted vertices are exact and the periodic profile is
-// exactly the same in every period; otherwise the copies round to the ulp of their coordinate.
-//
-// Acceleration. Heights only matter to a ray near the profile, so the segments are grouped into
-// blocks of kBlock consecutive segments, blocks into blocks of kBlock blocks, and so on (a max
-// pyramid over the segment index): each block keeps the highest vertex it touches, and a ray that
-// passes above a block's highest vertex skips the block whole. Vertices equally spaced in x (the
-// random profiles; V-grooves of equal width) make these blocks a uniform grid in x.
+// vgroove sim: a periodic polyline height profile, the geometry the polyline tracer runs on:
+// vertices (x_v, y_v), v = 0..n, x strictly increasing, x_n = x_0 + period, y_n = y_0; segment
+// normals point up, at theta_m = atan(slope) (conventions of sim/geometry.h). When every x_v and
+// the period are multiples of one small power of two (the generators make them so), the shifted
+// copies of a vertex are exact and every period is the same profile. Segments are grouped into a
+// max pyramid of blocks of kBlock, each keeping its highest vertex, so a ray passing above a
+// block skips it whole.
+// Tests: tests/sim/polyline_tracer_test.cpp (PolylineTracer.VGroovePolylineGeometry,
+// PolylineTracer.EveryStepIsTheBruteForceHit, PolylineTracer.NearlyLevelRaysMeetTheNextPeakOrLeave).
+// Derivation: docs/derivations/profiles.md.
 #pragma once
 
 #include "vgroove/sim/geometry.h"

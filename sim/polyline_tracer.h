@@ -1,33 +1,15 @@
-// vgroove sim: exact 2D ray tracing over a periodic polyline height profile (sim/polyline.h).
-//
-// The same rules as the V-groove tracer (sim/tracer.h): explicit ray-segment intersections and
-// mirror reflections, no epsilon offsets (after a reflection the segment just hit is excluded),
-// and every ray ends in one of the Termination buckets: escaped, vertex_hit (a vertex met
-// exactly, where the reflection is undefined), bounce_limit. `blocked` does not occur: a ray
-// starts on the top line y = y_max above the whole profile.
-//
-// The first hit, watertight. A ray meets segment [a, b] when a and b lie on opposite sides of its
-// line: sides cross(v - p, d) of opposite signs (a zero side is the ray through that vertex: a
-// vertex hit). The profile is a height field, so a ray moving right (d.x > 0) can only meet the
-// segments to the right of where it is, in the order of their x, and the first one whose end
-// vertices' sides differ is the hit (moving left, the same leftwards). Each vertex's side is
-// computed once per ray segment and shared by the two segments that meet at it, so a ray cannot
-// slip between two segments through their common vertex by rounding. The hit parameter along the
-// segment is side(a) / (side(a) - side(b)), in [0, 1] by construction; 0 or 1 is a vertex hit.
-//
-// Skipping. Before the segments of a block of the pyramid (sim/polyline.h), the ray is compared
-// with the block's highest vertex at the block's end where the ray is lowest; if the vertex lies
-// below the ray's line by more than the rounding of that comparison, no segment of the block can
-// be met and the block is skipped (the margin only makes the skip conservative: whatever is not
-// skipped is decided by the exact side test above). A ray going up leaves as soon as the highest
-// vertex of the whole profile lies below it at the current x.
-//
-// Leaving. Moving up (or level), a ray that has passed one whole period without a hit never
-// hits: over the next period it is higher by P tan(elevation) than over the last one, where it
-// stayed above the profile, and the profile repeats. Moving down, a ray always hits within one
-// period: the next copy of the highest vertex lies above it.
-//
-// Determinism: a ray's result depends only on the profile and the ray, never on other rays.
+// vgroove sim: exact 2D ray tracing over a periodic polyline height profile (sim/polyline.h),
+// with the rules of sim/tracer.h: explicit ray-segment intersections, mirror reflections, no
+// epsilon offsets (the segment just hit is excluded), and every ray in one Termination bucket
+// (escaped, vertex_hit, bounce_limit). The first hit is watertight: each vertex's side of the ray
+// is computed once and shared by its two segments, so no ray slips through a common vertex; blocks
+// of the pyramid are skipped only when conservatively below the ray. A ray going up that passes a
+// whole period without a hit never hits; one going down always hits within a period.
+// Tests: tests/sim/polyline_tracer_test.cpp (PolylineTracer.EveryStepIsTheBruteForceHit,
+// PolylineTracer.RaysExactlyThroughVerticesAreVertexHits, PolylineTracer.ReflectionLawAndEnergyAtEveryBounce,
+// PolylineTracer.GrazingLightNearFlatAndVeryRoughProfilesLoseNoRay,
+// PolylineTracer.VGrooveSurfaceGivesTheGrooveTracersRays).
+// Derivation: docs/derivations/profiles.md.
 #pragma once
 
 #include "vgroove/sim/polyline.h"

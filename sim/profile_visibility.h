@@ -1,23 +1,13 @@
 // vgroove sim: which points of a polyline profile (sim/polyline.h) a viewer sees and which of
-// those the light reaches, traced exactly with sim/polyline_tracer.h: the raw counts behind the
-// masking function G1(o, m), the masking-shadowing function G2(i, o, m) and the lit length
-// (Heitz 2014, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs", JCGT
-// 3(2), Sec. 2-5: G1 is the visible fraction of the facets of normal m seen from o; G2 the
-// fraction visible from o and lit from i).
-//
-// A beam of N parallel rays from the view direction o (travelling along -o) lands uniformly on
-// the top line over one period (sim/profile_tally.h's landing points); the segment each ray meets
-// first is the point it sees, and counts for that segment. A ray stands for the beam width
-// period cos(theta_o) / N, so seen[s] period cos(theta_o) / N estimates the projected length
-// (perpendicular to o) of segment s that is visible from o: G1 of the segment times
-// length_s (o.n_s)+. With a light direction i, a shadow ray leaves each seen point towards i
-// (sim::first_hit_from, the segment itself excluded): the point is lit when the ray escapes (and
-// the segment faces the light, i.n > 0), and counts in seen_lit[s].
-//
-// No model is assumed here: the counts are per segment, and validation/ bins them by normal and
-// sets them against Smith's and the V-cavity masking functions.
-//
-// Determinism: chunks of kRaysPerChunk rays from Rng(seed, kRayStream, chunk); integer counts.
+// those the light reaches, traced exactly with sim/polyline_tracer.h: the raw counts per segment
+// behind G1(o, m), G2(i, o, m) and the lit length (Heitz 2014, "Understanding the Masking-Shadowing
+// Function in Microfacet-Based BRDFs", JCGT 3(2), Sec. 2-5). A beam of N rays from o lands
+// uniformly over one period; the segment each meets first counts as seen, and a shadow ray towards
+// i decides whether it is lit. No model is assumed here; validation/profile_masking.h bins and
+// compares. Deterministic: chunks from Rng(seed, kRayStream, chunk), integer counts.
+// Tests: tests/validation/profile_masking_test.cpp (ProfileMasking.VCavityIsExactOnVGrooveProfiles,
+// ProfileMasking.LitFractionIsPerMacroLengthAndPerArcLengthByHand, ProfileMasking.FlatProfileIsLitWhole).
+// Derivation: docs/derivations/profiles.md.
 #pragma once
 
 #include "vgroove/sim/beam.h"

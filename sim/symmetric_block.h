@@ -1,24 +1,14 @@
-// vgroove sim: the reflections of a block of rays, each in its own symmetric groove and with
-// its own direction, without branches (the procedural surfaces' batch trace).
-//
-// sim::BeamTracer's batch trace (beam_block.cpp) shares one groove and one direction over a block;
-// on a procedural surface every ray meets its own groove (and, in 3D, its own cross-section
-// direction). A symmetric groove of unit facets is fixed by three numbers, the x of its rims'
-// edges and the rim height (SymmetricGrooveData: 24 bytes where sim::Groove takes 176, so a
-// surface of 250,000 grooves stays in cache), from which everything sim::trace reads is formed by
-// the same operations as make_symmetric_groove and finish_groove, bit for bit
-// (symmetric_groove_from). first_reflections computes, lane by lane, what sim::trace computes up
-// to its first reflection and the test that follows it: the first hit whether the numerator's
-// sign excludes a facet or both are tested (rays more grazing than a facet, most rays at oblique
-// incidence on rough surfaces), the same products, comparisons and divisions in the same order,
-// every comparison made and the facet's quantities picked by selects, four lanes per vector (GCC
-// vector extensions); next_reflections, one more reflection per round, likewise (every lane's
-// results stored, none skipped by a branch). So each lane's values are trace()'s bit for bit (an
-// AVX2 copy without FMA is picked at start-up; compiled with -fno-trapping-math, which changes no
-// value).
-// Rays the block does not settle (outside the opening, no facet met, the apex or a rim hit) go
-// to sim::trace; rays that reflect again go on with its reflection loop from the state the
-// block leaves (tests/sim/symmetric_block_test.cpp checks every lane against sim::trace).
+// vgroove sim: the reflections of a block of rays, each in its own symmetric groove and with its
+// own direction, without branches (the procedural surfaces' batch trace). A groove is three
+// numbers (SymmetricGrooveData, 24 bytes), from which everything sim::trace reads is formed by the
+// same operations (symmetric_groove_from). first_reflections and next_reflections compute, four
+// lanes per vector (common/simd.h), what sim::trace computes, the same operations in the same
+// order with selects for branches, so each lane's values are trace()'s bit for bit (AVX2 without
+// FMA, -fno-trapping-math). Rays the block does not settle go on in sim::trace.
+// Tests: tests/sim/symmetric_block_test.cpp (SymmetricBlock.EveryRayIsTracesBitForBit,
+// SymmetricBlock.GrooveDataRebuildsTheGroove, SymmetricBlock.TalliesEqualThePathBefore,
+// SymmetricBlock.ChunksAddedIntoOneTallyEqualTheMergedChunks).
+// Derivation: docs/derivations/microsurface.md.
 #pragma once
 
 #include "vgroove/sim/groove.h"

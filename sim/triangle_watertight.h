@@ -1,25 +1,13 @@
-// vgroove sim: the watertight ray-triangle test in double precision.
-//
-// Woop, Benthin, Wald. "Watertight Ray/Triangle Intersection". Journal of Computer Graphics
-// Techniques 2(1), 2013. The ray is made the z-axis of a sheared frame: kz is the axis of the
-// direction's largest component, kx and ky the other two (swapped when d[kz] < 0, which keeps a
-// triangle's winding), and a vertex p - org maps to (p_kx - S_x p_kz, p_ky - S_y p_kz) with
-// S_x = d_kx / d_kz, S_y = d_ky / d_kz. The 2D edge functions of the sheared vertices,
-//   U = C_x B_y - C_y B_x,   V = A_x C_y - A_y C_x,   W = B_x A_y - B_y A_x,
-// are the scaled barycentric weights of A, B, C. Why no ray slips between two triangles: a shared
-// edge's vertices are sheared by the same operations in both (the same doubles), and its edge
-// function in the neighbour is the same two products subtracted the other way round, so it is
-// exactly the negation (a - b = -(b - a) in IEEE arithmetic): a ray is strictly inside one, or
-// exactly 0 in both. Zeros count as inside, so a ray through an edge hits both triangles and a ray
-// through a vertex hits all around it; the caller sees which weights are exactly 0 (an edge or a
-// vertex hit) and decides once. No epsilon anywhere. The products must not be fused into
-// additions (sim/ builds with -ffp-contract=off): a fused C_x B_y - C_y B_x would round the two
-// orders differently.
-//
-// Facing: with the swap, det = U + V + W > 0 exactly when the ray meets the triangle from the side
-// its counter-clockwise winding faces (for the heightfield's triangles, from above: d . n < 0);
-// det == 0 is a ray in the triangle's plane (no hit). The distance is t = T / det,
-// T = U A_z + V B_z + W C_z with the z coordinates scaled by S_z = 1 / d_kz.
+// vgroove sim: the watertight ray-triangle test in double precision. Woop, Benthin, Wald,
+// "Watertight Ray/Triangle Intersection", JCGT 2(1), 2013: the ray is the z-axis of a sheared
+// frame and the 2D edge functions U, V, W of the sheared vertices are the scaled barycentric
+// weights. A shared edge's edge function in the neighbour is exactly the negation, so no ray slips
+// between two triangles; zeros count as inside and the caller sees which weights are exactly 0
+// (an edge or a vertex hit). No epsilon anywhere; sim/ builds with -ffp-contract=off, which this
+// relies on. det = U + V + W > 0 exactly when the ray meets the counter-clockwise front face.
+// Tests: tests/sim/triangle_watertight_test.cpp (TriangleWatertight.HandValuesOfAVerticalRay,
+// TriangleWatertight.FrontFacingIsDetPositive, TriangleWatertight.NoRaySlipsThroughASharedEdge).
+// Derivation: docs/derivations/heightfield.md.
 #pragma once
 
 #include <Eigen/Core>

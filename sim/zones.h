@@ -1,34 +1,16 @@
-// vgroove sim: the exact traced fractions of a parallel beam, by breakpoint search.
-//
-// For a parallel beam on one facet, a ray's outcome (termination, facet hit first, bounce count
-// k) is piecewise constant in the position x where it crosses the rim line. find_zones traces a
-// stratified grid of M rays (the positions of Sampling::stratified) plus the two ends of the
-// interval (the nearest doubles inside it); between every two neighbours whose outcomes differ
-// it bisects on x with the exact tracer down to adjacent doubles (at most the ulp of the
-// interval's ends apart), so every breakpoint is located to that ulp; the traced fraction of an
-// outcome is then the measure of its zones. Nothing but the
-// tracer decides an outcome or places a ray.
-//
-// What can be missed: a zone that contains no grid ray and lies between two grid rays of equal
-// outcome (a zone between neighbours of different outcomes is always found: the bisection keeps
-// it between its ends until it holds a ray, unless it holds no double at all, i.e. is narrower
-// than one ulp). Such a zone is narrower than the grid spacing. In a V-groove it cannot exist
-// (the convexity lemma below), so every cell with equal ends that the lemma covers is certified;
-// any other cell with equal ends (both rays hit a vertex) is halved up to kSplits times, and
-// what is then left is counted in uncertified_cells; missed_bound(), their total width, bounds
-// what may be missing. Nothing is dropped silently.
-//
-// The convexity lemma (the tracer's own arithmetic, sim/tracer.h; no kaleidoscope): for a fixed
-// direction, the rim-line position x enters every quantity the tracer tests affinely. The first
-// hit's numerator cross(p, d) and t are affine in x (p = (x, rim_height)); blocked is x outside
-// the opening; the facet hit first and its s in [0, length] are sign and bound tests on affine
-// functions. After the first reflection the direction no longer depends on x, and each crossing
-// is s' = s cross(e_f, d) / cross(e_o, d): linear in s, tested against fixed bounds. So the set
-// of x with one given sequence of facets and one termination (escaped after k reflections,
-// blocked, still inside after max_bounces) is an intersection of half-lines: an interval. Two
-// rays with the same outcome of these kinds bound a cell of that outcome only. (Rounding moves
-// the ends of an interval by ulps; it creates no zone away from them.) Vertex hits are isolated
-// points; a cell with vertex-hit ends is not certified.
+// vgroove sim: the exact traced fractions of a parallel beam, by breakpoint search. A ray's outcome
+// (termination, facet hit first, bounce count k) is piecewise constant in where it crosses the rim
+// line; find_zones traces a stratified grid plus the interval's ends and bisects between
+// neighbours of different outcome down to adjacent doubles, so every breakpoint is located to the
+// ulp and each outcome's fraction is the measure of its zones. Only the tracer decides outcomes.
+// A zone can be missed only between grid rays of equal outcome; in a V-groove none exists (the
+// convexity lemma: x enters every test of the tracer affinely, so each outcome's set is an
+// interval), so such cells are certified; other cells are halved up to kSplits times and the rest
+// is counted in uncertified_cells, bounded by missed_bound(). Nothing is dropped silently.
+// Tests: tests/sim/zones_test.cpp (Zones.BreakpointsAreFoundToTheUlp,
+// Zones.AHiddenZoneIsReportedAsPossiblyMissed, Zones.UncertifiedCellsAreHalvedBeforeTheyAreCounted,
+// ZonesVGroove.EveryRayHasItsZonesOutcome, Zones.BreakpointsNearZeroStopAtTheIntervalsUlp).
+// Derivation: docs/derivations/zones.md.
 #pragma once
 
 #include "vgroove/sim/beam.h"

@@ -1,22 +1,14 @@
-// vgroove support: output files that are whole or absent, and never in the wrong place.
-//
-// What --out PATH does, by what PATH is (decided before the run, checked again when writing):
-//   - nothing there: the text goes to a temporary file beside it, which is renamed into place
-//     (a run that fails or is interrupted leaves no truncated report);
-//   - a regular file: replaced the same way, and only with --force (its permission bits kept);
-//   - a character device or a FIFO (/dev/null, a named pipe): written through, never replaced or
-//     created; a write error (/dev/full) is reported;
-//   - a symbolic link: followed, and the rules above apply to what it points to (a link to a
-//     regular file keeps pointing to the new report); a dangling link is refused, not written
-//     through (as GNU cp does), so that a run never creates a file somewhere the user did not name;
-//   - a directory, a block device or a socket: refused;
-//   - one of the run's own input files (the same file by device and inode): refused.
-// Before the run a temporary file is created and removed in the target's directory, so an
-// unwritable place (read-only mount, /proc, no permission) is reported before any work.
-//
-// Temporary files are named TARGET.vgroove-tmp.PID (TARGET's name cut to 200 bytes). One left by
-// a process that no longer exists (killed between write and rename) is removed by the next run
-// that writes the same target.
+// vgroove support: output files that are whole or absent, and never in the wrong place. --out PATH:
+// nothing there, or a regular file with --force: written to TARGET.vgroove-tmp.PID beside it and
+// renamed into place (no truncated report; permission bits kept); a character device or FIFO:
+// written through; a symbolic link: followed (a dangling one refused); a directory, block device,
+// socket or one of the run's own inputs: refused. An unwritable place is found before any work
+// (a temporary file is created and removed first); temporaries of dead processes are removed.
+// Tests: tests/support/atomic_file_test.cpp (AtomicFile.WritesANewFile,
+// AtomicFile.RefusesToOverwriteWithoutForce, AtomicFile.CharacterDevicesAreWrittenThrough,
+// AtomicFile.SymbolicLinksAreFollowed, AtomicFile.DanglingLinksAreRefused, AtomicFile.InputsAreNotOverwritten,
+// AtomicFile.UncreatableTargetsAreFoundByTheCheck, AtomicFile.TemporariesOfDeadProcessesAreRemoved).
+// Details: docs/derivations/atomic_file.md.
 #pragma once
 
 #include <string>

@@ -1,22 +1,15 @@
 // vgroove validation: the suites of kind "brdf" (Lee et al. 2018, Fig. 11: the BRDF against the
-// light traced in procedural rough surfaces). The white furnace is validation/furnace_suite.h.
-//
-// A "brdf" suite is the grid ndf x alpha x theta_i x dimension. Each case builds a
-// procedural surface of G grooves from the NDF (sim/microsurface.h in flatland,
-// sim/microsurface3d.h in 3D), traces N rays exactly and compares the histograms of exit
-// direction (total and per bounce count k) with the analytic BRDF integrated over the same bins
-// (analytic/brdf_flatland.h, analytic/brdf_3d.h).
-//
-// Thresholds come from the sample count, not from tuning. A simulated bin fraction s_b scatters
-// around the model's p_b for two reasons: the N rays (multinomial: variance p_b (1 - p_b) / N) and
-// the G grooves drawn from the NDF (each ray picks one of G grooves, so the mixture's bin
-// probability is itself an average of G draws: variance Var_g(p_gb) / G <= p_b (1 - p_b) / G,
-// since a groove's share p_gb lies in [0, 1]). With v_b = p_b (1 - p_b) (1/N + 1/G) as the bound,
-// a correct model shows an L1 error sum_b |s_b - p_b| of mean about sum_b sqrt(2 v_b / pi) (the
-// mean of |normal|) and standard deviation about sqrt(sum_b (1 - 2/pi) v_b); the threshold is
-//   expected + sigmas x sd + model_tolerance,
-// with `sigmas` and the analytic lobe's own quadrature error (`model_tolerance`) from the suite.
-// The report shows the error next to the expected value and the threshold.
+// light traced in procedural rough surfaces; the white furnace is validation/furnace_suite.h).
+// A suite is the grid ndf x alpha x theta_i x dimension; each case traces N rays on a surface of
+// G grooves (sim/microsurface.h, sim/microsurface3d.h) and compares the exit histograms (total and
+// per k) with the BRDF integrated over the same bins (analytic/brdf_flatland.h, brdf_3d.h).
+// Thresholds come from the sample count: with v_b = p_b (1 - p_b) (1/N + 1/G), a correct model's
+// L1 error has mean about sum_b sqrt(2 v_b / pi) and sd about sqrt(sum_b (1 - 2/pi) v_b); the
+// threshold is expected + sigmas x sd + model_tolerance.
+// Tests: tests/validation/brdf_suite_test.cpp (BrdfSuite.ExpectedL1MatchesMultinomialHistograms,
+// BrdfSuite.FlatlandThresholdHasPowerAgainstSmallErrors, BrdfSuite.ThreeDCasePassesWithCoarseBins,
+// BrdfSuite.BadSpecsNameTheFieldAndRange, BrdfSuite.ShippedSuitesParse).
+// Derivation: docs/derivations/validation.md.
 #pragma once
 
 #include "vgroove/analytic/ndf.h"

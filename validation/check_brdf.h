@@ -1,42 +1,17 @@
-// vgroove validation: hold a BRDF of your own against vgroove's exact simulation.
-//
-// A renderer developer links vgroove::validation and writes one call:
-//
-//   vgroove::validation::CheckBrdfOptions opt;          // GGX, alpha 0.5, theta_i 0..80 deg, 3D
-//   auto result = vgroove::validation::check_brdf(
-//       [](const vgroove::analytic::Dir3& wi, const vgroove::analytic::Dir3& wo) { return my_brdf(wi, wo); },
-//       opt);
-//   EXPECT_TRUE(result.pass) << result.to_json().dump(1);
-//
-// What it does, per incidence theta_i: builds the procedural V-groove microsurface of the NDF and
-// alpha (sim/microsurface3d.h in 3D, sim/microsurface.h in flatland; the surface of the Fig. 11
-// suite), traces `rays` rays exactly, and bins the exit directions as that suite does (3D: theta_o
-// in [0, pi/2) in theta_bins equal bins times phi_o in phi_bins bins centred on the mirror
-// direction's azimuth; flatland: theta_o in (-pi/2, pi/2) in flatland_bins bins). The user's BRDF
-// is integrated over the same bins, f(wi, wo) cos(theta_o) d omega_o, by globally adaptive
-// Gauss-Legendre cubature (quadrature_order^2 nodes per cell, cells split where the error
-// estimate is largest, until the estimates sum to model_tolerance or max_model_evals is spent;
-// f is evaluated on five rules per bin first, the cell's and its four quarters' (three in
-// flatland), so 3,600 rules of 16 directions per theta_i at the defaults, 57,600 evaluations, then
-// on 16 rules per cell split):
-// the fraction of the incident flux the model sends into each bin, and a bound on its error. The two are compared as
-// the Fig. 11 suite compares vgroove's own model (validation/histogram_metrics.h): the L1 distance of the normalized
-// lobes (the shape) and of the flux fractions (shape and energy), each against the error expected of a correct model at
-// this sample count plus `sigmas` standard deviations plus `model_tolerance` and the integration's error estimate, and
-// the albedo against its binomial error. A case passes when all three hold.
-//
-// Frame and units: n = (0, 0, 1); wi = dir3(theta_i, pi) points to the light, wo away from the
-// surface, both unit vectors; f in 1/sr (3D). In flatland the directions lie in the plane y = 0
-// (wi at azimuth pi, wo at azimuth 0 or pi) and f is per radian: the flux fraction of a bin is
-// int f(wi, wo) cos(theta_o) d theta_o. The light is white and the surface a perfect mirror
-// (F = 1): a BRDF that includes Fresnel should be checked with its Fresnel term set to 1.
-//
-// A value that is not a BRDF's, NaN, an infinity or a negative number (-0 is 0), is an error in
-// the model, not a failed comparison: check_brdf throws support::UserError at the first one it
-// meets, naming it and its directions, "f(wi, wo) = nan at wi = (0, 0, 1), wo = (x, y, z)
-// (theta_i_deg 0): a BRDF's values must be finite and >= 0", before the surface is traced. With
-// several theta_i, the first in the options' order whose integration meets one is reported, for
-// any thread count (the others after it stop).
+// vgroove validation: hold a BRDF of your own against vgroove's exact simulation, in one call:
+//   auto result = vgroove::validation::check_brdf(my_brdf, vgroove::validation::CheckBrdfOptions{});
+// Per theta_i it traces the procedural V-groove microsurface of the NDF and alpha (the surface of
+// the Fig. 11 suite: sim/microsurface3d.h, sim/microsurface.h), bins the exits as that suite
+// does, integrates the user's f(wi, wo) cos(theta_o) over the same bins by adaptive Gauss-Legendre
+// cubature with an error bound, and compares as the suite does (validation/histogram_metrics.h):
+// the L1 of the normalized lobes and of the flux fractions against the noise expected at this
+// sample count plus `sigmas` sd plus model_tolerance, and the albedo against its binomial error.
+// Frame: n = (0, 0, 1), wi = dir3(theta_i, pi) towards the light; F = 1. A NaN, infinite or
+// negative value throws support::UserError naming it and its directions, before any tracing.
+// Tests: tests/validation/check_brdf_test.cpp (CheckBrdf.VgrooveModelPasses3d,
+// CheckBrdf.VgrooveModelPassesFlatland, CheckBrdf.TwoPercentLessEnergyFails, CheckBrdf.WrongRoughnessFailsOnShape,
+// CheckBrdf.AValueThatIsNotABrdfsFailsAtOnceNamingItsDirections, CheckBrdf.ResultsDoNotDependOnThreads).
+// Derivation: docs/derivations/validation.md.
 #pragma once
 
 #include "vgroove/analytic/brdf_3d.h"

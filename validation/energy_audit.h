@@ -1,49 +1,18 @@
 // vgroove validation: the energy audit (suite kind "energy_audit"; `vgroove energy --audit`): the
-// energy compensation formulas engines ship (validation/energy_formulas.h) held against the exact
-// multiple-scattering albedo of two references, over mu x alpha x reflectance.
-//
-// References (per cell: NDF, alpha, mu = cos theta_i):
-//   vgroove     the 3D V-groove model (Lee et al. 2018), exact to its quadrature (~1e-8;
-//               analytic/albedo_vgroove.h), the surface of explicit V-grooves that vgroove traces
-//               exactly (`vgroove energy` holds the two together per bounce order with F = 1;
-//               tests/validation/energy_audit_test.cpp with a conductor's F). Its formulas are fed
-//               with the V-cavity model's single scattering (Cook-Torrance, its k = 1 term).
-//   smith_walk  the Smith random walk of Heitz et al. 2016 in 3D (analytic/smith_walk_3d.h), the
-//               reference engines fit to, by Monte Carlo: walk_paths paths per cell from their own
-//               stream (seed, cell, chunk), each carrying prod_j F(<v_j, m_j>) per channel; standard
-//               error at most sqrt(E (1 - E) / N) (every weight lies in [0, 1]). Its formulas are fed
-//               with Smith's height-correlated single scattering, and the engine tables only here
-//               (GGX).
-// The random heightfields (issue 33) and the dielectric tables (issue 32) are not references yet:
-// a reference is one more member of the cell's fixed part or tally, and one more name in
-// kAuditReferences, with the formulas fed from its own model's single scattering.
-//
-// Reflectances (validation/energy_materials.h): grey Schlick F0 (1 always: the white furnace;
-// 0.04 always: the dielectric of the metalness mixes), Au, Ag, Cu, Al as exact conductors at three
-// wavelengths, and the same metals as Schlick's F with their normal reflectance. Groups of errors:
-//   grey, conductor, metal_schlick   a formula on a channel against the same channel's exact albedo;
-//   engine_metal                     a formula on a metal's Schlick channel (what an engine is given)
-//                                    against the metal's exact conductor albedo;
-//   metalness_before/_after          metalness m between the dielectric (F0 = 0.04) and a metal's
-//                                    Schlick channel: the exact albedo of the mix is (1 - m)
-//                                    E(0.04) + m E(metal) (a surface of both); "before" feeds the
-//                                    formula F0 = (1 - m) 0.04 + m F0_metal (engines' lerp of F0),
-//                                    "after" mixes the formula's two albedos.
-// Error = formula albedo - reference albedo. Regions: all; rough (alpha >= rough_alpha); grazing
-// (mu <= grazing_mu). Per variant, reference, group and region: the worst |error| (and where), the
-// mean |error| and the mean signed error. The colour shift of Au and Cu: the three conductor bands
-// read as linear sRGB (R = ~650 nm, G = ~550, B = ~450; an assumption: not a spectral integration),
-// converted to CIE L*a*b* (D65) and compared by CIE Delta E 2000, with the per-channel ratios
-// formula / reference.
-//
-// The verdict holds the references, not the formulas: the walk's white channel leaves whole (every
-// path left) and its E_1 (Smith height-correlated E_ss) agrees with the exact quadrature within
-// sigmas standard errors; the V-groove model's white channel adds up to 1 within vgroove_furnace;
-// its first row equals the V-cavity E_ss within vgroove_furnace. The formulas' errors are results.
-//
-// Work (work_run.h): one unit per cell; the walk in chunks of kAuditPathsPerChunk paths (integer
-// tallies: counts per bounce order and each row's Fresnel energy in units of 2^-32 per path, so a
-// merge in any order gives the same bits), the model and every quadrature in its fixed part.
+// compensation formulas engines ship (validation/energy_formulas.h) held against the exact
+// multiple-scattering albedo of two references over mu x alpha x reflectance: the 3D V-groove
+// model (Lee et al. 2018; analytic/albedo_vgroove.h, exact to its quadrature, ~1e-8) and the 3D
+// Smith random walk (Heitz et al. 2016; analytic/smith_walk_3d.h, Monte Carlo, standard error at
+// most sqrt(E (1 - E) / N)). Reflectances: grey Schlick, Au, Ag, Cu, Al (exact conductors and
+// Schlick), metalness mixes; errors per variant, reference, group and region, and CIE Delta E 2000.
+// The verdict holds the references, not the formulas: the walk's white channel leaves whole and
+// its E_1 is the exact E_ss within `sigmas` standard errors; the model's white channel sums to 1
+// and its first row is the V-cavity E_ss within vgroove_furnace. One work unit per cell, integer
+// tallies: any merge order gives the same bits. Tests: tests/validation/energy_audit_test.cpp
+// (EnergyAudit.VgrooveReferenceWithAConductorIsTheTracedGrooves,
+// EnergyAudit.SmallAuditChecksPassAndEveryFormulaKeepsTheWhiteFurnace, Colour.DeltaE2000AtSharmasTestPairs),
+// tests/app/energy_tables_test.cpp (EnergyAuditCli.*).
+// Derivation: docs/derivations/energy_compensation.md.
 #pragma once
 
 #include "vgroove/common/ndf_kind.h"

@@ -1,22 +1,15 @@
-// vgroove validation: tables engines can load (`vgroove energy --export`): the single-scattering
-// albedo E_ss, its average E_avg, the split-sum DFG scale and bias (analytic/albedo_single.h, by
-// bounded quadrature) and the exact multiple-scattering albedo E_ms with Schlick's F per F0
-// (the rows k >= 2 of a reference: the V-groove model by quadrature, or the Smith random walk by
-// Monte Carlo), with the exact compensation factor (E_F + E_ms) / E_F that turns a single-scattering
-// lobe with the same F into the exact albedo (E_F = F0 scale + bias), in a chosen layout.
-//
-// Layouts (analytic/albedo_table.h names their parts; docs/albedo_tables.md documents them):
-//   cycles   Blender Cycles' table_ggx_E: texel ends s = i / (n - 1) clamped to [1e-4, 1], mu = s
-//            rows, r = s columns with alpha = r^2, coordinates in float, [mu][r] in memory;
-//   centres  texel centres s = (i + 1/2) / n for both (a texture sampled bilinearly at (mu, r) with
-//            no half-texel fix), mu rows, r columns, alpha = r^2, [mu][r] in memory.
-// The single-scattering model is the reference's (Smith height-correlated for the walk, the
-// V-cavity G for the V-groove model; without E_ms, the model asked for).
-//
-// Every file carries the metadata (layout, parametrization, quadrature, reference, version): the
-// JSON and the .npz (its member metadata.json beside the arrays' .npy members: numpy.load(f)
-// ["metadata.json"] gives its bytes), the C header (a comment), the PNG (a tEXt chunk) and the
-// OpenEXR file (a string attribute) (the image encoders are the command line's: app/).
+// vgroove validation: tables engines can load (`vgroove energy --export`): E_ss, E_avg and the
+// split-sum DFG scale and bias (analytic/albedo_single.h, bounded quadrature) and the exact
+// multiple-scattering albedo E_ms with Schlick's F per F0 (the rows k >= 2 of a reference: the
+// V-groove model by quadrature or the Smith walk by Monte Carlo), with the exact compensation
+// factor (E_F + E_ms) / E_F, E_F = F0 scale + bias, in a chosen layout: "cycles" (Blender Cycles'
+// table_ggx_E texel ends) or "centres" (texel centres). Every file (JSON, .npz, C header, PNG,
+// OpenEXR) carries its metadata (layout, parametrization, quadrature, reference, version).
+// Tests: tests/app/energy_tables_test.cpp (EnergyExport.FilesHoldTheTablesMetadataAndTheWhiteFurnace,
+// EnergyExport.SmithWalkMultipleScatteringIsOneMinusTheExactSingleScattering,
+// EnergyExport.BadInputNamesTheFlagAndLeavesNoFile, EnergyImages.Png16RoundTripsItsSamplesAndText,
+// EnergyImages.ExrRoundTripsItsChannelsAndAttribute). Layouts: docs/albedo_tables.md.
+// Derivation: docs/derivations/energy_compensation.md.
 #pragma once
 
 #include "vgroove/analytic/albedo_single.h"

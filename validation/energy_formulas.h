@@ -1,38 +1,16 @@
 // vgroove validation: the energy compensation formulas of analytic/compensation.h as directional
-// albedos, each fed from the exact single-scattering values or from its engine's own table as the
-// engine reads it: the quantity the energy audit (validation/energy_audit.h) holds against the
-// exact multiple-scattering albedo.
-//
-// A formula's albedo at (mu, alpha) for a reflectance channel (its curve F, F0 = F(1), F_avg = 2
-// int F mu dmu) is the integral over the hemisphere of the compensated lobe times the cosine:
-//   single         E_F                                 (no compensation; E_F = int F f_ss cos)
-//   kulla_conty    E_F + F_ms (1 - E),  F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg))
-//                  (Kulla and Conty 2017: int f_ms cos = 1 - E(mu); their conductor Fresnel term)
-//   turquin        E_F (1 + F0 (1 - E) / E)           (Turquin 2019; E at the view)
-//   filament       E_F (1 + F0 (1 / dfg.y - 1))        (Filament's energyCompensation)
-//   bevy_direct    E_F (1 + F0 (1 / (F_ab.x + F_ab.y) - 1))  (Bevy specular_multiscatter)
-//   cycles         E_F (1 + Fms (1 - E) / E),  Fms = Fss E_avg / (1 - Fss (1 - E_avg)),
-//                  Fss = F0 + (1 - F0) / 21            (Cycles microfacet_ggx_preserve_energy with
-//                  its generalized-Schlick Fss; the same factor whatever the channel's curve)
-//   fdez_aguera    F0 scale + bias + F_ms (1 - scale - bias), three.js computeMultiscattering (F90 = 1)
-//   fdez_aguera_roughness  the same with Bevy's roughness-dependent Schlick kS (environment_map.wgsl)
-// E, E_avg, scale and bias are the single-scattering albedo, its average and the split sum with
-// F = 1 (analytic/albedo_single.h) of the reference's own microsurface; E_F is exact for every
-// formula that evaluates f_ss with the channel's F pointwise (the lobe formulas); the split-sum
-// formulas use Schlick's F0 scale + bias, as the engines do, whatever the channel's curve.
-//
-// Feeds. "exact": every value by quadrature. "cycles_table": E and E_avg read from Blender Cycles'
-// published table_ggx_E and table_ggx_Eavg (data/reference/cycles_ggx_albedo.json) as Cycles
-// reads them: lookup_table_read_2D, linear in r = sqrt(alpha) and in mu on the 32 x 32 grid of
-// texel ends. "filament_lut": dfg.y from Filament's DFG LUT as cmgen --ibl-dfg writes it
-// (libs/ibl/src/CubemapIBL.cpp DFG and tools/cmgen iblLutDfg): 128 x 128 RG16F, NoV at the texel
-// centres (x + 1/2) / 128, the roughness coordinate of GL row j at min(1, (j + 3/2) / 128) (the
-// generator's saturate((h - y + 1/2) / h) with rows written in reverse), alpha = coord^2, each
-// value rounded to half precision; the shader samples it bilinearly at (NoV, perceptual
-// roughness), clamped to the edge texels. Here its texels hold the exact E_ss where Filament's
-// hold a 1024-sample Hammersley estimate. "karis_fit": the split sum from Karis 2014's
-// EnvBRDFApprox at r = sqrt(alpha) (three.js DFGApprox, Bevy F_AB without its DFG LUT). The
-// engine feeds exist for GGX with Smith's height-correlated G2 only (the engines' model).
+// albedos (the compensated lobe times the cosine over the hemisphere) for a reflectance channel
+// (its curve F, F0 = F(1), F_avg = 2 int F mu dmu): single, kulla_conty, turquin, filament,
+// bevy_direct, cycles, fdez_aguera, fdez_aguera_roughness; the quantity the energy audit
+// (validation/energy_audit.h) holds against the exact multiple-scattering albedo. Feeds: "exact"
+// (analytic/albedo_single.h quadrature), "cycles_table" (Cycles' table_ggx_E and table_ggx_Eavg
+// read as Cycles reads them, data/reference/cycles_ggx_albedo.json), "filament_lut" (Filament's
+// 128 x 128 RG16F DFG LUT layout, half-precision texels) and "karis_fit" (Karis 2014's
+// EnvBRDFApprox); the engine feeds for GGX with Smith's height-correlated G2 only.
+// Tests: tests/validation/energy_audit_test.cpp (EngineTables.CyclesLookupHitsItsNodesAndIsLinearBetween,
+// EngineTables.HalfPrecisionRounding, EngineTables.FilamentTexelCentresHoldTheNextRowsRoughness,
+// EnergyAudit.SmallAuditChecksPassAndEveryFormulaKeepsTheWhiteFurnace), tests/analytic/compensation_test.cpp.
+// Derivation and sources: docs/derivations/energy_compensation.md.
 #pragma once
 
 #include "vgroove/analytic/compensation.h"

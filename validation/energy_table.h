@@ -1,20 +1,13 @@
-// vgroove validation: exact energy tables of V-groove surfaces: the directional albedo
-// E(mu, alpha) per bounce order k, what renderers precompute for energy compensation (Kulla and
-// Conty 2017, "Revisiting Physically Based Shading at Imageworks"; Turquin 2019, "Practical
-// multiple scattering compensation for microfacet models"), here measured by exact tracing
-// instead of derived from the model being compensated.
-//
-// A cell is (NDF, dimension, alpha, mu = cos theta_i). Its rays each fall into a groove of their
-// own drawn from the NDF (sim/ndf_grooves.h: the infinite surface, no groove-count noise), so
-// E_k = n_k / N is the fraction of the light leaving after k reflections, with standard error
-// sqrt(E_k (1 - E_k) / N). With F = 1: E_1 is what single scattering keeps, sum_{k >= 2} E_k what
-// it loses; for a reflectance F that does not depend on the angle, the albedo is sum_k E_k F^k.
-// Beside it the same table from the analytic model (Lee et al. 2018, Eq. 16-17 in 3D, the
-// flatland lobe, integrated by quadrature: analytic/lobe_3d.h, analytic/brdf_flatland.h) and
-// Cook-Torrance's albedo (Eq. 1-3, V-cavity G: the model's k = 1 term).
-//
-// Work: one unit per cell; its rays cut into chunks (sim::kRaysPerChunk, stream = the cell's
-// index), and the model a fixed part (work_run.h), so tables can be sharded and merged exactly.
+// vgroove validation: exact energy tables of V-groove surfaces: the directional albedo E(mu,
+// alpha) per bounce order k (what renderers precompute for energy compensation: Kulla and Conty
+// 2017, Turquin 2019), measured by exact tracing. A cell is (NDF, dimension, alpha, mu); its rays
+// each fall into a groove of their own (sim/ndf_grooves.h), so E_k = n_k / N with standard error
+// sqrt(E_k (1 - E_k) / N). Beside it the analytic model's table (Lee et al. 2018, Eq. 16-17,
+// analytic/lobe_3d.h, analytic/brdf_flatland.h) and Cook-Torrance's albedo (Eq. 1-3). One work
+// unit per cell (work_run.h): tables shard and merge exactly.
+// Tests: tests/cluster/shards_test.sh and tests/cluster/mpi_test.sh (energy: shards and ranks
+// merge to the one-process table); no unit test holds E_k against the model by name.
+// Derivation: docs/derivations/energy_compensation.md.
 #pragma once
 
 #include "vgroove/common/ndf_kind.h"

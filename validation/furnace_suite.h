@@ -1,30 +1,13 @@
 // vgroove validation: the white furnace of the BRDF itself (suite kind "furnace"; Lee et al. 2018,
-// Fig. 12; Heitz et al. 2016): with F = 1 every ray that enters a groove leaves it (the ridges lie
-// on one plane), so the albedo of the multiple-scattering BRDF must be 1, and Cook-Torrance's
-// albedo (the k = 1 term) shows what single scattering loses.
-//
-// What each figure of a case tests:
-//   albedo_quadrature  int rho(i, o) cos(theta_o) do of the pointwise Eq. (17) (N = max_k;
-//                      analytic/brdf_3d.h vgroove_brdf, flatland flatland_brdf_fast), by
-//                      deterministic adaptive quadrature over the hemisphere (analytic/
-//                      hemisphere_quadrature.h): the BRDF a renderer evaluates, Eq. (13)'s
-//                      Jacobian, Eq. (16)'s solutions and widths, the NDF's normalization.
-//                      It does not use the binned lobes (analytic/lobe_3d.h).
-//   flux_beyond_max_k  the light that leaves after more than max_k reflections, integrated over
-//                      the grooves (the V-cavity sampler's failure probability: Eq. 4 and 6 only,
-//                      no Jacobian). Energy: albedo_quadrature + flux_beyond_max_k = 1 within the
-//                      quadrature's tolerance.
-//   albedo_estimate    the mean of rho(i, o) cos(theta_o) / pdf(o) over `samples` directions from
-//                      the sampler (analytic/sampling_3d.h; zero-weight returns count 0): the same
-//                      integral by Monte Carlo, with its standard error. It holds rho against the
-//                      sampler's pdf (checked by the chi-square tests): albedo_estimate +
-//                      flux_beyond_max_k = 1 within sigmas standard errors (plus 1e-12 of rounding:
-//                      with the V-cavity strategy every weight is 1 and the standard error 0).
-//   cook_torrance_*    the same two routes for Eq. (1)-(3) with the V-cavity G: they must agree
-//                      with each other; 1 - albedo is the energy Cook-Torrance loses.
-//   albedo_sim         (sanity line) rays traced on a procedural surface (sim/) that leave or are
-//                      still inside at the bounce limit, over rays: 1 by construction of the
-//                      surface; it tests the tracer's bookkeeping, not the BRDF.
+// Fig. 12; Heitz et al. 2016): with F = 1 every ray that enters a groove leaves it, so the albedo of
+// the multiple-scattering BRDF must be 1. Per case: albedo_quadrature (Eq. 17 integrated by
+// deterministic adaptive quadrature) + flux_beyond_max_k = 1 within the quadrature's tolerance;
+// albedo_estimate (Monte Carlo with the sampler's pdf) + flux_beyond_max_k = 1 within sigmas
+// standard errors (+1e-12); Cook-Torrance's two routes agree (1 - albedo is what it loses);
+// albedo_sim is the tracer's bookkeeping. Tests: tests/validation/furnace_suite_test.cpp
+// (FurnaceSuite.Eq17PassesBothRoutes, FurnaceSuite.BrokenJacobianFailsBothRoutes,
+// FurnaceSuite.BadSpecsNameTheField, FurnaceSuite.ShippedSuiteParses).
+// Derivation: docs/derivations/validation.md.
 #pragma once
 
 #include "vgroove/analytic/brdf_3d.h"

@@ -1,27 +1,14 @@
-// vgroove validation: the suite of kind "nonsymmetric_brdf" (Lee et al. 2018, Sec. 5.2-5.3, Fig. 7-8:
-// the BRDF of nonsymmetric V-grooves, the one the paper renders with, and anisotropic roughness)
-// against the light traced exactly in procedural nonsymmetric microsurfaces.
-//
-// Cases. An isotropic grid ndf x alpha x theta_i x dimension (flatland, 3D) and an anisotropic
-// block (3D): ndf x alpha_x x alpha_y x theta_i x phi_i (the light's azimuth over the alpha_x axis:
-// 0 along it, 90 across) x partner law (independent: Eq. 20; symmetric: B = A, the symmetric model
-// of an anisotropic surface). Each case builds the surface of sim/microsurface_nonsymmetric.h from
-// the suite's seed, traces N rays and compares the histograms of exit direction (joint (k, bin)
-// fractions, and the normalized lobe over all k) with the model's push-forward lobe
-// (analytic/lobe_nonsymmetric.h) over the same bins; thresholds from the sample count
-// (validation/histogram_metrics.h: expected L1 + sigmas x its sd + model_tolerance, the lobe's
-// quadrature error measured in tests/analytic/lobe_nonsymmetric_long_test.cpp). Each case also
-// reports the L1 of the same traced lobe against the model of the other partner law (the
-// symmetric model for the nonsymmetric surface) and whether that model is rejected by the same
-// threshold: what Fig. 8 shows, measured.
-//
-// Reciprocity: the nonsymmetric point evaluation (analytic/brdf_nonsymmetric.h) at
-// `reciprocity_pairs` random pairs (i, o) per NDF and roughness, per k = 1..4, 3D and flatland; the
-// worst relative asymmetry |rho(i, o) - rho(o, i)| / max is reported and must stay below 1e-8.
-//
-// The report carries, per case, the lobe on the plane of incidence (sim, this model, the other
-// partner law's model; all k and per k = 1..plane_k) as densities (per radian in flatland, per
-// steradian in 3D) at signed angles (negative: the mirror side), for plots like Fig. 8 and 11.
+// vgroove validation: the suite of kind "nonsymmetric_brdf" (Lee et al. 2018, Sec. 5.2-5.3, Fig.
+// 7-8): the nonsymmetric V-groove BRDF and anisotropic roughness against light traced exactly in
+// procedural nonsymmetric microsurfaces (sim/microsurface_nonsymmetric.h). Cases: an isotropic
+// grid ndf x alpha x theta_i x dimension and an anisotropic 3D block (alpha_x, alpha_y, phi_i,
+// partner law). Each compares the traced (k, bin) fractions and the lobe with the model's
+// push-forward lobe (analytic/lobe_nonsymmetric.h) within expected L1 + sigmas sd +
+// model_tolerance (validation/histogram_metrics.h), and reports whether the other partner law's
+// model is rejected (Fig. 8, measured). Reciprocity: worst relative asymmetry below 1e-8.
+// Tests: tests/validation/nonsymmetric_suite_test.cpp (NonsymmetricSuite.SmallRunPassesAndRejectsTheSymmetricModel,
+// NonsymmetricSuite.BadSpecsNameTheFieldAndRange, NonsymmetricSuite.ShippedSuiteParses).
+// Derivation: docs/derivations/validation.md.
 #pragma once
 
 #include "vgroove/analytic/ndf.h"

@@ -1,31 +1,15 @@
 // vgroove validation: masking G1(o, m), masking-shadowing G2(i, o, m) and the lit length of one
-// polyline profile, from the traced counts (sim/profile_visibility.h), beside what Smith's and
-// the V-cavity masking functions predict for the same profile.
-//
-// Heitz 2014 ("Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs", JCGT 3(2)):
-//   - G1(o, m) is the fraction of the facets of normal m facing o that o sees (Sec. 2.2);
-//   - Smith's G1 = chi+(o.m) / (1 + Lambda(o)) does not depend on m (Eq. 10): exact under the
-//     independence of normals and masking (Sec. 2.3);
-//   - the V-cavity G1 = chi+(o.m) min(1, 2 (m.n)(o.n) / (o.m)) (Eq. 24) is exact on a profile of
-//     symmetric V-grooves with their rims on one line (Sec. 6.1);
-//   - G2: separable Smith G1(o) G1(i) (Eq. 20), height-correlated 1 / (1 + Lambda(o) +
-//     Lambda(i)) (Eq. 21); the V-cavity's min(G1(o, m), G1(i, m)) (in a 2D groove both the
-//     shadow and the masked part start at the apex);
-//   - the projected-area identity (Eq. 5): sum over front-facing facets of G1 length (o.m) =
-//     period cos theta_o. On any profile the traced visible projected length is the beam's whole
-//     width, so the traced average of G1 over the front-facing facets (projected-area weights)
-//     is 1 / (1 + Lambda_p), Lambda_p from the profile's own normals; that holds whatever the
-//     surface and cannot tell Smith from V-cavity (both satisfy Eq. 5 for their own D). It is
-//     kept as a consistency check: every ray meets a front-facing segment first.
-//
-// Binning: `bins` equal bins of the facet angle theta_m over (-pi/2, pi/2). A bin's G1 is its
-// segments' visible projected length over their front-facing projected length (towards o), so
-// the models are weighted the same way over the profile's own segments: the comparison is free of
-// the difference between the profile's normals and D2.
-//
-// On V-groove profiles the V-cavity prediction is exact, so the traced counts per bin are a
-// multinomial sample of it: chi-square (validation/chi_square.h) against V-cavity's expected
-// counts, for G1 (cells: bins) and G2 (cells: bins seen and lit, and seen but not lit).
+// polyline profile from the traced counts (sim/profile_visibility.h), per facet-angle bin, beside
+// Smith's and the V-cavity's predictions for the same segments. Heitz, "Understanding the
+// Masking-Shadowing Function in Microfacet-Based BRDFs", JCGT 3(2), 2014: Eq. (5) (projected-area
+// identity, kept as a consistency check), Eq. (10) (Smith G1), Eq. (20)-(21) (G2), Eq. (24) (the
+// V-cavity, exact on V-groove profiles: there the counts are a multinomial sample of it, tested by
+// chi-square, validation/chi_square.h).
+// Tests: tests/validation/profile_masking_test.cpp (ProfileMasking.VCavityIsExactOnVGrooveProfiles,
+// ProfileMasking.ProjectedAreaIdentityHoldsOnEveryProfile,
+// ProfileMasking.LitFractionIsPerMacroLengthAndPerArcLengthByHand,
+// ProfileMasking.SmithIsRejectedOnVGrooveProfilesAtGrazingView, ProfileMasking.FlatProfileIsLitWhole).
+// Derivation: docs/derivations/profiles.md.
 #pragma once
 
 #include "vgroove/analytic/ndf.h"

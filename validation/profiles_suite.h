@@ -1,36 +1,16 @@
 // vgroove validation: the suite of kind "profiles": masking, shadowing and multiple scattering
-// traced exactly on random height profiles and on V-groove profiles of the same NDF, against
-// Smith (Heitz 2014), the V-cavity, the flatland Smith random walk (Heitz et al. 2016,
-// analytic/smith_walk_flatland.h) and this project's V-groove model (analytic/brdf_flatland.h).
-//
-// A case is (ndf, alpha, theta); each surface kind of the suite is traced on `realizations`
-// independent profiles of `segments` segments:
-//   - "random": sim/random_profile.h (Beckmann: Gaussian process, Gaussian autocorrelation; GGX:
-//     GGX slopes), the same realizations for every theta of an (ndf, alpha);
-//   - "vgroove": the procedural V-groove surface of sim/microsurface.h (segments / 2 grooves) as a
-//     polyline.
-// Per realization three beams of `rays` rays (sim/profile_visibility.h, sim/profile_tally.h):
-// the view beam from theta with shadow rays towards the light at -theta (G1(theta, m) and the
-// mirror-configuration G2(-theta, theta, m)), the beam from -theta (lit length), and the beam from
-// theta tallied by bounce count k and exit angle (the per-k lobe). validation/profile_masking.h
-// turns the counts into G1, G2 and the lit length per facet-normal bin beside Smith's and the
-// V-cavity's values on the same facets.
-//
-// What decides pass or fail is only what must hold (the tracer against the model that is exact
-// for the surface):
-//   - every profile: no ray lost, and the projected-area identity (validation/profile_masking.h);
-//   - V-groove profiles: the V-cavity G1 and G2 (chi-square of the counts, summed over the
-//     realizations, p >= p_min / number of such tests), the lit fraction of arc length (|z| <= sigmas), and the
-//     V-groove model's per-k lobe (L1 of the joint (k, bin) fractions within expected + sigmas sd
-//     + model_tolerance of validation/histogram_metrics.h, N = rays x realizations, G = grooves x
-//     realizations).
-// Everything else is a measured result, reported with its statistical error: per bin the mean
-// over realizations and its standard error (the realizations' spread, at least the rays'
-// binomial error: the one the distances use); each model's distance from the
-// traced value per bin (in standard errors) and, over the bins, the projected-area-weighted mean
-// |difference| beside the value noise alone would give; per k the L1 distance of the walk's and
-// the V-groove model's lobes from the traced lobe, with the L1 expected from the noise of both
-// (traced: the realizations' spread; walk: its path count) and whether it is within sigmas.
+// traced exactly on random height profiles (sim/random_profile.h) and on V-groove profiles of the
+// same NDF (sim/microsurface.h as a polyline), against Smith (Heitz 2014), the V-cavity, the
+// flatland Smith walk (analytic/smith_walk_flatland.h) and the V-groove model
+// (analytic/brdf_flatland.h). Per case (ndf, alpha, theta), `realizations` profiles, three beams
+// of `rays` each (view, lit length, per-k lobe). Pass or fail only on what must hold: no ray lost
+// and the projected-area identity on every profile; on V-groove profiles the V-cavity G1 and G2
+// (chi-square, p >= p_min / tests), the lit fraction (|z| <= sigmas) and the V-groove model's
+// per-k lobe (validation/histogram_metrics.h). Everything else is a measured result with its
+// standard error. Tests: tests/validation/profiles_suite_test.cpp
+// (ProfilesSuite.SmallRunPassesAndIsTheSameOnOneAndTwoThreads, ProfilesSuite.ReportedErrorsAreTheVerdicts,
+// ProfilesSuite.BadSpecsNameTheFieldAndRange, ProfilesSuite.ShippedSuiteParses).
+// Derivation: docs/derivations/profiles.md.
 #pragma once
 
 #include "vgroove/analytic/ndf.h"

@@ -1,25 +1,14 @@
 // vgroove validation: a job's work items (support/work_plan.h) run, and the results of the
-// processes that ran them merged into each unit's.
-//
-// Every run takes this path: one process runs all the items; a shard runs its own and writes
-// them as a partial report (partial_report.h); an MPI rank runs its own and sends them to rank 0.
-// What a process ran is kept per unit: the chunk runs it traced with their tallies merged, and
-// the unit's fixed part (the model) if it ran it. Tallies are integer counts, so merging them in
-// any grouping gives the same totals; merge_unit_parts checks that the parts cover every chunk
-// and fixed part of every unit exactly once, so a merged result is never silently partial.
-//
-// A Work type provides:
-//   using Context, Tally, Fixed;
-//   std::shared_ptr<const Context> prepare(std::size_t unit) const;   // e.g. the unit's surface
-//   Tally run_chunks(const Context&, std::size_t unit, std::int64_t begin, std::int64_t end) const;
-//   Fixed run_fixed(std::size_t unit) const;
-//   static void merge(Tally& into, const Tally& from);
-//   static nlohmann::json tally_json(const Tally&);  static nlohmann::json fixed_json(const Fixed&);
-//   Tally read_tally(support::JsonObject&, std::size_t unit, const std::vector<ChunkRun>& runs) const;
-//   Fixed read_fixed(support::JsonObject&, std::size_t unit) const;
-// The run_* functions are called from several threads at once. The read_* functions read what
-// another process wrote (a shard part, an MPI rank) as strictly as a suite file (part_fields.h):
-// the tally of the chunks `runs` of the unit, every array's length, count and sum checked.
+// processes that ran them merged into each unit's. One process, a shard (partial_report.h) or an
+// MPI rank all take this path; a process keeps per unit the chunk runs it traced (tallies merged)
+// and the unit's fixed part (the model) if it ran it. Tallies are integer counts, so any grouping
+// merges to the same totals; merge_unit_parts checks that the parts cover every chunk and fixed
+// part of every unit exactly once, so a merged result is never silently partial. A Work type
+// provides Context, Tally, Fixed, prepare, run_chunks, run_fixed (called from several threads),
+// merge, tally_json, fixed_json, read_tally and read_fixed (read as strictly as a suite file).
+// Tests: tests/validation/item_work_test.cpp (ItemWork.AnOutcomeCrossesProcessesBitForBit),
+// tests/cluster/shards_test.sh, tests/cluster/mpi_test.sh, tests/cluster/merge_parts_test.py.
+// Derivation: docs/derivations/validation.md.
 #pragma once
 
 #include "vgroove/support/json_reader.h"

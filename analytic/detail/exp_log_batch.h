@@ -1,22 +1,14 @@
 // vgroove analytic: e^z and log x for four doubles at a time, by polynomials that vectorize (GCC
 // and clang vector extensions): Beckmann's exponential in the batched BRDF pass
 // (brdf_3d_batch.cpp), Beckmann's and Phong's D at the lobe's quadrature nodes (lobe_3d_nodes.cpp).
-//
-// exp_batch(z), z in [-708, 709]: z = k ln 2 + r, |r| <= ln 2 / 2 (Cody-Waite, ln 2 in two parts;
-// k ln 2's high part is exact for |k| < 2^21), e^r = 1 + r + r^2 (1/2! + r/3! + ... + r^11/13!)
-// (truncation below 1.2e-17 relative), times 2^k formed in the exponent bits (k in [-1021, 1023]:
-// a normal number). Outside the range the lanes are meaningless; callers select.
-// log_batch(x), x a positive normal number: x = 2^e m, m in [sqrt(1/2), sqrt(2)), log m =
-// 2 atanh(s) = 2 (s + s^3/3 + ... + s^25/25), s = (m - 1) / (m + 1), |s| <= 0.1716 (truncation
-// below 1e-20 relative), plus e ln 2 in two parts.
-// Accuracy against long double (tests/analytic/exp_log_batch_test.cpp): exp within 0.97 ulp, expm1
-// within 1.91 ulp, log within 1.93 ulp (where e ln 2 and log m cancel by half, just above 2^e sqrt(2)). A power formed
-// as exp_batch(p log_batch(x)) adds the exponent's rounding, |p log x| ulp, as any such pow.
-// Checked through the BRDF's terms too: Beckmann's batched values agree with the per-solution
-// pass's std::exp to 2.5e-14 relative at worst, where the exponent multiplies a sine's 2 ulp by up
-// to 64 (tests/analytic/brdf_3d_test.cpp; dropping ln 2's low part fails it).
-//
-// Always inlined, as every helper of common/simd.h: the callers are compiled twice.
+// exp_batch(z), z in [-708, 709]: Cody-Waite reduction and a degree-13 series; log_batch(x), x a
+// positive normal number: 2 atanh(s) to s^25. Outside the range the lanes are meaningless.
+// Accuracy against long double: exp within 0.97 ulp, expm1 within 1.91 ulp, log within 1.93 ulp;
+// Beckmann's batched BRDF values within 2.5e-14 relative of std::exp's. Always inlined.
+// Tests: tests/analytic/exp_log_batch_test.cpp (ExpLogBatch.ExpWithinTwoUlpOverItsRange,
+// ExpLogBatch.Expm1WithinTwoUlpOverItsRange, ExpLogBatch.LogWithinTwoUlpOfItsValue),
+// tests/analytic/brdf_3d_test.cpp (Brdf3d.BeckmannVectorPassIsWithinItsBoundOrDeclines).
+// Derivation: docs/derivations/numerics.md.
 #pragma once
 
 #include "vgroove/common/polynomial.h"

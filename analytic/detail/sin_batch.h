@@ -1,20 +1,11 @@
 // vgroove analytic: sines and cosines of batches of angles in a known range, by polynomials that
-// vectorize (for the BRDF's facet solutions, brdf_3d_batch.cpp).
-//
-// sin x for x in [-pi/2, pi]: x in (pi/2, pi] is taken as pi - x, formed exactly (Sterbenz)
-// plus the low part of pi; then |x| in (pi/4, pi/2] as cos(pi/2 - |x|), formed the same way, so
-// that each polynomial runs on |r| <= pi/4: the Taylor series of sin to r^17 and of cos to r^16
-// (truncation below 1e-19 there), evaluated in Estrin's order (the latency of three products
-// instead of eight). sin and cos of y in [0, pi/2] come from one reduction (sin_cos_quadrant).
-//
-// Accuracy: within 2 ulp of the correctly rounded value, relative (the polynomials are
-// r + r (r^2 P) with |r^2 P| <= 0.11 and (1 - r^2/2) + r^4 Q with r^4 Q <= 0.016; measured in
-// tests/analytic/sin_batch_test.cpp against long double). Not bit for bit std::sin. Outside the
-// range the result is finite and meaningless; callers guarantee the range.
-//
-// The templates take a double or a GCC/clang vector of doubles (conditions select lane by lane)
-// and are always inlined: instantiated for vectors in a function compiled for AVX2 and in one
-// compiled for any x86-64, a shared out-of-line copy would pass its vectors by two conventions.
+// vectorize (for the BRDF's facet solutions, brdf_3d_batch.cpp): sin x for x in [-pi/2, pi] and
+// sin_cos_quadrant for y in [0, pi/2], reduced exactly to |r| <= pi/4, Taylor series in Estrin's
+// order. Accuracy: within 2 ulp of the correctly rounded value, relative (not bit for bit
+// std::sin); outside the range finite and meaningless. Templates over a double or a vector of
+// doubles, always inlined (the callers are compiled twice).
+// Tests: tests/analytic/sin_batch_test.cpp (SinBatch.WithinTwoUlpOverItsRange).
+// Derivation: docs/derivations/numerics.md.
 #pragma once
 
 #include "vgroove/common/polynomial.h"

@@ -249,7 +249,7 @@ namespace {
 
 // The default max_k (kSamplerMaxK) loses fewer than one sample in 10^7 (sampling_3d.h): at the
 // heaviest tails among GGX, Beckmann and Phong up to alpha 1, the share beyond max_k (integrated
-// over the facets) is below 1e-7. At the old default 256 it was 1.5e-4 for GGX alpha 2.
+// over the facets) is below 1e-7. At max_k 256 it is 1.5e-4 for GGX alpha 2.
 TEST(Sampling3d, DefaultMaxKLosesFewerThanOneSampleInTenMillion) {
   struct Case {
     NdfKind ndf;

@@ -250,7 +250,7 @@ std::string nested(int depth, char open, char close, const std::string& inner) {
 TEST(CliJson, DeepNestingIsRefusedInOneLine) {
   TempDir dir;
   const std::string f = dir.file("deep.json");
-  // The example: "rays" an array nested 10^5 deep (the message used to print it recursively).
+  // The example: "rays" an array nested 10^5 deep (refused by its depth, not printed recursively).
   write_text(f, R"({"name": "x", "kind": "table1", "rays": )" + nested(100000, '[', ']', "1") + "}");
   expect_refused(vgroove("validate " + quoted(f)), "nested more than 64 levels");
   // Another member: "name" an object nested 10^5 deep, in a scene.
@@ -532,7 +532,7 @@ TEST(CliJson, DuplicateKeysAreRefused) {
 TEST(CliInput, OneRangePerQuantity) {
   TempDir dir;
   const std::string f = dir.file("a.json");
-  // alpha: [0.01, 2] in brdf suites, table2 suites and scenes alike (1e-12 used to pass a suite).
+  // alpha: [0.01, 2] in brdf suites, table2 suites and scenes alike (1e-12 must not pass a suite).
   write_text(f, R"({"name": "g", "kind": "brdf", "ndf": ["ggx"], "alpha": [1e-12], "theta_i_deg": [0],
     "dimensions": ["3d"], "rays": 1000, "grooves": 1000,
     "thresholds": {"sigmas": 5, "model_tolerance": {"flatland": 1e-5, "3d": 1e-4}}})");

@@ -93,7 +93,7 @@ TEST(CliSignals, BrdfDirectionsStopsBetweenPairs) {
 
 TEST(CliSignals, ProfilesSuiteStopsInsideACase) {
   // One case at a time, each stopped in its beams (10^9 rays) or its Smith walk (10^9 paths): a
-  // case used to run to its end, for hours.
+  // case run to its end would take hours.
   TempDir dir;
   const std::string out = dir.file("r.json"), suite = suite_file("profiles.json");
   expect_prompt_stop("validate " + quoted(suite) + " --rays 1000000000 --threads 1 --out " + quoted(out), dir, out);
@@ -106,7 +106,7 @@ TEST(CliSignals, ProfilesSuiteStopsInsideACase) {
 
 TEST(CliSignals, NonsymmetricSuiteStopsInsideACase) {
   // A case stopped in its tracing (10^9 rays) or in its 3D lobes' quadrature (90 x 72 bins: about a
-  // minute for the pair of lobes, which used to run to its end).
+  // minute for the pair of lobes, which the stop does not wait for).
   TempDir dir;
   const std::string out = dir.file("r.json");
   expect_prompt_stop("validate " + quoted(suite_file("nonsymmetric_brdf.json")) +

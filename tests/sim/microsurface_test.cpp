@@ -475,7 +475,7 @@ TEST(Microsurface, StratifiedLandingPointsAreMidpointsOffTheRidges) {
 }
 
 TEST(Microsurface, StratifiedRaysNeverHitARidge) {
-  // Two rays per groove land at f = 1/4 and 3/4 of each; one ray per two grooves used to land on
+  // Two rays per groove land at f = 1/4 and 3/4 of each; one ray per two grooves would land on
   // every other left ridge (a vertex hit for 88 % of the rays).
   for (const auto& [grooves, rays] : {std::pair{4000, 2000}, std::pair{2000, 4000}, std::pair{3000, 3000}}) {
     const Microsurface m = make_microsurface({NdfKind::ggx, 0.5, grooves, 1});

@@ -53,9 +53,9 @@ TEST(CheckBrdf, VgrooveModelPasses3d) {
 
 // A value that is not a BRDF's (NaN, an infinity, a negative number) fails the check at the first
 // rule that meets it: a UserError naming the value and its directions, before the surface is
-// traced. It used to be reported only after the first rule over every bin (720 bins, 3,600 calls
-// of a Python callback, 0.2 s; before that 4 x 10^6 calls, 18-26 s per angle) as a failed case
-// (non_finite). Seen failing with the check in BinIntegrator::rule removed.
+// traced, not after the first rule over every bin (720 bins, 3,600 calls of a Python callback,
+// 0.2 s) or the whole cubature (4 x 10^6 calls, 18-26 s per angle) as a failed case (non_finite). Seen failing with the
+// check in BinIntegrator::rule removed.
 TEST(CheckBrdf, AValueThatIsNotABrdfsFailsAtOnceNamingItsDirections) {
   CheckBrdfOptions o = small_3d(0.5);
   o.theta_i_deg = {40};
