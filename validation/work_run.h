@@ -19,7 +19,8 @@
 //   Fixed read_fixed(support::JsonObject&, std::size_t unit) const;
 // The run_* functions are called from several threads at once. The read_* functions read what
 // another process wrote (a shard part, an MPI rank) as strictly as a suite file (part_fields.h):
-// the tally of the chunks `runs` of the unit, every array's length, count and sum checked.
+// the tally of the chunks `runs` of the unit, every array's length, count and sum checked; the
+// fixed part's model values each in its physical range, their rows and totals adding up.
 #pragma once
 
 #include "vgroove/support/json_reader.h"

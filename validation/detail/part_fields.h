@@ -6,8 +6,9 @@
 // count a non-negative integer no larger than the rays of the chunks the part ran, and the sums
 // consistent (the fates add up to the rays, the bounce rows and histogram bins to the escaped
 // rays, each row and bin of the joint histogram to its margins). A tally that breaks any of these
-// is a UserError naming the part and the path; nothing damaged reaches a report.
-// Test: tests/validation/detail/part_fields_test.cpp (every mutation of real parts refused or harmless).
+// is a UserError naming the part and the path; nothing damaged reaches a report. A part's model
+// values (its fixed part) are read as strictly: fractions of the flux in [0, 1], totals that hold.
+// Test: tests/cluster/merge_parts_test.py (every mutation of real parts refused or harmless).
 #pragma once
 
 #include "vgroove/sim/ndf_grooves.h"
