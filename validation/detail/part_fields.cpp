@@ -40,9 +40,9 @@ bool exact_text(const nlohmann::json& v) {
   return v.is_number() || (v.is_string() && (v == "nan" || v == "inf" || v == "-inf"));
 }
 const char* const kExactWhat = " must be a number (or \"nan\", \"inf\", \"-inf\")";
-const char* const kFractionWhat = " is out of range [0, 1] (a fraction of the incident flux, to the model's 1e-9)";
+const char* const kFractionWhat = " is out of range [0, 1] (a fraction of the incident flux, to the model's accuracy)";
 
-bool fraction(double x) { return x >= -kModelExcess && x <= 1.0 + kModelExcess; }
+bool fraction(double x, double excess) { return x >= -excess && x <= 1.0 + excess; }
 
 // Two sums of the same n non-negative values, in any order, differ by at most 2 n eps their size.
 bool same_sum(double sum, double total, std::size_t n) {
@@ -75,17 +75,17 @@ std::vector<double> read_exact_doubles(support::JsonObject& o, const std::string
   return v;
 }
 
-double read_fraction(support::JsonObject& o, const std::string& key) {
+double read_fraction(support::JsonObject& o, const std::string& key, double excess) {
   const double x = read_exact_double(o, key);
-  if (!fraction(x)) o.fail(key, "= " + support::value_text(o.raw(key)) + kFractionWhat);
+  if (!fraction(x, excess)) o.fail(key, "= " + support::value_text(o.raw(key)) + kFractionWhat);
   return x;
 }
 
-std::vector<double> read_fractions(support::JsonObject& o, const std::string& key, std::size_t n) {
+std::vector<double> read_fractions(support::JsonObject& o, const std::string& key, std::size_t n, double excess) {
   std::vector<double> v = read_exact_doubles(o, key, n);
   const nlohmann::json& a = o.raw(key);
   for (std::size_t i = 0; i < n; ++i)
-    if (!fraction(v[i])) o.fail_at(key, i, "= " + support::value_text(a[i]) + kFractionWhat);
+    if (!fraction(v[i], excess)) o.fail_at(key, i, "= " + support::value_text(a[i]) + kFractionWhat);
   return v;
 }
 

@@ -50,10 +50,11 @@ void check_margins(const support::JsonObject& o, const std::string& key, const s
 // a total of many quadrature terms may pass 1, a remainder (the row k > max_k) fall below 0
 // (-5e-16 seen), by that much, never by more.
 inline constexpr double kModelExcess = 1e-9;
-// An exact double (read_exact_double) in [-kModelExcess, 1 + kModelExcess]: finite.
-double read_fraction(support::JsonObject& o, const std::string& key);
+// An exact double (read_exact_double) in [-excess, 1 + excess]: finite.
+double read_fraction(support::JsonObject& o, const std::string& key, double excess = kModelExcess);
 // An array of exactly n such fractions.
-std::vector<double> read_fractions(support::JsonObject& o, const std::string& key, std::size_t n);
+std::vector<double> read_fractions(support::JsonObject& o, const std::string& key, std::size_t n,
+                                   double excess = kModelExcess);
 // Fails naming `key` unless v sums to `total` (o's `total_key`) up to the rounding of summing
 // non-negative values in any order: |sum - total| <= 2 n eps max(sum, total).
 void check_model_sum(const support::JsonObject& o, const std::string& key, const std::vector<double>& v, double total,
