@@ -58,9 +58,10 @@ struct FlatlandLobe {
 struct FlatlandLobeOptions {
   int quadrature_order = 16;  // Gauss-Legendre points on the pieces with k <= 8 (fewer above)
   int resolve_cap = 4096;     // largest n_resolved
-  // Read before each bounce count's pieces (may be null): once set, the rest are skipped and the
-  // lobe is incomplete (the caller, stopped by Ctrl-C, discards it). 10^5 bins at max_k 300 take
-  // ~3 s.
+  // Read every 8 MB of the histogram's zeroing, before each bounce count's pieces and every 4096
+  // bins a piece crosses (may be null): once set, the rest is skipped and the lobe is incomplete
+  // (the caller, stopped by Ctrl-C, discards it). 10^5 bins at max_k 300 take ~3-5 s; set at any
+  // moment, the lobe returns within 30 ms.
   const std::atomic<bool>* cancel = nullptr;
 };
 

@@ -272,12 +272,27 @@ nlohmann::json BrdfWork::fixed_json(const Fixed& m) {
 BrdfModel BrdfWork::read_fixed(support::JsonObject& j, std::size_t n) const {
   const auto [rows, bins] = lobe_shape(suite, suite.case_at(n));
   BrdfModel m;
-  m.by_k = read_exact_doubles(j, "by_k", rows);
-  m.hist = read_exact_doubles(j, "hist", bins);
-  m.hist_by_k = read_exact_doubles(j, "hist_by_k", rows * bins);
-  m.single_hist = read_exact_doubles(j, "single_hist", bins);
-  m.albedo = read_exact_double(j, "albedo");
-  m.single_albedo = read_exact_double(j, "single_albedo");
+  // Fractions of the incident flux, whose rows, bins and totals add up as the lobes add them
+  // (analytic::flatland_lobe, vgroove_lobe_3d: by_k, hist and the albedo from hist_by_k).
+  m.by_k = read_fractions(j, "by_k", rows);
+  m.hist = read_fractions(j, "hist", bins);
+  m.hist_by_k = read_fractions(j, "hist_by_k", rows * bins);
+  m.single_hist = read_fractions(j, "single_hist", bins);
+  m.albedo = read_fraction(j, "albedo");
+  m.single_albedo = read_fraction(j, "single_albedo");
+  check_model_margins(j, "hist_by_k", m.hist_by_k, m.by_k, "by_k", m.hist, "hist");
+  check_model_sum(j, "by_k", m.by_k, m.albedo, "albedo");
+  check_model_sum(j, "single_hist", m.single_hist, m.single_albedo, "single_albedo");
+  if (suite.case_at(n).dim == SurfaceDim::three_d) {
+    // In 3D Cook-Torrance is the lobe's k = 1 row (cook_torrance_lobe_3d_from), bit for bit.
+    for (std::size_t b = 0; b < bins; ++b)
+      if (m.single_hist[b] != m.hist_by_k[bins + b])
+        j.fail_at("single_hist", b,
+                  "= " + support::value_text(j.raw("single_hist")[b]) + " is not hist_by_k/" +
+                      std::to_string(bins + b) + " (the k = 1 row)");
+    if (m.single_albedo != m.by_k[1])
+      j.fail("single_albedo", "= " + support::value_text(j.raw("single_albedo")) + " is not by_k/1");
+  }
   m.wall_s = j.number("wall_s", 0.0, true, std::numeric_limits<double>::max(), true);
   return m;
 }

@@ -219,7 +219,7 @@ void check_options(const CheckBrdfOptions& o) {
   };
   within(o.alpha, kMinAlpha, true, kMaxAlpha, true, "alpha");
   if (o.theta_i_deg.empty()) throw support::UserError("theta_i_deg: give at least one incident angle");
-  for (double t : o.theta_i_deg) within(t, 0.0, true, 90.0, false, "theta_i_deg");
+  for (double t : o.theta_i_deg) within(t, 0.0, true, kMaxSurfaceThetaIDeg, true, "theta_i_deg");
   within(static_cast<double>(o.rays), 1, true, static_cast<double>(kMaxRays), true, "rays");
   within(o.grooves, 1, true, kMaxGrooves, true, "grooves");
   within(o.theta_bins, 1, true, kMaxCheckBrdfThetaBins, true, "theta_bins");

@@ -42,7 +42,7 @@ struct CheckBrdfOptions {
   std::string name = "check_brdf";  // names the report
   NdfKind ndf = NdfKind::ggx;
   double alpha = 0.5;                                     // (0, 2]
-  std::vector<double> theta_i_deg = {0, 20, 40, 60, 80};  // each in [0, 90)
+  std::vector<double> theta_i_deg = {0, 20, 40, 60, 80};  // each in [0, 89.9] (kMaxSurfaceThetaIDeg)
   SurfaceDim dim = SurfaceDim::three_d;
   long rays = 1'000'000;                      // per theta_i, [1, 1e9]
   int grooves = 250'000;                      // grooves of the traced surface, [1, 1e7]

@@ -7,6 +7,7 @@
 #include "vgroove/analytic/smith_walk_3d.h"
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/rng.h"
+#include "vgroove/support/format.h"
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/detail/part_fields.h"
@@ -229,25 +230,65 @@ nlohmann::json EnergyAuditWork::fixed_json(const Fixed& f) {
           {"model_s", f.seconds}};
 }
 
-EnergyAuditWork::Fixed EnergyAuditWork::read_fixed(support::JsonObject& j, std::size_t) const {
+EnergyAuditWork::Fixed EnergyAuditWork::read_fixed(support::JsonObject& j, std::size_t cell) const {
+  // Albedos are fractions of the incident flux; what the cell recomputes at no cost (Schlick's
+  // channels from the split sum, Cycles' table) must be that value bit for bit, and what it does
+  // not have (E_avg but at mu index 0, the engines' values but for GGX) NaN.
+  const EnergyAuditCell c = suite.cell_at(cell);
   Fixed f;
   const std::size_t R = static_cast<std::size_t>(suite.max_k) + 2, C = static_cast<std::size_t>(channels->size());
-  f.vgroove_rows = read_exact_doubles(j, "vgroove_rows", R * C);
+  // The V-groove rows' total is 1 with F = 1 to the suite's furnace tolerance (the audit's check of
+  // it), never above 1 by more.
+  const double furnace = std::max(kModelExcess, suite.vgroove_furnace);
+  f.vgroove_rows = read_fractions(j, "vgroove_rows", R * C, furnace);
+  for (std::size_t ch = 0; ch < C; ++ch) {
+    double total = 0.0;
+    for (std::size_t r = 0; r < R; ++r) total += f.vgroove_rows[r * C + ch];
+    if (!(total <= 1.0 + furnace))
+      j.fail("vgroove_rows", "adds up to an albedo of " + support::format("%.17g", total) + " in channel " +
+                                 std::to_string(ch) + ", more than 1 + vgroove_furnace");
+  }
+  auto nan_or = [&](support::JsonObject& o, const std::string& key, bool present) {
+    const double x = read_exact_double(o, key);
+    if (present && !(x >= -kModelExcess && x <= 1.0 + kModelExcess))
+      o.fail(key, "= " + support::value_text(o.raw(key)) + " is out of range [0, 1] (an albedo)");
+    if (!present && !std::isnan(x))
+      o.fail(key, "= " + support::value_text(o.raw(key)) + " must be \"nan\" (not computed for this cell)");
+    return x;
+  };
   auto ss = [&](const std::string& key, SingleScattering& s) {
     support::JsonObject o = j.object(key);
-    s.E = read_exact_double(o, "E");
-    s.scale = read_exact_double(o, "scale");
-    s.bias = read_exact_double(o, "bias");
-    s.E_avg = read_exact_double(o, "E_avg");
+    s.E = read_fraction(o, "E");
+    s.scale = read_fraction(o, "scale");
+    s.bias = read_fraction(o, "bias");
+    s.E_avg = nan_or(o, "E_avg", c.mu_index == 0);
     o.finish();
   };
   ss("smith", f.smith);
   ss("vcavity", f.vcavity);
-  f.smith_E_F = read_exact_doubles(j, "smith_E_F", C);
-  f.vcavity_E_F = read_exact_doubles(j, "vcavity_E_F", C);
-  f.filament_dfg_y = read_exact_double(j, "filament_dfg_y");
+  auto E_F = [&](const std::string& key, const SingleScattering& s) {
+    std::vector<double> v = read_fractions(j, key, C);
+    for (std::size_t ch = 0; ch < C; ++ch) {
+      const Channel& k = channels->channels()[ch];
+      if (k.kind == ChannelKind::schlick && v[ch] != k.F0 * s.scale + s.bias)
+        j.fail_at(key, ch,
+                  "= " + support::value_text(j.raw(key)[ch]) + " is not F0 scale + bias = " +
+                      support::format("%.17g", k.F0 * s.scale + s.bias) + " (Schlick's channel)");
+    }
+    return v;
+  };
+  f.smith_E_F = E_F("smith_E_F", f.smith);
+  f.vcavity_E_F = E_F("vcavity_E_F", f.vcavity);
+  const bool ggx = c.ndf == NdfKind::ggx;
+  f.filament_dfg_y = nan_or(j, "filament_dfg_y", ggx);
   f.cycles_E = read_exact_double(j, "cycles_E");
   f.cycles_E_avg = read_exact_double(j, "cycles_E_avg");
+  auto same = [&](const std::string& key, double x, double want) {
+    if (!(x == want || (std::isnan(x) && std::isnan(want))))
+      j.fail(key, "= " + support::value_text(j.raw(key)) + " is not the table's " + support::format("%.17g", want));
+  };
+  same("cycles_E", f.cycles_E, ggx && cycles ? cycles_E(*cycles, c.alpha, c.mu) : kNaN);
+  same("cycles_E_avg", f.cycles_E_avg, ggx && cycles ? cycles_E_avg(*cycles, c.alpha) : kNaN);
   f.seconds = j.number("model_s", 0.0, true, 1e9, true);
   return f;
 }

@@ -144,10 +144,12 @@ nlohmann::json EnergyWork::fixed_json(const Fixed& f) {
 }
 
 EnergyWork::Fixed EnergyWork::read_fixed(support::JsonObject& j, std::size_t) const {
+  // Fractions of the incident flux, the rows adding up to the albedo (energy_model).
   Fixed f;
-  f.by_k = read_exact_doubles(j, "by_k", static_cast<std::size_t>(grid.max_k) + 2);
-  f.albedo = read_exact_double(j, "albedo");
-  f.cook_torrance = read_exact_double(j, "cook_torrance");
+  f.by_k = read_fractions(j, "by_k", static_cast<std::size_t>(grid.max_k) + 2);
+  f.albedo = read_fraction(j, "albedo");
+  f.cook_torrance = read_fraction(j, "cook_torrance");
+  check_model_sum(j, "by_k", f.by_k, f.albedo, "albedo");
   return f;
 }
 

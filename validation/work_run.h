@@ -5,7 +5,8 @@
 // merges to the same totals; merge_unit_parts checks that the parts cover every chunk and fixed
 // part of every unit exactly once, so a merged result is never silently partial. A Work type
 // provides Context, Tally, Fixed, prepare, run_chunks, run_fixed (called from several threads),
-// merge, tally_json, fixed_json, read_tally and read_fixed (read as strictly as a suite file).
+// merge, tally_json, fixed_json, read_tally and read_fixed (as strictly as a suite file: counts,
+// lengths and sums; model values in their physical range, rows adding up to totals).
 // Tests: tests/validation/item_work_test.cpp (ItemWork.AnOutcomeCrossesProcessesBitForBit),
 // tests/cluster/shards_test.sh, tests/cluster/mpi_test.sh, tests/cluster/merge_parts_test.py.
 // Derivation: docs/derivations/validation.md.

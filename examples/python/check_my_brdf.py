@@ -35,7 +35,7 @@ def kulla_conty(alpha, table=64):
     """Cook-Torrance plus the Kulla-Conty multiple-scattering lobe, vectorized over directions.
     E(mu), Cook-Torrance's directional albedo, is exact (vgroove.BRDF.albedo: its lobe's total)."""
     ct = vg.BRDF("cook-torrance", "ggx", alpha)
-    mu = np.linspace(1e-3, 1.0, table)
+    mu = np.linspace(np.cos(np.radians(vg.RANGES["max_surface_theta_i_deg"])), 1.0, table)  # theta_i <= 89.9 deg
     E = ct.albedo(vg.direction(np.degrees(np.arccos(mu)), 180.0))
     E_avg = 2.0 * np.trapz(E * mu, mu)
 

@@ -129,6 +129,16 @@ double histogram_bytes(bool flat, int flatland_bins, int theta_bins, int phi_bin
 
 // The bins and max_k of a lobe or tally: the ranges of the "brdf" suites (validation/ranges.h,
 // lobe_bins.h) without their bound on the cells, which the memory check replaces here.
+// A rough surface's light: the suites' [0, 89.9] (validation::kMaxSurfaceThetaIDeg), in flatland
+// signed, [-89.9, 89.9] (the mirror image), as `/theta_i_deg/0 = 89.95 is out of range [0, 89.9]`.
+void check_surface_theta_i(double deg, bool flat) {
+  if (std::isnan(deg)) throw support::UserError("theta_i_deg = \"nan\" is not a number");
+  const double hi = validation::kMaxSurfaceThetaIDeg, lo = flat ? -hi : 0.0;
+  if (!(deg >= lo && deg <= hi))
+    throw support::UserError("theta_i_deg = " + support::number_text(deg) + " is out of range " +
+                             support::interval_text(lo, true, hi, true));
+}
+
 void check_bins(bool flat, int flatland_bins, int theta_bins, int phi_bins, int max_k) {
   using namespace validation;
   if (!(max_k >= kMinHistogramK && max_k <= kMaxHistogramK))
@@ -175,7 +185,7 @@ py::dict trace_microsurface(const Surface& s, double theta_i_deg, const py::obje
     return workers;
   };
   if (flat) {
-    validation::check_theta_i(theta_i_deg, "theta_i_deg");
+    check_surface_theta_i(theta_i_deg, true);
     sim::MicrosurfaceTraceOptions o;
     o.theta_i = theta_i_deg * kRadPerDeg, o.rays = rays, o.seed = static_cast<std::uint64_t>(seed);
     o.sampling = validation::parse_sampling(sampling, "sampling");
@@ -197,9 +207,7 @@ py::dict trace_microsurface(const Surface& s, double theta_i_deg, const py::obje
     d["theta_o_by_k"] = array_from(std::move(t.theta_o_by_k), {rows, bins});
     return d;
   }
-  if (!(std::isfinite(theta_i_deg) && theta_i_deg >= 0.0 && theta_i_deg < 90.0))
-    throw support::UserError("theta_i_deg = " + support::number_text(theta_i_deg) +
-                             " is out of range [0, 90) (3D: the light's polar angle; its azimuth is 180 deg)");
+  check_surface_theta_i(theta_i_deg, false);
   if (sampling != "random")
     throw support::UserError("sampling = \"" + sampling + "\": 3D surfaces land their rays at random points only");
   sim::Microsurface3dTraceOptions o;
@@ -236,10 +244,7 @@ py::dict lobe(const std::string& model_name, const std::string& ndf_name, double
   const bool ct = parse_brdf_model(model_name, false) == analytic::BrdfModel::cook_torrance;
   const bool flat = dim == SurfaceDim::flatland;
   check_bins(flat, flatland_bins, theta_bins, phi_bins, max_k);
-  if (flat)
-    validation::check_theta_i(theta_i_deg, "theta_i_deg");
-  else if (!(std::isfinite(theta_i_deg) && theta_i_deg >= 0.0 && theta_i_deg < 90.0))
-    throw support::UserError("theta_i_deg = " + support::number_text(theta_i_deg) + " is out of range [0, 90)");
+  check_surface_theta_i(theta_i_deg, flat);
   // Cook-Torrance is the vgroove lobe's k = 1 row (below): that lobe needs max_k >= 1.
   const int lobe_k = ct ? std::max(max_k, 1) : max_k;
   // What the lobe holds at once: its histogram (3D: twice, the high-k bands' accumulator beside

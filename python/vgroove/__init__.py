@@ -19,7 +19,8 @@ analytic/kaleidoscope.h, analytic/brdf_3d.h, analytic/ndf.h):
   [-90, 0] and ``theta_r_deg`` in [0, 90] (Lee et al. 2018, Fig. 5), aperture
   ``180 + theta_l_deg - theta_r_deg``. Degrees become radians as ``deg * (pi / 180)``, as the
   command line does, so the same inputs give the same bits. Single grooves take ``theta_i_deg``
-  in [-$max_theta_i_deg, $max_theta_i_deg]; rough surfaces (samplers) in [0, $max_surface_theta_i_deg].
+  in [-$max_theta_i_deg, $max_theta_i_deg]; rough surfaces (lobes, traces, samplers, check_brdf) in
+  [0, $max_surface_theta_i_deg] (flatland: signed, in [-$max_surface_theta_i_deg, $max_surface_theta_i_deg]).
 * Directions are unit vectors (arrays ``(..., 3)``) in the frame n = (0, 0, 1), both pointing
   away from the surface: ``wi`` towards the light, ``wo`` towards the viewer; every function and
   method takes ``wi`` first. The direction at polar angle theta and azimuth phi is (sin theta

@@ -322,8 +322,8 @@ class BRDF:
         Parameters
         ----------
         theta_i_deg : float
-            The light's polar angle in [0, 90) deg at azimuth 180 deg (flatland: signed, in
-            [-$max_theta_i_deg, $max_theta_i_deg]).
+            The light's polar angle in [0, $max_surface_theta_i_deg] deg at azimuth 180 deg (flatland:
+            signed, in [-$max_surface_theta_i_deg, $max_surface_theta_i_deg]).
         theta_bins, phi_bins : int
             3D: theta_o bins over [0, 90) deg in [1, $max_theta_bins], phi_o bins centred on phi = 0 (the
             mirror side), even, in [2, $max_phi_bins].
@@ -375,8 +375,8 @@ class BRDF:
         Parameters
         ----------
         wi : array_like, shape (..., 3)
-            Unit vectors towards the light (polar angle in [0, 90) deg; flatland: signed, in
-            [-$max_theta_i_deg, $max_theta_i_deg]). The model is isotropic: each distinct angle is integrated once.
+            Unit vectors towards the light (polar angle in [0, $max_surface_theta_i_deg] deg; flatland:
+            signed, in [-$max_surface_theta_i_deg, $max_surface_theta_i_deg]). The model is isotropic: each distinct angle is integrated once.
         theta_bins, phi_bins, flatland_bins, k_rows : int
             The bins and rows of the lobe whose total this is (:meth:`lobe`; the same bits as
             ``lobe(...).albedo``): the total is exact to rounding whatever they are (with these,
@@ -418,15 +418,15 @@ class BRDF:
                 raise ValueError("wi must lie in the plane y = 0 in flatland (|y| <= "
                                  f"{RANGES['unit_tolerance']:g}; flatland directions: (-sin t, 0, cos t))")
             theta = np.asarray(_vgroove.output_deg(np.arctan2(-wi[..., 0], wi[..., 2])), dtype=float)
-            lo, hi, closed = -RANGES["max_theta_i_deg"], RANGES["max_theta_i_deg"], True
+            lo, hi = -RANGES["max_surface_theta_i_deg"], RANGES["max_surface_theta_i_deg"]
         else:
             theta = np.asarray(_vgroove.output_deg(np.arctan2(np.hypot(wi[..., 0], wi[..., 1]), wi[..., 2])), dtype=float)
-            lo, hi, closed = 0.0, 90.0, False
-        out = ~((theta >= lo) & ((theta <= hi) if closed else (theta < hi)))
+            lo, hi = 0.0, RANGES["max_surface_theta_i_deg"]
+        out = ~((theta >= lo) & (theta <= hi))
         if out.any():
             j = int(np.flatnonzero(out.ravel())[0])
             raise ValueError(f"wi[{j}] = {tuple(wi.reshape(-1, 3)[j].tolist())} is {theta.ravel()[j]:g} deg from the "
-                             f"normal, out of range [{lo:g}, {hi:g}{']' if closed else ')'}")
+                             f"normal, out of range [{lo:g}, {hi:g}]")
         angles, inverse = np.unique(theta.ravel(), return_inverse=True)
         progress = _args.progress(progress)
         values = np.empty(len(angles))

@@ -110,7 +110,7 @@ def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], np.ndarray], str], nd
     ndf, alpha
         The traced surface's NDF and roughness in [$min_alpha, $max_alpha].
     theta_i_deg : sequence of float
-        Incident angles, each in [0, 90).
+        Incident angles, each in [0, $max_surface_theta_i_deg].
     rays : int
         Per theta_i, in [1, $max_rays].
     dim : {"3d", "flatland"}

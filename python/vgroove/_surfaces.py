@@ -66,8 +66,8 @@ def trace_microsurface(surface: Microsurface, theta_i_deg: float, rays: int = 10
     surface : Microsurface
         From :func:`microsurface`.
     theta_i_deg : float
-        The light's angle: 3D, its polar angle in [0, 90) deg at azimuth 180 deg; flatland,
-        signed, in [-$max_theta_i_deg, $max_theta_i_deg].
+        The light's angle: 3D, its polar angle in [0, $max_surface_theta_i_deg] deg at azimuth 180 deg;
+        flatland, signed, in [-$max_surface_theta_i_deg, $max_surface_theta_i_deg] (the suites' range).
     rays : int
         In [1, $max_rays].
     seed : int, optional

@@ -8,7 +8,13 @@ damaged set must be refused with exit 2, one line on stderr naming the damaged p
 path of the value, and no report; only a value no check can see (timings, and counts that no sum
 constrains: bounces, max_k_seen, ...) may merge, with exit 0. Never a crash. A fixed seed picks
 one instance of every value's place (its JSON path with indices as #), so the set is the same
-each run. The undamaged parts merge (the control)."""
+each run. The undamaged parts merge (the control).
+
+Every number that is not a count gets "another number" too: 3333, -1, 7 and a value slightly off.
+A model value (a unit's fixed part) is a fraction of the incident flux within [0, 1] whose sums
+must hold (rows to their totals, Schlick's channels to the split sum, Cycles' table to itself),
+so each of those is refused, but for the few values no sum constrains, which may merge when only
+slightly off (SLIGHTLY_UNSEEN)."""
 import concurrent.futures
 import copy
 import json
@@ -41,18 +47,33 @@ SUITES = {
                                            "wavelengths": [{"lambda_nm": 548.6, "eta": 0.43, "kappa": 2.455}]},
                                "record": {"theta_o_histograms": {"bins": 4, "max_k": 2}, "energy_per_k": True},
                                "max_bounces": 1000}},
+    "audit.json": {"name": "tiny_audit", "kind": "energy_audit", "ndf": ["ggx", "beckmann"], "alpha": [0.5],
+                   "mu": [0.5, 1.0], "walk_paths": 2000, "seed": 1, "max_k": 3, "grey_F0": [0.04, 1.0],
+                   "metals": ["Au"], "metalness": [0.5], "regions": {"rough_alpha": 0.5, "grazing_mu": 0.5},
+                   "cycles_table": True, "thresholds": {"sigmas": 5, "vgroove_furnace": 1e-7}},
 }
 COMMANDS = {
     "brdf": ["validate", f"{T}/brdf.json"],
     "table2": ["validate", f"{T}/table2.json"],
     "table1": ["validate", f"{T}/table1.json"],
-    "energy": ["energy", "--ndf", "ggx", "--dim", "flatland", "--mu-points", "1", "--alpha-points", "1", "--rays",
-               "2000", "--max-k", "3"],
+    "energy": ["energy", "--ndf", "ggx,beckmann", "--dim", "flatland,3d", "--mu-points", "1", "--alpha-points", "1",
+               "--rays", "2000", "--max-k", "3"],
     "simulate": ["simulate", f"{T}/scene.json"],
+    "audit": ["validate", f"{T}/audit.json"],
 }
 # Values no check can see: timings, and counts that no sum or bound over the others constrains.
-UNSEEN = {"thread_s", "wall_s", "bounces", "max_k_seen", "k", "zones", "grid", "uncertified_cells", "threads",
-          "input_file"}  # (the input as given: found by its absolute path when it is not there)
+UNSEEN = {"thread_s", "wall_s", "model_s", "bounces", "max_k_seen", "k", "zones", "grid", "uncertified_cells",
+          "threads", "input_file"}  # (the input as given: found by its absolute path when it is not there)
+# Numbers in [0, 1] that no sum or recomputation ties to another value: slightly off, they merge.
+# The energy table's Cook-Torrance albedo; the audit's single-scattering albedos, a conductor's
+# albedo (one of the channels of *_E_F), Filament's texel, the V-groove rows (bounded by their
+# total, not tied to it); a facet's figures below its case's largest.
+# The audit's tally keeps each row's energy in units of 2^-32, bounded by its paths, with no sum.
+UNSEEN_BY_KIND = {"audit": {"energy"}}
+# The audit's headers are every kind's (damaged above): its units of one part are damaged alone.
+DAMAGED = {"audit": ((0,), ("units",))}
+SLIGHTLY_UNSEEN = {"cook_torrance", "E", "E_avg", "smith_E_F", "vcavity_E_F", "filament_dfg_y", "vgroove_rows",
+                   "l1", "theta_o_error", "missed_bound", "narrowest_zone"}
 # A single groove's facet outcome holds these counts within its rays, with no sum over them.
 UNSEEN_IN_FACETS = {"vertex_hits", "bounce_limit", "wrong_first"}
 
@@ -78,10 +99,11 @@ def shape(path):
     return "/".join("#" if isinstance(p, int) else p for p in path)
 
 
-def mutations(path, value):
+def mutations(path, value, kind=""):
     """(label, new value) for a leaf; the label says whether a check must see it."""
     key = next((p for p in reversed(path) if isinstance(p, str)), "")
-    seen = key not in UNSEEN and not ("facets" in path and key in UNSEEN_IN_FACETS)
+    seen = key not in UNSEEN and not ("facets" in path and key in UNSEEN_IN_FACETS) and \
+        key not in UNSEEN_BY_KIND.get(kind, ())
     if isinstance(value, list):
         out = [("empty", [], True), ("cut", value[:-1], bool(value)), ("extended", value + [value[-1] if value else 0], True)]
         return out
@@ -91,8 +113,16 @@ def mutations(path, value):
         return [("negative", -1, seen or value >= 0), ("fractional", value + 0.5, seen), ("1e300", 1e300, seen),
                 ("2^64", 2 ** 64, seen), ("string", str(value), True), ("null", None, True),
                 ("off by one", value + 1, seen)]
-    if isinstance(value, float):
-        return [("string", "x" + repr(value), True), ("null", None, True), ("bool", True, True)]
+    if isinstance(value, float) or (isinstance(value, str) and value in ("nan", "inf", "-inf")):
+        x = float(value)
+        slightly = x * (1 + 1e-6) + 1e-9 if x == x else 0.5
+        out = [("string", "x" + repr(value), True), ("null", None, True), ("bool", True, True)]
+        # Model values, and a single groove's figures (l1 within [0, 2], the others [0, pi] or
+        # [0, 1], each case's the largest of its facets').
+        if seen and ("fixed" in path or key in ("l1", "theta_o_error", "missed_bound", "narrowest_zone")):
+            out += [("3333", 3333.0, True), ("-1", -1.0, True), ("7", 7.0, True),
+                    ("slightly off", slightly, key not in SLIGHTLY_UNSEEN)]
+        return out
     if isinstance(value, str):
         return [("other string", value + "x", seen), ("null", None, True)]
     return []
@@ -115,10 +145,11 @@ def check_kind(name):
         f"{name}: the control merge: exit {control.returncode}: {control.stderr}"
     failures, tried = [], 0
     rng = random.Random(2026)
-    for damaged in (0, 1):
+    which, roots = DAMAGED.get(name, ((0, 1), ("units", "partial", "tool", "schema_version", "version", "git")))
+    for damaged in which:
         part = json.load(open(parts[damaged]))
         by_shape = {}
-        for root in ("units", "partial", "tool", "schema_version", "version", "git"):
+        for root in roots:
             for path, value in leaves(part[root], (root,)):
                 # The job's descriptor is compared whole with the other parts' and the rebuilt
                 # one: its top-level values stand for the rest (a deep damage is the same check).
@@ -127,7 +158,7 @@ def check_kind(name):
                 by_shape.setdefault(shape(path), []).append((path, value))
         for s in sorted(by_shape):
             path, value = rng.choice(by_shape[s])
-            for label, new, must_refuse in mutations(path, value):
+            for label, new, must_refuse in mutations(path, value, name):
                 if new == value and type(new) is type(value):
                     continue  # no change
                 bad = copy.deepcopy(part)

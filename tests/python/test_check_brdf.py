@@ -64,8 +64,10 @@ def test_errors_in_the_callable(vg):
         vg.check_brdf(lambda wi, wo: np.zeros(3), rays=1000, grooves=100, theta_i_deg=[0])
     with pytest.raises(ValueError, match=r"^f returned a str for 16 directions"):
         vg.check_brdf(lambda wi, wo: "x", rays=1000, grooves=100, theta_i_deg=[0])
-    with pytest.raises(ValueError, match=r"^theta_i_deg = 90 is out of range \[0, 90\)$"):
+    with pytest.raises(ValueError, match=r"^theta_i_deg = 90 is out of range \[0, 89.9\]$"):
         vg.check_brdf(lambda wi, wo: np.zeros(len(wi)), theta_i_deg=[0, 90], rays=10, grooves=10)
+    with pytest.raises(ValueError, match=r"^theta_i_deg = 89.95 is out of range \[0, 89.9\]$"):
+        vg.check_brdf(lambda wi, wo: np.zeros(len(wi)), theta_i_deg=[89.95], rays=10, grooves=10)
     with pytest.raises(ValueError, match=r"^f = 3 must be a callable"):
         vg.check_brdf(3, rays=10, grooves=10)
     # A value that is not a BRDF's (NaN, an infinity, a negative number) is a ValueError at the first

@@ -195,8 +195,16 @@ TEST(CheckBrdf, BadOptionsNameTheField) {
     EXPECT_STREQ(e.what(), "alpha = 0.005 is out of range [0.01, 2]");
   }
   o = {};
-  o.theta_i_deg = {10, 90};
-  EXPECT_THROW(check_options(o), support::UserError);
+  // The suites' range (validation::kMaxSurfaceThetaIDeg), as `validate` says it.
+  o.theta_i_deg = {10, 89.95};
+  try {
+    check_options(o);
+    FAIL() << "theta_i 89.95 accepted";
+  } catch (const support::UserError& e) {
+    EXPECT_STREQ(e.what(), "theta_i_deg = 89.95 is out of range [0, 89.9]");
+  }
+  o.theta_i_deg = {10, 89.9};
+  EXPECT_NO_THROW(check_options(o));
   o = {};
   o.phi_bins = 7;
   EXPECT_THROW(check_options(o), support::UserError);

@@ -1,7 +1,10 @@
 #include "vgroove/validation/detail/part_fields.h"
 
+#include "vgroove/support/format.h"
 #include "vgroove/validation/partial_report.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace vgroove::validation {
@@ -37,6 +40,15 @@ bool exact_text(const nlohmann::json& v) {
   return v.is_number() || (v.is_string() && (v == "nan" || v == "inf" || v == "-inf"));
 }
 const char* const kExactWhat = " must be a number (or \"nan\", \"inf\", \"-inf\")";
+const char* const kFractionWhat = " is out of range [0, 1] (a fraction of the incident flux, to the model's accuracy)";
+
+bool fraction(double x, double excess) { return x >= -excess && x <= 1.0 + excess; }
+
+// Two sums of the same n non-negative values, in any order, differ by at most 2 n eps their size.
+bool same_sum(double sum, double total, std::size_t n) {
+  const double scale = std::max(std::fabs(sum), std::fabs(total));
+  return std::fabs(sum - total) <= 2.0 * static_cast<double>(n + 1) * std::numeric_limits<double>::epsilon() * scale;
+}
 
 }  // namespace
 
@@ -61,6 +73,47 @@ std::vector<double> read_exact_doubles(support::JsonObject& o, const std::string
     v[i] = exact_double(a[i]);
   }
   return v;
+}
+
+double read_fraction(support::JsonObject& o, const std::string& key, double excess) {
+  const double x = read_exact_double(o, key);
+  if (!fraction(x, excess)) o.fail(key, "= " + support::value_text(o.raw(key)) + kFractionWhat);
+  return x;
+}
+
+std::vector<double> read_fractions(support::JsonObject& o, const std::string& key, std::size_t n, double excess) {
+  std::vector<double> v = read_exact_doubles(o, key, n);
+  const nlohmann::json& a = o.raw(key);
+  for (std::size_t i = 0; i < n; ++i)
+    if (!fraction(v[i], excess)) o.fail_at(key, i, "= " + support::value_text(a[i]) + kFractionWhat);
+  return v;
+}
+
+void check_model_sum(const support::JsonObject& o, const std::string& key, const std::vector<double>& v, double total,
+                     const std::string& total_key) {
+  double sum = 0.0;
+  for (double x : v) sum += x;
+  if (!same_sum(sum, total, v.size()))
+    o.fail(key, "sums to " + support::format("%.17g", sum) + ", not " + total_key + " = " +
+                    support::format("%.17g", total) + " (up to rounding)");
+}
+
+void check_model_margins(const support::JsonObject& o, const std::string& key, const std::vector<double>& joint,
+                         const std::vector<double>& by_row, const std::string& row_key,
+                         const std::vector<double>& by_bin, const std::string& bin_key) {
+  const std::size_t bins = by_bin.size();
+  std::vector<double> rows(by_row.size(), 0.0), cols(bins, 0.0);
+  for (std::size_t r = 0; r < by_row.size(); ++r)
+    for (std::size_t b = 0; b < bins; ++b) rows[r] += joint[r * bins + b], cols[b] += joint[r * bins + b];
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    if (!same_sum(rows[r], by_row[r], bins))
+      o.fail(key, "row " + std::to_string(r) + " sums to " + support::format("%.17g", rows[r]) + ", but " + row_key +
+                      "/" + std::to_string(r) + " = " + support::format("%.17g", by_row[r]) + " (up to rounding)");
+  for (std::size_t b = 0; b < bins; ++b)
+    if (!same_sum(cols[b], by_bin[b], by_row.size()))
+      o.fail(key, "bin " + std::to_string(b) + " sums to " + support::format("%.17g", cols[b]) +
+                      " over its rows, but " + bin_key + "/" + std::to_string(b) + " = " +
+                      support::format("%.17g", by_bin[b]) + " (up to rounding)");
 }
 
 void read_fates(support::JsonObject& o, sim::RayFates& t, std::int64_t rays, std::int64_t max_bounces) {

@@ -6,8 +6,9 @@
 // count a non-negative integer no larger than the rays of the chunks the part ran, and the sums
 // consistent (the fates add up to the rays, the bounce rows and histogram bins to the escaped
 // rays, each row and bin of the joint histogram to its margins). A tally that breaks any of these
-// is a UserError naming the part and the path; nothing damaged reaches a report.
-// Test: tests/validation/detail/part_fields_test.cpp (every mutation of real parts refused or harmless).
+// is a UserError naming the part and the path; nothing damaged reaches a report. A part's model
+// values (its fixed part) are read as strictly: fractions of the flux in [0, 1], totals that hold.
+// Test: tests/cluster/merge_parts_test.py (every mutation of real parts refused or harmless).
 #pragma once
 
 #include "vgroove/sim/ndf_grooves.h"
@@ -43,5 +44,24 @@ void check_sum(const support::JsonObject& o, const std::string& key, const std::
 void check_margins(const support::JsonObject& o, const std::string& key, const std::vector<std::int64_t>& joint,
                    const std::vector<std::int64_t>& by_row, const std::string& row_key,
                    const std::vector<std::int64_t>& by_bin, const std::string& bin_key);
+
+// A part's model values (its fixed part: the analytic side, not recomputed at merge) are fractions
+// of the incident flux, each in [0, 1] to the model's accuracy (analytic/albedo_vgroove.h: 1e-9):
+// a total of many quadrature terms may pass 1, a remainder (the row k > max_k) fall below 0
+// (-5e-16 seen), by that much, never by more.
+inline constexpr double kModelExcess = 1e-9;
+// An exact double (read_exact_double) in [-excess, 1 + excess]: finite.
+double read_fraction(support::JsonObject& o, const std::string& key, double excess = kModelExcess);
+// An array of exactly n such fractions.
+std::vector<double> read_fractions(support::JsonObject& o, const std::string& key, std::size_t n,
+                                   double excess = kModelExcess);
+// Fails naming `key` unless v sums to `total` (o's `total_key`) up to the rounding of summing
+// non-negative values in any order: |sum - total| <= 2 n eps max(sum, total).
+void check_model_sum(const support::JsonObject& o, const std::string& key, const std::vector<double>& v, double total,
+                     const std::string& total_key);
+// joint[row * bins + bin]: each row sums to by_row[row] and each bin to by_bin[bin] up to rounding.
+void check_model_margins(const support::JsonObject& o, const std::string& key, const std::vector<double>& joint,
+                         const std::vector<double>& by_row, const std::string& row_key,
+                         const std::vector<double>& by_bin, const std::string& bin_key);
 
 }  // namespace vgroove::validation
