@@ -203,8 +203,9 @@ TEST(StudentT, GammaOnePlusInverseAlphaSquaredIsPhong) {
       const double th = deg(th_deg);
       EXPECT_NEAR(D(st, th, alpha) / D(NdfKind::phong, th, alpha), 1.0, 1e-13) << alpha << " " << th_deg;
       EXPECT_NEAR(D2(st, th, alpha) / D2(NdfKind::phong, th, alpha), 1.0, 1e-13) << alpha << " " << th_deg;
-      if (th_deg > 0.0)
+      if (th_deg > 0.0) {
         EXPECT_NEAR(groove_cdf(st, alpha, th) / groove_cdf(NdfKind::phong, alpha, th), 1.0, 1e-13) << alpha;
+      }
     }
   }
 }

@@ -106,6 +106,8 @@ TEST_P(PartnerLaw, AppendixCAsPrintedIsNotADensity) {
       expect = N * N * std::tgamma(0.5 * (p + 3.0));
       break;
     }
+    default:
+      FAIL() << "App. C prints no constant for this NDF";
   }
   // Phong's printed constant holds Gamma((p+3)/2), which overflows below alpha ~ 0.08.
   if (ndf == NdfKind::phong && alpha < 0.1) return;
