@@ -10,6 +10,9 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <functional>
 #include <ostream>
 #include <string>
 #include <thread>
@@ -57,10 +60,29 @@ struct Stopped {
   std::string out, err;
 };
 
-// Runs `env vgroove args` through sh (stdout and stderr to files in dir), sends sig after `after`
-// seconds and waits for the exit (SIGKILL after 30 s).
+// Whether process pid runs the vgroove binary (sh has exec'd it) and takes sig: caught by a
+// handler or blocked (read from /proc/PID/status, SigCgt and SigBlk, bit sig - 1). Before that, a
+// signal would end it by its default action, which is not what the tests ask about.
+inline bool takes_signal(pid_t pid, int sig) {
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/" + std::to_string(pid) + "/exe", ec);
+  if (ec || exe != std::filesystem::canonical(VGROOVE_BIN, ec)) return false;
+  const std::string status = read_text("/proc/" + std::to_string(pid) + "/status");
+  unsigned long long mask = 0;
+  for (const char* field : {"SigBlk:", "SigCgt:"}) {
+    const std::size_t at = status.find(field);
+    if (at != std::string::npos) mask |= std::stoull(status.substr(at + std::strlen(field)), nullptr, 16);
+  }
+  return (mask >> (sig - 1)) & 1ULL;
+}
+
+// Runs `env vgroove args` through sh (stdout and stderr to files in dir), waits until `ready` holds
+// (by default: vgroove takes sig; at most 30 s, as on a loaded machine, under sanitizers, starting
+// can take seconds), sends sig `after` seconds later and waits for the exit (SIGKILL after 30 s).
+// A thread in sigtimedwait shows the signals it waits for as unblocked in /proc: a run that waits
+// so (plot, report) gives its own `ready`.
 inline Stopped signal_after(const std::string& args, int sig, double after, const TempDir& dir,
-                            const std::string& env = "") {
+                            const std::string& env = "", const std::function<bool()>& ready = nullptr) {
   const std::string out = dir.file("sig.out"), err = dir.file("sig.err");
   const std::string cmd = env + " exec " + quoted(VGROOVE_BIN) + " " + args + " >" + quoted(out) + " 2>" + quoted(err);
   const pid_t pid = ::fork();
@@ -68,6 +90,14 @@ inline Stopped signal_after(const std::string& args, int sig, double after, cons
     ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
     ::_exit(127);
   }
+  const auto started = std::chrono::steady_clock::now();
+  const auto exited = [pid] {  // without reaping: the loop below reads the status
+    siginfo_t info{};
+    return ::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid;
+  };
+  while (!(ready ? ready() : takes_signal(pid, sig)) && !exited() &&
+         std::chrono::steady_clock::now() - started < std::chrono::seconds(30))
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   std::this_thread::sleep_for(std::chrono::duration<double>(after));
   ::kill(pid, sig);
   const auto t0 = std::chrono::steady_clock::now();
@@ -88,6 +118,15 @@ inline Stopped signal_after(const std::string& args, int sig, double after, cons
   r.out = read_text(out);
   r.err = read_text(err);
   return r;
+}
+
+// For signal_after: the stand-in interpreter of the plot and report tests has written its pid
+// (a whole line) to DIR/pid, so the script has started.
+inline std::function<bool()> script_started(const TempDir& dir) {
+  return [pid = dir.file("pid")] {
+    const std::string s = read_text(pid);
+    return !s.empty() && s.back() == '\n';
+  };
 }
 
 }  // namespace vgroove::testing_files

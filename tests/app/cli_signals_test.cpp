@@ -26,6 +26,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using testing_files::quoted;
 using testing_files::read_text;
+using testing_files::script_started;
 using testing_files::signal_after;
 using testing_files::Stopped;
 using testing_files::TempDir;
@@ -159,7 +160,8 @@ TEST(CliSignals, PlotPassesStopSignalsToItsScript) {
     write_text(report, "{}");
     const std::string env = "VGROOVE_PYTHON=" + quoted(fake_python(dir, "1.5"));
     const Stopped r =
-        signal_after("plot " + quoted(report) + " --out " + quoted(dir.file("fig.png")), sig, 0.5, dir, env);
+        signal_after("plot " + quoted(report) + " --out " + quoted(dir.file("fig.png")), sig, 0.2, dir, env,
+                     script_started(dir));
     // vgroove exits at once, as a process stopped by the signal would (128 + sig), after its script.
     EXPECT_EQ(r.status, 128 + sig) << "signal " << sig << "\n" << r.err;
     EXPECT_LT(r.seconds, 1.5) << "signal " << sig;

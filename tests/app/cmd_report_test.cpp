@@ -22,6 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing_files::quoted;
 using testing_files::read_text;
+using testing_files::script_started;
 using testing_files::signal_after;
 using testing_files::Stopped;
 using testing_files::TempDir;
@@ -51,7 +52,7 @@ TEST(CmdReport, PassesStopSignalsToItsScript) {
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
     TempDir dir;
     const std::string env = "VGROOVE_PYTHON=" + quoted(fake_python(dir, "1.5"));
-    const Stopped r = signal_after("report " + quoted(dir.file("run")), sig, 0.5, dir, env);
+    const Stopped r = signal_after("report " + quoted(dir.file("run")), sig, 0.2, dir, env, script_started(dir));
     EXPECT_EQ(r.status, 128 + sig) << "signal " << sig << "\n" << r.err;
     EXPECT_LT(r.seconds, 1.5) << "signal " << sig;
     EXPECT_CONTAINS(r.err, "vgroove: interrupted; no report written");
