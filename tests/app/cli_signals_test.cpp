@@ -159,9 +159,8 @@ TEST(CliSignals, PlotPassesStopSignalsToItsScript) {
     const std::string report = dir.file("r.json");
     write_text(report, "{}");
     const std::string env = "VGROOVE_PYTHON=" + quoted(fake_python(dir, "1.5"));
-    const Stopped r =
-        signal_after("plot " + quoted(report) + " --out " + quoted(dir.file("fig.png")), sig, 0.2, dir, env,
-                     script_started(dir));
+    const Stopped r = signal_after("plot " + quoted(report) + " --out " + quoted(dir.file("fig.png")), sig, 0.2, dir,
+                                   env, script_started(dir));
     // vgroove exits at once, as a process stopped by the signal would (128 + sig), after its script.
     EXPECT_EQ(r.status, 128 + sig) << "signal " << sig << "\n" << r.err;
     EXPECT_LT(r.seconds, 1.5) << "signal " << sig;
