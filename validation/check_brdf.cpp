@@ -141,12 +141,6 @@ class BinIntegrator {
   std::vector<double> wis_, wos_, vals_;
 };
 
-struct ModelBins {
-  std::vector<double> flux;  // per bin
-  double error = 0.0;        // the estimates summed over the final cells
-  std::int64_t evals = 0;
-};
-
 // Whether a case's integration stops early: Ctrl-C, or an earlier case (in the options' order)
 // met a value that is not a BRDF's (its error is the one reported, whatever the thread count).
 struct CaseStop {
@@ -156,7 +150,7 @@ struct CaseStop {
   bool operator()() const { return support::cancelled(cancel) || first_bad->load(std::memory_order_relaxed) < c; }
 };
 
-ModelBins model_bins(const BrdfBatchFn& f, double theta_i_deg, const CheckBrdfOptions& o,
+ModelLobe model_bins(const BrdfBatchFn& f, double theta_i_deg, const CheckBrdfOptions& o,
                      const analytic::GaussLegendre& g, const CaseStop& stop) {
   const bool flat = o.dim == SurfaceDim::flatland;
   BinIntegrator in(f, analytic::dir3(deg_to_rad(theta_i_deg), kPi), flat, g, theta_i_deg);
@@ -197,7 +191,7 @@ ModelBins model_bins(const BrdfBatchFn& f, double theta_i_deg, const CheckBrdfOp
   }
   const std::size_t bins = flat ? static_cast<std::size_t>(o.flatland_bins)
                                 : static_cast<std::size_t>(o.theta_bins) * static_cast<std::size_t>(o.phi_bins);
-  ModelBins out;
+  ModelLobe out;
   out.flux.assign(bins, 0.0);
   while (!cells.empty()) {
     out.flux[cells.top().bin] += cells.top().value;
@@ -231,6 +225,18 @@ void check_options(const CheckBrdfOptions& o) {
   within(o.quadrature_order, 1, true, kMaxGaussLegendreOrder, true, "quadrature_order");
   check_range(o.max_model_evals >= 1, "max_model_evals", static_cast<double>(o.max_model_evals), "[1, 2^63)");
   within(o.threads, 0, true, kMaxThreads, true, "threads");
+}
+
+ModelLobe integrate_model_lobe(const BrdfBatchFn& f, double theta_i_deg, const CheckBrdfOptions& opt) {
+  check_options(opt);
+  const std::atomic<std::size_t> first_bad{1};
+  try {
+    ModelLobe m = model_bins(f, theta_i_deg, opt, analytic::gauss_legendre(opt.quadrature_order),
+                             CaseStop{opt.cancel, &first_bad, 0});
+    return support::cancelled(opt.cancel) ? ModelLobe{} : m;
+  } catch (const BadModelValue& e) {
+    throw support::UserError(e.message);
+  }
 }
 
 CheckBrdfCase check_lobes(const std::vector<double>& sim, const std::vector<double>& model, double rays, double grooves,
@@ -271,7 +277,7 @@ CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt) {
   // The model's bins, one work item per incidence, then the traced lobes. A value that is not a
   // BRDF's stops its case and the cases after it at once; the first such case in the options'
   // order is reported (the cases before it run on), so the error does not depend on the threads.
-  std::vector<ModelBins> model(cases);
+  std::vector<ModelLobe> model(cases);
   std::vector<double> model_s(cases, 0.0);
   std::vector<std::string> bad(cases);
   std::atomic<std::size_t> first_bad{cases};

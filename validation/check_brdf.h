@@ -98,6 +98,18 @@ CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt);
 // The same check with the model evaluated a rule's nodes at a time: the same nodes, sums and report.
 CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt);
 
+// The model's flux fractions per bin at theta_i (degrees), integrated as check_brdf integrates
+// them (opt's dimension, bins, quadrature_order, model_tolerance and max_model_evals; f is called
+// from this thread only), with the integration's error estimate and evaluation count. Throws
+// support::UserError at the first value of f that is not finite and >= 0. Empty flux when
+// opt.cancel was set.
+struct ModelLobe {
+  std::vector<double> flux;
+  double error = 0.0;
+  std::int64_t evals = 0;
+};
+ModelLobe integrate_model_lobe(const BrdfBatchFn& f, double theta_i_deg, const CheckBrdfOptions& opt);
+
 // The comparison itself, for a model given as flux fractions per bin (the model-table route of
 // `vgroove validate --model-table`): sim and model over the same bins, N rays over G grooves.
 // It is validation/lobe_comparison.h's compare_lobes with one row, whose joint test is the flux fractions'.

@@ -28,11 +28,13 @@ struct LobeSetup {
   std::uint64_t seed = 1;
   int theta_bins = 30, phi_bins = 24;  // 3D
   int flatland_bins = 90;
+  bool k1 = false;  // also tally the single-scattering rays apart (TracedLobe::flux_k1)
   int bins() const { return dim == SurfaceDim::flatland ? flatland_bins : theta_bins * phi_bins; }
 };
 
 struct TracedLobe {
-  std::vector<double> flux;  // fraction of the incident rays leaving into each bin
+  std::vector<double> flux;     // fraction of the incident rays leaving into each bin
+  std::vector<double> flux_k1;  // the same for the rays leaving after one reflection (setup.k1)
   std::int64_t rays = 0;
   double thread_s = 0.0;  // tracing time summed over the chunks (thread time)
 };
