@@ -64,8 +64,14 @@ void write_energy_table(const EnergyTable& t, const std::string& out, bool npy, 
 }
 
 int cmd_energy(const EnergyArgs& a) {
-  if (a.audit && !a.export_base.empty()) throw support::UserError("--audit and --export are two runs: give one");
+  std::vector<std::string> runs;
+  if (a.audit) runs.push_back("--audit");
+  if (!a.export_base.empty()) runs.push_back("--export");
+  if (a.lobe_shape) runs.push_back("--lobe-shape");
+  if (runs.size() == 2) throw support::UserError(runs[0] + " and " + runs[1] + " are two runs: give one");
+  if (runs.size() == 3) throw support::UserError("--audit, --export and --lobe-shape are three runs: give one");
   if (a.audit) return cmd_energy_audit(a);
+  if (a.lobe_shape) return cmd_energy_lobe_shape(a);
   if (!a.export_base.empty()) return cmd_energy_export(a);
   check_threads(a.threads, "--threads");
   EnergyGrid g;
@@ -177,6 +183,12 @@ void add_energy_command(CLI::App& app, Commands& commands) {
                    "the energy audit over the grid (GGX and Beckmann; --rays: walk paths per cell): compensation "
                    "formulas against the V-groove model and the Smith random walk (its report's /spec is a suite for "
                    "`vgroove validate`, which shards and runs under mpirun)");
+  energy->add_flag(
+      "--lobe-shape", ea.lobe_shape,
+      "the compensated lobes' shape beyond energy (3D, F = 1; one --ndf, ggx or beckmann; --alpha, default "
+      "0.5,1; --mu = cos theta_i, default theta_i 0,40,70 deg; --rays per theta_i): f_ss alone, Kulla-Conty "
+      "and the view-scaled factor (Turquin, Filament, Bevy, Cycles) against the traced V-groove surface "
+      "and the Smith random walk, by the Fig. 11 metric; exit 1 when a control fails");
   add_text(energy, "--export", ea.export_base,
            "write tables engines can load to BASE.json, .npz, .h, .png, .exr (see --formats): E_ss, E_avg, the DFG "
            "scale and bias, and with --ms-reference the exact multiple-scattering albedo per F0");

@@ -209,11 +209,15 @@ struct EnergyArgs {
   std::string ms_reference = "none";  // none, vgroove, smith_walk
   std::vector<double> ms_F0;          // empty: 0.04, 0.25, 0.5, 0.75, 1
   std::vector<std::string> formats{"json", "npz", "h", "png", "exr"};
+  // --lobe-shape: the compensated lobes' shape (validation/energy_lobe_shape.h); --rays per theta_i.
+  bool lobe_shape = false;
 };
 int cmd_energy(const EnergyArgs& a);
 // Its --audit and --export (app/cmd_energy_tables.cpp).
 int cmd_energy_audit(const EnergyArgs& a);
 int cmd_energy_export(const EnergyArgs& a);
+// Its --lobe-shape (app/cmd_energy_lobe_shape.cpp).
+int cmd_energy_lobe_shape(const EnergyArgs& a);
 void add_energy_command(CLI::App& app, Commands& commands);
 
 // `vgroove merge`: partial reports of one run (`--shard I/N`) into the run's report.

@@ -8,6 +8,7 @@
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/microsurface3d.h"
 #include "vgroove/sim/rng.h"
+#include "vgroove/support/format.h"
 #include "vgroove/support/parallel.h"
 #include "vgroove/support/seconds_since.h"
 #include "vgroove/support/user_error.h"
@@ -149,21 +150,35 @@ double compensated_brdf(CompensatedLobe lobe, const analytic::MicrofacetModel& m
   return 0.0;
 }
 
-LobeShapeResult audit_lobe_shapes(const LobeShapeOptions& opt) {
-  if (opt.ndf != NdfKind::ggx && opt.ndf != NdfKind::beckmann)
-    throw support::UserError(std::string("ndf = ") + ndf_name(opt.ndf) +
-                             ": the lobe shapes take ggx or beckmann (the Smith walk's Lambda)");
-  if (opt.alpha.empty()) throw support::UserError("alpha: give at least one roughness");
+namespace {
+
+CheckBrdfOptions check_options_of(const LobeShapeOptions& opt) {
   CheckBrdfOptions base;
   base.ndf = opt.ndf, base.theta_i_deg = opt.theta_i_deg, base.dim = SurfaceDim::three_d;
   base.rays = opt.rays, base.grooves = opt.grooves, base.seed = opt.seed;
   base.theta_bins = opt.theta_bins, base.phi_bins = opt.phi_bins;
   base.sigmas = opt.sigmas, base.model_tolerance = opt.model_tolerance, base.threads = opt.threads;
   base.cancel = opt.cancel;
+  return base;
+}
+
+}  // namespace
+
+void check_lobe_shape_options(const LobeShapeOptions& opt) {
+  if (opt.ndf != NdfKind::ggx && opt.ndf != NdfKind::beckmann)
+    throw support::UserError(std::string("ndf = ") + ndf_name(opt.ndf) +
+                             ": the lobe shapes take ggx or beckmann (the Smith walk's Lambda)");
+  if (opt.alpha.empty()) throw support::UserError("alpha: give at least one roughness");
+  CheckBrdfOptions o = check_options_of(opt);
   for (double a : opt.alpha) {
-    base.alpha = a;
-    check_options(base);
+    o.alpha = a;
+    check_options(o);
   }
+}
+
+LobeShapeResult audit_lobe_shapes(const LobeShapeOptions& opt) {
+  check_lobe_shape_options(opt);
+  const CheckBrdfOptions base = check_options_of(opt);
 
   LobeShapeResult res;
   res.options = opt;
@@ -234,8 +249,8 @@ LobeShapeResult audit_lobe_shapes(const LobeShapeOptions& opt) {
       // A row of every light that left (F = 1: all N rays), or of the k = 1 lobe alone (`k1`): its
       // normalized shape rests on the N E_1 rays that left after one reflection, not on N, so it is
       // compared as a distribution of those, and its energy E_1 apart, as a fraction of the N.
-      auto add = [&](const std::string& reference, const std::string& lobe, const std::vector<double>& sim,
-                     double rays, double grooves, double thread_s, const ModelLobe& m, bool k1) {
+      auto add = [&](const std::string& reference, const std::string& lobe, const std::vector<double>& sim, double rays,
+                     double grooves, double thread_s, const ModelLobe& m, bool k1) {
         LobeShapeRow row;
         row.reference = reference, row.lobe = lobe, row.alpha = alpha;
         const double tol = opt.model_tolerance + m.error;
@@ -274,20 +289,29 @@ LobeShapeResult audit_lobe_shapes(const LobeShapeOptions& opt) {
   return res;
 }
 
+void print_lobe_shapes(std::ostream& os, const LobeShapeResult& r) {
+  os << support::format("lobe shapes: %s, F = 1, %ld rays (walks) per theta_i, %d x %d bins, %.1f s\n",
+                        ndf_name(r.options.ndf), r.options.rays, r.options.theta_bins, r.options.phi_bins, r.wall_s);
+  os << support::format("%-20s %-14s %6s %6s %9s %9s %9s %9s %9s  %s\n", "reference", "lobe", "alpha", "theta_i",
+                        "L1 shape", "expected", "threshold", "albedo", "model", "within noise");
+  for (const LobeShapeRow& x : r.rows)
+    os << support::format("%-20s %-14s %6.3g %6.1f %9.4f %9.4f %9.4f %9.4f %9.4f  %s\n", x.reference.c_str(),
+                          x.lobe.c_str(), x.alpha, x.c.theta_i_deg, x.c.l1, x.c.l1_expected, x.c.l1_threshold,
+                          x.c.albedo_sim, x.c.albedo_model, x.c.pass ? "yes" : "no");
+  os << "controls (vgroove_model on its surface, single on each k = 1 lobe): "
+     << (r.controls_pass ? "within noise" : "FAILED") << "; albedo table interpolation error "
+     << support::format("%.2g", r.max_interpolation_error) << "\n";
+}
+
 nlohmann::json LobeShapeResult::to_json() const {
   nlohmann::json j = provenance();
   j["kind"] = "energy_lobe_shape";
   j["seed"] = options.seed;
   j["wall_s"] = wall_s;
-  j["inputs"] = {{"ndf", ndf_name(options.ndf)},
-                 {"alpha", options.alpha},
-                 {"theta_i_deg", options.theta_i_deg},
-                 {"rays", options.rays},
-                 {"grooves", options.grooves},
-                 {"theta_bins", options.theta_bins},
-                 {"phi_bins", options.phi_bins},
-                 {"sigmas", options.sigmas},
-                 {"model_tolerance", options.model_tolerance}};
+  j["inputs"] = {
+      {"ndf", ndf_name(options.ndf)}, {"alpha", options.alpha},     {"theta_i_deg", options.theta_i_deg},
+      {"rays", options.rays},         {"grooves", options.grooves}, {"theta_bins", options.theta_bins},
+      {"phi_bins", options.phi_bins}, {"sigmas", options.sigmas},   {"model_tolerance", options.model_tolerance}};
   nlohmann::json rs = nlohmann::json::array();
   for (const LobeShapeRow& r : rows)
     rs.push_back({{"reference", r.reference},

@@ -21,6 +21,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -79,6 +80,11 @@ struct LobeShapeResult {
 };
 
 // Throws support::UserError naming the option when one is out of range.
+void check_lobe_shape_options(const LobeShapeOptions& opt);
+// check_lobe_shape_options, then the rows; interrupted (and no rows) when opt.cancel was set.
 LobeShapeResult audit_lobe_shapes(const LobeShapeOptions& opt);
+// The rows as a table, per alpha and theta_i: each lobe's L1 (shape) and albedo beside the
+// reference's, with the noise thresholds and whether it is within them.
+void print_lobe_shapes(std::ostream& os, const LobeShapeResult& r);
 
 }  // namespace vgroove::validation

@@ -195,5 +195,40 @@ TEST(EnergyAuditCli, RefusesShardsAndRunsASmallGrid) {
   EXPECT_TRUE(j["summary"].contains("kulla_conty"));
 }
 
+// `energy --lobe-shape`: one line naming the flag for each bad input (exit 2, no file), and a small
+// run whose controls pass, with the rows in its report: the Kulla-Conty lobe keeps the white
+// furnace (model albedo 1) while f_ss alone does not.
+TEST(EnergyLobeShapeCli, BadInputNamesTheFlagAndASmallRunReports) {
+  TempDir dir;
+  const std::string out = dir.file("lobes.json");
+  for (const auto& [args, says] :
+       std::vector<std::pair<std::string, std::string>>{{"--ndf phong", "--ndf: --lobe-shape takes one of"},
+                                                        {"--alpha 0.005", "--alpha = 0.005 is out of range [0.01, 2]"},
+                                                        {"--mu 0", "--mu = 0 is out of range"},
+                                                        {"--audit", "--audit and --lobe-shape are two runs: give one"},
+                                                        {"--dim flatland", "--dim: --lobe-shape is 3D"},
+                                                        {"--shard 1/2", "--lobe-shape runs in one process"}}) {
+    const CliRun r = vgroove("energy --lobe-shape " + args + " --out " + quoted(out));
+    EXPECT_EQ(r.status, 2) << r;
+    EXPECT_NE(r.err.find(says), std::string::npos) << r;
+    EXPECT_EQ(lines(r.err), 1) << r;
+    EXPECT_FALSE(fs::exists(out)) << args;
+  }
+  const CliRun r = vgroove("energy --lobe-shape --alpha 0.5 --mu 0.5 --rays 20000 --threads 2 --out " + quoted(out));
+  ASSERT_EQ(r.status, 0) << r;
+  EXPECT_NE(r.out.find("controls (vgroove_model on its surface, single on each k = 1 lobe): within noise"),
+            std::string::npos)
+      << r;
+  const nlohmann::json j = read_json(out);
+  EXPECT_EQ(j["kind"], "energy_lobe_shape");
+  EXPECT_TRUE(j["controls_pass"].get<bool>());
+  ASSERT_EQ(j["rows"].size(), 9u);  // 3 lobes x 2 references, 2 k = 1 controls, the V-groove model
+  for (const nlohmann::json& row : j["rows"]) {
+    EXPECT_NEAR(row["theta_i_deg"].get<double>(), 60.0, 1e-12);
+    if (row["lobe"] == "kulla_conty") EXPECT_NEAR(row["albedo_model"].get<double>(), 1.0, 1e-3) << row;
+    if (row["lobe"] == "single" && row["reference"] == "smith_walk") EXPECT_LT(row["albedo_model"].get<double>(), 0.9);
+  }
+}
+
 }  // namespace
 }  // namespace vgroove::app
