@@ -35,8 +35,9 @@ void check_direction(const Vec3& d, Medium from) {
   if (from == Medium::above ? !(dz < 0.0 && dz >= -1.0) : !(dz > 0.0 && dz <= 1.0)) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.17g", dz);
-    throw std::invalid_argument(std::string("d.z = ") + buf + " is out of range " +
-                                (from == Medium::above ? "[-1, 0) for light from above" : "(0, 1] for light from below"));
+    throw std::invalid_argument(
+        std::string("d.z = ") + buf + " is out of range " +
+        (from == Medium::above ? "[-1, 0) for light from above" : "(0, 1] for light from below"));
   }
 }
 

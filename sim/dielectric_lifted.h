@@ -9,9 +9,9 @@
 // Holds: a direct 3D tracer of the extruded groove as a triangle mesh to rounding; a flat interface
 // is 3D Fresnel and Snell; eta = 1 passes straight; the conductor limit is trace_groove3d bit for bit.
 // Tests: tests/sim/dielectric_lifted_test.cpp (DielectricLifted.AgreesWithTheExtrudedMeshTracer,
-// DielectricLifted.ConductorLimitIsTheLiftedConductorTallyBitForBit, DielectricLifted.AFlatInterfaceIsFresnelAndSnellIn3d,
-// DielectricLifted.NoAxisComponentIsTheFlatlandTracer, DielectricLifted.EnergyIsConservedToRounding).
-// Derivation: docs/derivations/dielectric_lifting.md.
+// DielectricLifted.ConductorLimitIsTheLiftedConductorTallyBitForBit,
+// DielectricLifted.AFlatInterfaceIsFresnelAndSnellIn3d, DielectricLifted.NoAxisComponentIsTheFlatlandTracer,
+// DielectricLifted.EnergyIsConservedToRounding). Derivation: docs/derivations/dielectric_lifting.md.
 #pragma once
 
 #include "vgroove/sim/dielectric_groove.h"

@@ -21,10 +21,10 @@
 namespace vgroove::sim::detail {
 
 struct LiftedLaw {
-  double eta = 1.5;             // n2 / n1
-  double inv_eta = 1.0 / 1.5;   // 1 / eta
-  double r[2] = {1.0, 1.0};     // the cross-section length of a unit direction, by Medium; 0: unreachable
-  bool conductor_limit = false; // F = 1 at every hit
+  double eta = 1.5;              // n2 / n1
+  double inv_eta = 1.0 / 1.5;    // 1 / eta
+  double r[2] = {1.0, 1.0};      // the cross-section length of a unit direction, by Medium; 0: unreachable
+  bool conductor_limit = false;  // F = 1 at every hit
 
   // F, the reflected share at a hit of the cross-section direction e (unit) in medium `in` on a part
   // of unit normal n (towards medium 1); sets t to the refracted cross-section direction when F < 1.

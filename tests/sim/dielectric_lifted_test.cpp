@@ -12,8 +12,8 @@
 #include "vgroove/sim/beam.h"
 #include "vgroove/sim/triangle_watertight.h"
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <array>
@@ -195,8 +195,7 @@ struct Worst {
   if (mesh.edge_hits != 0) return ::testing::AssertionFailure() << "the mesh tracer met an edge";
   std::map<std::pair<int, std::uint64_t>, std::size_t> by_key;
   for (std::size_t i = 0; i < mesh.exits.size(); ++i) by_key[{mesh.exits[i].k, mesh.exits[i].path}] = i;
-  if (by_key.size() != mesh.exits.size())
-    return ::testing::AssertionFailure() << "two mesh paths share a signature";
+  if (by_key.size() != mesh.exits.size()) return ::testing::AssertionFailure() << "two mesh paths share a signature";
   if (lifted.flat.exits.size() != mesh.exits.size())
     return ::testing::AssertionFailure() << "lifted " << lifted.flat.exits.size() << " exits, mesh "
                                          << mesh.exits.size();
@@ -212,8 +211,8 @@ struct Worst {
     worst.weight = std::max(worst.weight, dw);
     ++worst.paths;
     if (!(dd <= tol_dir) || !(dw <= tol_weight))
-      return ::testing::AssertionFailure() << "path k = " << e.k << " bits " << e.path << ": |d - d_mesh| = " << dd
-                                           << ", |w - w_mesh| = " << dw;
+      return ::testing::AssertionFailure()
+             << "path k = " << e.k << " bits " << e.path << ": |d - d_mesh| = " << dd << ", |w - w_mesh| = " << dw;
   }
   for (int s = 0; s < 2; ++s) {
     const double dl = std::abs(lifted.flat.left[s] - mesh.left[s]);
@@ -240,8 +239,9 @@ void run_mesh_comparison(double theta_max_deg, int rays_per_case, std::uint64_t 
     for (int c = 0; c < rays_per_case; ++c) {
       Rng rng(seed, static_cast<std::uint64_t>(ie), static_cast<std::uint64_t>(c));
       const bool sym = rng.uniform() < 0.5;
-      const Groove g = sym ? make_symmetric_groove(deg(3.0 + 170.0 * rng.uniform()))
-                           : make_nonsymmetric_groove(-deg(3.0 + 84.0 * rng.uniform()), deg(3.0 + 84.0 * rng.uniform()));
+      const Groove g =
+          sym ? make_symmetric_groove(deg(3.0 + 170.0 * rng.uniform()))
+              : make_nonsymmetric_groove(-deg(3.0 + 84.0 * rng.uniform()), deg(3.0 + 84.0 * rng.uniform()));
       const double phi_a = std::numbers::pi * rng.uniform();
       const GrooveFrame3d frame{std::cos(phi_a), std::sin(phi_a)};
       const Medium from = rng.uniform() < 0.5 ? Medium::above : Medium::below;
@@ -274,10 +274,11 @@ void run_mesh_comparison(double theta_max_deg, int rays_per_case, std::uint64_t 
 TEST(DielectricLifted, AgreesWithTheExtrudedMeshTracer) {
   Worst w;
   run_mesh_comparison(80.0, 1000, 1, w);
-  std::printf("mesh vs lifted: %ld rays, %ld paths, max |d - d_mesh| %.3g, max |w - w_mesh| %.3g; "
-              "from below: %ld out above, %ld none out (TIR; %ld with n2 |d.u| >= n1); from above: %ld into "
-              "medium 2\n",
-              w.rays, w.paths, w.dir, w.weight, w.up_from_below, w.tir_rays, w.never_above, w.down_from_above);
+  std::printf(
+      "mesh vs lifted: %ld rays, %ld paths, max |d - d_mesh| %.3g, max |w - w_mesh| %.3g; "
+      "from below: %ld out above, %ld none out (TIR; %ld with n2 |d.u| >= n1); from above: %ld into "
+      "medium 2\n",
+      w.rays, w.paths, w.dir, w.weight, w.up_from_below, w.tir_rays, w.never_above, w.down_from_above);
   EXPECT_EQ(w.rays, 5 * 1000);
   EXPECT_GT(w.tir_rays, 500);
   EXPECT_GT(w.never_above, 100);
@@ -362,6 +363,63 @@ TEST(DielectricLifted, AFlatInterfaceIsFresnelAndSnellIn3d) {
       }
     }
   }
+}
+
+// The law against the derivation (docs/derivations/dielectric_lifting.md), without a tracer: for
+// random hits, the refracted e is the 2D Snell direction with eta_eff = sqrt(n_k^2 - p^2) /
+// sqrt(n_j^2 - p^2); total internal reflection in 3D is the cross-section's at eta_eff (away from
+// the boundary's rounding); R_s at the 3D angle is the cross-section's R_s at eta_eff, R_p is not.
+TEST(DielectricLifted, TheLawIsSnellWithTheEffectiveIndexAndFresnelAtThe3dAngle) {
+  Rng draw(8, 0, 0);
+  int refracted = 0, tir = 0, rp_differs = 0;
+  for (int c = 0; c < 20000; ++c) {
+    const double eta = c % 2 ? 1.5 : 1.0 / 2.4;
+    const Medium in = c % 4 < 2 ? Medium::above : Medium::below;
+    const double nj = in == Medium::above ? 1.0 : eta, nk = in == Medium::above ? eta : 1.0;
+    const double q = (2.0 * draw.uniform() - 1.0) * 0.999;  // d.u in medium j
+    const double p = nj * q;
+    // A hit of e (unit) on a part of normal n at cross-section angle theta' from -m_in.
+    const double phi = 2.0 * std::numbers::pi * draw.uniform(), th = 0.5 * std::numbers::pi * draw.uniform();
+    const Vec2 n(std::sin(phi), std::cos(phi));
+    const Vec2 m_in = in == Medium::above ? n : Vec2(-n);
+    const Vec2 tang(m_in.y(), -m_in.x());
+    const Vec2 e = -std::cos(th) * m_in + std::sin(th) * tang;
+    detail::LiftedLaw law;
+    law.eta = eta;
+    law.inv_eta = 1.0 / eta;
+    const double rk2 = 1.0 - (p / nk) * (p / nk);
+    law.r[static_cast<int>(in)] = std::sqrt(1.0 - q * q);
+    law.r[1 - static_cast<int>(in)] = rk2 > 0.0 ? std::sqrt(rk2) : 0.0;
+    Vec2 t = Vec2::Zero();
+    const double F = law(e, n, in, t);
+    const double Nj = std::sqrt(nj * nj - p * p), Nk2 = nk * nk - p * p;
+    // The cross-section's critical condition: N_j^2 sin^2 theta' >= N_k^2.
+    const double margin = Nj * Nj * std::sin(th) * std::sin(th) - Nk2;
+    if (std::abs(margin) < 1e-9) continue;
+    if (margin > 0.0) {
+      ++tir;
+      EXPECT_EQ(F, 1.0) << "3D refracts where the cross-section reflects totally";
+      continue;
+    }
+    ++refracted;
+    ASSERT_LT(F, 1.0) << "3D reflects totally where the cross-section refracts";
+    const double eta_eff = std::sqrt(Nk2) / Nj;
+    Vec2 t2 = Vec2::Zero();
+    ASSERT_TRUE(optics::refract(e, m_in, eta_eff, t2));
+    EXPECT_LE((t - t2).norm(), 1e-13) << "q " << q << " theta' " << th;
+    // R_s at the 3D angle = R_s of the cross-section at eta_eff; R_p differs once p != 0.
+    const double rj = law.r[static_cast<int>(in)];
+    const double eta_rel = nk / nj;
+    const auto f3 = optics::fresnel_dielectric_polarized(rj * std::cos(th), eta_rel);
+    const auto f2 = optics::fresnel_dielectric_polarized(std::cos(th), eta_eff);
+    EXPECT_NEAR(f3.s, f2.s, 1e-13);
+    EXPECT_NEAR(F, f3.unpolarized(), 1e-13);
+    rp_differs += std::abs(f3.p - f2.p) > 1e-6;
+  }
+  std::printf("law: %d refracted, %d totally reflected, R_p differs in %d\n", refracted, tir, rp_differs);
+  EXPECT_GT(tir, 2000);
+  EXPECT_GT(refracted, 5000);
+  EXPECT_GT(rp_differs, refracted / 2);
 }
 
 // eta = 1: no interface; every ray passes straight, weight 1, at every hit F = 0.
