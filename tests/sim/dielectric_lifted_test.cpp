@@ -313,6 +313,50 @@ TEST(DielectricLifted, AgreesWithTheExtrudedMeshTracerAtGrazingAngles) {
   }
 }
 
+// The broken variants the mesh must tell apart, kept: the flatland tracer run on the lifted ray's
+// cross-section (a) at the real eta (no effective index: wrong directions) and (b) at eta_eff
+// (the right directions, Fresnel at the cross-section's angle: wrong weights), exits lifted as the
+// lifted tracer's. Each misses the mesh on every ray with |d.u| > 0.2 that refracts somewhere.
+TEST(DielectricLifted, TheFlatlandTracerAtEitherIndexMissesTheMesh) {
+  Rng draw(9, 0, 0);
+  int missed[2] = {0, 0}, rays = 0;
+  for (int c = 0; c < 200; ++c) {
+    const Groove g = make_symmetric_groove(deg(20.0 + 140.0 * draw.uniform()));
+    const double phi_a = std::numbers::pi * draw.uniform();
+    const GrooveFrame3d frame{std::cos(phi_a), std::sin(phi_a)};
+    const Medium from = c % 2 ? Medium::above : Medium::below;
+    const Vec3 d = travel(deg(20.0 + 50.0 * draw.uniform()), 2.0 * std::numbers::pi * draw.uniform(), from);
+    const double x = -0.5 + draw.uniform();
+    DielectricOptions opt;
+    opt.eta = 1.5;
+    const LiftedRay ray = lift_ray(d, frame, from, opt);
+    if (!(ray.law.r[0] > 0.0) || std::abs(ray.q[static_cast<int>(from)]) < 0.2) continue;
+    LiftedResult right;
+    LiftedGrooveTracer(g, frame, opt).trace(d, x, from, draw, right);
+    bool refracts = false;
+    for (const DielectricExit& e : right.flat.exits) refracts |= e.path != 0;
+    if (!refracts) continue;
+    ++rays;
+    const MeshResult mr = ExtrudedGrooveMesh(g, frame, kMeshSize, kMeshSize)
+                              .trace(d, x, g.rim_height, from, opt.eta, opt.min_weight, opt.max_interactions);
+    // N2 / N1 = eta r_2 / r_1.
+    const double eta_eff = opt.eta * ray.law.r[1] / ray.law.r[0];
+    for (int variant = 0; variant < 2; ++variant) {
+      DielectricOptions flat = opt;
+      flat.eta = variant == 0 ? opt.eta : eta_eff;
+      LiftedResult lr;
+      DielectricGrooveTracer(g, flat).trace(beam_ray(g, ray.e, x), from, draw, lr.flat);
+      for (const DielectricExit& e : lr.flat.exits) lr.dirs.push_back(lift_exit(ray, frame, e.dir, e.side));
+      Worst w;
+      missed[variant] += !same_paths(lr, mr, kTolerance, kTolerance, w);
+    }
+  }
+  std::printf("broken variants: %d rays, missed at eta %d, at eta_eff %d\n", rays, missed[0], missed[1]);
+  EXPECT_GT(rays, 50);
+  EXPECT_EQ(missed[0], rays);
+  EXPECT_EQ(missed[1], rays);
+}
+
 // A flat interface (the flat rim far from the groove) lit in 3D: reflected F(theta_i) and
 // transmitted 1 - F along the 3D Snell direction, by hand (Born & Wolf; the values from an
 // independent evaluation). Light along the axis u is at normal incidence in the cross-section:
