@@ -9,9 +9,12 @@
 // branching (one path per ray). Counters: rays/s, and interactions (reflections for the conductor
 // tracer) per second. The same four on a procedural surface (GGX, alpha 0.5, 10,000 grooves, light
 // from above at 20 deg, for_each_landing's rays): sim::trace in each ray's groove beside
-// sim::DielectricSurfaceTracer.
+// sim::DielectricSurfaceTracer. The lifted 3D tracer (sim/dielectric_lifted.h) on the same groove
+// and rays, split and random: light at 20 deg from the normal, its azimuth from the axis a across
+// the groove 0 deg (d.u = 0: the flatland paths, the lift's own cost) or 60 deg (d.u = 0.30).
 #include "vgroove/sim/beam.h"
 #include "vgroove/sim/dielectric_groove.h"
+#include "vgroove/sim/dielectric_lifted.h"
 #include "vgroove/sim/dielectric_microsurface.h"
 #include "vgroove/sim/groove.h"
 #include "vgroove/sim/microsurface.h"
@@ -19,6 +22,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstdint>
 #include <numbers>
 
@@ -83,6 +87,38 @@ void dielectric(benchmark::State& state, int mode) {
   report(state, interactions, rays);
 }
 
+// The lifted tracer, light at kThetaIDeg from the normal and azimuth_deg from a, the rays crossing
+// the rim plane at the flatland cases' x; split (mode 1) or random branching (mode 2).
+void lifted(benchmark::State& state, int mode) {
+  const sim::Groove g = sim::make_symmetric_groove(deg(static_cast<double>(state.range(0))));
+  const sim::Interval open = sim::opening(g);
+  const double az = deg(static_cast<double>(state.range(1)));
+  const double th = deg(kThetaIDeg);
+  // Travelling down, in the frame a = x, u = y (the flatland light travels along +x: azimuth 0).
+  const sim::Vec3 d(std::sin(th) * std::cos(az), std::sin(th) * std::sin(az), -std::cos(th));
+  sim::DielectricOptions opt;
+  opt.eta = 1.5;
+  opt.branching = mode == 2 ? sim::Branching::random : sim::Branching::split;
+  const sim::LiftedGrooveTracer tracer(g, sim::GrooveFrame3d{1.0, 0.0}, opt);
+  sim::Rng place(1, 0, 0);
+  sim::LiftedResult r;
+  std::int64_t interactions = 0, rays = 0;
+  for (auto _ : state) {
+    for (long j = 0; j < kRays; ++j) {
+      const double x = sim::sample_position(sim::Sampling::stratified, open, j, kRays, place);
+      sim::Rng rng(1, 0, static_cast<std::uint64_t>(j));
+      tracer.trace(d, x, sim::Medium::above, rng, r);
+      benchmark::DoNotOptimize(r.dirs.data());
+      interactions += r.flat.interactions;
+    }
+    rays += kRays;
+  }
+  report(state, interactions, rays);
+}
+
+void BM_lifted_split(benchmark::State& state) { lifted(state, 1); }
+void BM_lifted_random(benchmark::State& state) { lifted(state, 2); }
+
 void BM_dielectric_conductor_limit(benchmark::State& state) { dielectric(state, 0); }
 void BM_dielectric_split(benchmark::State& state) { dielectric(state, 1); }
 void BM_dielectric_random(benchmark::State& state) { dielectric(state, 2); }
@@ -136,5 +172,8 @@ BENCHMARK(BM_conductor_groove)->Arg(10)->Arg(60)->Arg(150);
 BENCHMARK(BM_dielectric_conductor_limit)->Arg(10)->Arg(60)->Arg(150);
 BENCHMARK(BM_dielectric_split)->Arg(10)->Arg(60)->Arg(150);
 BENCHMARK(BM_dielectric_random)->Arg(10)->Arg(60)->Arg(150);
+// (aperture, azimuth from a) in degrees.
+BENCHMARK(BM_lifted_split)->ArgsProduct({{10, 60, 150}, {0, 60}});
+BENCHMARK(BM_lifted_random)->ArgsProduct({{10, 60, 150}, {0, 60}});
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "vgroove/sim/dielectric_groove.h"
 
 #include "vgroove/sim/dielectric_interaction.h"
+#include "vgroove/sim/dielectric_lifted_law.h"
 
 #include <cmath>
 #include <cstdio>
@@ -164,6 +165,12 @@ bool DielectricGrooveTracer::advance(Part on, double pos, const Vec2& d, Medium 
 }
 
 DielectricResult& DielectricGrooveTracer::trace(const Ray2& ray, Medium from, Rng& rng, DielectricResult& out) const {
+  return trace_with(ray, from, detail::FlatlandLaw{opt_.eta, 1.0 / opt_.eta, &opt_}, rng, out);
+}
+
+template <class Law>
+DielectricResult& DielectricGrooveTracer::trace_with(const Ray2& ray, Medium from, const Law& law, Rng& rng,
+                                                     DielectricResult& out) const {
   out.clear();
   detail::check_light_direction(ray.dir, from);
   Pending p0{ray.dir, 0.0, 1.0, 0, 0, Part::left_facet, from};
@@ -175,7 +182,6 @@ DielectricResult& DielectricGrooveTracer::trace(const Ray2& ray, Medium from, Rn
     return out;
   }
   const Part first = p0.on;
-  const double eta = opt_.eta, inv_eta = 1.0 / eta;
   const double x_l = g_.rim_x(Side::left), x_r = g_.rim_x(Side::right);
   const bool split = opt_.branching == Branching::split;
   std::vector<Pending>& pending = out.pending;
@@ -198,7 +204,7 @@ DielectricResult& DielectricGrooveTracer::trace(const Ray2& ray, Medium from, Rn
     ++out.interactions;
     const Vec2 n = facet ? fa->normal : Vec2(0.0, 1.0);  // towards medium 1
     Vec2 t_dir = Vec2::Zero();
-    const double F = detail::fresnel_split(h.d, n, h.in, eta, inv_eta, opt_, t_dir);
+    const double F = law(h.d, n, h.in, t_dir);
     // The branches: reflected (weight w F, stays in its medium) and refracted (w (1 - F), crosses).
     double w_branch[2];
     detail::branch_weights(split, F, h.w, rng, w_branch);
@@ -234,5 +240,10 @@ DielectricResult& DielectricGrooveTracer::trace(const Ray2& ray, Medium from, Rn
   }
   return out;
 }
+
+template DielectricResult& DielectricGrooveTracer::trace_with(const Ray2&, Medium, const detail::FlatlandLaw&, Rng&,
+                                                              DielectricResult&) const;
+template DielectricResult& DielectricGrooveTracer::trace_with(const Ray2&, Medium, const detail::LiftedLaw&, Rng&,
+                                                              DielectricResult&) const;
 
 }  // namespace vgroove::sim

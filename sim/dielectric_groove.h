@@ -119,6 +119,11 @@ class DielectricGrooveTracer {
   // first (its work list kept); `rng` is drawn from in random branching only. Returns out. Const and
   // without state: one tracer serves any number of threads, each with its own out and rng.
   DielectricResult& trace(const Ray2& ray, Medium from, Rng& rng, DielectricResult& out) const;
+  // trace() with another law of one hit: law(d, n, in, t) returns F and sets t as
+  // detail::fresnel_split does (instantiated for detail::FlatlandLaw, trace()'s own, and
+  // detail::LiftedLaw, sim/dielectric_lifted_law.h).
+  template <class Law>
+  DielectricResult& trace_with(const Ray2& ray, Medium from, const Law& law, Rng& rng, DielectricResult& out) const;
 
  private:
   using Pending = detail::PendingHit;

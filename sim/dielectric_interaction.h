@@ -55,6 +55,16 @@ inline double fresnel_split(const Vec2& d, const Vec2& n, Medium in, double eta,
   return optics::fresnel_dielectric(cos_i, eta_rel);
 }
 
+// The flatland law of a hit: fresnel_split with the options' eta (the tracers' trace_with law; the
+// lifted 3D law is sim/dielectric_lifted_law.h's LiftedLaw).
+struct FlatlandLaw {
+  double eta, inv_eta;
+  const DielectricOptions* opt;
+  double operator()(const Vec2& d, const Vec2& n, Medium in, Vec2& t) const {
+    return fresnel_split(d, n, in, eta, inv_eta, *opt, t);
+  }
+};
+
 // sim::trace's first hit, operation for operation, of a ray crossing the rim line inside the
 // opening: the facet `on` and s along it. False when it meets no facet (a vertex by rounding, as
 // sim::trace reports it).

@@ -1,6 +1,7 @@
 #include "vgroove/sim/dielectric_microsurface.h"
 
 #include "vgroove/sim/dielectric_interaction.h"
+#include "vgroove/sim/dielectric_lifted_law.h"
 
 #include <algorithm>
 #include <cmath>
@@ -61,6 +62,17 @@ bool DielectricSurfaceTracer::march(const Vec2& p, long n0, const Vec2& d, int e
 
 DielectricResult& DielectricSurfaceTracer::trace_from_above(int groove, const Ray2& ray, Rng& rng,
                                                             DielectricResult& out) const {
+  return trace_from_above_with(groove, ray, detail::FlatlandLaw{opt_.eta, 1.0 / opt_.eta, &opt_}, rng, out);
+}
+
+DielectricResult& DielectricSurfaceTracer::trace_from_below(double x, const Vec2& dir, Rng& rng,
+                                                            DielectricResult& out) const {
+  return trace_from_below_with(x, dir, detail::FlatlandLaw{opt_.eta, 1.0 / opt_.eta, &opt_}, rng, out);
+}
+
+template <class Law>
+DielectricResult& DielectricSurfaceTracer::trace_from_above_with(int groove, const Ray2& ray, const Law& law, Rng& rng,
+                                                                 DielectricResult& out) const {
   out.clear();
   detail::check_light_direction(ray.dir, Medium::above);
   const Groove& g = surface_.grooves.at(static_cast<std::size_t>(groove));
@@ -70,11 +82,12 @@ DielectricResult& DielectricSurfaceTracer::trace_from_above(int groove, const Ra
     out.vertex = 1.0;  // on a peak exactly, or met no facet (a vertex by rounding, as sim::trace)
     return out;
   }
-  return run(first, ray.dir, Medium::above, rng, out);
+  return run(first, ray.dir, Medium::above, law, rng, out);
 }
 
-DielectricResult& DielectricSurfaceTracer::trace_from_below(double x, const Vec2& dir, Rng& rng,
-                                                            DielectricResult& out) const {
+template <class Law>
+DielectricResult& DielectricSurfaceTracer::trace_from_below_with(double x, const Vec2& dir, const Law& law, Rng& rng,
+                                                                 DielectricResult& out) const {
   out.clear();
   detail::check_light_direction(dir, Medium::below);
   if (!std::isfinite(x)) {
@@ -90,14 +103,14 @@ DielectricResult& DielectricSurfaceTracer::trace_from_below(double x, const Vec2
     out.vertex = 1.0;  // met nothing: a vertex by rounding (or no number), never dropped
     return out;
   }
-  return run(first, dir, Medium::below, rng, out);
+  return run(first, dir, Medium::below, law, rng, out);
 }
 
-DielectricResult& DielectricSurfaceTracer::run(const Hit& first, const Vec2& d0, Medium from, Rng& rng,
+template <class Law>
+DielectricResult& DielectricSurfaceTracer::run(const Hit& first, const Vec2& d0, Medium from, const Law& law, Rng& rng,
                                                DielectricResult& out) const {
   std::vector<detail::PendingHit>& pending = out.pending;
   pending.push_back(detail::PendingHit{d0, first.s, 1.0, 0, 0, static_cast<Part>(first.side), from, first.groove});
-  const double eta = opt_.eta, inv_eta = 1.0 / eta;
   const bool split = opt_.branching == Branching::split;
   const Part first_part = static_cast<Part>(first.side);
   while (!pending.empty()) {
@@ -118,7 +131,7 @@ DielectricResult& DielectricSurfaceTracer::run(const Hit& first, const Vec2& d0,
     }
     ++out.interactions;
     Vec2 t_dir = Vec2::Zero();
-    const double F = detail::fresnel_split(h.d, fa.normal, h.in, eta, inv_eta, opt_, t_dir);
+    const double F = law(h.d, fa.normal, h.in, t_dir);
     double w_branch[2];
     detail::branch_weights(split, F, h.w, rng, w_branch);
     for (int b = 0; b < 2; ++b) {
@@ -171,5 +184,15 @@ DielectricResult& DielectricSurfaceTracer::run(const Hit& first, const Vec2& d0,
   }
   return out;
 }
+
+template DielectricResult& DielectricSurfaceTracer::trace_from_above_with(int, const Ray2&, const detail::FlatlandLaw&,
+                                                                          Rng&, DielectricResult&) const;
+template DielectricResult& DielectricSurfaceTracer::trace_from_above_with(int, const Ray2&, const detail::LiftedLaw&,
+                                                                          Rng&, DielectricResult&) const;
+template DielectricResult& DielectricSurfaceTracer::trace_from_below_with(double, const Vec2&,
+                                                                          const detail::FlatlandLaw&, Rng&,
+                                                                          DielectricResult&) const;
+template DielectricResult& DielectricSurfaceTracer::trace_from_below_with(double, const Vec2&, const detail::LiftedLaw&,
+                                                                          Rng&, DielectricResult&) const;
 
 }  // namespace vgroove::sim

@@ -40,6 +40,15 @@ class DielectricSurfaceTracer {
   // periodically), travelling along dir (dir.y > 0).
   DielectricResult& trace_from_below(double x, const Vec2& dir, Rng& rng, DielectricResult& out) const;
 
+  // The two with another law of one hit (as DielectricGrooveTracer::trace_with; instantiated for
+  // detail::FlatlandLaw and detail::LiftedLaw).
+  template <class Law>
+  DielectricResult& trace_from_above_with(int groove, const Ray2& ray, const Law& law, Rng& rng,
+                                          DielectricResult& out) const;
+  template <class Law>
+  DielectricResult& trace_from_below_with(double x, const Vec2& dir, const Law& law, Rng& rng,
+                                          DielectricResult& out) const;
+
  private:
   struct Hit {
     int groove;
@@ -52,7 +61,9 @@ class DielectricSurfaceTracer {
   // `unresolved` set, when rounding lets an upward path pass a whole period without a hit.
   bool march(const Vec2& p, long n0, const Vec2& d, int exclude_groove, Side exclude_side, Hit& hit,
              bool& unresolved) const;
-  DielectricResult& run(const Hit& first, const Vec2& d, Medium from, Rng& rng, DielectricResult& out) const;
+  template <class Law>
+  DielectricResult& run(const Hit& first, const Vec2& d, Medium from, const Law& law, Rng& rng,
+                        DielectricResult& out) const;
 
   const Microsurface& surface_;
   DielectricOptions opt_;
