@@ -64,7 +64,7 @@ TEST(Walter, JacobiansAreTheDerivatives) {
         // 3D, at azimuth 40 deg between i and o.
         const Dir3 i = dir3(a < 0 ? -a : a, a < 0 ? kPi : 0.0);
         const Dir3 o = neg(dir3(std::abs(b), deg(40.0)));
-        const Dir3 u{-std::sin(deg(40.0)), std::cos(deg(40.0)), 0.0};                     // tangent 1
+        const Dir3 u{-std::sin(deg(40.0)), std::cos(deg(40.0)), 0.0};                               // tangent 1
         const Dir3 v{o.z * std::cos(deg(40.0)), o.z * std::sin(deg(40.0)), std::sin(std::abs(b))};  // tangent 2
         auto at = [&](double s, double t) {
           Dir3 p{o.x + s * u.x + t * v.x, o.y + s * u.y + t * v.y, o.z + s * u.z + t * v.z};
@@ -152,7 +152,8 @@ Shares shares3(const Dir3& i, NdfKind ndf, double a, double eta, Masking g, doub
       if (k * a < kPi) cuts.push_back(k * a);
     cuts.push_back(kPi);
     double v = 0.0;
-    for (std::size_t q = 0; q + 1 < cuts.size(); ++q) v += test_stats::tanh_sinh(ring, cuts[q], cuts[q + 1], 1.0 / 16.0);
+    for (std::size_t q = 0; q + 1 < cuts.size(); ++q)
+      v += test_stats::tanh_sinh(ring, cuts[q], cuts[q + 1], 1.0 / 16.0);
     (side == 0 ? s.R : s.T) = v;
   }
   return s;
@@ -187,8 +188,9 @@ Shares shares2(double ti, NdfKind ndf, double a, double eta, Masking g, double s
 // (GGX's tails, ~alpha^2 / tan^2 of the facets tilted past the critical angle, converge slowly): the
 // spread of |i.h| and F over the lobe is O(alpha^2) (first order cancels by symmetry), measured at most
 // 6.1e-5 (eta 1/1.5, 30 deg, near the critical angle); bound 2e-4. R + T = 1 to 1e-9 from 0 to
-// 60 deg (G = 1 to rounding at alpha = 0.01: the projected area of the facets, all of the flux). Broken variants: f_t without its n_o^2 (3D) or n_o (flatland) factor, and with the
-// article's extra (n_v / n_l)^2 (3D) or n_v / n_l (flatland), must miss 1 - F by more than 0.1.
+// 60 deg (G = 1 to rounding at alpha = 0.01: the projected area of the facets, all of the flux). Broken variants: f_t
+// without its n_o^2 (3D) or n_o (flatland) factor, and with the article's extra (n_v / n_l)^2 (3D) or n_v / n_l
+// (flatland), must miss 1 - F by more than 0.1.
 TEST(Walter, SmallRoughnessIsFlatFresnel) {
   const double a = 0.01;
   for (double eta : {1.5, 2.4, 1.0 / 1.5})
@@ -207,7 +209,8 @@ TEST(Walter, SmallRoughnessIsFlatFresnel) {
           EXPECT_GT(std::abs(shares3(i, NdfKind::beckmann, a, eta, Masking::smith_correlated, scale).T - (1 - F)), 0.1)
               << "broken 3D form passed: scale " << scale;
         for (double scale : {1.0 / eta, eta})
-          EXPECT_GT(std::abs(shares2(deg(ti), NdfKind::beckmann, a, eta, Masking::smith_correlated, scale).T - (1 - F)), 0.1)
+          EXPECT_GT(std::abs(shares2(deg(ti), NdfKind::beckmann, a, eta, Masking::smith_correlated, scale).T - (1 - F)),
+                    0.1)
               << "broken flatland form passed: scale " << scale;
       }
     }
@@ -249,16 +252,14 @@ TEST(Walter, GrazingIsFinite) {
         for (Masking g : kAll)
           for (double ti : {-89.9, 0.0, 45.0, 89.9})
             for (double to : {-89.9, -45.0, -ti, 0.0, 30.0, 89.9}) {
-              const double v[4] = {walter_brdf2(deg(ti), deg(to), ndf, a, eta, g),
-                                   walter_btdf2(deg(ti), deg(to), ndf, a, eta, g),
-                                   walter_brdf(dir3(deg(std::abs(ti)), ti < 0 ? kPi : 0), dir3(deg(std::abs(to)), 1.0),
-                                               ndf, a, eta, g),
-                                   walter_btdf(dir3(deg(std::abs(ti)), ti < 0 ? kPi : 0),
-                                               neg(dir3(deg(std::abs(to)), 1.0)), ndf, a, eta, g)};
+              const double v[4] = {
+                  walter_brdf2(deg(ti), deg(to), ndf, a, eta, g), walter_btdf2(deg(ti), deg(to), ndf, a, eta, g),
+                  walter_brdf(dir3(deg(std::abs(ti)), ti < 0 ? kPi : 0), dir3(deg(std::abs(to)), 1.0), ndf, a, eta, g),
+                  walter_btdf(dir3(deg(std::abs(ti)), ti < 0 ? kPi : 0), neg(dir3(deg(std::abs(to)), 1.0)), ndf, a, eta,
+                              g)};
               for (double x : v) {
-                ASSERT_TRUE(std::isfinite(x) && x >= 0.0)
-                    << ndf_name(ndf) << " a " << a << " eta " << eta << " " << masking_name(g) << " ti " << ti
-                    << " to " << to;
+                ASSERT_TRUE(std::isfinite(x) && x >= 0.0) << ndf_name(ndf) << " a " << a << " eta " << eta << " "
+                                                          << masking_name(g) << " ti " << ti << " to " << to;
                 positive += x > 0.0;
               }
             }
@@ -287,7 +288,7 @@ TEST(Walter, ArticleEq21dBreaksReciprocity) {
   const double eta = 1.5;
   for (double tl : {10.0, 40.0})
     for (double tv : {5.0, 30.0}) {
-      const Dir3 l = dir3(deg(tl), 0.0);                // light above, n_l = 1
+      const Dir3 l = dir3(deg(tl), 0.0);             // light above, n_l = 1
       const Dir3 v = neg(dir3(deg(tv), deg(10.0)));  // exit below, n_v = eta, near Snell's side
       const double walter = walter_btdf(l, v, NdfKind::ggx, a, eta, Masking::smith_separable);
       ASSERT_GT(walter, 0.0);
