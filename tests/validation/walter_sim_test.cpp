@@ -4,13 +4,14 @@
 // above). The two sides share no code: the model integrates D2 over facet orientations, the tracer
 // refracts rays at facets drawn from sim::sample_theta_m (random branching: every ray is one exit).
 //
-// Noise. A cell c (side, exit-angle bin) receives the fraction q_c of the rays that land on a
-// groove; over a surface of G independent grooves and N rays landing uniformly,
-//   Var(o_c) <= N p_c (1 + m N / G),
-// where m bounds how many grooves' draws one ray's k = 1 outcome depends on: m = 1 for reflection
-// (the ray stays in its groove), m = 3 for transmission (its groove and the ridge on either side;
-// the covariance of a sum of m-dependent terms is at most (2m - 1)... taken as m = 3 here, an upper
-// bound checked by X^2 / dof < 1 on the matching cases). X^2 over cells pooled to N p_c >= 5 is
+// Noise. A cell c (side, exit-angle bin) receives the share a_g of the rays landing on groove g;
+// over a surface of G independent grooves and N rays landing uniformly (q_c = sum_g a_g / G),
+//   Var(o_c) = N E[q_c (1 - q_c)] + N^2 Var(q_c) <= N p_c (1 + (2m - 1) N / G),
+// where a_g depends on the draws of m consecutive grooves (Cov(a_g, a_h) = 0 beyond, each covariance
+// at most (Var a_g + Var a_h) / 2 and Var a_g <= E[a_g] = p_c): m = 1 for the reflection from above
+// (the ray stays in its groove), m = 3 for transmission (its groove and the ridge on either side; a
+// refracted ray that passes under more grooves before leaving is rare at these roughnesses, and the
+// matching cases' X^2 / dof of 0.03-0.5 bear the bound out). X^2 over cells pooled to N p_c >= 5 is
 // then at most chi-square with (cells - 1) dof; a case passes at p > 1e-4.
 #include "vgroove/analytic/walter.h"
 #include "vgroove/sim/dielectric_microsurface.h"
@@ -160,7 +161,7 @@ CaseRun run(const Case& c, int grooves, std::int64_t rays, int bins) {
   CaseRun r{trace(m, c.eta, deg(c.theta_i_deg), c.from, rays, bins, 3)};
   r.n = static_cast<double>(rays);
   r.inflate_r = 1.0 + r.n / grooves;
-  r.inflate_t = 1.0 + 3.0 * r.n / grooves;
+  r.inflate_t = 1.0 + 5.0 * r.n / grooves;
   return r;
 }
 
@@ -247,8 +248,8 @@ TEST(WalterSim, TransmittedFluxSettlesEta) {
 // incidence on a rough surface (GGX, alpha 0.6, eta 1.5), the refracted rays pass under the ridges,
 // whose apexes lie at independent depths: Smith's G matches the traced k = 1 T lobe within noise, the
 // V-cavity G does not (it masks as if the ridges were a mirrored V-cavity: measured 0.6% of the flux
-// too little, -4.4 sigma, X2 311 on 44 dof); at 60 deg both miss (V-cavity +10.4% of the flux, +39
-// sigma; Smith -0.4% in total, -1.4 sigma, but its lobe's shape off, X2 2400 on 29 dof). The grid of
+// too little, -3.5 sigma, X2 198 on 44 dof); at 60 deg both miss (V-cavity +10.4% of the flux, +31
+// sigma; Smith -0.4% in total, -1.1 sigma, but its lobe's shape off, X2 1527 on 29 dof). The grid of
 // misses: WalterSimLong.MissTable, docs/derivations/walter.md.
 TEST(WalterSim, TransmissionMissesAreMeasured) {
   const Case normal{sim::NdfKind::ggx, 0.6, 1.5, 0.0, sim::Medium::above};
