@@ -50,7 +50,7 @@ double masking(Masking g, const Dir3& i, const Dir3& o, const Dir3& h, NdfKind n
   return std::exp(log_gamma(1.0 + li) + log_gamma(1.0 + lo) - log_gamma(2.0 + li + lo));
 }
 
-// Walter Eq. (16) with n_i = 1, n_o = eta, oriented to the near side's normal (h.z >= 0, where D
+// Walter Eq. (16) (article Eq. 15b, A7) with n_i = 1, n_o = eta, oriented to the near side's normal (h.z >= 0, where D
 // lives). False when |i + eta o| = 0 (eta = 1, o = -i: no facet is singled out).
 bool half_vector_t(const Dir3& i, const Dir3& o, double eta, Dir3& h) {
   const Dir3 w{i.x + eta * o.x, i.y + eta * o.y, i.z + eta * o.z};
@@ -62,7 +62,7 @@ bool half_vector_t(const Dir3& i, const Dir3& o, double eta, Dir3& h) {
 }
 
 Dir3 half_vector_r(const Dir3& i, const Dir3& o) {
-  // Walter Eq. (13): h_r = (i + o) / |i + o| (i, o above: |i + o| > 0).
+  // Walter Eq. (13) (article Eq. 13b): h_r = (i + o) / |i + o| (i, o above: |i + o| > 0).
   const Dir3 w{i.x + o.x, i.y + o.y, i.z + o.z};
   const double inv = 1.0 / std::sqrt(dot(w, w));
   return Dir3{inv * w.x, inv * w.y, inv * w.z};
@@ -78,11 +78,13 @@ double brdf_dim(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double 
   const double F = optics::fresnel_dielectric(ih, eta);
   const double G = masking(g, i, o, h, ndf, alpha);
   const double D = ndf_of(h, ndf, alpha, dim);
-  // 3D: |d omega_h / d omega_o| = 1 / (4 o.h) (Walter Eq. 14); flatland: d theta_h / d theta_o = 1/2.
+  // 3D: |d omega_h / d omega_o| = 1 / (4 o.h) (Walter Eq. 14, article Eq. 19b); flatland: d theta_h /
+  // d theta_o = 1/2. Walter Eq. (20), article Eq. (21d) for f_r.
   return dim == 3 ? F * G * D / (4.0 * i.z * o.z) : F * G * D * ih / (2.0 * i.z * o.z);
 }
 
-// Transmission in 3D (Walter Eq. 21) or flatland (n_o^1 and |.| for the square).
+// Transmission in 3D (Walter Eq. 21 with i the light; the article's Eq. 21d with its prefactor
+// inverted, ERRATA W1) or flatland (n_o^1 and |.| for the square: docs/derivations/walter.md).
 double btdf_dim(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, Masking g, int dim) {
   assert(alpha > 0.0 && eta > 0.0);
   if (!(i.z > 0.0 && o.z < 0.0)) return 0.0;
@@ -129,7 +131,7 @@ double walter_jacobian_t(const Dir3& i, const Dir3& o, double eta) {
   Dir3 h;
   if (!half_vector_t(i, o, eta, h)) return 0.0;
   const double oh = dot(o, h), den = dot(i, h) + eta * oh;
-  return eta * eta * std::abs(oh) / (den * den);  // Walter Eq. (17)
+  return eta * eta * std::abs(oh) / (den * den);  // Walter Eq. (17), article Eq. (20b)
 }
 
 double walter_brdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, Masking g) {
