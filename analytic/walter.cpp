@@ -50,8 +50,8 @@ double masking(Masking g, const Dir3& i, const Dir3& o, const Dir3& h, NdfKind n
   return std::exp(log_gamma(1.0 + li) + log_gamma(1.0 + lo) - log_gamma(2.0 + li + lo));
 }
 
-// Walter Eq. (16) (article Eq. 15b, A7) with n_i = 1, n_o = eta, oriented to the near side's normal (h.z >= 0, where D
-// lives). False when |i + eta o| = 0 (eta = 1, o = -i: no facet is singled out).
+// Walter Eq. (16) (article Eq. 15b, A7) with n_i = 1, n_o = eta, oriented to the near side's normal
+// (h.z >= 0, where D lives). False when |i + eta o| = 0 (eta = 1, o = -i: no facet is singled out).
 bool half_vector_t(const Dir3& i, const Dir3& o, double eta, Dir3& h) {
   const Dir3 w{i.x + eta * o.x, i.y + eta * o.y, i.z + eta * o.z};
   const double len = std::sqrt(dot(w, w));
