@@ -83,9 +83,12 @@ HeightfieldMaskingTally heightfield_masking_chunk(const HeightfieldSurface& s, c
     ++tally.points;
     // Corners counter-clockwise (sim/heightfield.h) and the upward normal N = (-s_x, -s_y, 1).
     const Vec3 a(i, j, s.field.height(i, j));
-    const Vec3 c = half == 0 ? Vec3(i + 1, j, s.field.height(i + 1, j)) : Vec3(i + 1, j + 1, s.field.height(i + 1, j + 1));
-    const Vec3 d = half == 0 ? Vec3(i + 1, j + 1, s.field.height(i + 1, j + 1)) : Vec3(i, j + 1, s.field.height(i, j + 1));
-    const Vec3 N = half == 0 ? Vec3(-(c.z() - a.z()), -(d.z() - c.z()), 1.0) : Vec3(-(c.z() - d.z()), -(d.z() - a.z()), 1.0);
+    const Vec3 c =
+        half == 0 ? Vec3(i + 1, j, s.field.height(i + 1, j)) : Vec3(i + 1, j + 1, s.field.height(i + 1, j + 1));
+    const Vec3 d =
+        half == 0 ? Vec3(i + 1, j + 1, s.field.height(i + 1, j + 1)) : Vec3(i, j + 1, s.field.height(i, j + 1));
+    const Vec3 N =
+        half == 0 ? Vec3(-(c.z() - a.z()), -(d.z() - c.z()), 1.0) : Vec3(-(c.z() - d.z()), -(d.z() - a.z()), 1.0);
     const double w = o.dot(N);
     if (!(w > 0.0)) continue;  // facing away from o: no projected area towards it
     ++tally.front;

@@ -37,15 +37,17 @@ struct HeightfieldMaskingTally {
   int theta_m_bins = 0, phi_m_bins = 0;
   std::int64_t points = 0, front = 0, visible = 0;  // drawn, facing o, of those visible
   std::int64_t lost = 0, edge_hits = 0, vertex_hits = 0;
-  double sum_w = 0.0, sum_wv = 0.0, sum_wv2 = 0.0;          // over all points
-  std::vector<double> weight, visible_weight;              // per bin [t * phi_m_bins + p]
-  std::vector<std::int64_t> count;                         // front-facing points per bin
+  double sum_w = 0.0, sum_wv = 0.0, sum_wv2 = 0.0;  // over all points
+  std::vector<double> weight, visible_weight;       // per bin [t * phi_m_bins + p]
+  std::vector<std::int64_t> count;                  // front-facing points per bin
 
   HeightfieldMaskingTally() = default;
   HeightfieldMaskingTally(int theta_m_bins_, int phi_m_bins_);
   void merge(const HeightfieldMaskingTally& other);  // same bins
   double g1() const { return sum_wv / sum_w; }
-  double g1(int bin) const { return visible_weight[static_cast<std::size_t>(bin)] / weight[static_cast<std::size_t>(bin)]; }
+  double g1(int bin) const {
+    return visible_weight[static_cast<std::size_t>(bin)] / weight[static_cast<std::size_t>(bin)];
+  }
   // mean(w V) and its standard error over the points: the visible projected area per unit macro
   // area (cos theta_o on every surface, header).
   double visible_area() const { return sum_wv / static_cast<double>(points); }

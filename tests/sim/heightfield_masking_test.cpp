@@ -9,8 +9,8 @@
 // Eq. 24), exact on V-grooves. Viewed along the grooves (phi_o = pi/2) nothing is hidden.
 // Every surface: the visible projected area per unit macro area is cos theta_o (each line from o
 // meets the surface once), within 5 standard errors of the points' mean.
-#include "vgroove/sim/heightfield.h"
 #include "vgroove/sim/heightfield_masking.h"
+#include "vgroove/sim/heightfield.h"
 
 #include <gtest/gtest.h>
 
