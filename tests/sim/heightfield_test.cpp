@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <numbers>
@@ -375,9 +376,11 @@ TEST(HeightfieldMemory, HeapAndResidentPeakMatchTheEstimate) {
     const struct mallinfo2 mi = mallinfo2();
     return static_cast<double>(mi.uordblks) + static_cast<double>(mi.hblkhd);
   };
+  bool peak_reset = false;
   {
     std::ofstream reset("/proc/self/clear_refs");
-    reset << "5";
+    reset << "5" << std::flush;
+    peak_reset = static_cast<bool>(reset);
   }
   const double rss0 = proc_status_bytes("VmRSS"), heap0 = in_use();
   ASSERT_GT(rss0, 0.0);
@@ -388,8 +391,13 @@ TEST(HeightfieldMemory, HeapAndResidentPeakMatchTheEstimate) {
   // malloc's headers and page rounding: a few kB over 30 MB.
   EXPECT_NEAR(heap, estimate, 1e-3 * estimate) << "held by malloc " << heap << " vs " << estimate;
   // The peak holds at most the estimate (the synthesis' temporaries are gone before the
-  // hierarchy is made), plus the thread's and malloc's small change: 1 MB.
-  EXPECT_LT(peak, estimate + 1e6) << "resident peak " << peak << " vs " << estimate;
+  // hierarchy is made), plus the thread's and malloc's small change: 1 MB. Without a reset peak
+  // (a /proc that does not take clear_refs) VmHWM is the process' and says nothing.
+  if (peak_reset) {
+    EXPECT_LT(peak, estimate + 1e6) << "resident peak " << peak << " vs " << estimate;
+  } else {
+    std::printf("VmHWM not reset (/proc/self/clear_refs): the resident peak is not checked\n");
+  }
   EXPECT_EQ(m.levels, 11);
 }
 

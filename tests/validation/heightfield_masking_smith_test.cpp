@@ -11,7 +11,8 @@
 // - Per facet-normal bin Smith's G1(o, m) is one number for every facing m; on the surface G1
 //   rises as the facet turns towards the viewer (as on the 1D Gaussian profiles of
 //   tests/validation/profile_masking_test.cpp): measured, with sizes.
-// - HeightfieldMaskingSmithLong: 70-85 deg for alpha 0.2, 0.5, 1, printed as figures (ctest -L long).
+// - HeightfieldMaskingSmithLong: 70-85 deg for alpha 0.2, 0.5, 1, and GGX fields against Smith's
+//   GGX G1, printed as figures (ctest -L long).
 #include "vgroove/analytic/ndf.h"
 #include "vgroove/sim/heightfield.h"
 #include "vgroove/sim/heightfield_masking.h"
@@ -55,11 +56,13 @@ struct Measured {
   std::int64_t lost = 0;
 };
 
-std::vector<sim::HeightfieldSurface> fields(const FieldCase& c, int n, int seeds) {
+std::vector<sim::HeightfieldSurface> fields(const FieldCase& c, int n, int seeds, bool ggx = false) {
   std::vector<sim::HeightfieldSurface> s;
-  for (int k = 0; k < seeds; ++k)
-    s.push_back(sim::make_heightfield_surface(
-        sim::make_gaussian_heightfield({n, c.alpha_x, c.alpha_y, 8.0, 500u + static_cast<std::uint64_t>(k)})));
+  for (int k = 0; k < seeds; ++k) {
+    const sim::GaussianHeightfieldOptions opt{n, c.alpha_x, c.alpha_y, 8.0, 500u + static_cast<std::uint64_t>(k)};
+    s.push_back(
+        sim::make_heightfield_surface(ggx ? sim::make_ggx_heightfield(opt) : sim::make_gaussian_heightfield(opt)));
+  }
   return s;
 }
 
@@ -133,6 +136,28 @@ TEST(HeightfieldMaskingSmith, PerNormalG1RisesAsTheFacetTurnsTowardsTheViewer) {
     EXPECT_GT(towards.mean() - away.mean(), z * std::hypot(towards.se(), away.se()))
         << "theta_m bin " << tb << ": towards " << towards.mean() << ", away " << away.mean();
     EXPECT_GT(smith - away.mean(), z * away.se()) << "theta_m bin " << tb << ": " << away.mean();
+  }
+}
+
+// GGX fields (sim/heightfield.h: GGX slopes, heights and slopes dependent) against Smith's GGX
+// G1, printed: how far Smith is on this surface; asserted: no ray lost.
+TEST(HeightfieldMaskingSmithLong, GgxFieldFigures) {
+  const int seeds = 8, theta_m_bins = 3, phi_m_bins = 4;
+  const FieldCase c{0.5, 0.5, 0.3};
+  const auto surfaces = fields(c, 256, seeds, true);
+  for (double theta_deg : {45.0, 60.0, 70.0, 80.0, 85.0}) {
+    const Measured m = measure(surfaces, c, theta_deg * kDeg, 100000, theta_m_bins, phi_m_bins);
+    const double smith = analytic::G1_smith_ggx(theta_deg * kDeg, c.alpha_x);
+    EXPECT_EQ(m.lost, 0);
+    std::printf("ggx alpha 0.5 theta_o %.0f: traced G1 %.4f +- %.4f, Smith %.4f (traced / Smith - 1 = %+.4f)\n",
+                theta_deg, m.overall.mean(), m.overall.se(), smith, m.overall.mean() / smith - 1.0);
+    for (int tb = 0; tb < theta_m_bins; ++tb)
+      for (int pb = 0; pb < phi_m_bins; ++pb) {
+        const Spread& s = m.bin[static_cast<std::size_t>(tb * phi_m_bins + pb)];
+        if (s.count == seeds)
+          std::printf("    theta_m %2d-%2d deg, azimuth %3d deg: G1 %.4f +- %.4f (/ Smith - 1 = %+.3f)\n", 30 * tb,
+                      30 * tb + 30, 90 * pb, s.mean(), s.se(), s.mean() / smith - 1.0);
+      }
   }
 }
 
