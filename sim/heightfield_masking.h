@@ -44,6 +44,7 @@ struct HeightfieldMaskingTally {
   HeightfieldMaskingTally() = default;
   HeightfieldMaskingTally(int theta_m_bins_, int phi_m_bins_);
   void merge(const HeightfieldMaskingTally& other);  // same bins
+  // NaN where no drawn point faces o (a bin without weight), as validation/profile_masking.h.
   double g1() const { return sum_wv / sum_w; }
   double g1(int bin) const {
     return visible_weight[static_cast<std::size_t>(bin)] / weight[static_cast<std::size_t>(bin)];
