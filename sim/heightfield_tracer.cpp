@@ -355,6 +355,37 @@ HeightfieldRayResult trace_heightfield_ray(const HeightfieldSurface& s, const Ve
   return trace_ray(s, org, dir, opt, UnitReflectance{});
 }
 
+HeightfieldFirstHit first_heightfield_hit(const HeightfieldSurface& s, const Vec3& org, const Vec3& dir,
+                                          const HeightfieldRayOptions& opt) {
+  Tracer tr(s, opt);
+  Feature none;
+  none.count = 0;
+  tr.excluded = &none;
+  // The origin in the first period (whole periods: exact).
+  const double nd = static_cast<double>(s.field.n);
+  const auto kx = static_cast<std::int64_t>(std::floor(org.x() / nd));
+  const auto ky = static_cast<std::int64_t>(std::floor(org.y() / nd));
+  tr.org = org;
+  tr.org.x() -= static_cast<double>(kx * s.field.n);
+  tr.org.y() -= static_cast<double>(ky * s.field.n);
+  tr.dir = dir;
+  HeightfieldFirstHit r;
+  bool lost = false;
+  if (!tr.nearest_hit(lost)) {
+    r.how = lost ? HeightfieldFate::lost : HeightfieldFate::escaped;
+    return r;
+  }
+  const Tri t = tr.best_tri;
+  const Feature f = feature_of(t, tr.best_hit, tr.corners(t));
+  r.hit = true;
+  r.cx = t.cx + kx * s.field.n;
+  r.cy = t.cy + ky * s.field.n;
+  r.half = t.half;
+  r.edge = f.kind == 1;
+  r.vertex = f.kind == 2;
+  return r;
+}
+
 HeightfieldTally::HeightfieldTally(int theta_bins_, int phi_bins_, int max_k_, double phi_i_)
     : theta_bins(theta_bins_), phi_bins(phi_bins_), max_k(max_k_), phi_i(phi_i_) {
   by_k.assign(static_cast<std::size_t>(max_k + 2), 0);

@@ -61,6 +61,20 @@ struct HeightfieldRayResult {
 HeightfieldRayResult trace_heightfield_ray(const HeightfieldSurface& s, const Eigen::Vector3d& org,
                                            const Eigen::Vector3d& dir, const HeightfieldRayOptions& opt = {});
 
+// The first triangle a ray from `org` (above the surface) along `dir` (unit) meets, no reflection:
+// cell (cx, cy) of the tiling in org's frame (any integers; the field's cell is (cx mod n, cy mod
+// n)) and half (sim/heightfield.h), and whether the hit is on an edge or a vertex (the watertight
+// test's ties: either touching triangle). how: escaped (no hit) or lost.
+struct HeightfieldFirstHit {
+  HeightfieldFate how = HeightfieldFate::escaped;
+  bool hit = false;
+  std::int64_t cx = 0, cy = 0;
+  int half = 0;
+  bool edge = false, vertex = false;
+};
+HeightfieldFirstHit first_heightfield_hit(const HeightfieldSurface& s, const Eigen::Vector3d& org,
+                                          const Eigen::Vector3d& dir, const HeightfieldRayOptions& opt = {});
+
 struct HeightfieldTraceOptions {
   double theta_i = 0.0;             // light polar angle, [0, pi/2)
   double phi_i = std::numbers::pi;  // light azimuth

@@ -19,14 +19,19 @@
 #include "vgroove/sim/heightfield_hierarchy.h"
 
 #include <gtest/gtest.h>
+#include <malloc.h>
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <fstream>
 #include <functional>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace vgroove::sim {
@@ -35,6 +40,19 @@ namespace {
 struct Case {
   double alpha_x, alpha_y, l_x;
 };
+
+// AddressSanitizer replaces malloc: the heap checks below need a plain build.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+#else
+constexpr bool kSanitized = false;
+#endif
 
 // sigma and l_y from the header's formulas (independent of the library's code).
 void expected_parameters(const Case& c, double& sigma, double& l_y) {
@@ -152,6 +170,119 @@ TEST_P(GaussianHeightfieldNdf, TriangleSlopesFollowBeckmann) {
 INSTANTIATE_TEST_SUITE_P(Fields, GaussianHeightfieldNdf,
                          testing::Values(Case{0.5, 0.5, 8.0}, Case{1.0, 1.0, 8.0}, Case{0.3, 0.6, 8.0}));
 
+// GGX fields: the triangles' normalized slopes (s_x / alpha_x, s_y / alpha_y) against GGX's P22, a
+// bivariate Student-t with 2 degrees of freedom: the radius rho has P(rho <= r) = r^2 / (1 + r^2)
+// (P22 = 1 / (pi alpha_x alpha_y (1 + rho^2)^2)) and the azimuth is uniform, so bins equal in
+// rho^2 / (1 + rho^2) and in azimuth are equally probable; per-bin z from 16 independent fields as
+// for Beckmann above. Roughness: each axis' slope has the median |s| = alpha / sqrt 3 (the
+// Student-t with 2 degrees of freedom has P(|t| <= a) = a / sqrt(2 + a^2), 1/2 at a = sqrt(2/3),
+// scaled by alpha / sqrt 2), checked as the fraction of triangles below it.
+class GgxHeightfieldNdf : public testing::TestWithParam<Case> {};
+
+// Per-field fractions of the triangles in each (radius, azimuth) bin and below the median slopes.
+struct GgxFieldCounts {
+  std::vector<double> bin;
+  double below_x = 0.0, below_y = 0.0;
+};
+
+GgxFieldCounts ggx_counts(const Heightfield& f, double alpha_x, double alpha_y, int radial, int azimuthal) {
+  GgxFieldCounts c;
+  c.bin.assign(static_cast<std::size_t>(radial * azimuthal), 0.0);
+  const int n = f.n;
+  const double tri = 2.0 * n * n;
+  auto add = [&](double sx, double sy) {
+    const double u = sx / alpha_x, v = sy / alpha_y, rho2 = u * u + v * v;
+    const int r = std::min(radial - 1, static_cast<int>(rho2 / (1.0 + rho2) * radial));
+    const double psi = std::atan2(v, u) + std::numbers::pi;  // [0, 2 pi]
+    const int a = std::min(azimuthal - 1, static_cast<int>(psi / (2.0 * std::numbers::pi) * azimuthal));
+    c.bin[static_cast<std::size_t>(r * azimuthal + a)] += 1.0 / tri;
+    if (std::abs(sx) < alpha_x / std::sqrt(3.0)) c.below_x += 1.0 / tri;
+    if (std::abs(sy) < alpha_y / std::sqrt(3.0)) c.below_y += 1.0 / tri;
+  };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double h00 = f.height(i, j), h10 = f.height(i + 1, j), h01 = f.height(i, j + 1),
+                   h11 = f.height(i + 1, j + 1);
+      add(h10 - h00, h11 - h10);  // lower
+      add(h11 - h01, h01 - h00);  // upper
+    }
+  return c;
+}
+
+// Mean and standard error over fields; z against `expected`.
+struct Spread {
+  double sum = 0.0, sum2 = 0.0;
+  int count = 0;
+  void add(double v) { sum += v, sum2 += v * v, ++count; }
+  double mean() const { return sum / count; }
+  double se() const { return std::sqrt((sum2 - count * mean() * mean()) / (count - 1) / count); }
+};
+
+TEST_P(GgxHeightfieldNdf, TriangleSlopesFollowGgx) {
+  const Case c = GetParam();
+  const int n = 256, fields = 16, radial = 8, azimuthal = 6, bins = radial * azimuthal;
+  std::vector<Spread> bin(static_cast<std::size_t>(bins));
+  Spread below_x, below_y;
+  for (int s = 0; s < fields; ++s) {
+    const Heightfield f = make_ggx_heightfield({n, c.alpha_x, c.alpha_y, c.l_x, 2000u + static_cast<std::uint64_t>(s)});
+    const GgxFieldCounts k = ggx_counts(f, c.alpha_x, c.alpha_y, radial, azimuthal);
+    for (int b = 0; b < bins; ++b) bin[static_cast<std::size_t>(b)].add(k.bin[static_cast<std::size_t>(b)]);
+    below_x.add(k.below_x);
+    below_y.add(k.below_y);
+  }
+  const double p = 1.0 / bins;
+  const boost::math::students_t t(fields - 1);
+  const double z_max = boost::math::quantile(boost::math::complement(t, 0.001 / (2.0 * (bins + 2))));
+  for (int b = 0; b < bins; ++b) {
+    const Spread& v = bin[static_cast<std::size_t>(b)];
+    EXPECT_LT(std::abs(v.mean() - p) / v.se(), z_max)
+        << "bin (rho " << b / azimuthal << ", azimuth " << b % azimuthal << "): " << v.mean() << " vs " << p;
+    EXPECT_LT(v.se(), 0.08 * p);  // the test resolves the bins
+  }
+  EXPECT_LT(std::abs(below_x.mean() - 0.5) / below_x.se(), z_max) << "P(|s_x| < alpha_x / sqrt 3) = " << below_x.mean();
+  EXPECT_LT(std::abs(below_y.mean() - 0.5) / below_y.se(), z_max) << "P(|s_y| < alpha_y / sqrt 3) = " << below_y.mean();
+  EXPECT_LT(below_x.se(), 0.01);
+}
+
+INSTANTIATE_TEST_SUITE_P(Fields, GgxHeightfieldNdf,
+                         testing::Values(Case{0.5, 0.5, 8.0}, Case{1.0, 1.0, 8.0}, Case{0.2, 0.2, 8.0},
+                                         Case{0.3, 0.6, 8.0}));
+
+// The same statistics on the Gaussian field itself (Beckmann slopes) fail: the GGX test can tell.
+TEST(GgxHeightfieldNdf, TheGaussianFieldBeforeTheMapIsRejected) {
+  const int n = 256, fields = 16, radial = 8, azimuthal = 6, bins = radial * azimuthal;
+  std::vector<Spread> bin(static_cast<std::size_t>(bins));
+  for (int s = 0; s < fields; ++s) {
+    const Heightfield f = make_gaussian_heightfield({n, 0.5, 0.5, 8.0, 2000u + static_cast<std::uint64_t>(s)});
+    const GgxFieldCounts k = ggx_counts(f, 0.5, 0.5, radial, azimuthal);
+    for (int b = 0; b < bins; ++b) bin[static_cast<std::size_t>(b)].add(k.bin[static_cast<std::size_t>(b)]);
+  }
+  const boost::math::students_t t(fields - 1);
+  const double z_max = boost::math::quantile(boost::math::complement(t, 0.001 / (2.0 * (bins + 2))));
+  double worst = 0.0;
+  for (const Spread& v : bin) worst = std::max(worst, std::abs(v.mean() - 1.0 / bins) / v.se());
+  EXPECT_GT(worst, z_max);
+}
+
+// Phi' by hand: E(0) = log 2 (Phi_N(0) = 1/2); far below the median E ~ Phi_N(x) (log1p), far
+// above E ~ x^2 / 2.
+TEST(GgxHeightfield, HeightMapDerivativeByHand) {
+  EXPECT_NEAR(ggx_height_map_derivative(0.0), 1.0 / std::sqrt(std::log(2.0)), 1e-15);
+  const double tail = 0.5 * std::erfc(8.0 / std::numbers::sqrt2);  // Phi_N(-8) = 6.2e-16
+  EXPECT_NEAR(ggx_height_map_derivative(-8.0), 1.0 / std::sqrt(tail), 1e-6 / std::sqrt(tail));
+  EXPECT_NEAR(ggx_height_map_derivative(8.0), 1.0 / std::sqrt(-std::log(tail)), 1e-12);
+}
+
+TEST(GgxHeightfield, IsDeterministicAndMonotoneInTheGaussianField) {
+  const GaussianHeightfieldOptions opt{64, 0.5, 0.3, 4.0, 9};
+  const Heightfield g = make_gaussian_heightfield(opt);
+  const Heightfield a = make_ggx_heightfield(opt), b = make_ggx_heightfield(opt);
+  EXPECT_EQ(a.h, b.h);
+  EXPECT_EQ(*std::min_element(a.h.begin(), a.h.end()), 0.0);
+  for (std::size_t k = 0; k + 1 < g.h.size(); ++k)
+    EXPECT_EQ(g.h[k] < g.h[k + 1], a.h[k] < a.h[k + 1]) << k;  // Phi is increasing
+}
+
 TEST(GaussianHeightfield, IsDeterministicPerSeedAndDiffersBetweenSeeds) {
   const Heightfield a = make_gaussian_heightfield({64, 0.5, 0.5, 4.0, 7});
   const Heightfield b = make_gaussian_heightfield({64, 0.5, 0.5, 4.0, 7});
@@ -204,9 +335,91 @@ TEST(HeightfieldHierarchy, EveryLevelBoundsTheCellsBelowIt) {
 }
 
 TEST(HeightfieldMemory, BytesPerCellAsStated) {
+  // By hand: n = 2 holds 4 heights (32 bytes) and 4 + 1 nodes of two doubles (80 bytes).
+  EXPECT_EQ(heightfield_bytes(2), 112.0);
   // 8 (heights) + 16 * (1 + 1/4 + ...) = 29.33 bytes per cell; 4096^2: 492 MB.
   EXPECT_NEAR(heightfield_bytes(4096) / (4096.0 * 4096.0), 8.0 + 16.0 * 4.0 / 3.0, 1e-6);
   EXPECT_NEAR(heightfield_bytes(4096) / 1e6, 492.0, 1.0);
+}
+
+// The estimate against what the containers hold: the heights and every level, capacity times
+// element size (the vector of levels itself, 24 bytes per level, is the only thing left out).
+TEST(HeightfieldMemory, EstimateIsWhatTheContainersAllocate) {
+  for (int n = 2; n <= 512; n *= 2) {
+    const Heightfield f = make_flat_heightfield(n, 1.0);
+    const HeightfieldHierarchy m = make_heightfield_hierarchy(f);
+    double bytes = static_cast<double>(f.h.capacity() * sizeof(double));
+    for (const auto& level : m.level) bytes += static_cast<double>(level.capacity() * sizeof(HeightBounds));
+    EXPECT_EQ(bytes, heightfield_bytes(n)) << "n = " << n;
+  }
+}
+
+// The process' resident peak (VmHWM, reset by writing 5 to /proc/self/clear_refs) and resident
+// size (VmRSS), in bytes; -1 where /proc does not say.
+double proc_status_bytes(const std::string& key) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind(key + ":", 0) == 0) return 1024.0 * std::stod(line.substr(key.size() + 1));
+  return -1.0;
+}
+
+// The heap: the bytes malloc holds for the field and its hierarchy (mallinfo2: in use in the
+// arena plus mapped), and the resident peak while the Gaussian field is synthesized and its
+// hierarchy built, against heightfield_bytes. AddressSanitizer replaces malloc and keeps freed
+// memory in quarantine, so neither number means the same there.
+TEST(HeightfieldMemory, HeapAndResidentPeakMatchTheEstimate) {
+  if (kSanitized) GTEST_SKIP() << "malloc is AddressSanitizer's";
+  const int n = 1024;
+  const double estimate = heightfield_bytes(n);
+  const auto in_use = [] {
+    const struct mallinfo2 mi = mallinfo2();
+    return static_cast<double>(mi.uordblks) + static_cast<double>(mi.hblkhd);
+  };
+  bool peak_reset = false;
+  {
+    std::ofstream reset("/proc/self/clear_refs");
+    reset << "5" << std::flush;
+    peak_reset = static_cast<bool>(reset);
+  }
+  const double rss0 = proc_status_bytes("VmRSS"), heap0 = in_use();
+  ASSERT_GT(rss0, 0.0);
+  Heightfield f = make_gaussian_heightfield({n, 0.5, 0.5, 8.0, 1});
+  const HeightfieldHierarchy m = make_heightfield_hierarchy(f);
+  const double heap = in_use() - heap0;
+  const double peak = proc_status_bytes("VmHWM") - rss0;
+  // malloc's headers and page rounding: a few kB over 30 MB.
+  EXPECT_NEAR(heap, estimate, 1e-3 * estimate) << "held by malloc " << heap << " vs " << estimate;
+  // The peak holds at most the estimate (the synthesis' temporaries are gone before the
+  // hierarchy is made), plus the thread's and malloc's small change: 1 MB. Without a reset peak
+  // (a /proc that does not take clear_refs) VmHWM is the process' and says nothing.
+  if (peak_reset) {
+    EXPECT_LT(peak, estimate + 1e6) << "resident peak " << peak << " vs " << estimate;
+  } else {
+    std::printf("VmHWM not reset (/proc/self/clear_refs): the resident peak is not checked\n");
+  }
+  EXPECT_EQ(m.levels, 11);
+}
+
+TEST(HeightfieldMemory, TooLargeForTheBudgetIsRefusedInOneLine) {
+  EXPECT_EQ(heightfield_max_n(1e9), 4096);    // 4096^2: 0.49 GB; 8192^2: 1.97 GB
+  EXPECT_EQ(heightfield_max_n(24e9), 16384);  // 16384^2: 7.87 GB; 32768^2: 31.5 GB
+  EXPECT_EQ(heightfield_max_n(100.0), 0);
+  EXPECT_NO_THROW(check_heightfield_memory(4096, 1e9));
+  try {
+    check_heightfield_memory(8192, 1e9);
+    ADD_FAILURE() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("heightfield n = 8192"), std::string::npos) << what;
+    EXPECT_NE(what.find("1.97 GB"), std::string::npos) << what;
+    EXPECT_NE(what.find("[2, 4096]"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+  // The Gaussian field refuses before it allocates anything.
+  GaussianHeightfieldOptions opt{8192, 0.5, 0.5, 8.0, 0};
+  opt.max_bytes = 1e9;
+  EXPECT_THROW(make_gaussian_heightfield(opt), std::invalid_argument);
 }
 
 }  // namespace
