@@ -24,8 +24,9 @@ int cmd_energy_lobe_shape(const EnergyArgs& a) {
   check_threads(a.threads, "--threads");
   check_seed(a.seed, "--seed");
   if (!a.shard.empty() || world().distributed())
-    throw support::UserError("--lobe-shape runs in one process (--shard and mpirun apply to the energy tables and "
-                             "audits)");
+    throw support::UserError(
+        "--lobe-shape runs in one process (--shard and mpirun apply to the energy tables and "
+        "audits)");
   if (a.dims != EnergyArgs{}.dims && a.dims != std::vector<std::string>{"3d"})
     throw support::UserError("--dim: --lobe-shape is 3D (the compensation formulas are 3D BRDFs)");
   LobeShapeOptions o;
@@ -48,8 +49,8 @@ int cmd_energy_lobe_shape(const EnergyArgs& a) {
     }
   }
   if (a.rays < 1 || a.rays > kMaxRays)
-    throw support::UserError("--rays = " + std::to_string(a.rays) + " is out of range [1, " +
-                             std::to_string(kMaxRays) + "] (rays and walks per theta_i with --lobe-shape)");
+    throw support::UserError("--rays = " + std::to_string(a.rays) + " is out of range [1, " + std::to_string(kMaxRays) +
+                             "] (rays and walks per theta_i with --lobe-shape)");
   o.rays = static_cast<long>(a.rays);
   o.seed = static_cast<std::uint64_t>(a.seed);
   o.threads = a.threads;

@@ -246,5 +246,6 @@ void bind_surfaces(py::module_& m);
 void bind_brdfs(py::module_& m);
 void bind_suites(py::module_& m);
 void bind_sampling(py::module_& m);
+void bind_energy(py::module_& m);
 
 }  // namespace vgroove::python

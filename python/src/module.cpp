@@ -223,4 +223,5 @@ PYBIND11_MODULE(_vgroove, m) {
   bind_brdfs(m);
   bind_suites(m);
   bind_sampling(m);
+  bind_energy(m);
 }

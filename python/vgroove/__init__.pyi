@@ -64,6 +64,11 @@ def validate(suite: Union[str, os.PathLike[str], dict[str, Any]], *, rays: Optio
              model_table: Optional[str] = None, verbose: bool = False,
              progress: Optional[ProgressFn] = None) -> dict[str, Any]: ...
 
+def energy_lobe_shape(ndf: str = "ggx", alpha: Sequence[float] = (0.5, 1.0),
+                      theta_i_deg: Sequence[float] = (0, 40, 70), rays: int = 200000, *, grooves: int = 100000,
+                      seed: int = 1, theta_bins: int = 15, phi_bins: int = 12, sigmas: float = 5.0, threads: int = 0,
+                      verbose: bool = False) -> dict[str, Any]: ...
+
 def sample(ndf: str, alpha: float, u: npt.ArrayLike, *, wi: Optional[npt.ArrayLike] = None,
            theta_i_deg: Optional[ArrayLike] = None, strategy: str = "vndf", max_k: Optional[int] = None,
            dim: str = "3d", model: str = "vgroove", tolerance: float = 1e-9, threads: int = 0,

@@ -67,6 +67,10 @@ def validate(path: str, rays: Optional[int], threads: int, sampling: Optional[st
              seed: Optional[int], model_table: Optional[str], verbose: bool, suite_json: Optional[str] = None,
              progress: Progress = None) -> dict[str, Any]: ...
 
+def energy_lobe_shape(ndf: str, alpha: Sequence[float], theta_i_deg: Sequence[float], rays: int, grooves: int,
+                      seed: int, theta_bins: int, phi_bins: int, sigmas: float, threads: int,
+                      verbose: bool) -> dict[str, Any]: ...
+
 def sample(model: str, ndf: str, alpha: float, wi: Optional[npt.NDArray[np.float64]],
            theta_i_deg: Optional[npt.NDArray[np.float64]], u: npt.NDArray[np.float64], strategy: str, max_k: int,
            tolerance: float, dim: str, threads: int, eta: Optional[complex] = None,
