@@ -255,14 +255,14 @@ CheckBrdfCase check_lobes(const std::vector<double>& sim, const std::vector<doub
   return c;
 }
 
-CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt) {
-  return check_brdf(
-      BrdfBatchFn([&f](const double* wi, const double* wo, std::size_t n, double* out) {
-        for (std::size_t j = 0; j < n; ++j)
-          out[j] = f({wi[3 * j], wi[3 * j + 1], wi[3 * j + 2]}, {wo[3 * j], wo[3 * j + 1], wo[3 * j + 2]});
-      }),
-      opt);
+BrdfBatchFn batch_of(const BrdfFn& f) {
+  return [&f](const double* wi, const double* wo, std::size_t n, double* out) {
+    for (std::size_t j = 0; j < n; ++j)
+      out[j] = f({wi[3 * j], wi[3 * j + 1], wi[3 * j + 2]}, {wo[3 * j], wo[3 * j + 1], wo[3 * j + 2]});
+  };
 }
+
+CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt) { return check_brdf(batch_of(f), opt); }
 
 CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt) {
   check_options(opt);

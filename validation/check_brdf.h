@@ -97,6 +97,8 @@ void check_options(const CheckBrdfOptions& opt);
 CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt);
 // The same check with the model evaluated a rule's nodes at a time: the same nodes, sums and report.
 CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt);
+// f as a BrdfBatchFn, called once per direction pair (f is held by reference: it must outlive the result).
+BrdfBatchFn batch_of(const BrdfFn& f);
 
 // The model's flux fractions per bin at theta_i (degrees), integrated as check_brdf integrates
 // them (opt's dimension, bins, quadrature_order, model_tolerance and max_model_evals; f is called

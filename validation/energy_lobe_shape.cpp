@@ -32,16 +32,11 @@ constexpr int kAllOrders = 1'000'000;
 // The walk's grooves in the noise bound: none (1/G = 0 to rounding).
 constexpr double kNoGrooves = 1e300;
 
-struct WalkLobe {
-  std::vector<double> flux, flux_k1;
-  std::int64_t rays = 0;
-  double thread_s = 0.0;
-};
-
 // The Smith walk's exits from wi = dir3(theta_i, pi), binned as the traced surface's
-// (sim::Microsurface3dTally's bins), one item per (incidence, chunk of kRaysPerChunk walks).
-std::vector<WalkLobe> walk_lobes(const LobeShapeOptions& o, double alpha, const std::vector<double>& theta_i,
-                                 int threads) {
+// (sim::Microsurface3dTally's bins), one item per (incidence, chunk of kRaysPerChunk walks); k = 1
+// apart, as trace_lobes gives it with LobeSetup::k1.
+std::vector<TracedLobe> walk_lobes(const LobeShapeOptions& o, double alpha, const std::vector<double>& theta_i,
+                                   int threads) {
   const std::int64_t chunks = (static_cast<std::int64_t>(o.rays) + sim::kRaysPerChunk - 1) / sim::kRaysPerChunk;
   const std::size_t items = theta_i.size() * static_cast<std::size_t>(chunks);
   std::vector<sim::Microsurface3dTally> tallies(items);
@@ -74,16 +69,16 @@ std::vector<WalkLobe> walk_lobes(const LobeShapeOptions& o, double alpha, const 
       {}, o.cancel, 1);
   if (!complete) return {};
   const std::size_t bins = static_cast<std::size_t>(o.theta_bins) * static_cast<std::size_t>(o.phi_bins);
-  std::vector<WalkLobe> out(theta_i.size());
+  std::vector<TracedLobe> out(theta_i.size());
   for (std::size_t c = 0; c < theta_i.size(); ++c) {
     std::vector<std::int64_t> sum(bins, 0), sum_k1(bins, 0);
     for (std::int64_t k = 0; k < chunks; ++k) {
-      const sim::Microsurface3dTally& t = tallies[c * static_cast<std::size_t>(chunks) + static_cast<std::size_t>(k)];
+      const std::size_t item = c * static_cast<std::size_t>(chunks) + static_cast<std::size_t>(k);
+      const sim::Microsurface3dTally& t = tallies[item];
       for (std::size_t n = 0; n < bins; ++n) sum[n] += t.hist[n], sum_k1[n] += t.hist_by_k[bins + n];
       out[c].rays += t.rays;
+      out[c].thread_s += secs[item];
     }
-    for (std::int64_t k = 0; k < chunks; ++k)
-      out[c].thread_s += secs[c * static_cast<std::size_t>(chunks) + static_cast<std::size_t>(k)];
     out[c].flux = fractions(sum, static_cast<double>(out[c].rays));
     out[c].flux_k1 = fractions(sum_k1, static_cast<double>(out[c].rays));
   }
@@ -222,14 +217,7 @@ LobeShapeResult audit_lobe_shapes(const LobeShapeOptions& opt) {
     const bool complete = support::parallel_for(
         items, threads,
         [&](std::size_t item) {
-          const Model& m = models[item % M];
-          const BrdfFn& f = m.f;
-          integrated[item] = integrate_model_lobe(
-              BrdfBatchFn([&f](const double* wi, const double* wo, std::size_t n, double* out) {
-                for (std::size_t j = 0; j < n; ++j)
-                  out[j] = f({wi[3 * j], wi[3 * j + 1], wi[3 * j + 2]}, {wo[3 * j], wo[3 * j + 1], wo[3 * j + 2]});
-              }),
-              opt.theta_i_deg[item / M], o);
+          integrated[item] = integrate_model_lobe(batch_of(models[item % M].f), opt.theta_i_deg[item / M], o);
         },
         {}, opt.cancel, 1);
     LobeSetup setup;
@@ -238,8 +226,8 @@ LobeShapeResult audit_lobe_shapes(const LobeShapeOptions& opt) {
     setup.phi_bins = opt.phi_bins, setup.k1 = true;
     const std::vector<TracedLobe> traced =
         complete ? trace_lobes(setup, theta_i, threads, opt.cancel) : std::vector<TracedLobe>{};
-    const std::vector<WalkLobe> walked =
-        traced.size() == theta_i.size() ? walk_lobes(opt, alpha, theta_i, threads) : std::vector<WalkLobe>{};
+    const std::vector<TracedLobe> walked =
+        traced.size() == theta_i.size() ? walk_lobes(opt, alpha, theta_i, threads) : std::vector<TracedLobe>{};
     if (walked.size() != theta_i.size() || support::cancelled(opt.cancel)) {
       res.interrupted = true;
       res.wall_s = support::seconds_since(t0);
@@ -268,18 +256,17 @@ LobeShapeResult audit_lobe_shapes(const LobeShapeOptions& opt) {
         row.c.worst = worst_bins(sim, m.flux, SurfaceDim::three_d, opt.theta_bins, opt.phi_bins, 0);
         res.rows.push_back(std::move(row));
       };
-      const double Nt = static_cast<double>(traced[c].rays), Nw = static_cast<double>(walked[c].rays);
       for (std::size_t k = 0; k < M; ++k) {
         const Model& m = models[k];
         const ModelLobe& ml = integrated[c * M + k];
         const bool surface = std::string(m.reference) == "vgroove_surface";
-        add(m.reference, m.lobe, surface ? traced[c].flux : walked[c].flux, surface ? Nt : Nw,
-            surface ? opt.grooves : kNoGrooves, surface ? traced[c].thread_s : walked[c].thread_s, ml, false);
+        const TracedLobe& ref = surface ? traced[c] : walked[c];
+        const double N = static_cast<double>(ref.rays), G = surface ? opt.grooves : kNoGrooves;
+        add(m.reference, m.lobe, ref.flux, N, G, ref.thread_s, ml, false);
         // The controls: the V-groove model on its surface, f_ss on each reference's k = 1 lobe.
         if (m.lobe == "vgroove_model") res.controls_pass = res.controls_pass && res.rows.back().c.pass;
         if (m.lobe == "single") {
-          add(std::string(m.reference) + "_k1", m.lobe, surface ? traced[c].flux_k1 : walked[c].flux_k1,
-              surface ? Nt : Nw, surface ? opt.grooves : kNoGrooves, 0.0, ml, true);
+          add(std::string(m.reference) + "_k1", m.lobe, ref.flux_k1, N, G, 0.0, ml, true);
           res.controls_pass = res.controls_pass && res.rows.back().c.pass;
         }
       }
