@@ -3,6 +3,7 @@
 // thread and memory limits, pipes, strict numbers, control characters. Each class of defect is
 // tried with the example that found it and at least one other member.
 #include "tests/cli_run.h"
+#include "tests/sanitized.h"
 #include "tests/test_files.h"
 
 #include <gtest/gtest.h>
@@ -39,17 +40,7 @@ const std::string kBin = std::string("'") + VGROOVE_BIN + "'";
 
 // AddressSanitizer reserves terabytes of address space at start-up: under `ulimit -v` a sanitized
 // binary does not start at all, so the tests of address-space limits need a plain build.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
+using testing_files::kSanitized;
 
 // Bad input: exit 2, one line on stderr holding `part`.
 void expect_refused(const CliRun& r, const std::string& part) {

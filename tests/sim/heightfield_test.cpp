@@ -16,6 +16,7 @@
 // bin's variance: the triangles of one field are correlated), Student t with 15 degrees of
 // freedom, Bonferroni over the bins.
 #include "vgroove/sim/heightfield.h"
+#include "tests/sanitized.h"
 #include "vgroove/sim/heightfield_hierarchy.h"
 
 #include <gtest/gtest.h>
@@ -42,17 +43,7 @@ struct Case {
 };
 
 // AddressSanitizer replaces malloc: the heap checks below need a plain build.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
+using testing_files::kSanitized;
 
 // sigma and l_y from the header's formulas (independent of the library's code).
 void expected_parameters(const Case& c, double& sigma, double& l_y) {
