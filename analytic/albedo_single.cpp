@@ -13,22 +13,7 @@
 
 namespace vgroove::analytic {
 
-const char* masking_name(MaskingKind kind) {
-  switch (kind) {
-    case MaskingKind::smith_height_correlated:
-      return "smith_height_correlated";
-    case MaskingKind::smith_separable:
-      return "smith_separable";
-    case MaskingKind::vcavity:
-      return "vcavity";
-  }
-  return "?";
-}
-
-bool model_supported(const MicrofacetModel& m) {
-  // Smith's G2 needs Lambda in closed form: Phong has none (ndf.h).
-  return m.masking == MaskingKind::vcavity || m.ndf != NdfKind::phong;
-}
+bool model_supported(const MicrofacetModel& m) { return masking_supported(m.masking, m.ndf); }
 
 namespace {
 

@@ -13,6 +13,7 @@
 // Derivation: docs/derivations/albedo.md.
 #pragma once
 
+#include "vgroove/analytic/masking_kind.h"
 #include "vgroove/analytic/quadrature.h"
 #include "vgroove/common/ndf_kind.h"
 
@@ -20,14 +21,6 @@
 #include <vector>
 
 namespace vgroove::analytic {
-
-// The G2 of the single-scattering BRDF.
-enum class MaskingKind : unsigned char {
-  smith_height_correlated,  // 1 / (1 + Lambda(i) + Lambda(o))
-  smith_separable,          // G1(i) G1(o)
-  vcavity,                  // min(G1_vcavity(i, h), G1_vcavity(o, h)): Cook-Torrance, Lee et al. 2018 Eq. (3)
-};
-const char* masking_name(MaskingKind kind);
 
 // A microfacet BRDF: the NDF and its G2. Smith's G2 needs Lambda: GGX or Beckmann; the V-cavity
 // takes any of the three NDFs.

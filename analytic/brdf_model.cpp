@@ -2,6 +2,7 @@
 
 #include "vgroove/analytic/brdf_flatland.h"
 #include "vgroove/analytic/brdf_nonsymmetric.h"
+#include "vgroove/analytic/walter.h"
 
 #include <cmath>
 
@@ -15,12 +16,14 @@ const char* brdf_model_name(BrdfModel m) {
       return "cook-torrance";
     case BrdfModel::vgroove_nonsymmetric:
       return "vgroove-nonsymmetric";
+    case BrdfModel::walter:
+      return "walter";
   }
   return "?";
 }
 
 std::optional<BrdfModel> brdf_model_from_name(std::string_view name) {
-  for (BrdfModel m : {BrdfModel::vgroove, BrdfModel::cook_torrance, BrdfModel::vgroove_nonsymmetric})
+  for (BrdfModel m : {BrdfModel::vgroove, BrdfModel::cook_torrance, BrdfModel::vgroove_nonsymmetric, BrdfModel::walter})
     if (name == brdf_model_name(m)) return m;
   return std::nullopt;
 }
@@ -33,6 +36,22 @@ int default_max_k(BrdfModel model, bool flatland) {
 
 namespace {
 double flat_angle(const Dir3& d) { return std::atan2(-d.x, d.z); }
+// A flatland direction below the interface as walter.h's far-side angle: d = (sin phi, 0, -cos phi).
+double far_angle(const Dir3& d) { return std::atan2(d.x, -d.z); }
+
+// Walter et al. 2007, Eq. (20)-(21): single scattering, k = 1 only.
+BrdfValue evaluate_walter(const Dir3& i, const Dir3& o, const BrdfEvalOptions& opt) {
+  BrdfValue v;
+  v.by_k.assign(static_cast<std::size_t>(opt.per_k), 0.0);
+  if (!opt.flatland)
+    v.value = walter_bsdf(i, o, opt.ndf, opt.alpha, opt.eta, opt.masking);
+  else if (o.z >= 0.0)
+    v.value = walter_brdf2(flat_angle(i), flat_angle(o), opt.ndf, opt.alpha, opt.eta, opt.masking);
+  else
+    v.value = walter_btdf2(flat_angle(i), far_angle(o), opt.ndf, opt.alpha, opt.eta, opt.masking);
+  if (opt.per_k > 0) v.by_k[0] = v.value;
+  return v;
+}
 
 // Eq. (23) per k and summed over k = 1..max_k (the sum in the order nonsymmetric_brdf adds it).
 BrdfValue evaluate_nonsymmetric(const Dir3& i, const Dir3& o, const BrdfEvalOptions& opt, int max_k) {
@@ -58,6 +77,7 @@ BrdfValue evaluate_nonsymmetric(const Dir3& i, const Dir3& o, const BrdfEvalOpti
 BrdfValue evaluate_brdf(BrdfModel model, const Dir3& i, const Dir3& o, const BrdfEvalOptions& opt) {
   const int max_k = opt.max_k > 0 ? opt.max_k : default_max_k(model, opt.flatland);
   if (model == BrdfModel::vgroove_nonsymmetric) return evaluate_nonsymmetric(i, o, opt, max_k);
+  if (model == BrdfModel::walter) return evaluate_walter(i, o, opt);
   BrdfValue v;
   v.by_k.assign(static_cast<std::size_t>(opt.per_k), 0.0);
   if (opt.flatland) {

@@ -28,23 +28,23 @@ double log_gamma(double x) {
 }
 
 // G2(i, o, h). i.h > 0 and o.h has the sign of o.z (checked by the callers).
-double masking(Masking g, const Dir3& i, const Dir3& o, const Dir3& h, NdfKind ndf, double alpha) {
+double masking(MaskingKind g, const Dir3& i, const Dir3& o, const Dir3& h, NdfKind ndf, double alpha) {
   const bool transmit = o.z < 0.0;
   switch (g) {
-    case Masking::vcavity: {
+    case MaskingKind::vcavity: {
       // Lee et al. 2018, Eq. (2)-(3) (Heitz 2014, Eq. 24): min of the two V-cavity G1.
       const double gi = G1_vcavity(dot(i, h), i.z, h.z);
       const double go = G1_vcavity(dot(o, h), o.z, h.z);
       return std::min(gi, go);
     }
-    case Masking::smith_separable:
-    case Masking::smith_correlated:
+    case MaskingKind::smith_separable:
+    case MaskingKind::smith_height_correlated:
       break;
   }
   const double li = Lambda(ndf, polar_from_axis(i), alpha);
   const double lo = Lambda(ndf, polar_from_axis(o), alpha);
-  if (g == Masking::smith_separable) return 1.0 / ((1.0 + li) * (1.0 + lo));  // Heitz 2014, Eq. (20)
-  if (!transmit) return 1.0 / (1.0 + li + lo);                                // Heitz 2014, Eq. (21)
+  if (g == MaskingKind::smith_separable) return 1.0 / ((1.0 + li) * (1.0 + lo));  // Heitz 2014, Eq. (20)
+  if (!transmit) return 1.0 / (1.0 + li + lo);                                    // Heitz 2014, Eq. (21)
   // Transmission, height-correlated: int_0^1 u^Li (1 - u)^Lo du = B(1 + Li, 1 + Lo)
   // (docs/derivations/walter.md, "Height-correlated Smith for transmission").
   return std::exp(log_gamma(1.0 + li) + log_gamma(1.0 + lo) - log_gamma(2.0 + li + lo));
@@ -69,7 +69,7 @@ Dir3 half_vector_r(const Dir3& i, const Dir3& o) {
 }
 
 // Reflection in 3D (dim 3, Walter Eq. 20) or flatland (dim 2, the 1/2 Jacobian).
-double brdf_dim(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, Masking g, int dim) {
+double brdf_dim(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, MaskingKind g, int dim) {
   assert(alpha > 0.0 && eta > 0.0);
   if (!(i.z > 0.0 && o.z > 0.0)) return 0.0;
   const Dir3 h = half_vector_r(i, o);
@@ -85,7 +85,7 @@ double brdf_dim(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double 
 
 // Transmission in 3D (Walter Eq. 21 with i the light; the article's Eq. 21d with its prefactor
 // inverted, ERRATA W1) or flatland (n_o^1 and |.| for the square: docs/derivations/walter.md).
-double btdf_dim(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, Masking g, int dim) {
+double btdf_dim(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, MaskingKind g, int dim) {
   assert(alpha > 0.0 && eta > 0.0);
   if (!(i.z > 0.0 && o.z < 0.0)) return 0.0;
   Dir3 h;
@@ -108,18 +108,6 @@ Dir3 far2(double phi) { return Dir3{std::sin(phi), 0.0, -std::cos(phi)}; }
 
 }  // namespace
 
-const char* masking_name(Masking g) {
-  switch (g) {
-    case Masking::vcavity:
-      return "vcavity";
-    case Masking::smith_separable:
-      return "smith_separable";
-    case Masking::smith_correlated:
-      return "smith_correlated";
-  }
-  return "?";
-}
-
 Dir3 walter_half_vector(const Dir3& i, const Dir3& o, double eta) {
   if (o.z >= 0.0) return half_vector_r(i, o);
   Dir3 h{0.0, 0.0, 1.0};
@@ -134,15 +122,15 @@ double walter_jacobian_t(const Dir3& i, const Dir3& o, double eta) {
   return eta * eta * std::abs(oh) / (den * den);  // Walter Eq. (17), article Eq. (20b)
 }
 
-double walter_brdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, Masking g) {
+double walter_brdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, MaskingKind g) {
   return brdf_dim(i, o, ndf, alpha, eta, g, 3);
 }
 
-double walter_btdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, Masking g) {
+double walter_btdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, MaskingKind g) {
   return btdf_dim(i, o, ndf, alpha, eta, g, 3);
 }
 
-double walter_bsdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, Masking g) {
+double walter_bsdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, MaskingKind g) {
   return o.z >= 0.0 ? walter_brdf(i, o, ndf, alpha, eta, g) : walter_btdf(i, o, ndf, alpha, eta, g);
 }
 
@@ -160,11 +148,11 @@ double walter_jacobian_t2(double theta_i, double theta_t, double eta) {
   return eta * std::abs(oh) / std::abs(dot(i, h) + eta * oh);
 }
 
-double walter_brdf2(double theta_i, double theta_o, NdfKind ndf, double alpha, double eta, Masking g) {
+double walter_brdf2(double theta_i, double theta_o, NdfKind ndf, double alpha, double eta, MaskingKind g) {
   return brdf_dim(near2(theta_i), near2(theta_o), ndf, alpha, eta, g, 2);
 }
 
-double walter_btdf2(double theta_i, double theta_t, NdfKind ndf, double alpha, double eta, Masking g) {
+double walter_btdf2(double theta_i, double theta_t, NdfKind ndf, double alpha, double eta, MaskingKind g) {
   return btdf_dim(near2(theta_i), far2(theta_t), ndf, alpha, eta, g, 2);
 }
 

@@ -14,18 +14,14 @@
 #pragma once
 
 #include "vgroove/analytic/brdf_3d.h"
+#include "vgroove/analytic/masking_kind.h"
 #include "vgroove/analytic/ndf.h"
 
 namespace vgroove::analytic {
 
-// Which G2(i, o, h) the BSDF takes.
-enum class Masking : unsigned char {
-  vcavity,           // min(G1v(i), G1v(o)), G1v Lee et al. 2018 Eq. (2) (Heitz 2014 Eq. 24)
-  smith_separable,   // G1(i) G1(o), Heitz 2014 Eq. (20) (Walter Eq. 23)
-  smith_correlated,  // reflection 1 / (1 + L(i) + L(o)), Heitz 2014 Eq. (21); transmission
-                     // B(1 + L(i), 1 + L(o)) (docs/derivations/walter.md)
-};
-const char* masking_name(Masking g);
+// The G2(i, o, h) (analytic/masking_kind.h). Smith height-correlated transmission is
+// B(1 + L(i), 1 + L(o)) (docs/derivations/walter.md); V-cavity G1v is Lee et al. 2018 Eq. (2)
+// (Heitz 2014 Eq. 24).
 
 // 3D. n = (0, 0, 1) on the near side: i.z > 0; o.z > 0 reflects, o.z < 0 transmits. Unit vectors
 // pointing away from the surface. Smith needs beckmann, ggx or student_t (not phong).
@@ -35,10 +31,10 @@ Dir3 walter_half_vector(const Dir3& i, const Dir3& o, double eta);
 double walter_jacobian_t(const Dir3& i, const Dir3& o, double eta);
 // Walter Eq. (20) (reflection) and Eq. (21) (transmission), unpolarized dielectric F(i.h, eta).
 // 0 where o is on neither lobe's valid side (i.h <= 0, or transmission with o.h >= 0).
-double walter_brdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, Masking g);
-double walter_btdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, Masking g);
+double walter_brdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, MaskingKind g);
+double walter_btdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, MaskingKind g);
 // Either, by the side of o.
-double walter_bsdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, Masking g);
+double walter_bsdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, double eta, MaskingKind g);
 
 // Flatland (angles in (-pi/2, pi/2), radians). Near side: the direction at theta is (-sin, cos)
 // (analytic/ndf.h). Far side: the direction at phi is (sin phi, -cos phi), sim::exit_angle's
@@ -47,7 +43,7 @@ double walter_bsdf(const Dir3& i, const Dir3& o, NdfKind ndf, double alpha, doub
 double walter_half_angle_t2(double theta_i, double theta_t, double eta);
 double walter_jacobian_t2(double theta_i, double theta_t, double eta);
 // f_r2 = F G D2(h) |i.h| / (2 |i.n| |o.n|); f_t2 = |i.h||o.h| n_o (1 - F) G D2(h) / (|i.n||o.n| |n_i i.h + n_o o.h|).
-double walter_brdf2(double theta_i, double theta_o, NdfKind ndf, double alpha, double eta, Masking g);
-double walter_btdf2(double theta_i, double theta_t, NdfKind ndf, double alpha, double eta, Masking g);
+double walter_brdf2(double theta_i, double theta_o, NdfKind ndf, double alpha, double eta, MaskingKind g);
+double walter_btdf2(double theta_i, double theta_t, NdfKind ndf, double alpha, double eta, MaskingKind g);
 
 }  // namespace vgroove::analytic

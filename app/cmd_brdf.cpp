@@ -40,28 +40,30 @@ void check_angle(double v, double lo, bool lo_closed, double hi, bool hi_closed,
 }
 
 // The ranges of the directions: 3D polar angles in [0, 90) towards the light and [0, 90] towards
-// the viewer, azimuths in [-360, 360]; flatland signed angles in (-90, 90) and [-90, 90].
+// the viewer, azimuths in [-360, 360]; flatland signed angles in (-90, 90) and [-90, 90]. A BSDF
+// (`both`: Walter's) takes the viewer on either side: [0, 180] in 3D, [-180, 180] in flatland.
 // `where` + the name: the flag (--theta-i-deg) when where is "--", the file's key (theta_i_deg) else.
-void check_pair(const Pair& p, bool flat, const std::string& where) {
+void check_pair(const Pair& p, bool flat, bool both, const std::string& where) {
   const bool flag = where == "--";
   auto name = [&](const char* key) {
     std::string n = key;
     if (flag) std::replace(n.begin(), n.end(), '_', '-');
     return where + n;
   };
+  const double side = both ? 180.0 : 90.0;
   if (flat) {
     check_angle(p.theta_i_deg, -90, false, 90, false, name("theta_i_deg"));
-    check_angle(p.theta_o_deg, -90, true, 90, true, name("theta_o_deg"));
+    check_angle(p.theta_o_deg, -side, true, side, true, name("theta_o_deg"));
     return;
   }
   check_angle(p.theta_i_deg, 0, true, 90, false, name("theta_i_deg"));
-  check_angle(p.theta_o_deg, 0, true, 90, true, name("theta_o_deg"));
+  check_angle(p.theta_o_deg, 0, true, side, true, name("theta_o_deg"));
   check_angle(p.phi_i_deg, -360, true, 360, true, name("phi_i_deg"));
   check_angle(p.phi_o_deg, -360, true, 360, true, name("phi_o_deg"));
 }
 
 // Stops early (a partial list) once *cancel is set: the caller then reports the interruption.
-std::vector<Pair> read_pairs(const std::string& file, bool flat, support::CancelFlag cancel) {
+std::vector<Pair> read_pairs(const std::string& file, bool flat, bool both, support::CancelFlag cancel) {
   const nlohmann::json j = support::read_json_file(file);
   support::JsonObject root(j, file, "");
   const nlohmann::json& list = root.raw("directions");
@@ -79,18 +81,19 @@ std::vector<Pair> read_pairs(const std::string& file, bool flat, support::Cancel
     o.finish();
     Pair p{};
     p.theta_i_deg = o.number("theta_i_deg", -90, false, 90, false);
-    p.theta_o_deg = o.number("theta_o_deg", -90, true, 90, true);
+    p.theta_o_deg = o.number("theta_o_deg", -180, true, 180, true);
     p.phi_i_deg = o.number_or("phi_i_deg", 0.0, -360, true, 360, true);
     p.phi_o_deg = o.number_or("phi_o_deg", 180.0, -360, true, 360, true);
     o.finish();
-    check_pair(p, flat, file + ": /directions/" + std::to_string(n) + "/");
+    check_pair(p, flat, both, file + ": /directions/" + std::to_string(n) + "/");
     out.push_back(p);
   }
   return out;
 }
 
 analytic::Dir3 direction(double theta_deg, double phi_deg, bool flat) {
-  // Flatland: the signed 2D angle theta is the direction (-sin theta, 0, cos theta).
+  // Flatland: the signed 2D angle theta is the direction (-sin theta, 0, cos theta) (|theta| > 90:
+  // below the interface).
   if (flat) return {-std::sin(deg_to_rad(theta_deg)), 0.0, std::cos(deg_to_rad(theta_deg))};
   return analytic::dir3(deg_to_rad(theta_deg), deg_to_rad(phi_deg));
 }
@@ -141,13 +144,31 @@ void check_nonsymmetric_options(const BrdfArgs& a, analytic::BrdfModel model, Nd
                              "partner law needs alpha < sqrt(2))");
 }
 
+// Walter's options (--eta, --masking), refused with the other models.
+analytic::MaskingKind check_walter_options(const BrdfArgs& a, analytic::BrdfModel model, NdfKind ndf) {
+  const bool walter = model == analytic::BrdfModel::walter;
+  for (auto [given, flag] : {std::pair{a.eta_given, "--eta"}, std::pair{a.masking_given, "--masking"}})
+    if (given && !walter)
+      throw support::UserError(std::string(flag) + " applies to --model walter only (--model = \"" + a.model + "\")");
+  const auto masking = analytic::masking_from_flag(a.masking);
+  if (!masking)
+    throw support::UserError("--masking = \"" + a.masking +
+                             "\" is not one of \"smith\", \"smith_separable\", \"vcavity\"");
+  check_angle(a.eta, 0, false, validation::kMaxFresnelEta, true, "--eta");
+  if (walter && !analytic::masking_supported(*masking, ndf))
+    throw support::UserError("--masking = \"" + a.masking +
+                             "\" needs --ndf ggx or beckmann (Smith's Lambda has no closed form for phong); "
+                             "--masking vcavity takes phong");
+  return *masking;
+}
+
 }  // namespace
 
 int cmd_brdf(const BrdfArgs& a) {
   const auto model = analytic::brdf_model_from_name(a.model);
   if (!model)
     throw support::UserError("--model = \"" + a.model +
-                             "\" is not one of \"vgroove\", \"vgroove-nonsymmetric\", \"cook-torrance\"");
+                             "\" is not one of \"vgroove\", \"vgroove-nonsymmetric\", \"cook-torrance\", \"walter\"");
   const auto ndf = ndf_from_name(a.ndf);
   if (!ndf) throw support::UserError("--ndf = \"" + a.ndf + "\" is not one of \"ggx\", \"beckmann\", \"phong\"");
   if (a.dim != "3d" && a.dim != "flatland")
@@ -155,6 +176,8 @@ int cmd_brdf(const BrdfArgs& a) {
   const bool flat = a.dim == "flatland";
   check_angle(a.alpha, validation::kMinAlpha, true, validation::kMaxAlpha, true, "--alpha");
   check_nonsymmetric_options(a, *model, *ndf, flat);
+  const analytic::MaskingKind masking = check_walter_options(a, *model, *ndf);
+  const bool walter = *model == analytic::BrdfModel::walter;
   const int max_k = orders(a, *model, flat);
   if (a.per_k_max < 1 || a.per_k_max > validation::kMaxPrintedK)
     throw support::UserError("--per-k-max = " + std::to_string(a.per_k_max) + " is out of range [1, " +
@@ -163,12 +186,12 @@ int cmd_brdf(const BrdfArgs& a) {
   if (!a.directions.empty()) {
     if (a.theta_o_given)
       throw support::UserError("--directions cannot be combined with --theta-o-deg (the file gives the directions)");
-    pairs = read_pairs(a.directions, flat, a.cancel);
+    pairs = read_pairs(a.directions, flat, walter, a.cancel);
     if (support::cancelled(a.cancel)) return interrupted_no_report();
   } else {
     if (!a.theta_o_given) throw support::UserError("--theta-o-deg is required (or --directions FILE)");
     pairs.push_back({a.theta_i_deg, a.phi_i_deg, a.theta_o_deg, a.phi_o_deg});
-    check_pair(pairs.back(), flat, "--");
+    check_pair(pairs.back(), flat, walter, "--");
   }
   if (a.dry_run) return 0;
 
@@ -178,6 +201,8 @@ int cmd_brdf(const BrdfArgs& a) {
   opt.flatland = flat;
   opt.max_k = max_k;
   opt.per_k = a.per_k ? a.per_k_max : 0;
+  opt.eta = a.eta;
+  opt.masking = masking;
   const bool nonsym = *model == analytic::BrdfModel::vgroove_nonsymmetric;
   if (nonsym) {
     opt.alpha_y = a.alpha_y_given ? a.alpha_y : a.alpha;
@@ -203,6 +228,7 @@ int cmd_brdf(const BrdfArgs& a) {
     j["inputs"] = {{"model", a.model},   {"ndf", a.ndf},       {"alpha", a.alpha},
                    {"dimension", a.dim}, {"max_k", opt.max_k}, {"per_k", opt.per_k}};
     if (nonsym) j["inputs"]["alpha_y"] = opt.alpha_y, j["inputs"]["partner"] = a.partner;
+    if (walter) j["inputs"]["eta"] = opt.eta, j["inputs"]["masking"] = a.masking;
     j["unit"] = unit;
     for (std::size_t n = 0; n < pairs.size(); ++n) {
       nlohmann::json e = {
@@ -215,13 +241,17 @@ int cmd_brdf(const BrdfArgs& a) {
     std::cout << support::json_text(j, 1) << "\n";
     return 0;
   }
-  // Cook-Torrance is single scattering whatever --max-k says.
-  const std::string orders_text = *model == analytic::BrdfModel::cook_torrance
+  // Cook-Torrance and Walter are single scattering whatever --max-k says.
+  const std::string orders_text = *model == analytic::BrdfModel::cook_torrance || walter
                                       ? std::string("single scattering (k = 1)")
                                       : "orders 1.." + std::to_string(opt.max_k);
   if (nonsym)
     std::printf("brdf %s: %s alpha %g (x) %g (y), partner %s, %s, %s; value in %s\n", a.model.c_str(), a.ndf.c_str(),
                 a.alpha, opt.alpha_y, a.partner.c_str(), flat ? "flatland" : "3D", orders_text.c_str(), unit);
+  else if (walter)
+    std::printf("brdf %s: %s alpha %g, eta %g, masking %s, %s, %s; value in %s (theta_o over 90 deg: transmitted)\n",
+                a.model.c_str(), a.ndf.c_str(), a.alpha, a.eta, a.masking.c_str(), flat ? "flatland" : "3D",
+                orders_text.c_str(), unit);
   else
     std::printf("brdf %s: %s alpha %g, %s, %s; value in %s\n", a.model.c_str(), a.ndf.c_str(), a.alpha,
                 flat ? "flatland" : "3D", orders_text.c_str(), unit);
@@ -242,12 +272,14 @@ void add_brdf_command(CLI::App& app, Commands& commands) {
       "brdf",
       "Evaluate a BRDF at a pair of directions (or every pair of a JSON file): vgroove's multiple-scattering "
       "model (Lee et al. 2018, Eq. 16-17), its nonsymmetric form (Eq. 21-23, partner facets by Eq. 20; "
-      "anisotropic with --alpha-y) or Cook-Torrance (Eq. 1-3, V-cavity G), F = 1. 3D: polar angles from the "
+      "anisotropic with --alpha-y) or Cook-Torrance (Eq. 1-3, V-cavity G), F = 1; or Walter et al. 2007's rough "
+      "dielectric BSDF (--eta, --masking), reflected and transmitted. 3D: polar angles from the "
       "normal, azimuths about it (phi_o = phi_i + 180 is the mirror side; with --alpha-y from the --alpha "
-      "axis); flatland: signed angles.");
+      "axis); flatland: signed angles. Walter: the viewer's polar angle over 90 (flatland: |theta_o| over 90) "
+      "is below the interface, in the far medium.");
   BrdfArgs& ba = commands.add(brdf, cmd_brdf);
   ba.cancel = commands.context().cancel;
-  add_text(brdf, "--model", ba.model, "vgroove, vgroove-nonsymmetric or cook-torrance")->capture_default_str();
+  add_text(brdf, "--model", ba.model, "vgroove, vgroove-nonsymmetric, cook-torrance or walter")->capture_default_str();
   add_text(brdf, "--ndf", ba.ndf, "ggx, beckmann or phong")->capture_default_str();
   add_real(brdf, "--alpha", ba.alpha,
            "roughness, " + support::interval_text(kMinAlpha, true, kMaxAlpha, true) +
@@ -264,13 +296,22 @@ void add_brdf_command(CLI::App& app, Commands& commands) {
                "vgroove-nonsymmetric only: the partner facet's tilt, independent (Eq. 20) or symmetric (equal to the "
                "first's: the symmetric model, anisotropic with --alpha-y)")
           ->capture_default_str();
+  auto* brdf_eta = add_real(brdf, "--eta", ba.eta,
+                            "walter only: n_far / n_near, the light in the near medium (below 1: from inside the "
+                            "denser medium), " +
+                                support::interval_text(0, false, validation::kMaxFresnelEta, true))
+                       ->capture_default_str();
+  auto* brdf_masking = add_text(brdf, "--masking", ba.masking,
+                                "walter only: the G2, smith (height-correlated), smith_separable (Walter's Eq. 23) "
+                                "or vcavity; smith ones need ggx or beckmann")
+                           ->capture_default_str();
   add_text(brdf, "--dim", ba.dim, "3d or flatland")->capture_default_str();
   add_real(brdf, "--theta-i-deg", ba.theta_i_deg, "light: polar angle, [0, 90) (flatland: signed, (-90, 90))")
       ->capture_default_str();
   add_real(brdf, "--phi-i-deg", ba.phi_i_deg, "light: azimuth, [-360, 360] (3D only)")->capture_default_str();
   auto* theta_o = add_real(brdf, "--theta-o-deg", ba.theta_o_deg,
-                           "viewer: polar angle, [0, 90] (flatland: signed, [-90, 90]); required "
-                           "unless --directions");
+                           "viewer: polar angle, [0, 90] (flatland: signed, [-90, 90]); walter: [0, 180] "
+                           "([-180, 180]), over 90 transmitted; required unless --directions");
   add_real(brdf, "--phi-o-deg", ba.phi_o_deg, "viewer: azimuth, [-360, 360] (3D only)")->capture_default_str();
   auto* brdf_max_k =
       add_integer(brdf, "--max-k", ba.max_k,
@@ -288,7 +329,9 @@ void add_brdf_command(CLI::App& app, Commands& commands) {
            "JSON file {\"directions\": [{\"theta_i_deg\", \"theta_o_deg\"[, \"phi_i_deg\", "
            "\"phi_o_deg\"]}, ...]}: evaluate at every pair");
   brdf->add_flag("--json", ba.json, "print JSON");
-  brdf->callback([&ba, theta_o, brdf_alpha_y, brdf_partner, brdf_max_k]() {
+  brdf->callback([&ba, theta_o, brdf_alpha_y, brdf_partner, brdf_max_k, brdf_eta, brdf_masking]() {
+    ba.eta_given = brdf_eta->count() > 0;
+    ba.masking_given = brdf_masking->count() > 0;
     ba.theta_o_given = theta_o->count() > 0;
     ba.alpha_y_given = brdf_alpha_y->count() > 0;
     ba.partner_given = brdf_partner->count() > 0;

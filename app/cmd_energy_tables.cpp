@@ -1,5 +1,6 @@
 // `vgroove energy --audit` and `vgroove energy --export` (validation/energy_audit.h,
 // validation/energy_export.h).
+#include "vgroove/analytic/masking_kind.h"
 #include "vgroove/app/commands.h"
 
 #include "vgroove/app/energy_images.h"
@@ -116,15 +117,11 @@ int cmd_energy_export(const EnergyArgs& a) {
   const auto k = ndf_from_name(ndfs.front());
   if (!k) throw support::UserError("--ndf = \"" + ndfs.front() + "\" is not one of \"ggx\", \"beckmann\"");
   o.model.ndf = *k;
-  if (a.masking == "smith")
-    o.model.masking = analytic::MaskingKind::smith_height_correlated;
-  else if (a.masking == "smith_separable")
-    o.model.masking = analytic::MaskingKind::smith_separable;
-  else if (a.masking == "vcavity")
-    o.model.masking = analytic::MaskingKind::vcavity;
-  else
+  const auto masking = analytic::masking_from_flag(a.masking);
+  if (!masking)
     throw support::UserError("--masking = \"" + a.masking +
                              "\" is not one of \"smith\", \"smith_separable\", \"vcavity\"");
+  o.model.masking = *masking;
   o.layout = a.layout;
   o.size = a.size;
   o.ms_reference = a.ms_reference;

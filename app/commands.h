@@ -170,6 +170,11 @@ struct BrdfArgs {
   bool alpha_y_given = false;
   std::string partner = "independent";
   bool partner_given = false;
+  // walter only: eta = n_far / n_near and the G2 ("smith", "smith_separable", "vcavity").
+  double eta = 1.5;
+  bool eta_given = false;
+  std::string masking = "smith_separable";
+  bool masking_given = false;
   int max_k = 1'000'000;  // when not given: analytic::default_max_k (every order in 3D, 4096 flatland, 64 nonsymmetric)
   bool max_k_given = false;
   bool per_k = false;

@@ -51,15 +51,26 @@ int brdf_orders(long long max_k, BrdfModel model, bool flat) {
 // The cost of one direction relative to the 3D sum (which costs the same for any max_k): the
 // flatland and nonsymmetric sums grow as max_k^2 (about 0.4-2 s per direction at max_k 4096).
 double relative_cost(BrdfModel model, bool flat, int max_k) {
-  if (model == BrdfModel::cook_torrance || (model == BrdfModel::vgroove && !flat)) return 1.0;
+  if (model == BrdfModel::cook_torrance || model == BrdfModel::walter || (model == BrdfModel::vgroove && !flat))
+    return 1.0;
   return std::max(1.0, static_cast<double>(max_k) * max_k / 256.0);
+}
+
+// Walter's light arrives in the near medium: wi.z > 0 (the command line's theta_i in [0, 90)).
+void check_light_above(const Rows& wi, std::size_t n) {
+  for (std::size_t j = 0; j < (wi.step ? n : 1); ++j)
+    if (!(wi.row(j)[2] > 0.0))
+      throw support::UserError("wi[" + std::to_string(j) + "] = (" + support::number_text(wi.row(j)[0]) + ", " +
+                               support::number_text(wi.row(j)[1]) + ", " + support::number_text(wi.row(j)[2]) +
+                               ") is not above the interface (z > 0): with model walter the light is in the near "
+                               "medium; light from the far side is eta -> 1 / eta");
 }
 
 }  // namespace
 
 BrdfSettings brdf_settings(const std::string& model_name, const std::string& ndf_name, double alpha,
                            const std::string& dim_name, const py::object& max_k, const py::object& alpha_y,
-                           const py::object& partner, const py::object& eta) {
+                           const py::object& partner, const py::object& eta, const py::object& masking) {
   BrdfSettings s;
   s.model = parse_brdf_model(model_name, true);
   s.ndf = parse_ndf(ndf_name);
@@ -98,6 +109,37 @@ BrdfSettings brdf_settings(const std::string& model_name, const std::string& ndf
                                                  std::numeric_limits<long long>::max()),
                                         s.model, s.flat)
                           : analytic::default_max_k(s.model, s.flat);
+  if (s.model == BrdfModel::walter) {
+    // Walter's dielectric: eta = n_far / n_near, real, as `vgroove brdf --eta`; the G2 by its flag name.
+    if (!eta.is_none()) {
+      const std::complex<double> z = eta.cast<std::complex<double>>();
+      if (!(z.imag() == 0.0 && z.real() > 0.0 && z.real() <= validation::kMaxFresnelEta))
+        throw support::UserError("eta = " + support::number_text(z.real()) +
+                                 (z.imag() == 0.0 ? "" : " + " + support::number_text(z.imag()) + "j") +
+                                 " is out of range " +
+                                 support::interval_text(0, false, validation::kMaxFresnelEta, true) +
+                                 " with model walter (a dielectric's n_far / n_near, real)");
+      s.dielectric_eta = z.real();
+    }
+    if (!masking.is_none()) {
+      const std::string name = masking.cast<std::string>();
+      const auto g = analytic::masking_from_flag(name);
+      if (!g)
+        throw support::UserError("masking = \"" + name +
+                                 "\" is not one of \"smith\", \"smith_separable\", \"vcavity\"");
+      if (!analytic::masking_supported(*g, s.ndf))
+        throw support::UserError("masking = \"" + name +
+                                 "\" needs ndf ggx or beckmann (Smith's Lambda has no closed form for phong); "
+                                 "masking \"vcavity\" takes phong");
+      s.masking = *g;
+    } else if (!analytic::masking_supported(s.masking, s.ndf)) {
+      throw support::UserError(
+          "model walter with ndf phong needs masking = \"vcavity\" (its default, "
+          "smith_separable, needs ggx or beckmann)");
+    }
+    return s;
+  }
+  if (!masking.is_none()) throw support::UserError("masking applies to model walter only " + model_text);
   if (!eta.is_none()) {
     if (s.flat) throw support::UserError("eta applies to dim 3d only (the flatland BRDFs have no Fresnel term)");
     s.fresnel = conductor_of(eta);
@@ -111,6 +153,7 @@ analytic::BrdfEvalOptions BrdfSettings::options() const {
   if (model == BrdfModel::vgroove_nonsymmetric) o.alpha_y = alpha_y > 0.0 ? alpha_y : alpha;
   o.symmetric_partner = symmetric_partner;
   if (fresnel) o.fresnel = fresnel->fn();
+  o.eta = dielectric_eta, o.masking = masking;
   return o;
 }
 
@@ -146,9 +189,10 @@ void evaluate(const BrdfSettings& s, int per_k, const Rows& wi, const Rows& wo, 
   const int max_k = s.max_k;
   const auto stride = static_cast<std::size_t>(per_k);
   auto run = [&](auto&& f) { for_pairs(n, threads, wi, wo, cheap, relay, cancel, f); };
-  if (s.model == BrdfModel::vgroove_nonsymmetric || s.fresnel) {
-    // Eq. 21-23 (independent partner law of Eq. 20, or B = A; anisotropic with alpha_y), and the
-    // symmetric models with Fresnel: analytic::evaluate_brdf, as the command line calls it.
+  if (s.model == BrdfModel::vgroove_nonsymmetric || s.model == BrdfModel::walter || s.fresnel) {
+    // Eq. 21-23 (independent partner law of Eq. 20, or B = A; anisotropic with alpha_y), Walter's
+    // BSDF, and the symmetric models with Fresnel: analytic::evaluate_brdf, as the command line
+    // calls it.
     analytic::BrdfEvalOptions opt = s.options();
     opt.per_k = per_k;
     const BrdfModel model = s.model;
@@ -192,13 +236,14 @@ void evaluate(const BrdfSettings& s, int per_k, const Rows& wi, const Rows& wo, 
 // The settings as vgroove.BRDF keeps them: the canonical names and the orders resolved.
 py::dict settings_dict(const std::string& model, const std::string& ndf, double alpha, const std::string& dim,
                        const py::object& max_k, const py::object& alpha_y, const py::object& partner,
-                       const py::object& eta) {
-  const BrdfSettings s = brdf_settings(model, ndf, alpha, dim, max_k, alpha_y, partner, eta);
+                       const py::object& eta, const py::object& masking) {
+  const BrdfSettings s = brdf_settings(model, ndf, alpha, dim, max_k, alpha_y, partner, eta, masking);
   py::dict d;
   d["model"] = analytic::brdf_model_name(s.model);
   d["ndf"] = ndf_name(s.ndf);
   d["dim"] = s.flat ? "flatland" : "3d";
   d["max_k"] = s.max_k;
+  if (s.model == BrdfModel::walter) d["eta"] = s.dielectric_eta, d["masking"] = analytic::masking_flag_name(s.masking);
   return d;
 }
 
@@ -207,16 +252,17 @@ py::dict settings_dict(const std::string& model, const std::string& ndf, double 
 py::array_t<double> brdf(const std::string& model_name, const std::string& ndf_name, double alpha, DoubleArray wi,
                          DoubleArray wo, const py::object& per_k_obj, const py::object& max_k,
                          const std::string& dim_name, int threads, const py::object& alpha_y, const py::object& partner,
-                         const py::object& eta, const py::object& progress) {
-  const BrdfSettings s = brdf_settings(model_name, ndf_name, alpha, dim_name, max_k, alpha_y, partner, eta);
+                         const py::object& eta, const py::object& masking, const py::object& progress) {
+  const BrdfSettings s = brdf_settings(model_name, ndf_name, alpha, dim_name, max_k, alpha_y, partner, eta, masking);
   validation::check_threads(threads, "threads");
   ProgressRelay relay(progress);
   if (wi.ndim() != 2 || wi.shape(1) != 3 || wo.ndim() != 2 || wo.shape(1) != 3)
     throw support::UserError("wi and wo must be arrays of shape (n, 3)");
   const std::size_t n = static_cast<std::size_t>(std::max(wi.shape(0), wo.shape(0)));
   const Rows a = rows_of(wi, "wi", n, s.flat), b = rows_of(wo, "wo", n, s.flat);
-  // Cook-Torrance per k: its value as the only column, k = 1.
-  const bool ct = s.model == BrdfModel::cook_torrance;
+  if (s.model == BrdfModel::walter) check_light_above(a, n);
+  // Cook-Torrance and Walter per k: the value as the only column, k = 1.
+  const bool ct = s.model == BrdfModel::cook_torrance || s.model == BrdfModel::walter;
   int per_k = static_cast<int>(to_count(per_k_obj, "per_k", 0, ct ? std::numeric_limits<int>::max() : s.max_k));
   if (ct) per_k = std::min(per_k, 1);
   if (per_k > 0 && static_cast<double>(n) * per_k > 1e9)
@@ -273,7 +319,11 @@ py::object check_brdf(const py::object& f, const py::object& max_k, const std::s
   relay.flush();
   if (py::isinstance<py::str>(f)) {
     const BrdfSettings s =
-        brdf_settings(f.cast<std::string>(), ndf, alpha, dim, max_k, py::none(), py::none(), py::none());
+        brdf_settings(f.cast<std::string>(), ndf, alpha, dim, max_k, py::none(), py::none(), py::none(), py::none());
+    if (s.model == BrdfModel::walter)
+      throw support::UserError(
+          "f = \"walter\": check_brdf holds reflection BRDFs with F = 1 against the traced "
+          "conductor surface; Walter's is a dielectric BSDF");
     const analytic::BrdfEvalOptions eval = s.options();
     const BrdfModel model = s.model;
     const validation::BrdfFn fn = [=](const analytic::Dir3& i, const analytic::Dir3& w) {
@@ -346,10 +396,11 @@ py::object check_brdf(const py::object& f, const py::object& max_k, const std::s
 
 void bind_brdfs(py::module_& m) {
   m.def("brdf_settings", &settings_dict, py::arg("model"), py::arg("ndf"), py::arg("alpha"), py::arg("dim"),
-        py::arg("max_k"), py::arg("alpha_y"), py::arg("partner"), py::arg("eta"));
+        py::arg("max_k"), py::arg("alpha_y"), py::arg("partner"), py::arg("eta"), py::arg("masking") = py::none());
   m.def("brdf", &brdf, py::arg("model"), py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("wo"),
         py::arg("per_k"), py::arg("max_k"), py::arg("dim"), py::arg("threads"), py::arg("alpha_y") = py::none(),
-        py::arg("partner") = py::none(), py::arg("eta") = py::none(), py::arg("progress") = py::none());
+        py::arg("partner") = py::none(), py::arg("eta") = py::none(), py::arg("masking") = py::none(),
+        py::arg("progress") = py::none());
   m.def("check_brdf", &check_brdf, py::arg("f"), py::arg("max_k"), py::arg("name"), py::arg("ndf"), py::arg("alpha"),
         py::arg("theta_i_deg"), py::arg("rays"), py::arg("dim"), py::arg("grooves"), py::arg("seed"),
         py::arg("theta_bins"), py::arg("phi_bins"), py::arg("flatland_bins"), py::arg("sigmas"),
@@ -357,7 +408,8 @@ void bind_brdfs(py::module_& m) {
   // The orders each model sums when max_k is not given (analytic/brdf_model.h: the one table of
   // every face).
   py::dict defaults;
-  for (BrdfModel model : {BrdfModel::vgroove, BrdfModel::vgroove_nonsymmetric, BrdfModel::cook_torrance})
+  for (BrdfModel model :
+       {BrdfModel::vgroove, BrdfModel::vgroove_nonsymmetric, BrdfModel::cook_torrance, BrdfModel::walter})
     for (bool flat : {false, true})
       defaults[py::make_tuple(analytic::brdf_model_name(model), flat ? "flatland" : "3d")] =
           analytic::default_max_k(model, flat);

@@ -43,7 +43,8 @@ NdfKind parse_ndf(const std::string& name);
 // A model by the command line's name (analytic/brdf_model.h: "vgroove", "vgroove-nonsymmetric"
 // when `nonsymmetric`, "cook-torrance"; "cook_torrance" too, this module's first spelling), else
 // ValueError listing the names, as `vgroove brdf --model` does.
-analytic::BrdfModel parse_brdf_model(const std::string& name, bool nonsymmetric);
+// The models of `vgroove brdf` (all: every one; else "vgroove" and "cook-torrance").
+analytic::BrdfModel parse_brdf_model(const std::string& name, bool all);
 validation::SurfaceDim parse_dim(const std::string& name);
 // A Python int as a seed in [0, 2^63 - 1], else ValueError naming `what`.
 long long to_seed(const py::handle& v, const std::string& what);
@@ -61,7 +62,8 @@ struct Conductor {
 Conductor conductor_of(const py::object& eta);
 // What vgroove.BRDF holds, checked as `vgroove brdf` checks its flags (one-line ValueErrors naming
 // the argument): the model, NDF, roughness and dimension, the orders summed (max_k None: the model's
-// default, analytic::default_max_k), the nonsymmetric model's alpha_y and partner law, and Fresnel.
+// default, analytic::default_max_k), the nonsymmetric model's alpha_y and partner law, and Fresnel
+// (a conductor's eta; Walter's dielectric eta = n_far / n_near and G2).
 struct BrdfSettings {
   analytic::BrdfModel model = analytic::BrdfModel::vgroove;
   NdfKind ndf = NdfKind::ggx;
@@ -72,11 +74,13 @@ struct BrdfSettings {
   double alpha_y = 0.0;  // 0: isotropic
   bool symmetric_partner = false;
   std::optional<Conductor> fresnel;
+  double dielectric_eta = 1.5;
+  analytic::MaskingKind masking = analytic::MaskingKind::smith_separable;
   analytic::BrdfEvalOptions options() const;
 };
 BrdfSettings brdf_settings(const std::string& model, const std::string& ndf, double alpha, const std::string& dim,
                            const py::object& max_k, const py::object& alpha_y, const py::object& partner,
-                           const py::object& eta);
+                           const py::object& eta, const py::object& masking);
 // The unit-vector rule of every direction the module takes: |len - 1| <= kUnitTolerance (and in
 // flatland |y| <= kUnitTolerance). Directions normalized in float32 are off by ~6e-8.
 inline constexpr double kUnitTolerance = 1e-6;

@@ -54,11 +54,12 @@ NdfKind parse_ndf(const std::string& name) {
   throw support::UserError("ndf = \"" + name + "\" is not one of \"beckmann\", \"ggx\", \"phong\"");
 }
 
-analytic::BrdfModel parse_brdf_model(const std::string& name, bool nonsymmetric) {
+analytic::BrdfModel parse_brdf_model(const std::string& name, bool all) {
   const auto m = analytic::brdf_model_from_name(name == "cook_torrance" ? "cook-torrance" : name);
-  if (m && (nonsymmetric || *m != analytic::BrdfModel::vgroove_nonsymmetric)) return *m;
+  if (m && (all || *m == analytic::BrdfModel::vgroove || *m == analytic::BrdfModel::cook_torrance)) return *m;
   throw support::UserError("model = \"" + name + "\" is not one of \"vgroove\", " +
-                           (nonsymmetric ? "\"vgroove-nonsymmetric\", " : "") + "\"cook-torrance\"");
+                           (all ? "\"vgroove-nonsymmetric\", " : "") + "\"cook-torrance\"" +
+                           (all ? ", \"walter\"" : ""));
 }
 
 validation::SurfaceDim parse_dim(const std::string& name) {

@@ -16,19 +16,21 @@ from ._ranges import RANGES, fill_ranges
 from ._results import Lobe, SampleBatch, SurfaceTrace
 from ._sampling import _sampler_max_k
 
-_MODELS = ("vgroove", "vgroove-nonsymmetric", "cook-torrance")
+_MODELS = ("vgroove", "vgroove-nonsymmetric", "cook-torrance", "walter")
 
 
 class BRDF:
-    """A BRDF of vgroove: the multiple-scattering V-groove model of Lee et al. 2018 or Cook-Torrance.
+    """A BRDF of vgroove: the multiple-scattering V-groove model of Lee et al. 2018 or Cook-Torrance;
+    or Walter et al. 2007's rough dielectric BSDF.
 
     Parameters
     ----------
-    model : {"vgroove", "vgroove-nonsymmetric", "cook-torrance"}
+    model : {"vgroove", "vgroove-nonsymmetric", "cook-torrance", "walter"}
         ``"vgroove"``: symmetric grooves, Eq. 16-17 (3D, analytic/brdf_3d.h; flatland,
         analytic/brdf_flatland.h). ``"vgroove-nonsymmetric"``: Eq. 21-23 with the partner law of
         Eq. 20 (analytic/brdf_nonsymmetric.h). ``"cook-torrance"`` (also ``"cook_torrance"``): Eq.
-        1-3 with the V-cavity G, single scattering.
+        1-3 with the V-cavity G, single scattering. ``"walter"``: Walter et al. 2007, Eq. 20-21
+        (analytic/walter.h), reflection and transmission, single scattering: :meth:`eval` only.
     ndf : {"ggx", "beckmann", "phong"}
         The facet normals' distribution (Phong exponent 2/alpha^2 - 2).
     alpha : float
@@ -55,7 +57,12 @@ class BRDF:
         kappa = 0), real part in (0, $max_fresnel_eta], kappa in [0, $max_fresnel_kappa]; 3D only. None:
         F = 1 (a perfect mirror). It scales :meth:`eval` and the weights of :meth:`sample`; the
         directions drawn and :meth:`pdf` do not depend on it; :meth:`lobe`, :meth:`albedo` and
-        :meth:`trace` take F = 1 only.
+        :meth:`trace` take F = 1 only. With ``"walter"``: the dielectric's real eta = n_far / n_near
+        in (0, $max_fresnel_eta] (None: 1.5), the light in the near medium (eta < 1: from inside the
+        denser one), 3D or flatland.
+    masking : {"smith", "smith_separable", "vcavity"}, optional
+        ``"walter"`` only: the G2, Smith height-correlated, separable (None: Walter's Eq. 23) or the
+        V-cavity's; the Smith ones need GGX or Beckmann.
     dim : {"3d", "flatland"}
         3D (values per steradian) or flatland (directions in the plane y = 0, per radian).
 
@@ -91,11 +98,12 @@ class BRDF:
     ValueError: alpha = 2.5 is out of range [0.01, 2]
     """
 
-    __slots__ = ("_model", "_ndf", "_alpha", "_alpha_y", "_partner", "_max_k", "_max_k_given", "_eta", "_dim")
+    __slots__ = ("_model", "_ndf", "_alpha", "_alpha_y", "_partner", "_max_k", "_max_k_given", "_eta", "_masking",
+                 "_dim")
 
     def __init__(self, model: str = "vgroove", ndf: str = "ggx", alpha: float = 0.5, *,
                  alpha_y: Optional[float] = None, partner: Optional[str] = None, max_k: Optional[int] = None,
-                 eta: Optional[complex] = None, dim: str = "3d") -> None:
+                 eta: Optional[complex] = None, masking: Optional[str] = None, dim: str = "3d") -> None:
         model = _args.text(model, "model")
         ndf = _args.text(ndf, "ndf")
         dim = _args.text(dim, "dim")
@@ -104,9 +112,10 @@ class BRDF:
         partner = _args.text(partner, "partner")
         max_k = _args.opt_integer(max_k, "max_k")
         eta = _args.opt_complex(eta, "eta")
-        s = _vgroove.brdf_settings(model, ndf, alpha, dim, max_k, alpha_y, partner, eta)
+        masking = _args.text(masking, "masking")
+        s = _vgroove.brdf_settings(model, ndf, alpha, dim, max_k, alpha_y, partner, eta, masking)
         self._model, self._ndf, self._dim = s["model"], s["ndf"], s["dim"]
-        self._alpha, self._alpha_y, self._partner, self._eta = alpha, alpha_y, partner, eta
+        self._alpha, self._alpha_y, self._partner, self._eta, self._masking = alpha, alpha_y, partner, eta, masking
         self._max_k, self._max_k_given = int(s["max_k"]), max_k is not None
 
     # The settings, read-only.
@@ -115,13 +124,15 @@ class BRDF:
     alpha = property(lambda self: self._alpha, doc="The roughness (along x with alpha_y).")
     alpha_y = property(lambda self: self._alpha_y, doc="The roughness along y, or None (isotropic).")
     partner = property(lambda self: self._partner, doc="The nonsymmetric model's partner law, or None (independent).")
-    eta = property(lambda self: self._eta, doc="The conductor's index eta + i kappa, or None (F = 1).")
+    eta = property(lambda self: self._eta,
+                   doc="The conductor's index eta + i kappa (walter: the dielectric's n_far / n_near), or None.")
+    masking = property(lambda self: self._masking, doc="Walter's G2 as given, or None (smith_separable).")
     dim = property(lambda self: self._dim, doc="\"3d\" or \"flatland\".")
     max_k = property(lambda self: self._max_k, doc="The orders :meth:`eval` sums (the model's default when not given).")
 
     def _key(self):
         return (self._model, self._ndf, self._alpha, self._alpha_y, self._partner,
-                self._max_k if self._max_k_given else None, self._eta, self._dim)
+                self._max_k if self._max_k_given else None, self._eta, self._masking, self._dim)
 
     def __eq__(self, other):
         return isinstance(other, BRDF) and self._key() == other._key()
@@ -131,7 +142,7 @@ class BRDF:
 
     def __repr__(self) -> str:
         parts = [f'model="{self._model}"', f'ndf="{self._ndf}"', f"alpha={self._alpha!r}"]
-        for name in ("alpha_y", "partner", "eta"):
+        for name in ("alpha_y", "partner", "eta", "masking"):
             v = getattr(self, "_" + name)
             if v is not None:
                 parts.append(f'{name}="{v}"' if isinstance(v, str) else f"{name}={v!r}")
@@ -181,12 +192,12 @@ class BRDF:
         shape = np.broadcast_shapes(wi.shape, wo.shape)[:-1]
         out = _vgroove.brdf(self._model, self._ndf, self._alpha, _args.rows(wi, shape, 3), _args.rows(wo, shape, 3), 0,
                             self._max_k, self._dim, _args.integer(threads, "threads"), self._alpha_y, self._partner,
-                            self._eta, _args.progress(progress))
+                            self._eta, self._masking, _args.progress(progress))
         return out.reshape(shape)
 
     def _sampler(self, what):
-        if self._model == "cook-torrance":
-            raise ValueError(f"{what}: model = \"cook-torrance\" has no sampler here (models \"vgroove\", "
+        if self._model in ("cook-torrance", "walter"):
+            raise ValueError(f"{what}: model = \"{self._model}\" has no sampler here (models \"vgroove\", "
                              "\"vgroove-nonsymmetric\")")
         if self._alpha_y is not None or self._partner == "symmetric":
             raise ValueError(f"{what}: the nonsymmetric sampler takes the isotropic, independent partner law only "
@@ -305,6 +316,9 @@ class BRDF:
         if self._model == "vgroove-nonsymmetric":
             raise ValueError(f"{what}: model = \"vgroove-nonsymmetric\" is not binned here (models \"vgroove\", "
                              "\"cook-torrance\"; its lobes: `vgroove validate` with a nonsymmetric_brdf suite)")
+        if self._model == "walter":
+            raise ValueError(f"{what}: model = \"walter\" is not binned here (models \"vgroove\", \"cook-torrance\"; "
+                             "Walter's BSDF is evaluated by eval)")
         if self._eta is not None:
             raise ValueError(f"{what}: eta = {self._eta!r}: lobes, albedos and traces are computed with F = 1 "
                              "(make the BRDF without eta)")

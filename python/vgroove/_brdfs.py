@@ -8,7 +8,8 @@ from typing import Callable, Optional, Sequence, Union
 import numpy as np
 
 from . import _vgroove
-from ._args import ProgressFn, integer, opt_integer, progress as _progress, real, reals, rows, vectors
+from ._args import (ProgressFn, integer, opt_complex, opt_integer, progress as _progress, real, reals, rows, text,
+                    vectors)
 from ._ranges import fill_ranges
 
 #: The orders each model sums when max_k is not given, by (model, dim): the one table of every face
@@ -19,18 +20,20 @@ PER_K_ORDERS = 16
 
 
 def brdf(model: str, ndf: str, alpha: float, wi: np.ndarray, wo: np.ndarray, per_k: Union[bool, int] = False, *,
-         max_k: Optional[int] = None, dim: str = "3d", threads: int = 0,
-         progress: Optional[ProgressFn] = None) -> np.ndarray:
+         max_k: Optional[int] = None, dim: str = "3d", eta: Optional[complex] = None, masking: Optional[str] = None,
+         threads: int = 0, progress: Optional[ProgressFn] = None) -> np.ndarray:
     """A BRDF over arrays of directions: ``vgroove brdf`` vectorized (:class:`vgroove.BRDF` holds
     the same with the nonsymmetric model's options and Fresnel).
 
     Parameters
     ----------
-    model : {"vgroove", "vgroove-nonsymmetric", "cook-torrance"}
+    model : {"vgroove", "vgroove-nonsymmetric", "cook-torrance", "walter"}
         ``"vgroove"``: Lee et al. 2018, Eq. 16-17 (3D, analytic/brdf_3d.h) or its flatland analogue
         (analytic/brdf_flatland.h). ``"vgroove-nonsymmetric"``: Eq. 21-23 with the independent
         partner law of Eq. 20 (isotropic; Phong needs alpha < sqrt(2)). ``"cook-torrance"`` (also
-        ``"cook_torrance"``): Eq. 1-3 with the V-cavity G (the k = 1 term).
+        ``"cook_torrance"``): Eq. 1-3 with the V-cavity G (the k = 1 term). ``"walter"``: Walter
+        et al. 2007's rough dielectric BSDF (analytic/walter.h, k = 1): wi above the interface
+        (z > 0), wo on either side (z < 0: transmitted into the far medium).
     ndf : {"ggx", "beckmann", "phong"}
     alpha : float
         Roughness in [$min_alpha, $max_alpha].
@@ -46,6 +49,11 @@ def brdf(model: str, ndf: str, alpha: float, wi: np.ndarray, wo: np.ndarray, per
         model, whose sum costs O(max_k^2) per direction, about 1 ms at 64). Ranges: [1, 2^31 -
         1], at most $max_flatland_k in flatland and $max_nonsymmetric_k for the nonsymmetric model.
     dim : {"3d", "flatland"}
+    eta : complex, optional
+        As :class:`vgroove.BRDF`'s: a conductor's Fresnel term (3D), or with ``"walter"`` the
+        dielectric's real n_far / n_near (None: 1.5).
+    masking : {"smith", "smith_separable", "vcavity"}, optional
+        ``"walter"`` only: its G2 (None: smith_separable, Walter's Eq. 23).
     threads : int
         In [0, $max_threads] (0: all cores), without the GIL.
     progress : callable, optional
@@ -54,8 +62,8 @@ def brdf(model: str, ndf: str, alpha: float, wi: np.ndarray, wo: np.ndarray, per
     Returns
     -------
     numpy.ndarray
-        Shape S (per_k: S + (orders,); Cook-Torrance S + (1,)): values in 1/sr (3D) or 1/rad
-        (flatland), F = 1, 0 below the horizon.
+        Shape S (per_k: S + (orders,); Cook-Torrance and Walter S + (1,)): values in 1/sr (3D) or
+        1/rad (flatland), F = 1 (without eta), 0 below the horizon (but Walter's transmission).
 
     Raises
     ------
@@ -79,7 +87,8 @@ def brdf(model: str, ndf: str, alpha: float, wi: np.ndarray, wo: np.ndarray, per
     else:
         orders = integer(per_k, "per_k")
     out = _vgroove.brdf(model, ndf, real(alpha, "alpha"), rows(wi, shape, 3), rows(wo, shape, 3), orders, max_k, dim,
-                        integer(threads, "threads"), progress=_progress(progress))
+                        integer(threads, "threads"), eta=opt_complex(eta, "eta"), masking=text(masking, "masking"),
+                        progress=_progress(progress))
     return out.reshape(shape + out.shape[1:])
 
 

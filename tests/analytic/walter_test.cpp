@@ -25,7 +25,8 @@ constexpr double kPi = std::numbers::pi;
 double deg(double d) { return d * kPi / 180.0; }
 double dot(const Dir3& a, const Dir3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 Dir3 neg(const Dir3& a) { return Dir3{-a.x, -a.y, -a.z}; }
-constexpr Masking kAll[] = {Masking::vcavity, Masking::smith_separable, Masking::smith_correlated};
+constexpr MaskingKind kAll[] = {MaskingKind::vcavity, MaskingKind::smith_separable,
+                                MaskingKind::smith_height_correlated};
 
 // F0 = ((eta - 1) / (eta + 1))^2; GGX D(0) = 1 / (pi alpha^2); the flatland GGX slope law is the
 // marginal of the 3D one, 1 / (2 alpha (1 + x^2 / alpha^2)^(3/2)), so D2(0) = 1 / (2 alpha); Beckmann's
@@ -35,7 +36,7 @@ TEST(Walter, NormalIncidenceHandValues) {
   const Dir3 up{0, 0, 1}, down{0, 0, -1};
   for (double eta : {1.5, 2.4, 1.0 / 1.5})
     for (double a : {0.05, 0.3, 1.0})
-      for (Masking g : kAll) {
+      for (MaskingKind g : kAll) {
         const double F0 = (eta - 1) * (eta - 1) / ((eta + 1) * (eta + 1));
         const double D = 1.0 / (kPi * a * a), D2g = 1.0 / (2.0 * a), D2b = 1.0 / (std::sqrt(kPi) * a);
         EXPECT_NEAR(walter_brdf(up, up, NdfKind::ggx, a, eta, g), F0 * D / 4.0, 1e-13 * D) << eta << " " << a;
@@ -91,7 +92,7 @@ TEST(Walter, GeneralizedReciprocity) {
   int n = 0;
   for (double eta : {1.5, 2.4, 1.0 / 1.33})
     for (double a : {0.1, 0.5, 1.2})
-      for (Masking g : kAll)
+      for (MaskingKind g : kAll)
         for (double ti : {-60.0, 0.0, 20.0, 75.0})
           for (double tt : {-40.0, -5.0, 15.0, 50.0}) {
             const double f = walter_btdf2(deg(ti), deg(tt), NdfKind::ggx, a, eta, g) / eta;
@@ -120,7 +121,7 @@ TEST(Walter, GeneralizedReciprocity) {
 struct Shares {
   double R = 0.0, T = 0.0;
 };
-Shares shares3(const Dir3& i, NdfKind ndf, double a, double eta, Masking g, double scale_t = 1.0) {
+Shares shares3(const Dir3& i, NdfKind ndf, double a, double eta, MaskingKind g, double scale_t = 1.0) {
   Shares s;
   for (int side = 0; side < 2; ++side) {
     Dir3 c{-i.x, -i.y, i.z};  // mirror direction
@@ -159,7 +160,7 @@ Shares shares3(const Dir3& i, NdfKind ndf, double a, double eta, Masking g, doub
   return s;
 }
 
-Shares shares2(double ti, NdfKind ndf, double a, double eta, Masking g, double scale_t = 1.0) {
+Shares shares2(double ti, NdfKind ndf, double a, double eta, MaskingKind g, double scale_t = 1.0) {
   Shares s;
   const double st = std::sin(ti) / eta;
   const double centre[2] = {-ti, std::abs(st) < 1.0 ? std::asin(st) : 0.0};
@@ -197,8 +198,8 @@ TEST(Walter, SmallRoughnessIsFlatFresnel) {
     for (double ti : {0.0, 30.0, 60.0}) {
       const double F = optics::fresnel_dielectric(std::cos(deg(ti)), eta);
       const Dir3 i = dir3(deg(ti), 0.0);
-      const Shares s3 = shares3(i, NdfKind::beckmann, a, eta, Masking::smith_correlated);
-      const Shares s2 = shares2(deg(ti), NdfKind::beckmann, a, eta, Masking::smith_correlated);
+      const Shares s3 = shares3(i, NdfKind::beckmann, a, eta, MaskingKind::smith_height_correlated);
+      const Shares s2 = shares2(deg(ti), NdfKind::beckmann, a, eta, MaskingKind::smith_height_correlated);
       EXPECT_NEAR(s3.R, F, 2e-4) << "3D eta " << eta << " theta_i " << ti;
       EXPECT_NEAR(s3.T, 1 - F, 2e-4) << "3D eta " << eta << " theta_i " << ti;
       EXPECT_NEAR(s2.R, F, 2e-4) << "flatland eta " << eta << " theta_i " << ti;
@@ -206,11 +207,15 @@ TEST(Walter, SmallRoughnessIsFlatFresnel) {
       EXPECT_NEAR(s3.R + s3.T, 1.0, 1e-8) << "3D energy, eta " << eta << " theta_i " << ti;
       if (F < 0.9) {
         for (double scale : {1.0 / (eta * eta), eta * eta})
-          EXPECT_GT(std::abs(shares3(i, NdfKind::beckmann, a, eta, Masking::smith_correlated, scale).T - (1 - F)), 0.1)
+          EXPECT_GT(
+              std::abs(shares3(i, NdfKind::beckmann, a, eta, MaskingKind::smith_height_correlated, scale).T - (1 - F)),
+              0.1)
               << "broken 3D form passed: scale " << scale;
         for (double scale : {1.0 / eta, eta})
-          EXPECT_GT(std::abs(shares2(deg(ti), NdfKind::beckmann, a, eta, Masking::smith_correlated, scale).T - (1 - F)),
-                    0.1)
+          EXPECT_GT(
+              std::abs(shares2(deg(ti), NdfKind::beckmann, a, eta, MaskingKind::smith_height_correlated, scale).T -
+                       (1 - F)),
+              0.1)
               << "broken flatland form passed: scale " << scale;
       }
     }
@@ -225,18 +230,18 @@ TEST(Walter, TotalInternalReflection) {
     const Dir3 i = dir3(deg(ti), 0.0);
     for (double tt = -89.0; tt <= 89.0; tt += 1.0) {
       const Dir3 o = neg(dir3(deg(std::abs(tt)), tt < 0 ? kPi : 0.0));
-      const double f = walter_btdf(i, o, NdfKind::ggx, 0.01, eta, Masking::smith_separable);
+      const double f = walter_btdf(i, o, NdfKind::ggx, 0.01, eta, MaskingKind::smith_separable);
       ASSERT_TRUE(std::isfinite(f) && f >= 0.0) << ti << " " << tt;
       const Dir3 h = walter_half_vector(i, o, eta);
       if (std::abs(std::acos(std::min(1.0, h.z))) < deg(5.0)) {
         EXPECT_EQ(f, 0.0) << ti << " " << tt;  // i.h = cos(<= 5 deg off ti) > critical: TIR
       }
-      ASSERT_TRUE(std::isfinite(walter_btdf2(deg(ti), deg(tt), NdfKind::ggx, 0.01, eta, Masking::vcavity)));
+      ASSERT_TRUE(std::isfinite(walter_btdf2(deg(ti), deg(tt), NdfKind::ggx, 0.01, eta, MaskingKind::vcavity)));
     }
-    const Shares s = shares3(i, NdfKind::beckmann, 0.01, eta, Masking::smith_correlated);
+    const Shares s = shares3(i, NdfKind::beckmann, 0.01, eta, MaskingKind::smith_height_correlated);
     EXPECT_NEAR(s.R, 1.0, 1e-3) << ti;
     EXPECT_LT(s.T, 1e-12) << ti;
-    const Shares s2 = shares2(deg(ti), NdfKind::beckmann, 0.01, eta, Masking::smith_correlated);
+    const Shares s2 = shares2(deg(ti), NdfKind::beckmann, 0.01, eta, MaskingKind::smith_height_correlated);
     EXPECT_NEAR(s2.R, 1.0, 1e-3) << ti;
     EXPECT_LT(s2.T, 1e-12) << ti;
   }
@@ -249,7 +254,7 @@ TEST(Walter, GrazingIsFinite) {
   for (NdfKind ndf : {NdfKind::ggx, NdfKind::beckmann})
     for (double a : {0.01, 0.1, 0.5, 1.0, 2.0})
       for (double eta : {1.5, 1.0 / 1.5, 2.4, 1.0})
-        for (Masking g : kAll)
+        for (MaskingKind g : kAll)
           for (double ti : {-89.9, 0.0, 45.0, 89.9})
             for (double to : {-89.9, -45.0, -ti, 0.0, 30.0, 89.9}) {
               const double v[4] = {
@@ -290,7 +295,7 @@ TEST(Walter, ArticleEq21dBreaksReciprocity) {
     for (double tv : {5.0, 30.0}) {
       const Dir3 l = dir3(deg(tl), 0.0);             // light above, n_l = 1
       const Dir3 v = neg(dir3(deg(tv), deg(10.0)));  // exit below, n_v = eta, near Snell's side
-      const double walter = walter_btdf(l, v, NdfKind::ggx, a, eta, Masking::smith_separable);
+      const double walter = walter_btdf(l, v, NdfKind::ggx, a, eta, MaskingKind::smith_separable);
       ASSERT_GT(walter, 0.0);
       EXPECT_NEAR(eq21d(v, eta, l, 1.0, true), walter, 1e-12 * walter) << tl << " " << tv;
       // As printed: off by (n_l / n_v)^4, and f(v, l) / f(l, v) = (n_l / n_v)^6, not (n_v / n_l)^2.

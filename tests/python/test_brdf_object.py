@@ -68,6 +68,53 @@ def test_eval_equals_the_command_line_and_the_function_to_the_last_bit(vg, tmp_p
         assert f.eval(wi[::-1], wo[::-1]).tolist() != ours.tolist()
 
 
+@pytest.mark.parametrize("dim", ["3d", "flatland"])
+def test_walter_equals_the_command_line_on_both_sides_to_the_last_bit(vg, tmp_path, dim):
+    # The viewer anywhere on the sphere (3D: polar angle 0-179 deg, over 90 below the interface;
+    # flatland: signed angles -179..179 deg), light from the near side.
+    rng = np.random.default_rng(11)
+    n = 60
+    ti = rng.uniform(0 if dim == "3d" else -85, 85, n).round(3)
+    to = rng.uniform(0 if dim == "3d" else -179, 179, n).round(3)
+    pairs = [{"theta_i_deg": float(a), "theta_o_deg": float(b)} for a, b in zip(ti, to)]
+    if dim == "3d":
+        for p, a, b in zip(pairs, rng.uniform(-180, 180, n).round(3), rng.uniform(-180, 180, n).round(3)):
+            p["phi_i_deg"], p["phi_o_deg"] = float(a), float(b)
+    path = write_json(tmp_path / "pairs.json", {"directions": pairs})
+    wi, wo = directions_of(vg, pairs, dim)
+    for eta, masking in ((1.33, "smith"), (1 / 1.5, "vcavity"), (2.4, None)):
+        flags = ["--masking", masking] if masking else []
+        theirs = cli_json("brdf", "--model", "walter", "--alpha", 0.4, "--eta", repr(eta), "--dim", dim,
+                          "--directions", path, "--json", *flags)
+        assert theirs["inputs"]["masking"] == (masking or "smith_separable")
+        ours = vg.BRDF("walter", "ggx", 0.4, eta=eta, masking=masking, dim=dim).eval(wi, wo, threads=2)
+        assert ours.tolist() == [p["value"] for p in theirs["points"]], (eta, masking)
+        assert np.array_equal(ours, vg.brdf("walter", "ggx", 0.4, wi, wo, dim=dim, eta=eta, masking=masking))
+        below = wo[:, 2] < 0
+        # Power: both sides carry light (the transmitted values are not zeros of a reflection-only model).
+        assert (ours[below] > 0).sum() > 5 and (ours[~below] > 0).sum() > 5, (eta, masking)
+
+
+def test_walter_refuses_what_it_cannot_do(vg):
+    f = vg.BRDF("walter", "beckmann", 0.3, eta=1.5)
+    wi, below = vg.direction(30, 0), np.array([0.0, 0.0, -1.0])
+    cases = [
+        (lambda: vg.BRDF("walter", "ggx", 0.3, eta=0), r"eta = 0 is out of range \(0, 1000\] with model walter"),
+        (lambda: vg.BRDF("walter", "ggx", 0.3, eta=1.5 + 0.1j), r"eta = 1.5 \+ 0.1j is out of range"),
+        (lambda: vg.BRDF("walter", "ggx", 0.3, masking="heitz"), r'masking = "heitz" is not one of "smith"'),
+        (lambda: vg.BRDF("walter", "phong", 0.3), r"model walter with ndf phong needs masking = \"vcavity\""),
+        (lambda: vg.BRDF("vgroove", "ggx", 0.3, masking="smith"), r"masking applies to model walter only"),
+        (lambda: f.eval(below, wi), r"wi\[0\] = \(0, 0, -1\) is not above the interface"),
+        (lambda: f.sample(wi, [0.5, 0.5]), r'sample: model = "walter" has no sampler here'),
+        (lambda: f.lobe(30), r'lobe: model = "walter" is not binned here'),
+        (lambda: vg.check_brdf("walter", rays=10), r'f = "walter": check_brdf holds reflection BRDFs'),
+    ]
+    for call, message in cases:
+        with pytest.raises(ValueError, match="^" + message):
+            call()
+    assert float(vg.BRDF("walter", "phong", 0.3, masking="vcavity").eval(wi, below)) > 0
+
+
 @pytest.mark.parametrize("model,dim", [("vgroove", "3d"), ("vgroove", "flatland"), ("vgroove-nonsymmetric", "3d"),
                                        ("cook-torrance", "3d")])
 def test_the_default_max_k_is_the_command_lines(vg, model, dim):
@@ -85,7 +132,8 @@ def test_the_default_max_k_is_the_command_lines(vg, model, dim):
     # flatland and nonsymmetric sums bounded.
     assert vg.BRDF_MAX_K == {("vgroove", "3d"): 1000000, ("vgroove", "flatland"): 4096,
                              ("vgroove-nonsymmetric", "3d"): 64, ("vgroove-nonsymmetric", "flatland"): 64,
-                             ("cook-torrance", "3d"): 1000000, ("cook-torrance", "flatland"): 1000000}
+                             ("cook-torrance", "3d"): 1000000, ("cook-torrance", "flatland"): 1000000,
+                             ("walter", "3d"): 1000000, ("walter", "flatland"): 1000000}
     if model != "cook-torrance":
         # Power: at Phong alpha 1.3 the orders beyond 16 carry flux there, so another default differs.
         other = 16 if f.max_k != 16 else 64

@@ -129,7 +129,7 @@ def test_bad_brdf_input(vg):
     with pytest.raises(ValueError, match=r'^ndf = "gxx" is not one of "beckmann", "ggx", "phong"$'):
         vg.brdf("vgroove", "gxx", 0.5, wi, wo)
     with pytest.raises(ValueError, match=r'^model = "ct" is not one of "vgroove", "vgroove-nonsymmetric", '
-                                         r'"cook-torrance"$'):
+                                         r'"cook-torrance", "walter"$'):
         vg.brdf("ct", "ggx", 0.5, wi, wo)
     with pytest.raises(ValueError, match="not in the plane y = 0"):
         vg.brdf("vgroove", "ggx", 0.5, wi, vg.direction(20, 90), dim="flatland")

@@ -170,7 +170,7 @@ CaseRun run(const Case& c, int grooves, std::int64_t rays, int bins) {
 double eta_rel(const Case& c) { return c.from == sim::Medium::above ? c.eta : 1.0 / c.eta; }
 sim::Medium other(sim::Medium m) { return m == sim::Medium::above ? sim::Medium::below : sim::Medium::above; }
 
-Fit fit_reflection(const Case& c, const CaseRun& r, analytic::Masking g, int bins, double eta_model) {
+Fit fit_reflection(const Case& c, const CaseRun& r, analytic::MaskingKind g, int bins, double eta_model) {
   const auto p = binned(
       [&](double o) {
         return analytic::walter_brdf2(deg(c.theta_i_deg), o, analytic_ndf(c.ndf), c.alpha, eta_model, g);
@@ -179,7 +179,7 @@ Fit fit_reflection(const Case& c, const CaseRun& r, analytic::Masking g, int bin
   return compare(p, r.t.tally.histogram(c.from, 1), r.n, r.inflate_r);
 }
 
-Fit fit_transmission(const Case& c, const CaseRun& r, analytic::Masking g, int bins, double scale = 1.0) {
+Fit fit_transmission(const Case& c, const CaseRun& r, analytic::MaskingKind g, int bins, double scale = 1.0) {
   const auto p = binned(
       [&](double o) {
         return scale * analytic::walter_btdf2(deg(c.theta_i_deg), o, analytic_ndf(c.ndf), c.alpha, eta_rel(c), g);
@@ -204,8 +204,8 @@ TEST(WalterSim, ReflectionFromAboveMatchesTheTracer) {
                         {sim::NdfKind::beckmann, 1.0, 2.4, 80.0, sim::Medium::above}};
   for (const Case& c : cases) {
     const CaseRun r = run(c, kGrooves, kRays, kBins);
-    const Fit f = fit_reflection(c, r, analytic::Masking::vcavity, kBins, c.eta);
-    const Fit broken = fit_reflection(c, r, analytic::Masking::vcavity, kBins, 1.1 * c.eta);
+    const Fit f = fit_reflection(c, r, analytic::MaskingKind::vcavity, kBins, c.eta);
+    const Fit broken = fit_reflection(c, r, analytic::MaskingKind::vcavity, kBins, 1.1 * c.eta);
     std::printf("%s: R model %.5f traced %.5f (X2 %.1f / %d dof, p %.3g; eta +10%%: X2 %.0f); %lld rays %.2f s\n",
                 name(c).c_str(), f.model, f.traced, f.stat, f.dof, f.p, broken.stat, static_cast<long long>(kRays),
                 r.t.seconds);
@@ -228,10 +228,10 @@ TEST(WalterSim, TransmittedFluxSettlesEta) {
                         {sim::NdfKind::beckmann, 0.1, 2.4, 20.0, sim::Medium::below}};
   for (const Case& c : cases) {
     const CaseRun r = run(c, kGrooves, kRays, kBins);
-    const Fit f = fit_transmission(c, r, analytic::Masking::smith_separable, kBins);
+    const Fit f = fit_transmission(c, r, analytic::MaskingKind::smith_separable, kBins);
     const double nv_nl = eta_rel(c);  // n_exit / n_light
-    const Fit times = fit_transmission(c, r, analytic::Masking::smith_separable, kBins, nv_nl);
-    const Fit over = fit_transmission(c, r, analytic::Masking::smith_separable, kBins, 1.0 / nv_nl);
+    const Fit times = fit_transmission(c, r, analytic::MaskingKind::smith_separable, kBins, nv_nl);
+    const Fit over = fit_transmission(c, r, analytic::MaskingKind::smith_separable, kBins, 1.0 / nv_nl);
     std::printf(
         "%s: T model %.5f traced %.5f (X2 %.1f / %d dof, p %.3g); x n_v/n_l: %.5f (X2 %.0f); / n_v/n_l: %.5f "
         "(X2 %.0f); %lld rays %.2f s\n",
@@ -257,12 +257,12 @@ TEST(WalterSim, TransmissionMissesAreMeasured) {
   const CaseRun rn = run(normal, kGrooves, kRays, kBins), ro = run(oblique, kGrooves, kRays, kBins);
   for (const auto* cr : {&normal, &oblique}) {
     const CaseRun& r = cr == &normal ? rn : ro;
-    for (analytic::Masking g : {analytic::Masking::vcavity, analytic::Masking::smith_separable}) {
+    for (analytic::MaskingKind g : {analytic::MaskingKind::vcavity, analytic::MaskingKind::smith_separable}) {
       const Fit f = fit_transmission(*cr, r, g, kBins);
       const double sigma = std::sqrt(f.traced * (1 - f.traced) * r.inflate_t / r.n);
       std::printf("%s, %s: T model %.5f traced %.5f (%+.2f sigma), X2 %.1f / %d dof\n", name(*cr).c_str(),
                   analytic::masking_name(g), f.model, f.traced, (f.model - f.traced) / sigma, f.stat, f.dof);
-      const bool matches = cr == &normal && g == analytic::Masking::smith_separable;
+      const bool matches = cr == &normal && g == analytic::MaskingKind::smith_separable;
       if (matches) {
         EXPECT_GT(f.p, 1e-4) << name(*cr) << " " << analytic::masking_name(g) << "\n" << f.table;
       } else {
@@ -286,11 +286,11 @@ TEST(WalterSimLong, MissTable) {
           for (double ti : {0.0, 30.0, 60.0, 80.0}) {
             const Case c{ndf, alpha, eta, ti, from};
             const CaseRun r = run(c, grooves, rays, kBins);
-            for (analytic::Masking g : {analytic::Masking::vcavity, analytic::Masking::smith_separable,
-                                        analytic::Masking::smith_correlated}) {
+            for (analytic::MaskingKind g : {analytic::MaskingKind::vcavity, analytic::MaskingKind::smith_separable,
+                                            analytic::MaskingKind::smith_height_correlated}) {
               const Fit fr = fit_reflection(c, r, g, kBins, eta_rel(c));
               const Fit ft = fit_transmission(c, r, g, kBins);
-              if (from == sim::Medium::above && g == analytic::Masking::vcavity) {
+              if (from == sim::Medium::above && g == analytic::MaskingKind::vcavity) {
                 EXPECT_GT(fr.p, 1e-6) << name(c) << "\n" << fr.table;
               }
               auto sig = [&](const Fit& f, double inflate) {
@@ -318,8 +318,8 @@ TEST(WalterSimLong, LightSideVcavityTimesFarSideSmith) {
       const double t = deg(ti);
       const auto p = binned(
           [&](double o) {
-            const double f =
-                analytic::walter_btdf2(t, o, analytic::NdfKind::ggx, alpha, 1.5, analytic::Masking::smith_separable);
+            const double f = analytic::walter_btdf2(t, o, analytic::NdfKind::ggx, alpha, 1.5,
+                                                    analytic::MaskingKind::smith_separable);
             if (f == 0.0) return 0.0;
             const double h = analytic::walter_half_angle_t2(t, o, 1.5);
             return f * analytic::G1_vcavity_inplane(t, h) * (1.0 + analytic::Lambda(analytic::NdfKind::ggx, t, alpha));
