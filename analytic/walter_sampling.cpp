@@ -25,7 +25,8 @@ double walter_facet_pdf(NdfKind ndf, double alpha, const Dir3& i, const Dir3& m)
 WalterSample sample_walter(NdfKind ndf, double alpha, double eta, MaskingKind g, const Dir3& i, double u0, double u1,
                            double u2) {
   WalterSample s;
-  const Dir3 m = has_smith_vndf(ndf) ? sample_smith_vndf(ndf, alpha, i, u0, u1) : sample_projected_ndf(ndf, alpha, u0, u1);
+  const Dir3 m =
+      has_smith_vndf(ndf) ? sample_smith_vndf(ndf, alpha, i, u0, u1) : sample_projected_ndf(ndf, alpha, u0, u1);
   const double im = dot(i, m);
   if (!(im > 0.0 && m.z > 0.0)) return s;  // a facet facing away from the light (projected NDF only)
   const double F = optics::fresnel_dielectric(im, eta);

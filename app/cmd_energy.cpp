@@ -68,8 +68,16 @@ int cmd_energy(const EnergyArgs& a) {
   if (a.audit) runs.push_back("--audit");
   if (!a.export_base.empty()) runs.push_back("--export");
   if (a.lobe_shape) runs.push_back("--lobe-shape");
-  if (runs.size() == 2) throw support::UserError(runs[0] + " and " + runs[1] + " are two runs: give one");
-  if (runs.size() == 3) throw support::UserError("--audit, --export and --lobe-shape are three runs: give one");
+  if (!a.eta.empty()) runs.push_back("--eta");
+  if (runs.size() >= 2) {
+    std::string list;
+    for (std::size_t n = 0; n < runs.size(); ++n) list += (n ? (n + 1 == runs.size() ? " and " : ", ") : "") + runs[n];
+    const char* count[] = {"", "", "two", "three", "four"};
+    throw support::UserError(list + " are " + count[runs.size()] + " runs: give one");
+  }
+  if (!a.eta.empty()) return cmd_energy_glass(a);
+  if (a.sides_given) throw support::UserError("--side applies to the glass tables (--eta)");
+  if (a.grooves_given) throw support::UserError("--grooves applies to the glass tables (--eta)");
   if (a.audit) return cmd_energy_audit(a);
   if (a.lobe_shape) return cmd_energy_lobe_shape(a);
   if (!a.export_base.empty()) return cmd_energy_export(a);
@@ -189,6 +197,22 @@ void add_energy_command(CLI::App& app, Commands& commands) {
       "0.5,1; --mu = cos theta_i, default theta_i 0,40,70 deg; --rays per theta_i): f_ss alone, Kulla-Conty "
       "and the view-scaled factor (Turquin, Filament, Bevy, Cycles) against the traced V-groove surface "
       "and the Smith random walk, by the Fig. 11 metric; exit 1 when a control fails");
+  add_real(energy, "--eta", ea.eta,
+           "rough glass tables: eta = n2 / n1 (below the surface over above it), comma-separated, each in " +
+               support::interval_text(validation::kMinGlassEta, true, validation::kMaxGlassEta, true) +
+               ", not 1: exact E_R and E_T per k of V-groove surfaces between two dielectrics (--ndf ggx, beckmann; "
+               "--dim; --side), with the reciprocity of their hemispherical averages")
+      ->delimiter(',');
+  auto* sides = add_list(energy, "--side", ea.sides,
+                         "--eta's light: from above (medium 1), below (medium 2) or both, comma-separated")
+                    ->capture_default_str();
+  auto* grooves =
+      add_integer(energy, "--grooves", ea.grooves, "--eta's grooves per surface", 1, validation::kMaxGlassGrooves)
+          ->capture_default_str();
+  energy->callback([&ea, sides, grooves]() {
+    ea.sides_given = sides->count() > 0;
+    ea.grooves_given = grooves->count() > 0;
+  });
   add_text(energy, "--export", ea.export_base,
            "write tables engines can load to BASE.json, .npz, .h, .png, .exr (see --formats): E_ss, E_avg, the DFG "
            "scale and bias, and with --ms-reference the exact multiple-scattering albedo per F0");

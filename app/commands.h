@@ -216,6 +216,12 @@ struct EnergyArgs {
   std::vector<std::string> formats{"json", "npz", "h", "png", "exr"};
   // --lobe-shape: the compensated lobes' shape (validation/energy_lobe_shape.h); --rays per theta_i.
   bool lobe_shape = false;
+  // --eta: rough glass tables E_R, E_T (validation/glass_energy.h), for light from --side.
+  std::vector<double> eta;
+  std::vector<std::string> sides{"above", "below"};
+  bool sides_given = false;
+  int grooves = 10000;
+  bool grooves_given = false;
 };
 int cmd_energy(const EnergyArgs& a);
 // Its --audit and --export (app/cmd_energy_tables.cpp).
@@ -223,6 +229,8 @@ int cmd_energy_audit(const EnergyArgs& a);
 int cmd_energy_export(const EnergyArgs& a);
 // Its --lobe-shape (app/cmd_energy_lobe_shape.cpp).
 int cmd_energy_lobe_shape(const EnergyArgs& a);
+// Its --eta glass tables (app/cmd_energy_glass.cpp).
+int cmd_energy_glass(const EnergyArgs& a);
 void add_energy_command(CLI::App& app, Commands& commands);
 
 // `vgroove merge`: partial reports of one run (`--shard I/N`) into the run's report.

@@ -92,6 +92,11 @@ inline constexpr int kMaxGaussLegendreOrder = 64;
 inline constexpr long long kMaxEnergyRays = 10'000'000'000LL;
 inline constexpr int kMaxEnergyK = 1000;
 inline constexpr std::size_t kMaxGridPoints = 4096;
+// `vgroove energy --eta`'s glass tables (validation/glass_energy.h): eta = n2 / n1, and the grooves
+// of a cell's surface (about 70 bytes each, one surface per work unit and thread).
+inline constexpr double kMinGlassEta = 0.1;
+inline constexpr double kMaxGlassEta = 10.0;
+inline constexpr int kMaxGlassGrooves = 1'000'000;
 // --mu-points: the smallest midpoint 0.5 / n stays >= kMinMu.
 inline constexpr int kMaxMuPoints = 286;
 // --alpha-points: the midpoints (j + 1/2)/n stay in the alpha range (0.5/n >= kMinAlpha).

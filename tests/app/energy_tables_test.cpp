@@ -7,7 +7,9 @@
 //   model within E_ss's bound + 1e-8, and for the Smith walk within 5 standard errors of the exact 1 - E_ss, the
 //   compensation factor is (E_F + E_ms) / E_F;
 // - bad input: one line naming the flag, exit 2, no file left (not even one of several);
-// - --audit refuses --shard and runs a small grid to its table.
+// - --audit refuses --shard and runs a small grid to its table;
+// - --eta (glass tables): bad input named, no file; a small run's JSON holds the arrays, its
+//   averages and the reciprocity pairs.
 #include "tests/cli_run.h"
 #include "vgroove/app/energy_images.h"
 
@@ -232,6 +234,45 @@ TEST(EnergyLobeShapeCli, BadInputNamesTheFlagAndASmallRunReports) {
       EXPECT_LT(row["albedo_model"].get<double>(), 0.9);
     }
   }
+}
+
+TEST(EnergyGlassCli, BadInputNamesTheFlagAndASmallRunWritesItsTable) {
+  TempDir dir;
+  const std::string out = dir.file("glass.json");
+  for (const auto& [args, says] : std::vector<std::pair<std::string, std::string>>{
+           {"--eta 0", "--eta = 0 is out of range [0.1, 10]"},
+           {"--eta 1", "--eta = 1 is no interface"},
+           {"--eta nan", "--eta"},
+           {"--eta 1.5 --ndf phong", "--ndf = \"phong\" is not one of \"ggx\", \"beckmann\" with --eta"},
+           {"--eta 1.5 --side inside", "--side = \"inside\" is not one of \"above\", \"below\""},
+           {"--eta 1.5 --grooves 0", "--grooves"},
+           {"--eta 1.5 --audit", "--audit and --eta are two runs: give one"},
+           {"--eta 1.5 --shard 1/2", "--eta tables run in one process"},
+           {"--eta 1.5 --npy", "--npy applies to the conductor tables"},
+           {"--side below", "--side applies to the glass tables (--eta)"},
+           {"--eta 1.5 --mu 0", "--mu = 0 is out of range"}}) {
+    const CliRun r = vgroove("energy " + args + " --alpha 0.5 --out " + quoted(out));
+    EXPECT_EQ(r.status, 2) << args << "\n" << r;
+    EXPECT_NE(r.err.find(says), std::string::npos) << args << "\n" << r;
+    EXPECT_EQ(lines(r.err), 1) << r;
+    EXPECT_FALSE(fs::exists(out)) << args;
+  }
+  const CliRun r = vgroove(
+      "energy --eta 1.5 --dim 3d,flatland --alpha 0.3 --mu 1,0.5 --rays 5000 --grooves 500 --out " + quoted(out));
+  ASSERT_EQ(r.status, 0) << r;
+  EXPECT_NE(r.out.find("reciprocity ggx 3d eta 1.5 alpha 0.3"), std::string::npos) << r;
+  const nlohmann::json j = read_json(out);
+  EXPECT_EQ(j["kind"], "glass_energy");
+  EXPECT_EQ(j["arrays"]["E_R"]["shape"], (std::vector<int>{1, 2, 2, 1, 1, 2}));
+  EXPECT_EQ(j["arrays"]["E_T_by_k"]["shape"], (std::vector<int>{1, 2, 2, 1, 1, 2, 17}));
+  EXPECT_EQ(j["averages"]["cells"].size(), 4u);
+  EXPECT_EQ(j["reciprocity"]["pairs"].size(), 2u);
+  // E_R + E_T + bounce limit + vertex = 1 in every cell.
+  for (std::size_t c = 0; c < 8; ++c)
+    EXPECT_NEAR(j["arrays"]["E_R"]["values"][c].get<double>() + j["arrays"]["E_T"]["values"][c].get<double>() +
+                    j["arrays"]["bounce_limit"]["values"][c].get<double>() +
+                    j["arrays"]["vertex"]["values"][c].get<double>(),
+                1.0, 1e-12);
 }
 
 }  // namespace

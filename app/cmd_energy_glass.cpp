@@ -1,0 +1,73 @@
+// `vgroove energy --eta` (validation/glass_energy.h): exact E_R and E_T of rough glass, a table and
+// a JSON file.
+#include "vgroove/app/commands.h"
+
+#include "vgroove/app/mpi_world.h"
+#include "vgroove/app/options.h"
+#include "vgroove/app/progress.h"
+#include "vgroove/support/atomic_file.h"
+#include "vgroove/support/json_text.h"
+#include "vgroove/support/printable.h"
+#include "vgroove/support/user_error.h"
+#include "vgroove/validation/energy_table.h"
+#include "vgroove/validation/glass_energy.h"
+
+#include <iostream>
+
+namespace vgroove::app {
+
+using namespace validation;
+
+int cmd_energy_glass(const EnergyArgs& a) {
+  check_threads(a.threads, "--threads");
+  check_seed(a.seed, "--seed");
+  if (!a.shard.empty() || world().distributed())
+    throw support::UserError("--eta tables run in one process (--shard and mpirun apply to the conductor tables)");
+  if (a.npy) throw support::UserError("--npy applies to the conductor tables (--eta writes its arrays in the JSON)");
+  GlassGrid g;
+  g.ndfs.clear(), g.dims.clear(), g.sides.clear();
+  // Without --ndf: GGX (the default list's Phong has no glass tables).
+  const std::vector<std::string> ndfs = a.ndfs == EnergyArgs{}.ndfs ? std::vector<std::string>{"ggx"} : a.ndfs;
+  for (const std::string& n : ndfs) {
+    const auto k = ndf_from_name(n);
+    if (!k || (*k != NdfKind::ggx && *k != NdfKind::beckmann))
+      throw support::UserError("--ndf = \"" + n + "\" is not one of \"ggx\", \"beckmann\" with --eta");
+    g.ndfs.push_back(*k);
+  }
+  for (const std::string& d : a.dims) {
+    if (d != "flatland" && d != "3d")
+      throw support::UserError("--dim = \"" + d + "\" is not one of \"flatland\", \"3d\"");
+    g.dims.push_back(d == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d);
+  }
+  for (const std::string& s : a.sides) {
+    if (s != "above" && s != "below")
+      throw support::UserError("--side = \"" + s + "\" is not one of \"above\", \"below\"");
+    g.sides.push_back(s == "above" ? sim::Medium::above : sim::Medium::below);
+  }
+  g.etas = a.eta;
+  g.mus = a.mu.empty() ? midpoints(a.mu_points) : a.mu;
+  if (a.mu.empty() && (a.mu_points < 1 || a.mu_points > kMaxMuPoints))
+    throw support::UserError("--mu-points = " + std::to_string(a.mu_points) + " is out of range [1, " +
+                             std::to_string(kMaxMuPoints) + "]");
+  if (a.alpha.empty() && (a.alpha_points < 1 || a.alpha_points > kMaxAlphaPoints))
+    throw support::UserError("--alpha-points = " + std::to_string(a.alpha_points) + " is out of range [1, " +
+                             std::to_string(kMaxAlphaPoints) + "]");
+  g.alphas = a.alpha.empty() ? midpoints(a.alpha_points) : a.alpha;
+  g.rays = a.rays;
+  g.seed = static_cast<std::uint64_t>(a.seed);
+  g.max_k = a.max_k;
+  g.grooves = a.grooves;
+  check_glass_grid(g);
+  if (!a.out.empty()) support::check_writable_target(a.out, a.force);
+  if (a.dry_run) return 0;
+  const auto t = run_glass_table(g, a.threads, terminal_progress("energy --eta"), a.cancel);
+  if (!t) return interrupted_no_report();
+  print_glass_table(std::cout, *t);
+  if (!a.out.empty()) {
+    support::write_file_atomically(a.out, support::json_text(glass_table_json(*t), 1) + "\n", a.force);
+    std::cout << "table: " << support::printable(a.out) << "\n";
+  }
+  return 0;
+}
+
+}  // namespace vgroove::app

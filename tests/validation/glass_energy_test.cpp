@@ -1,0 +1,177 @@
+// Tests of the rough-glass energy tables (validation/glass_energy.h): a nearly flat interface gives
+// Fresnel's R by hand from either side; the hemispherical averages obey reciprocity,
+// T_avg(above) = eta^2 T_avg(below) in 3D and eta T_avg(below) in flatland, within the sample
+// count's noise (the other power, and the flat interface's identity by quadrature, beside it); the
+// conductor limit gives the conductor tables' E_k; every ray is accounted; the counts do not depend
+// on the thread count.
+#include "vgroove/analytic/quadrature.h"
+#include "vgroove/optics/fresnel.h"
+#include "vgroove/validation/energy_table.h"
+#include "vgroove/validation/glass_energy.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+namespace vgroove::validation {
+namespace {
+
+double share(const std::vector<long long>& v, long long rays) {
+  return static_cast<double>(std::accumulate(v.begin(), v.end(), 0LL)) / static_cast<double>(rays);
+}
+
+GlassTable run(const GlassGrid& g, int threads = 2) {
+  auto t = run_glass_table(g, threads);
+  EXPECT_TRUE(t.has_value());
+  return t ? *t : GlassTable{};
+}
+
+// Beckmann alpha 0.01 (facets within a degree or two of the normal, no tail): E_R is the flat
+// interface's F(mu, eta) from above and F(mu, 1/eta) from below (1 beyond the critical angle),
+// within 5 standard errors plus 1e-3 for the facets' spread.
+TEST(GlassEnergy, NearlyFlatIsFresnel) {
+  GlassGrid g;
+  g.ndfs = {NdfKind::beckmann};
+  g.dims = {SurfaceDim::three_d, SurfaceDim::flatland};
+  g.etas = {1.5};
+  g.alphas = {0.01};
+  g.mus = {1.0, 0.8, 0.5, 0.2};
+  g.rays = 20000;
+  g.grooves = 2000;
+  const GlassTable t = run(g);
+  for (std::size_t c = 0; c < g.cells(); ++c) {
+    const GlassCell x = g.cell_at(c);
+    const double F =
+        optics::fresnel_dielectric(x.mu, x.from == sim::Medium::above ? x.eta : 1.0 / x.eta);
+    const double R = share(t.cells[c].reflected, t.cells[c].rays);
+    const double se = std::sqrt(std::max(F * (1 - F), 1e-4) / static_cast<double>(g.rays));
+    EXPECT_NEAR(R, F, 5 * se + 1e-3) << surface_dim_name(x.dim) << " from " << (x.from == sim::Medium::above ? "above" : "below")
+                                    << " mu " << x.mu;
+  }
+}
+
+// The flat interface's identity, by quadrature of the project's Fresnel: 1 - F_avg(1/eta) =
+// (1 - F_avg(eta)) / eta^2, F_avg = int_0^1 2 mu F(mu) d mu.
+TEST(GlassEnergy, FlatInterfaceAveragesObeyTheIdentity) {
+  for (double eta : {1.33, 1.5, 2.4}) {
+    auto avg = [](double e) {
+      return analytic::integrate_adaptive_parts([e](double mu) { return 2 * mu * optics::fresnel_dielectric(mu, e); },
+                                                0.0, 1.0, 1e-12, 1e-14);
+    };
+    EXPECT_NEAR(1 - avg(1 / eta), (1 - avg(eta)) / (eta * eta), 1e-9) << eta;
+    EXPECT_GT(std::abs(1 - avg(1 / eta) - (1 - avg(eta)) / eta), 0.05) << eta;  // the other power is wrong
+  }
+}
+
+// Reciprocity of the exact rough surface, 3D (eta^2) and flatland (eta^1), GGX alpha 0.5 and
+// Beckmann 1.0, eta 1.5 and 1/2.4: within 4 standard errors (8 tests). The other power misses by
+// more than 20.
+TEST(GlassEnergy, ReciprocityOfTheAverages) {
+  GlassGrid g;
+  g.ndfs = {NdfKind::ggx, NdfKind::beckmann};
+  g.dims = {SurfaceDim::three_d, SurfaceDim::flatland};
+  g.etas = {1.5, 1 / 2.4};
+  g.alphas = {0.5};
+  g.mus = {1.0};
+  g.rays = 40000;
+  g.grooves = 2000;
+  const GlassTable t = run(g);
+  const std::vector<GlassReciprocity> pairs = glass_reciprocity(t);
+  ASSERT_EQ(pairs.size(), 8u);
+  for (const GlassReciprocity& r : pairs) {
+    const bool three_d = r.cell.dim == SurfaceDim::three_d;
+    EXPECT_LT(std::abs(r.z()), 4.0) << ndf_name(r.cell.ndf) << " " << surface_dim_name(r.cell.dim) << " eta "
+                                    << r.cell.eta << ": " << r.above << " vs " << r.scaled_below;
+    const double wrong = (three_d ? r.cell.eta : r.cell.eta * r.cell.eta) * r.below;
+    EXPECT_GT(std::abs(r.above - wrong) / r.se, 20.0) << surface_dim_name(r.cell.dim);
+  }
+}
+
+// F = 1: every ray reflects, in the orders the conductor tables' fresh grooves give (sim/ndf_grooves.h:
+// the same groove law, independent streams), per k = 1, 2, 3 and beyond within 5 standard errors.
+TEST(GlassEnergy, ConductorLimitIsTheConductorTable) {
+  GlassGrid g;
+  g.dims = {SurfaceDim::three_d, SurfaceDim::flatland};
+  g.sides = {sim::Medium::above};
+  g.etas = {1.5};
+  g.alphas = {0.8};
+  g.mus = {0.6};
+  g.rays = 40000;
+  g.grooves = 4000;
+  g.max_k = 3;
+  g.conductor_limit = true;
+  const GlassTable t = run(g);
+  EnergyGrid e;
+  e.ndfs = {NdfKind::ggx};
+  e.dims = g.dims;
+  e.alphas = g.alphas;
+  e.mus = g.mus;
+  e.rays = 40000;
+  e.max_k = 3;
+  const auto conductor = run_energy_table(e, 2);
+  ASSERT_TRUE(conductor.has_value());
+  for (std::size_t d = 0; d < 2; ++d) {
+    const GlassCounts& glass = t.cells[d];
+    const sim::BounceCounts& c = conductor->cells[d].counts;
+    EXPECT_EQ(share(glass.transmitted, glass.rays), 0.0);
+    for (int k = 1; k <= 4; ++k) {
+      const double a = static_cast<double>(glass.reflected[static_cast<std::size_t>(k - 1)]) / glass.rays;
+      const double b = static_cast<double>(c.by_k[static_cast<std::size_t>(k)]) / static_cast<double>(c.rays);
+      const double se = std::sqrt(a * (1 - a) / glass.rays + b * (1 - b) / static_cast<double>(c.rays));
+      EXPECT_NEAR(a, b, 5 * se + 1e-12) << surface_dim_name(g.dims[d]) << " k " << k;
+    }
+  }
+}
+
+TEST(GlassEnergy, EnergyIsAccountedAndTheCountsDoNotDependOnThreads) {
+  GlassGrid g;
+  g.dims = {SurfaceDim::three_d, SurfaceDim::flatland};
+  g.etas = {2.4, 1 / 1.33};
+  g.alphas = {0.05, 1.5};
+  g.mus = {0.999, 0.01};
+  g.rays = 3000;
+  g.grooves = 500;
+  g.max_k = 4;
+  const GlassTable one = run(g, 1), two = run(g, 2);
+  ASSERT_EQ(one.cells.size(), g.cells() + g.average_cells());
+  for (std::size_t c = 0; c < one.cells.size(); ++c) {
+    const GlassCounts& x = one.cells[c];
+    const long long left = std::accumulate(x.reflected.begin(), x.reflected.end(), 0LL) +
+                           std::accumulate(x.transmitted.begin(), x.transmitted.end(), 0LL);
+    EXPECT_EQ(left + x.bounce_limit + x.vertex, g.rays) << c;
+    EXPECT_EQ(x.reflected, two.cells[c].reflected) << c;
+    EXPECT_EQ(x.transmitted, two.cells[c].transmitted) << c;
+    EXPECT_EQ(x.interactions, two.cells[c].interactions) << c;
+  }
+}
+
+TEST(GlassEnergy, BadGridsAreNamed) {
+  GlassGrid g;
+  g.etas = {1.5};
+  g.alphas = {0.5};
+  g.mus = {0.5};
+  auto message = [&](GlassGrid x) {
+    try {
+      check_glass_grid(x);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message(g), "");
+  GlassGrid x = g;
+  x.etas = {1.0};
+  EXPECT_NE(message(x).find("--eta = 1 is no interface"), std::string::npos);
+  x.etas = {0.0};
+  EXPECT_NE(message(x).find("--eta = 0 is out of range [0.1, 10]"), std::string::npos);
+  x = g, x.ndfs = {NdfKind::phong};
+  EXPECT_NE(message(x).find("--ndf = \"phong\""), std::string::npos);
+  x = g, x.grooves = 0;
+  EXPECT_NE(message(x).find("--grooves = 0 is out of range"), std::string::npos);
+  x = g, x.mus = {0.0};
+  EXPECT_NE(message(x).find("--mu = 0 is out of range"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vgroove::validation

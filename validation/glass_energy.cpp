@@ -1,0 +1,370 @@
+#include "vgroove/validation/glass_energy.h"
+
+#include "vgroove/common/angles.h"
+#include "vgroove/sim/beam.h"
+#include "vgroove/sim/dielectric_lifted.h"
+#include "vgroove/sim/dielectric_microsurface.h"
+#include "vgroove/sim/microsurface.h"
+#include "vgroove/sim/microsurface3d.h"
+#include "vgroove/support/format.h"
+#include "vgroove/support/seconds_since.h"
+#include "vgroove/support/user_error.h"
+#include "vgroove/validation/ranges.h"
+#include "vgroove/validation/report.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+namespace vgroove::validation {
+
+namespace {
+
+constexpr std::uint64_t kGlassSurfaceStream = 0x676c617373ULL;  // "glass"
+constexpr std::uint64_t kGlassRayStream = 0x676c61737372ULL;    // "glassr"
+// Chunks of sim::kRaysPerChunk rays a work unit holds (the surface is built once per unit).
+constexpr std::int64_t kChunksPerUnit = 8;
+
+const char* side_name(sim::Medium m) { return m == sim::Medium::above ? "above" : "below"; }
+
+// The surface of (ndf, dim, alpha): equal-width grooves with facet angles from the flatland law
+// (make_microsurface) or the 3D projected-area law; the seed set apart per (ndf, dim, alpha).
+sim::Microsurface glass_surface(const GlassGrid& g, const GlassCell& c, std::size_t surface_index) {
+  sim::MicrosurfaceOptions o;
+  o.ndf = c.ndf;
+  o.alpha = c.alpha;
+  o.grooves = g.grooves;
+  o.seed = sim::Rng(g.seed, kGlassSurfaceStream, surface_index).next_u64();
+  if (c.dim == SurfaceDim::flatland) return sim::make_microsurface(o);
+  sim::Microsurface m;
+  m.options = o;
+  const double steepest = std::nextafter(0.5 * std::numbers::pi, 0.0);
+  for (int j = 0; j < o.grooves; ++j) {
+    sim::Rng rng(o.seed, sim::kGrooveStream, static_cast<std::uint64_t>(j));
+    const double t = std::min(steepest, sim::sample_theta_m_3d(o.ndf, o.alpha, sim::uniform_open(rng)));
+    m.theta_m.push_back(t);
+    m.grooves.push_back(sim::make_symmetric_groove(std::numbers::pi - 2.0 * t));
+    m.data.push_back(sim::symmetric_groove_data(m.grooves.back()));
+  }
+  return m;
+}
+
+// Which surface a cell uses: its (ndf, dimension, alpha).
+std::size_t surface_index(const GlassGrid& g, std::size_t cell) {
+  const GlassCell c = g.cell_at(cell);
+  const auto at = [](const auto& v, const auto& x) {
+    return static_cast<std::size_t>(std::find(v.begin(), v.end(), x) - v.begin());
+  };
+  return (at(g.ndfs, c.ndf) * g.dims.size() + at(g.dims, c.dim)) * g.alphas.size() + at(g.alphas, c.alpha);
+}
+
+std::int64_t chunks_of(const GlassGrid& g) { return (g.rays + sim::kRaysPerChunk - 1) / sim::kRaysPerChunk; }
+
+void tally(const sim::DielectricResult& r, sim::Medium from, int max_k, GlassCounts& t) {
+  t.rays += 1;
+  t.interactions += r.interactions;
+  if (!r.exits.empty()) {
+    const sim::DielectricExit& e = r.exits.front();
+    const std::size_t row = static_cast<std::size_t>(std::min(e.k, max_k + 1) - 1);
+    (e.side == from ? t.reflected : t.transmitted)[row] += 1;
+  } else if (r.bounce_limit > 0.0) {
+    t.bounce_limit += 1;
+  } else {
+    t.vertex += 1;
+  }
+}
+
+// Rays [begin, end) of cell `cell` in chunks of sim::kRaysPerChunk, each chunk from its own stream.
+void trace_unit(const GlassGrid& g, std::size_t cell, const sim::Microsurface& surface, std::int64_t chunk0,
+                std::int64_t chunk1, GlassCounts& t, const std::atomic<bool>* cancel) {
+  const GlassCell c = g.cell_at(cell);
+  sim::DielectricOptions opt;
+  opt.eta = c.eta;
+  opt.branching = sim::Branching::random;
+  opt.max_interactions = g.max_interactions;
+  opt.conductor_limit = g.conductor_limit;
+  const sim::DielectricSurfaceTracer tracer(surface, opt);
+  const bool hemisphere = c.mu == kHemisphere;
+  double st = std::sqrt((1.0 - c.mu) * (1.0 + c.mu)), ct = c.mu;
+  const bool above = c.from == sim::Medium::above;
+  const double groove_count = static_cast<double>(surface.grooves.size());
+  const int last = static_cast<int>(surface.grooves.size()) - 1;
+  sim::DielectricResult r;
+  for (std::int64_t chunk = chunk0; chunk < chunk1; ++chunk) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) return;
+    sim::Rng rng(g.seed, kGlassRayStream + cell, static_cast<std::uint64_t>(chunk));
+    const std::int64_t n = std::min<std::int64_t>(sim::kRaysPerChunk, g.rays - chunk * sim::kRaysPerChunk);
+    for (std::int64_t j = 0; j < n; ++j) {
+      if (hemisphere) {
+        // Cosine-weighted: 3D mu = sqrt(u) (density 2 mu); flatland sin theta = u (density cos theta).
+        const double u = sim::uniform_open(rng);
+        if (c.dim == SurfaceDim::three_d)
+          ct = std::sqrt(u), st = std::sqrt(1.0 - u);
+        else
+          st = u, ct = std::sqrt((1.0 - u) * (1.0 + u));
+      }
+      // The lit point: a groove and a place across its opening (above), or a place in the period (below).
+      const double x = sim::uniform_open(rng) * groove_count;
+      const int gi = std::min(last, static_cast<int>(x));
+      const sim::Groove& groove = surface.grooves[static_cast<std::size_t>(gi)];
+      const double xl = groove.rim_x(sim::Side::left), xr = groove.rim_x(sim::Side::right);
+      const double x_open = xl + (x - gi) * (xr - xl);
+      if (c.dim == SurfaceDim::flatland) {
+        if (above)
+          tracer.trace_from_above(gi, sim::beam_ray(groove, sim::Vec2(st, -ct), x_open), rng, r);
+        else
+          tracer.trace_from_below(x, sim::Vec2(st, ct), rng, r);
+      } else {
+        // The patch's grooves at azimuth phi_a from the light's plane of incidence.
+        const double phi_a = std::numbers::pi * rng.uniform();
+        const sim::GrooveFrame3d frame{std::cos(phi_a), std::sin(phi_a)};
+        const sim::Vec3 d(-st, 0.0, above ? -ct : ct);
+        const sim::LiftedRay ray = sim::lift_ray(d, frame, c.from, opt);
+        if (above)
+          tracer.trace_from_above_with(gi, sim::beam_ray(groove, ray.e, x_open), ray.law, rng, r);
+        else
+          tracer.trace_from_below_with(x, ray.e, ray.law, rng, r);
+      }
+      tally(r, c.from, g.max_k, t);
+    }
+  }
+}
+
+GlassCounts empty_counts(int max_k) {
+  GlassCounts t;
+  t.reflected.assign(static_cast<std::size_t>(max_k) + 1, 0);
+  t.transmitted.assign(static_cast<std::size_t>(max_k) + 1, 0);
+  return t;
+}
+
+double sum(const std::vector<long long>& v) {
+  double s = 0.0;
+  for (long long x : v) s += static_cast<double>(x);
+  return s;
+}
+
+}  // namespace
+
+GlassCell GlassGrid::cell_at(std::size_t c) const {
+  GlassCell out;
+  const bool average = c >= cells();
+  const std::size_t nm = average ? 1 : mus.size(), na = alphas.size(), ne = etas.size(), ns = sides.size(),
+                    nd = dims.size();
+  if (average) c -= cells();
+  out.mu = average ? kHemisphere : mus[c % nm];
+  out.alpha = alphas[(c / nm) % na];
+  out.eta = etas[(c / (nm * na)) % ne];
+  out.from = sides[(c / (nm * na * ne)) % ns];
+  out.dim = dims[(c / (nm * na * ne * ns)) % nd];
+  out.ndf = ndfs[c / (nm * na * ne * ns * nd)];
+  return out;
+}
+
+void check_glass_grid(const GlassGrid& g) {
+  auto list = [](const std::vector<double>& v, const std::string& flag, double lo, double hi, const std::string& why) {
+    if (v.empty() || v.size() > kMaxGridPoints)
+      throw support::UserError(flag + " has " + std::to_string(v.size()) + " values, out of range [1, " +
+                               std::to_string(kMaxGridPoints) + "]");
+    for (double x : v)
+      if (!(x >= lo && x <= hi))
+        throw support::UserError(flag + " = " + support::number_text(x) + " is out of range " +
+                                 support::interval_text(lo, true, hi, true) + why);
+  };
+  list(g.mus, "--mu", kMinMu, 1.0, " (mu = cos theta_i: theta_i <= 89.9 deg, the rough surfaces' range)");
+  list(g.alphas, "--alpha", kMinAlpha, kMaxAlpha, "");
+  list(g.etas, "--eta", kMinGlassEta, kMaxGlassEta, " (n2 / n1: below the surface over above it)");
+  for (double e : g.etas)
+    if (e == 1.0) throw support::UserError("--eta = 1 is no interface (light passes straight through): leave it out");
+  for (NdfKind n : g.ndfs)
+    if (n != NdfKind::ggx && n != NdfKind::beckmann)
+      throw support::UserError(std::string("--ndf = \"") + ndf_name(n) + "\" is not one of \"ggx\", \"beckmann\" with --eta");
+  if (g.ndfs.empty() || g.dims.empty() || g.sides.empty())
+    throw support::UserError("--ndf, --dim and --side each need a value with --eta");
+  if (g.rays < 1 || g.rays > kMaxEnergyRays)
+    throw support::UserError("--rays = " + std::to_string(g.rays) + " is out of range [1, " +
+                             std::to_string(kMaxEnergyRays) + "]");
+  if (g.max_k < 1 || g.max_k > kMaxEnergyK)
+    throw support::UserError("--max-k = " + std::to_string(g.max_k) + " is out of range [1, " +
+                             std::to_string(kMaxEnergyK) + "]");
+  if (g.grooves < 1 || g.grooves > kMaxGlassGrooves)
+    throw support::UserError("--grooves = " + std::to_string(g.grooves) + " is out of range [1, " +
+                             std::to_string(kMaxGlassGrooves) + "]");
+}
+
+void GlassCounts::merge(const GlassCounts& o) {
+  rays += o.rays;
+  for (std::size_t k = 0; k < reflected.size(); ++k) reflected[k] += o.reflected[k], transmitted[k] += o.transmitted[k];
+  bounce_limit += o.bounce_limit, vertex += o.vertex, interactions += o.interactions;
+}
+
+std::optional<GlassTable> run_glass_table(const GlassGrid& g, int threads, const support::ProgressFn& progress,
+                                          const std::atomic<bool>* cancel) {
+  check_glass_grid(g);
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::int64_t chunks = chunks_of(g);
+  const std::int64_t per_cell = (chunks + kChunksPerUnit - 1) / kChunksPerUnit;
+  const std::size_t all_cells = g.cells() + g.average_cells();
+  const std::size_t units = all_cells * static_cast<std::size_t>(per_cell);
+  std::vector<GlassCounts> unit_counts(units, empty_counts(g.max_k));
+  const bool all = support::parallel_for(
+      units, support::resolve_threads(threads),
+      [&](std::size_t u) {
+        const std::size_t cell = u / static_cast<std::size_t>(per_cell);
+        const std::int64_t part = static_cast<std::int64_t>(u % static_cast<std::size_t>(per_cell));
+        const sim::Microsurface surface = glass_surface(g, g.cell_at(cell), surface_index(g, cell));
+        trace_unit(g, cell, surface, part * kChunksPerUnit, std::min(chunks, (part + 1) * kChunksPerUnit),
+                   unit_counts[u], cancel);
+      },
+      progress, cancel, 1);
+  if (!all || (cancel && cancel->load())) return std::nullopt;
+  GlassTable t;
+  t.grid = g;
+  t.cells.assign(all_cells, empty_counts(g.max_k));
+  for (std::size_t u = 0; u < units; ++u) t.cells[u / static_cast<std::size_t>(per_cell)].merge(unit_counts[u]);
+  t.threads = support::resolve_threads(threads);
+  t.wall_s = support::seconds_since(t0);
+  return t;
+}
+
+std::vector<GlassReciprocity> glass_reciprocity(const GlassTable& t) {
+  const GlassGrid& g = t.grid;
+  std::vector<GlassReciprocity> out;
+  const std::size_t base = g.cells();
+  for (std::size_t c = 0; c < g.average_cells(); ++c) {
+    const GlassCell x = g.cell_at(base + c);
+    if (x.from != sim::Medium::above) continue;
+    for (std::size_t d = 0; d < g.average_cells(); ++d) {
+      const GlassCell y = g.cell_at(base + d);
+      if (y.from != sim::Medium::below || y.ndf != x.ndf || y.dim != x.dim || y.eta != x.eta || y.alpha != x.alpha)
+        continue;
+      const GlassCounts &a = t.cells[base + c], &b = t.cells[base + d];
+      const double pa = sum(a.transmitted) / static_cast<double>(a.rays);
+      const double pb = sum(b.transmitted) / static_cast<double>(b.rays);
+      const double scale = x.dim == SurfaceDim::three_d ? x.eta * x.eta : x.eta;
+      GlassReciprocity r;
+      r.cell = x;
+      r.above = pa, r.below = pb, r.scaled_below = scale * pb;
+      r.se = std::hypot(std::sqrt(pa * (1 - pa) / static_cast<double>(a.rays)),
+                        scale * std::sqrt(pb * (1 - pb) / static_cast<double>(b.rays)));
+      out.push_back(r);
+    }
+  }
+  return out;
+}
+
+nlohmann::json glass_table_json(const GlassTable& t) {
+  const GlassGrid& g = t.grid;
+  nlohmann::json j = provenance();
+  j["kind"] = "glass_energy";
+  j["seed"] = g.seed;
+  j["threads"] = t.threads;
+  j["wall_s"] = t.wall_s;
+  nlohmann::json ndfs = nlohmann::json::array(), dims = nlohmann::json::array(), sides = nlohmann::json::array();
+  for (NdfKind n : g.ndfs) ndfs.push_back(ndf_name(n));
+  for (SurfaceDim d : g.dims) dims.push_back(surface_dim_name(d));
+  for (sim::Medium m : g.sides) sides.push_back(side_name(m));
+  j["grid"] = {{"ndf", ndfs},          {"dimension", dims},          {"side", sides},
+               {"eta", g.etas},        {"alpha", g.alphas},          {"mu", g.mus},
+               {"rays", g.rays},       {"max_k", g.max_k},           {"grooves", g.grooves},
+               {"max_interactions", g.max_interactions}};
+  j["definitions"] = {
+      {"axes", "arrays are indexed [ndf][dimension][side][eta][alpha][mu] (and [row] for the by-k arrays, rows k = "
+               "1..max_k then k > max_k)"},
+      {"side", "above: light arrives in medium 1 (index n1, above the surface); below: in medium 2 (n2) from far "
+               "below"},
+      {"eta", "n2 / n1 (the index below the surface over the index above it), whatever the side"},
+      {"mu", "cos of the light's angle from the normal of the side it arrives from"},
+      {"alpha", "the NDF's roughness (GGX, Beckmann) of the grooves' facets"},
+      {"E_R", "the share of the light that leaves into the medium it came from"},
+      {"E_T", "the share that leaves into the other medium"},
+      {"se", "standard error sqrt(E (1 - E) / rays) of a share"},
+      {"surface", "V-grooves of equal width, facet angles from the NDF (3D: the projected-area law 2 pi D cos sin; "
+                  "flatland: 2 D2 cos), extruded along one axis; in 3D the grooves' azimuth is uniform per ray"}};
+  const std::size_t nc = g.cells(), rows = static_cast<std::size_t>(g.max_k) + 1;
+  std::vector<double> er(nc), et(nc), ser(nc), set(nc), lim(nc), vtx(nc), erk(nc * rows), etk(nc * rows);
+  for (std::size_t c = 0; c < nc; ++c) {
+    const GlassCounts& x = t.cells[c];
+    const double N = static_cast<double>(x.rays);
+    er[c] = sum(x.reflected) / N, et[c] = sum(x.transmitted) / N;
+    ser[c] = std::sqrt(er[c] * (1 - er[c]) / N), set[c] = std::sqrt(et[c] * (1 - et[c]) / N);
+    lim[c] = static_cast<double>(x.bounce_limit) / N, vtx[c] = static_cast<double>(x.vertex) / N;
+    for (std::size_t k = 0; k < rows; ++k)
+      erk[c * rows + k] = static_cast<double>(x.reflected[k]) / N, etk[c * rows + k] = x.transmitted[k] / N;
+  }
+  const std::vector<std::size_t> shape{g.ndfs.size(), g.dims.size(), g.sides.size(),
+                                       g.etas.size(), g.alphas.size(), g.mus.size()};
+  std::vector<std::size_t> shape_k = shape;
+  shape_k.push_back(rows);
+  auto array = [](const std::vector<std::size_t>& s, const std::vector<double>& v) {
+    return nlohmann::json{{"shape", s}, {"values", v}};
+  };
+  j["arrays"] = {{"E_R", array(shape, er)},          {"E_T", array(shape, et)},         {"se_R", array(shape, ser)},
+                 {"se_T", array(shape, set)},        {"bounce_limit", array(shape, lim)}, {"vertex", array(shape, vtx)},
+                 {"E_R_by_k", array(shape_k, erk)}, {"E_T_by_k", array(shape_k, etk)}};
+  nlohmann::json averages = nlohmann::json::array(), pairs = nlohmann::json::array();
+  for (std::size_t c = g.cells(); c < t.cells.size(); ++c) {
+    const GlassCell x = g.cell_at(c);
+    const GlassCounts& n = t.cells[c];
+    const double N = static_cast<double>(n.rays), pr = sum(n.reflected) / N, pt = sum(n.transmitted) / N;
+    averages.push_back({{"ndf", ndf_name(x.ndf)},
+                        {"dimension", surface_dim_name(x.dim)},
+                        {"side", side_name(x.from)},
+                        {"eta", x.eta},
+                        {"alpha", x.alpha},
+                        {"R_avg", pr},
+                        {"T_avg", pt},
+                        {"se_R", std::sqrt(pr * (1 - pr) / N)},
+                        {"se_T", std::sqrt(pt * (1 - pt) / N)},
+                        {"rays", n.rays}});
+  }
+  for (const GlassReciprocity& r : glass_reciprocity(t))
+    pairs.push_back({{"ndf", ndf_name(r.cell.ndf)},
+                     {"dimension", surface_dim_name(r.cell.dim)},
+                     {"eta", r.cell.eta},
+                     {"alpha", r.cell.alpha},
+                     {"T_avg_above", r.above},
+                     {"T_avg_below", r.below},
+                     {"scaled_T_avg_below", r.scaled_below},
+                     {"difference", r.above - r.scaled_below},
+                     {"se", r.se},
+                     {"z", r.z()}});
+  j["averages"] = {{"definition", "the light's angle drawn cosine-weighted over its hemisphere (3D: density 2 mu; "
+                                  "flatland: cos theta): R_avg and T_avg are the hemispherical averages, without "
+                                  "quadrature error"},
+                   {"cells", averages}};
+  j["reciprocity"] = {{"holds", "T_avg(above) = eta^p T_avg(below), p = 2 in 3D and 1 in flatland (reciprocity of "
+                                "the exact surface, f_t(i, o) / n_o^p = f_t(o, i) / n_i^p)"},
+                      {"pairs", pairs}};
+  return j;
+}
+
+void print_glass_table(std::ostream& os, const GlassTable& t) {
+  const GlassGrid& g = t.grid;
+  char line[256];
+  std::snprintf(line, sizeof line, "glass energy: %zu cells, %lld rays each, %d grooves; %.1f s on %d threads\n",
+                g.cells(), g.rays, g.grooves, t.wall_s, t.threads);
+  os << line;
+  os << "  ndf       dim       side   eta     alpha   mu        E_R        E_T        se     limit\n";
+  const std::size_t most = 200;
+  for (std::size_t c = 0; c < std::min(most, g.cells()); ++c) {
+    const GlassCell x = g.cell_at(c);
+    const GlassCounts& n = t.cells[c];
+    const double N = static_cast<double>(n.rays), er = sum(n.reflected) / N, et = sum(n.transmitted) / N;
+    std::snprintf(line, sizeof line, "  %-9s %-9s %-6s %-7.4g %-7.4g %-9.4g %-10.6f %-10.6f %-6.1e %.1e\n",
+                  ndf_name(x.ndf), surface_dim_name(x.dim), side_name(x.from), x.eta, x.alpha, x.mu, er, et,
+                  std::sqrt(std::max(er * (1 - er), et * (1 - et)) / N), static_cast<double>(n.bounce_limit) / N);
+    os << line;
+  }
+  if (g.cells() > most) os << "  ... " << g.cells() - most << " more cells in the JSON\n";
+  for (const GlassReciprocity& r : glass_reciprocity(t)) {
+    std::snprintf(line, sizeof line,
+                  "  reciprocity %s %s eta %g alpha %g: T_avg above %.6f, eta^%d T_avg below %.6f (%+.1f se)\n",
+                  ndf_name(r.cell.ndf), surface_dim_name(r.cell.dim), r.cell.eta, r.cell.alpha, r.above,
+                  r.cell.dim == SurfaceDim::three_d ? 2 : 1, r.scaled_below, r.z());
+    os << line;
+  }
+}
+
+}  // namespace vgroove::validation

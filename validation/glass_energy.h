@@ -1,0 +1,112 @@
+// vgroove validation: exact energy tables of rough glass: the directional reflectance E_R(mu,
+// alpha, eta) and transmittance E_T(mu, alpha, eta) of V-groove surfaces between two dielectrics,
+// per number of interactions k, for light from either side (what renderers tabulate for their
+// glass energy compensation), traced exactly with Fresnel's random choice at every hit.
+//
+// The surface of a cell: G grooves of equal width side by side (sim/dielectric_microsurface.h),
+// their facet angles from the NDF: flatland 2 D2 cos (sim/microsurface.h), 3D the projected-area
+// law 2 pi D cos sin of Lee et al.'s 3D grooves (sim/microsurface3d.h), all extruded along one axis
+// and lifted (sim/dielectric_lifted.h). In 3D each ray meets a patch of parallel grooves at an
+// azimuth drawn uniformly in [0, pi): light refracted into the material runs under grooves of its
+// own patch (a surface of patches much wider than a groove; docs/derivations/dielectric_lifting.md,
+// "Energy tables"). Light from above arrives in medium 1 (n1) and lands uniformly across the
+// grooves' openings; light from below arrives in medium 2 (n2) from far below, uniformly across
+// the period; mu is the cosine of its angle from the normal of its own side, eta = n2 / n1.
+//
+// Per cell: E_R and E_T per row k = 1..max_k (and k > max_k), what the bounce limit stopped and the
+// vertex hits, each a count over N rays with standard error sqrt(E (1 - E) / N). Nothing is
+// absorbed: E_R + E_T + limit + vertex = 1 per cell exactly (counts). Beside the grid, one cell per
+// (ndf, dim, side, eta, alpha) draws each ray's angle from the cosine-weighted hemisphere (3D:
+// density 2 mu; flatland: cos theta on (0, pi/2)): its E_T is the hemispherical average T_avg with
+// no quadrature error. Reciprocity of the exact surface (f_t(i, o) / n_o^2 = f_t(o, i) / n_i^2 in
+// 3D, n^1 in flatland) gives T_avg(above) = eta^2 T_avg(below) in 3D and eta T_avg(below) in
+// flatland, which the table reports with its standard error (a flat interface: 1 - F_avg(1/eta) =
+// (1 - F_avg(eta)) / eta^2).
+// Tests: tests/validation/glass_energy_test.cpp (GlassEnergy.NearlyFlatIsFresnel,
+// GlassEnergy.ConductorLimitIsTheConductorTable, GlassEnergy.ReciprocityOfTheAverages,
+// GlassEnergy.DeterministicForAnyThreads, GlassEnergy.EnergyIsAccounted).
+#pragma once
+
+#include "vgroove/common/ndf_kind.h"
+#include "vgroove/sim/dielectric_groove.h"
+#include "vgroove/support/parallel.h"
+#include "vgroove/validation/brdf_suite.h"
+#include "vgroove/validation/ranges.h"
+
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <cstdint>
+#include <optional>
+#include <ostream>
+#include <vector>
+
+namespace vgroove::validation {
+
+struct GlassCell {
+  NdfKind ndf = NdfKind::ggx;
+  SurfaceDim dim = SurfaceDim::three_d;
+  sim::Medium from = sim::Medium::above;
+  double eta = 1.5;  // n2 / n1
+  double alpha = 0.5;
+  double mu = 1.0;  // cos of the light's angle from its side's normal; kHemisphere: cosine-weighted
+};
+inline constexpr double kHemisphere = -1.0;
+
+struct GlassGrid {
+  std::vector<NdfKind> ndfs{NdfKind::ggx};
+  std::vector<SurfaceDim> dims{SurfaceDim::three_d};
+  std::vector<sim::Medium> sides{sim::Medium::above, sim::Medium::below};
+  std::vector<double> etas;    // each in [kMinGlassEta, kMaxGlassEta], not 1
+  std::vector<double> alphas;  // each in [kMinAlpha, kMaxAlpha]
+  std::vector<double> mus;     // each in [kMinMu, 1]
+  long long rays = 100000;     // per cell
+  std::uint64_t seed = 1;
+  int max_k = 16;
+  int grooves = 10000;  // per surface (one surface per ndf, dimension and alpha)
+  int max_interactions = 100000;
+  bool conductor_limit = false;  // F = 1 at every hit (a check: the conductor tables' E_k)
+  std::size_t cells() const { return average_cells() * mus.size(); }
+  // The hemispherical cells, after the grid's: one per (ndf, dimension, side, eta, alpha).
+  std::size_t average_cells() const { return ndfs.size() * dims.size() * sides.size() * etas.size() * alphas.size(); }
+  // Order: ndf, dimension, side, eta, alpha, mu (innermost); then the hemispherical cells in the
+  // same order without mu.
+  GlassCell cell_at(std::size_t c) const;
+};
+
+// One line naming the flag and its range (--eta, --side, --ndf (ggx, beckmann), --grooves, ...).
+void check_glass_grid(const GlassGrid& g);
+
+struct GlassCounts {
+  long long rays = 0;
+  std::vector<long long> reflected, transmitted;  // rows k = 1..max_k, then k > max_k
+  long long bounce_limit = 0, vertex = 0;
+  long long interactions = 0;
+  void merge(const GlassCounts& o);
+};
+
+struct GlassTable {
+  GlassGrid grid;
+  std::vector<GlassCounts> cells;  // the grid's, then the hemispherical ones
+  int threads = 1;
+  double wall_s = 0.0;
+};
+
+// Every cell in this process (deterministic: the same counts for any thread count); nothing when
+// *cancel was set.
+std::optional<GlassTable> run_glass_table(const GlassGrid& g, int threads, const support::ProgressFn& progress = {},
+                                          const std::atomic<bool>* cancel = nullptr);
+
+// The reciprocity of the hemispherical averages for each (ndf, dim, eta, alpha) with both sides:
+// T_avg(above) against eta^p T_avg(below), p = 2 in 3D and 1 in flatland.
+struct GlassReciprocity {
+  GlassCell cell;  // its side and mu not meaningful
+  double above = 0.0, below = 0.0, scaled_below = 0.0, se = 0.0;
+  double z() const { return se > 0.0 ? (above - scaled_below) / se : 0.0; }
+};
+std::vector<GlassReciprocity> glass_reciprocity(const GlassTable& t);
+
+nlohmann::json glass_table_json(const GlassTable& t);
+void print_glass_table(std::ostream& os, const GlassTable& t);
+
+}  // namespace vgroove::validation
