@@ -179,7 +179,8 @@ void check_glass_grid(const GlassGrid& g) {
     if (e == 1.0) throw support::UserError("--eta = 1 is no interface (light passes straight through): leave it out");
   for (NdfKind n : g.ndfs)
     if (n != NdfKind::ggx && n != NdfKind::beckmann)
-      throw support::UserError(std::string("--ndf = \"") + ndf_name(n) + "\" is not one of \"ggx\", \"beckmann\" with --eta");
+      throw support::UserError(std::string("--ndf = \"") + ndf_name(n) +
+                               "\" is not one of \"ggx\", \"beckmann\" with --eta");
   if (g.ndfs.empty() || g.dims.empty() || g.sides.empty())
     throw support::UserError("--ndf, --dim and --side each need a value with --eta");
   if (g.rays < 1 || g.rays > kMaxEnergyRays)
@@ -265,23 +266,27 @@ nlohmann::json glass_table_json(const GlassTable& t) {
   for (NdfKind n : g.ndfs) ndfs.push_back(ndf_name(n));
   for (SurfaceDim d : g.dims) dims.push_back(surface_dim_name(d));
   for (sim::Medium m : g.sides) sides.push_back(side_name(m));
-  j["grid"] = {{"ndf", ndfs},          {"dimension", dims},          {"side", sides},
-               {"eta", g.etas},        {"alpha", g.alphas},          {"mu", g.mus},
-               {"rays", g.rays},       {"max_k", g.max_k},           {"grooves", g.grooves},
-               {"max_interactions", g.max_interactions}};
+  j["grid"] = {{"ndf", ndfs},          {"dimension", dims},
+               {"side", sides},        {"eta", g.etas},
+               {"alpha", g.alphas},    {"mu", g.mus},
+               {"rays", g.rays},       {"max_k", g.max_k},
+               {"grooves", g.grooves}, {"max_interactions", g.max_interactions}};
   j["definitions"] = {
-      {"axes", "arrays are indexed [ndf][dimension][side][eta][alpha][mu] (and [row] for the by-k arrays, rows k = "
-               "1..max_k then k > max_k)"},
-      {"side", "above: light arrives in medium 1 (index n1, above the surface); below: in medium 2 (n2) from far "
-               "below"},
+      {"axes",
+       "arrays are indexed [ndf][dimension][side][eta][alpha][mu] (and [row] for the by-k arrays, rows k = "
+       "1..max_k then k > max_k)"},
+      {"side",
+       "above: light arrives in medium 1 (index n1, above the surface); below: in medium 2 (n2) from far "
+       "below"},
       {"eta", "n2 / n1 (the index below the surface over the index above it), whatever the side"},
       {"mu", "cos of the light's angle from the normal of the side it arrives from"},
       {"alpha", "the NDF's roughness (GGX, Beckmann) of the grooves' facets"},
       {"E_R", "the share of the light that leaves into the medium it came from"},
       {"E_T", "the share that leaves into the other medium"},
       {"se", "standard error sqrt(E (1 - E) / rays) of a share"},
-      {"surface", "V-grooves of equal width, facet angles from the NDF (3D: the projected-area law 2 pi D cos sin; "
-                  "flatland: 2 D2 cos), extruded along one axis; in 3D the grooves' azimuth is uniform per ray"}};
+      {"surface",
+       "V-grooves of equal width, facet angles from the NDF (3D: the projected-area law 2 pi D cos sin; "
+       "flatland: 2 D2 cos), extruded along one axis; in 3D the grooves' azimuth is uniform per ray"}};
   const std::size_t nc = g.cells(), rows = static_cast<std::size_t>(g.max_k) + 1;
   std::vector<double> er(nc), et(nc), ser(nc), set(nc), lim(nc), vtx(nc), erk(nc * rows), etk(nc * rows);
   for (std::size_t c = 0; c < nc; ++c) {
@@ -293,15 +298,15 @@ nlohmann::json glass_table_json(const GlassTable& t) {
     for (std::size_t k = 0; k < rows; ++k)
       erk[c * rows + k] = static_cast<double>(x.reflected[k]) / N, etk[c * rows + k] = x.transmitted[k] / N;
   }
-  const std::vector<std::size_t> shape{g.ndfs.size(), g.dims.size(), g.sides.size(),
+  const std::vector<std::size_t> shape{g.ndfs.size(), g.dims.size(),   g.sides.size(),
                                        g.etas.size(), g.alphas.size(), g.mus.size()};
   std::vector<std::size_t> shape_k = shape;
   shape_k.push_back(rows);
   auto array = [](const std::vector<std::size_t>& s, const std::vector<double>& v) {
     return nlohmann::json{{"shape", s}, {"values", v}};
   };
-  j["arrays"] = {{"E_R", array(shape, er)},          {"E_T", array(shape, et)},         {"se_R", array(shape, ser)},
-                 {"se_T", array(shape, set)},        {"bounce_limit", array(shape, lim)}, {"vertex", array(shape, vtx)},
+  j["arrays"] = {{"E_R", array(shape, er)},         {"E_T", array(shape, et)},           {"se_R", array(shape, ser)},
+                 {"se_T", array(shape, set)},       {"bounce_limit", array(shape, lim)}, {"vertex", array(shape, vtx)},
                  {"E_R_by_k", array(shape_k, erk)}, {"E_T_by_k", array(shape_k, etk)}};
   nlohmann::json averages = nlohmann::json::array(), pairs = nlohmann::json::array();
   for (std::size_t c = g.cells(); c < t.cells.size(); ++c) {
@@ -330,12 +335,14 @@ nlohmann::json glass_table_json(const GlassTable& t) {
                      {"difference", r.above - r.scaled_below},
                      {"se", r.se},
                      {"z", r.z()}});
-  j["averages"] = {{"definition", "the light's angle drawn cosine-weighted over its hemisphere (3D: density 2 mu; "
-                                  "flatland: cos theta): R_avg and T_avg are the hemispherical averages, without "
-                                  "quadrature error"},
+  j["averages"] = {{"definition",
+                    "the light's angle drawn cosine-weighted over its hemisphere (3D: density 2 mu; "
+                    "flatland: cos theta): R_avg and T_avg are the hemispherical averages, without "
+                    "quadrature error"},
                    {"cells", averages}};
-  j["reciprocity"] = {{"holds", "T_avg(above) = eta^p T_avg(below), p = 2 in 3D and 1 in flatland (reciprocity of "
-                                "the exact surface, f_t(i, o) / n_o^p = f_t(o, i) / n_i^p)"},
+  j["reciprocity"] = {{"holds",
+                       "T_avg(above) = eta^p T_avg(below), p = 2 in 3D and 1 in flatland (reciprocity of "
+                       "the exact surface, f_t(i, o) / n_o^p = f_t(o, i) / n_i^p)"},
                       {"pairs", pairs}};
   return j;
 }
