@@ -162,8 +162,8 @@ GlassCell GlassGrid::cell_at(std::size_t c) const {
   return out;
 }
 
-void check_glass_grid(const GlassGrid& g) {
-  auto list = [](const std::vector<double>& v, const std::string& flag, double lo, double hi, const std::string& why) {
+void check_glass_grid(const GlassGrid& g, const std::string& prefix) {
+  auto list = [&](const std::vector<double>& v, const std::string& flag, double lo, double hi, const std::string& why) {
     if (v.empty() || v.size() > kMaxGridPoints)
       throw support::UserError(flag + " has " + std::to_string(v.size()) + " values, out of range [1, " +
                                std::to_string(kMaxGridPoints) + "]");
@@ -172,25 +172,25 @@ void check_glass_grid(const GlassGrid& g) {
         throw support::UserError(flag + " = " + support::number_text(x) + " is out of range " +
                                  support::interval_text(lo, true, hi, true) + why);
   };
-  list(g.mus, "--mu", kMinMu, 1.0, " (mu = cos theta_i: theta_i <= 89.9 deg, the rough surfaces' range)");
-  list(g.alphas, "--alpha", kMinAlpha, kMaxAlpha, "");
-  list(g.etas, "--eta", kMinGlassEta, kMaxGlassEta, " (n2 / n1: below the surface over above it)");
+  list(g.mus, prefix + "mu", kMinMu, 1.0, " (mu = cos theta_i: theta_i <= 89.9 deg, the rough surfaces' range)");
+  list(g.alphas, prefix + "alpha", kMinAlpha, kMaxAlpha, "");
+  list(g.etas, prefix + "eta", kMinGlassEta, kMaxGlassEta, " (n2 / n1: below the surface over above it)");
   for (double e : g.etas)
-    if (e == 1.0) throw support::UserError("--eta = 1 is no interface (light passes straight through): leave it out");
+    if (e == 1.0)
+      throw support::UserError(prefix + "eta = 1 is no interface (light passes straight through): leave it out");
   for (NdfKind n : g.ndfs)
     if (n != NdfKind::ggx && n != NdfKind::beckmann)
-      throw support::UserError(std::string("--ndf = \"") + ndf_name(n) +
-                               "\" is not one of \"ggx\", \"beckmann\" with --eta");
+      throw support::UserError(prefix + "ndf = \"" + ndf_name(n) + "\" is not one of \"ggx\", \"beckmann\" with glass");
   if (g.ndfs.empty() || g.dims.empty() || g.sides.empty())
-    throw support::UserError("--ndf, --dim and --side each need a value with --eta");
+    throw support::UserError(prefix + "ndf, " + prefix + "dim and " + prefix + "side each need a value");
   if (g.rays < 1 || g.rays > kMaxEnergyRays)
-    throw support::UserError("--rays = " + std::to_string(g.rays) + " is out of range [1, " +
+    throw support::UserError(prefix + "rays = " + std::to_string(g.rays) + " is out of range [1, " +
                              std::to_string(kMaxEnergyRays) + "]");
   if (g.max_k < 1 || g.max_k > kMaxEnergyK)
-    throw support::UserError("--max-k = " + std::to_string(g.max_k) + " is out of range [1, " +
-                             std::to_string(kMaxEnergyK) + "]");
+    throw support::UserError(prefix + (prefix.empty() ? "max_k = " : "max-k = ") + std::to_string(g.max_k) +
+                             " is out of range [1, " + std::to_string(kMaxEnergyK) + "]");
   if (g.grooves < 1 || g.grooves > kMaxGlassGrooves)
-    throw support::UserError("--grooves = " + std::to_string(g.grooves) + " is out of range [1, " +
+    throw support::UserError(prefix + "grooves = " + std::to_string(g.grooves) + " is out of range [1, " +
                              std::to_string(kMaxGlassGrooves) + "]");
 }
 

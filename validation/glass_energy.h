@@ -39,6 +39,7 @@
 #include <cstdint>
 #include <optional>
 #include <ostream>
+#include <string>
 #include <vector>
 
 namespace vgroove::validation {
@@ -74,8 +75,9 @@ struct GlassGrid {
   GlassCell cell_at(std::size_t c) const;
 };
 
-// One line naming the flag and its range (--eta, --side, --ndf (ggx, beckmann), --grooves, ...).
-void check_glass_grid(const GlassGrid& g);
+// One line naming the field and its range: `prefix` + eta, ndf (ggx, beckmann), grooves, ... (the
+// command line's flags with "--", Python's arguments with "").
+void check_glass_grid(const GlassGrid& g, const std::string& prefix = "--");
 
 struct GlassCounts {
   long long rays = 0;

@@ -1,10 +1,13 @@
-// vgroove Python module: energy_lobe_shape, the library call `vgroove energy --lobe-shape` makes
-// (validation/energy_lobe_shape.h), returning its report as a dict.
+// vgroove Python module: energy_lobe_shape and glass_energy, the library calls `vgroove energy
+// --lobe-shape` and `vgroove energy --eta` make (validation/energy_lobe_shape.h,
+// validation/glass_energy.h), returning their reports as dicts.
 #include "common.h"
 
 #include "vgroove/common/ndf_kind.h"
 #include "vgroove/validation/energy_lobe_shape.h"
+#include "vgroove/validation/glass_energy.h"
 #include "vgroove/validation/ranges.h"
+#include "vgroove/validation/run_options.h"
 
 #include <sstream>
 
@@ -40,9 +43,50 @@ py::object energy_lobe_shape(const std::string& ndf, const std::vector<double>& 
   return to_python(r.to_json());
 }
 
+py::object glass_energy(const std::vector<double>& eta, const std::vector<double>& alpha, const std::vector<double>& mu,
+                        const std::vector<std::string>& ndfs, const std::vector<std::string>& dims,
+                        const std::vector<std::string>& sides, const py::object& rays, const py::object& grooves,
+                        const py::object& seed, int max_k, int threads, bool verbose, const py::object& progress) {
+  validation::GlassGrid g;
+  g.ndfs.clear(), g.dims.clear(), g.sides.clear();
+  for (const std::string& n : ndfs) {
+    const auto k = ndf_from_name(n);
+    if (!k || (*k != NdfKind::ggx && *k != NdfKind::beckmann))
+      throw support::UserError("ndf = \"" + n + "\" is not one of \"ggx\", \"beckmann\"");
+    g.ndfs.push_back(*k);
+  }
+  for (const std::string& d : dims) g.dims.push_back(parse_dim(d));
+  for (const std::string& s : sides) {
+    if (s != "above" && s != "below")
+      throw support::UserError("side = \"" + s + "\" is not one of \"above\", \"below\"");
+    g.sides.push_back(s == "above" ? sim::Medium::above : sim::Medium::below);
+  }
+  g.etas = eta, g.alphas = alpha, g.mus = mu;
+  g.rays = to_count(rays, "rays", 1, validation::kMaxEnergyRays);
+  g.grooves = static_cast<int>(to_count(grooves, "grooves", 1, validation::kMaxGlassGrooves));
+  g.seed = static_cast<std::uint64_t>(to_seed(seed, "seed"));
+  g.max_k = max_k;
+  validation::check_threads(threads, "threads");
+  validation::check_glass_grid(g, "");
+  ProgressRelay relay(progress);
+  const std::optional<validation::GlassTable> t = run_interruptible(
+      [&](std::atomic<bool>& cancel) { return validation::run_glass_table(g, threads, relay.fn(), &cancel); }, false,
+      &relay);
+  if (!t) throw support::UserError("glass_energy: interrupted");
+  if (verbose) {
+    std::ostringstream os;
+    validation::print_glass_table(os, *t);
+    py::print(os.str(), py::arg("end") = "");
+  }
+  return to_python(validation::glass_table_json(*t));
+}
+
 }  // namespace
 
 void bind_energy(py::module_& m) {
+  m.def("glass_energy", &glass_energy, py::arg("eta"), py::arg("alpha"), py::arg("mu"), py::arg("ndf"), py::arg("dim"),
+        py::arg("side"), py::arg("rays"), py::arg("grooves"), py::arg("seed"), py::arg("max_k"), py::arg("threads"),
+        py::arg("verbose"), py::arg("progress") = py::none());
   m.def("energy_lobe_shape", &energy_lobe_shape, py::arg("ndf"), py::arg("alpha"), py::arg("theta_i_deg"),
         py::arg("rays"), py::arg("grooves"), py::arg("seed"), py::arg("theta_bins"), py::arg("phi_bins"),
         py::arg("sigmas"), py::arg("threads"), py::arg("verbose"));

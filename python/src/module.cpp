@@ -197,6 +197,12 @@ PYBIND11_MODULE(_vgroove, m) {
   ranges["max_sampler_k"] = v::kMaxSamplerK;
   ranges["max_fresnel_eta"] = v::kMaxFresnelEta;
   ranges["max_fresnel_kappa"] = v::kMaxFresnelKappa;
+  ranges["min_glass_eta"] = v::kMinGlassEta;
+  ranges["max_glass_eta"] = v::kMaxGlassEta;
+  ranges["max_glass_grooves"] = v::kMaxGlassGrooves;
+  ranges["min_mu"] = v::kMinMu;
+  ranges["max_energy_rays"] = v::kMaxEnergyRays;
+  ranges["max_energy_k"] = v::kMaxEnergyK;
   ranges["unit_tolerance"] = kUnitTolerance;
   m.attr("ranges") = ranges;
   // The command line's directions (`vgroove brdf --theta-i-deg ... --phi-i-deg ...`): dir3 of the

@@ -82,7 +82,7 @@ from ._surfaces import Microsurface, lobe, microsurface, trace_microsurface
 from ._brdfs import BRDF_MAX_K, brdf, check_brdf
 from ._sampling import NONSYMMETRIC_SAMPLER_MAX_K, SAMPLER_MAX_K, pdf, sample, uniforms
 from ._suites import validate
-from ._energy import energy_lobe_shape
+from ._energy import energy_lobe_shape, glass_energy
 from ._results import Lobe, SampleBatch, SurfaceTrace
 from ._brdf import BRDF
 from ._progress import TqdmProgress, tqdm_progress
@@ -98,7 +98,7 @@ __all__ = [
     "direction", "output_deg", "kaleidoscope", "analytic", "trace", "groove_case",
     "Microsurface", "microsurface", "trace_microsurface", "lobe",
     "BRDF", "Lobe", "SampleBatch", "SurfaceTrace", "BRDF_MAX_K", "SAMPLER_MAX_K", "NONSYMMETRIC_SAMPLER_MAX_K",
-    "brdf", "check_brdf", "validate", "energy_lobe_shape", "sample", "pdf", "uniforms", "tqdm_progress",
+    "brdf", "check_brdf", "validate", "energy_lobe_shape", "glass_energy", "sample", "pdf", "uniforms", "tqdm_progress",
     "TqdmProgress",
 ]
 

@@ -1,14 +1,15 @@
 """energy_lobe_shape(): the compensated lobes' shape beyond energy, as ``vgroove energy --lobe-shape``
-computes it (validation/energy_lobe_shape.h), the report as a dict."""
+computes it (validation/energy_lobe_shape.h); glass_energy(): rough glass tables, as ``vgroove energy
+--eta`` computes them (validation/glass_energy.h); each report as a dict."""
 
 from __future__ import annotations
 
-from typing import Sequence
+from typing import Optional, Sequence, Union
 
 import numpy as np
 
 from . import _vgroove
-from ._args import integer, real, reals
+from ._args import ProgressFn, integer, progress as _progress, real, reals, text
 from ._ranges import fill_ranges
 
 
@@ -80,3 +81,77 @@ def energy_lobe_shape(ndf: str = "ggx", alpha: Sequence[float] = (0.5, 1.0),
 
 
 energy_lobe_shape.__doc__ = fill_ranges(energy_lobe_shape.__doc__)
+
+
+def glass_energy(eta: Sequence[float], alpha: Sequence[float] = (0.1, 0.5, 1.0), mu: Sequence[float] = (1.0, 0.5),
+                 *, ndf: Union[str, Sequence[str]] = "ggx", dim: Union[str, Sequence[str]] = "3d",
+                 side: Union[str, Sequence[str]] = ("above", "below"), rays: int = 100000, grooves: int = 10000,
+                 seed: int = 1, max_k: int = 16, threads: int = 0, verbose: bool = False,
+                 progress: Optional[ProgressFn] = None) -> dict:
+    """Exact energy tables of rough glass, as ``vgroove energy --eta`` computes them
+    (validation/glass_energy.h): E_R and E_T of V-groove surfaces between two dielectrics, per
+    number of interactions k, for light from either side.
+
+    Parameters
+    ----------
+    eta : sequence of float
+        n2 / n1 (the index below the surface over the index above it), each in
+        [$min_glass_eta, $max_glass_eta], not 1.
+    alpha : sequence of float
+        Roughnesses, each in [$min_alpha, $max_alpha].
+    mu : sequence of float
+        Cosines of the light's angle from the normal of its own side, each in [$min_mu, 1].
+    ndf : str or sequence of str
+        "ggx", "beckmann".
+    dim : str or sequence of str
+        "3d" (patches of parallel grooves, azimuth uniform per ray), "flatland".
+    side : str or sequence of str
+        "above" (light in medium 1), "below" (light in medium 2, from far below).
+    rays : int
+        Rays per cell, in [1, $max_energy_rays].
+    grooves : int
+        Grooves of each surface, in [1, $max_glass_grooves].
+    seed : int
+        In [0, 2^63 - 1]: the surfaces and the rays.
+    max_k : int
+        Orders tabulated one by one (a last row holds k > max_k), in [1, $max_energy_k].
+    threads : int
+        In [0, $max_threads] (0: all cores); the counts do not depend on it.
+    verbose : bool
+        Print the command line's table.
+    progress : callable, optional
+        ``progress(done, total)``, counting work units.
+
+    Returns
+    -------
+    dict
+        The JSON ``vgroove energy --eta --out`` writes: "grid", "definitions", "arrays" (E_R, E_T,
+        se_R, se_T, bounce_limit, vertex indexed [ndf][dim][side][eta][alpha][mu]; E_R_by_k and
+        E_T_by_k with a last axis of rows k), "averages" (hemispherical, traced cosine-weighted)
+        and "reciprocity" (T_avg(above) against eta^2 T_avg(below) in 3D, eta^1 in flatland).
+
+    Raises
+    ------
+    ValueError
+        The command line's message for the same input, naming the argument and its range.
+
+    Examples
+    --------
+    >>> import vgroove
+    >>> t = vgroove.glass_energy([1.5], [0.01], [1.0], side="above", rays=20000, grooves=500)
+    >>> round(t["arrays"]["E_R"]["values"][0], 2)  # Fresnel's 0.04 at normal incidence
+    0.04
+    >>> vgroove.glass_energy([1.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: eta = 1 is no interface (light passes straight through): leave it out
+    """
+    names = lambda v: [v] if isinstance(v, str) else [text(x, "list item") for x in v]  # noqa: E731
+    return _vgroove.glass_energy(
+        [float(x) for x in np.atleast_1d(reals(eta, "eta"))], [float(a) for a in np.atleast_1d(reals(alpha, "alpha"))],
+        [float(m) for m in np.atleast_1d(reals(mu, "mu"))], names(ndf), names(dim), names(side),
+        integer(rays, "rays"), integer(grooves, "grooves"), integer(seed, "seed"), integer(max_k, "max_k"),
+        integer(threads, "threads"), bool(verbose), progress=_progress(progress))
+
+
+glass_energy.__doc__ = fill_ranges(glass_energy.__doc__)

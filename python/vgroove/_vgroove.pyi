@@ -68,6 +68,9 @@ def validate(path: str, rays: Optional[int], threads: int, sampling: Optional[st
              seed: Optional[int], model_table: Optional[str], verbose: bool, suite_json: Optional[str] = None,
              progress: Progress = None) -> dict[str, Any]: ...
 
+def glass_energy(eta: Sequence[float], alpha: Sequence[float], mu: Sequence[float], ndf: Sequence[str],
+                 dim: Sequence[str], side: Sequence[str], rays: int, grooves: int, seed: int, max_k: int, threads: int,
+                 verbose: bool, progress: Progress = None) -> dict[str, Any]: ...
 def energy_lobe_shape(ndf: str, alpha: Sequence[float], theta_i_deg: Sequence[float], rays: int, grooves: int,
                       seed: int, theta_bins: int, phi_bins: int, sigmas: float, threads: int,
                       verbose: bool) -> dict[str, Any]: ...

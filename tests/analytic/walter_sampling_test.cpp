@@ -109,7 +109,9 @@ TEST(WalterSampling, ChiSquareAgainstItsPdf) {
     for (int a = 0; a < kCos; ++a)
       for (int b = 0; b < kPhi; ++b) (a < kCos / 2 ? below : above) += obs[a * kPhi + b];
     EXPECT_GT(above, 0.01 * kDraws) << name(c);
-    if (c.eta > 1.0 || std::sin(c.theta_i_deg * kPi / 180) < c.eta) EXPECT_GT(below, 0.1 * kDraws) << name(c);
+    if (c.eta > 1.0 || std::sin(c.theta_i_deg * kPi / 180) < c.eta) {
+      EXPECT_GT(below, 0.1 * kDraws) << name(c);
+    }
   }
 }
 

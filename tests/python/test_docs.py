@@ -26,6 +26,8 @@ HEADER_NAMES = {
     "min_histogram_k": "kMinHistogramK", "max_histogram_k": "kMaxHistogramK", "max_flatland_bins": "kMaxFlatlandBins",
     "max_theta_bins": "kMaxThetaBins", "max_phi_bins": "kMaxPhiBins", "max_sampler_k": "kMaxSamplerK",
     "max_fresnel_eta": "kMaxFresnelEta", "max_fresnel_kappa": "kMaxFresnelKappa",
+    "min_glass_eta": "kMinGlassEta", "max_glass_eta": "kMaxGlassEta", "max_glass_grooves": "kMaxGlassGrooves",
+    "min_mu": "kMinMu", "max_energy_rays": "kMaxEnergyRays", "max_energy_k": "kMaxEnergyK",
 }
 
 

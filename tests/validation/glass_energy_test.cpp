@@ -219,6 +219,11 @@ TEST(GlassEnergy, BadGridsAreNamed) {
   EXPECT_NE(message(x).find("--eta = 0 is out of range [0.1, 10]"), std::string::npos);
   x = g, x.ndfs = {NdfKind::phong};
   EXPECT_NE(message(x).find("--ndf = \"phong\""), std::string::npos);
+  try {
+    check_glass_grid(x, "");
+  } catch (const std::exception& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("ndf = \"phong\"", 0), 0u) << e.what();  // Python's names
+  }
   x = g, x.grooves = 0;
   EXPECT_NE(message(x).find("--grooves = 0 is out of range"), std::string::npos);
   x = g, x.mus = {0.0};
