@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <stdexcept>
 
 namespace vgroove::validation {
 
@@ -23,14 +22,21 @@ sim::HeightfieldSurface make_field_surface(const HeightfieldFieldSpec& spec, std
                                                                 : sim::make_gaussian_heightfield(o));
 }
 
-void check_field_fits(int field_size, double workers, const std::string& what) {
-  const double budget = support::memory_limit_bytes() / std::max(1.0, workers);
-  try {
-    sim::check_heightfield_memory(field_size, budget);
-  } catch (const std::invalid_argument& e) {
-    throw support::UserError(what + ": " + e.what() + " (one field per worker, " +
-                             std::to_string(static_cast<long long>(std::max(1.0, workers))) + " workers)");
-  }
+void check_field_fits(int field_size, double workers, const std::string& what, int min_size) {
+  const double w = std::max(1.0, workers);
+  const double budget = support::memory_limit_bytes() / w;
+  const double need = sim::heightfield_bytes(field_size);
+  if (need <= budget) return;
+  const int max_n = sim::heightfield_max_n(budget);
+  const auto n_workers = static_cast<long long>(w);
+  throw support::UserError(what + " = " + std::to_string(field_size) + " needs " + support::bytes_text(need) +
+                           " with its hierarchy, more than the " + support::bytes_text(budget) + " " +
+                           (n_workers == 1 ? std::string("this process may use")
+                                           : "each of " + std::to_string(n_workers) + " workers may use") +
+                           ": " +
+                           (max_n < min_size ? std::string("no field fits")
+                                             : "it must be a power of two in [" + std::to_string(min_size) + ", " +
+                                                   std::to_string(max_n) + "]"));
 }
 
 double heightfield_patches(int field_size, double correlation_length, int fields) {

@@ -26,8 +26,8 @@ namespace vgroove::validation {
 struct HeightfieldFieldSpec {
   NdfKind ndf = NdfKind::beckmann;  // beckmann or ggx
   double alpha = 0.5;
-  int field_size = 256;              // cells per side: a power of two in [16, 65536]
-  double correlation_length = 8.0;   // cells, in [2, field_size / 8]
+  int field_size = 256;             // cells per side: a power of two in [16, 65536]
+  double correlation_length = 8.0;  // cells, in [2, field_size / 8]
 };
 
 // The field of realization `seed` (sim::make_gaussian_heightfield / make_ggx_heightfield) with
@@ -36,9 +36,9 @@ sim::HeightfieldSurface make_field_surface(const HeightfieldFieldSpec& spec, std
 
 // Refuses (support::UserError, one line) a field of `field_size` cells per side when `workers`
 // of them (one per worker) do not fit this process's memory (support::memory_limit_bytes): `what`
-// names the field's key, the message its bytes (sim::heightfield_bytes), the budget per field and
-// the allowed range of field_size (sim::check_heightfield_memory).
-void check_field_fits(int field_size, double workers, const std::string& what);
+// names the field's key; the message gives its bytes (sim::heightfield_bytes), the budget per
+// field and the allowed range [min_size, sim::heightfield_max_n(budget)] of powers of two.
+void check_field_fits(int field_size, double workers, const std::string& what, int min_size);
 
 // Independent surface patches of `fields` fields of n^2 cells with correlation length l: fields
 // n^2 / (pi l^2), the area over the correlation area of the Gaussian autocorrelation (the

@@ -27,16 +27,17 @@ nlohmann::json rows_of(const std::vector<double>& joint, int rows, int bins) {
 nlohmann::json miss_json(const HeightfieldMiss& m, const HeightfieldOutcome& o) {
   nlohmann::json rows = nlohmann::json::array();
   for (std::size_t r = 0; r < m.l1.size(); ++r)
-    rows.push_back({{"k", kRowNames[r]},
-                    {"l1", m.l1[r]},
-                    {"l1_expected", m.l1_expected[r]},
-                    {"l1_threshold", m.l1_threshold[r]},
-                    {"l1_excess", m.l1[r] - m.l1_expected[r]},
-                    {"energy_traced", o.energy[r]},
-                    {"energy_model", m.energy[r]},
-                    {"energy_diff", m.energy_diff[r]},
-                    {"energy_threshold", m.energy_threshold[r]},
-                    {"within_noise", m.l1[r] <= m.l1_threshold[r] && std::abs(m.energy_diff[r]) <= m.energy_threshold[r]}});
+    rows.push_back(
+        {{"k", kRowNames[r]},
+         {"l1", m.l1[r]},
+         {"l1_expected", m.l1_expected[r]},
+         {"l1_threshold", m.l1_threshold[r]},
+         {"l1_excess", m.l1[r] - m.l1_expected[r]},
+         {"energy_traced", o.energy[r]},
+         {"energy_model", m.energy[r]},
+         {"energy_diff", m.energy_diff[r]},
+         {"energy_threshold", m.energy_threshold[r]},
+         {"within_noise", m.l1[r] <= m.l1_threshold[r] && std::abs(m.energy_diff[r]) <= m.energy_threshold[r]}});
   return {{"rows", rows},
           {"l1", m.l1_total},
           {"l1_expected", m.l1_total_expected},
@@ -56,8 +57,7 @@ std::string miss_text(const HeightfieldMiss& m) {
     if (!(std::abs(m.energy_diff[r]) <= m.energy_threshold[r]))
       s += support::format(" E%s %+.4f (> %.4f);", kRowNames[r], -m.energy_diff[r], m.energy_threshold[r]);
   }
-  if (m.l1_total > m.l1_total_threshold)
-    s += support::format(" L1 all %.4f > %.4f;", m.l1_total, m.l1_total_threshold);
+  if (m.l1_total > m.l1_total_threshold) s += support::format(" L1 all %.4f > %.4f;", m.l1_total, m.l1_total_threshold);
   s.pop_back();
   return s;
 }
@@ -88,39 +88,41 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
   for (const HeightfieldOutcome& o : run.cases) {
     const int bins = suite.bins();
     rays += o.rays, lost += o.lost, passed += o.pass;
-    cases.push_back({{"ndf", analytic::ndf_name(o.c.ndf)},
-                     {"alpha", o.c.alpha},
-                     {"theta_i_deg", o.c.theta_i_deg},
-                     {"rays", o.rays},
-                     {"lost", o.lost},
-                     {"bounce_limit", o.bounce_limit},
-                     {"edge_hits", o.edge_hits},
-                     {"vertex_hits", o.vertex_hits},
-                     {"mean_bounces", o.rays > o.lost ? static_cast<double>(o.bounces) / static_cast<double>(o.rays - o.lost) : 0.0},
-                     {"traced",
-                      {{"energy_by_k", o.energy},
-                       {"energy_se_by_k", o.energy_se},
-                       {"albedo", o.albedo},
-                       {"albedo_se", o.albedo_se},
-                       {"lobe_by_k", rows_of(o.lobe, kHeightfieldRows, bins)},
-                       {"lobe_se_by_k", rows_of(o.lobe_se, kHeightfieldRows, bins)}}},
-                     {"smith_walk",
-                      {{"paths", o.walk_paths},
-                       {"left", o.walk_left},
-                       {"energy_by_k", o.walk_energy},
-                       {"lobe_by_k", rows_of(o.walk_lobe, kHeightfieldRows, bins)},
-                       {"against_traced", miss_json(o.walk, o)}}},
-                     {"cook_torrance_smith",
-                      {{"integration_error", o.ct_error},
-                       {"lobe_k1", o.ct_lobe},
-                       {"against_traced", miss_json(o.cook_torrance, o)}}},
-                     {"vgroove",
-                      {{"energy_by_k", o.vgroove_energy},
-                       {"lobe_by_k", rows_of(o.vgroove_lobe, kHeightfieldRows, bins)},
-                       {"against_traced", miss_json(o.vgroove, o)}}},
-                     {"timing", {{"field_s", o.field_s}, {"trace_s", o.trace_s}, {"walk_s", o.walk_s}, {"model_s", o.model_s}}},
-                     {"non_finite", o.non_finite},
-                     {"pass", o.pass}});
+    cases.push_back(
+        {{"ndf", analytic::ndf_name(o.c.ndf)},
+         {"alpha", o.c.alpha},
+         {"theta_i_deg", o.c.theta_i_deg},
+         {"rays", o.rays},
+         {"lost", o.lost},
+         {"bounce_limit", o.bounce_limit},
+         {"edge_hits", o.edge_hits},
+         {"vertex_hits", o.vertex_hits},
+         {"mean_bounces",
+          o.rays > o.lost ? static_cast<double>(o.bounces) / static_cast<double>(o.rays - o.lost) : 0.0},
+         {"traced",
+          {{"energy_by_k", o.energy},
+           {"energy_se_by_k", o.energy_se},
+           {"albedo", o.albedo},
+           {"albedo_se", o.albedo_se},
+           {"lobe_by_k", rows_of(o.lobe, kHeightfieldRows, bins)},
+           {"lobe_se_by_k", rows_of(o.lobe_se, kHeightfieldRows, bins)}}},
+         {"smith_walk",
+          {{"paths", o.walk_paths},
+           {"left", o.walk_left},
+           {"energy_by_k", o.walk_energy},
+           {"lobe_by_k", rows_of(o.walk_lobe, kHeightfieldRows, bins)},
+           {"against_traced", miss_json(o.walk, o)}}},
+         {"cook_torrance_smith",
+          {{"integration_error", o.ct_error},
+           {"lobe_k1", o.ct_lobe},
+           {"against_traced", miss_json(o.cook_torrance, o)}}},
+         {"vgroove",
+          {{"energy_by_k", o.vgroove_energy},
+           {"lobe_by_k", rows_of(o.vgroove_lobe, kHeightfieldRows, bins)},
+           {"against_traced", miss_json(o.vgroove, o)}}},
+         {"timing", {{"field_s", o.field_s}, {"trace_s", o.trace_s}, {"walk_s", o.walk_s}, {"model_s", o.model_s}}},
+         {"non_finite", o.non_finite},
+         {"pass", o.pass}});
   }
   j["cases"] = std::move(cases);
   nlohmann::json controls = nlohmann::json::array();
@@ -133,7 +135,8 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
                         {"within_noise", n < run.controls_hold.size() && run.controls_hold[n]}});
   }
   j["controls"] = std::move(controls);
-  j["summary"] = {{"cases", run.cases.size()}, {"passed", passed}, {"rays", rays}, {"lost", lost}, {"wall_s", run.wall_s}};
+  j["summary"] = {
+      {"cases", run.cases.size()}, {"passed", passed}, {"rays", rays}, {"lost", lost}, {"wall_s", run.wall_s}};
   j["thresholds"] = {
       {"rule",
        "every case: no ray lost, every value finite; each control's model within noise. A model is within noise "
@@ -156,12 +159,13 @@ void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, co
   os << "  traced E_k over the fields (se); each model: within noise (L1 per k <= expected + sigmas sd, E_k within "
         "sigmas se), or where it misses (L1 over its threshold, model E_k minus traced)\n";
   for (const HeightfieldOutcome& o : run.cases) {
-    os << support::format("  %-8s alpha %.2f theta_i %4.1f: E_1 %.4f(%.4f) E_2 %.4f(%.4f) E_3+ %.4f(%.4f) albedo "
-                          "%.4f; %lld rays, lost %lld, %.2f s%s\n",
-                          analytic::ndf_name(o.c.ndf), o.c.alpha, o.c.theta_i_deg, o.energy[0], o.energy_se[0],
-                          o.energy[1], o.energy_se[1], o.energy[2], o.energy_se[2], o.albedo,
-                          static_cast<long long>(o.rays), static_cast<long long>(o.lost),
-                          o.field_s + o.trace_s + o.walk_s + o.model_s, o.pass ? "" : "  FAIL (lost or not finite)");
+    os << support::format(
+        "  %-8s alpha %.2f theta_i %4.1f: E_1 %.4f(%.4f) E_2 %.4f(%.4f) E_3+ %.4f(%.4f) albedo "
+        "%.4f; %lld rays, lost %lld, %.2f s%s\n",
+        analytic::ndf_name(o.c.ndf), o.c.alpha, o.c.theta_i_deg, o.energy[0], o.energy_se[0], o.energy[1],
+        o.energy_se[1], o.energy[2], o.energy_se[2], o.albedo, static_cast<long long>(o.rays),
+        static_cast<long long>(o.lost), o.field_s + o.trace_s + o.walk_s + o.model_s,
+        o.pass ? "" : "  FAIL (lost or not finite)");
     os << support::format("    %-20s %s\n", "smith_walk", miss_text(o.walk).c_str());
     os << support::format("    %-20s %s\n", "cook_torrance_smith", miss_text(o.cook_torrance).c_str());
     os << support::format("    %-20s %s\n", "vgroove", miss_text(o.vgroove).c_str());

@@ -28,6 +28,8 @@ using support::seconds_since;
 constexpr std::uint64_t kFieldSeeds = 0x6866666965ULL, kRaySeeds = 0x6866726179ULL, kWalkSeeds = 0x686677616bULL;
 // Tracer rows k = 0..kMaxK and one beyond: k = 1, 2 and 3+ are rows 1..3.
 constexpr int kMaxK = kHeightfieldRows - 1;
+// The smallest field: the correlation length's range [2, n / 8] is not empty.
+constexpr int kMinFieldSize = 16;
 
 std::uint64_t derived_seed(std::uint64_t seed, std::uint64_t stream, std::uint64_t key) {
   return sim::Rng(seed, stream, key).next_u64();
@@ -104,7 +106,7 @@ HeightfieldSuite parse_heightfield_suite(const nlohmann::json& j, const std::str
     s.ndfs.push_back(n == "ggx" ? analytic::NdfKind::ggx : analytic::NdfKind::beckmann);
   s.alphas = read_numbers(root, "alpha", kMinAlpha, true, kMaxAlpha, true);
   s.theta_i_deg = read_numbers(root, "theta_i_deg", 0.0, true, kMaxSurfaceThetaIDeg, true);
-  s.field_size = static_cast<int>(root.integer("field_size", 16, 65536));
+  s.field_size = static_cast<int>(root.integer("field_size", kMinFieldSize, 65536));
   if ((s.field_size & (s.field_size - 1)) != 0)
     root.fail("field_size", "= " + std::to_string(s.field_size) + " must be a power of two in [16, 65536]");
   s.correlation_length = root.number("correlation_length", 2.0, true, s.field_size / 8.0, true);
@@ -114,7 +116,8 @@ HeightfieldSuite parse_heightfield_suite(const nlohmann::json& j, const std::str
   s.theta_bins = static_cast<int>(root.integer_or("theta_bins", s.theta_bins, 1, kMaxCheckBrdfThetaBins));
   s.phi_bins = static_cast<int>(root.integer_or("phi_bins", s.phi_bins, 2, kMaxCheckBrdfPhiBins));
   if (s.phi_bins % 2 != 0)
-    root.fail("phi_bins", "= " + std::to_string(s.phi_bins) + " must be even (the plane of incidence runs through two bins)");
+    root.fail("phi_bins",
+              "= " + std::to_string(s.phi_bins) + " must be even (the plane of incidence runs through two bins)");
   s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, kMaxSeed));
   {
     support::JsonObject t = root.object("thresholds");
@@ -200,20 +203,22 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
   for (int r = 0; r < suite.fields; ++r) {
     if (support::cancelled(cancel)) return out;
     auto t0 = Clock::now();
-    const std::uint64_t key = (static_cast<std::uint64_t>(ix.ndf) * 4096 + ix.alpha) * 65536 + static_cast<std::uint64_t>(r);
+    const std::uint64_t key =
+        (static_cast<std::uint64_t>(ix.ndf) * 4096 + ix.alpha) * 65536 + static_cast<std::uint64_t>(r);
     const sim::HeightfieldSurface s = make_field_surface(spec, derived_seed(suite.seed, kFieldSeeds, key));
     out.field_s += seconds_since(t0);
     t0 = Clock::now();
-    const sim::HeightfieldTally t =
-        trace_field(s, theta_i, rays, derived_seed(suite.seed, kRaySeeds, case_index * 65536 + static_cast<std::uint64_t>(r)),
-                    suite.theta_bins, suite.phi_bins, kMaxK, cancel);
+    const sim::HeightfieldTally t = trace_field(
+        s, theta_i, rays, derived_seed(suite.seed, kRaySeeds, case_index * 65536 + static_cast<std::uint64_t>(r)),
+        suite.theta_bins, suite.phi_bins, kMaxK, cancel);
     out.trace_s += seconds_since(t0);
     if (support::cancelled(cancel)) return out;
     out.rays += t.rays, out.lost += t.lost, out.bounce_limit += t.bounce_limit;
     out.edge_hits += t.edge_hits, out.vertex_hits += t.vertex_hits, out.bounces += t.bounces;
     lobes.push_back(joint_fractions(t, 1));
     std::vector<double> e;
-    for (int q = 1; q <= rows; ++q) e.push_back(t.energy_by_k[static_cast<std::size_t>(q)] / static_cast<double>(t.rays));
+    for (int q = 1; q <= rows; ++q)
+      e.push_back(t.energy_by_k[static_cast<std::size_t>(q)] / static_cast<double>(t.rays));
     energies.push_back(std::move(e));
   }
   const double n_rays = static_cast<double>(out.rays);
@@ -229,9 +234,9 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
 
   // The Smith walk.
   auto t0 = Clock::now();
-  const sim::HeightfieldTally w = walk_lobe(out.c.ndf, out.c.alpha, theta_i, suite.walk_paths,
-                                            derived_seed(suite.seed, kWalkSeeds, case_index), suite.theta_bins,
-                                            suite.phi_bins, kMaxK, cancel);
+  const sim::HeightfieldTally w =
+      walk_lobe(out.c.ndf, out.c.alpha, theta_i, suite.walk_paths, derived_seed(suite.seed, kWalkSeeds, case_index),
+                suite.theta_bins, suite.phi_bins, kMaxK, cancel);
   out.walk_s = seconds_since(t0);
   if (support::cancelled(cancel)) return out;
   out.walk_paths = w.rays, out.walk_left = w.escaped;
@@ -280,7 +285,7 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
 double heightfield_run_memory_bytes(const HeightfieldSuite& suite, int threads) {
   const double cases = static_cast<double>(suite.cases());
   const double workers = std::min<double>(support::resolve_threads(threads), cases);
-  check_field_fits(suite.field_size, workers, suite.file + ": /field_size");
+  check_field_fits(suite.field_size, workers, suite.file + ": /field_size", kMinFieldSize);
   const double joint = static_cast<double>(suite.bins()) * (kHeightfieldRows + 1) * 8.0;
   // Per worker its field and hierarchy (also the synthesis' peak) and tallies; per case its lobes.
   return workers * (sim::heightfield_bytes(suite.field_size) + 4.0 * joint) +
@@ -291,8 +296,7 @@ Job<HeightfieldWork> heightfield_job(const HeightfieldSuite& suite, long rays, n
                                      const std::atomic<bool>* cancel) {
   const long n_rays = rays > 0 ? rays : suite.rays;
   return item_job<HeightfieldOutcome>(
-      suite.cases(),
-      [suite, n_rays, cancel](std::size_t c) { return run_heightfield_case(suite, c, n_rays, cancel); },
+      suite.cases(), [suite, n_rays, cancel](std::size_t c) { return run_heightfield_case(suite, c, n_rays, cancel); },
       [suite](support::JsonObject& o, std::size_t c, HeightfieldOutcome& out) {
         out.c = suite.case_at(c);
         const std::size_t joint = static_cast<std::size_t>(kHeightfieldRows) * static_cast<std::size_t>(suite.bins());

@@ -64,7 +64,7 @@ struct HeightfieldSuite {
   int field_size = 256;
   double correlation_length = 8.0;
   int fields = 4;
-  long rays = 20000;        // per field and case
+  long rays = 20000;         // per field and case
   long walk_paths = 200000;  // per case
   int theta_bins = 9, phi_bins = 8;
   std::uint64_t seed = 1;
@@ -78,8 +78,8 @@ struct HeightfieldSuite {
 
 // One model against the traced lobe, per compared row (Cook-Torrance: k = 1 only).
 struct HeightfieldMiss {
-  std::vector<double> l1, l1_expected, l1_threshold;  // per row: the L1 of the joint fractions
-  std::vector<double> energy, energy_diff, energy_threshold;  // per row: the model's E_k, traced - model
+  std::vector<double> l1, l1_expected, l1_threshold;                         // per row: the L1 of the joint fractions
+  std::vector<double> energy, energy_diff, energy_threshold;                 // per row: the model's E_k, traced - model
   double l1_total = 0.0, l1_total_expected = 0.0, l1_total_threshold = 0.0;  // the rows together
   bool within_noise = false;
 };
