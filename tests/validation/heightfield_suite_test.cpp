@@ -163,9 +163,9 @@ TEST(HeightfieldSuite, ReportSaysWhichModelIsWithinNoise) {
   for (const char* m : {"smith_walk", "cook_torrance_smith", "vgroove"}) {
     ASSERT_TRUE(c[m]["against_traced"].contains("within_noise")) << m;
     for (const json& row : c[m]["against_traced"]["rows"]) {
-      EXPECT_EQ(row["within_noise"].get<bool>(), row["l1"].get<double>() <= row["l1_threshold"].get<double>() &&
-                                                     std::abs(row["energy_diff"].get<double>()) <=
-                                                         row["energy_threshold"].get<double>());
+      EXPECT_EQ(row["within_noise"].get<bool>(),
+                row["l1"].get<double>() <= row["l1_threshold"].get<double>() &&
+                    std::abs(row["energy_diff"].get<double>()) <= row["energy_threshold"].get<double>());
     }
   }
   EXPECT_EQ(c["cook_torrance_smith"]["against_traced"]["rows"].size(), 1u);
@@ -186,8 +186,8 @@ TEST(HeightfieldSuiteCli, AnOversizedFieldIsRefusedInOneLineAndNothingIsWritten)
   json j = shipped();
   j["field_size"] = 65536;
   testing_files::write_text(f, j.dump());
-  const testing_files::CliRun r = testing_files::vgroove("validate " + testing_files::quoted(f) + " --out " +
-                                                         testing_files::quoted(out));
+  const testing_files::CliRun r =
+      testing_files::vgroove("validate " + testing_files::quoted(f) + " --out " + testing_files::quoted(out));
   EXPECT_EQ(r.status, 2) << r;
   EXPECT_EQ(testing_files::lines(r.err), 1) << r;
   EXPECT_NE(r.err.find("big.json: /field_size = 65536 needs 126.0 GB with its hierarchy"), std::string::npos) << r;
