@@ -66,9 +66,9 @@ TEST(HeightfieldCheckBrdf, SmithPassesWhereItMustAndWrongModelsFail) {
   const CheckBrdfResult ok = check_brdf(smith_kulla_conty(0.3, curve), small());
   ASSERT_EQ(ok.cases.size(), 1u);
   const CheckBrdfCase& c = ok.cases[0];
-  EXPECT_TRUE(ok.pass) << "L1 " << c.l1 << " <= " << c.l1_threshold << ", flux " << c.l1_flux << " <= "
-                       << c.l1_flux_threshold << ", albedo " << c.albedo_sim << " vs " << c.albedo_model << " ("
-                       << c.albedo_threshold << ")";
+  EXPECT_TRUE(ok.pass) << "L1 " << c.l1 << " <= " << c.l1_threshold << ", flux " << c.l1_flux
+                       << " <= " << c.l1_flux_threshold << ", albedo " << c.albedo_sim << " vs " << c.albedo_model
+                       << " (" << c.albedo_threshold << ")";
   EXPECT_EQ(c.rays, 20000);
   EXPECT_NEAR(c.albedo_sim, 1.0, 1e-15);
   const nlohmann::json j = ok.to_json();
