@@ -68,3 +68,25 @@ def test_bad_input_is_named(vg):
         vg.check_brdf(f, "phong", 0.3, [0], **HF)
     with pytest.raises(ValueError, match=r"^field_size = 65536 needs 126.0 GB with its hierarchy, more than"):
         vg.check_brdf(f, "beckmann", 0.3, [0], **dict(HF, field_size=65536, correlation_length=8))
+
+
+def test_the_heightfield_suite_from_python_reports_and_plots(vg, tmp_path):
+    """vgroove.validate on a suite of kind "heightfield", and `vgroove plot` of its report."""
+    import json
+    import subprocess
+
+    from conftest import BIN, SOURCE
+    suite = json.load(open(f"{SOURCE}/data/suites/heightfield.json"))
+    suite.update(ndf=["beckmann"], alpha=[0.3], theta_i_deg=[0, 60], field_size=64, correlation_length=4, fields=2,
+                 rays=2000, walk_paths=5000)
+    r = vg.validate(suite, threads=2)
+    assert r["kind"] == "heightfield" and r["pass"] and len(r["cases"]) == 2
+    assert [c["within_noise"] for c in r["controls"]] == [True, True]
+    path = tmp_path / "hf.json"
+    path.write_text(json.dumps(r))
+    out = subprocess.run([BIN, "plot", str(path), "--out", str(tmp_path / "hf.png")], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert (tmp_path / "hf-beckmann.png").stat().st_size > 10000
+    big = dict(suite, field_size=65536)
+    with pytest.raises(ValueError, match=r"/field_size = 65536 needs 126.0 GB with its hierarchy"):
+        vg.validate(big, threads=1)
