@@ -6,20 +6,12 @@
 // cubature with an error bound, and compares as the suite does (validation/histogram_metrics.h):
 // the L1 of the normalized lobes and of the flux fractions against the noise expected at this
 // sample count plus `sigmas` sd plus model_tolerance, and the albedo against its binomial error.
-// With surface "heightfield" the traced surface is instead `fields` random heightfields of the NDF
-// and alpha (Beckmann: Gaussian heights; GGX: the GGX-slope field; validation/heightfield_lobe.h),
-// field_size^2 cells with correlation length l cells, the rays split evenly among them, traced
-// exactly in 3D: the surface Smith's models assume; the same bins and L1 distances and albedo,
-// with the noise per bin from the fields' spread (the sample variance of the per-field fractions
-// over the fields, at least the multinomial p (1 - p) / N of the rays) in place of the bound from
-// rays and grooves. A field that does not fit memory is refused before any work (check_options,
-// one line).
+// With surface "heightfield" random heightfields are traced instead (CheckSurface, below).
 // Frame: n = (0, 0, 1), wi = dir3(theta_i, pi) towards the light; F = 1. A NaN, infinite or
 // negative value throws support::UserError naming it and its directions, before any tracing.
 // Tests: tests/validation/check_brdf_test.cpp (CheckBrdf.VgrooveModelPasses3d,
 // CheckBrdf.VgrooveModelPassesFlatland, CheckBrdf.TwoPercentLessEnergyFails, CheckBrdf.WrongRoughnessFailsOnShape,
-// CheckBrdf.AValueThatIsNotABrdfsFailsAtOnceNamingItsDirections, CheckBrdf.ResultsDoNotDependOnThreads),
-// tests/validation/heightfield_check_brdf_test.cpp (HeightfieldCheckBrdf.*).
+// CheckBrdf.AValueThatIsNotABrdfsFailsAtOnceNamingItsDirections, CheckBrdf.ResultsDoNotDependOnThreads).
 // Derivation: docs/derivations/validation.md.
 #pragma once
 
@@ -47,7 +39,15 @@ using BrdfFn = std::function<double(const analytic::Dir3& wi, const analytic::Di
 // worker threads (several calls may run at once unless opt.threads is 1).
 using BrdfBatchFn = std::function<void(const double* wi, const double* wo, std::size_t n, double* out)>;
 
-// The traced surface: procedural V-grooves (the Fig. 11 suite's) or random heightfields.
+// The traced surface: procedural V-grooves (the Fig. 11 suite's) or, with `heightfield`, `fields`
+// random heightfields of the NDF and alpha (Beckmann: Gaussian heights; GGX: the GGX-slope field;
+// validation/heightfield_lobe.h) of field_size^2 cells with correlation length l cells, the rays
+// split evenly among them, traced exactly in 3D: the surface Smith's models assume. The same bins,
+// L1 distances and albedo, with the noise per bin from the fields' spread (the sample variance of
+// the per-field fractions over the fields, at least the multinomial p (1 - p) / N of the rays) in
+// place of the bound from rays and grooves. A field that does not fit memory is refused before any
+// work (check_options, one line). Tests: tests/validation/heightfield_check_brdf_test.cpp
+// (HeightfieldCheckBrdf.*); docs/derivations/heightfield.md.
 enum class CheckSurface : unsigned char { vgroove, heightfield };
 const char* check_surface_name(CheckSurface s);  // "vgroove", "heightfield"
 

@@ -1,27 +1,17 @@
-// vgroove validation: the suite of kind "heightfield": random heightfields (sim/heightfield.h:
-// Beckmann fields and GGX-slope fields) traced exactly in 3D (validation/heightfield_lobe.h), their
-// lobes per bounce count (rows k = 1, 2, 3+) and energies held against the models renderers ship:
-// the 3D Smith random walk of Heitz et al. 2016 (analytic/smith_walk_3d.h, rows k = 1, 2, 3+),
-// Cook-Torrance with Smith's height-correlated G (k = 1 only: the walk's first order in closed
-// form, integrated over the bins as check_brdf integrates a model) and the V-groove model of Lee
-// et al. 2018 (Eq. 16, analytic/lobe_3d.h, rows k = 1, 2, 3+).
-//
-// Per case (ndf, alpha, theta_i): `fields` independent fields (the same fields for every
-// theta_i), `rays` rays on each. Per (row, bin) the traced fraction's mean over the fields and
-// its standard error: the fields' spread, but at least the rays' multinomial error (a few fields
-// can spread less by chance). A model is within noise on a row when the row's L1 distance is at
-// most its expected value plus `sigmas` standard deviations (the bins' variances: the traced
-// mean's, plus the walk's own multinomial variance) plus the model's tolerance, and each row's
-// energy E_k within `sigmas` of its standard error; otherwise the report says by how much it
-// misses. These are measurements, not verdicts: the surfaces are not Smith's (heights and
-// slopes are dependent on the GGX fields; shadowing is correlated on every surface) and not
-// V-grooves. The verdict is only what must hold: no ray lost, every value finite, and the
-// suite's `controls` (optional: model, ndf, alpha, theta_i cases where the model must be within
-// noise). Work items: one per case, its fields in order on one thread from their own seeds:
-// the same report for any thread, shard or rank count. Memory: one field with its hierarchy per
-// worker (sim::heightfield_bytes), refused in one line before any work when it does not fit.
-// Tests: tests/validation/heightfield_suite_test.cpp (HeightfieldSuite.*), tests/cluster/shards_test.sh.
-// Schema: docs/schemas/heightfield_suite.schema.json.
+// vgroove validation: the suite of kind "heightfield": random heightfields (sim/heightfield.h,
+// Beckmann and GGX-slope fields) traced exactly in 3D (validation/heightfield_lobe.h), their lobes
+// per k (rows 1, 2, 3+) and energies held against the 3D Smith walk (analytic/smith_walk_3d.h),
+// Cook-Torrance with Smith's height-correlated G (k = 1, integrated over the bins as check_brdf
+// integrates a model) and the V-groove model (Eq. 16, analytic/lobe_3d.h). Per case (ndf, alpha,
+// theta_i): `fields` fields (the same at every theta_i), `rays` rays on each; per cell the mean
+// over the fields and its standard error (their spread, at least the rays' multinomial error). A
+// model is within noise when every row's L1 <= expected + sigmas sd + tolerance and every E_k
+// within sigmas se: measured, not a verdict. The verdict: no ray lost, every value finite, and
+// the suite's `controls`. One work item per case: the same report for any thread, shard or rank
+// count. Memory: one field with its hierarchy per worker, refused in one line before any work.
+// Tests: tests/validation/heightfield_suite_test.cpp (HeightfieldSuite.*, HeightfieldSuiteCli.*),
+// tests/cluster/shards_test.sh. Schema: docs/schemas/suite.schema.json ($defs/heightfield).
+// Derivation: docs/derivations/heightfield.md (the suite's section).
 #pragma once
 
 #include "vgroove/analytic/ndf.h"
