@@ -6,6 +6,7 @@
 // cubature with an error bound, and compares as the suite does (validation/histogram_metrics.h):
 // the L1 of the normalized lobes and of the flux fractions against the noise expected at this
 // sample count plus `sigmas` sd plus model_tolerance, and the albedo against its binomial error.
+// With surface "heightfield" random heightfields are traced instead (CheckSurface, below).
 // Frame: n = (0, 0, 1), wi = dir3(theta_i, pi) towards the light; F = 1. A NaN, infinite or
 // negative value throws support::UserError naming it and its directions, before any tracing.
 // Tests: tests/validation/check_brdf_test.cpp (CheckBrdf.VgrooveModelPasses3d,
@@ -38,14 +39,32 @@ using BrdfFn = std::function<double(const analytic::Dir3& wi, const analytic::Di
 // worker threads (several calls may run at once unless opt.threads is 1).
 using BrdfBatchFn = std::function<void(const double* wi, const double* wo, std::size_t n, double* out)>;
 
+// The traced surface: procedural V-grooves (the Fig. 11 suite's) or, with `heightfield`, `fields`
+// random heightfields of the NDF and alpha (Beckmann: Gaussian heights; GGX: the GGX-slope field;
+// validation/heightfield_lobe.h) of field_size^2 cells with correlation length l cells, the rays
+// split evenly among them, traced exactly in 3D: the surface Smith's models assume. The same bins,
+// L1 distances and albedo, with the noise per bin from the fields' spread (the sample variance of
+// the per-field fractions over the fields, at least the multinomial p (1 - p) / N of the rays) in
+// place of the bound from rays and grooves. A field that does not fit memory is refused before any
+// work (check_options, one line). Tests: tests/validation/heightfield_check_brdf_test.cpp
+// (HeightfieldCheckBrdf.*); docs/derivations/heightfield.md.
+enum class CheckSurface : unsigned char { vgroove, heightfield };
+const char* check_surface_name(CheckSurface s);  // "vgroove", "heightfield"
+
 struct CheckBrdfOptions {
   std::string name = "check_brdf";  // names the report
   NdfKind ndf = NdfKind::ggx;
   double alpha = 0.5;                                     // (0, 2]
   std::vector<double> theta_i_deg = {0, 20, 40, 60, 80};  // each in [0, 89.9] (kMaxSurfaceThetaIDeg)
   SurfaceDim dim = SurfaceDim::three_d;
-  long rays = 1'000'000;                      // per theta_i, [1, 1e9]
-  int grooves = 250'000;                      // grooves of the traced surface, [1, 1e7]
+  long rays = 1'000'000;  // per theta_i, [1, 1e9]
+  int grooves = 250'000;  // grooves of the traced surface, [1, 1e7]
+  CheckSurface surface = CheckSurface::vgroove;
+  // surface heightfield (3D, beckmann or ggx): cells per side, a power of two in [16, 65536]
+  // that fits memory; correlation length in cells, [2, field_size / 8]; fields, [2, min(1000, rays)].
+  int field_size = 256;
+  double correlation_length = 8.0;
+  int fields = 4;
   std::uint64_t seed = 1;                     // surface and rays
   int theta_bins = 30;                        // 3D: theta_o bins over [0, 90) deg
   int phi_bins = 24;                          // 3D: phi_o bins, even
@@ -91,7 +110,8 @@ struct CheckBrdfResult {
   nlohmann::json to_json() const;
 };
 
-// Throws support::UserError naming the option when an option is out of range.
+// Throws support::UserError naming the option when an option is out of range (and, for a
+// heightfield, when its field does not fit memory).
 void check_options(const CheckBrdfOptions& opt);
 // Throws support::UserError at the first value of f that is not finite and >= 0 (above).
 CheckBrdfResult check_brdf(const BrdfFn& f, const CheckBrdfOptions& opt);

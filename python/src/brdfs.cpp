@@ -286,8 +286,16 @@ validation::CheckBrdfOptions check_options(const std::string& name, const std::s
                                            const std::vector<double>& theta_i_deg, const py::object& rays,
                                            const std::string& dim, const py::object& grooves, const py::object& seed,
                                            int theta_bins, int phi_bins, int flatland_bins, double sigmas,
-                                           double model_tolerance, int quadrature_order, int threads) {
+                                           double model_tolerance, int quadrature_order, int threads,
+                                           const std::string& surface, const py::object& field_size,
+                                           double correlation_length, const py::object& fields) {
   validation::CheckBrdfOptions o;
+  if (surface != "vgroove" && surface != "heightfield")
+    throw support::UserError("surface = \"" + surface + "\" is not one of \"vgroove\", \"heightfield\"");
+  o.surface = surface == "heightfield" ? validation::CheckSurface::heightfield : validation::CheckSurface::vgroove;
+  o.field_size = static_cast<int>(to_count(field_size, "field_size", 16, 65536));
+  o.correlation_length = correlation_length;
+  o.fields = static_cast<int>(to_count(fields, "fields", 2, 1000));
   o.name = name;
   o.ndf = parse_ndf(ndf);
   o.alpha = alpha;
@@ -310,10 +318,11 @@ py::object check_brdf(const py::object& f, const py::object& max_k, const std::s
                       double alpha, const std::vector<double>& theta_i_deg, const py::object& rays,
                       const std::string& dim, const py::object& grooves, const py::object& seed, int theta_bins,
                       int phi_bins, int flatland_bins, double sigmas, double model_tolerance, int quadrature_order,
-                      int threads, const py::object& progress) {
-  validation::CheckBrdfOptions o =
-      check_options(name, ndf, alpha, theta_i_deg, rays, dim, grooves, seed, theta_bins, phi_bins, flatland_bins,
-                    sigmas, model_tolerance, quadrature_order, threads);
+                      int threads, const py::object& progress, const std::string& surface, const py::object& field_size,
+                      double correlation_length, const py::object& fields) {
+  validation::CheckBrdfOptions o = check_options(name, ndf, alpha, theta_i_deg, rays, dim, grooves, seed, theta_bins,
+                                                 phi_bins, flatland_bins, sigmas, model_tolerance, quadrature_order,
+                                                 threads, surface, field_size, correlation_length, fields);
   ProgressRelay relay(progress);
   relay.set(0, 1);
   relay.flush();
@@ -404,7 +413,9 @@ void bind_brdfs(py::module_& m) {
   m.def("check_brdf", &check_brdf, py::arg("f"), py::arg("max_k"), py::arg("name"), py::arg("ndf"), py::arg("alpha"),
         py::arg("theta_i_deg"), py::arg("rays"), py::arg("dim"), py::arg("grooves"), py::arg("seed"),
         py::arg("theta_bins"), py::arg("phi_bins"), py::arg("flatland_bins"), py::arg("sigmas"),
-        py::arg("model_tolerance"), py::arg("quadrature_order"), py::arg("threads"), py::arg("progress") = py::none());
+        py::arg("model_tolerance"), py::arg("quadrature_order"), py::arg("threads"), py::arg("progress") = py::none(),
+        py::arg("surface") = "vgroove", py::arg("field_size") = 256, py::arg("correlation_length") = 8.0,
+        py::arg("fields") = 4);
   // The orders each model sums when max_k is not given (analytic/brdf_model.h: the one table of
   // every face).
   py::dict defaults;

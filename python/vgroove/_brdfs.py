@@ -97,7 +97,8 @@ def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], np.ndarray], str], nd
                grooves: int = 250000, seed: int = 1, theta_bins: int = 30, phi_bins: int = 24,
                flatland_bins: int = 90, sigmas: float = 5.0, model_tolerance: float = 1e-4,
                quadrature_order: int = 4, threads: int = 0, name: str = "check_brdf", max_k: Optional[int] = None,
-               progress: Optional[ProgressFn] = None) -> dict:
+               progress: Optional[ProgressFn] = None, surface: str = "vgroove", field_size: int = 256,
+               correlation_length: float = 8.0, fields: int = 4) -> dict:
     """Holds a BRDF against vgroove's exact simulation (validation/check_brdf.h; same verdict,
     thresholds and report as the C++ API ``vgroove::validation::check_brdf``).
 
@@ -137,6 +138,14 @@ def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], np.ndarray], str], nd
         With a model's name: as in :func:`brdf`.
     progress : callable, optional
         ``progress(done, total)``: the start (0 of 1) and the end (1 of 1).
+    surface : {"vgroove", "heightfield"}
+        The traced surface: the procedural V-grooves above, or ``fields`` random heightfields of
+        the NDF (beckmann or ggx) and alpha, traced exactly in 3D (the surface Smith's models
+        assume), the rays split evenly among them; the noise per bin is then the fields' spread.
+    field_size, correlation_length, fields
+        With surface "heightfield": cells per side (a power of two in [16, 65536] whose field fits
+        memory: refused otherwise), the correlation length in cells ([2, field_size / 8]), and
+        independent fields in [2, 1000].
 
     Returns
     -------
@@ -164,7 +173,9 @@ def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], np.ndarray], str], nd
                                integer(theta_bins, "theta_bins"), integer(phi_bins, "phi_bins"),
                                integer(flatland_bins, "flatland_bins"), real(sigmas, "sigmas"),
                                real(model_tolerance, "model_tolerance"), integer(quadrature_order, "quadrature_order"),
-                               integer(threads, "threads"), _progress(progress))
+                               integer(threads, "threads"), _progress(progress), surface,
+                               integer(field_size, "field_size"), real(correlation_length, "correlation_length"),
+                               integer(fields, "fields"))
 
 
 for _f in (brdf, check_brdf):

@@ -62,7 +62,8 @@ def brdf(model: str, ndf: str, alpha: float, wi: npt.NDArray[np.float64], wo: np
 def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], npt.ArrayLike], str], max_k: Optional[int], name: str,
                ndf: str, alpha: float, theta_i_deg: Sequence[float], rays: int, dim: str, grooves: int, seed: int,
                theta_bins: int, phi_bins: int, flatland_bins: int, sigmas: float, model_tolerance: float,
-               quadrature_order: int, threads: int, progress: Progress = None) -> dict[str, Any]: ...
+               quadrature_order: int, threads: int, progress: Progress = None, surface: str = "vgroove",
+               field_size: int = 256, correlation_length: float = 8.0, fields: int = 4) -> dict[str, Any]: ...
 
 def validate(path: str, rays: Optional[int], threads: int, sampling: Optional[str], eq6_form: Optional[str],
              seed: Optional[int], model_table: Optional[str], verbose: bool, suite_json: Optional[str] = None,

@@ -627,6 +627,22 @@ def check_brdf_tables(r: Dict[str, Any]) -> Tuple[List[Table], List[Table]]:
                   "threshold", "verdict"], rows)]
 
 
+def heightfield_tables(r: Dict[str, Any]) -> Tuple[List[Table], List[Table]]:
+    cases = get(r, "cases", default=[])
+    rows = []
+    for c in cases if isinstance(cases, list) else []:
+        if not isinstance(c, dict):
+            continue
+        within = [("yes" if get(c, m, "against_traced", "within_noise") else "no")
+                  for m in ("smith_walk", "cook_torrance_smith", "vgroove")]
+        rows.append([text(get(c, "ndf", default="?")), num(get(c, "alpha")), num(get(c, "theta_i_deg")),
+                     num(get(c, "rays")), num(get(c, "lost")), num(get(c, "traced", "albedo"))] + within +
+                    [verdict(case_pass(c))])
+    return [], [("Cases: which model is within noise of the traced heightfields",
+                 ["NDF", "alpha", "theta_i deg", "rays", "lost", "albedo", "Smith walk", "Cook-Torrance (Smith G)",
+                  "V-groove", "verdict"], rows)]
+
+
 def generic_tables(r: Dict[str, Any]) -> Tuple[List[Table], List[Table]]:
     cases = get(r, "cases", default=None)
     if not isinstance(cases, list) or not any(isinstance(c, dict) and "pass" in c for c in cases):
@@ -640,7 +656,7 @@ def generic_tables(r: Dict[str, Any]) -> Tuple[List[Table], List[Table]]:
 TABLES = {
     "single_grooves": single_groove_tables, "brdf": lobe_tables, "nonsymmetric_brdf": lobe_tables,
     "furnace": furnace_tables, "sampling": sampling_tables, "table2": table2_tables, "accuracy": accuracy_tables,
-    "profiles": profiles_tables, "check_brdf": check_brdf_tables,
+    "profiles": profiles_tables, "check_brdf": check_brdf_tables, "heightfield": heightfield_tables,
 }
 
 KIND_TITLES = {
@@ -649,6 +665,7 @@ KIND_TITLES = {
     "furnace": "white furnace of the BRDF", "sampling": "importance sampling (Sec. 6)",
     "table2": "bounce counts at percentiles of D (Table 2)", "accuracy": "accuracy against time (bench accuracy)",
     "profiles": "random height profiles: Smith against V-cavity", "check_brdf": "check_brdf",
+    "heightfield": "random heightfields in 3D: Smith, Cook-Torrance and the V-groove model",
     "simulate": "scene (vgroove simulate)", "sample": "importance sampling of one case (vgroove sample)",
     "energy": "energy tables (vgroove energy)",
     "model_table": "a model's table against traced lobes (validate --model-table)",

@@ -22,6 +22,10 @@ One or more images per report, named after the report (or --out) with a suffix p
                                              BASE[-aniso]-NDF-DIM.png  lobe grids on the plane of incidence
     "profiles"                               BASE.png       masking G1 per facet normal: traced, V-cavity, Smith;
                                              BASE-lobes.png  lobes: traced profiles, random walk, V-groove model
+    "heightfield"                            BASE-NDF.png   per model (Smith walk, Cook-Torrance with Smith G,
+                                                            V-groove), L1 / threshold of each k's lobe (1, 2,
+                                                            3+) against theta_i, a series per alpha (<= 1:
+                                                            within noise), and E_k model minus traced
     "energy_audit"                           BASE-REF-NDF.png  per compensation formula, its albedo minus the
                                                             exact one over (mu, alpha), the grey F0 with the
                                                             largest |error| per cell (REF: vgroove, smith_walk)
@@ -203,7 +207,7 @@ def report_kind(report: Node) -> str:
         raise report.fail(f"is {_kind(v)}: a report is a JSON object")
     kind = v.get("kind")
     if kind in ("brdf", "furnace", "table2", "check_brdf", "sampling", "nonsymmetric_brdf", "profiles",
-                "energy_audit", "model_table"):
+                "energy_audit", "model_table", "heightfield"):
         return kind
     if "runs" in v:
         return "accuracy"
@@ -1070,6 +1074,62 @@ def model_table_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
             for (ndf, dim), series in groups.items()]
 
 
+_HF_MODELS = ("smith_walk", "cook_torrance_smith", "vgroove")
+_HF_MARKS = {"1": "o-", "2": "s--", "3+": "^:"}
+
+
+def heightfield_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
+    """The "heightfield" suite: one figure per NDF, a column per model."""
+    groups: Dict[str, List[Dict[str, Any]]] = {}
+    for c in report["cases"].nonempty():
+        ndf = c["ndf"].one_of(_NDFS)
+        case = {"alpha": c["alpha"].number(0.0, 2.0), "theta_i": c["theta_i_deg"].number(0.0, 90.0), "models": {}}
+        for m in _HF_MODELS:
+            rows = []
+            for r in c[m]["against_traced"]["rows"].nonempty():
+                rows.append((r["k"].one_of(tuple(_HF_MARKS)), r["l1"].number(0.0), r["l1_threshold"].number(0.0),
+                             -r["energy_diff"].number(-1.0, 1.0), r["energy_threshold"].number(0.0)))
+            case["models"][m] = rows
+        groups.setdefault(ndf, []).append(case)
+    name = safe_text(report["suite"].text())
+
+    def drawer(ndf: str, cases: List[Dict[str, Any]]) -> Drawer:
+        def draw() -> Figure:
+            fig = _figure(13.0, 7.0)
+            axes = fig.subplots(2, len(_HF_MODELS), squeeze=False)
+            colors = ["#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2"]
+            alphas = sorted({c["alpha"] for c in cases})
+            for j, m in enumerate(_HF_MODELS):
+                top, bottom = axes[0][j], axes[1][j]
+                for n, a in enumerate(alphas):
+                    sel = sorted((c for c in cases if c["alpha"] == a), key=lambda c: c["theta_i"])
+                    for k in _HF_MARKS:
+                        pts = [(c["theta_i"], r[1] / r[2] if r[2] > 0 else 0.0, r[3], r[4]) for c in sel
+                               for r in c["models"][m] if r[0] == k]
+                        if not pts:
+                            continue
+                        t = [p[0] for p in pts]
+                        top.plot(t, [p[1] for p in pts], _HF_MARKS[k], color=colors[n % len(colors)],
+                                 label=f"alpha {a:g}, k {k}")
+                        bottom.errorbar(t, [p[2] for p in pts], yerr=[p[3] for p in pts], fmt=_HF_MARKS[k],
+                                        capsize=2, color=colors[n % len(colors)])
+                top.axhline(1.0, color="red", lw=1)
+                top.set_yscale("log")
+                top.set_title(m, fontsize=9)
+                top.set_xlabel("theta_i (deg)")
+                top.set_ylabel("L1 / threshold (<= 1: within noise)")
+                bottom.axhline(0.0, color="black", lw=0.8)
+                bottom.set_xlabel("theta_i (deg)")
+                bottom.set_ylabel("E_k model - traced (bars: threshold)")
+            axes[0][0].legend(fontsize=6, ncol=2)
+            _suptitle(fig, f"{name}: {ndf} heightfields traced in 3D against three models",
+                      "per k = 1, 2, 3+: the lobe's L1 over its noise threshold, and the energy's miss")
+            return fig
+        return draw
+
+    return [(f"-{ndf}", drawer(ndf, cases)) for ndf, cases in groups.items()]
+
+
 KINDS = {
     "single_grooves": single_groove_figures,
     "brdf": brdf_figures,
@@ -1082,6 +1142,7 @@ KINDS = {
     "profiles": profiles_figures,
     "energy_audit": energy_audit_figures,
     "model_table": model_table_figures,
+    "heightfield": heightfield_figures,
     # A new report kind adds a function here (and its name to report_kind).
 }
 

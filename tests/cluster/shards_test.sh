@@ -76,6 +76,12 @@ cat >"$t/profiles.json" <<'J'
  "walk_paths": 20000, "normal_bins": 6, "lobe_bins": 18, "max_k": 4, "seed": 2,
  "thresholds": {"p_min": 1e-3, "sigmas": 5, "model_tolerance": 1e-5}}
 J
+cat >"$t/heightfield.json" <<'J'
+{"name": "tiny_heightfield", "kind": "heightfield", "ndf": ["beckmann", "ggx"], "alpha": [0.5], "theta_i_deg": [0, 60],
+ "field_size": 64, "correlation_length": 4, "fields": 2, "rays": 3000, "walk_paths": 5000, "theta_bins": 6,
+ "phi_bins": 4, "seed": 3, "thresholds": {"sigmas": 5},
+ "controls": [{"model": "cook_torrance_smith", "ndf": "beckmann", "alpha": 0.5, "theta_i_deg": 0}]}
+J
 cat >"$t/sampling.json" <<'J'
 {"name": "tiny_sampling", "kind": "sampling", "seed": 4, "max_k": 32,
  "chi_square": {"level": 0.01, "samples": {"3d": 20000, "flatland": 20000}, "cos_bins": 4, "phi_bins": 8, "theta_bins": 12,
@@ -130,6 +136,7 @@ case $check in
     sharded nonsymmetric_brdf 4 validate "$t/nonsymmetric_brdf.json"
     sharded profiles 3 validate "$t/profiles.json"
     sharded sampling 3 validate "$t/sampling.json"
+    sharded heightfield 3 validate "$t/heightfield.json"
     # A foreign model: the brdf suite's layout filled with a flat lobe (it fails: the same verdict
     # merged as in one process).
     "$bin" bins "$t/brdf.json" --out "$t/layout.json" >/dev/null

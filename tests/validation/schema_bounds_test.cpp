@@ -115,12 +115,20 @@ json* slot(json& doc, const std::vector<std::string>& path) {
 // cannot express: a bin count at its maximum with max_k 0 stays within the histogram's cells
 // (validation/ranges.h kMaxHistogramCells); alpha 2 has a nonsymmetric partner law for GGX and
 // Beckmann, not for Phong (Eq. 20 needs alpha < sqrt(2)).
+json at(const Bound& b);  // the value at the bound (below)
+
 void make_room(json& doc, const Bound& b) {
   const std::string& field = b.path.back();
   if (b.kind == "nonsymmetric_brdf" && b.path[0] == "alpha" && b.upper) doc["ndf"] = json::array({"ggx"});
   if (b.kind == "sampling") return;  // its max_k bounds the sampler's orders, not a histogram
+  if (b.kind == "heightfield") {
+    // Its controls name cases of the suite: dropped, or (a control's own bound) given a case there.
+    if (b.path[0] != "controls") doc.erase("controls");
+    if (b.path[0] == "controls") doc["controls"] = json::array({doc["controls"][0]});
+    if (b.path[0] == "controls" && (field == "alpha" || field == "theta_i_deg")) doc[field] = json::array({at(b)});
+  }
   if (b.upper && (field == "flatland_bins" || field == "theta_bins" || field == "phi_bins" || field == "lobe_bins")) {
-    doc["max_k"] = b.kind == "profiles" ? 1 : 0;
+    if (b.kind != "heightfield") doc["max_k"] = b.kind == "profiles" ? 1 : 0;
     if (field != "flatland_bins" && doc.contains("theta_bins")) doc["theta_bins"] = 1, doc["phi_bins"] = 2;
     if (field == "lobe_bins") doc["lobe_bins"] = 1;
   }

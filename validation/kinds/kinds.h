@@ -18,6 +18,7 @@ const SuiteKind& sampling_kind();      // "sampling" (sampling_kind.cpp)
 const SuiteKind& nonsymmetric_kind();  // "nonsymmetric_brdf" (nonsymmetric_kind.cpp)
 const SuiteKind& profiles_kind();      // "profiles" (profiles_kind.cpp)
 const SuiteKind& energy_audit_kind();  // "energy_audit" (energy_audit_kind.cpp)
+const SuiteKind& heightfield_kind();   // "heightfield" (heightfield_kind.cpp)
 
 // The result of a finished run: `print(std::ostream&)` writes its table, `report_json()` (called
 // only when `report`) builds its report.

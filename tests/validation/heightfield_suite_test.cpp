@@ -1,0 +1,211 @@
+// The "heightfield" suite (validation/heightfield_suite.h): a strict spec, the memory refusal
+// before any work, and a small run whose controls hold (Cook-Torrance with Smith's G and the
+// Smith walk on smooth Beckmann fields at normal incidence, where masking and multiple scattering
+// are nearly absent and heights are independent of slopes) while deliberately wrong models are
+// caught by the same metric, with the same numbers on one thread as on two.
+#include "vgroove/validation/heightfield_suite.h"
+
+#include "tests/cli_run.h"
+#include "tests/test_files.h"
+#include "vgroove/sim/heightfield.h"
+#include "vgroove/support/memory.h"
+#include "vgroove/support/user_error.h"
+#include "vgroove/validation/check_brdf.h"
+#include "vgroove/validation/energy_lobe_shape.h"
+#include "vgroove/validation/histogram_metrics.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <sstream>
+#include <string>
+
+namespace vgroove::validation {
+namespace {
+
+using nlohmann::json;
+
+#define EXPECT_USER_ERROR(stmt, part)                                           \
+  try {                                                                         \
+    stmt;                                                                       \
+    ADD_FAILURE() << "no support::UserError";                                   \
+  } catch (const support::UserError& e) {                                       \
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what(); \
+  }
+
+json shipped() {
+  return json::parse(testing_files::read_text(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/heightfield.json"));
+}
+
+// Beckmann alpha 0.3 at normal incidence on 64^2 fields (l = 4 cells): about 0.2 s.
+json small() {
+  json j = shipped();
+  j["ndf"] = {"beckmann"};
+  j["alpha"] = {0.3};
+  j["theta_i_deg"] = {0};
+  j["field_size"] = 64;
+  j["correlation_length"] = 4;
+  j["fields"] = 4;
+  j["rays"] = 4000;
+  j["walk_paths"] = 20000;
+  j["controls"] = {{{"model", "cook_torrance_smith"}, {"ndf", "beckmann"}, {"alpha", 0.3}, {"theta_i_deg", 0}},
+                   {{"model", "smith_walk"}, {"ndf", "beckmann"}, {"alpha", 0.3}, {"theta_i_deg", 0}}};
+  return j;
+}
+
+TEST(HeightfieldSuite, ShippedSuiteParses) {
+  const HeightfieldSuite s = parse_heightfield_suite(shipped(), "heightfield.json");
+  EXPECT_EQ(s.cases(), 2u * 3u * 3u);
+  EXPECT_EQ(s.field_size, 256);
+  EXPECT_EQ(s.fields, 8);
+  ASSERT_EQ(s.controls.size(), 2u);
+  const HeightfieldCase c = s.case_at(s.controls[0].case_index);
+  EXPECT_EQ(c.ndf, analytic::NdfKind::beckmann);
+  EXPECT_EQ(c.alpha, 0.3);
+  EXPECT_EQ(c.theta_i_deg, 0.0);
+  const HeightfieldCase last = s.case_at(s.cases() - 1);
+  EXPECT_EQ(last.ndf, analytic::NdfKind::ggx);
+  EXPECT_EQ(last.theta_i_deg, 70.0);
+}
+
+TEST(HeightfieldSuite, BadSpecsNameTheFieldAndRange) {
+  const auto bad = [](const char* key, const json& value, const std::string& part) {
+    json j = shipped();
+    j[key] = value;
+    EXPECT_USER_ERROR(parse_heightfield_suite(j, "h.json"), part);
+  };
+  bad("field_size", 100, "h.json: /field_size = 100 must be a power of two in [16, 65536]");
+  bad("field_size", 8, "h.json: /field_size");
+  bad("correlation_length", 40, "h.json: /correlation_length");  // > 256 / 8
+  bad("correlation_length", 1, "h.json: /correlation_length");
+  bad("fields", 1, "h.json: /fields");
+  bad("phi_bins", 7, "h.json: /phi_bins = 7 must be even");
+  bad("ndf", json{"phong"}, "h.json: /ndf");
+  bad("theta_i_deg", json{90}, "h.json: /theta_i_deg");
+  bad("feild_size", 64, "h.json: /feild_size is not a known key");
+  bad("controls", json{{{"model", "smith_walk"}, {"ndf", "ggx"}, {"alpha", 0.4}, {"theta_i_deg", 0}}},
+      "h.json: /controls/0 names no case of the suite");
+  bad("controls", json{{{"model", "walter"}, {"ndf", "ggx"}, {"alpha", 0.3}, {"theta_i_deg", 0}}},
+      "h.json: /controls/0/model");
+}
+
+TEST(HeightfieldSuite, AFieldTooLargeForMemoryIsRefusedBeforeAnyWork) {
+  json j = shipped();
+  j["field_size"] = 65536;  // 126 GB with its hierarchy
+  const HeightfieldSuite s = parse_heightfield_suite(j, "h.json");
+  if (support::memory_limit_bytes() >= sim::heightfield_bytes(65536)) GTEST_SKIP() << "this machine holds 126 GB";
+  EXPECT_USER_ERROR(heightfield_run_memory_bytes(s, 1), "h.json: /field_size = 65536 needs 126.0 GB");
+  EXPECT_USER_ERROR(heightfield_run_memory_bytes(s, 1), "it must be a power of two in [16, ");
+  // The shipped size fits, and the estimate counts the field with its hierarchy per worker.
+  const HeightfieldSuite ok = parse_heightfield_suite(shipped(), "h.json");
+  EXPECT_GE(heightfield_run_memory_bytes(ok, 2), 2.0 * sim::heightfield_bytes(256));
+}
+
+TEST(HeightfieldSuite, SmallRunControlsHoldWrongModelsAreCaughtAndThreadsDoNotMatter) {
+  const HeightfieldSuite s = parse_heightfield_suite(small(), "small.json");
+  const HeightfieldRun one = run_heightfield_suite(s, 0, 1);
+  ASSERT_EQ(one.cases.size(), 1u);
+  const HeightfieldOutcome& o = one.cases[0];
+  EXPECT_TRUE(one.pass);
+  EXPECT_EQ(o.rays, 4 * 4000);
+  EXPECT_EQ(o.lost, 0);
+  EXPECT_FALSE(o.non_finite);
+  // F = 1: every ray leaves.
+  EXPECT_NEAR(o.albedo, 1.0, 1e-15);
+  ASSERT_EQ(one.controls_hold.size(), 2u);
+  EXPECT_TRUE(one.controls_hold[0]) << "Cook-Torrance (Smith) k = 1: L1 " << o.cook_torrance.l1[0] << " threshold "
+                                    << o.cook_torrance.l1_threshold[0];
+  EXPECT_TRUE(one.controls_hold[1]);
+  // The V-groove model puts 0.4% into k = 2 at normal incidence (the facets' partners), where the
+  // field has almost none: a model of another surface, caught.
+  EXPECT_FALSE(o.vgroove.within_noise);
+
+  // Deliberately wrong models against the same traced lobe: Smith's k = 1 at 1.5 alpha (shape),
+  // and the right one with 3% less energy.
+  CheckBrdfOptions co;
+  co.ndf = NdfKind::beckmann, co.alpha = 0.45, co.theta_bins = s.theta_bins, co.phi_bins = s.phi_bins;
+  const analytic::MicrofacetModel smith{NdfKind::beckmann, analytic::MaskingKind::smith_height_correlated};
+  const BrdfFn rough = [&](const analytic::Dir3& i, const analytic::Dir3& w) {
+    return single_scattering_brdf(smith, 0.45, i, w);
+  };
+  const std::vector<double> wrong = integrate_model_lobe(batch_of(rough), 0.0, co).flux;
+  const HeightfieldMiss m1 = heightfield_miss(o.lobe, o.lobe_se, o.energy, o.energy_se, wrong, {}, {sum(wrong)}, {}, 1,
+                                              s.bins(), s.sigmas, s.model_tolerance);
+  EXPECT_FALSE(m1.within_noise) << "L1 " << m1.l1[0] << " threshold " << m1.l1_threshold[0];
+  std::vector<double> dim = o.ct_lobe;
+  for (double& v : dim) v *= 0.97;
+  const HeightfieldMiss m2 = heightfield_miss(o.lobe, o.lobe_se, o.energy, o.energy_se, dim, {}, {sum(dim)}, {}, 1,
+                                              s.bins(), s.sigmas, s.model_tolerance);
+  EXPECT_FALSE(m2.within_noise) << "E_1 diff " << m2.energy_diff[0] << " threshold " << m2.energy_threshold[0];
+
+  // Two threads, the same outcome value for value (timings aside).
+  const HeightfieldRun two = run_heightfield_suite(s, 0, 2);
+  ASSERT_EQ(two.cases.size(), 1u);
+  EXPECT_EQ(two.cases[0].lobe, o.lobe);
+  EXPECT_EQ(two.cases[0].lobe_se, o.lobe_se);
+  EXPECT_EQ(two.cases[0].walk_lobe, o.walk_lobe);
+  EXPECT_EQ(two.cases[0].ct_lobe, o.ct_lobe);
+  EXPECT_EQ(two.cases[0].vgroove_lobe, o.vgroove_lobe);
+  EXPECT_EQ(two.cases[0].edge_hits, o.edge_hits);
+}
+
+TEST(HeightfieldSuite, ReportSaysWhichModelIsWithinNoise) {
+  json j = small();
+  j["ndf"] = {"ggx"};
+  j["alpha"] = {0.6};
+  j["theta_i_deg"] = {60};
+  j.erase("controls");
+  const HeightfieldSuite s = parse_heightfield_suite(j, "small.json");
+  const HeightfieldRun run = run_heightfield_suite(s, 0, 2);
+  const json r = heightfield_report_json(s, run);
+  ASSERT_EQ(r["cases"].size(), 1u);
+  const json& c = r["cases"][0];
+  for (const char* m : {"smith_walk", "cook_torrance_smith", "vgroove"}) {
+    ASSERT_TRUE(c[m]["against_traced"].contains("within_noise")) << m;
+    for (const json& row : c[m]["against_traced"]["rows"]) {
+      EXPECT_EQ(row["within_noise"].get<bool>(),
+                row["l1"].get<double>() <= row["l1_threshold"].get<double>() &&
+                    std::abs(row["energy_diff"].get<double>()) <= row["energy_threshold"].get<double>());
+    }
+  }
+  EXPECT_EQ(c["cook_torrance_smith"]["against_traced"]["rows"].size(), 1u);
+  EXPECT_EQ(c["smith_walk"]["against_traced"]["rows"].size(), 3u);
+  std::ostringstream table;
+  print_heightfield_table(table, s, run);
+  EXPECT_NE(table.str().find("smith_walk"), std::string::npos);
+  EXPECT_NE(table.str().find("rays, lost 0"), std::string::npos);
+  EXPECT_NE(table.str().find("wall"), std::string::npos);
+}
+
+// The command line: an oversized field is refused before any work, one line naming the key and
+// the range, exit 2, no report; the tiny suite runs and prints its errors beside rays and time.
+TEST(HeightfieldSuiteCli, AnOversizedFieldIsRefusedInOneLineAndNothingIsWritten) {
+  if (support::memory_limit_bytes() >= sim::heightfield_bytes(65536)) GTEST_SKIP() << "this machine holds 126 GB";
+  testing_files::TempDir dir;
+  const std::string f = dir.file("big.json"), out = dir.file("r.json");
+  json j = shipped();
+  j["field_size"] = 65536;
+  testing_files::write_text(f, j.dump());
+  const testing_files::CliRun r =
+      testing_files::vgroove("validate " + testing_files::quoted(f) + " --out " + testing_files::quoted(out));
+  EXPECT_EQ(r.status, 2) << r;
+  EXPECT_EQ(testing_files::lines(r.err), 1) << r;
+  EXPECT_NE(r.err.find("big.json: /field_size = 65536 needs 126.0 GB with its hierarchy"), std::string::npos) << r;
+  EXPECT_NE(r.err.find("it must be a power of two in [16, "), std::string::npos) << r;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  EXPECT_TRUE(r.out.empty()) << r;  // refused before any work: no table
+
+  const std::string small_file = dir.file("small.json"), small_out = dir.file("s.json");
+  testing_files::write_text(small_file, small().dump());
+  const testing_files::CliRun ok = testing_files::vgroove("validate " + testing_files::quoted(small_file) +
+                                                          " --threads 2 --out " + testing_files::quoted(small_out));
+  EXPECT_EQ(ok.status, 0) << ok;
+  EXPECT_NE(ok.out.find("16000 rays, lost 0"), std::string::npos) << ok;
+  EXPECT_NE(ok.out.find("control: cook_torrance_smith on beckmann alpha 0.30 theta_i 0.0: within noise"),
+            std::string::npos)
+      << ok;
+  EXPECT_TRUE(std::filesystem::exists(small_out));
+}
+
+}  // namespace
+}  // namespace vgroove::validation

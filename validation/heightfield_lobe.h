@@ -1,0 +1,63 @@
+// vgroove validation: the light of random heightfields (sim/heightfield.h), traced exactly in 3D
+// (sim/heightfield_tracer.h) and binned: what the "heightfield" suite (heightfield_suite.h) and
+// check_brdf with surface "heightfield" (check_brdf.h) hold their models against.
+//
+// Fields: Beckmann (a Gaussian field with Gaussian autocorrelation, isotropic alpha) or GGX (the
+// Gaussian field through the GGX height map), of field_size^2 cells with correlation length l (in
+// cells); realization r of a setup has its own seed, the same for every incidence. Rays land at
+// uniform points of the period from the light at azimuth pi (theta_i), so that the bins are
+// check_brdf's and analytic/lobe_3d.h's: theta_o in [0, pi/2) in theta_bins equal bins, phi_o in
+// phi_bins bins centred on the mirror azimuth 0. Memory: heightfield_bytes(field_size) per
+// field held at once (one per worker), refused before any work in one line when a field does not
+// fit this process's share of memory (heightfield_field_fits).
+// Tests: tests/validation/heightfield_suite_test.cpp, tests/validation/heightfield_check_brdf_test.cpp.
+#pragma once
+
+#include "vgroove/common/ndf_kind.h"
+#include "vgroove/sim/heightfield_tracer.h"
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vgroove::validation {
+
+struct HeightfieldFieldSpec {
+  NdfKind ndf = NdfKind::beckmann;  // beckmann or ggx
+  double alpha = 0.5;
+  int field_size = 256;             // cells per side: a power of two in [16, 65536]
+  double correlation_length = 8.0;  // cells, in [2, field_size / 8]
+};
+
+// The field of realization `seed` (sim::make_gaussian_heightfield / make_ggx_heightfield) with
+// its hierarchy.
+sim::HeightfieldSurface make_field_surface(const HeightfieldFieldSpec& spec, std::uint64_t seed);
+
+// Refuses (support::UserError, one line) a field of `field_size` cells per side when `workers`
+// of them (one per worker) do not fit this process's memory (support::memory_limit_bytes): `what`
+// names the field's key; the message gives its bytes (sim::heightfield_bytes), the budget per
+// field and the allowed range [min_size, sim::heightfield_max_n(budget)] of powers of two.
+void check_field_fits(int field_size, double workers, const std::string& what, int min_size);
+
+// Independent surface patches of `fields` fields of n^2 cells with correlation length l: fields
+// n^2 / (pi l^2), the area over the correlation area of the Gaussian autocorrelation (the
+// variance of a field mean over area A is sigma^2 pi l^2 / A). Plays the part of the grooves in
+// the noise bound of histogram_metrics.h (a ray picks one of the patches).
+double heightfield_patches(int field_size, double correlation_length, int fields);
+
+// One field's rays at theta_i (radians), chunk by chunk (sim::trace_heightfield_chunk), merged
+// in chunk order: max_k as sim::HeightfieldTraceOptions (rows k = 0..max_k and one beyond). The
+// tally is incomplete when *cancel was set (the caller discards it).
+sim::HeightfieldTally trace_field(const sim::HeightfieldSurface& s, double theta_i, long rays, std::uint64_t seed,
+                                  int theta_bins, int phi_bins, int max_k, const std::atomic<bool>* cancel = nullptr);
+
+// The Smith random walk (analytic/smith_walk_3d.h) from dir3(theta_i, pi), binned as trace_field
+// bins (the same tally type): `paths` walks from `seed` in chunks of sim::kHeightfieldRaysPerChunk.
+sim::HeightfieldTally walk_lobe(NdfKind ndf, double alpha, double theta_i, long paths, std::uint64_t seed,
+                                int theta_bins, int phi_bins, int max_k, const std::atomic<bool>* cancel = nullptr);
+
+// Joint fractions of the tally's rays per (row, bin) for rows k = first_row..last row, row by row.
+std::vector<double> joint_fractions(const sim::HeightfieldTally& t, int first_row);
+
+}  // namespace vgroove::validation

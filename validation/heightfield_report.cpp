@@ -1,0 +1,185 @@
+// The report JSON and the table of the "heightfield" suite (validation/heightfield_suite.h).
+#include "vgroove/sim/heightfield.h"
+#include "vgroove/support/format.h"
+#include "vgroove/validation/heightfield_lobe.h"
+#include "vgroove/validation/heightfield_suite.h"
+#include "vgroove/validation/report.h"
+#include "vgroove/validation/spec_lists.h"
+#include "vgroove/validation/table_frame.h"
+
+#include <cmath>
+#include <string>
+
+namespace vgroove::validation {
+
+namespace {
+
+const char* kRowNames[kHeightfieldRows] = {"1", "2", "3+"};
+
+nlohmann::json rows_of(const std::vector<double>& joint, int rows, int bins) {
+  nlohmann::json out = nlohmann::json::array();
+  for (int r = 0; r < rows; ++r)
+    out.push_back(std::vector<double>(joint.begin() + static_cast<std::ptrdiff_t>(r) * bins,
+                                      joint.begin() + static_cast<std::ptrdiff_t>(r + 1) * bins));
+  return out;
+}
+
+nlohmann::json miss_json(const HeightfieldMiss& m, const HeightfieldOutcome& o) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (std::size_t r = 0; r < m.l1.size(); ++r)
+    rows.push_back(
+        {{"k", kRowNames[r]},
+         {"l1", m.l1[r]},
+         {"l1_expected", m.l1_expected[r]},
+         {"l1_threshold", m.l1_threshold[r]},
+         {"l1_excess", m.l1[r] - m.l1_expected[r]},
+         {"energy_traced", o.energy[r]},
+         {"energy_model", m.energy[r]},
+         {"energy_diff", m.energy_diff[r]},
+         {"energy_threshold", m.energy_threshold[r]},
+         {"within_noise", m.l1[r] <= m.l1_threshold[r] && std::abs(m.energy_diff[r]) <= m.energy_threshold[r]}});
+  return {{"rows", rows},
+          {"l1", m.l1_total},
+          {"l1_expected", m.l1_total_expected},
+          {"l1_threshold", m.l1_total_threshold},
+          {"within_noise", m.within_noise}};
+}
+
+// "within noise", or what misses most: the row whose L1 is furthest over its threshold, and the
+// energy furthest over its own.
+std::string miss_text(const HeightfieldMiss& m) {
+  if (m.within_noise) return "within noise";
+  std::string s = "misses:";
+  for (std::size_t r = 0; r < m.l1.size(); ++r) {
+    if (m.l1[r] > m.l1_threshold[r])
+      s += support::format(" L1 k=%s %.4f > %.4f (%.1fx);", kRowNames[r], m.l1[r], m.l1_threshold[r],
+                           m.l1[r] / m.l1_threshold[r]);
+    if (!(std::abs(m.energy_diff[r]) <= m.energy_threshold[r]))
+      s += support::format(" E%s %+.4f (> %.4f);", kRowNames[r], -m.energy_diff[r], m.energy_threshold[r]);
+  }
+  if (m.l1_total > m.l1_total_threshold) s += support::format(" L1 all %.4f > %.4f;", m.l1_total, m.l1_total_threshold);
+  s.pop_back();
+  return s;
+}
+
+}  // namespace
+
+nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const HeightfieldRun& run) {
+  nlohmann::json j =
+      report_header({suite.name, suite.file, "heightfield", suite.description, suite.seed}, run.threads, run.wall_s);
+  nlohmann::json ndfs = nlohmann::json::array();
+  for (auto n : suite.ndfs) ndfs.push_back(analytic::ndf_name(n));
+  j["inputs"] = {{"ndf", ndfs},
+                 {"alpha", suite.alphas},
+                 {"theta_i_deg", suite.theta_i_deg},
+                 {"field_size", suite.field_size},
+                 {"correlation_length", suite.correlation_length},
+                 {"fields", suite.fields},
+                 {"field_bytes", sim::heightfield_bytes(suite.field_size)},
+                 {"patches_per_field", heightfield_patches(suite.field_size, suite.correlation_length, 1)},
+                 {"rays", suite.rays},
+                 {"walk_paths", suite.walk_paths},
+                 {"theta_bins", suite.theta_bins},
+                 {"phi_bins", suite.phi_bins},
+                 {"rows", {"1", "2", "3+"}}};
+  nlohmann::json cases = nlohmann::json::array();
+  std::int64_t rays = 0, lost = 0;
+  std::size_t passed = 0;
+  for (const HeightfieldOutcome& o : run.cases) {
+    const int bins = suite.bins();
+    rays += o.rays, lost += o.lost, passed += o.pass;
+    cases.push_back(
+        {{"ndf", analytic::ndf_name(o.c.ndf)},
+         {"alpha", o.c.alpha},
+         {"theta_i_deg", o.c.theta_i_deg},
+         {"rays", o.rays},
+         {"lost", o.lost},
+         {"bounce_limit", o.bounce_limit},
+         {"edge_hits", o.edge_hits},
+         {"vertex_hits", o.vertex_hits},
+         {"mean_bounces",
+          o.rays > o.lost ? static_cast<double>(o.bounces) / static_cast<double>(o.rays - o.lost) : 0.0},
+         {"traced",
+          {{"energy_by_k", o.energy},
+           {"energy_se_by_k", o.energy_se},
+           {"albedo", o.albedo},
+           {"albedo_se", o.albedo_se},
+           {"lobe_by_k", rows_of(o.lobe, kHeightfieldRows, bins)},
+           {"lobe_se_by_k", rows_of(o.lobe_se, kHeightfieldRows, bins)}}},
+         {"smith_walk",
+          {{"paths", o.walk_paths},
+           {"left", o.walk_left},
+           {"energy_by_k", o.walk_energy},
+           {"lobe_by_k", rows_of(o.walk_lobe, kHeightfieldRows, bins)},
+           {"against_traced", miss_json(o.walk, o)}}},
+         {"cook_torrance_smith",
+          {{"integration_error", o.ct_error},
+           {"lobe_k1", o.ct_lobe},
+           {"against_traced", miss_json(o.cook_torrance, o)}}},
+         {"vgroove",
+          {{"energy_by_k", o.vgroove_energy},
+           {"lobe_by_k", rows_of(o.vgroove_lobe, kHeightfieldRows, bins)},
+           {"against_traced", miss_json(o.vgroove, o)}}},
+         {"timing", {{"field_s", o.field_s}, {"trace_s", o.trace_s}, {"walk_s", o.walk_s}, {"model_s", o.model_s}}},
+         {"non_finite", o.non_finite},
+         {"pass", o.pass}});
+  }
+  j["cases"] = std::move(cases);
+  nlohmann::json controls = nlohmann::json::array();
+  for (std::size_t n = 0; n < suite.controls.size(); ++n) {
+    const HeightfieldCase c = suite.case_at(suite.controls[n].case_index);
+    controls.push_back({{"model", heightfield_model_name(suite.controls[n].model)},
+                        {"ndf", analytic::ndf_name(c.ndf)},
+                        {"alpha", c.alpha},
+                        {"theta_i_deg", c.theta_i_deg},
+                        {"within_noise", n < run.controls_hold.size() && run.controls_hold[n]}});
+  }
+  j["controls"] = std::move(controls);
+  j["summary"] = {
+      {"cases", run.cases.size()}, {"passed", passed}, {"rays", rays}, {"lost", lost}, {"wall_s", run.wall_s}};
+  j["thresholds"] = {
+      {"rule",
+       "every case: no ray lost, every value finite; each control's model within noise. A model is within noise "
+       "when every row's L1 <= expected + sigmas sd + tolerance (per-bin variance: the traced mean's, its fields' "
+       "spread but at least the rays' multinomial error, plus the walk's own) and every row's |E_traced - E_model| "
+       "<= sigmas se + tolerance; the other models' distances are results, not verdicts"},
+      {"sigmas", suite.sigmas},
+      {"model_tolerance", suite.model_tolerance}};
+  j["pass"] = run.pass;
+  return j;
+}
+
+void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, const HeightfieldRun& run) {
+  print_table_title(os, suite.name, "heightfield",
+                    support::format("%zu cases, %d fields of %d^2 cells (correlation %g cells) per case, %ld rays "
+                                    "per field, %ld walk paths, %d x %d bins, F = 1",
+                                    run.cases.size(), suite.fields, suite.field_size, suite.correlation_length,
+                                    suite.rays, suite.walk_paths, suite.theta_bins, suite.phi_bins),
+                    run.threads);
+  os << "  traced E_k over the fields (se); each model: within noise (L1 per k <= expected + sigmas sd, E_k within "
+        "sigmas se), or where it misses (L1 over its threshold, model E_k minus traced)\n";
+  for (const HeightfieldOutcome& o : run.cases) {
+    os << support::format(
+        "  %-8s alpha %.2f theta_i %4.1f: E_1 %.4f(%.4f) E_2 %.4f(%.4f) E_3+ %.4f(%.4f) albedo "
+        "%.4f; %lld rays, lost %lld, %.2f s%s\n",
+        analytic::ndf_name(o.c.ndf), o.c.alpha, o.c.theta_i_deg, o.energy[0], o.energy_se[0], o.energy[1],
+        o.energy_se[1], o.energy[2], o.energy_se[2], o.albedo, static_cast<long long>(o.rays),
+        static_cast<long long>(o.lost), o.field_s + o.trace_s + o.walk_s + o.model_s,
+        o.pass ? "" : "  FAIL (lost or not finite)");
+    os << support::format("    %-20s %s\n", "smith_walk", miss_text(o.walk).c_str());
+    os << support::format("    %-20s %s\n", "cook_torrance_smith", miss_text(o.cook_torrance).c_str());
+    os << support::format("    %-20s %s\n", "vgroove", miss_text(o.vgroove).c_str());
+  }
+  for (std::size_t n = 0; n < suite.controls.size(); ++n) {
+    const HeightfieldCase c = suite.case_at(suite.controls[n].case_index);
+    const bool held = n < run.controls_hold.size() && run.controls_hold[n];
+    os << support::format("  control: %s on %s alpha %.2f theta_i %.1f: %s\n",
+                          heightfield_model_name(suite.controls[n].model), analytic::ndf_name(c.ndf), c.alpha,
+                          c.theta_i_deg, held ? "within noise" : "NOT within noise (fails the suite)");
+  }
+  std::size_t passed = 0;
+  for (const auto& o : run.cases) passed += o.pass;
+  print_table_close(os, passed, run.cases.size(), run.wall_s);
+}
+
+}  // namespace vgroove::validation

@@ -1,0 +1,152 @@
+// vgroove validation: the suite of kind "heightfield": random heightfields (sim/heightfield.h,
+// Beckmann and GGX-slope fields) traced exactly in 3D (validation/heightfield_lobe.h), their lobes
+// per k (rows 1, 2, 3+) and energies held against the 3D Smith walk (analytic/smith_walk_3d.h),
+// Cook-Torrance with Smith's height-correlated G (k = 1, integrated over the bins as check_brdf
+// integrates a model) and the V-groove model (Eq. 16, analytic/lobe_3d.h). Per case (ndf, alpha,
+// theta_i): `fields` fields (the same at every theta_i), `rays` rays on each; per cell the mean
+// over the fields and its standard error (their spread, at least the rays' multinomial error). A
+// model is within noise when every row's L1 <= expected + sigmas sd + tolerance and every E_k
+// within sigmas se: measured, not a verdict. The verdict: no ray lost, every value finite, and
+// the suite's `controls`. One work item per case: the same report for any thread, shard or rank
+// count. Memory: one field with its hierarchy per worker, refused in one line before any work.
+// Tests: tests/validation/heightfield_suite_test.cpp (HeightfieldSuite.*, HeightfieldSuiteCli.*),
+// tests/cluster/shards_test.sh. Schema: docs/schemas/suite.schema.json ($defs/heightfield).
+// Derivation: docs/derivations/heightfield.md (the suite's section).
+#pragma once
+
+#include "vgroove/analytic/ndf.h"
+#include "vgroove/support/parallel.h"
+#include "vgroove/validation/item_work.h"
+
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace vgroove::validation {
+
+// The rows compared: k = 1, 2 and every k >= 3.
+inline constexpr int kHeightfieldRows = 3;
+
+enum class HeightfieldModel : unsigned char { smith_walk, cook_torrance_smith, vgroove };
+inline constexpr int kHeightfieldModels = 3;
+const char* heightfield_model_name(HeightfieldModel m);  // "smith_walk", "cook_torrance_smith", "vgroove"
+
+struct HeightfieldCase {
+  analytic::NdfKind ndf = analytic::NdfKind::beckmann;
+  double alpha = 0.5;
+  double theta_i_deg = 0.0;
+};
+
+struct HeightfieldControl {
+  HeightfieldModel model = HeightfieldModel::smith_walk;
+  std::size_t case_index = 0;
+};
+
+struct HeightfieldSuite {
+  std::string file, name, description;
+  std::vector<analytic::NdfKind> ndfs;
+  std::vector<double> alphas;
+  std::vector<double> theta_i_deg;
+  int field_size = 256;
+  double correlation_length = 8.0;
+  int fields = 4;
+  long rays = 20000;         // per field and case
+  long walk_paths = 200000;  // per case
+  int theta_bins = 9, phi_bins = 8;
+  std::uint64_t seed = 1;
+  double sigmas = 5.0;
+  double model_tolerance = 1e-4;  // added to every L1 threshold (the integrated models' target error)
+  std::vector<HeightfieldControl> controls;
+  std::size_t cases() const { return ndfs.size() * alphas.size() * theta_i_deg.size(); }
+  HeightfieldCase case_at(std::size_t c) const;  // order: ndf, alpha, theta_i (innermost)
+  int bins() const { return theta_bins * phi_bins; }
+};
+
+// One model against the traced lobe, per compared row (Cook-Torrance: k = 1 only).
+struct HeightfieldMiss {
+  std::vector<double> l1, l1_expected, l1_threshold;                         // per row: the L1 of the joint fractions
+  std::vector<double> energy, energy_diff, energy_threshold;                 // per row: the model's E_k, traced - model
+  double l1_total = 0.0, l1_total_expected = 0.0, l1_total_threshold = 0.0;  // the rows together
+  bool within_noise = false;
+};
+
+struct HeightfieldOutcome {
+  HeightfieldCase c;
+  std::int64_t rays = 0, lost = 0, bounce_limit = 0, edge_hits = 0, vertex_hits = 0, bounces = 0;
+  std::vector<double> lobe, lobe_se;      // traced joint fractions, rows k = 1, 2, 3+ (row by row)
+  std::vector<double> energy, energy_se;  // traced E_k per row
+  double albedo = 0.0, albedo_se = 0.0;
+  std::vector<double> walk_lobe, walk_energy;
+  std::int64_t walk_paths = 0, walk_left = 0;
+  std::vector<double> ct_lobe;  // k = 1 row
+  double ct_error = 0.0;        // the integration's error estimate
+  std::vector<double> vgroove_lobe, vgroove_energy;
+  HeightfieldMiss walk, cook_torrance, vgroove;
+  double field_s = 0.0, trace_s = 0.0, walk_s = 0.0, model_s = 0.0;
+  bool non_finite = false;
+  bool pass = false;
+};
+
+template <class F>
+void fields(HeightfieldMiss& m, F&& f) {
+  f("l1", m.l1), f("l1_expected", m.l1_expected), f("l1_threshold", m.l1_threshold), f("energy", m.energy);
+  f("energy_diff", m.energy_diff), f("energy_threshold", m.energy_threshold), f("l1_total", m.l1_total);
+  f("l1_total_expected", m.l1_total_expected), f("l1_total_threshold", m.l1_total_threshold);
+  f("within_noise", m.within_noise);
+}
+template <class F>
+void fields(HeightfieldOutcome& o, F&& f) {
+  f("rays", o.rays), f("lost", o.lost), f("bounce_limit", o.bounce_limit), f("edge_hits", o.edge_hits);
+  f("vertex_hits", o.vertex_hits), f("bounces", o.bounces), f("lobe", o.lobe), f("lobe_se", o.lobe_se);
+  f("energy", o.energy), f("energy_se", o.energy_se), f("albedo", o.albedo), f("albedo_se", o.albedo_se);
+  f("walk_lobe", o.walk_lobe), f("walk_energy", o.walk_energy), f("walk_paths", o.walk_paths);
+  f("walk_left", o.walk_left), f("ct_lobe", o.ct_lobe), f("ct_error", o.ct_error);
+  f("vgroove_lobe", o.vgroove_lobe), f("vgroove_energy", o.vgroove_energy), f("walk", o.walk);
+  f("cook_torrance", o.cook_torrance), f("vgroove", o.vgroove), f("field_s", o.field_s), f("trace_s", o.trace_s);
+  f("walk_s", o.walk_s), f("model_s", o.model_s), f("non_finite", o.non_finite), f("pass", o.pass);
+}
+
+struct HeightfieldRun {
+  std::vector<HeightfieldOutcome> cases;
+  std::vector<bool> controls_hold;  // per suite control
+  int threads = 1;
+  double wall_s = 0.0;
+  bool interrupted = false;
+  bool pass = false;
+};
+
+HeightfieldSuite parse_heightfield_suite(const nlohmann::json& j, const std::string& file);
+// One field with its hierarchy per worker (min(threads, cases)) and the synthesis' peak, plus
+// every case's lobes. Throws support::UserError ("FILE: /field_size: ...", one line) when a
+// field does not fit this process's share of memory.
+double heightfield_run_memory_bytes(const HeightfieldSuite& suite, int threads);
+
+using HeightfieldWork = ItemWork<HeightfieldOutcome>;
+// rays > 0 overrides the suite's rays per field.
+Job<HeightfieldWork> heightfield_job(const HeightfieldSuite& suite, long rays, nlohmann::json descriptor,
+                                     const std::atomic<bool>* cancel = nullptr);
+HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size_t case_index, long rays,
+                                        const std::atomic<bool>* cancel = nullptr);
+HeightfieldRun heightfield_run_from(const HeightfieldSuite& suite,
+                                    const std::vector<UnitResult<HeightfieldWork>>& results);
+HeightfieldRun run_heightfield_suite(const HeightfieldSuite& suite, long rays, int threads,
+                                     const support::ProgressFn& progress = {},
+                                     const std::atomic<bool>* cancel = nullptr);
+
+// A model against a traced lobe (rows x bins joint fractions with their standard errors and the
+// per-row energies with theirs): `rows` rows compared from the first; model_var per bin (may be
+// empty: none), model_energy_var per row likewise.
+HeightfieldMiss heightfield_miss(const std::vector<double>& lobe, const std::vector<double>& lobe_se,
+                                 const std::vector<double>& energy, const std::vector<double>& energy_se,
+                                 const std::vector<double>& model, const std::vector<double>& model_var,
+                                 const std::vector<double>& model_energy, const std::vector<double>& model_energy_var,
+                                 int rows, int bins, double sigmas, double tolerance);
+
+nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const HeightfieldRun& run);
+void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, const HeightfieldRun& run);
+
+}  // namespace vgroove::validation
