@@ -14,7 +14,7 @@ double chain_direction(double theta_i, double theta_v, int j, FacetSide first) {
 bool refracted_angle(double theta_i, double theta_v, double eta, int j, FacetSide first, double& theta_t) {
   // Left facet first; the right one by mirroring (theta_i -> -theta_i, theta_t -> -theta_t).
   const double t = first == FacetSide::left ? theta_i : -theta_i;
-  const double beta = (j - 0.5) * theta_v - t;  // KD-2: the unfolded angle; cos alpha_j = |sin beta|
+  const double beta = (j - 0.5) * theta_v - t;                   // KD-2: the unfolded angle; cos alpha_j = |sin beta|
   const double c = local_cos_theta(theta_i, theta_v, j, first);  // Eq. (11): |sin beta|
   // Snell (optics/snell.h's test, so the two agree on total internal reflection):
   // sin^2 theta_t = (1 - c)(1 + c) / eta^2.

@@ -207,7 +207,9 @@ void measure_surface(const DielectricGrooveCase& c, const DielectricCaseOptions&
   s.options.grooves = 1;
   s.theta_m.push_back(0.5 * (std::numbers::pi - c.theta_v));
   s.grooves.push_back(sim::make_symmetric_groove(c.theta_v));
-  const sim::DielectricSurfaceTracer tracer(s, split_options(c.eta, opt.max_interactions));
+  sim::DielectricOptions o = split_options(c.eta, opt.max_interactions);
+  o.min_weight = opt.surface_min_weight;
+  const sim::DielectricSurfaceTracer tracer(s, o);
   const sim::Groove& g = s.grooves.front();
   const sim::Interval open = sim::opening(g);
   const sim::Vec2 dir = sim::beam_direction(c.theta_i);
@@ -218,6 +220,7 @@ void measure_surface(const DielectricGrooveCase& c, const DielectricCaseOptions&
     const double x = sim::sample_position(sim::Sampling::stratified, open, q, opt.surface_rays, unused);
     tracer.trace_from_above(0, sim::beam_ray(g, dir, x), unused, r);
     out.interactions += r.interactions;
+    out.surface_cut += w_ray * (r.cut + r.bounce_limit + r.vertex);
     for (const sim::DielectricExit& e : r.exits) {
       if (e.path == 0) continue;
       const int j = first_refraction(e.path);

@@ -31,26 +31,29 @@ struct DielectricGrooveCase {
 struct DielectricCaseOptions {
   long grid = 64;            // breakpoint search: stratified grid rays per lit facet
   long surface_rays = 2000;  // the periodic surface's measurement: stratified rays over the opening (0: none)
+  // The surface's split paths below this weight are cut (reported): re-entering light starts new
+  // chains, and without a cut the tree grows without bound.
+  double surface_min_weight = 1e-9;
   int max_interactions = 100000;
 };
 
 // One facet hit first: everything a share of the rays aimed at it (the model's normalization f_a).
 struct DielectricFacetOutcome {
   bool compared = false;
-  int k = 0;                 // Eq. (4)
-  double f_a = 0.0;          // the facet's projected width
-  double shadow = 0.0;       // the model's
-  long zones = 0;            // of distinct outcome
-  long traced = 0;           // rays traced by the search
+  int k = 0;            // Eq. (4)
+  double f_a = 0.0;     // the facet's projected width
+  double shadow = 0.0;  // the model's
+  long zones = 0;       // of distinct outcome
+  long traced = 0;      // rays traced by the search
   std::int64_t interactions = 0;
   long uncertified_cells = 0;
-  double missed_bound = 0.0;      // zones the search may have missed, share of the facet's rays
-  double l1 = 0.0;                // model against tracer over the model's paths (see run_dielectric_groove_case)
-  double direction_error = 0.0;   // largest angle between a model lobe and a traced exit it names, radians
-  double conservation = 0.0;      // largest |1 - total| of a traced ray
-  double unknown = 0.0;           // traced: refracted at some hit j, then met the interface again
-  double unknown_model = 0.0;     // the model's lobes that do not leave at once (KD-4)
-  double unknown_recross = 0.0;   // traced: of `unknown`, crossed back into medium 1 at the next hit
+  double missed_bound = 0.0;     // zones the search may have missed, share of the facet's rays
+  double l1 = 0.0;               // model against tracer over the model's paths (see run_dielectric_groove_case)
+  double direction_error = 0.0;  // largest angle between a model lobe and a traced exit it names, radians
+  double conservation = 0.0;     // largest |1 - total| of a traced ray
+  double unknown = 0.0;          // traced: refracted at some hit j, then met the interface again
+  double unknown_model = 0.0;    // the model's lobes that do not leave at once (KD-4)
+  double unknown_recross = 0.0;  // traced: of `unknown`, crossed back into medium 1 at the next hit
   double reflected = 0.0, transmitted = 0.0;  // the model's (of the facet's rays)
 };
 
@@ -61,7 +64,7 @@ struct DielectricCaseOutcome {
   double l1 = 0.0, direction_error = 0.0, conservation = 0.0, missed_bound = 0.0;
   double unknown = 0.0, unknown_model = 0.0, unknown_recross = 0.0;
   double reflected = 0.0, transmitted = 0.0;  // the model's, of the entering rays
-  long rays = 0;  // traced by both searches
+  long rays = 0;                              // traced by both searches
   std::int64_t interactions = 0;
   // The periodic surface of this groove: of the rays landing in an opening, refracted at some
   // hit j and meeting the surface again (a neighbouring ridge from below), and of these, the
@@ -69,6 +72,7 @@ struct DielectricCaseOutcome {
   // lobe boundary.
   long surface_rays = 0;
   double surface_unknown = 0.0, surface_recross = 0.0;
+  double surface_cut = 0.0;  // cut below surface_min_weight, bounce limit and vertex hits (share of the rays)
   bool non_finite = false;
   double wall_s = 0.0;
 };
@@ -76,14 +80,14 @@ struct DielectricCaseOutcome {
 // The exact traced energy of the rays aimed at one facet, by path class, as shares of them.
 struct TracedFacetEnergy {
   bool lit = false;
-  double blocked = 0.0;  // met a flat part first (the model's shadow)
-  double lost = 0.0;     // vertex hits, cut, bounce limit: no bin in the model
-  std::map<int, double> reflected;         // pure R chains by hit count n
-  std::map<int, double> refracted;         // every path refracted first at hit j (prefix R^(j-1) T), by j
-  std::map<int, double> direct;            // R^(j-1) T that left downward at once, by j
-  std::map<int, double> direct_theta_t;    // their exit angle below (one traced ray's; zones agree to rounding)
-  std::map<int, double> reflected_theta_o; // the R chains' exit angle
-  std::map<int, double> recross;           // R^(j-1) T T...: crossed back at hit j + 1, by j
+  double blocked = 0.0;                     // met a flat part first (the model's shadow)
+  double lost = 0.0;                        // vertex hits, cut, bounce limit: no bin in the model
+  std::map<int, double> reflected;          // pure R chains by hit count n
+  std::map<int, double> refracted;          // every path refracted first at hit j (prefix R^(j-1) T), by j
+  std::map<int, double> direct;             // R^(j-1) T that left downward at once, by j
+  std::map<int, double> direct_theta_t;     // their exit angle below (one traced ray's; zones agree to rounding)
+  std::map<int, double> reflected_theta_o;  // the R chains' exit angle
+  std::map<int, double> recross;            // R^(j-1) T T...: crossed back at hit j + 1, by j
   long zones = 0, traced = 0, uncertified_cells = 0;
   std::int64_t interactions = 0;
   double missed_bound = 0.0, conservation = 0.0;
