@@ -18,13 +18,17 @@
 #include "vgroove/optics/snell.h"
 #include "vgroove/sim/geometry.h"
 #include "vgroove/sim/groove.h"
+#include "vgroove/support/user_error.h"
 #include "vgroove/validation/dielectric_grooves_case.h"
+#include "vgroove/validation/dielectric_grooves_suite.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <numbers>
+#include <string>
 #include <vector>
 
 namespace vgroove::analytic {
@@ -263,3 +267,65 @@ TEST(KaleidoscopeDielectricLong, UnknownShareTable) {
 
 }  // namespace
 }  // namespace vgroove::analytic
+
+namespace vgroove::validation {
+namespace {
+
+nlohmann::json shipped_suite() {
+  std::ifstream in(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/dielectric_grooves.json");
+  return nlohmann::json::parse(in);
+}
+
+// The shipped suite reads, a small copy passes case by case, and the same copy with thresholds
+// below its rounding fails: the verdict reads the errors.
+TEST(DielectricGroovesSuite, ShippedSuiteParsesAndAThresholdBelowRoundingFails) {
+  nlohmann::json j = shipped_suite();
+  const DielectricGroovesSuite full = parse_dielectric_grooves_suite(j, "dielectric_grooves.json");
+  EXPECT_EQ(full.eta.size(), 6u);
+  EXPECT_EQ(full.eta[3], 1.0 / 1.33);
+  j["theta_v_deg"] = {30, 90};
+  j["theta_i_deg"] = {-20, 45};
+  j["surface_rays"] = 50;
+  const DielectricGroovesSuite s = parse_dielectric_grooves_suite(j, "small.json");
+  ASSERT_EQ(s.cases(), 24u);
+  double largest = 0.0;
+  for (std::size_t c = 0; c < s.cases(); ++c) {
+    const DielectricGroovesOutcome o = run_dielectric_grooves_case(s, s.case_at(c));
+    EXPECT_TRUE(o.pass) << "case " << c << " l1 " << o.l1 << " dir " << o.direction_error;
+    EXPECT_GT(o.rays, 0);
+    largest = std::max(largest, o.l1);
+  }
+  ASSERT_GT(largest, 0.0);  // rounding shows: a threshold of 0 must fail somewhere
+  j["thresholds"]["max_l1"] = 0.0;
+  const DielectricGroovesSuite strict = parse_dielectric_grooves_suite(j, "small.json");
+  int failed = 0;
+  for (std::size_t c = 0; c < strict.cases(); ++c)
+    failed += !run_dielectric_grooves_case(strict, strict.case_at(c)).pass;
+  EXPECT_GT(failed, 0);
+}
+
+TEST(DielectricGroovesSuite, BadInputNamesTheFieldAndItsRange) {
+  const auto message = [](const std::string& key, const nlohmann::json& value) {
+    nlohmann::json j = shipped_suite();
+    if (key.rfind("thresholds/", 0) == 0)
+      j["thresholds"][key.substr(11)] = value;
+    else
+      j[key] = value;
+    try {
+      (void)parse_dielectric_grooves_suite(j, "bad.json");
+    } catch (const support::UserError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(message("eta", {1.5, 0.0}), "bad.json: /eta/1 = 0 is out of range [0.001, 1000]");
+  EXPECT_EQ(message("theta_v_deg", {0.5}), "bad.json: /theta_v_deg/0 = 0.5 is out of range [1, 180]");
+  EXPECT_EQ(message("theta_i_deg", {90}), "bad.json: /theta_i_deg/0 = 90 is out of range [-89.999, 89.999]");
+  EXPECT_EQ(message("grid", 0), "bad.json: /grid = 0 is out of range [1, 1000000]");
+  EXPECT_EQ(message("surface_min_weight", 1.0), "bad.json: /surface_min_weight = 1.0 is out of range (0, 1)");
+  EXPECT_EQ(message("thresholds/max_l1", -1), "bad.json: /thresholds/max_l1 = -1 is out of range [0, 1]");
+  EXPECT_NE(message("eta", "1.5").find("/eta"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vgroove::validation
