@@ -1,24 +1,14 @@
-// vgroove analytic: the kaleidoscopic model of one symmetric V-groove that separates two
-// dielectrics, lit from above (medium 1, eta = n2 / n1 > 0; eta < 1 fills the groove with the
-// denser medium). In medium 1 a ray's chain of reflections is Lee et al. 2018's kaleidoscope
-// (Eq. 4-6: n = k - 1 or k hits by entry zone), every hit's local angle its closed form (Eq. 11,
-// analytic/kaleidoscope_fresnel.h). At hit j the chain keeps F_j and refracts 1 - F_j
-// (optics/fresnel.h, unpolarized at each hit as Eq. 11), so per facet hit first, integrated over its
-// lit width as Eq. 6 does:
-//   reflected, n hits:     G_n prod_{l<=n} F_l, towards Eq. (5)'s theta_o(n)              (Eq. 11)
-//   transmitted at hit j:  (sum_{n>=j} G_n) prod_{l<j} F_l (1 - F_j), along
-//                          theta_t,j = s_j (asin(cos beta_j / eta) - (pi - theta_v) / 2),
-//                          beta_j = (j - 1/2) theta_v - theta_i, s_j = (-1)^(j-1)          (KD-3)
-// (KD-n: docs/derivations/kaleidoscope_dielectric.md). theta_t is sim::exit_angle's angle below
-// (the direction (sin theta_t, -cos theta_t)). The model stops where the refracted ray leaves the
-// facet: what it meets afterwards (in one groove with flat rims, the rim's underside; on a surface,
-// a neighbouring ridge) is beyond a single groove; `direct` says whether the lobe leaves downward
-// at once (cos theta_t > 0, KD-4), which in one groove with flat rims is exactly whether it never
-// meets the interface again. Conventions as analytic/kaleidoscope.h (the right facet first is the
-// mirror image). Holds: R + T + shadow = 1 to rounding; eta = 1 passes everything at the first hit
-// unbent; F = 1 is G_kaleidoscopic's shares bit for bit.
-// Tests: tests/analytic/kaleidoscope_dielectric_test.cpp (KaleidoscopeDielectric.*: hand values,
-// the conductor limit, total internal reflection, the exact tracer by breakpoint search).
+// vgroove analytic: the kaleidoscopic model of one symmetric V-groove between two dielectrics, lit
+// from above (medium 1, eta = n2 / n1 > 0). In medium 1 the chain of reflections is Lee et al. 2018's
+// kaleidoscope (Eq. 4-6), each hit's local angle Eq. (11)'s; at hit j the chain keeps F_j and
+// refracts 1 - F_j. Per facet hit first, over its lit width as Eq. (6): reflected G_n prod F (Eq. 11),
+// transmitted at hit j (sum_{n>=j} G_n) prod_{l<j} F_l (1 - F_j) along
+// theta_t,j = (-1)^(j-1) (asin(cos beta_j / eta) - (pi - theta_v)/2), beta_j = (j - 1/2) theta_v - theta_i
+// (KD-1..KD-3). `direct` (KD-4): the lobe leaves downward at once; in one groove with flat rims
+// exactly the light that meets nothing more. Holds: R + T + shadow = 1 to rounding; eta = 1 passes
+// all at hit 1 unbent; F = 1 is G_kaleidoscopic bit for bit; the exact split tracer to 1e-14.
+// Tests: tests/analytic/kaleidoscope_dielectric_test.cpp (KaleidoscopeDielectric.*,
+// KaleidoscopeDielectricTracer.MatchesSplitTracingToRounding, KaleidoscopeDielectricTracer.BrokenModelsFail).
 // Derivation: docs/derivations/kaleidoscope_dielectric.md.
 #pragma once
 
