@@ -74,8 +74,7 @@ DielectricGroovesOutcome run_dielectric_grooves_case(const DielectricGroovesSuit
   o.non_finite = r.non_finite;
   o.wall_s = r.wall_s;
   o.pass = !o.non_finite && o.l1 <= s.max_l1 && o.direction_error <= s.max_direction_error &&
-           std::abs(o.unknown - o.unknown_model) <= s.max_l1 && o.conservation <= s.max_l1 &&
-           o.uncertified_cells == 0;
+           std::abs(o.unknown - o.unknown_model) <= s.max_l1 && o.conservation <= s.max_l1 && o.uncertified_cells == 0;
   return o;
 }
 
@@ -83,7 +82,8 @@ Job<DielectricGroovesWork> dielectric_grooves_job(const DielectricGroovesSuite& 
   return item_job<DielectricGroovesOutcome>(
       s.cases(), [s](std::size_t c) { return run_dielectric_grooves_case(s, s.case_at(c)); },
       [s](support::JsonObject&, std::size_t c, DielectricGroovesOutcome& o) { o.c = s.case_at(c); },
-      std::move(descriptor), [s](std::size_t c) {
+      std::move(descriptor),
+      [s](std::size_t c) {
         // The surface's paths grow as 1 / theta_v; the search's as the grid.
         return static_cast<std::int64_t>(s.options.grid + s.options.surface_rays / s.case_at(c).theta_v);
       });
@@ -112,8 +112,10 @@ nlohmann::json dielectric_grooves_report_json(const DielectricGroovesSuite& s, c
                  {"thresholds", {{"max_l1", s.max_l1}, {"max_direction_error_rad", s.max_direction_error}}}};
   j["columns"] = {
       {"l1",
-       "per lit facet, the largest over the two: |traced shadow - Eq. 6 shadow| + vertex/cut/limit + sum_n |traced pure "
-       "R chain of n hits - G_n prod F| + sum_j |traced paths refracted first at hit j - lobe j| + sum_j |traced R^(j-1)T "
+       "per lit facet, the largest over the two: |traced shadow - Eq. 6 shadow| + vertex/cut/limit + sum_n |traced "
+       "pure "
+       "R chain of n hits - G_n prod F| + sum_j |traced paths refracted first at hit j - lobe j| + sum_j |traced "
+       "R^(j-1)T "
        "leaving at once - lobe j if it leaves at once (KD-4)|; exact by breakpoint search, so rounding"},
       {"direction_error", "largest angle between a model lobe's direction and a traced exit of its path, radians"},
       {"reflected / transmitted", "the model's shares of the rays entering the opening"},
@@ -123,7 +125,8 @@ nlohmann::json dielectric_grooves_report_json(const DielectricGroovesSuite& s, c
        "unknown_recross: of unknown, crossing back into medium 1 at the next hit"},
       {"surface_unknown",
        "the periodic surface of the groove, stratified surface_rays over the opening: refracted light that meets a "
-       "neighbouring ridge; surface_recross: crossing back at that hit; surface_cut: paths cut below surface_min_weight"}};
+       "neighbouring ridge; surface_recross: crossing back at that hit; surface_cut: paths cut below "
+       "surface_min_weight"}};
   nlohmann::json cases = nlohmann::json::array();
   double worst_l1 = 0.0, worst_dir = 0.0, worst_unknown = 0.0, worst_surface = 0.0;
   std::int64_t rays = 0;
@@ -172,7 +175,8 @@ nlohmann::json dielectric_grooves_report_json(const DielectricGroovesSuite& s, c
   return j;
 }
 
-void print_dielectric_grooves_table(std::ostream& os, const DielectricGroovesSuite& s, const DielectricGroovesRun& run) {
+void print_dielectric_grooves_table(std::ostream& os, const DielectricGroovesSuite& s,
+                                    const DielectricGroovesRun& run) {
   print_table_title(os, s.name, "dielectric_grooves",
                     support::format("%zu cases; the kaleidoscopic dielectric model against split tracing "
                                     "(breakpoints, grid %ld); surface %ld rays",
