@@ -70,8 +70,11 @@ double wrapped_difference(double a, double b) { return std::abs(std::remainder(a
 }  // namespace
 
 void check_dielectric_groove_case(const DielectricGrooveCase& c) {
-  if (!(c.theta_v > 0.0 && c.theta_v <= std::numbers::pi))
-    throw std::invalid_argument("theta_v = " + number_text(c.theta_v) + " rad is out of range (0, pi]");
+  const double min_theta_v = kMinComparedApertureDeg * std::numbers::pi / 180.0;
+  if (!(c.theta_v >= min_theta_v && c.theta_v <= std::numbers::pi))
+    throw std::invalid_argument("theta_v = " + number_text(c.theta_v) + " rad is out of range [" +
+                                number_text(min_theta_v) +
+                                ", pi] (6 deg: the tracer's path signatures hold 64 interactions)");
   if (!(std::abs(c.theta_i) < 0.5 * std::numbers::pi))
     throw std::invalid_argument("theta_i = " + number_text(c.theta_i) + " rad is out of range (-pi/2, pi/2)");
   if (!(c.eta > 0.0 && c.eta < std::numeric_limits<double>::infinity()))
@@ -82,7 +85,7 @@ TracedFacetEnergy trace_facet_energy(const DielectricGrooveCase& c, Side side, l
   TracedFacetEnergy out;
   const sim::Groove g = sim::make_symmetric_groove(c.theta_v);
   const sim::Interval aim = sim::aimed_at(g, c.theta_i, side);
-  if (!(aim.width() > kMinProjectedWidth)) return out;
+  if (!(aim.width() > 0.0)) return out;
   out.lit = true;
   const sim::DielectricGrooveTracer tracer(g, split_options(c.eta, max_interactions));
   const sim::Vec2 dir = sim::beam_direction(c.theta_i);
@@ -142,9 +145,12 @@ TracedFacetEnergy trace_facet_energy(const DielectricGrooveCase& c, Side side, l
 
 DielectricFacetOutcome compare_facet(const analytic::DielectricFacetPrediction& m, const TracedFacetEnergy& t) {
   DielectricFacetOutcome o;
-  if (!m.lit || !t.lit) {
-    o.compared = m.lit != t.lit;  // one side lit alone is a miss; reported with l1 = 1
-    o.l1 = o.compared ? 1.0 : 0.0;
+  // A facet whose projected width is below kMinProjectedWidth gets a beam too thin to place rays
+  // in: not compared (as groove_case.cpp). Otherwise a lit model facet with no traced rays is a miss.
+  if (!m.lit || m.f_a < kMinProjectedWidth) return o;
+  if (!t.lit) {
+    o.compared = true;
+    o.l1 = 1.0;
     return o;
   }
   o.compared = true;
@@ -197,6 +203,41 @@ DielectricFacetOutcome compare_facet(const analytic::DielectricFacetPrediction& 
   }
   o.l1 = l1;
   return o;
+}
+
+double prediction_distance(const analytic::DielectricFacetPrediction& a, const analytic::DielectricFacetPrediction& b,
+                           double& dir) {
+  dir = 0.0;
+  if (a.lit != b.lit) return 1.0;
+  if (!a.lit) return 0.0;
+  double d = std::abs(a.shadow - b.shadow);
+  std::map<int, double> r;
+  for (const analytic::ReflectedLobe* l : {&a.fewer, &a.more}) r[l->n] += l->share;
+  for (const analytic::ReflectedLobe* l : {&b.fewer, &b.more}) r[l->n] -= l->share;
+  for (const auto& [n, v] : r) d += std::abs(v);
+  const std::size_t m = std::max(a.transmitted.size(), b.transmitted.size());
+  for (std::size_t q = 0; q < m; ++q) {
+    const analytic::TransmittedLobe* x = q < a.transmitted.size() ? &a.transmitted[q] : nullptr;
+    const analytic::TransmittedLobe* y = q < b.transmitted.size() ? &b.transmitted[q] : nullptr;
+    d += std::abs((x ? x->share : 0.0) - (y ? y->share : 0.0));
+    if (x && y && !x->tir && !y->tir) dir = std::max(dir, wrapped_difference(x->theta_t, y->theta_t));
+  }
+  if (a.fewer.n == b.fewer.n) dir = std::max(dir, wrapped_difference(a.fewer.theta_o, b.fewer.theta_o));
+  return d;
+}
+
+double rounding_bound(const DielectricGrooveCase& c, Side side, double& dir) {
+  const analytic::DielectricFacetPrediction m = analytic::kaleidoscope_dielectric(c.theta_i, c.theta_v, c.eta, side);
+  double bound = 0.0;
+  dir = 0.0;
+  for (double sign : {-1.0, 1.0}) {
+    double d = 0.0;
+    const analytic::DielectricFacetPrediction p =
+        analytic::kaleidoscope_dielectric(c.theta_i + sign * kRoundingAngle, c.theta_v, c.eta, side);
+    bound = std::max(bound, prediction_distance(m, p, d));
+    dir = std::max(dir, d);
+  }
+  return bound;
 }
 
 namespace {
@@ -256,6 +297,9 @@ DielectricCaseOutcome run_dielectric_groove_case(const DielectricGrooveCase& c, 
     out.conservation = std::max(out.conservation, f.conservation);
     out.missed_bound = std::max(out.missed_bound, f.missed_bound);
     if (!f.compared || !m.lit) continue;
+    double dir_bound = 0.0;
+    out.l1_bound = std::max(out.l1_bound, rounding_bound(c, s, dir_bound));
+    out.direction_bound = std::max(out.direction_bound, dir_bound);
     // Shares of the facet's rays -> of the rays entering the opening: weights f_a.
     entering += f.f_a * (1.0 - f.shadow);
     out.unknown += f.f_a * f.unknown;

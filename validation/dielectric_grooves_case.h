@@ -62,6 +62,10 @@ struct DielectricCaseOutcome {
   DielectricFacetOutcome facet[2];  // by Side
   // Over both facets: the largest errors, and the shares of the rays entering the opening.
   double l1 = 0.0, direction_error = 0.0, conservation = 0.0, missed_bound = 0.0;
+  // The model's own change when theta_i moves by kRoundingAngle either way (rounding_bound): what the
+  // rounding of the inputs' angles alone can make of the comparison (large only where a share is
+  // ill-conditioned: grazing light, the critical angle, Eq. 4's integer boundaries).
+  double l1_bound = 0.0, direction_bound = 0.0;
   double unknown = 0.0, unknown_model = 0.0, unknown_recross = 0.0;
   double reflected = 0.0, transmitted = 0.0;  // the model's, of the entering rays
   long rays = 0;                              // traced by both searches
@@ -100,6 +104,23 @@ TracedFacetEnergy trace_facet_energy(const DielectricGrooveCase& c, Side side, l
 // Model against traced for one facet: l1 as run_dielectric_groove_case describes, the largest
 // direction error, and the unknown shares.
 DielectricFacetOutcome compare_facet(const analytic::DielectricFacetPrediction& model, const TracedFacetEnergy& traced);
+
+// The angle by which rounding may move a traced ray's effective theta_i after up to 64 hits:
+// 64 ulps of pi (each reflection rounds the direction by ~1 ulp).
+inline constexpr double kRoundingAngle = 64.0 * 2.220446049250313e-16 * 3.141592653589793;
+
+// The narrowest aperture compared: the tracer's path signatures hold 64 interactions, and a chain
+// makes up to 2 pi / theta_v + 1 hits (plus one on the rim): 6 deg keeps every path within 62.
+inline constexpr double kMinComparedApertureDeg = 6.0;
+
+// The distance between two predictions of the same facet, as compare_facet sums it (shadow, R by
+// n, T by j), and the largest change of a lobe's direction (dir, radians).
+double prediction_distance(const analytic::DielectricFacetPrediction& a, const analytic::DielectricFacetPrediction& b,
+                           double& dir);
+
+// The model's rounding bound for one facet: the largest prediction_distance (and direction change)
+// to the model at theta_i -+ kRoundingAngle.
+double rounding_bound(const DielectricGrooveCase& c, Side side, double& dir);
 
 // Throws std::invalid_argument naming the field and its range.
 void check_dielectric_groove_case(const DielectricGrooveCase& c);

@@ -15,9 +15,8 @@ namespace vgroove::validation {
 
 namespace {
 
-// The narrowest aperture read: a groove of aperture theta_v makes ~pi / theta_v lobes per facet,
-// and the surface's measurement re-meets ~1 / theta_v ridges per path.
-constexpr double kMinDielectricApertureDeg = 1.0;
+// The narrowest aperture read (dielectric_grooves_case.h: the tracer's signatures hold 64 hits).
+constexpr double kMinDielectricApertureDeg = kMinComparedApertureDeg;
 constexpr double kMinEta = 1e-3, kMaxEta = 1e3;  // 1 / kMaxFresnelEta .. kMaxFresnelEta
 constexpr long kMaxSurfaceRays = 10'000'000;
 
@@ -64,6 +63,7 @@ DielectricGroovesOutcome run_dielectric_grooves_case(const DielectricGroovesSuit
   o.k_left = r.facet[0].k, o.k_right = r.facet[1].k;
   o.l1 = r.l1, o.direction_error = r.direction_error, o.conservation = r.conservation;
   o.missed_bound = r.missed_bound;
+  o.l1_bound = r.l1_bound, o.direction_bound = r.direction_bound;
   o.uncertified_cells = r.facet[0].uncertified_cells + r.facet[1].uncertified_cells;
   o.zones = r.facet[0].zones + r.facet[1].zones;
   o.reflected = r.reflected, o.transmitted = r.transmitted;
@@ -73,8 +73,10 @@ DielectricGroovesOutcome run_dielectric_grooves_case(const DielectricGroovesSuit
   o.rays = r.rays, o.interactions = r.interactions;
   o.non_finite = r.non_finite;
   o.wall_s = r.wall_s;
-  o.pass = !o.non_finite && o.l1 <= s.max_l1 && o.direction_error <= s.max_direction_error &&
-           std::abs(o.unknown - o.unknown_model) <= s.max_l1 && o.conservation <= s.max_l1 && o.uncertified_cells == 0;
+  const double l1_tolerance = s.max_l1 + o.l1_bound;
+  o.pass = !o.non_finite && o.l1 <= l1_tolerance && o.direction_error <= s.max_direction_error + o.direction_bound &&
+           std::abs(o.unknown - o.unknown_model) <= l1_tolerance && o.conservation <= s.max_l1 &&
+           o.uncertified_cells == 0;
   return o;
 }
 
@@ -118,6 +120,10 @@ nlohmann::json dielectric_grooves_report_json(const DielectricGroovesSuite& s, c
        "R^(j-1)T "
        "leaving at once - lobe j if it leaves at once (KD-4)|; exact by breakpoint search, so rounding"},
       {"direction_error", "largest angle between a model lobe's direction and a traced exit of its path, radians"},
+      {"l1_bound / direction_bound",
+       "the model's own change when theta_i moves by 64 ulps of pi either way (what rounding of the angles alone "
+       "can do): a case passes with l1 <= max_l1 + l1_bound and direction_error <= max_direction_error_rad + "
+       "direction_bound"},
       {"reflected / transmitted", "the model's shares of the rays entering the opening"},
       {"unknown",
        "traced, one groove with flat rims: rays refracted at some hit that meet the interface again (the rim's "
@@ -144,6 +150,8 @@ nlohmann::json dielectric_grooves_report_json(const DielectricGroovesSuite& s, c
                      {"k", {o.k_left, o.k_right}},
                      {"l1", o.l1},
                      {"direction_error_rad", o.direction_error},
+                     {"l1_bound", o.l1_bound},
+                     {"direction_bound_rad", o.direction_bound},
                      {"conservation", o.conservation},
                      {"zones", o.zones},
                      {"uncertified_cells", o.uncertified_cells},

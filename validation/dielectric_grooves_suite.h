@@ -3,12 +3,12 @@
 // (analytic/kaleidoscope_dielectric.h) against exact split tracing, to rounding by breakpoint search,
 // and the light the single-groove model cannot know (validation/dielectric_grooves_case.h), each
 // case's error next to its rays and wall time. A case passes when the model's paths match to
-// max_l1 (shares) and max_direction_error_rad, the traced unknown share equals the model's KD-4
-// share to max_l1, every ray conserves energy to max_l1, no zone search cell is uncertified and
-// nothing is NaN. The periodic surface's unknown share is measured and reported, never judged.
-// Tests: tests/analytic/kaleidoscope_dielectric_test.cpp (DielectricGroovesSuite.*),
-// tests/cluster/shards_test.sh (shards merge to the one-process report).
-// Derivation: docs/derivations/kaleidoscope_dielectric.md.
+// max_l1 (shares) and max_direction_error_rad plus the model's own rounding bound (its change under a
+// 64-ulp change of theta_i), the traced unknown share equals the model's KD-4 share as closely, every ray conserves
+// energy to max_l1, no zone search cell is uncertified and nothing is NaN. The periodic surface's unknown share is
+// measured and reported, never judged. Tests: tests/analytic/kaleidoscope_dielectric_test.cpp
+// (DielectricGroovesSuite.*), tests/cluster/shards_test.sh (shards merge to the one-process report). Derivation:
+// docs/derivations/kaleidoscope_dielectric.md.
 #pragma once
 
 #include "vgroove/validation/dielectric_grooves_case.h"
@@ -42,6 +42,7 @@ struct DielectricGroovesOutcome {
   DielectricGrooveCase c;  // the suite's (not written)
   int k_left = 0, k_right = 0;
   double l1 = 0.0, direction_error = 0.0, conservation = 0.0, missed_bound = 0.0;
+  double l1_bound = 0.0, direction_bound = 0.0;
   std::int64_t uncertified_cells = 0, zones = 0;
   double reflected = 0.0, transmitted = 0.0;
   double unknown = 0.0, unknown_model = 0.0, unknown_recross = 0.0;
@@ -56,7 +57,8 @@ template <class F>
 void fields(DielectricGroovesOutcome& o, F&& f) {
   f("k_left", o.k_left), f("k_right", o.k_right);
   f("l1", o.l1), f("direction_error", o.direction_error), f("conservation", o.conservation);
-  f("missed_bound", o.missed_bound), f("uncertified_cells", o.uncertified_cells), f("zones", o.zones);
+  f("missed_bound", o.missed_bound), f("l1_bound", o.l1_bound), f("direction_bound", o.direction_bound),
+      f("uncertified_cells", o.uncertified_cells), f("zones", o.zones);
   f("reflected", o.reflected), f("transmitted", o.transmitted);
   f("unknown", o.unknown), f("unknown_model", o.unknown_model), f("unknown_recross", o.unknown_recross);
   f("surface_rays", o.surface_rays), f("surface_unknown", o.surface_unknown);

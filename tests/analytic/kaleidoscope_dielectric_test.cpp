@@ -324,7 +324,7 @@ TEST(DielectricGroovesSuite, BadInputNamesTheFieldAndItsRange) {
     return std::string("accepted");
   };
   EXPECT_EQ(message("eta", {1.5, 0.0}), "bad.json: /eta/1 = 0 is out of range [0.001, 1000]");
-  EXPECT_EQ(message("theta_v_deg", {0.5}), "bad.json: /theta_v_deg/0 = 0.5 is out of range [1, 180]");
+  EXPECT_EQ(message("theta_v_deg", {0.5}), "bad.json: /theta_v_deg/0 = 0.5 is out of range [6, 180]");
   EXPECT_EQ(message("theta_i_deg", {90}), "bad.json: /theta_i_deg/0 = 90 is out of range [-89.999, 89.999]");
   EXPECT_EQ(message("grid", 0), "bad.json: /grid = 0 is out of range [1, 1000000]");
   EXPECT_EQ(message("surface_min_weight", 1.0), "bad.json: /surface_min_weight = 1.0 is out of range (0, 1)");
