@@ -92,6 +92,11 @@ cat >"$t/sampling.json" <<'J'
              "quadrature_tolerance": {"flatland": 1e-9, "3d": 1e-6},
              "cases": [{"dimension": "flatland", "ndf": "ggx", "alpha": 0.5, "theta_i_deg": 30}]}}
 J
+cat >"$t/dielectric_grooves.json" <<'J'
+{"name": "tiny_dielectric_grooves", "kind": "dielectric_grooves", "theta_v_deg": [40, 90], "theta_i_deg": [0, 60],
+ "eta": [1.5], "inverses": true, "grid": 16, "surface_rays": 100, "surface_min_weight": 1e-6,
+ "thresholds": {"max_l1": 1e-12, "max_direction_error_rad": 1e-12}}
+J
 # (The 3D model's quadrature costs about a second of CPU per cell: few 3D cells.)
 ENERGY=(energy --ndf ggx --dim flatland,3d --mu-points 1 --alpha-points 2 --rays 3000 --max-k 4)
 ENERGY_FLAT=(energy --ndf ggx,phong --dim flatland --mu-points 3 --alpha-points 2 --rays 3000 --max-k 4)
@@ -137,6 +142,7 @@ case $check in
     sharded profiles 3 validate "$t/profiles.json"
     sharded sampling 3 validate "$t/sampling.json"
     sharded heightfield 3 validate "$t/heightfield.json"
+    sharded dielectric_grooves 3 validate "$t/dielectric_grooves.json"
     # A foreign model: the brdf suite's layout filled with a flat lobe (it fails: the same verdict
     # merged as in one process).
     "$bin" bins "$t/brdf.json" --out "$t/layout.json" >/dev/null

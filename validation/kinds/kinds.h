@@ -10,15 +10,16 @@
 
 namespace vgroove::validation {
 
-const SuiteKind& groove_kind();        // single grooves: Table 1, stress, sets of suites (groove_kind.cpp)
-const SuiteKind& brdf_kind();          // "brdf": Fig. 11; with a model table, a foreign model (brdf_kind.cpp)
-const SuiteKind& table2_kind();        // "table2" (table2_kind.cpp)
-const SuiteKind& furnace_kind();       // "furnace" (furnace_kind.cpp)
-const SuiteKind& sampling_kind();      // "sampling" (sampling_kind.cpp)
-const SuiteKind& nonsymmetric_kind();  // "nonsymmetric_brdf" (nonsymmetric_kind.cpp)
-const SuiteKind& profiles_kind();      // "profiles" (profiles_kind.cpp)
-const SuiteKind& energy_audit_kind();  // "energy_audit" (energy_audit_kind.cpp)
-const SuiteKind& heightfield_kind();   // "heightfield" (heightfield_kind.cpp)
+const SuiteKind& groove_kind();              // single grooves: Table 1, stress, sets of suites (groove_kind.cpp)
+const SuiteKind& brdf_kind();                // "brdf": Fig. 11; with a model table, a foreign model (brdf_kind.cpp)
+const SuiteKind& table2_kind();              // "table2" (table2_kind.cpp)
+const SuiteKind& furnace_kind();             // "furnace" (furnace_kind.cpp)
+const SuiteKind& sampling_kind();            // "sampling" (sampling_kind.cpp)
+const SuiteKind& nonsymmetric_kind();        // "nonsymmetric_brdf" (nonsymmetric_kind.cpp)
+const SuiteKind& profiles_kind();            // "profiles" (profiles_kind.cpp)
+const SuiteKind& energy_audit_kind();        // "energy_audit" (energy_audit_kind.cpp)
+const SuiteKind& heightfield_kind();         // "heightfield" (heightfield_kind.cpp)
+const SuiteKind& dielectric_grooves_kind();  // "dielectric_grooves" (dielectric_grooves_kind.cpp)
 
 // The result of a finished run: `print(std::ostream&)` writes its table, `report_json()` (called
 // only when `report`) builds its report.
