@@ -45,8 +45,11 @@ long block_size(int level) {
 }
 
 // The march of one ray step in direction Dir (+1: d.x > 0, segments k, k + 1, ...; -1: d.x < 0,
-// segments k, k - 1, ...), from segment k in period m (its vertices at x + m period).
-template <int Dir>
+// segments k, k - 1, ...), from segment k in period m (its vertices at x + m period). Below: the
+// ray travels under the profile (the dielectric tracer's medium 2), where the roles of up and down
+// swap: going down it leaves once below the lowest vertex, going up it always meets the profile
+// within a period.
+template <int Dir, bool Below = false>
 PolylineHit march(const Polyline& P, const Ray& r, int k, long m) {
   const int n = P.segments();
   const int levels = static_cast<int>(P.levels.size());
@@ -70,11 +73,19 @@ PolylineHit march(const Polyline& P, const Ray& r, int k, long m) {
       // comment). Moving down it cannot happen: the copy of the highest vertex within a period
       // ahead lies above the descending ray. Only a ray that left its segment within rounding of
       // an end vertex, on the vertex's far side, gets here: it is reported as the vertex hit it is.
+      // Below the profile the same holds with up and down swapped (the copy of the lowest vertex
+      // within a period ahead lies below a rising ray).
+      if constexpr (Below) return up ? vertex_hit() : escaped();
       return down ? vertex_hit() : escaped();
     }
     const int v_in = entry(k);
-    // Going up: above the highest vertex here, above all from here on.
-    if (up && r.surely_below<Dir>(X(v_in, shift), P.y_max)) return escaped();
+    if constexpr (Below) {
+      // Going down under the profile: below the lowest vertex here, below all from here on.
+      if (down && r.surely_below<-Dir>(X(v_in, shift), P.y_min)) return escaped();
+    } else {
+      // Going up: above the highest vertex here, above all from here on.
+      if (up && r.surely_below<Dir>(X(v_in, shift), P.y_max)) return escaped();
+    }
     // At a block boundary, skip the largest block the ray passes above.
     if (Dir > 0 ? k % Polyline::kBlock == 0 : ((k + 1) % Polyline::kBlock == 0 || k == n - 1)) {
       bool skipped = false;
@@ -144,6 +155,39 @@ PolylineHit first_hit_from(const Polyline& p, int j, double s, const Vec2& dir) 
   if (dir.x() < 0.0) return j == 0 ? march<-1>(p, r, n - 1, -1) : march<-1>(p, r, j - 1, 0);
   // Straight up leaves. Straight down would go through segment j itself, which a reflected ray
   // cannot (its direction has d.n > 0); it is reported with its direction, below the horizon.
+  return escaped();
+}
+
+PolylineHit first_hit_from_bottom(const Polyline& p, double x, const Vec2& dir) {
+  assert(dir.y() > 0.0 && x >= p.x.front() && x < p.x.back());
+  const Ray r(Vec2(x, p.y_min), dir);
+  const int n = p.segments();
+  if (dir.x() > 0.0) {
+    const int j = static_cast<int>(std::upper_bound(p.x.begin(), p.x.end(), x) - p.x.begin()) - 1;
+    return march<+1, true>(p, r, j, 0);
+  }
+  if (dir.x() < 0.0) {
+    const int j = static_cast<int>(std::lower_bound(p.x.begin(), p.x.end(), x) - p.x.begin()) - 1;
+    return j < 0 ? march<-1, true>(p, r, n - 1, -1) : march<-1, true>(p, r, j, 0);
+  }
+  // Straight up: the segment over x, or the vertex at x.
+  const int j = static_cast<int>(std::upper_bound(p.x.begin(), p.x.end(), x) - p.x.begin()) - 1;
+  const double sa = r.side(p.x[static_cast<std::size_t>(j)], p.y[static_cast<std::size_t>(j)]);
+  const double sb = r.side(p.x[static_cast<std::size_t>(j) + 1], p.y[static_cast<std::size_t>(j) + 1]);
+  if (sa == 0.0) return vertex_hit();
+  const double s = sa / (sa - sb);
+  if (!(s > 0.0 && s < 1.0)) return vertex_hit();
+  return PolylineHit{PolylineHit::Kind::segment, j, s};
+}
+
+PolylineHit first_hit_from_below(const Polyline& p, int j, double s, const Vec2& dir) {
+  const int n = p.segments();
+  const Ray r(p.point(j, s), dir);
+  if (dir.x() > 0.0) return j + 1 == n ? march<+1, true>(p, r, 0, 1) : march<+1, true>(p, r, j + 1, 0);
+  if (dir.x() < 0.0) return j == 0 ? march<-1, true>(p, r, n - 1, -1) : march<-1, true>(p, r, j - 1, 0);
+  // Straight down leaves (a height profile meets a vertical line once). Straight up would go
+  // through segment j itself, which a ray leaving it downward cannot; it is reported with its
+  // direction, as first_hit_from does.
   return escaped();
 }
 

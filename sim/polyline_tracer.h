@@ -32,6 +32,14 @@ PolylineHit first_hit_from_top(const Polyline& p, double x, const Vec2& dir);
 // segment itself excluded.
 PolylineHit first_hit_from(const Polyline& p, int j, double s, const Vec2& dir);
 
+// The same under the profile, for a ray travelling in the medium below it (the dielectric tracer's
+// medium 2, sim/dielectric_polyline.h): entering from the bottom line y = y_min at x in
+// [x_0, x_0 + period) along dir (unit, dir.y > 0), and leaving the point at parameter s of segment
+// j along dir (unit), the segment excluded. Going down, a ray that passes below the lowest vertex
+// has left (escaped); going up, it meets the profile within a period.
+PolylineHit first_hit_from_bottom(const Polyline& p, double x, const Vec2& dir);
+PolylineHit first_hit_from_below(const Polyline& p, int j, double s, const Vec2& dir);
+
 // 32 bytes, as sim::TraceResult.
 struct PolylineTraceResult {
   Vec2 exit_dir = Vec2::Zero();  // valid when how == escaped
