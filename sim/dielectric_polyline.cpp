@@ -21,8 +21,7 @@ std::string number_text(double v) {
 
 }  // namespace
 
-DielectricPolylineTracer::DielectricPolylineTracer(const Polyline& p, const DielectricOptions& opt)
-    : p_(p), opt_(opt) {
+DielectricPolylineTracer::DielectricPolylineTracer(const Polyline& p, const DielectricOptions& opt) : p_(p), opt_(opt) {
   detail::check_dielectric_options(opt);
 }
 

@@ -27,7 +27,9 @@ namespace {
 double deg(double d) { return d * std::numbers::pi / 180.0; }
 Vec2 from_above(double theta_i) { return beam_direction(theta_i); }
 Vec2 from_below(double theta_i) { return direction_at(theta_i); }
-Vec2 light_dir(double theta_i, Medium from) { return from == Medium::above ? from_above(theta_i) : from_below(theta_i); }
+Vec2 light_dir(double theta_i, Medium from) {
+  return from == Medium::above ? from_above(theta_i) : from_below(theta_i);
+}
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
