@@ -1,12 +1,11 @@
 // vgroove analytic: the Smith multiple-scattering random walk of Heitz, Hanika, d'Eon, Dachsbacher
-// ("Multiple-Scattering Microfacet BSDFs with the Smith Model", ACM TOG 35(4), 2016, Sec. 6.2, the
-// dielectric microsurface) in flatland: the interface between medium 1 above (n1) and medium 2
-// below (n2), eta = n2 / n1, light from either side. The walk of analytic/smith_walk_flatland.h
-// (free paths from C1(h)^Lambda, facet normals from the visible slopes, Beckmann and GGX) in the
-// frame of the medium the ray travels in: medium 2 sees the microsurface flipped upside down (the
-// same slopes; heights -h, so C1 there is 1 - C1(h) at the same point), and at each intersection
-// the ray reflects with probability F, the dielectric Fresnel reflectance at the local angle (1
-// under total internal reflection), else refracts by Snell's law into the other medium. A model,
+// ("Multiple-Scattering Microfacet BSDFs with the Smith Model", ACM TOG 35(4), 2016: the dielectric
+// microsurface, as its published supplemental code walks it) in flatland: the interface between medium 1 above (n1) and
+// medium 2 below (n2), eta = n2 / n1, light from either side. The walk of analytic/smith_walk_flatland.h (free paths
+// from C1(h)^Lambda, facet normals from the visible slopes, Beckmann and GGX) in the frame of the medium the ray
+// travels in: medium 2 sees the microsurface flipped upside down (the same slopes; heights -h, so C1 there is 1 - C1(h)
+// at the same point), and at each intersection the ray reflects with probability F, the dielectric Fresnel reflectance
+// at the local angle (1 under total internal reflection), else refracts by Snell's law into the other medium. A model,
 // not a simulation: a pure function of the uniform numbers its caller supplies.
 // Holds: with F = 1 it is the conductor walk bit for bit (and from below its mirror image);
 // eta = 1 passes straight through; its k = 1 reflected and transmitted energies are the quadratures
@@ -56,7 +55,7 @@ struct FlatlandDielectricWalk {
   // sim::exit_angle's convention (above: angle_from_normal of the direction; below: phi with the
   // direction (sin phi, -cos phi)).
   double theta_o = 0.0;
-  std::uint64_t path = 0;  // bit j set: interaction j refracted (the first 64)
+  std::uint64_t path = 0;               // bit j set: interaction j refracted (the first 64)
   WalkMedium side = WalkMedium::above;  // the medium it left into
   bool left = false;                    // false: still inside after max_k interactions
 };

@@ -50,7 +50,8 @@ TEST(SmithWalkDielectric, ConductorLimitIsTheConductorWalk) {
         Uniforms a{17}, b{17}, c{17};
         for (int n = 0; n < 3000; ++n) {
           const FlatlandWalk w = smith_walk_flatland(ndf, alpha, deg(th), a);
-          const FlatlandDielectricWalk d = smith_walk_flatland_dielectric(ndf, alpha, deg(th), WalkMedium::above, opt, b);
+          const FlatlandDielectricWalk d =
+              smith_walk_flatland_dielectric(ndf, alpha, deg(th), WalkMedium::above, opt, b);
           ASSERT_EQ(w.left, d.left);
           ASSERT_EQ(w.k, d.k);
           ASSERT_TRUE(same_bits(w.theta_o, d.theta_o)) << w.theta_o << " " << d.theta_o;
@@ -59,7 +60,8 @@ TEST(SmithWalkDielectric, ConductorLimitIsTheConductorWalk) {
           // From below: the mirror image of the walk from above at -theta_i.
           Uniforms c2{c.state};
           const FlatlandWalk m = smith_walk_flatland(ndf, alpha, -deg(th), c2);
-          const FlatlandDielectricWalk e = smith_walk_flatland_dielectric(ndf, alpha, deg(th), WalkMedium::below, opt, c);
+          const FlatlandDielectricWalk e =
+              smith_walk_flatland_dielectric(ndf, alpha, deg(th), WalkMedium::below, opt, c);
           ASSERT_EQ(e.side, WalkMedium::below);
           ASSERT_EQ(e.k, m.k);
           ASSERT_TRUE(same_bits(e.theta_o, -m.theta_o));
@@ -117,7 +119,8 @@ SingleScattering single_scattering(NdfKind ndf, double alpha, double theta_v, do
     if (ct < 0.0) return 0.0;
     const double o = wrap_angle(-m - std::atan2(std::sin(phi) / eta_rel, ct));
     if (!(std::cos(o) > 0.0)) return 0.0;
-    return visible_normal_pdf(ndf, alpha, theta_v, m) * (1.0 - F_of(phi)) * a * std::beta(a, 1.0 + Lambda(ndf, o, alpha));
+    return visible_normal_pdf(ndf, alpha, theta_v, m) * (1.0 - F_of(phi)) * a *
+           std::beta(a, 1.0 + Lambda(ndf, o, alpha));
   };
   // Breaks: the visible support's ends, the NDF's peak, the critical angle's normals.
   std::vector<double> br = {std::max(-kHalfPi, theta_v - kHalfPi), std::min(kHalfPi, theta_v + kHalfPi), 0.0};
@@ -157,7 +160,8 @@ double worst_z(const Case& c, int walks, const Law& law, bool inverted) {
   Uniforms u{99};
   long r1 = 0, t1 = 0;
   for (int n = 0; n < walks; ++n) {
-    const FlatlandDielectricWalk w = smith_walk_flatland_dielectric(c.ndf, c.alpha, deg(c.theta_deg), c.from, opt, u, law);
+    const FlatlandDielectricWalk w =
+        smith_walk_flatland_dielectric(c.ndf, c.alpha, deg(c.theta_deg), c.from, opt, u, law);
     if (w.k == 1) (w.side == c.from ? r1 : t1) += 1;
   }
   auto z = [&](long count, double p) {
