@@ -32,7 +32,8 @@ DielectricResult& DielectricPolylineTracer::trace(double x, const Vec2& dir, Med
   if (!(x >= p_.x.front() && x < p_.x.back()))
     throw std::invalid_argument("x = " + number_text(x) + " is out of range [" + number_text(p_.x.front()) + ", " +
                                 number_text(p_.x.back()) + ") (one period of the profile)");
-  const PolylineHit first = from == Medium::above ? first_hit_from_top(p_, x, dir) : first_hit_from_bottom(p_, x, dir);
+  const PolylineHit first =
+      from == Medium::above ? first_hit_from_top(p_, x, dir) : first_hit_from_bottom(p_, lows_, x, dir);
   if (first.kind != PolylineHit::Kind::segment) {
     // A vertex; a ray that crosses its entry line always meets the profile, so `escaped` is
     // rounding too: never dropped.
@@ -87,7 +88,7 @@ DielectricResult& DielectricPolylineTracer::trace(double x, const Vec2& dir, Med
       const Medium medium = b == 0 ? h.in : detail::other_medium(h.in);
       const std::uint64_t path = detail::branch_path(h.path, h.k, b);
       const PolylineHit next = medium == Medium::above ? first_hit_from(p_, h.groove, h.pos, d)
-                                                       : first_hit_from_below(p_, h.groove, h.pos, d);
+                                                       : first_hit_from_below(p_, lows_, h.groove, h.pos, d);
       if (next.kind == PolylineHit::Kind::segment) {
         pending.push_back(detail::PendingHit{d, next.s, w, path, k, h.on, medium, next.segment});
         continue;

@@ -15,13 +15,15 @@
 // Tests: tests/sim/dielectric_polyline_test.cpp (DielectricPolyline.EnergyIsConservedPerRay,
 // DielectricPolyline.AFlatProfileIsFresnelAndSnell, DielectricPolyline.EtaOnePassesStraightThrough,
 // DielectricPolyline.ConductorLimitIsThePolylineTracerBitForBit, DielectricPolyline.GrazingLightNeverGivesNaN,
-// DielectricPolyline.RaysMeetTheProfileFromBelow, DielectricPolyline.SplitAndRandomBranchingAgree,
+// DielectricPolyline.RaysMeetTheProfileFromBelow, DielectricPolyline.LightFromBelowIsTheMirrorImageOfLightFromAbove,
+// DielectricPolyline.SplitAndRandomBranchingAgree,
 // DielectricPolyline.BadInputIsRefused).
 // Derivation: docs/derivations/smith_walk_dielectric.md (the tracer's section).
 #pragma once
 
 #include "vgroove/sim/dielectric_groove.h"
 #include "vgroove/sim/polyline.h"
+#include "vgroove/sim/polyline_tracer.h"
 #include "vgroove/sim/rng.h"
 
 namespace vgroove::sim {
@@ -46,6 +48,7 @@ class DielectricPolylineTracer {
 
  private:
   const Polyline& p_;
+  PolylineLows lows_;  // the pyramid of lowest vertices, for paths under the profile
   DielectricOptions opt_;
 };
 

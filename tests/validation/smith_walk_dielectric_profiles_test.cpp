@@ -14,8 +14,8 @@
 // normals, fully visible on any height profile (G1(0) = 1), so the share refracted at the first
 // interaction (the first path bit) is the same quadrature for the tracer and the walk (the
 // realization spread covers a profile's own slope statistics); a walk with the Fresnel law's eta
-// inverted is rejected by that quadrature (kept in the test as the broken variant). The walk's agreement beyond that is a measured result:
-// the full grid (SmithWalkDielectricProfilesLong, ctest -L long) prints it per case and asserts
+// inverted is rejected by that quadrature (kept in the test as the broken variant). The walk's agreement beyond that is
+// a measured result: the full grid (SmithWalkDielectricProfilesLong, ctest -L long) prints it per case and asserts
 // nothing about it (the conductor walk misses random profiles too: README, "Beyond V-grooves").
 #include "vgroove/analytic/ndf.h"
 #include "vgroove/analytic/smith_walk_flatland_dielectric.h"
@@ -79,7 +79,8 @@ Counts trace_realization(const Config& c, int r) {
   sim::DielectricOptions opt;
   opt.eta = c.eta, opt.branching = sim::Branching::random;
   const sim::DielectricPolylineTracer tr(p, opt);
-  const sim::Vec2 dir = c.from == Medium::above ? sim::beam_direction(deg(c.theta_deg)) : sim::direction_at(deg(c.theta_deg));
+  const sim::Vec2 dir =
+      c.from == Medium::above ? sim::beam_direction(deg(c.theta_deg)) : sim::direction_at(deg(c.theta_deg));
   Counts out;
   out.cell.assign(static_cast<std::size_t>(cells(c)), 0.0);
   sim::DielectricResult res;
@@ -105,7 +106,8 @@ Counts walk(const Config& c, const Law& law) {
   opt.eta = c.eta;
   Counts out;
   out.cell.assign(static_cast<std::size_t>(cells(c)), 0.0);
-  sim::Rng rng(c.seed, 0x77616c6bULL, static_cast<std::uint64_t>(c.theta_deg * 16) * 2 + static_cast<std::uint64_t>(c.from));
+  sim::Rng rng(c.seed, 0x77616c6bULL,
+               static_cast<std::uint64_t>(c.theta_deg * 16) * 2 + static_cast<std::uint64_t>(c.from));
   auto uniform = [&] { return sim::uniform_open(rng); };
   const WalkMedium from = c.from == Medium::above ? WalkMedium::above : WalkMedium::below;
   for (long j = 0; j < c.walks; ++j) {
@@ -161,13 +163,14 @@ struct Comparison {
 double first_refracted_exact(const Config& c) {
   const double eta_rel = c.from == Medium::above ? c.eta : 1.0 / c.eta;
   auto f = [&](double m) {
-    return analytic::visible_normal_pdf(c.ndf, c.alpha, 0.0, m) * (1.0 - optics::fresnel_dielectric(std::cos(m), eta_rel));
+    return analytic::visible_normal_pdf(c.ndf, c.alpha, 0.0, m) *
+           (1.0 - optics::fresnel_dielectric(std::cos(m), eta_rel));
   };
   double s = test_stats::tanh_sinh(f, -0.5 * kPi, 0.0) + test_stats::tanh_sinh(f, 0.0, 0.5 * kPi);
   if (eta_rel < 1.0) {  // split at the critical angle's normals
     const double mc = std::asin(eta_rel);
-    s = test_stats::tanh_sinh(f, -0.5 * kPi, -mc) + test_stats::tanh_sinh(f, -mc, 0.0) + test_stats::tanh_sinh(f, 0.0, mc) +
-        test_stats::tanh_sinh(f, mc, 0.5 * kPi);
+    s = test_stats::tanh_sinh(f, -0.5 * kPi, -mc) + test_stats::tanh_sinh(f, -mc, 0.0) +
+        test_stats::tanh_sinh(f, 0.0, mc) + test_stats::tanh_sinh(f, mc, 0.5 * kPi);
   }
   return s;
 }
@@ -257,16 +260,18 @@ Comparison compare(const Config& c, const Law& law = Law{}) {
 void print_header() {
   std::printf(
       "ndf       alpha theta from  | E_R traced / walk (z)      | E_T traced / walk (z)      | k=1,2,3+ z (R; T)"
-      "              | lobe chi2/dof (p), worst |z| | T@1st traced/walk/exact (z_t, z_w) | rays walks trace_s walk_s\n");
+      "              | lobe chi2/dof (p), worst |z| | T@1st traced/walk/exact (z_t, z_w) | rays walks trace_s "
+      "walk_s\n");
 }
 void print_row(const Config& c, const Comparison& r) {
   std::printf(
-      "%-9s %5.2f %5.1f %-5s | %.5f / %.5f (%6.1f) | %.5f / %.5f (%6.1f) | %5.1f %5.1f %5.1f; %5.1f %5.1f %5.1f | %8.1f/%3d "
+      "%-9s %5.2f %5.1f %-5s | %.5f / %.5f (%6.1f) | %.5f / %.5f (%6.1f) | %5.1f %5.1f %5.1f; %5.1f %5.1f %5.1f | "
+      "%8.1f/%3d "
       "(%.1e) %5.1f | %.5f/%.5f/%.5f (%4.1f, %4.1f) | %.0f %.0f %.2f %.2f\n",
       ndf_name(c.ndf), c.alpha, c.theta_deg, c.from == Medium::above ? "above" : "below", r.E_t[0], r.E_w[0], r.z_E[0],
-      r.E_t[1], r.E_w[1], r.z_E[1], r.z_Ek[0][0], r.z_Ek[0][1], r.z_Ek[0][2], r.z_Ek[1][0], r.z_Ek[1][1],
-      r.z_Ek[1][2], r.chi2, r.dof, r.p, r.worst_cell_z, r.first_t, r.first_w, r.first_exact, r.z_first_t, r.z_first_w,
-      r.rays, r.walks, r.trace_s, r.walk_s);
+      r.E_t[1], r.E_w[1], r.z_E[1], r.z_Ek[0][0], r.z_Ek[0][1], r.z_Ek[0][2], r.z_Ek[1][0], r.z_Ek[1][1], r.z_Ek[1][2],
+      r.chi2, r.dof, r.p, r.worst_cell_z, r.first_t, r.first_w, r.first_exact, r.z_first_t, r.z_first_w, r.rays,
+      r.walks, r.trace_s, r.walk_s);
 }
 
 // Fresnel with eta inverted where Snell transmits: a deliberately wrong walk.
