@@ -50,6 +50,7 @@ struct Config {
   NdfKind ndf = NdfKind::ggx;
   double alpha = 0.3, theta_deg = 0.0, eta = 1.5;
   Medium from = Medium::above;
+  bool conductor = false;  // F = 1 in both (the conductor tracer and walk: the control)
   int realizations = 4, segments = 1 << 14;
   long rays = 50000;  // per realization
   long walks = 200000;
@@ -77,7 +78,7 @@ Counts trace_realization(const Config& c, int r) {
   po.seed = sim::splitmix64(c.seed * 1000003 + static_cast<std::uint64_t>(r));
   const sim::Polyline p = sim::make_random_profile(po);
   sim::DielectricOptions opt;
-  opt.eta = c.eta, opt.branching = sim::Branching::random;
+  opt.eta = c.eta, opt.branching = sim::Branching::random, opt.conductor_limit = c.conductor;
   const sim::DielectricPolylineTracer tr(p, opt);
   const sim::Vec2 dir =
       c.from == Medium::above ? sim::beam_direction(deg(c.theta_deg)) : sim::direction_at(deg(c.theta_deg));
@@ -103,7 +104,7 @@ Counts trace_realization(const Config& c, int r) {
 template <class Law>
 Counts walk(const Config& c, const Law& law) {
   analytic::DielectricWalkOptions opt;
-  opt.eta = c.eta;
+  opt.eta = c.eta, opt.conductor_limit = c.conductor;
   Counts out;
   out.cell.assign(static_cast<std::size_t>(cells(c)), 0.0);
   sim::Rng rng(c.seed, 0x77616c6bULL,
@@ -175,33 +176,23 @@ double first_refracted_exact(const Config& c) {
   return s;
 }
 
-template <class Law = analytic::DielectricFresnelLaw>
-Comparison compare(const Config& c, const Law& law = Law{}) {
-  using Clock = std::chrono::steady_clock;
+// Set A (traced realizations) against set B (traced realizations, or one walk sample: its
+// variance binomial).
+Comparison compare_sets(const Config& c, const std::vector<Counts>& tr, const std::vector<Counts>& wb) {
   Comparison out;
-  const auto t0 = Clock::now();
-  std::vector<Counts> tr;
-  for (int r = 0; r < c.realizations; ++r) tr.push_back(trace_realization(c, r));
-  const auto t1 = Clock::now();
-  const Counts w = walk(c, law);
-  const auto t2 = Clock::now();
-  out.trace_s = std::chrono::duration<double>(t1 - t0).count();
-  out.walk_s = std::chrono::duration<double>(t2 - t1).count();
-  std::vector<double> n;
+  std::vector<double> n, nb;
   for (const Counts& t : tr) n.push_back(t.n), out.rays += t.n, out.lost_t += t.lost;
-  out.walks = w.n, out.lost_w = w.lost;
+  for (const Counts& t : wb) nb.push_back(t.n), out.walks += t.n, out.lost_w += t.lost;
   // A statistic of a set of cells (a subset chosen by pred).
   auto stat_of = [&](auto pred) {
-    std::vector<std::vector<double>> per(tr.size());
-    double wc = 0.0;
+    std::vector<std::vector<double>> per(tr.size()), per_b(wb.size());
     for (int q = 0; q < cells(c); ++q) {
       if (!pred(q)) continue;
       for (std::size_t r = 0; r < tr.size(); ++r) per[r].push_back(tr[r].cell[static_cast<std::size_t>(q)]);
-      wc += w.cell[static_cast<std::size_t>(q)];
+      for (std::size_t r = 0; r < wb.size(); ++r) per_b[r].push_back(wb[r].cell[static_cast<std::size_t>(q)]);
     }
-    const Stat t = traced_stat(per, n);
-    const double pw = wc / w.n;
-    return std::tuple<Stat, double, double>(t, pw, pw * (1.0 - pw) / w.n);
+    const Stat t = traced_stat(per, n), b = traced_stat(per_b, nb);
+    return std::tuple<Stat, double, double>(t, b.mean, b.var);
   };
   auto z_of = [](const Stat& t, double pw, double vw) {
     const double v = t.var + vw;
@@ -245,10 +236,11 @@ Comparison compare(const Config& c, const Law& law = Law{}) {
   out.p = test_stats::gamma_q(0.5 * out.dof, 0.5 * out.chi2);
   // The first interaction.
   {
-    std::vector<std::vector<double>> per;
+    std::vector<std::vector<double>> per, per_b;
     for (const Counts& t : tr) per.push_back({t.first_refracted});
-    const Stat t = traced_stat(per, n);
-    const double pw = w.first_refracted / w.n, vw = pw * (1.0 - pw) / w.n;
+    for (const Counts& t : wb) per_b.push_back({t.first_refracted});
+    const Stat t = traced_stat(per, n), b = traced_stat(per_b, nb);
+    const double pw = b.mean, vw = b.var;
     out.first_t = t.mean, out.first_w = pw, out.z_first = z_of(t, pw, vw);
     out.first_exact = first_refracted_exact(c);
     out.z_first_t = z_of(t, out.first_exact, 0.0);
@@ -257,21 +249,43 @@ Comparison compare(const Config& c, const Law& law = Law{}) {
   return out;
 }
 
+std::vector<Counts> trace_all(const Config& c) {
+  std::vector<Counts> tr;
+  for (int r = 0; r < c.realizations; ++r) tr.push_back(trace_realization(c, r));
+  return tr;
+}
+
+// The traced profiles against the walk, timed.
+template <class Law = analytic::DielectricFresnelLaw>
+Comparison compare(const Config& c, const Law& law = Law{}) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  const std::vector<Counts> tr = trace_all(c);
+  const auto t1 = Clock::now();
+  const std::vector<Counts> w = {walk(c, law)};
+  const auto t2 = Clock::now();
+  Comparison out = compare_sets(c, tr, w);
+  out.trace_s = std::chrono::duration<double>(t1 - t0).count();
+  out.walk_s = std::chrono::duration<double>(t2 - t1).count();
+  return out;
+}
+
 void print_header() {
   std::printf(
-      "ndf       alpha theta from  | E_R traced / walk (z)      | E_T traced / walk (z)      | k=1,2,3+ z (R; T)"
+      "ndf       alpha theta from  against   | E_R traced / walk (z)      | E_T traced / walk (z)      | k=1,2,3+ z "
+      "(R; T)"
       "              | lobe chi2/dof (p), worst |z| | T@1st traced/walk/exact (z_t, z_w) | rays walks trace_s "
       "walk_s\n");
 }
-void print_row(const Config& c, const Comparison& r) {
+void print_row(const Config& c, const Comparison& r, const char* what = "walk") {
   std::printf(
-      "%-9s %5.2f %5.1f %-5s | %.5f / %.5f (%6.1f) | %.5f / %.5f (%6.1f) | %5.1f %5.1f %5.1f; %5.1f %5.1f %5.1f | "
+      "%-9s %5.2f %5.1f %-5s %-9s | %.5f / %.5f (%6.1f) | %.5f / %.5f (%6.1f) | %5.1f %5.1f %5.1f; %5.1f %5.1f %5.1f | "
       "%8.1f/%3d "
       "(%.1e) %5.1f | %.5f/%.5f/%.5f (%4.1f, %4.1f) | %.0f %.0f %.2f %.2f\n",
-      ndf_name(c.ndf), c.alpha, c.theta_deg, c.from == Medium::above ? "above" : "below", r.E_t[0], r.E_w[0], r.z_E[0],
-      r.E_t[1], r.E_w[1], r.z_E[1], r.z_Ek[0][0], r.z_Ek[0][1], r.z_Ek[0][2], r.z_Ek[1][0], r.z_Ek[1][1], r.z_Ek[1][2],
-      r.chi2, r.dof, r.p, r.worst_cell_z, r.first_t, r.first_w, r.first_exact, r.z_first_t, r.z_first_w, r.rays,
-      r.walks, r.trace_s, r.walk_s);
+      ndf_name(c.ndf), c.alpha, c.theta_deg, c.from == Medium::above ? "above" : "below", what, r.E_t[0], r.E_w[0],
+      r.z_E[0], r.E_t[1], r.E_w[1], r.z_E[1], r.z_Ek[0][0], r.z_Ek[0][1], r.z_Ek[0][2], r.z_Ek[1][0], r.z_Ek[1][1],
+      r.z_Ek[1][2], r.chi2, r.dof, r.p, r.worst_cell_z, r.first_t, r.first_w, r.first_exact, r.z_first_t, r.z_first_w,
+      r.rays, r.walks, r.trace_s, r.walk_s);
 }
 
 // Fresnel with eta inverted where Snell transmits: a deliberately wrong walk.
@@ -306,7 +320,11 @@ TEST(SmithWalkDielectricProfiles, FirstInteractionAtNormalIncidenceIsExactOnBoth
 TEST(SmithWalkDielectricProfilesLong, FullGrid) {
   // GGX and Beckmann, alpha 0.3 and 0.8, theta_i 0, 45, 75 deg, eta 1.5, from above and below:
   // 8 profiles of 2^16 segments, 500,000 rays each, 4,000,000 walks per case. Asserts only what
-  // must hold (nothing lost; the first interaction at normal incidence); prints the rest.
+  // must hold (nothing lost; the first interaction at normal incidence); prints the rest, with two
+  // controls per (ndf, alpha, theta) from above: the conductor limit (F = 1: the conductor tracer
+  // against the conductor walk on the same profiles, the miss Smith's walk has without any
+  // dielectric), and at theta 45 deg the null control (the traced profiles against 8 other
+  // profiles: the chi2 the noise model gives when both sides are the same ensemble).
   print_header();
   for (NdfKind ndf : {NdfKind::ggx, NdfKind::beckmann})
     for (double alpha : {0.3, 0.8})
@@ -323,6 +341,19 @@ TEST(SmithWalkDielectricProfilesLong, FullGrid) {
           if (th == 0.0) {
             EXPECT_LE(std::abs(r.z_first_t), 5.0);
             EXPECT_LE(std::abs(r.z_first_w), 5.0);
+          }
+          if (from == Medium::above) {
+            Config k = c;
+            k.conductor = true;
+            print_row(k, compare(k), "conductor");
+            std::fflush(stdout);
+          }
+          if (th == 45.0) {
+            Config o = c;
+            o.seed = c.seed + 1;
+            const Comparison z = compare_sets(c, trace_all(c), trace_all(o));
+            print_row(c, z, "traced");
+            std::fflush(stdout);
           }
         }
 }
