@@ -1,23 +1,18 @@
 // vgroove analytic: the Smith multiple-scattering random walk of Heitz, Hanika, d'Eon, Dachsbacher
-// ("Multiple-Scattering Microfacet BSDFs with the Smith Model", ACM TOG 35(4), 2016: the dielectric
-// microsurface, as its published supplemental code walks it) in flatland: the interface between medium 1 above (n1) and
-// medium 2 below (n2), eta = n2 / n1, light from either side. The walk of analytic/smith_walk_flatland.h (free paths
-// from C1(h)^Lambda, facet normals from the visible slopes, Beckmann and GGX) in the frame of the medium the ray
-// travels in: medium 2 sees the microsurface flipped upside down (the same slopes; heights -h, so C1 there is 1 - C1(h)
-// at the same point), and at each intersection the ray reflects with probability F, the dielectric Fresnel reflectance
-// at the local angle (1 under total internal reflection), else refracts by Snell's law into the other medium. A model,
-// not a simulation: a pure function of the uniform numbers its caller supplies.
-// Holds: with F = 1 it is the conductor walk bit for bit (and from below its mirror image);
-// eta = 1 passes straight through; its k = 1 reflected and transmitted energies are the quadratures
-// of Fresnel over the visible normals with the height-correlated escape probabilities a / (a +
-// Lambda(o)) and a B(a, 1 + Lambda(t)), a = 1 + Lambda(i); against exact tracing on random profiles
-// (sim/dielectric_polyline.h) it is a model whose misses are measured, not a truth.
-// Tests: tests/analytic/smith_walk_flatland_dielectric_test.cpp
-// (SmithWalkDielectric.ConductorLimitIsTheConductorWalk, SmithWalkDielectric.EtaOnePassesStraightThrough,
+// (ACM TOG 35(4), 2016; its dielectric microsurface) in flatland: medium 1 above, medium 2 below,
+// eta = n2 / n1, light from either side, Beckmann and GGX. The conductor walk
+// (analytic/smith_walk_flatland.h) in the frame of the medium the ray is in: medium 2 sees the
+// microsurface flipped (heights -h: log C1 -> log(1 - C1)); at each intersection the ray reflects
+// with probability F (dielectric Fresnel at the local angle, 1 under TIR), else refracts (Snell).
+// A pure function of its caller's uniform numbers. Holds: F = 1 is the conductor walk bit for bit;
+// eta = 1 passes straight through; its k = 1 energies are their quadratures. Against traced random
+// profiles (sim/dielectric_polyline.h) a model whose misses are measured.
+// Tests: tests/analytic/smith_walk_flatland_dielectric_test.cpp (SmithWalkDielectric.ConductorLimitIsTheConductorWalk,
+// SmithWalkDielectric.EtaOnePassesStraightThrough,
 // SmithWalkDielectric.SingleScatteringIsFresnelWithTheHeightCorrelatedEscape,
-// SmithWalkDielectric.EveryWalkLeavesAndHardCasesStayFinite), and against the traced profiles
-// tests/validation/smith_walk_dielectric_profiles_test.cpp.
-// Derivation: docs/derivations/smith_walk_dielectric.md.
+// SmithWalkDielectric.EveryWalkLeavesAndHardCasesStayFinite); tests/validation/smith_walk_dielectric_profiles_test.cpp
+// (SmithWalkDielectricProfiles.FirstInteractionAtNormalIncidenceIsExactOnBothSides,
+// SmithWalkDielectricProfilesLong.FullGrid). Derivation: docs/derivations/smith_walk_dielectric.md.
 #pragma once
 
 #include "vgroove/analytic/smith_walk_flatland.h"

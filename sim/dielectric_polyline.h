@@ -1,24 +1,16 @@
-// vgroove sim: exact 2D tracing of light across a periodic polyline profile (sim/polyline.h; the
-// random profiles of sim/random_profile.h) that separates two dielectrics: medium 1 (index n1)
-// above, medium 2 (n2) below, eta = n2 / n1, light from above or below. At every hit: the exact
-// dielectric Fresnel reflectance at the local angle, Snell's law, total internal reflection
-// (sim/dielectric_interaction.h, as the groove tracers). Refracted light travels on in medium 2
-// and meets the profile again from below (the undersides of neighbouring ridges): traced, never
-// dropped; a path that leaves downward (past the lowest vertex) is transmitted into medium 2, one
-// that leaves upward is in medium 1. The geometry is the polyline tracer's (sim/polyline_tracer.h:
-// first_hit_from_top / first_hit_from above the profile, first_hit_from_bottom /
-// first_hit_from_below under it), so with F forced to 1 (DielectricOptions::conductor_limit) every
-// path is trace_polyline's bit for bit. Random branching (one path per ray, Fresnel-weighted
-// choice from the caller's stream) is what rough profiles need; split branching follows both
-// branches with their weights. Conservation: left (both sides) + cut + bounce limit + vertex hits
-// = 1 per ray (exactly in random branching, to rounding in split).
-// Tests: tests/sim/dielectric_polyline_test.cpp (DielectricPolyline.EnergyIsConservedPerRay,
+// vgroove sim: exact 2D tracing of light across a periodic polyline profile (sim/polyline.h, the
+// random profiles of sim/random_profile.h) between two dielectrics: medium 1 above, medium 2 below,
+// eta = n2 / n1, light from either side. Each hit: exact Fresnel at the local angle, Snell, total
+// internal reflection (sim/dielectric_interaction.h). Refracted light travels on under the profile
+// and meets it again from below (traced, never dropped); a path leaving downward is in medium 2,
+// upward in medium 1. Geometry: sim/polyline_tracer.h (above and under the profile), so the
+// conductor limit is trace_polyline bit for bit. Random or split branching; left + cut + limit +
+// vertex = 1 per ray. Tests: tests/sim/dielectric_polyline_test.cpp (DielectricPolyline.EnergyIsConservedPerRay,
 // DielectricPolyline.AFlatProfileIsFresnelAndSnell, DielectricPolyline.EtaOnePassesStraightThrough,
 // DielectricPolyline.ConductorLimitIsThePolylineTracerBitForBit, DielectricPolyline.GrazingLightNeverGivesNaN,
 // DielectricPolyline.RaysMeetTheProfileFromBelow, DielectricPolyline.LightFromBelowIsTheMirrorImageOfLightFromAbove,
-// DielectricPolyline.SplitAndRandomBranchingAgree,
-// DielectricPolyline.BadInputIsRefused).
-// Derivation: docs/derivations/smith_walk_dielectric.md (the tracer's section).
+// DielectricPolyline.SplitAndRandomBranchingAgree, DielectricPolyline.BadInputIsRefused).
+// Derivation: docs/derivations/smith_walk_dielectric.md.
 #pragma once
 
 #include "vgroove/sim/dielectric_groove.h"
