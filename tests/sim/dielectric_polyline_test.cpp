@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <numbers>
 #include <stdexcept>
@@ -246,7 +247,8 @@ TEST(DielectricPolyline, RaysMeetTheProfileFromBelow) {
         }
     }
   }
-  EXPECT_GT(met_from_below, 20);  // measured: see the report (tens per thousand rays at alpha 0.8)
+  std::printf("GGX 0.8, 45 deg, eta 1.5: %ld of 2000 rays met the profile from below\n", met_from_below);
+  EXPECT_GT(met_from_below, 20);
 }
 
 TEST(DielectricPolyline, LightFromBelowIsTheMirrorImageOfLightFromAbove) {
