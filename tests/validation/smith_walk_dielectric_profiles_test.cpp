@@ -1,8 +1,8 @@
 // The flatland dielectric Smith walk (analytic/smith_walk_flatland_dielectric.h) against exact
 // tracing on random profiles (sim/dielectric_polyline.h, sim/random_profile.h), eta = 1.5, light
-// from above and below. Per case: the reflected and transmitted energies, their k = 1, 2, 3+
-// parts, and the joint lobe over (exit side, k row, exit-angle bin), traced (the mean over
-// `realizations` profiles, random branching, every ray weight 1) against the walk.
+// from above and below. Per case: the energies leaving above and below (reflected or transmitted
+// by the side the light comes from), their k = 1, 2, 3+ parts, and the joint lobe over (exit side, k row, exit-angle
+// bin), traced (the mean over `realizations` profiles, random branching, every ray weight 1) against the walk.
 //
 // Noise: per cell, the traced mean's variance is the larger of the binomial one of its rays and
 // the realizations' spread over R (profiles differ); the walk's is binomial. chi2 = sum over
@@ -272,8 +272,8 @@ Comparison compare(const Config& c, const Law& law = Law{}) {
 
 void print_header() {
   std::printf(
-      "ndf       alpha theta from  against   | E_R traced / walk (z)      | E_T traced / walk (z)      | k=1,2,3+ z "
-      "(R; T)"
+      "ndf       alpha theta from  against   | E_above traced / B (z)     | E_below traced / B (z)     | k=1,2,3+ z "
+      "(above; below)"
       "              | lobe chi2/dof (p), worst |z| | T@1st traced/walk/exact (z_t, z_w) | rays walks trace_s "
       "walk_s\n");
 }
