@@ -45,11 +45,15 @@ long block_size(int level) {
 }
 
 // The march of one ray step in direction Dir (+1: d.x > 0, segments k, k + 1, ...; -1: d.x < 0,
-// segments k, k - 1, ...), from segment k in period m (its vertices at x + m period).
-template <int Dir>
-PolylineHit march(const Polyline& P, const Ray& r, int k, long m) {
+// segments k, k - 1, ...), from segment k in period m (its vertices at x + m period). Below: the
+// ray travels under the profile (the dielectric tracer's medium 2), where the roles of up and down
+// swap: going down it leaves once below the lowest vertex, going up it always meets the profile
+// within a period, and the blocks it skips are those it passes below (pyramid: the lowest vertex
+// of each block, PolylineLows; above the profile P.levels, the highest).
+template <int Dir, bool Below = false>
+PolylineHit march(const Polyline& P, const Ray& r, int k, long m, const std::vector<std::vector<double>>& pyramid) {
   const int n = P.segments();
-  const int levels = static_cast<int>(P.levels.size());
+  const int levels = static_cast<int>(pyramid.size());
   const bool up = r.d.y() > 0.0, down = r.d.y() < 0.0;
   auto X = [&](int v, double sh) { return P.x[static_cast<std::size_t>(v)] + sh; };
   auto Y = [&](int v) { return P.y[static_cast<std::size_t>(v)]; };
@@ -70,12 +74,20 @@ PolylineHit march(const Polyline& P, const Ray& r, int k, long m) {
       // comment). Moving down it cannot happen: the copy of the highest vertex within a period
       // ahead lies above the descending ray. Only a ray that left its segment within rounding of
       // an end vertex, on the vertex's far side, gets here: it is reported as the vertex hit it is.
+      // Below the profile the same holds with up and down swapped (the copy of the lowest vertex
+      // within a period ahead lies below a rising ray).
+      if constexpr (Below) return up ? vertex_hit() : escaped();
       return down ? vertex_hit() : escaped();
     }
     const int v_in = entry(k);
-    // Going up: above the highest vertex here, above all from here on.
-    if (up && r.surely_below<Dir>(X(v_in, shift), P.y_max)) return escaped();
-    // At a block boundary, skip the largest block the ray passes above.
+    if constexpr (Below) {
+      // Going down under the profile: below the lowest vertex here, below all from here on.
+      if (down && r.surely_below<-Dir>(X(v_in, shift), P.y_min)) return escaped();
+    } else {
+      // Going up: above the highest vertex here, above all from here on.
+      if (up && r.surely_below<Dir>(X(v_in, shift), P.y_max)) return escaped();
+    }
+    // At a block boundary, skip the largest block the ray passes above (below, under the profile).
     if (Dir > 0 ? k % Polyline::kBlock == 0 : ((k + 1) % Polyline::kBlock == 0 || k == n - 1)) {
       bool skipped = false;
       for (int L = levels - 1; L >= 0 && !skipped; --L) {
@@ -85,10 +97,12 @@ PolylineHit march(const Polyline& P, const Ray& r, int k, long m) {
         const int last = static_cast<int>(std::min<long>((b + 1) * size, n)) - 1;
         if ((Dir > 0 ? k != first : k != last)) continue;
         // The ray is lowest over the block at its far end when descending, at its near end when
-        // rising; every vertex of the block is at or below the block's maximum.
-        const bool far_end = down;
+        // rising; every vertex of the block is at or below the block's maximum. Under the profile:
+        // highest at the far end when rising, and every vertex at or above the block's minimum.
+        const bool far_end = Below ? up : down;
         const int v_low = (Dir > 0) == far_end ? last + 1 : first;
-        if (!r.surely_below<Dir>(X(v_low, shift), P.levels[static_cast<std::size_t>(L)][static_cast<std::size_t>(b)]))
+        const double bound = pyramid[static_cast<std::size_t>(L)][static_cast<std::size_t>(b)];
+        if (Below ? !r.surely_below<-Dir>(X(v_low, shift), bound) : !r.surely_below<Dir>(X(v_low, shift), bound))
           continue;
         advance(last - first + 1, Dir > 0 ? last + 1 : first - 1);
         s_in = r.side(X(entry(k), shift), Y(entry(k)));
@@ -120,12 +134,12 @@ PolylineHit first_hit_from_top(const Polyline& p, double x, const Vec2& dir) {
   if (dir.x() > 0.0) {
     // The segment with x_j <= x < x_{j+1}: its entry vertex is not ahead of the start.
     const int j = static_cast<int>(std::upper_bound(p.x.begin(), p.x.end(), x) - p.x.begin()) - 1;
-    return march<+1>(p, r, j, 0);
+    return march<+1>(p, r, j, 0, p.levels);
   }
   if (dir.x() < 0.0) {
     // The segment with x_j < x <= x_{j+1}; x = x_0 is the end of the last segment one period back.
     const int j = static_cast<int>(std::lower_bound(p.x.begin(), p.x.end(), x) - p.x.begin()) - 1;
-    return j < 0 ? march<-1>(p, r, n - 1, -1) : march<-1>(p, r, j, 0);
+    return j < 0 ? march<-1>(p, r, n - 1, -1, p.levels) : march<-1>(p, r, j, 0, p.levels);
   }
   // Straight down: the segment under x, or the vertex at x.
   const int j = static_cast<int>(std::upper_bound(p.x.begin(), p.x.end(), x) - p.x.begin()) - 1;
@@ -140,10 +154,67 @@ PolylineHit first_hit_from_top(const Polyline& p, double x, const Vec2& dir) {
 PolylineHit first_hit_from(const Polyline& p, int j, double s, const Vec2& dir) {
   const int n = p.segments();
   const Ray r(p.point(j, s), dir);
-  if (dir.x() > 0.0) return j + 1 == n ? march<+1>(p, r, 0, 1) : march<+1>(p, r, j + 1, 0);
-  if (dir.x() < 0.0) return j == 0 ? march<-1>(p, r, n - 1, -1) : march<-1>(p, r, j - 1, 0);
+  if (dir.x() > 0.0) return j + 1 == n ? march<+1>(p, r, 0, 1, p.levels) : march<+1>(p, r, j + 1, 0, p.levels);
+  if (dir.x() < 0.0) return j == 0 ? march<-1>(p, r, n - 1, -1, p.levels) : march<-1>(p, r, j - 1, 0, p.levels);
   // Straight up leaves. Straight down would go through segment j itself, which a reflected ray
   // cannot (its direction has d.n > 0); it is reported with its direction, below the horizon.
+  return escaped();
+}
+
+PolylineLows polyline_lows(const Polyline& p) {
+  // make_polyline's pyramid with min for max.
+  const int n = p.segments();
+  PolylineLows lows;
+  std::vector<double> below;
+  for (int b = 0; b * Polyline::kBlock < n; ++b) {
+    const int lo = b * Polyline::kBlock, hi = std::min(n, lo + Polyline::kBlock);
+    below.push_back(*std::min_element(p.y.begin() + lo, p.y.begin() + hi + 1));
+  }
+  lows.levels.push_back(below);
+  while (below.size() > 1) {
+    std::vector<double> up;
+    for (std::size_t b = 0; b < below.size(); b += Polyline::kBlock)
+      up.push_back(
+          *std::min_element(below.begin() + static_cast<std::ptrdiff_t>(b),
+                            below.begin() + static_cast<std::ptrdiff_t>(std::min(below.size(), b + Polyline::kBlock))));
+    lows.levels.push_back(up);
+    below = std::move(up);
+  }
+  return lows;
+}
+
+PolylineHit first_hit_from_bottom(const Polyline& p, const PolylineLows& lows, double x, const Vec2& dir) {
+  assert(dir.y() > 0.0 && x >= p.x.front() && x < p.x.back());
+  const Ray r(Vec2(x, p.y_min), dir);
+  const int n = p.segments();
+  if (dir.x() > 0.0) {
+    const int j = static_cast<int>(std::upper_bound(p.x.begin(), p.x.end(), x) - p.x.begin()) - 1;
+    return march<+1, true>(p, r, j, 0, lows.levels);
+  }
+  if (dir.x() < 0.0) {
+    const int j = static_cast<int>(std::lower_bound(p.x.begin(), p.x.end(), x) - p.x.begin()) - 1;
+    return j < 0 ? march<-1, true>(p, r, n - 1, -1, lows.levels) : march<-1, true>(p, r, j, 0, lows.levels);
+  }
+  // Straight up: the segment over x, or the vertex at x.
+  const int j = static_cast<int>(std::upper_bound(p.x.begin(), p.x.end(), x) - p.x.begin()) - 1;
+  const double sa = r.side(p.x[static_cast<std::size_t>(j)], p.y[static_cast<std::size_t>(j)]);
+  const double sb = r.side(p.x[static_cast<std::size_t>(j) + 1], p.y[static_cast<std::size_t>(j) + 1]);
+  if (sa == 0.0) return vertex_hit();
+  const double s = sa / (sa - sb);
+  if (!(s > 0.0 && s < 1.0)) return vertex_hit();
+  return PolylineHit{PolylineHit::Kind::segment, j, s};
+}
+
+PolylineHit first_hit_from_below(const Polyline& p, const PolylineLows& lows, int j, double s, const Vec2& dir) {
+  const int n = p.segments();
+  const Ray r(p.point(j, s), dir);
+  if (dir.x() > 0.0)
+    return j + 1 == n ? march<+1, true>(p, r, 0, 1, lows.levels) : march<+1, true>(p, r, j + 1, 0, lows.levels);
+  if (dir.x() < 0.0)
+    return j == 0 ? march<-1, true>(p, r, n - 1, -1, lows.levels) : march<-1, true>(p, r, j - 1, 0, lows.levels);
+  // Straight down leaves (a height profile meets a vertical line once). Straight up would go
+  // through segment j itself, which a ray leaving it downward cannot; it is reported with its
+  // direction, as first_hit_from does.
   return escaped();
 }
 

@@ -15,6 +15,8 @@
 #include "vgroove/sim/polyline.h"
 #include "vgroove/sim/tracer.h"
 
+#include <vector>
+
 namespace vgroove::sim {
 
 struct PolylineHit {
@@ -31,6 +33,23 @@ PolylineHit first_hit_from_top(const Polyline& p, double x, const Vec2& dir);
 // The first hit of the ray leaving the point at parameter s of segment j along dir (unit), the
 // segment itself excluded.
 PolylineHit first_hit_from(const Polyline& p, int j, double s, const Vec2& dir);
+
+// The lowest vertex of each block, in Polyline::levels' layout: the pyramid the march under the
+// profile skips by (built once per profile by whoever traces under it; a conductor never does).
+struct PolylineLows {
+  std::vector<std::vector<double>> levels;
+};
+PolylineLows polyline_lows(const Polyline& p);
+
+// The same under the profile, for a ray travelling in the medium below it (the dielectric tracer's
+// medium 2, sim/dielectric_polyline.h): entering from the bottom line y = y_min at x in
+// [x_0, x_0 + period) along dir (unit, dir.y > 0), and leaving the point at parameter s of segment
+// j along dir (unit), the segment excluded. Going down, a ray that passes below the lowest vertex
+// has left (escaped); going up, it meets the profile within a period. lows = polyline_lows(p).
+// Every operation is that of the march above the profile mirrored in y, so on the mirrored profile
+// the hits are the same bit for bit.
+PolylineHit first_hit_from_bottom(const Polyline& p, const PolylineLows& lows, double x, const Vec2& dir);
+PolylineHit first_hit_from_below(const Polyline& p, const PolylineLows& lows, int j, double s, const Vec2& dir);
 
 // 32 bytes, as sim::TraceResult.
 struct PolylineTraceResult {
