@@ -1,30 +1,14 @@
-// vgroove validation: exact energy tables of rough glass: the directional reflectance E_R(mu,
-// alpha, eta) and transmittance E_T(mu, alpha, eta) of V-groove surfaces between two dielectrics,
-// per number of interactions k, for light from either side (what renderers tabulate for their
-// glass energy compensation), traced exactly with Fresnel's random choice at every hit.
-//
-// The surface of a cell: G grooves of equal width side by side (sim/dielectric_microsurface.h),
-// their facet angles from the NDF: flatland 2 D2 cos (sim/microsurface.h), 3D the projected-area
-// law 2 pi D cos sin of Lee et al.'s 3D grooves (sim/microsurface3d.h), all extruded along one axis
-// and lifted (sim/dielectric_lifted.h). In 3D each ray meets a patch of parallel grooves at an
-// azimuth drawn uniformly in [0, pi): light refracted into the material runs under grooves of its
-// own patch (a surface of patches much wider than a groove; docs/derivations/dielectric_lifting.md,
-// "Energy tables"). Light from above arrives in medium 1 (n1) and lands uniformly across the
-// grooves' openings; light from below arrives in medium 2 (n2) from far below, uniformly across
-// the period; mu is the cosine of its angle from the normal of its own side, eta = n2 / n1.
-//
-// Per cell: E_R and E_T per row k = 1..max_k (and k > max_k), what the bounce limit stopped and the
-// vertex hits, each a count over N rays with standard error sqrt(E (1 - E) / N). Nothing is
-// absorbed: E_R + E_T + limit + vertex = 1 per cell exactly (counts). Beside the grid, one cell per
-// (ndf, dim, side, eta, alpha) draws each ray's angle from the cosine-weighted hemisphere (3D:
-// density 2 mu; flatland: cos theta on (0, pi/2)): its E_T is the hemispherical average T_avg with
-// no quadrature error. Reciprocity of the exact surface (f_t(i, o) / n_o^2 = f_t(o, i) / n_i^2 in
-// 3D, n^1 in flatland) gives T_avg(above) = eta^2 T_avg(below) in 3D and eta T_avg(below) in
-// flatland, which the table reports with its standard error (a flat interface: 1 - F_avg(1/eta) =
-// (1 - F_avg(eta)) / eta^2).
+// vgroove validation: exact energy tables of rough glass: E_R(mu, alpha, eta) and E_T per number of
+// interactions k of V-groove surfaces between two dielectrics, light from either side, traced with
+// Fresnel's random choice at every hit (sim/dielectric_microsurface.h; in 3D lifted,
+// sim/dielectric_lifted.h, on patches of parallel grooves with uniform azimuth). mu is the cosine
+// from the normal of the light's own side, eta = n2 / n1. Nothing is absorbed: E_R + E_T + limit +
+// vertex = 1 per cell (counts). Beside the grid, cosine-weighted cells give the hemispherical
+// averages, whose reciprocity T_avg(above) = eta^2 T_avg(below) (flatland: eta) the table reports.
 // Tests: tests/validation/glass_energy_test.cpp (GlassEnergy.NearlyFlatIsFresnel,
-// GlassEnergy.ConductorLimitIsTheConductorTable, GlassEnergy.ReciprocityOfTheAverages,
-// GlassEnergy.DeterministicForAnyThreads, GlassEnergy.EnergyIsAccounted).
+// GlassEnergy.ReciprocityOfTheAverages, GlassEnergy.ConductorLimitIsTheConductorTable,
+// GlassEnergy.EnergyIsAccountedAndTheCountsDoNotDependOnThreads).
+// Derivation: docs/derivations/dielectric_lifting.md ("Energy tables").
 #pragma once
 
 #include "vgroove/common/ndf_kind.h"
