@@ -46,6 +46,8 @@ inline constexpr int kMaxGrooves = 10'000'000;
 // The tracer's bounce limit: its default, and the largest a file or option may set.
 inline constexpr int kDefaultMaxBounces = 100'000;
 inline constexpr int kMaxBounces = 100'000'000;
+// Table 2's paper values (a suite's /paper/max_bounces): bounce counts in [1, kMaxPaperBounces].
+inline constexpr int kMaxPaperBounces = 1'000'000;
 // A conductor's complex index eta + i kappa (Python's vgroove.BRDF(eta=...)): eta in (0, 1000],
 // kappa in [0, 1000] (the scenes' Fresnel channels take the same).
 inline constexpr double kMaxFresnelEta = 1000.0;

@@ -73,10 +73,11 @@ Table2Suite parse_table2_suite(const nlohmann::json& j, const std::string& file)
       throw support::UserError(file + ": " + paper.path("max_bounces") + "/" + std::to_string(r) +
                                " must be a list of " + std::to_string(per_row) + " integers (ndf outer, alpha inner)");
     for (std::size_t n = 0; n < per_row; ++n) {
-      if (!rows[r][n].is_number_integer() || rows[r][n].get<long long>() < 1 || rows[r][n].get<long long>() > 1000000)
+      if (!rows[r][n].is_number_integer() || rows[r][n].get<long long>() < 1 ||
+          rows[r][n].get<long long>() > kMaxPaperBounces)
         throw support::UserError(file + ": " + paper.path("max_bounces") + "/" + std::to_string(r) + "/" +
                                  std::to_string(n) + " = " + support::value_text(rows[r][n]) +
-                                 " must be an integer in [1, 1000000]");
+                                 " must be an integer in [1, " + std::to_string(kMaxPaperBounces) + "]");
       s.paper.push_back(rows[r][n].get<int>());
     }
   }
