@@ -9,7 +9,8 @@
 // DielectricPolyline.AFlatProfileIsFresnelAndSnell, DielectricPolyline.EtaOnePassesStraightThrough,
 // DielectricPolyline.ConductorLimitIsThePolylineTracerBitForBit, DielectricPolyline.GrazingLightNeverGivesNaN,
 // DielectricPolyline.RaysMeetTheProfileFromBelow, DielectricPolyline.LightFromBelowIsTheMirrorImageOfLightFromAbove,
-// DielectricPolyline.SplitAndRandomBranchingAgree, DielectricPolyline.BadInputIsRefused).
+// DielectricPolyline.SplitAndRandomBranchingAgree, DielectricPolyline.BadInputIsRefused,
+// DielectricPolyline.ADownwardRayJustAboveTheFloorMeetsTheNextValley).
 // Derivation: docs/derivations/smith_walk_dielectric.md.
 #pragma once
 

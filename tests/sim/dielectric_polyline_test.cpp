@@ -251,6 +251,22 @@ TEST(DielectricPolyline, RaysMeetTheProfileFromBelow) {
   EXPECT_GT(met_from_below, 20);
 }
 
+// Under the profile, a ray going down escapes only below the lowest vertex: one that runs just above
+// the valleys' floor meets the next valley's wall there. Valleys (0, 0) - (1, -1) - (2, 0) - (3, 0),
+// period 3; the ray leaves the right wall at (1.03, -0.97) along (1, -0.01) and meets the next left
+// wall (3 + s, -s) at s = 0.9897 / 0.99 (by hand), 0.0003 above the floor.
+TEST(DielectricPolyline, ADownwardRayJustAboveTheFloorMeetsTheNextValley) {
+  const Polyline p = make_polyline({0.0, 1.0, 2.0, 3.0}, {0.0, -1.0, 0.0, 0.0});
+  const PolylineLows lows = polyline_lows(p);
+  const Vec2 d = Vec2(1.0, -0.01).normalized();
+  const PolylineHit h = first_hit_from_below(p, lows, 1, 0.03, d);
+  ASSERT_EQ(h.kind, PolylineHit::Kind::segment);
+  EXPECT_EQ(h.segment, 0);
+  EXPECT_NEAR(h.s, 0.9897 / 0.99, 1e-12);
+  // Below the floor it has left.
+  EXPECT_EQ(first_hit_from_below(p, lows, 1, 0.03, Vec2(1.0, -0.05).normalized()).kind, PolylineHit::Kind::escaped);
+}
+
 TEST(DielectricPolyline, LightFromBelowIsTheMirrorImageOfLightFromAbove) {
   // Mirrored in y = 0, the profile y(x) becomes -y(x), medium 2 lies above it (eta -> 1 / eta) and
   // light from below at theta_i arrives from above at -theta_i: the same paths, mirrored. The
