@@ -49,19 +49,15 @@ WalterSample sample_walter(NdfKind ndf, double alpha, double eta, MaskingKind g,
 }
 
 double walter_pdf(NdfKind ndf, double alpha, double eta, const Dir3& i, const Dir3& o) {
-  if (!(i.z > 0.0)) return 0.0;
+  if (!(i.z > 0.0) || o.z == 0.0) return 0.0;
+  const Dir3 h = walter_half_vector(i, o, eta);  // h_r above, h_t below (Walter Eq. 13, 16)
+  const double ih = dot(i, h);
   if (o.z > 0.0) {
-    const Dir3 w{i.x + o.x, i.y + o.y, i.z + o.z};
-    const double len = std::sqrt(dot(w, w));
-    const Dir3 h{w.x / len, w.y / len, w.z / len};
-    const double ih = dot(i, h);
     if (!(ih > 0.0)) return 0.0;
     // |d omega_h / d omega_o| = 1 / (4 |o.h|), Walter Eq. (14); o.h = i.h for a reflection.
     return walter_facet_pdf(ndf, alpha, i, h) * optics::fresnel_dielectric(ih, eta) / (4.0 * ih);
   }
-  if (!(o.z < 0.0)) return 0.0;
-  const Dir3 h = walter_half_vector(i, o, eta);
-  const double ih = dot(i, h), oh = dot(o, h);
+  const double oh = dot(o, h);
   if (!(ih > 0.0 && oh < 0.0 && h.z > 0.0)) return 0.0;
   const double F = optics::fresnel_dielectric(ih, eta);
   if (!(F < 1.0)) return 0.0;

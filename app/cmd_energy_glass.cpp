@@ -25,25 +25,8 @@ int cmd_energy_glass(const EnergyArgs& a) {
     throw support::UserError("--eta tables run in one process (--shard and mpirun apply to the conductor tables)");
   if (a.npy) throw support::UserError("--npy applies to the conductor tables (--eta writes its arrays in the JSON)");
   GlassGrid g;
-  g.ndfs.clear(), g.dims.clear(), g.sides.clear();
   // Without --ndf: GGX (the default list's Phong has no glass tables).
-  const std::vector<std::string> ndfs = a.ndfs == EnergyArgs{}.ndfs ? std::vector<std::string>{"ggx"} : a.ndfs;
-  for (const std::string& n : ndfs) {
-    const auto k = ndf_from_name(n);
-    if (!k || (*k != NdfKind::ggx && *k != NdfKind::beckmann))
-      throw support::UserError("--ndf = \"" + n + "\" is not one of \"ggx\", \"beckmann\" with --eta");
-    g.ndfs.push_back(*k);
-  }
-  for (const std::string& d : a.dims) {
-    if (d != "flatland" && d != "3d")
-      throw support::UserError("--dim = \"" + d + "\" is not one of \"flatland\", \"3d\"");
-    g.dims.push_back(d == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d);
-  }
-  for (const std::string& s : a.sides) {
-    if (s != "above" && s != "below")
-      throw support::UserError("--side = \"" + s + "\" is not one of \"above\", \"below\"");
-    g.sides.push_back(s == "above" ? sim::Medium::above : sim::Medium::below);
-  }
+  set_glass_axes(g, a.ndfs == EnergyArgs{}.ndfs ? std::vector<std::string>{"ggx"} : a.ndfs, a.dims, a.sides);
   g.etas = a.eta;
   g.mus = a.mu.empty() ? midpoints(a.mu_points) : a.mu;
   if (a.mu.empty() && (a.mu_points < 1 || a.mu_points > kMaxMuPoints))

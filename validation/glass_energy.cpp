@@ -162,6 +162,28 @@ GlassCell GlassGrid::cell_at(std::size_t c) const {
   return out;
 }
 
+void set_glass_axes(GlassGrid& g, const std::vector<std::string>& ndfs, const std::vector<std::string>& dims,
+                    const std::vector<std::string>& sides, const std::string& prefix) {
+  g.ndfs.clear(), g.dims.clear(), g.sides.clear();
+  for (const std::string& n : ndfs) {
+    const auto k = ndf_from_name(n);
+    if (!k || (*k != NdfKind::ggx && *k != NdfKind::beckmann))
+      throw support::UserError(prefix + "ndf = \"" + n + "\" is not one of \"ggx\", \"beckmann\"" +
+                               (prefix.empty() ? "" : " with --eta"));
+    g.ndfs.push_back(*k);
+  }
+  for (const std::string& d : dims) {
+    if (d != "flatland" && d != "3d")
+      throw support::UserError(prefix + "dim = \"" + d + "\" is not one of \"flatland\", \"3d\"");
+    g.dims.push_back(d == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d);
+  }
+  for (const std::string& s : sides) {
+    if (s != "above" && s != "below")
+      throw support::UserError(prefix + "side = \"" + s + "\" is not one of \"above\", \"below\"");
+    g.sides.push_back(s == "above" ? sim::Medium::above : sim::Medium::below);
+  }
+}
+
 void check_glass_grid(const GlassGrid& g, const std::string& prefix) {
   auto list = [&](const std::vector<double>& v, const std::string& flag, double lo, double hi, const std::string& why) {
     if (v.empty() || v.size() > kMaxGridPoints)

@@ -59,6 +59,10 @@ struct GlassGrid {
   GlassCell cell_at(std::size_t c) const;
 };
 
+// The axes by name: ndf (ggx, beckmann), dim (flatland, 3d), side (above, below); a bad name is one
+// line naming `prefix` + the field.
+void set_glass_axes(GlassGrid& g, const std::vector<std::string>& ndfs, const std::vector<std::string>& dims,
+                    const std::vector<std::string>& sides, const std::string& prefix = "--");
 // One line naming the field and its range: `prefix` + eta, ndf (ggx, beckmann), grooves, ... (the
 // command line's flags with "--", Python's arguments with "").
 void check_glass_grid(const GlassGrid& g, const std::string& prefix = "--");

@@ -48,19 +48,7 @@ py::object glass_energy(const std::vector<double>& eta, const std::vector<double
                         const std::vector<std::string>& sides, const py::object& rays, const py::object& grooves,
                         const py::object& seed, int max_k, int threads, bool verbose, const py::object& progress) {
   validation::GlassGrid g;
-  g.ndfs.clear(), g.dims.clear(), g.sides.clear();
-  for (const std::string& n : ndfs) {
-    const auto k = ndf_from_name(n);
-    if (!k || (*k != NdfKind::ggx && *k != NdfKind::beckmann))
-      throw support::UserError("ndf = \"" + n + "\" is not one of \"ggx\", \"beckmann\"");
-    g.ndfs.push_back(*k);
-  }
-  for (const std::string& d : dims) g.dims.push_back(parse_dim(d));
-  for (const std::string& s : sides) {
-    if (s != "above" && s != "below")
-      throw support::UserError("side = \"" + s + "\" is not one of \"above\", \"below\"");
-    g.sides.push_back(s == "above" ? sim::Medium::above : sim::Medium::below);
-  }
+  validation::set_glass_axes(g, ndfs, dims, sides, "");
   g.etas = eta, g.alphas = alpha, g.mus = mu;
   g.rays = to_count(rays, "rays", 1, validation::kMaxEnergyRays);
   g.grooves = static_cast<int>(to_count(grooves, "grooves", 1, validation::kMaxGlassGrooves));
