@@ -628,6 +628,7 @@ TEST(SmithWalk3dAnisotropic, EvaluationIsReciprocalPerOrder) {
 // tested, not assumed: E_k per order for heights uniform, gaussian and the height-free log C1
 // state agree within 5 standard errors of the difference of two binomial shares (independent
 // streams, each law its own). Power: the same test tells a 5% change of roughness apart (10 deg).
+// And coupled: from the same numbers the three laws give the same walks, up to rounding.
 TEST(SmithWalk3dAnisotropic, HeightDistributionsGiveTheSameOrders) {
   const int kOrders = 5;
   const long kPaths = 100000;
@@ -662,6 +663,18 @@ TEST(SmithWalk3dAnisotropic, HeightDistributionsGiveTheSameOrders) {
         }
         const double p = share(by_k[0]), q = share(rougher);
         worst_rougher = std::max(worst_rougher, std::abs(p - q) / se(p, q));
+      }
+      // Coupled: from the same numbers each law gives the log C1 walk (k and exit), but for paths
+      // a rounding decides (a free path's threshold within rounding, or long chains).
+      for (std::size_t l = 1; l < 3; ++l) {
+        long same = 0;
+        const long kCoupled = 10000;
+        for (long n = 0; n < kCoupled; ++n) {
+          Uniforms a{static_cast<std::uint64_t>(n)}, b{static_cast<std::uint64_t>(n)};
+          const Walk3d wa = smith_walk_3d(r, laws[l], i, a), wb = smith_walk_3d(r, laws[0], i, b);
+          same += wa.k == wb.k && std::abs(wa.o.x - wb.o.x) + std::abs(wa.o.y - wb.o.y) < 1e-8;
+        }
+        EXPECT_GE(same, kCoupled - kCoupled / 1000) << name(r) << " " << walk_heights_name(laws[l]);
       }
       if (theta_deg == 10.0) {
         EXPECT_GT(worst_rougher, 5.0) << "power: alpha 5% rougher, " << name(r) << " theta_i=" << theta_deg;
