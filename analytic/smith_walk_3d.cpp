@@ -140,9 +140,7 @@ double projected_roughness(const Roughness& r, const Dir3& d) {
   return std::sqrt((ax * ax + ay * ay) / s2);
 }
 
-double Lambda_3d(const Roughness& r, const Dir3& d) {
-  return Lambda(r.ndf, polar_angle(d), projected_roughness(r, d));
-}
+double Lambda_3d(const Roughness& r, const Dir3& d) { return Lambda(r.ndf, polar_angle(d), projected_roughness(r, d)); }
 
 double visible_projected_area(const Roughness& r, const Dir3& v) {
   // The slope along v's azimuth has the isotropic marginal at alpha_o (the projection of the
@@ -222,7 +220,8 @@ double walk_height(WalkHeights law, double lc) {
       if (c >= 1.0) return std::numeric_limits<double>::infinity();  // lc within 1e-16 of the top
       // erfc(-h / sqrt 2) = 2 c: the lower half from erfc directly, the upper from its symmetry
       // erfc(y) = 2 - erfc(-y) (1 - c loses the digits a double has near the top, as in their code).
-      return c <= 0.5 ? -std::numbers::sqrt2 * erfc_inverse(2.0 * c) : std::numbers::sqrt2 * erfc_inverse(2.0 - 2.0 * c);
+      return c <= 0.5 ? -std::numbers::sqrt2 * erfc_inverse(2.0 * c)
+                      : std::numbers::sqrt2 * erfc_inverse(2.0 - 2.0 * c);
     }
   }
   return lc;

@@ -7,8 +7,9 @@
 // uniform numbers its caller supplies. E_1 is Smith's height-correlated E_ss (Heitz 2014, Eq. 21).
 // Tests: tests/analytic/smith_walk_3d_test.cpp (SmithWalk3d.CrossSlopeInvertsItsDistribution,
 // SmithWalk3d.SingleScatteringIsTheHeightCorrelatedAlbedo, SmithWalk3d.NextEventEstimatesIntegrateToTheSampledOrders,
-// SmithWalk3dAnisotropic.ProjectedAreaIsTheProjectedRoughnessLambda, SmithWalk3dAnisotropic.EqualAxesAreTheIsotropicWalk,
-// SmithWalk3dAnisotropic.SwappingTheAxesIsAQuarterTurn, SmithWalk3dAnisotropic.SingleScatteringIsTheHeightCorrelatedAlbedo,
+// SmithWalk3dAnisotropic.ProjectedAreaIsTheProjectedRoughnessLambda,
+// SmithWalk3dAnisotropic.EqualAxesAreTheIsotropicWalk, SmithWalk3dAnisotropic.SwappingTheAxesIsAQuarterTurn,
+// SmithWalk3dAnisotropic.SingleScatteringIsTheHeightCorrelatedAlbedo,
 // SmithWalk3dAnisotropic.EvaluationIsReciprocalPerOrder, SmithWalk3dAnisotropic.HeightDistributionsGiveTheSameOrders).
 // Conventions: analytic/brdf_3d.h. Derivation: docs/derivations/smith_walk.md.
 #pragma once

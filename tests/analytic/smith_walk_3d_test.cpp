@@ -274,8 +274,8 @@ TEST(SmithWalk3d, HardCasesStayFinite) {
 
 // ---- Anisotropic roughness (alpha_x, alpha_y) and the walk's height laws ----------------------
 
-const Roughness kAniso[] = {{NdfKind::beckmann, 0.3, 0.9}, {NdfKind::ggx, 0.3, 0.9}, {NdfKind::ggx, 1.2, 0.4},
-                            {NdfKind::beckmann, 1.0, 0.5}};
+const Roughness kAniso[] = {
+    {NdfKind::beckmann, 0.3, 0.9}, {NdfKind::ggx, 0.3, 0.9}, {NdfKind::ggx, 1.2, 0.4}, {NdfKind::beckmann, 1.0, 0.5}};
 
 std::string name(const Roughness& r) {
   std::ostringstream s;
@@ -327,8 +327,10 @@ std::array<double, N> visible_integral(const Dir3& v, const Roughness& r, F&& f,
     for (std::size_t j = 0; j + 1 < cuts.size(); ++j) {
       if (!(cuts[j + 1] > cuts[j])) continue;
       const std::array<double, N> part = tanh_sinh_n<N>(
-          [&](double psi) { return f(Dir3{st * std::cos(phi_v + psi), st * std::sin(phi_v + psi), ct}); }, cuts[j],
-          cuts[j + 1], h);
+          [&](double psi) {
+            return f(Dir3{st * std::cos(phi_v + psi), st * std::sin(phi_v + psi), ct});
+          },
+          cuts[j], cuts[j + 1], h);
       for (std::size_t q = 0; q < N; ++q) sum[q] += part[q] * st;
     }
     return sum;
@@ -512,8 +514,8 @@ double albedo_1_quadrature(const Roughness& r, const Dir3& i) {
     Dir3 h{i.x + o.x, i.y + o.y, i.z + o.z};
     const double l = std::sqrt(h.x * h.x + h.y * h.y + h.z * h.z);
     h = {h.x / l, h.y / l, h.z / l};
-    return D_anisotropic(r, polar_angle(h), std::atan2(h.y, h.x)) /
-           (4.0 * i.z * (1.0 + Li + Lambda_3d(r, o))) * std::sin(th);
+    return D_anisotropic(r, polar_angle(h), std::atan2(h.y, h.x)) / (4.0 * i.z * (1.0 + Li + Lambda_3d(r, o))) *
+           std::sin(th);
   };
   std::vector<double> tcuts{0.0, 0.5 * kPi};
   for (double c : {-0.3, -0.1, 0.0, 0.1, 0.3})
@@ -658,8 +660,8 @@ TEST(SmithWalk3dAnisotropic, HeightDistributionsGiveTheSameOrders) {
         const auto se = [&](double p, double q) { return std::sqrt((p * (1 - p) + q * (1 - q)) / kPaths); };
         for (std::size_t l = 1; l < 3; ++l) {
           const double p = share(by_k[0]), q = share(by_k[l]);
-          EXPECT_NEAR(q, p, 5.0 * se(p, q) + 1e-12) << name(r) << " theta_i=" << theta_deg << " k=" << k << " "
-                                                     << walk_heights_name(laws[l]) << " vs log_c1";
+          EXPECT_NEAR(q, p, 5.0 * se(p, q) + 1e-12)
+              << name(r) << " theta_i=" << theta_deg << " k=" << k << " " << walk_heights_name(laws[l]) << " vs log_c1";
         }
         const double p = share(by_k[0]), q = share(rougher);
         worst_rougher = std::max(worst_rougher, std::abs(p - q) / se(p, q));
