@@ -684,5 +684,29 @@ TEST(SmithWalk3dAnisotropic, HeightDistributionsGiveTheSameOrders) {
     }
 }
 
+// Extreme anisotropy (alpha 0.01 across 2, both ways round), grazing light and every height law:
+// finite directions, every walk leaves (F = 1), a conductor's F in [0, 1].
+TEST(SmithWalk3dAnisotropic, HardCasesStayFinite) {
+  for (NdfKind ndf : {NdfKind::beckmann, NdfKind::ggx})
+    for (const auto& a : {std::array<double, 2>{0.01, 2.0}, {2.0, 0.01}})
+      for (WalkHeights law : {WalkHeights::log_c1, WalkHeights::uniform, WalkHeights::gaussian})
+        for (double theta_deg : {0.0, 89.9}) {
+          const Roughness r{ndf, a[0], a[1]};
+          Uniforms U{5};
+          const Dir3 i = dir3(deg(theta_deg), 1.0);
+          for (int n = 0; n < 3000; ++n) {
+            double F = 1.0;
+            const Walk3d w = smith_walk_3d(r, law, i, U, [&](double c) {
+              ASSERT_TRUE(c >= 0.0 && c <= 1.0) << c;
+              F *= optics::fresnel_conductor(c, 0.2, 3.0);
+            });
+            ASSERT_TRUE(w.left) << name(r) << " " << walk_heights_name(law) << " theta=" << theta_deg;
+            ASSERT_GT(w.o.z, 0.0);
+            ASSERT_NEAR(w.o.x * w.o.x + w.o.y * w.o.y + w.o.z * w.o.z, 1.0, 1e-12);
+            ASSERT_TRUE(F >= 0.0 && F <= 1.0);
+          }
+        }
+}
+
 }  // namespace
 }  // namespace vgroove::analytic
