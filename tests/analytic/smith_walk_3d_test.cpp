@@ -13,6 +13,12 @@
 //   furnace); and the BRDF by next-event estimation, integrated over the exits, gives per order k
 //   the share of walks that left after k reflections (two estimators of E_k, independent streams).
 // - Hard cases (alpha 0.01 and 2, grazing light) stay finite.
+// - Anisotropic (alpha_x, alpha_y): A(v) is the projected-area constraint with Lambda at the
+//   projected roughness (quadrature of the anisotropic D); the stretched sampler's moments are the
+//   pdf's; equal axes give the isotropic numbers; swapping the axes is a quarter turn; E_1 is the
+//   height-correlated albedo by quadrature; the furnace by next-event estimation (per order and
+//   summed); per-order reciprocity; the uniform, gaussian and log C1 height laws give the same
+//   orders (independent streams) and the same walks (the same numbers). Each with a broken variant.
 // Tolerances: k standard errors of the samples (k = 5, with at most ~100 comparisons per test).
 #include "vgroove/analytic/smith_walk_3d.h"
 
