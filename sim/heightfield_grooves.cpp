@@ -108,7 +108,8 @@ Heightfield make_finite_groove_field(int n, const std::vector<FiniteGroove>& gro
       // Seeds relative to the vertex at their nearest periodic image (the grooves' reach is below
       // n/2 by the options' ranges).
       auto rel = [&](int q) {
-        const double x = wrap(seeds[static_cast<std::size_t>(q)].x - i), y = wrap(seeds[static_cast<std::size_t>(q)].y - j);
+        const double x = wrap(seeds[static_cast<std::size_t>(q)].x - i),
+                     y = wrap(seeds[static_cast<std::size_t>(q)].y - j);
         const double r2 = x * x + y * y;
         return Rel{x, y, r2, std::sqrt(r2), q};
       };

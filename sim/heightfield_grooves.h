@@ -1,15 +1,16 @@
 // vgroove sim: a periodic heightfield of finite V-grooves at random orientations (the non-parallel
-// grooves Lee et al. 2018, "Practical Multiple Scattering for Rough Surfaces", Sec. 9, name as
+// grooves that Lee et al. 2018, "Practical Multiple Scattering for Rough Surfaces", Sec. 9, name as
 // future work). Each groove is a row of seeds along a segment (centre uniform, axis azimuth
 // uniform); the plane is split among the grooves by the nearest seed, and groove G's surface is
 // h = -s_G max_{i in G} min_{j not in G} d_ij(x), d_ij the distance to the bisector of seeds i and
 // j: a pit that is 0 on the groove's border (no cliffs) and whose facets all have the slope s_G,
 // drawn from the NDF's tilt law (Beckmann or GGX, projected-area weighted), independent of the
 // groove's area. Vertical rows of seeds one cell apart give the V-groove family (make_vgroove_heightfield).
-// Deterministic per seed; O(n^2 K m) for K seeds, m per groove. Triangles across a crease are chords.
+// Deterministic per seed; bucketed seed search. Triangles across a crease are chords.
 // Tests: tests/sim/heightfield_test.cpp (GrooveField.OneOrientationIsTheVGrooveFamily,
 // GrooveField.NoCliffs, GrooveField.DeterministicPerSeedAndOutOfRangeRefused,
-// GrooveField.AreaWeightedTiltsFollowTheNdfAndAzimuthsAreUniform).
+// GrooveField.AreaWeightedTiltsFollowTheNdfAndAzimuthsAreUniform, GrooveField.SlopesFollowTheTiltLaw,
+// GrooveField.BucketSearchIsTheDefinition).
 // Derivation: docs/derivations/heightfield_grooves.md.
 #pragma once
 
@@ -30,12 +31,12 @@ struct FiniteGroove {
 };
 
 struct GrooveFieldOptions {
-  int n = 256;                   // power of two in [8, 4096]
+  int n = 256;                      // power of two in [8, 4096]
   NdfKind ndf = NdfKind::beckmann;  // Beckmann or GGX
-  double alpha = 0.5;            // > 0
-  double groove_length = 24.0;   // cells, in [0, n/4]
-  double groove_spacing = 24.0;  // cells: round(n^2 / spacing^2) >= 2 grooves; in [4, n/4]
-  double seed_step = 4.0;        // cells between seeds along a groove, in [1, groove_length] (or any if 0)
+  double alpha = 0.5;               // > 0
+  double groove_length = 24.0;      // cells, in [0, n/4]
+  double groove_spacing = 24.0;     // cells: round(n^2 / spacing^2) >= 2 grooves; in [4, n/4]
+  double seed_step = 4.0;           // cells between seeds along a groove, in [1, groove_length] (or any if 0)
   std::uint64_t seed = 0;
 };
 
