@@ -10,7 +10,7 @@
 // Tests: tests/sim/heightfield_test.cpp (GrooveField.OneOrientationIsTheVGrooveFamily,
 // GrooveField.NoCliffs, GrooveField.DeterministicPerSeedAndOutOfRangeRefused,
 // GrooveField.AreaWeightedTiltsFollowTheNdfAndAzimuthsAreUniform, GrooveField.SlopesFollowTheTiltLaw,
-// GrooveField.BucketSearchIsTheDefinition).
+// GrooveField.BucketSearchIsTheDefinition, GrooveField.TheTracerTakesIt).
 // Derivation: docs/derivations/heightfield_grooves.md.
 #pragma once
 

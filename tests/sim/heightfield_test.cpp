@@ -24,6 +24,7 @@
 #include "tests/sanitized.h"
 #include "vgroove/sim/heightfield_grooves.h"
 #include "vgroove/sim/heightfield_hierarchy.h"
+#include "vgroove/sim/heightfield_tracer.h"
 
 #include <gtest/gtest.h>
 #include <malloc.h>
@@ -661,6 +662,25 @@ TEST(GrooveField, SlopesFollowTheTiltLaw) {
       }
       EXPECT_GT(worst_broken, 5.0) << "broken variant, " << ndf_name(ndf) << " alpha=" << alpha;
     }
+}
+
+// The exact tracer takes the field as it is (sim/heightfield_tracer.h): one chunk of rays at 30 and
+// 70 deg, every ray leaves upward within the bounce limit, none is lost, and with F = 1 the energy
+// is the count of rays; some rays scatter more than once (the pits are V-grooves).
+TEST(GrooveField, TheTracerTakesIt) {
+  const HeightfieldSurface surface =
+      make_heightfield_surface(make_random_groove_field(groove_options(NdfKind::ggx, 0.8, 9)));
+  for (double theta_deg : {30.0, 70.0}) {
+    HeightfieldTraceOptions t;
+    t.theta_i = theta_deg * std::numbers::pi / 180.0;
+    t.rays = kHeightfieldRaysPerChunk;
+    const HeightfieldTally tally = trace_heightfield_chunk(surface, t, 0);
+    EXPECT_EQ(tally.escaped, tally.rays) << theta_deg;
+    EXPECT_EQ(tally.lost, 0);
+    EXPECT_EQ(tally.bounce_limit, 0);
+    EXPECT_NEAR(tally.energy(), static_cast<double>(tally.rays), 1e-9 * tally.rays);
+    EXPECT_GT(tally.by_k[2], 0) << "double scattering at " << theta_deg;
+  }
 }
 
 }  // namespace
