@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace vgroove::analytic {
@@ -127,6 +128,103 @@ double next_event_estimate(NdfKind ndf, double alpha, const Dir3& v, double lc, 
   const double phase = visible_normal_pdf_3d(ndf, alpha, v, h) / (4.0 * vh);
   // G1(o, h_j) = C1(h_j)^Lambda(o) (Heitz 2014 at a height; Heitz et al. 2016, Sec. 4).
   return phase * std::exp(Lambda(ndf, polar_angle(o), alpha) * lc);
+}
+
+// ---- Anisotropic roughness and the walk's heights ---------------------------------------------
+
+double projected_roughness(const Roughness& r, const Dir3& d) {
+  const double s2 = d.x * d.x + d.y * d.y;
+  if (!(s2 > 0.0)) return r.alpha_x;  // vertical: no azimuth, and Lambda = 0 for every alpha
+  // Heitz 2014, Eq. (11): alpha_o^2 = cos^2(phi) alpha_x^2 + sin^2(phi) alpha_y^2.
+  const double ax = r.alpha_x * d.x, ay = r.alpha_y * d.y;
+  return std::sqrt((ax * ax + ay * ay) / s2);
+}
+
+double Lambda_3d(const Roughness& r, const Dir3& d) { return Lambda(r.ndf, polar_angle(d), projected_roughness(r, d)); }
+
+double visible_projected_area(const Roughness& r, const Dir3& v) {
+  // The slope along v's azimuth has the isotropic marginal at alpha_o (the projection of the
+  // stretched law), and only it enters <v, m> D d omega_m integrated over the cross slope.
+  return visible_projected_length(r.ndf, projected_roughness(r, v), flatland_view(v));
+}
+
+double visible_normal_pdf_3d(const Roughness& r, const Dir3& v, const Dir3& m) {
+  if (!(m.z > 0.0)) return 0.0;
+  const double c = v.x * m.x + v.y * m.y + v.z * m.z;
+  if (!(c > 0.0)) return 0.0;
+  return c * D_anisotropic(r, polar_angle(m), std::atan2(m.y, m.x)) / visible_projected_area(r, v);
+}
+
+Dir3 sample_visible_normal_3d(const Roughness& r, const Dir3& v, double u0, double u1) {
+  // (v_z - v_x p - v_y q) P22(p, q) dp dq with p = alpha_x p', q = alpha_y q' is (v_z - alpha_x v_x
+  // p' - alpha_y v_y q') P22_1(p', q') dp' dq': the visible slopes at alpha = 1 seen from the
+  // stretched view (a positive factor apart).
+  Dir3 w{r.alpha_x * v.x, r.alpha_y * v.y, v.z};
+  const double lw = std::sqrt(w.x * w.x + w.y * w.y + w.z * w.z);
+  w = {w.x / lw, w.y / lw, w.z / lw};
+  const Dir3 m1 = sample_visible_normal_3d(r.ndf, 1.0, w, u0, u1);
+  // (-p, -q, 1) is parallel to (alpha_x m1_x, alpha_y m1_y, m1_z), since p' = -m1_x / m1_z.
+  const Dir3 m{r.alpha_x * m1.x, r.alpha_y * m1.y, m1.z};
+  const double lm = std::sqrt(m.x * m.x + m.y * m.y + m.z * m.z);
+  return {m.x / lm, m.y / lm, m.z / lm};
+}
+
+double next_event_estimate(const Roughness& r, const Dir3& v, double lc, const Dir3& o) {
+  if (!(o.z > 0.0)) return 0.0;
+  Dir3 h{v.x + o.x, v.y + o.y, v.z + o.z};
+  const double len = std::sqrt(h.x * h.x + h.y * h.y + h.z * h.z);
+  if (!(len > 0.0)) return 0.0;
+  h = {h.x / len, h.y / len, h.z / len};
+  const double vh = v.x * h.x + v.y * h.y + v.z * h.z;
+  if (!(vh > 0.0)) return 0.0;
+  const double phase = visible_normal_pdf_3d(r, v, h) / (4.0 * vh);
+  // G1(o, h_j) = C1(h_j)^Lambda(o), Lambda at o's projected roughness.
+  return phase * std::exp(Lambda_3d(r, o) * lc);
+}
+
+const char* walk_heights_name(WalkHeights law) {
+  switch (law) {
+    case WalkHeights::log_c1:
+      return "log_c1";
+    case WalkHeights::uniform:
+      return "uniform";
+    case WalkHeights::gaussian:
+      return "gaussian";
+  }
+  return "?";
+}
+
+double walk_log_C1(WalkHeights law, double h) {
+  switch (law) {
+    case WalkHeights::log_c1:
+      return h;
+    case WalkHeights::uniform:
+      // C1(h) = (1 + h) / 2 on [-1, 1] (Heitz et al. 2016's code, clamped as theirs).
+      return std::log(std::clamp(0.5 * (1.0 + h), 0.0, 1.0));
+    case WalkHeights::gaussian:
+      // C1(h) = (1 + erf(h / sqrt 2)) / 2 = erfc(-h / sqrt 2) / 2.
+      return std::log(0.5 * std::erfc(-h / std::numbers::sqrt2));
+  }
+  return h;
+}
+
+double walk_height(WalkHeights law, double lc) {
+  switch (law) {
+    case WalkHeights::log_c1:
+      return lc;
+    case WalkHeights::uniform:
+      return 2.0 * std::exp(lc) - 1.0;
+    case WalkHeights::gaussian: {
+      if (!(lc < 0.0)) return std::numeric_limits<double>::infinity();
+      const double c = std::exp(lc);
+      if (c >= 1.0) return std::numeric_limits<double>::infinity();  // lc within 1e-16 of the top
+      // erfc(-h / sqrt 2) = 2 c: the lower half from erfc directly, the upper from its symmetry
+      // erfc(y) = 2 - erfc(-y) (1 - c loses the digits a double has near the top, as in their code).
+      return c <= 0.5 ? -std::numbers::sqrt2 * erfc_inverse(2.0 * c)
+                      : std::numbers::sqrt2 * erfc_inverse(2.0 - 2.0 * c);
+    }
+  }
+  return lc;
 }
 
 }  // namespace vgroove::analytic
