@@ -74,6 +74,18 @@ double solve_delta(double w) {
   return d;
 }
 
+// The half vector h = (v + o) / |v + o| of a reflection towards an upward o, and v.h; false where
+// o is not upward or v does not face h (no next-event estimate).
+bool reflection_half_vector(const Dir3& v, const Dir3& o, Dir3& h, double& vh) {
+  if (!(o.z > 0.0)) return false;
+  h = {v.x + o.x, v.y + o.y, v.z + o.z};
+  const double len = std::sqrt(h.x * h.x + h.y * h.y + h.z * h.z);
+  if (!(len > 0.0)) return false;
+  h = {h.x / len, h.y / len, h.z / len};
+  vh = v.x * h.x + v.y * h.y + v.z * h.z;
+  return vh > 0.0;
+}
+
 }  // namespace
 
 double visible_projected_area(NdfKind ndf, double alpha, const Dir3& v) {
@@ -118,13 +130,9 @@ Dir3 sample_visible_normal_3d(NdfKind ndf, double alpha, const Dir3& v, double u
 }
 
 double next_event_estimate(NdfKind ndf, double alpha, const Dir3& v, double lc, const Dir3& o) {
-  if (!(o.z > 0.0)) return 0.0;
-  Dir3 h{v.x + o.x, v.y + o.y, v.z + o.z};
-  const double len = std::sqrt(h.x * h.x + h.y * h.y + h.z * h.z);
-  if (!(len > 0.0)) return 0.0;
-  h = {h.x / len, h.y / len, h.z / len};
-  const double vh = v.x * h.x + v.y * h.y + v.z * h.z;
-  if (!(vh > 0.0)) return 0.0;
+  Dir3 h;
+  double vh = 0.0;
+  if (!reflection_half_vector(v, o, h, vh)) return 0.0;
   const double phase = visible_normal_pdf_3d(ndf, alpha, v, h) / (4.0 * vh);
   // G1(o, h_j) = C1(h_j)^Lambda(o) (Heitz 2014 at a height; Heitz et al. 2016, Sec. 4).
   return phase * std::exp(Lambda(ndf, polar_angle(o), alpha) * lc);
@@ -170,13 +178,9 @@ Dir3 sample_visible_normal_3d(const Roughness& r, const Dir3& v, double u0, doub
 }
 
 double next_event_estimate(const Roughness& r, const Dir3& v, double lc, const Dir3& o) {
-  if (!(o.z > 0.0)) return 0.0;
-  Dir3 h{v.x + o.x, v.y + o.y, v.z + o.z};
-  const double len = std::sqrt(h.x * h.x + h.y * h.y + h.z * h.z);
-  if (!(len > 0.0)) return 0.0;
-  h = {h.x / len, h.y / len, h.z / len};
-  const double vh = v.x * h.x + v.y * h.y + v.z * h.z;
-  if (!(vh > 0.0)) return 0.0;
+  Dir3 h;
+  double vh = 0.0;
+  if (!reflection_half_vector(v, o, h, vh)) return 0.0;
   const double phase = visible_normal_pdf_3d(r, v, h) / (4.0 * vh);
   // G1(o, h_j) = C1(h_j)^Lambda(o), Lambda at o's projected roughness.
   return phase * std::exp(Lambda_3d(r, o) * lc);
