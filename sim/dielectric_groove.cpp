@@ -226,16 +226,7 @@ DielectricResult& DielectricGrooveTracer::trace_with(const Ray2& ray, Medium fro
         pending.push_back(next);
         continue;
       }
-      DielectricExit e;
-      e.dir = d;
-      e.weight = w;
-      e.path = path;
-      e.k = k;
-      e.side = medium;
-      e.first = first;
-      out.exits.push_back(e);
-      out.left[static_cast<int>(medium)] += w;
-      out.max_k = std::max(out.max_k, k);
+      out.add_exit(DielectricExit{d, w, path, k, medium, first});
     }
   }
   return out;

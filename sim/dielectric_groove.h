@@ -17,6 +17,7 @@
 #include "vgroove/sim/rng.h"
 #include "vgroove/sim/tracer.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -98,6 +99,12 @@ struct DielectricResult {
   std::int64_t interactions = 0;  // hits at which Fresnel and Snell were evaluated, over all paths
   int max_k = 0;                  // most interactions of any path (exits and ends alike)
   double total() const { return left[0] + left[1] + cut + bounce_limit + vertex; }
+  // A path that left: recorded, its energy counted on its side, max_k raised to its k.
+  void add_exit(const DielectricExit& e) {
+    exits.push_back(e);
+    left[static_cast<int>(e.side)] += e.weight;
+    max_k = std::max(max_k, e.k);
+  }
   void clear();
   std::vector<detail::PendingHit> pending;  // the splitting's work list, kept for reuse
 };

@@ -170,16 +170,7 @@ DielectricResult& DielectricSurfaceTracer::run(const Hit& first, const Vec2& d0,
           continue;
         }
       }
-      DielectricExit e;
-      e.dir = d;
-      e.weight = w;
-      e.path = path;
-      e.k = k;
-      e.side = medium;
-      e.first = first_part;
-      out.exits.push_back(e);
-      out.left[static_cast<int>(medium)] += w;
-      out.max_k = std::max(out.max_k, k);
+      out.add_exit(DielectricExit{d, w, path, k, medium, first_part});
     }
   }
   return out;

@@ -97,15 +97,7 @@ DielectricResult& DielectricPolylineTracer::trace(double x, const Vec2& dir, Med
         out.vertex += w;
         continue;
       }
-      DielectricExit e;
-      e.dir = d;
-      e.weight = w;
-      e.path = path;
-      e.k = k;
-      e.side = medium;
-      e.first = first_part;
-      out.exits.push_back(e);
-      out.left[static_cast<int>(medium)] += w;
+      out.add_exit(DielectricExit{d, w, path, k, medium, first_part});
     }
   }
   return out;
