@@ -47,11 +47,13 @@ analytic::MaskingKind check_walter_options(const SampleArgs& a, NdfKind ndf) {
       throw support::UserError(std::string(flag) + " applies to --model walter only (--model = \"" + a.model + "\")");
   if (!walter) return analytic::MaskingKind::smith_separable;
   if (a.strategy_given)
-    throw support::UserError("--strategy applies to --model vgroove and vgroove-nonsymmetric only (walter draws "
-                             "its facets from the Smith VNDF for ggx, from |m.n| D(m) for beckmann and phong)");
+    throw support::UserError(
+        "--strategy applies to --model vgroove and vgroove-nonsymmetric only (walter draws "
+        "its facets from the Smith VNDF for ggx, from |m.n| D(m) for beckmann and phong)");
   if (a.max_k_given)
-    throw support::UserError("--max-k applies to --model vgroove and vgroove-nonsymmetric only (walter is single "
-                             "scattering)");
+    throw support::UserError(
+        "--max-k applies to --model vgroove and vgroove-nonsymmetric only (walter is single "
+        "scattering)");
   if (a.dim != "3d")
     throw support::UserError("--dim = \"" + a.dim + "\" is not available with --model walter (its sampler is 3d only)");
   if (!(a.eta > 0.0 && a.eta <= validation::kMaxFresnelEta && a.eta != 1.0))
@@ -116,9 +118,9 @@ WalterRun run_walter(const SampleArgs& a, NdfKind ndf, analytic::MaskingKind g) 
     (x.transmitted ? w.sum_t : w.sum_r) += x.weight;
     ++(x.transmitted ? w.transmitted : w.reflected);
     const int r = std::clamp(static_cast<int>((x.o.z + 1.0) * 0.5 * w.rows), 0, w.rows - 1);
-    const int c = std::clamp(
-        static_cast<int>((std::atan2(x.o.y, x.o.x) + std::numbers::pi) / (2.0 * std::numbers::pi) * w.cols), 0,
-        w.cols - 1);
+    const int c =
+        std::clamp(static_cast<int>((std::atan2(x.o.y, x.o.x) + std::numbers::pi) / (2.0 * std::numbers::pi) * w.cols),
+                   0, w.cols - 1);
     w.observed[static_cast<std::size_t>(r * w.cols + c)] += 1.0;
   }
   w.sample_s = support::seconds_since(t0);
@@ -210,10 +212,11 @@ int sample_walter_command(const SampleArgs& a, NdfKind ndf, analytic::MaskingKin
   const double share_r = static_cast<double>(w.reflected) / N, share_t = static_cast<double>(w.transmitted) / N;
   std::printf("sample: walter 3d %s alpha %g, eta %g, masking %s, theta_i %g deg, %ld samples (seed %lld)\n",
               a.ndf.c_str(), a.alpha, a.eta, a.masking.c_str(), a.theta_i_deg, a.n, a.seed);
-  std::printf("  reflected %ld (share %.6f; the pdf's integral above %.6f), transmitted %ld (share %.6f; below %.6f), "
-              "no direction %.0f (expected %.1f)\n",
-              w.reflected, share_r, w.pdf_reflected, w.transmitted, share_t, w.pdf_transmitted, w.observed_none,
-              w.expected_none);
+  std::printf(
+      "  reflected %ld (share %.6f; the pdf's integral above %.6f), transmitted %ld (share %.6f; below %.6f), "
+      "no direction %.0f (expected %.1f)\n",
+      w.reflected, share_r, w.pdf_reflected, w.transmitted, share_t, w.pdf_transmitted, w.observed_none,
+      w.expected_none);
   std::printf(
       "  weight f |cos theta_o| / pdf: mean %.6f (the albedo R + T), standard deviation %.4g, standard error %.2g; "
       "R %.6f, T %.6f; %.0f ns per sample\n",
@@ -402,11 +405,12 @@ void add_sample_command(CLI::App& app, Commands& commands) {
            "incident angle in degrees, " + support::interval_text(0.0, true, kMaxSurfaceThetaIDeg, true))
       ->capture_default_str();
   add_integer(smp, "--n", sma.n, "samples", 1, kMaxRays)->capture_default_str();
-  auto* smp_strategy = add_text(smp, "--strategy", sma.strategy,
-           "facet distribution: printed (|s.n| D(s), the paper's), vndf (the V-cavity's visible normals), "
-           "smith-vndf (Smith-GGX visible normals; ggx only) or bounded-vndf (Tokuyoshi and Eto 2024; ggx, "
-           "3d only); not with walter")
-      ->capture_default_str();
+  auto* smp_strategy =
+      add_text(smp, "--strategy", sma.strategy,
+               "facet distribution: printed (|s.n| D(s), the paper's), vndf (the V-cavity's visible normals), "
+               "smith-vndf (Smith-GGX visible normals; ggx only) or bounded-vndf (Tokuyoshi and Eto 2024; ggx, "
+               "3d only); not with walter")
+          ->capture_default_str();
   add_text(smp, "--dim", sma.dim, "3d or flatland (walter: 3d only)")->capture_default_str();
   add_text(smp, "--model", sma.model,
            "vgroove (symmetric grooves, Eq. 16), vgroove-nonsymmetric (Eq. 23, the partner's tilt from the "

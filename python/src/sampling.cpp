@@ -69,8 +69,7 @@ void check_uniforms(const double* u, std::size_t n, std::size_t m) {
 bool parse_sampler_model(const std::string& m) {
   if (m == "vgroove") return false;
   if (m == "vgroove-nonsymmetric") return true;
-  throw support::UserError("model = \"" + m +
-                           "\" is not one of \"vgroove\", \"vgroove-nonsymmetric\", \"walter\"");
+  throw support::UserError("model = \"" + m + "\" is not one of \"vgroove\", \"vgroove-nonsymmetric\", \"walter\"");
 }
 
 // The nonsymmetric sampler (its partner table), or UserError where the partner law does not exist.
@@ -314,11 +313,13 @@ WalterSettings walter_settings(const std::string& ndf_name, double alpha, double
   check_alpha(alpha);
   w.alpha = alpha;
   if (strategy_given)
-    throw support::UserError("strategy applies to model vgroove and vgroove-nonsymmetric only (walter draws "
-                             "its facets from the Smith VNDF for ggx, from |m.n| D(m) for beckmann and phong)");
+    throw support::UserError(
+        "strategy applies to model vgroove and vgroove-nonsymmetric only (walter draws "
+        "its facets from the Smith VNDF for ggx, from |m.n| D(m) for beckmann and phong)");
   if (max_k_given)
-    throw support::UserError("max_k applies to model vgroove and vgroove-nonsymmetric only (walter is single "
-                             "scattering)");
+    throw support::UserError(
+        "max_k applies to model vgroove and vgroove-nonsymmetric only (walter is single "
+        "scattering)");
   parse_dim(dim_name);
   if (dim_name != "3d")
     throw support::UserError("dim = \"" + dim_name + "\" is not available with model walter (its sampler is 3d only)");

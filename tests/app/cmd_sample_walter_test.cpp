@@ -17,10 +17,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/stat.h>
 #include <cmath>
 #include <numbers>
 #include <string>
-#include <sys/stat.h>
 
 namespace vgroove::app {
 namespace {
@@ -58,7 +58,11 @@ double over(const Case& c, int sign, F&& f) {
   opt.tol = 1e-7;
   opt.scale = c.alpha;
   return analytic::integrate_hemisphere(
-             pole, [&](const analytic::Dir3& o) { return f(i, analytic::Dir3{o.x, o.y, sign * o.z}) * o.z; }, opt)
+             pole,
+             [&](const analytic::Dir3& o) {
+               return f(i, analytic::Dir3{o.x, o.y, sign * o.z}) * o.z;
+             },
+             opt)
       .value;
 }
 
@@ -82,7 +86,8 @@ double reflected_share(const Case& c) {
 
 json run(const Case& c, long n, const TempDir& dir) {
   const std::string out = dir.file("walter.json");
-  const CliRun r = vgroove("sample " + flags(c) + " --n " + std::to_string(n) + " --seed 3 --force --out '" + out + "'");
+  const CliRun r =
+      vgroove("sample " + flags(c) + " --n " + std::to_string(n) + " --seed 3 --force --out '" + out + "'");
   EXPECT_EQ(r.status, 0) << r;
   EXPECT_CONTAINS(r.out, "accepted");
   return json::parse(read_text(out)).at("result");
@@ -120,9 +125,9 @@ TEST(CmdSampleWalter, MeanWeightIsTheAlbedoAndTheReflectedShareThePdfs) {
   }
 }
 
-// The same figures held to wrong values are told apart (GGX, whose weights vary least): the albedo with the V-cavity's G2 in place
-// of Smith's (Smith's two forms differ by 0.1-0.3 per cent here, below 4.5 standard errors of 10^5
-// draws), the reflected share as a flat interface's Fresnel R at the light's angle.
+// The same figures held to wrong values are told apart (GGX, whose weights vary least): the albedo with the V-cavity's
+// G2 in place of Smith's (Smith's two forms differ by 0.1-0.3 per cent here, below 4.5 standard errors of 10^5 draws),
+// the reflected share as a flat interface's Fresnel R at the light's angle.
 TEST(CmdSampleWalter, WrongAlbedoAndShareAreToldApart) {
   TempDir dir;
   for (const Case& c : {kCases[0], kCases[1]}) {
@@ -138,7 +143,7 @@ TEST(CmdSampleWalter, WrongAlbedoAndShareAreToldApart) {
 }
 
 bool exists(const std::string& p) {
-  struct stat s{};
+  struct stat s {};
   return ::stat(p.c_str(), &s) == 0;
 }
 
