@@ -176,6 +176,12 @@ TEST(CmdSampleWalter, BadInputIsOneLineNamingTheFlag) {
     EXPECT_CONTAINS(r.err, message);
     EXPECT_FALSE(exists(out)) << args;
   }
+  // Too few draws for a chi-square test: refused after the draws, still without a file.
+  const CliRun few = vgroove("sample --model walter --n 1 --out '" + out + "'");
+  EXPECT_EQ(few.status, 2) << few;
+  EXPECT_EQ(testing_files::lines(few.err), 1) << few;
+  EXPECT_CONTAINS(few.err, "--n = 1 is too few samples for a chi-square test");
+  EXPECT_FALSE(exists(out));
   // The control: the same flags with a good eta run and write the file.
   const CliRun ok = vgroove("sample --model walter --eta 1.0001" + tail);
   EXPECT_EQ(ok.status, 0) << ok;
