@@ -132,9 +132,15 @@ struct SampleArgs {
   long n = 100000;
   std::string strategy = "vndf";
   std::string dim = "3d";
-  std::string model = "vgroove";       // or "vgroove-nonsymmetric" (Eq. 23)
+  std::string model = "vgroove";       // or "vgroove-nonsymmetric" (Eq. 23), "walter" (analytic/walter_sampling.h)
   int max_k = analytic::kSamplerMaxK;  // analytic::kNonsymmetricSamplerMaxK for that model, unless given
   bool max_k_given = false;
+  bool strategy_given = false;
+  // walter only: eta = n_far / n_near (not 1) and the G2 ("smith", "smith_separable", "vcavity").
+  double eta = 1.5;
+  bool eta_given = false;
+  std::string masking = "smith_separable";
+  bool masking_given = false;
   long long seed = 1;
   int cos_bins = 8, phi_bins = 16, theta_bins = 36;
   std::string out;

@@ -1,7 +1,8 @@
 // vgroove Python module: importance sampling of the symmetric V-groove BRDF (analytic/
-// sampling_3d.h, analytic/sampling_flatland.h) and of the nonsymmetric one (analytic/
-// sampling_nonsymmetric.h; Lee et al. 2018, Sec. 6) over arrays, the density of the directions
-// they produce, and the uniform numbers of vgroove's deterministic streams (sim/rng.h).
+// sampling_3d.h, analytic/sampling_flatland.h), of the nonsymmetric one (analytic/
+// sampling_nonsymmetric.h; Lee et al. 2018, Sec. 6) and of Walter et al. 2007's rough dielectric
+// BSDF (analytic/walter_sampling.h) over arrays, the density of the directions they produce, and
+// the uniform numbers of vgroove's deterministic streams (sim/rng.h).
 #include "common.h"
 
 #include "vgroove/analytic/brdf_3d.h"
@@ -9,6 +10,7 @@
 #include "vgroove/analytic/sampling_3d.h"
 #include "vgroove/analytic/sampling_flatland.h"
 #include "vgroove/analytic/sampling_nonsymmetric.h"
+#include "vgroove/analytic/walter_sampling.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/sim/rng.h"
 #include "vgroove/support/parallel.h"
@@ -67,7 +69,7 @@ void check_uniforms(const double* u, std::size_t n, std::size_t m) {
 bool parse_sampler_model(const std::string& m) {
   if (m == "vgroove") return false;
   if (m == "vgroove-nonsymmetric") return true;
-  throw support::UserError("model = \"" + m + "\" is not one of \"vgroove\", \"vgroove-nonsymmetric\"");
+  throw support::UserError("model = \"" + m + "\" is not one of \"vgroove\", \"vgroove-nonsymmetric\", \"walter\"");
 }
 
 // The nonsymmetric sampler (its partner table), or UserError where the partner law does not exist.
@@ -295,6 +297,112 @@ py::array_t<double> pdf(const std::string& model, const std::string& ndf_name, d
   return out;
 }
 
+// Walter's sampler's settings, with `vgroove sample --model walter`'s checks and messages (the
+// flags' names without their dashes): eta = n_far / n_near in (0, 1000], not 1; the G2 by its flag
+// name (None: smith_separable); no strategy or max_k (the Python wrapper passes whether they were
+// given); 3d only.
+struct WalterSettings {
+  NdfKind ndf = NdfKind::ggx;
+  double alpha = 0.5, eta = 1.5;
+  analytic::MaskingKind masking = analytic::MaskingKind::smith_separable;
+};
+WalterSettings walter_settings(const std::string& ndf_name, double alpha, double eta, const std::string& masking,
+                               bool strategy_given, bool max_k_given, const std::string& dim_name) {
+  WalterSettings w;
+  w.ndf = sampler_ndf(ndf_name);
+  check_alpha(alpha);
+  w.alpha = alpha;
+  if (strategy_given)
+    throw support::UserError(
+        "strategy applies to model vgroove and vgroove-nonsymmetric only (walter draws "
+        "its facets from the Smith VNDF for ggx, from |m.n| D(m) for beckmann and phong)");
+  if (max_k_given)
+    throw support::UserError(
+        "max_k applies to model vgroove and vgroove-nonsymmetric only (walter is single "
+        "scattering)");
+  parse_dim(dim_name);
+  if (dim_name != "3d")
+    throw support::UserError("dim = \"" + dim_name + "\" is not available with model walter (its sampler is 3d only)");
+  if (!(eta > 0.0 && eta <= validation::kMaxFresnelEta && eta != 1.0))
+    throw support::UserError("eta = " + support::number_text(eta) + " is out of range " +
+                             support::interval_text(0, false, validation::kMaxFresnelEta, true) +
+                             ", not 1, with model walter (at eta = 1 the light goes straight through: a delta, no "
+                             "density to sample)");
+  w.eta = eta;
+  const auto g = analytic::masking_from_flag(masking);
+  if (!g)
+    throw support::UserError("masking = \"" + masking + "\" is not one of \"smith\", \"smith_separable\", \"vcavity\"");
+  if (!analytic::masking_supported(*g, w.ndf))
+    throw support::UserError("masking = \"" + masking +
+                             "\" needs ndf ggx or beckmann (Smith's Lambda has no closed form for phong); "
+                             "masking vcavity takes phong");
+  w.masking = *g;
+  return w;
+}
+
+py::dict walter_sample(const std::string& ndf_name, double alpha, const std::optional<DoubleArray>& wi,
+                       const std::optional<DoubleArray>& theta_i_deg, DoubleArray u, double eta,
+                       const std::string& masking, bool strategy_given, bool max_k_given, const std::string& dim_name,
+                       int threads, const py::object& progress) {
+  const WalterSettings w = walter_settings(ndf_name, alpha, eta, masking, strategy_given, max_k_given, dim_name);
+  validation::check_threads(threads, "threads");
+  if (u.ndim() != 2 || u.shape(1) != 3) throw support::UserError("u must be an array of shape (n, 3)");
+  const std::size_t n = static_cast<std::size_t>(u.shape(0));
+  std::optional<Rows> wi_unit;
+  const Light light = light_of(wi, wi_unit, theta_i_deg, n, false);
+  check_uniforms(u.data(), n, 3);
+  ProgressRelay relay(progress);
+  const auto sn = static_cast<py::ssize_t>(n);
+  auto wo = new_array<double>({sn, 3});
+  auto k = new_array<std::int32_t>({sn});
+  auto pdf = new_array<double>({sn});
+  auto weight = new_array<double>({sn});
+  auto transmitted = new_array<bool>({sn});
+  double *po = wo.mutable_data(), *pp = pdf.mutable_data(), *pw = weight.mutable_data();
+  std::int32_t* pk = k.mutable_data();
+  bool* pt = transmitted.mutable_data();
+  const double* pu = u.data();
+  for_rows(n, threads, light, relay, false, [&](std::size_t j, LightCursor& cursor) {
+    const double* v = pu + 3 * j;
+    const analytic::WalterSample x =
+        analytic::sample_walter(w.ndf, w.alpha, w.eta, w.masking, cursor.dir(j), v[0], v[1], v[2]);
+    // A draw that gives no direction: k 0, pdf and weight 0, wo the normal (its o means nothing).
+    const analytic::Dir3 o = x.ok ? x.o : analytic::Dir3{0.0, 0.0, 1.0};
+    po[3 * j] = o.x, po[3 * j + 1] = o.y, po[3 * j + 2] = o.z;
+    pk[j] = x.ok ? 1 : 0, pp[j] = x.ok ? x.pdf : 0.0, pw[j] = x.ok ? x.weight : 0.0;
+    pt[j] = x.ok && x.transmitted;
+  });
+  py::dict out;
+  out["wo"] = wo;
+  out["k"] = k;
+  out["pdf"] = pdf;
+  out["weight"] = weight;
+  out["transmitted"] = transmitted;
+  return out;
+}
+
+py::array_t<double> walter_pdf(const std::string& ndf_name, double alpha, const std::optional<DoubleArray>& wi,
+                               const std::optional<DoubleArray>& theta_i_deg, DoubleArray wo, double eta,
+                               const std::string& masking, bool strategy_given, bool max_k_given,
+                               const std::string& dim_name, int threads, const py::object& progress) {
+  const WalterSettings w = walter_settings(ndf_name, alpha, eta, masking, strategy_given, max_k_given, dim_name);
+  validation::check_threads(threads, "threads");
+  if (wo.ndim() != 2 || wo.shape(1) != 3) throw support::UserError("wo must be an array of shape (n, 3)");
+  const std::size_t n = static_cast<std::size_t>(wo.shape(0));
+  std::optional<Rows> wi_unit;
+  const Light light = light_of(wi, wi_unit, theta_i_deg, n, false);
+  wo = unit_directions(wo, "wo", false);
+  ProgressRelay relay(progress);
+  auto out = new_array<double>({static_cast<py::ssize_t>(n)});
+  double* po = out.mutable_data();
+  const double* pw = wo.data();
+  for_rows(n, threads, light, relay, false, [&](std::size_t j, LightCursor& cursor) {
+    const double* o = pw + 3 * j;
+    po[j] = analytic::walter_pdf(w.ndf, w.alpha, w.eta, cursor.dir(j), analytic::Dir3{o[0], o[1], o[2]});
+  });
+  return out;
+}
+
 // n x dims uniform numbers in [0, 1), row after row, from the stream sim::Rng(seed, a, b): what
 // vgroove's Monte Carlo draws (e.g. `vgroove sample`: a = 0x5a3d, b = 0 in 3D, 1 in flatland, four
 // per sample).
@@ -329,6 +437,12 @@ void bind_sampling(py::module_& m) {
   m.def("pdf", &pdf, py::arg("model"), py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("theta_i_deg"),
         py::arg("wo"), py::arg("strategy"), py::arg("max_k"), py::arg("tolerance"), py::arg("dim"), py::arg("threads"),
         py::arg("progress") = py::none());
+  m.def("walter_sample", &walter_sample, py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("theta_i_deg"),
+        py::arg("u"), py::arg("eta"), py::arg("masking"), py::arg("strategy_given"), py::arg("max_k_given"),
+        py::arg("dim"), py::arg("threads"), py::arg("progress") = py::none());
+  m.def("walter_pdf", &walter_pdf, py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("theta_i_deg"),
+        py::arg("wo"), py::arg("eta"), py::arg("masking"), py::arg("strategy_given"), py::arg("max_k_given"),
+        py::arg("dim"), py::arg("threads"), py::arg("progress") = py::none());
   // The samplers' default max_k (analytic/sampling_3d.h, analytic/sampling_nonsymmetric.h).
   m.attr("SAMPLER_MAX_K") = analytic::kSamplerMaxK;
   m.attr("NONSYMMETRIC_SAMPLER_MAX_K") = analytic::kNonsymmetricSamplerMaxK;

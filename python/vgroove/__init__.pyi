@@ -76,12 +76,14 @@ def energy_lobe_shape(ndf: str = "ggx", alpha: Sequence[float] = (0.5, 1.0),
                       verbose: bool = False) -> dict[str, Any]: ...
 
 def sample(ndf: str, alpha: float, u: npt.ArrayLike, *, wi: Optional[npt.ArrayLike] = None,
-           theta_i_deg: Optional[ArrayLike] = None, strategy: str = "vndf", max_k: Optional[int] = None,
+           theta_i_deg: Optional[ArrayLike] = None, strategy: Optional[str] = None, max_k: Optional[int] = None,
            dim: str = "3d", model: str = "vgroove", tolerance: float = 1e-9, threads: int = 0,
+           eta: Optional[float] = None, masking: Optional[str] = None,
            progress: Optional[ProgressFn] = None) -> dict[str, np.ndarray]: ...
 def pdf(ndf: str, alpha: float, wo: npt.ArrayLike, *, wi: Optional[npt.ArrayLike] = None,
-        theta_i_deg: Optional[ArrayLike] = None, strategy: str = "vndf", max_k: Optional[int] = None,
+        theta_i_deg: Optional[ArrayLike] = None, strategy: Optional[str] = None, max_k: Optional[int] = None,
         dim: str = "3d", model: str = "vgroove", tolerance: float = 1e-9, threads: int = 0,
+        eta: Optional[float] = None, masking: Optional[str] = None,
         progress: Optional[ProgressFn] = None) -> np.ndarray: ...
 def uniforms(n: int, seed: int = 1, stream: Sequence[int] = (0, 0), dims: int = 4) -> np.ndarray: ...
 

@@ -1,6 +1,7 @@
-"""Importance sampling of the V-groove BRDF (Lee et al. 2018, Sec. 6) over arrays, the density of
-the directions it draws, and the uniform numbers of vgroove's deterministic streams (sim/rng.h).
-vgroove.BRDF.sample and vgroove.BRDF.pdf make the same calls with the light first."""
+"""Importance sampling of the V-groove BRDF (Lee et al. 2018, Sec. 6) and of Walter et al. 2007's
+rough dielectric BSDF over arrays, the density of the directions they draw, and the uniform numbers
+of vgroove's deterministic streams (sim/rng.h). vgroove.BRDF.sample and vgroove.BRDF.pdf make the
+same calls with the light first (the V-groove models)."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ from typing import Optional, Sequence
 import numpy as np
 
 from . import _vgroove
-from ._args import ArrayLike, ProgressFn, integer, progress as _progress, real, reals
+from ._args import ArrayLike, ProgressFn, integer, progress as _progress, real, reals, text
 from ._ranges import fill_ranges
 
 #: The symmetric samplers' default max_k (analytic/sampling_3d.h, kSamplerMaxK; ``vgroove sample``'s).
@@ -23,6 +24,24 @@ def _sampler_max_k(max_k: Optional[int], model: str) -> int:
     if max_k is None:
         return NONSYMMETRIC_SAMPLER_MAX_K if model == "vgroove-nonsymmetric" else SAMPLER_MAX_K
     return integer(max_k, "max_k")
+
+
+#: The dielectric's eta = n_far / n_near when ``model="walter"`` is given none (``vgroove sample --eta``'s).
+_WALTER_ETA = 1.5
+
+
+def _walter_args(model, strategy, max_k, eta, masking):
+    """Walter's eta and G2 for the extension, whether strategy and max_k were given (the extension
+    refuses them with walter), and the other models' refusal of eta and masking (``vgroove
+    sample``'s messages)."""
+    if model != "walter":
+        for value, name in ((eta, "eta"), (masking, "masking")):
+            if value is not None:
+                raise ValueError(f"{name} applies to model walter only (model = \"{model}\")")
+        return None
+    eta = _WALTER_ETA if eta is None else real(eta, "eta")
+    masking = "smith_separable" if masking is None else text(masking, "masking")
+    return eta, masking, strategy is not None, max_k is not None
 
 
 def _light(wi, theta_i_deg):
@@ -51,21 +70,24 @@ def _light_rows(wi, ti, shape):
 
 
 def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = None,
-           theta_i_deg: Optional[ArrayLike] = None, strategy: str = "vndf", max_k: Optional[int] = None,
+           theta_i_deg: Optional[ArrayLike] = None, strategy: Optional[str] = None, max_k: Optional[int] = None,
            dim: str = "3d", model: str = "vgroove", tolerance: float = 1e-9, threads: int = 0,
+           eta: Optional[float] = None, masking: Optional[str] = None,
            progress: Optional[ProgressFn] = None) -> dict:
-    """Importance-samples the V-groove BRDF (Lee et al. 2018, Sec. 6): one exit direction per row
-    of uniform numbers (:meth:`vgroove.BRDF.sample` takes the light first and returns a
-    :class:`vgroove.SampleBatch`).
+    """Importance-samples the V-groove BRDF (Lee et al. 2018, Sec. 6) or, with ``model="walter"``,
+    Walter et al. 2007's rough dielectric BSDF: one exit direction per row of uniform numbers
+    (:meth:`vgroove.BRDF.sample` takes the light first and returns a :class:`vgroove.SampleBatch`).
 
     Parameters
     ----------
     ndf : {"ggx", "beckmann", "phong"}
     alpha : float
         Roughness in [$min_alpha, $max_alpha].
-    u : array_like, shape (..., 4) or (..., 5)
+    u : array_like, shape (..., 4), (..., 5) or (..., 3)
         Uniform numbers in [0, 1) (:func:`uniforms` gives vgroove's streams): four per sample for
-        ``model="vgroove"``, five for ``"vgroove-nonsymmetric"``.
+        ``model="vgroove"``, five for ``"vgroove-nonsymmetric"``, three for ``"walter"`` (the
+        facet, then the branch: ``vgroove sample --model walter --seed S`` draws them from the
+        stream (S, (0x5a3d, 2))).
     wi : array_like, shape (..., 3), optional
         Unit vectors towards the light (flatland: in the plane y = 0), held to the range of
         theta_i_deg by the angle from the normal rounded to 1e-9 deg.
@@ -73,25 +95,35 @@ def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = 
         Or the light's angles (the suites' light at azimuth 180 deg, the bits ``vgroove sample
         --theta-i-deg`` uses), in [0, $max_surface_theta_i_deg] deg (flatland: signed, in
         [-$max_surface_theta_i_deg, $max_surface_theta_i_deg]). Exactly one of wi and theta_i_deg; the batch shapes broadcast to S.
-    strategy : {"vndf", "printed", "smith-vndf", "bounded-vndf"}
+    strategy : {"vndf", "printed", "smith-vndf", "bounded-vndf"}, optional
         How the facet met first is drawn: the V-cavity's visible normals (samples the BRDF
         exactly, weight 1 with F = 1), the paper's |s.n| D(s), Smith's VNDF (GGX), bounded VNDF
-        (GGX, 3D).
+        (GGX, 3D). None: "vndf". Not with ``model="walter"``, whose facets come from the Smith
+        VNDF (GGX) or |m.n| D(m) (Beckmann, Phong).
     max_k : int, optional
         Paths of more reflections return zero weight (``beyond_max_k``), in [1, $max_sampler_k];
         None: ``vgroove sample --max-k``'s default, $sampler_max_k (:data:`SAMPLER_MAX_K`: fewer
         than one sample in 10^7 lost for GGX and Beckmann at any alpha and Phong up to alpha 1,
         analytic/sampling_3d.h), $nonsymmetric_sampler_max_k for the nonsymmetric model, whose pdf
-        costs O(max_k).
+        costs O(max_k). Not with ``model="walter"`` (single scattering).
     dim : {"3d", "flatland"}
-    model : {"vgroove", "vgroove-nonsymmetric"}
-        Symmetric grooves (analytic/sampling_3d.h, sampling_flatland.h) or Eq. 21-23 with the
-        independent partner law of Eq. 20 (analytic/sampling_nonsymmetric.h; Phong needs alpha <= 1).
+        ``model="walter"``: "3d" only.
+    model : {"vgroove", "vgroove-nonsymmetric", "walter"}
+        Symmetric grooves (analytic/sampling_3d.h, sampling_flatland.h), Eq. 21-23 with the
+        independent partner law of Eq. 20 (analytic/sampling_nonsymmetric.h; Phong needs alpha <= 1)
+        or Walter's dielectric (analytic/walter_sampling.h: the light in the near medium, a facet
+        drawn, reflected with probability F, else refracted).
     tolerance : float
         The nonsymmetric pdf's relative tolerance per piece, in [1e-12, 0.01] (about a
         millisecond a sample at 1e-9; ``vgroove sample`` uses 1e-6).
     threads : int
         In [0, $max_threads] (0: all cores), without the GIL; the values do not depend on it.
+    eta : float, optional
+        ``model="walter"`` only: n_far / n_near, in (0, $max_fresnel_eta], not 1 (None: 1.5; below
+        1: the light inside the denser medium).
+    masking : {"smith", "smith_separable", "vcavity"}, optional
+        ``model="walter"`` only: the G2 of the weights (None: smith_separable; the Smith ones need
+        ggx or beckmann).
     progress : callable, optional
         ``progress(done, total)``, counting samples.
 
@@ -102,7 +134,11 @@ def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = 
         return), ``k`` (int32 reflections; 0: no direction), ``pdf`` (density of wo per steradian,
         per radian in flatland; 0 on a zero-weight return), ``weight`` (rho cos(theta_o) / pdf,
         F = 1) and ``beyond_max_k`` (bool: a zero-weight return because the drawn path has more
-        than max_k reflections; its mean is the share lost to max_k).
+        than max_k reflections; its mean is the share lost to max_k). With ``model="walter"``:
+        ``wo`` (on either side, wo[..., 2] < 0 transmitted; the normal where no direction),
+        ``k`` (1, or 0: the facet gives no direction), ``pdf`` (per steradian, 0 where no
+        direction), ``weight`` (f |cos theta_o| / pdf with the G2 ``masking``; its mean is the
+        albedo R + T) and ``transmitted`` (bool: the refracted branch gave wo).
 
     Raises
     ------
@@ -115,8 +151,12 @@ def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = 
     >>> x = vgroove.sample("ggx", 0.5, vgroove.uniforms(1000, seed=1), theta_i_deg=30)
     >>> x["wo"].shape, bool(abs(x["weight"].mean() - 1) < 1e-12)
     ((1000, 3), True)
+    >>> g = vgroove.sample("ggx", 0.5, vgroove.uniforms(1000, seed=1, dims=3), theta_i_deg=30, model="walter", eta=1.5)
+    >>> bool(g["transmitted"].any() and (g["wo"][g["transmitted"], 2] < 0).all())
+    True
     """
-    m = 5 if model == "vgroove-nonsymmetric" else 4
+    walter = _walter_args(model, strategy, max_k, eta, masking)
+    m = 3 if model == "walter" else 5 if model == "vgroove-nonsymmetric" else 4
     u = reals(u, "u")
     if u.shape[-1:] != (m,):
         raise ValueError(f"u must be an array of uniform numbers, shape (..., {m}); got {u.shape}")
@@ -124,15 +164,20 @@ def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = 
     shape = np.broadcast_shapes(u.shape[:-1], lshape)
     u = np.ascontiguousarray(np.broadcast_to(u, shape + (m,))).reshape(-1, m)
     wi_, ti = _light_rows(wi_, ti, shape)
-    out = _vgroove.sample(model, ndf, real(alpha, "alpha"), wi_, ti, u, strategy, _sampler_max_k(max_k, model),
-                          real(tolerance, "tolerance"), dim, integer(threads, "threads"),
-                          progress=_progress(progress))
+    if walter is not None:
+        out = _vgroove.walter_sample(ndf, real(alpha, "alpha"), wi_, ti, u, *walter, dim, integer(threads, "threads"),
+                                     progress=_progress(progress))
+    else:
+        out = _vgroove.sample(model, ndf, real(alpha, "alpha"), wi_, ti, u, "vndf" if strategy is None else strategy,
+                              _sampler_max_k(max_k, model), real(tolerance, "tolerance"), dim,
+                              integer(threads, "threads"), progress=_progress(progress))
     return {key: a.reshape(shape + a.shape[1:]) for key, a in out.items()}
 
 
 def pdf(ndf: str, alpha: float, wo: np.ndarray, *, wi: Optional[np.ndarray] = None,
-        theta_i_deg: Optional[ArrayLike] = None, strategy: str = "vndf", max_k: Optional[int] = None,
+        theta_i_deg: Optional[ArrayLike] = None, strategy: Optional[str] = None, max_k: Optional[int] = None,
         dim: str = "3d", model: str = "vgroove", tolerance: float = 1e-9, threads: int = 0,
+        eta: Optional[float] = None, masking: Optional[str] = None,
         progress: Optional[ProgressFn] = None) -> np.ndarray:
     """The density of the directions :func:`sample` produces (:meth:`vgroove.BRDF.pdf` takes the
     light first).
@@ -143,7 +188,7 @@ def pdf(ndf: str, alpha: float, wo: np.ndarray, *, wi: Optional[np.ndarray] = No
         As in :func:`sample`.
     wo : array_like, shape (..., 3)
         Unit vectors towards the viewer (flatland: in the plane y = 0).
-    wi, theta_i_deg, strategy, max_k, dim, model, tolerance, threads
+    wi, theta_i_deg, strategy, max_k, dim, model, tolerance, threads, eta, masking
         As in :func:`sample`; the shapes broadcast to S.
     progress : callable, optional
         ``progress(done, total)``, counting directions.
@@ -154,7 +199,8 @@ def pdf(ndf: str, alpha: float, wo: np.ndarray, *, wi: Optional[np.ndarray] = No
         Shape S: per steradian (per radian in flatland), the sum over every path of k <= max_k
         reflections that ends at wo (analytic/sampling_3d.h); 0 below the horizon, +inf exactly
         at the mirror direction in 3D (where the BRDF diverges too). With ``strategy="vndf"`` the
-        symmetric model's pdf equals rho(wi, wo) cos(theta_o) (F = 1).
+        symmetric model's pdf equals rho(wi, wo) cos(theta_o) (F = 1). With ``model="walter"``
+        over the whole sphere (wo[..., 2] < 0: transmitted), per steradian.
 
     Raises
     ------
@@ -176,8 +222,12 @@ def pdf(ndf: str, alpha: float, wo: np.ndarray, *, wi: Optional[np.ndarray] = No
     shape = np.broadcast_shapes(wo.shape[:-1], lshape)
     wo = np.ascontiguousarray(np.broadcast_to(wo, shape + (3,))).reshape(-1, 3)
     wi_, ti = _light_rows(wi_, ti, shape)
-    return _vgroove.pdf(model, ndf, real(alpha, "alpha"), wi_, ti, wo, strategy, _sampler_max_k(max_k, model),
-                        real(tolerance, "tolerance"), dim, integer(threads, "threads"),
+    walter = _walter_args(model, strategy, max_k, eta, masking)
+    if walter is not None:
+        return _vgroove.walter_pdf(ndf, real(alpha, "alpha"), wi_, ti, wo, *walter, dim, integer(threads, "threads"),
+                                   progress=_progress(progress)).reshape(shape)
+    return _vgroove.pdf(model, ndf, real(alpha, "alpha"), wi_, ti, wo, "vndf" if strategy is None else strategy,
+                        _sampler_max_k(max_k, model), real(tolerance, "tolerance"), dim, integer(threads, "threads"),
                         progress=_progress(progress)).reshape(shape)
 
 
@@ -193,7 +243,8 @@ def uniforms(n: int, seed: int = 1, stream: Sequence[int] = (0, 0), dims: int = 
         In [0, 2^63 - 1].
     stream : (int, int)
         ``vgroove sample --seed S`` draws its samples' four numbers from the stream (S, (0x5a3d,
-        0)) in 3D and (S, (0x5a3d, 1)) in flatland.
+        0)) in 3D and (S, (0x5a3d, 1)) in flatland; with ``--model walter`` three numbers from
+        (S, (0x5a3d, 2)).
     dims : int
         Numbers per row, in [1, 64].
 
