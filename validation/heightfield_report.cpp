@@ -85,22 +85,22 @@ nlohmann::json masking_value_json(const HeightfieldMaskingValue& v, bool g2) {
   return j;
 }
 
-// Plainly: which models are within noise (overall and in every bin), and how far each other one is
-// (overall traced - model and in standard errors, then its worst bin).
+// Plainly: which models are within noise overall and which in every bin too, and how far each
+// model is (model - traced overall, in standard errors, and its worst bin).
 std::string masking_text(const HeightfieldMaskingValue& v) {
-  std::string within, others;
+  std::string overall, every_bin, far;
   for (const HeightfieldMaskingMiss& m : v.models) {
-    if (m.within_noise) {
-      within += (within.empty() ? "" : ", ") + m.model;
-      continue;
-    }
-    others += support::format("; %s %+.4f (%.1f se)", m.model.c_str(), -m.diff, std::abs(m.z));
-    if (m.overall_within_noise) others += " overall within";
+    if (m.overall_within_noise) overall += (overall.empty() ? "" : ", ") + m.model;
+    if (m.within_noise) every_bin += (every_bin.empty() ? "" : ", ") + m.model;
+    if (m.within_noise) continue;
+    far += support::format("; %s %+.4f (%.1f se", m.model.c_str(), -m.diff, std::abs(m.z));
     if (m.worst_bin >= 0)
-      others += support::format(", bin %d %+.4f (%.1f se)", m.worst_bin, -m.worst_bin_diff, std::abs(m.worst_bin_z));
+      far += support::format(", bin %d %+.4f, %.1f se", m.worst_bin, -m.worst_bin_diff, std::abs(m.worst_bin_z));
+    far += ")";
   }
-  return support::format("%.4f(%.4f): within noise: %s", v.g, v.g_se, within.empty() ? "none" : within.c_str()) +
-         others;
+  return support::format("%.4f(%.4f); within noise overall: %s; in every bin: %s", v.g, v.g_se,
+                         overall.empty() ? "none" : overall.c_str(), every_bin.empty() ? "none" : every_bin.c_str()) +
+         far;
 }
 
 }  // namespace

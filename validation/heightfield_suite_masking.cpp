@@ -35,7 +35,10 @@ void mean_se(const std::vector<double>& v, double points, double& mean, double& 
   double var = 0.0;
   for (double x : v) var += (x - mean) * (x - mean);
   const double p = std::clamp(mean, 0.0, 1.0);
-  se = std::max(std::sqrt(var / (n - 1.0) / n), points > 0.0 ? std::sqrt(p * (1.0 - p) / points) : kNaN);
+  // p (1 - p) at least 1 / points: a bin seen whole (or hidden whole) on every field still has
+  // the error of its points (as the V-groove tests' binomial bound).
+  se = std::max(std::sqrt(var / (n - 1.0) / n),
+                points > 0.0 ? std::sqrt(std::max(p * (1.0 - p), 1.0 / points) / points) : kNaN);
   if (!std::isfinite(mean)) se = kNaN;
 }
 

@@ -249,7 +249,7 @@ TEST(HeightfieldSuite, MaskingSectionSaysWhichModelIsWithinNoise) {
   std::ostringstream table;
   print_heightfield_table(table, s, run);
   EXPECT_NE(table.str().find("G2 theta_o 75.0 dphi 180.0: "), std::string::npos) << table.str();
-  EXPECT_NE(table.str().find("within noise: "), std::string::npos);
+  EXPECT_NE(table.str().find("within noise overall: "), std::string::npos);
 
   // Two threads: the same values.
   const HeightfieldRun two = run_heightfield_suite(s, 0, 2);
