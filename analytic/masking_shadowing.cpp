@@ -71,7 +71,8 @@ double vcavity_g1_bin_average(NdfKind ndf, double alpha, double theta_o, double 
   const double ox = std::sin(theta_o) * std::cos(phi_o), oy = std::sin(theta_o) * std::sin(phi_o),
                oz = std::cos(theta_o);
   return bin_average(
-      ndf, alpha, bin, panels, [&](double mx, double my, double mz) { return std::max(0.0, ox * mx + oy * my + oz * mz); },
+      ndf, alpha, bin, panels,
+      [&](double mx, double my, double mz) { return std::max(0.0, ox * mx + oy * my + oz * mz); },
       [&](double mx, double my, double mz) { return G1_vcavity(ox * mx + oy * my + oz * mz, oz, mz); });
 }
 

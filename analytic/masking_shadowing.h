@@ -19,9 +19,9 @@ namespace vgroove::analytic {
 // From Smith's Lambda of each direction (analytic/ndf.h Lambda). phi: the azimuth difference of
 // i and o in radians, any value (folded onto [0, pi]); 0 is the hotspot (masking and shadowing
 // fully correlated: G2 = min(G1_i, G1_o)).
-double G2_smith_separable(double lambda_i, double lambda_o);           // Eq. (20)
-double G2_smith_height_correlated(double lambda_i, double lambda_o);   // Eq. (21)
-double van_ginneken_lambda(double phi);                                // 4.41 phi / (4.41 phi + 1)
+double G2_smith_separable(double lambda_i, double lambda_o);                                // Eq. (20)
+double G2_smith_height_correlated(double lambda_i, double lambda_o);                        // Eq. (21)
+double van_ginneken_lambda(double phi);                                                     // 4.41 phi / (4.41 phi + 1)
 double G2_smith_height_direction_correlated(double lambda_i, double lambda_o, double phi);  // Eq. (23)
 
 // The V-cavity's G2 at a normal m (unit vectors, n = (0, 0, 1)): min(G1_vcavity(i, m),

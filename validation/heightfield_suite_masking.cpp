@@ -21,7 +21,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::uint64_t point_seed(std::uint64_t seed, std::uint64_t stream, std::size_t case_index, std::size_t item,
                          int field) {
-  const std::uint64_t key = (static_cast<std::uint64_t>(case_index) * 4096 + item) * 65536 + static_cast<std::uint64_t>(field);
+  const std::uint64_t key =
+      (static_cast<std::uint64_t>(case_index) * 4096 + item) * 65536 + static_cast<std::uint64_t>(field);
   return sim::Rng(seed, stream, key).next_u64();
 }
 
@@ -87,7 +88,8 @@ HeightfieldMaskingMiss heightfield_masking_miss(const std::string& name, const H
     const double excess = std::abs(d) - (sigmas * t.bins_se[b] + tolerance);
     m.within_noise = m.within_noise && excess <= 0.0;
     const double z = d / t.bins_se[b];
-    if (std::abs(z) > worst) worst = std::abs(z), m.worst_bin = static_cast<int>(b), m.worst_bin_diff = d, m.worst_bin_z = z;
+    if (std::abs(z) > worst)
+      worst = std::abs(z), m.worst_bin = static_cast<int>(b), m.worst_bin_diff = d, m.worst_bin_z = z;
   }
   return m;
 }
@@ -155,8 +157,8 @@ void finish_masking(const HeightfieldSuite& suite, const HeightfieldMaskingField
     for (int b = 0; b < bins; ++b)
       vb.push_back(analytic::vcavity_g1_bin_average(ndf, alpha, theta_o, 0.0, normal_bin(m, b, 0.0)));
     v.models.push_back(heightfield_masking_miss("smith", v, smith, std::vector<double>(bins, smith), sig, tol));
-    v.models.push_back(
-        heightfield_masking_miss("vcavity", v, analytic::vcavity_g1_bin_average(ndf, alpha, theta_o, 0.0, all), vb, sig, tol));
+    v.models.push_back(heightfield_masking_miss(
+        "vcavity", v, analytic::vcavity_g1_bin_average(ndf, alpha, theta_o, 0.0, all), vb, sig, tol));
     out.g1.push_back(std::move(v));
   }
   for (std::size_t t = 0; t < m.theta_o_deg.size(); ++t)
@@ -182,9 +184,10 @@ void finish_masking(const HeightfieldSuite& suite, const HeightfieldMaskingField
             analytic::G2_smith_height_direction_correlated(lambda_i, lambda_o, phi_o));
       std::vector<double> vb;
       for (int b = 0; b < bins; ++b)
-        vb.push_back(analytic::vcavity_g2_bin_average(ndf, alpha, theta_i, 0.0, theta_o, phi_o, normal_bin(m, b, phi_o)));
-      v.models.push_back(
-          heightfield_masking_miss("vcavity", v, analytic::vcavity_g2_bin_average(ndf, alpha, theta_i, 0.0, theta_o, phi_o, all), vb, sig, tol));
+        vb.push_back(
+            analytic::vcavity_g2_bin_average(ndf, alpha, theta_i, 0.0, theta_o, phi_o, normal_bin(m, b, phi_o)));
+      v.models.push_back(heightfield_masking_miss(
+          "vcavity", v, analytic::vcavity_g2_bin_average(ndf, alpha, theta_i, 0.0, theta_o, phi_o, all), vb, sig, tol));
       out.g2.push_back(std::move(v));
     }
 }

@@ -21,8 +21,8 @@ constexpr double kPi = std::numbers::pi, kDeg = kPi / 180.0;
 TEST(MaskingShadowing, SmithFormsAtHandValues) {
   EXPECT_EQ(G2_smith_separable(0.0, 0.0), 1.0);
   EXPECT_EQ(G2_smith_height_correlated(0.0, 0.0), 1.0);
-  EXPECT_DOUBLE_EQ(G2_smith_separable(1.0, 0.5), 1.0 / 3.0);          // (1/2) (2/3)
-  EXPECT_DOUBLE_EQ(G2_smith_height_correlated(1.0, 0.5), 0.4);        // 1 / 2.5
+  EXPECT_DOUBLE_EQ(G2_smith_separable(1.0, 0.5), 1.0 / 3.0);                   // (1/2) (2/3)
+  EXPECT_DOUBLE_EQ(G2_smith_height_correlated(1.0, 0.5), 0.4);                 // 1 / 2.5
   EXPECT_DOUBLE_EQ(G2_smith_height_direction_correlated(1.0, 0.5, 0.0), 0.5);  // min(G1): 1 / (1 + 1)
   // phi = pi: lambda = 4.41 pi / (4.41 pi + 1) = 0.932680...
   const double l = 4.41 * kPi / (4.41 * kPi + 1.0);
@@ -94,10 +94,9 @@ TEST(MaskingShadowing, ANarrowBinGivesThePointwiseG2) {
   const double tm = 40.0 * kDeg, pm = 0.2, e = 1e-6;
   const NormalBin tiny{tm - e, tm + e, pm - e, pm + e};
   const double ti = 80.0 * kDeg, pi_ = 0.1, to = 65.0 * kDeg, po = 0.5;
-  const double expected =
-      G2_vcavity(std::sin(ti) * std::cos(pi_), std::sin(ti) * std::sin(pi_), std::cos(ti), std::sin(to) * std::cos(po),
-                 std::sin(to) * std::sin(po), std::cos(to), std::sin(tm) * std::cos(pm), std::sin(tm) * std::sin(pm),
-                 std::cos(tm));
+  const double expected = G2_vcavity(std::sin(ti) * std::cos(pi_), std::sin(ti) * std::sin(pi_), std::cos(ti),
+                                     std::sin(to) * std::cos(po), std::sin(to) * std::sin(po), std::cos(to),
+                                     std::sin(tm) * std::cos(pm), std::sin(tm) * std::sin(pm), std::cos(tm));
   EXPECT_LT(expected, 0.9);  // masked: a value to see
   EXPECT_NEAR(vcavity_g2_bin_average(NdfKind::ggx, 0.5, ti, pi_, to, po, tiny, 1), expected, 1e-5);
 }

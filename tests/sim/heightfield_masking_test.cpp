@@ -245,7 +245,7 @@ TEST(HeightfieldJointMasking, VGrooveFamilyIsTheMinimumOfTheTwoG1s) {
     const double si = std::sin(opt.theta_i) * std::cos(opt.phi_i), so = std::sin(opt.theta_o);
     const double w = (si + std::cos(opt.theta_i)) * (so + std::cos(opt.theta_o)) / std::sqrt(2.0);
     EXPECT_NEAR(t.sum_w / static_cast<double>(t.front), w, 1e-12 * w);
-    const int towards = 1 * 2 + 0;  // the +x facet: normal azimuth 0 = phi_o
+    const int towards = 1 * 2 + 0;         // the +x facet: normal azimuth 0 = phi_o
     EXPECT_EQ(t.count[towards], t.front);  // the -x facet faces away from o (theta_o > 45 deg)
     const double expected = std::min(c.phi_i == 0.0 ? g1(opt.theta_i) : 1.0, g1(opt.theta_o));
     const double k = static_cast<double>(t.count[towards]);
