@@ -232,8 +232,8 @@ void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, co
     os << support::format("    %-20s %s\n", "vgroove", miss_text(o.vgroove).c_str());
     if (suite.masking) {
       os << support::format(
-          "    masking (%lld points, lost %lld, %.2f s): traced G(se), the models within noise, the "
-          "others' model - traced\n",
+          "    masking (%lld points, lost %lld, %.2f s): traced G(se); the models within noise overall, "
+          "and overall and in every facet-normal bin; each other's model - traced (se; its worst bin)\n",
           static_cast<long long>(o.masking_points), static_cast<long long>(o.masking_lost), o.masking_s);
       for (const auto& v : o.g1)
         os << support::format("      G1 theta_o %4.1f:             %s\n", v.theta_o_deg, masking_text(v).c_str());
