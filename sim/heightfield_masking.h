@@ -1,15 +1,14 @@
-// vgroove sim: traced masking G1(o) of a periodic heightfield (sim/heightfield.h), overall and per
-// facet-normal bin: the fraction of the surface's projected area towards o that is visible from o.
-// Points are drawn uniformly over the macrosurface (a triangle uniformly, then a point uniformly on
-// it); a point on a triangle of upward normal N = (-s_x, -s_y, 1) carries its projected area
-// towards o per unit macro area, w = (o.N)+, and is visible (V = 1) when the ray from far along o
-// towards it first meets its own triangle (sim/heightfield_tracer.h: first_heightfield_hit, exact).
-// G1 = sum w V / sum w per bin and overall. The visible projected area, mean(w V), is cos theta_o
-// on every surface (each line from o meets the surface once): an identity of the tracer, not of
-// any masking model. Bins: theta_m equal over [0, pi/2), the facet azimuth relative to phi_o with
-// bin 0 centred on it. Deterministic: chunk c of kHeightfieldPointsPerChunk points draws from
-// Rng(seed, kHeightfieldMaskingStream, c), merged in chunk order. Tests:
-// tests/sim/heightfield_masking_test.cpp, tests/validation/heightfield_masking_smith_test.cpp.
+// vgroove sim: traced masking G1(o) and masking-shadowing G2(i, o) of a periodic heightfield
+// (sim/heightfield.h), overall and per facet-normal bin. Points are drawn uniformly over the
+// macrosurface (a triangle uniformly, then a point on it); a point of a triangle of upward normal
+// N = (-s_x, -s_y, 1) is visible from o (V = 1) when the ray from far along o towards it first
+// meets its own triangle (first_heightfield_hit, exact). G1 = sum w V / sum w with w = (o.N)+, its
+// projected area towards o per unit macro area; mean(w V) = cos theta_o on every surface (each
+// line from o meets the surface once): an identity of the tracer. G2: below. Bins: theta_m equal
+// over [0, pi/2), the facet azimuth relative to phi_o with bin 0 centred on it. Deterministic:
+// chunk c of kHeightfieldPointsPerChunk points draws from Rng(seed, kHeightfieldMaskingStream, c),
+// merged in chunk order. Tests: tests/sim/heightfield_masking_test.cpp (HeightfieldMasking.*,
+// HeightfieldJointMasking.*), tests/validation/heightfield_masking_smith_test.cpp.
 // Derivation: docs/derivations/heightfield.md.
 #pragma once
 
@@ -61,5 +60,58 @@ HeightfieldMaskingTally heightfield_masking_chunk(const HeightfieldSurface& s, c
 // All chunks merged in chunk order (one thread). Throws std::invalid_argument naming the field and
 // its range for theta_o outside [0, pi/2), points < 1, or bins < 1.
 HeightfieldMaskingTally heightfield_masking(const HeightfieldSurface& s, const HeightfieldMaskingOptions& opt);
+
+// The joint masking-shadowing G2(i, o): the same points as heightfield_masking for the same seed
+// (its stream and layout), each weighted by w = (i.N)+ (o.N)+ / |N| = |N| (i.m)+ (o.m)+ (its
+// microsurface area |N| per unit macro area times the microfacet BRDF's weight (i.m)(o.m), Heitz
+// 2014 Eq. 15 with Eq. 13 and G2 for G1, Eq. 18; m = N / |N|) and traced towards both directions:
+// G2 = sum w V_i V_o / sum w per bin and overall, beside the G1s under the same weight, sum w V_i
+// / sum w and sum w V_o / sum w. Points facing away from i or o (w = 0) are drawn, not traced.
+// Exact per realization: G2 <= min(G1_i, G1_o) bin by bin; i = o gives G2 = G1_i = G1_o and the
+// visible count of heightfield_masking(o); swapping i and o gives the same sums (the bins are
+// relative to phi_o, so bin by bin only with phi_m_bins = 1).
+struct HeightfieldJointMaskingOptions {
+  double theta_i = 0.0, phi_i = 0.0;  // light, [0, pi/2)
+  double theta_o = 0.0, phi_o = 0.0;  // view, [0, pi/2)
+  std::int64_t points = 100000;
+  std::uint64_t seed = 0;
+  int theta_m_bins = 6;  // as HeightfieldMaskingOptions
+  int phi_m_bins = 4;    // relative to phi_o
+  HeightfieldRayOptions ray;
+};
+
+struct HeightfieldJointMaskingTally {
+  int theta_m_bins = 0, phi_m_bins = 0;
+  std::int64_t points = 0, front = 0;                           // drawn, facing both i and o
+  std::int64_t visible_i = 0, visible_o = 0, visible_both = 0;  // of the front-facing
+  std::int64_t lost = 0, edge_hits = 0, vertex_hits = 0;
+  double sum_w = 0.0, sum_wi = 0.0, sum_wo = 0.0, sum_wio = 0.0;  // w, w V_i, w V_o, w V_i V_o
+  // Per bin [t * phi_m_bins + p], the same four sums and the front-facing points.
+  std::vector<double> weight, weight_i, weight_o, weight_io;
+  std::vector<std::int64_t> count;
+
+  HeightfieldJointMaskingTally() = default;
+  HeightfieldJointMaskingTally(int theta_m_bins_, int phi_m_bins_);
+  void merge(const HeightfieldJointMaskingTally& other);  // same bins
+  // NaN where no point faces both.
+  double g2() const { return sum_wio / sum_w; }
+  double g1_i() const { return sum_wi / sum_w; }
+  double g1_o() const { return sum_wo / sum_w; }
+  double g2(int bin) const { return at(weight_io, bin) / at(weight, bin); }
+  double g1_i(int bin) const { return at(weight_i, bin) / at(weight, bin); }
+  double g1_o(int bin) const { return at(weight_o, bin) / at(weight, bin); }
+
+ private:
+  static double at(const std::vector<double>& v, int bin) { return v[static_cast<std::size_t>(bin)]; }
+};
+
+std::int64_t heightfield_joint_masking_chunk_count(const HeightfieldJointMaskingOptions& opt);
+HeightfieldJointMaskingTally heightfield_joint_masking_chunk(const HeightfieldSurface& s,
+                                                             const HeightfieldJointMaskingOptions& opt,
+                                                             std::int64_t chunk);
+// All chunks merged in chunk order. Throws std::invalid_argument naming the field and its range
+// for theta_i or theta_o outside [0, pi/2), points < 1, or bins < 1.
+HeightfieldJointMaskingTally heightfield_joint_masking(const HeightfieldSurface& s,
+                                                       const HeightfieldJointMaskingOptions& opt);
 
 }  // namespace vgroove::sim

@@ -62,6 +62,47 @@ std::string miss_text(const HeightfieldMiss& m) {
   return s;
 }
 
+nlohmann::json masking_value_json(const HeightfieldMaskingValue& v, bool g2) {
+  nlohmann::json models = nlohmann::json::object();
+  for (const HeightfieldMaskingMiss& m : v.models)
+    models[m.model] = {{"value", m.value},
+                       {"bins", m.bins},
+                       {"diff", m.diff},
+                       {"z", m.z},
+                       {"worst_bin", m.worst_bin},
+                       {"worst_bin_diff", m.worst_bin_diff},
+                       {"worst_bin_z", m.worst_bin_z},
+                       {"overall_within_noise", m.overall_within_noise},
+                       {"within_noise", m.within_noise}};
+  nlohmann::json j = {{"theta_o_deg", v.theta_o_deg},
+                      {"traced", v.g},
+                      {"traced_se", v.g_se},
+                      {"bins", v.bins},
+                      {"bins_se", v.bins_se},
+                      {"bin_points", v.bin_points},
+                      {"models", models}};
+  if (g2) j["phi_deg"] = v.phi_deg, j["g1_i"] = v.g1_i, j["g1_o"] = v.g1_o;
+  return j;
+}
+
+// Plainly: which models are within noise overall and which in every bin too, and how far each
+// model is (model - traced overall, in standard errors, and its worst bin).
+std::string masking_text(const HeightfieldMaskingValue& v) {
+  std::string overall, every_bin, far;
+  for (const HeightfieldMaskingMiss& m : v.models) {
+    if (m.overall_within_noise) overall += (overall.empty() ? "" : ", ") + m.model;
+    if (m.within_noise) every_bin += (every_bin.empty() ? "" : ", ") + m.model;
+    if (m.within_noise) continue;
+    far += support::format("; %s %+.4f (%.1f se", m.model.c_str(), -m.diff, std::abs(m.z));
+    if (m.worst_bin >= 0)
+      far += support::format(", bin %d %+.4f, %.1f se", m.worst_bin, -m.worst_bin_diff, std::abs(m.worst_bin_z));
+    far += ")";
+  }
+  return support::format("%.4f(%.4f); within noise overall: %s; in every bin: %s", v.g, v.g_se,
+                         overall.empty() ? "none" : overall.c_str(), every_bin.empty() ? "none" : every_bin.c_str()) +
+         far;
+}
+
 }  // namespace
 
 nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const HeightfieldRun& run) {
@@ -82,47 +123,63 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
                  {"theta_bins", suite.theta_bins},
                  {"phi_bins", suite.phi_bins},
                  {"rows", {"1", "2", "3+"}}};
+  if (suite.masking)
+    j["inputs"]["masking"] = {
+        {"theta_o_deg", suite.masking->theta_o_deg}, {"phi_deg", suite.masking->phi_deg},
+        {"points", suite.masking->points},           {"theta_m_bins", suite.masking->theta_m_bins},
+        {"phi_m_bins", suite.masking->phi_m_bins},   {"light_azimuth_deg", 0.0}};
   nlohmann::json cases = nlohmann::json::array();
   std::int64_t rays = 0, lost = 0;
   std::size_t passed = 0;
   for (const HeightfieldOutcome& o : run.cases) {
     const int bins = suite.bins();
     rays += o.rays, lost += o.lost, passed += o.pass;
-    cases.push_back(
-        {{"ndf", analytic::ndf_name(o.c.ndf)},
-         {"alpha", o.c.alpha},
-         {"theta_i_deg", o.c.theta_i_deg},
-         {"rays", o.rays},
-         {"lost", o.lost},
-         {"bounce_limit", o.bounce_limit},
-         {"edge_hits", o.edge_hits},
-         {"vertex_hits", o.vertex_hits},
-         {"mean_bounces",
-          o.rays > o.lost ? static_cast<double>(o.bounces) / static_cast<double>(o.rays - o.lost) : 0.0},
-         {"traced",
-          {{"energy_by_k", o.energy},
-           {"energy_se_by_k", o.energy_se},
-           {"albedo", o.albedo},
-           {"albedo_se", o.albedo_se},
-           {"lobe_by_k", rows_of(o.lobe, kHeightfieldRows, bins)},
-           {"lobe_se_by_k", rows_of(o.lobe_se, kHeightfieldRows, bins)}}},
-         {"smith_walk",
-          {{"paths", o.walk_paths},
-           {"left", o.walk_left},
-           {"energy_by_k", o.walk_energy},
-           {"lobe_by_k", rows_of(o.walk_lobe, kHeightfieldRows, bins)},
-           {"against_traced", miss_json(o.walk, o)}}},
-         {"cook_torrance_smith",
-          {{"integration_error", o.ct_error},
-           {"lobe_k1", o.ct_lobe},
-           {"against_traced", miss_json(o.cook_torrance, o)}}},
-         {"vgroove",
-          {{"energy_by_k", o.vgroove_energy},
-           {"lobe_by_k", rows_of(o.vgroove_lobe, kHeightfieldRows, bins)},
-           {"against_traced", miss_json(o.vgroove, o)}}},
-         {"timing", {{"field_s", o.field_s}, {"trace_s", o.trace_s}, {"walk_s", o.walk_s}, {"model_s", o.model_s}}},
-         {"non_finite", o.non_finite},
-         {"pass", o.pass}});
+    cases.push_back({{"ndf", analytic::ndf_name(o.c.ndf)},
+                     {"alpha", o.c.alpha},
+                     {"theta_i_deg", o.c.theta_i_deg},
+                     {"rays", o.rays},
+                     {"lost", o.lost},
+                     {"bounce_limit", o.bounce_limit},
+                     {"edge_hits", o.edge_hits},
+                     {"vertex_hits", o.vertex_hits},
+                     {"mean_bounces",
+                      o.rays > o.lost ? static_cast<double>(o.bounces) / static_cast<double>(o.rays - o.lost) : 0.0},
+                     {"traced",
+                      {{"energy_by_k", o.energy},
+                       {"energy_se_by_k", o.energy_se},
+                       {"albedo", o.albedo},
+                       {"albedo_se", o.albedo_se},
+                       {"lobe_by_k", rows_of(o.lobe, kHeightfieldRows, bins)},
+                       {"lobe_se_by_k", rows_of(o.lobe_se, kHeightfieldRows, bins)}}},
+                     {"smith_walk",
+                      {{"paths", o.walk_paths},
+                       {"left", o.walk_left},
+                       {"energy_by_k", o.walk_energy},
+                       {"lobe_by_k", rows_of(o.walk_lobe, kHeightfieldRows, bins)},
+                       {"against_traced", miss_json(o.walk, o)}}},
+                     {"cook_torrance_smith",
+                      {{"integration_error", o.ct_error},
+                       {"lobe_k1", o.ct_lobe},
+                       {"against_traced", miss_json(o.cook_torrance, o)}}},
+                     {"vgroove",
+                      {{"energy_by_k", o.vgroove_energy},
+                       {"lobe_by_k", rows_of(o.vgroove_lobe, kHeightfieldRows, bins)},
+                       {"against_traced", miss_json(o.vgroove, o)}}},
+                     {"timing",
+                      {{"field_s", o.field_s},
+                       {"trace_s", o.trace_s},
+                       {"walk_s", o.walk_s},
+                       {"model_s", o.model_s},
+                       {"masking_s", o.masking_s}}},
+                     {"non_finite", o.non_finite},
+                     {"pass", o.pass}});
+    if (suite.masking) {
+      nlohmann::json g1 = nlohmann::json::array(), g2 = nlohmann::json::array();
+      for (const auto& v : o.g1) g1.push_back(masking_value_json(v, false));
+      for (const auto& v : o.g2) g2.push_back(masking_value_json(v, true));
+      cases.back()["masking"] = {
+          {"points", o.masking_points}, {"lost", o.masking_lost}, {"g1", std::move(g1)}, {"g2", std::move(g2)}};
+    }
   }
   j["cases"] = std::move(cases);
   nlohmann::json controls = nlohmann::json::array();
@@ -143,6 +200,10 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
        "when every row's L1 <= expected + sigmas sd + tolerance (per-bin variance: the traced mean's, its fields' "
        "spread but at least the rays' multinomial error, plus the walk's own) and every row's |E_traced - E_model| "
        "<= sigmas se + tolerance; the other models' distances are results, not verdicts"},
+      {"masking_rule",
+       "masking (reported, not a verdict): a model is within noise when |traced - model| <= sigmas se + "
+       "model_tolerance overall and in every facet-normal bin with points on every field (se: the fields' spread, at "
+       "least the points' binomial error)"},
       {"sigmas", suite.sigmas},
       {"model_tolerance", suite.model_tolerance}};
   j["pass"] = run.pass;
@@ -169,6 +230,17 @@ void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, co
     os << support::format("    %-20s %s\n", "smith_walk", miss_text(o.walk).c_str());
     os << support::format("    %-20s %s\n", "cook_torrance_smith", miss_text(o.cook_torrance).c_str());
     os << support::format("    %-20s %s\n", "vgroove", miss_text(o.vgroove).c_str());
+    if (suite.masking) {
+      os << support::format(
+          "    masking (%lld points, lost %lld, %.2f s): traced G(se); the models within noise overall, "
+          "and overall and in every facet-normal bin; each other's model - traced (se; its worst bin)\n",
+          static_cast<long long>(o.masking_points), static_cast<long long>(o.masking_lost), o.masking_s);
+      for (const auto& v : o.g1)
+        os << support::format("      G1 theta_o %4.1f:             %s\n", v.theta_o_deg, masking_text(v).c_str());
+      for (const auto& v : o.g2)
+        os << support::format("      G2 theta_o %4.1f dphi %5.1f: %s\n", v.theta_o_deg, v.phi_deg,
+                              masking_text(v).c_str());
+    }
   }
   for (std::size_t n = 0; n < suite.controls.size(); ++n) {
     const HeightfieldCase c = suite.case_at(suite.controls[n].case_index);

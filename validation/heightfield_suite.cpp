@@ -152,6 +152,10 @@ HeightfieldSuite parse_heightfield_suite(const nlohmann::json& j, const std::str
       s.controls.push_back(ctl);
     }
   }
+  if (root.has("masking")) {
+    support::JsonObject m = root.object("masking");
+    s.masking = parse_heightfield_masking(m);
+  }
   root.finish();
   return s;
 }
@@ -200,6 +204,7 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
 
   // The fields: one at a time, each from its own seed (the same fields at every theta_i).
   std::vector<std::vector<double>> lobes, energies;
+  HeightfieldMaskingFields masking;
   for (int r = 0; r < suite.fields; ++r) {
     if (support::cancelled(cancel)) return out;
     auto t0 = Clock::now();
@@ -212,6 +217,11 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
         s, theta_i, rays, derived_seed(suite.seed, kRaySeeds, case_index * 65536 + static_cast<std::uint64_t>(r)),
         suite.theta_bins, suite.phi_bins, kMaxK, cancel);
     out.trace_s += seconds_since(t0);
+    if (suite.masking) {
+      t0 = Clock::now();
+      trace_masking_field(suite, case_index, r, s, masking, cancel);
+      out.masking_s += seconds_since(t0);
+    }
     if (support::cancelled(cancel)) return out;
     out.rays += t.rays, out.lost += t.lost, out.bounce_limit += t.bounce_limit;
     out.edge_hits += t.edge_hits, out.vertex_hits += t.vertex_hits, out.bounces += t.bounces;
@@ -276,9 +286,18 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
                                        {sum(out.ct_lobe)}, {}, 1, bins, suite.sigmas, tol + out.ct_error);
   out.vgroove = heightfield_miss(out.lobe, out.lobe_se, out.energy, out.energy_se, out.vgroove_lobe, {},
                                  out.vgroove_energy, {}, rows, bins, suite.sigmas, tol);
-  out.non_finite = !(all_finite(out.lobe) && all_finite(out.walk_lobe) && all_finite(out.ct_lobe) &&
-                     all_finite(out.vgroove_lobe) && all_finite(out.vgroove_energy) && std::isfinite(out.albedo));
-  out.pass = out.lost == 0 && !out.non_finite;
+  if (suite.masking) {
+    t0 = Clock::now();
+    finish_masking(suite, masking, out);
+    out.masking_s += seconds_since(t0);
+  }
+  bool masking_finite = true;
+  for (const auto* list : {&out.g1, &out.g2})
+    for (const HeightfieldMaskingValue& mv : *list) masking_finite = masking_finite && std::isfinite(mv.g);
+  out.non_finite =
+      !masking_finite || !(all_finite(out.lobe) && all_finite(out.walk_lobe) && all_finite(out.ct_lobe) &&
+                           all_finite(out.vgroove_lobe) && all_finite(out.vgroove_energy) && std::isfinite(out.albedo));
+  out.pass = out.lost == 0 && out.masking_lost == 0 && !out.non_finite;
   return out;
 }
 
@@ -288,8 +307,14 @@ double heightfield_run_memory_bytes(const HeightfieldSuite& suite, int threads) 
   check_field_fits(suite.field_size, workers, suite.file + ": /field_size", kMinFieldSize);
   const double joint = static_cast<double>(suite.bins()) * (kHeightfieldRows + 1) * 8.0;
   // Per worker its field and hierarchy (also the synthesis' peak) and tallies; per case its lobes.
-  return workers * (sim::heightfield_bytes(suite.field_size) + 4.0 * joint) +
-         cases * joint * (8.0 + 2.0 * suite.fields);
+  // The masking tallies: 5 doubles per bin per field and theta_o or pair, and the outcome's values.
+  const double masking = suite.masking
+                             ? static_cast<double>(suite.masking->bins()) * 48.0 *
+                                   static_cast<double>(suite.masking->theta_o_deg.size() + suite.masking->pairs()) *
+                                   (suite.fields + 8.0)
+                             : 0.0;
+  return workers * (sim::heightfield_bytes(suite.field_size) + 4.0 * joint + masking) +
+         cases * (joint * (8.0 + 2.0 * suite.fields) + masking);
 }
 
 Job<HeightfieldWork> heightfield_job(const HeightfieldSuite& suite, long rays, nlohmann::json descriptor,
@@ -303,12 +328,22 @@ Job<HeightfieldWork> heightfield_job(const HeightfieldSuite& suite, long rays, n
         const std::size_t bins = static_cast<std::size_t>(suite.bins()), rows = kHeightfieldRows;
         if (out.lobe.size() != joint || out.lobe_se.size() != joint || out.walk_lobe.size() != joint ||
             out.vgroove_lobe.size() != joint || out.ct_lobe.size() != bins || out.energy.size() != rows ||
-            out.energy_se.size() != rows || out.walk_energy.size() != rows || out.vgroove_energy.size() != rows)
-          o.fail("outcome", "/lobe, /walk_lobe, /vgroove_lobe, /ct_lobe or an energy is not of the suite's " +
+            out.energy_se.size() != rows || out.walk_energy.size() != rows || out.vgroove_energy.size() != rows ||
+            out.g1.size() != (suite.masking ? suite.masking->theta_o_deg.size() : 0) ||
+            out.g2.size() != (suite.masking ? suite.masking->pairs() : 0))
+          o.fail("outcome", "/lobe, /walk_lobe, /vgroove_lobe, /ct_lobe an energy, /g1 or /g2 is not of the suite's " +
                                 std::to_string(kHeightfieldRows) + " rows x " + std::to_string(bins) + " bins");
       },
       std::move(descriptor),
-      [&suite, n_rays](std::size_t) { return static_cast<std::int64_t>(n_rays) * suite.fields + suite.walk_paths; });
+      [&suite, n_rays](std::size_t) {
+        // A masking point costs about one ray (G1) or two (G2), a short one.
+        const std::int64_t mask =
+            suite.masking
+                ? static_cast<std::int64_t>(suite.masking->points) * suite.fields *
+                      static_cast<std::int64_t>(suite.masking->theta_o_deg.size() + 2 * suite.masking->pairs()) / 4
+                : 0;
+        return static_cast<std::int64_t>(n_rays) * suite.fields + suite.walk_paths + mask;
+      });
 }
 
 HeightfieldRun heightfield_run_from(const HeightfieldSuite& suite,

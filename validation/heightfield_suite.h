@@ -7,14 +7,17 @@
 // over the fields and its standard error (their spread, at least the rays' multinomial error). A
 // model is within noise when every row's L1 <= expected + sigmas sd + tolerance and every E_k
 // within sigmas se: measured, not a verdict. The verdict: no ray lost, every value finite, and
-// the suite's `controls`. One work item per case: the same report for any thread, shard or rank
-// count. Memory: one field with its hierarchy per worker, refused in one line before any work.
+// the suite's `controls`. Optional "masking": traced G1 and G2 per facet-normal bin against
+// Smith's forms and the V-cavity (HeightfieldMaskingSpec), reported. One work item per case: the same report for any
+// thread, shard or rank count. Memory: one field with its hierarchy per worker, refused in one line before any work.
 // Tests: tests/validation/heightfield_suite_test.cpp (HeightfieldSuite.*, HeightfieldSuiteCli.*),
 // tests/cluster/shards_test.sh. Schema: docs/schemas/suite.schema.json ($defs/heightfield).
 // Derivation: docs/derivations/heightfield.md (the suite's section).
 #pragma once
 
 #include "vgroove/analytic/ndf.h"
+#include "vgroove/sim/heightfield_masking.h"
+#include "vgroove/support/json_reader.h"
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/item_work.h"
 
@@ -22,6 +25,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -46,6 +50,19 @@ struct HeightfieldControl {
   std::size_t case_index = 0;
 };
 
+// The masking section (optional "masking" in the suite): per case (its theta_i, the light at
+// azimuth 0) the traced G1(o) for each theta_o (sim/heightfield_masking.h, `points` points per
+// field) and G2(i, o) for each theta_o x azimuth difference phi (o at azimuth phi), on the case's
+// fields, per facet-normal bin (theta_m_bins over [0, 90) deg x phi_m_bins relative to o's azimuth)
+// and overall, against Smith's forms and the V-cavity (analytic/masking_shadowing.h).
+struct HeightfieldMaskingSpec {
+  std::vector<double> theta_o_deg, phi_deg;
+  long points = 20000;  // per field, theta_o and pair
+  int theta_m_bins = 3, phi_m_bins = 4;
+  std::size_t pairs() const { return theta_o_deg.size() * phi_deg.size(); }
+  int bins() const { return theta_m_bins * phi_m_bins; }
+};
+
 struct HeightfieldSuite {
   std::string file, name, description;
   std::vector<analytic::NdfKind> ndfs;
@@ -61,6 +78,7 @@ struct HeightfieldSuite {
   double sigmas = 5.0;
   double model_tolerance = 1e-4;  // added to every L1 threshold (the integrated models' target error)
   std::vector<HeightfieldControl> controls;
+  std::optional<HeightfieldMaskingSpec> masking;
   std::size_t cases() const { return ndfs.size() * alphas.size() * theta_i_deg.size(); }
   HeightfieldCase case_at(std::size_t c) const;  // order: ndf, alpha, theta_i (innermost)
   int bins() const { return theta_bins * phi_bins; }
@@ -74,6 +92,43 @@ struct HeightfieldMiss {
   bool within_noise = false;
 };
 
+// One masking model against a traced G (overall and per bin; the bins with points on every
+// field): traced - model, and in units of the traced standard error. Within noise when the overall
+// and every bin's |traced - model| <= sigmas se + tolerance (a result, not a verdict).
+struct HeightfieldMaskingMiss {
+  std::string model;
+  double value = 0.0;        // the model's overall G
+  std::vector<double> bins;  // per bin (Smith's forms: the same value)
+  double diff = 0.0, z = 0.0;
+  int worst_bin = -1;  // the bin furthest in units of its se (-1: none compared)
+  double worst_bin_diff = 0.0, worst_bin_z = 0.0;
+  bool overall_within_noise = false, within_noise = false;
+};
+template <class F>
+void fields(HeightfieldMaskingMiss& m, F&& f) {
+  f("model", m.model), f("value", m.value), f("bins", m.bins), f("diff", m.diff), f("z", m.z);
+  f("worst_bin", m.worst_bin), f("worst_bin_diff", m.worst_bin_diff), f("worst_bin_z", m.worst_bin_z);
+  f("overall_within_noise", m.overall_within_noise), f("within_noise", m.within_noise);
+}
+
+// A traced G (G1 at theta_o, or G2 at theta_i, theta_o, phi) over the fields: the mean of the
+// fields' values and its standard error (their spread, at least the points' binomial error), per
+// bin (NaN where a field had no point) and overall.
+struct HeightfieldMaskingValue {
+  double theta_o_deg = 0.0, phi_deg = 0.0;
+  double g = 0.0, g_se = 0.0;
+  std::vector<double> bins, bins_se;
+  std::vector<std::int64_t> bin_points;  // front-facing points per bin over the fields
+  double g1_i = 0.0, g1_o = 0.0;         // G2 only: the two G1s under G2's weight (means)
+  std::vector<HeightfieldMaskingMiss> models;
+};
+template <class F>
+void fields(HeightfieldMaskingValue& v, F&& f) {
+  f("theta_o_deg", v.theta_o_deg), f("phi_deg", v.phi_deg), f("g", v.g), f("g_se", v.g_se), f("bins", v.bins);
+  f("bins_se", v.bins_se), f("bin_points", v.bin_points), f("g1_i", v.g1_i), f("g1_o", v.g1_o);
+  f("models", v.models);
+}
+
 struct HeightfieldOutcome {
   HeightfieldCase c;
   std::int64_t rays = 0, lost = 0, bounce_limit = 0, edge_hits = 0, vertex_hits = 0, bounces = 0;
@@ -86,6 +141,9 @@ struct HeightfieldOutcome {
   double ct_error = 0.0;        // the integration's error estimate
   std::vector<double> vgroove_lobe, vgroove_energy;
   HeightfieldMiss walk, cook_torrance, vgroove;
+  std::vector<HeightfieldMaskingValue> g1, g2;  // the masking section: per theta_o; per (theta_o, phi)
+  std::int64_t masking_points = 0, masking_lost = 0;
+  double masking_s = 0.0;
   double field_s = 0.0, trace_s = 0.0, walk_s = 0.0, model_s = 0.0;
   bool non_finite = false;
   bool pass = false;
@@ -108,6 +166,8 @@ void fields(HeightfieldOutcome& o, F&& f) {
   f("vgroove_lobe", o.vgroove_lobe), f("vgroove_energy", o.vgroove_energy), f("walk", o.walk);
   f("cook_torrance", o.cook_torrance), f("vgroove", o.vgroove), f("field_s", o.field_s), f("trace_s", o.trace_s);
   f("walk_s", o.walk_s), f("model_s", o.model_s), f("non_finite", o.non_finite), f("pass", o.pass);
+  f("g1", o.g1), f("g2", o.g2), f("masking_points", o.masking_points), f("masking_lost", o.masking_lost);
+  f("masking_s", o.masking_s);
 }
 
 struct HeightfieldRun {
@@ -145,6 +205,25 @@ HeightfieldMiss heightfield_miss(const std::vector<double>& lobe, const std::vec
                                  const std::vector<double>& model, const std::vector<double>& model_var,
                                  const std::vector<double>& model_energy, const std::vector<double>& model_energy_var,
                                  int rows, int bins, double sigmas, double tolerance);
+
+// The masking section of one field (validation/heightfield_suite_masking.cpp): per theta_o its
+// G1 tally, per pair its G2 tally, appended to the per-field lists; then the means over the fields
+// and the models. Seeds from the suite's seed, the case and the field.
+struct HeightfieldMaskingFields {
+  std::vector<std::vector<sim::HeightfieldMaskingTally>> g1;       // [theta_o][field]
+  std::vector<std::vector<sim::HeightfieldJointMaskingTally>> g2;  // [pair][field]
+};
+void trace_masking_field(const HeightfieldSuite& suite, std::size_t case_index, int field,
+                         const sim::HeightfieldSurface& s, HeightfieldMaskingFields& out,
+                         const std::atomic<bool>* cancel);
+void finish_masking(const HeightfieldSuite& suite, const HeightfieldMaskingFields& traced, HeightfieldOutcome& out);
+// A model (its overall value and per-bin values) against a traced value: HeightfieldMaskingMiss.
+HeightfieldMaskingMiss heightfield_masking_miss(const std::string& name, const HeightfieldMaskingValue& traced,
+                                                double value, std::vector<double> bins, double sigmas,
+                                                double tolerance);
+// The masking spec from the suite's "masking" object (theta_o_deg within [0, 89.9], phi_deg
+// within [0, 180], points, bins).
+HeightfieldMaskingSpec parse_heightfield_masking(support::JsonObject& m);
 
 nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const HeightfieldRun& run);
 void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, const HeightfieldRun& run);

@@ -25,7 +25,9 @@ One or more images per report, named after the report (or --out) with a suffix p
     "heightfield"                            BASE-NDF.png   per model (Smith walk, Cook-Torrance with Smith G,
                                                             V-groove), L1 / threshold of each k's lobe (1, 2,
                                                             3+) against theta_i, a series per alpha (<= 1:
-                                                            within noise), and E_k model minus traced
+                                                            within noise), and E_k model minus traced;
+                                             BASE-masking-NDF.png  G1 per facet-normal bin: traced,
+                                                            Smith, V-cavity (a row per alpha, a column per view)
     "energy_audit"                           BASE-REF-NDF.png  per compensation formula, its albedo minus the
                                                             exact one over (mu, alpha), the grey F0 with the
                                                             largest |error| per cell (REF: vgroove, smith_walk)
@@ -1127,7 +1129,69 @@ def heightfield_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
             return fig
         return draw
 
-    return [(f"-{ndf}", drawer(ndf, cases)) for ndf, cases in groups.items()]
+    out = [(f"-{ndf}", drawer(ndf, cases)) for ndf, cases in groups.items()]
+    return out + _heightfield_masking_figures(report, name)
+
+
+def _heightfield_masking_figures(report: Node, name: str) -> List[Tuple[str, Drawer]]:
+    """The "heightfield" suite's masking section: G1 per facet-normal bin (traced with its error
+    over the fields, Smith, V-cavity), one figure per NDF, a row per alpha, a column per view
+    angle (from each alpha's first case: G1 does not depend on theta_i)."""
+    inputs = report["inputs"]
+    if not inputs.has("masking"):
+        return []
+    m = inputs["masking"]
+    tb = int(m["theta_m_bins"].number(1, 90))
+    pb = int(m["phi_m_bins"].number(1, 360))
+    bins = tb * pb
+    groups: Dict[str, Dict[float, List[Dict[str, Any]]]] = {}
+    for c in report["cases"].nonempty():
+        if not c.has("masking"):
+            continue
+        ndf = c["ndf"].one_of(_NDFS)
+        alpha = c["alpha"].number(0.0, 2.0)
+        if alpha in groups.get(ndf, {}):
+            continue
+        views = []
+        for g in c["masking"]["g1"].nonempty():
+            t = g["theta_o_deg"].number(0.0, 90.0)
+            if t <= 0.0:
+                continue  # nothing hidden
+            views.append({"theta_o": t, "g1": g["bins"].numbers_or_gaps(bins),
+                          "se": g["bins_se"].numbers_or_gaps(bins, 0.0),
+                          "smith": g["models"]["smith"]["value"].number(0.0, 1.0),
+                          "vcavity": g["models"]["vcavity"]["bins"].numbers_or_gaps(bins)})
+        groups.setdefault(ndf, {})[alpha] = views
+
+    def drawer(ndf: str, by_alpha: Dict[float, List[Dict[str, Any]]]) -> Drawer:
+        def draw() -> Figure:
+            alphas = sorted(by_alpha)
+            cols = sorted({v["theta_o"] for vs in by_alpha.values() for v in vs})
+            fig = _figure(3.4 * max(1, len(cols)) + 1.0, 2.6 * len(alphas) + 1.4)
+            axes = fig.subplots(len(alphas), max(1, len(cols)), squeeze=False)
+            x = list(range(bins))
+            labels = [f"{90 * t // tb}-{90 * (t + 1) // tb}\n{360 * p // pb}" for t in range(tb) for p in range(pb)]
+            for r, a in enumerate(alphas):
+                for v in by_alpha[a]:
+                    ax = axes[r][cols.index(v["theta_o"])]
+                    ax.errorbar(x, v["g1"], yerr=v["se"], fmt="o", ms=3, capsize=2, color="#1f77b4",
+                                label="traced (se over fields)")
+                    ax.plot(x, v["vcavity"], "s--", ms=3, lw=0.9, color="#ff7f0e", label="V-cavity")
+                    ax.axhline(v["smith"], color="black", lw=0.8, ls=":", label="Smith")
+                    ax.set_ylim(-0.02, 1.05)
+                    ax.set_title(f"{ndf} alpha {a:g}, view {v['theta_o']:g} deg", fontsize=7)
+                    ax.set_xticks(x)
+                    ax.set_xticklabels(labels, fontsize=5)
+                    ax.set_xlabel("facet normal bin: theta_m (deg), azimuth from the view (deg)", fontsize=6)
+                    ax.set_ylabel("G1(view, m)", fontsize=7)
+                    ax.tick_params(labelsize=6)
+            axes[0][0].legend(fontsize=5)
+            _suptitle(fig, f"{name}: masking G1 per facet-normal bin on traced heightfields, Smith and V-cavity",
+                      _title_bits(report))
+            return fig
+        return draw
+
+    return [(f"-masking-{ndf}", drawer(ndf, by_alpha)) for ndf, by_alpha in groups.items()]
 
 
 KINDS = {

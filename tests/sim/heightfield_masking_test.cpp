@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -145,6 +146,133 @@ TEST(HeightfieldMasking, OutOfRangeOptionsAreRefused) {
   opt.theta_o = 0.1;
   opt.points = 0;
   EXPECT_THROW(heightfield_masking(s, opt), std::invalid_argument);
+}
+
+// G2(i, o) (heightfield_joint_masking): identities that hold exactly on every realization.
+// i = o: every point is visible from both or from neither, so G2 = G1_i = G1_o to the bit, and
+// the points (heightfield_masking's stream and layout) and their visible count are G1's.
+TEST(HeightfieldJointMasking, SameDirectionIsG1OnTheSamePoints) {
+  const HeightfieldSurface s = make_heightfield_surface(make_gaussian_heightfield({64, 0.6, 0.6, 4.0, 7}));
+  for (double theta_deg : {0.0, 60.0, 85.0}) {
+    HeightfieldJointMaskingOptions opt;
+    opt.theta_i = opt.theta_o = theta_deg * kDeg;
+    opt.phi_i = opt.phi_o = 0.4;
+    opt.points = 2 * kHeightfieldPointsPerChunk + 5;
+    opt.seed = 3;
+    const HeightfieldJointMaskingTally t = heightfield_joint_masking(s, opt);
+    EXPECT_EQ(t.points, opt.points);
+    EXPECT_EQ(t.lost, 0);
+    EXPECT_EQ(t.visible_both, t.visible_i);
+    EXPECT_EQ(t.visible_both, t.visible_o);
+    EXPECT_EQ(t.g2(), t.g1_i());
+    EXPECT_EQ(t.g2(), t.g1_o());
+    for (int b = 0; b < opt.theta_m_bins * opt.phi_m_bins; ++b)
+      if (t.count[static_cast<std::size_t>(b)] > 0) {
+        EXPECT_EQ(t.g2(b), t.g1_o(b)) << "bin " << b;
+      }
+    HeightfieldMaskingOptions g1;
+    g1.theta_o = opt.theta_o, g1.phi_o = opt.phi_o, g1.points = opt.points, g1.seed = opt.seed;
+    const HeightfieldMaskingTally m = heightfield_masking(s, g1);
+    EXPECT_EQ(t.front, m.front) << theta_deg;
+    EXPECT_EQ(t.visible_both, m.visible) << theta_deg;
+    if (theta_deg > 0.0) {
+      EXPECT_LT(t.visible_both, t.front) << theta_deg;  // some masking to see
+    }
+  }
+}
+
+// Apart: G1_i + G1_o - 1 <= G2 <= min(G1_i, G1_o) bin by bin (a point visible from both is
+// visible from each; one hidden from i or from o is not counted), and swapping i and o gives the
+// same sums to the bit (one azimuth bin, so the bins do not depend on which one is o).
+TEST(HeightfieldJointMasking, BoundedByEachG1AndSymmetric) {
+  for (bool ggx : {false, true}) {
+    const GaussianHeightfieldOptions f{64, 0.8, 0.8, 4.0, 9};
+    const HeightfieldSurface s = make_heightfield_surface(ggx ? make_ggx_heightfield(f) : make_gaussian_heightfield(f));
+    HeightfieldJointMaskingOptions opt;
+    opt.theta_i = 70.0 * kDeg, opt.phi_i = 0.3;
+    opt.theta_o = 50.0 * kDeg, opt.phi_o = 0.3 + 2.0;
+    opt.points = 6000;
+    opt.theta_m_bins = 4, opt.phi_m_bins = 1;
+    const HeightfieldJointMaskingTally t = heightfield_joint_masking(s, opt);
+    EXPECT_EQ(t.lost, 0);
+    EXPECT_LT(t.visible_both, std::min(t.visible_i, t.visible_o));
+    for (int b = -1; b < opt.theta_m_bins; ++b) {
+      const double g2 = b < 0 ? t.g2() : t.g2(b), gi = b < 0 ? t.g1_i() : t.g1_i(b), go = b < 0 ? t.g1_o() : t.g1_o(b);
+      if (b >= 0 && t.count[static_cast<std::size_t>(b)] == 0) continue;
+      EXPECT_LE(g2, std::min(gi, go)) << "bin " << b;
+      EXPECT_GE(g2, gi + go - 1.0 - 1e-15) << "bin " << b;  // the sums' rounding
+    }
+    HeightfieldJointMaskingOptions swapped = opt;
+    std::swap(swapped.theta_i, swapped.theta_o);
+    std::swap(swapped.phi_i, swapped.phi_o);
+    const HeightfieldJointMaskingTally u = heightfield_joint_masking(s, swapped);
+    EXPECT_EQ(u.sum_wio, t.sum_wio);
+    EXPECT_EQ(u.sum_wi, t.sum_wo);
+    EXPECT_EQ(u.sum_wo, t.sum_wi);
+    EXPECT_EQ(u.weight_io, t.weight_io);
+    EXPECT_EQ(u.visible_both, t.visible_both);
+  }
+}
+
+// One V-groove family (slope 1, facets at 45 deg) across the grooves: the part of a facet visible
+// from any direction is a segment from its ridge (the opposite wall hides its foot), so a point
+// visible from the more masked direction is visible from the other: visible_both = min(visible_i,
+// visible_o) exactly, and G2 of the facet is min of the V-cavity G1s (2 cos theta_m cos theta /
+// cos(theta - theta_m) from theta + theta_m > 90 deg, header of this file).
+TEST(HeightfieldJointMasking, VGrooveFamilyIsTheMinimumOfTheTwoG1s) {
+  const double theta_m = std::atan(1.0);
+  const HeightfieldSurface s = make_heightfield_surface(make_vgroove_heightfield(64, 8, 1.0));
+  const auto g1 = [&](double theta) {
+    return theta + theta_m > 0.5 * std::numbers::pi
+               ? 2.0 * std::cos(theta_m) * std::cos(theta) / std::cos(theta - theta_m)
+               : 1.0;
+  };
+  struct Pair {
+    double theta_i_deg, phi_i, theta_o_deg;
+  };
+  // Both on the side the +x facet faces; the light opposite at 30 deg (the +x facet turned away
+  // from it, in view whole); both grazing on one side.
+  for (const Pair& c : {Pair{70.0, 0.0, 55.0}, Pair{30.0, std::numbers::pi, 60.0}, Pair{85.0, 0.0, 80.0}}) {
+    HeightfieldJointMaskingOptions opt;
+    opt.theta_i = c.theta_i_deg * kDeg, opt.phi_i = c.phi_i;
+    opt.theta_o = c.theta_o_deg * kDeg, opt.phi_o = 0.0;
+    opt.points = 40000;
+    opt.theta_m_bins = 2, opt.phi_m_bins = 2;
+    const HeightfieldJointMaskingTally t = heightfield_joint_masking(s, opt);
+    ASSERT_EQ(t.lost, 0);
+    EXPECT_EQ(t.visible_both, std::min(t.visible_i, t.visible_o)) << c.theta_i_deg << " " << c.theta_o_deg;
+    // The weight: one facet, N = (1, 0, 1), w = (i.N) (o.N) / |N| = |N| (i.m) (o.m) at every point.
+    const double si = std::sin(opt.theta_i) * std::cos(opt.phi_i), so = std::sin(opt.theta_o);
+    const double w = (si + std::cos(opt.theta_i)) * (so + std::cos(opt.theta_o)) / std::sqrt(2.0);
+    EXPECT_NEAR(t.sum_w / static_cast<double>(t.front), w, 1e-12 * w);
+    const int towards = 1 * 2 + 0;         // the +x facet: normal azimuth 0 = phi_o
+    EXPECT_EQ(t.count[towards], t.front);  // the -x facet faces away from o (theta_o > 45 deg)
+    const double expected = std::min(c.phi_i == 0.0 ? g1(opt.theta_i) : 1.0, g1(opt.theta_o));
+    const double k = static_cast<double>(t.count[towards]);
+    const double sd = std::sqrt(std::max(expected * (1.0 - expected), 1.0 / k) / k);
+    EXPECT_NEAR(t.g2(towards), expected, 5.0 * sd) << c.theta_i_deg << " " << c.theta_o_deg;
+  }
+}
+
+TEST(HeightfieldJointMasking, ChunksMergedInOrderAndOutOfRangeOptions) {
+  const HeightfieldSurface s = make_heightfield_surface(make_gaussian_heightfield({64, 0.5, 0.5, 4.0, 2}));
+  HeightfieldJointMaskingOptions opt;
+  opt.theta_i = 1.1, opt.theta_o = 0.7, opt.phi_o = 2.5;
+  opt.points = 2 * kHeightfieldPointsPerChunk + 17;
+  opt.seed = 11;
+  const HeightfieldJointMaskingTally a = heightfield_joint_masking(s, opt);
+  HeightfieldJointMaskingTally b(opt.theta_m_bins, opt.phi_m_bins);
+  for (std::int64_t c = 0; c < heightfield_joint_masking_chunk_count(opt); ++c)
+    b.merge(heightfield_joint_masking_chunk(s, opt, c));
+  EXPECT_EQ(a.sum_wio, b.sum_wio);
+  EXPECT_EQ(a.weight_io, b.weight_io);
+  EXPECT_EQ(a.visible_both, b.visible_both);
+  opt.theta_i = 0.5 * std::numbers::pi;
+  EXPECT_THROW(heightfield_joint_masking(s, opt), std::invalid_argument);
+  opt.theta_i = 0.1, opt.theta_o = -0.1;
+  EXPECT_THROW(heightfield_joint_masking(s, opt), std::invalid_argument);
+  opt.theta_o = 0.1, opt.points = 0;
+  EXPECT_THROW(heightfield_joint_masking(s, opt), std::invalid_argument);
 }
 
 }  // namespace

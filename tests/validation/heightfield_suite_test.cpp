@@ -7,6 +7,7 @@
 
 #include "tests/cli_run.h"
 #include "tests/test_files.h"
+#include "vgroove/analytic/ndf.h"
 #include "vgroove/sim/heightfield.h"
 #include "vgroove/support/memory.h"
 #include "vgroove/support/user_error.h"
@@ -16,7 +17,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <sstream>
 #include <string>
 
@@ -50,6 +53,7 @@ json small() {
   j["walk_paths"] = 20000;
   j["controls"] = {{{"model", "cook_torrance_smith"}, {"ndf", "beckmann"}, {"alpha", 0.3}, {"theta_i_deg", 0}},
                    {{"model", "smith_walk"}, {"ndf", "beckmann"}, {"alpha", 0.3}, {"theta_i_deg", 0}}};
+  j["masking"] = {{"theta_o_deg", {0, 75}}, {"phi_deg", {0, 180}}, {"points", 1500}};
   return j;
 }
 
@@ -63,6 +67,9 @@ TEST(HeightfieldSuite, ShippedSuiteParses) {
   EXPECT_EQ(c.ndf, analytic::NdfKind::beckmann);
   EXPECT_EQ(c.alpha, 0.3);
   EXPECT_EQ(c.theta_i_deg, 0.0);
+  ASSERT_TRUE(s.masking.has_value());
+  EXPECT_EQ(s.masking->theta_o_deg.back(), 85.0);  // grazing, where Smith is expected to err
+  EXPECT_EQ(s.masking->pairs(), 9u);
   const HeightfieldCase last = s.case_at(s.cases() - 1);
   EXPECT_EQ(last.ndf, analytic::NdfKind::ggx);
   EXPECT_EQ(last.theta_i_deg, 70.0);
@@ -87,6 +94,11 @@ TEST(HeightfieldSuite, BadSpecsNameTheFieldAndRange) {
       "h.json: /controls/0 names no case of the suite");
   bad("controls", json{{{"model", "walter"}, {"ndf", "ggx"}, {"alpha", 0.3}, {"theta_i_deg", 0}}},
       "h.json: /controls/0/model");
+  bad("masking", json{{"theta_o_deg", {90}}, {"phi_deg", {0}}, {"points", 10}}, "h.json: /masking/theta_o_deg");
+  bad("masking", json{{"theta_o_deg", {0}}, {"phi_deg", {270}}, {"points", 10}}, "h.json: /masking/phi_deg");
+  bad("masking", json{{"theta_o_deg", {0}}, {"phi_deg", {0}}, {"points", 0}}, "h.json: /masking/points");
+  bad("masking", json{{"theta_o_deg", {0}}, {"phi_deg", {0}}, {"points", 10}, {"bins", 3}},
+      "h.json: /masking/bins is not a known key");
 }
 
 TEST(HeightfieldSuite, AFieldTooLargeForMemoryIsRefusedBeforeAnyWork) {
@@ -175,6 +187,78 @@ TEST(HeightfieldSuite, ReportSaysWhichModelIsWithinNoise) {
   EXPECT_NE(table.str().find("smith_walk"), std::string::npos);
   EXPECT_NE(table.str().find("rays, lost 0"), std::string::npos);
   EXPECT_NE(table.str().find("wall"), std::string::npos);
+}
+
+// The masking section on the small run (theta_i = 0, theta_o 0 and 75 deg, azimuth differences 0
+// and 180): at theta_o = 0 every point is in view (a vertical line meets the field once), so G1 =
+// G2 = 1 exactly and every model says 1; with the light at the normal G2 is G1 under G2's weight,
+// and Smith's three forms are all 1 / (1 + Lambda_o). A deliberately wrong model, Smith's at 1.5
+// alpha, is caught by the same rule.
+TEST(HeightfieldSuite, MaskingSectionSaysWhichModelIsWithinNoise) {
+  const HeightfieldSuite s = parse_heightfield_suite(small(), "small.json");
+  const HeightfieldRun run = run_heightfield_suite(s, 0, 1);
+  ASSERT_EQ(run.cases.size(), 1u);
+  const HeightfieldOutcome& o = run.cases[0];
+  EXPECT_TRUE(o.pass);
+  EXPECT_EQ(o.masking_lost, 0);
+  EXPECT_EQ(o.masking_points, 4 * 1500 * (2 + 4));
+  ASSERT_EQ(o.g1.size(), 2u);
+  ASSERT_EQ(o.g2.size(), 4u);
+  for (const HeightfieldMaskingValue* v : {&o.g1[0], &o.g2[0], &o.g2[1]}) {
+    EXPECT_EQ(v->theta_o_deg, 0.0);
+    EXPECT_EQ(v->g, 1.0);
+    for (const HeightfieldMaskingMiss& m : v->models) {
+      EXPECT_NEAR(m.value, 1.0, 1e-12) << m.model;
+      EXPECT_TRUE(m.within_noise) << m.model;
+    }
+  }
+  const HeightfieldMaskingValue& g2 = o.g2[3];  // theta_o 75, dphi 180
+  EXPECT_EQ(g2.theta_o_deg, 75.0);
+  EXPECT_EQ(g2.phi_deg, 180.0);
+  ASSERT_EQ(g2.models.size(), 4u);
+  EXPECT_EQ(g2.g1_i, 1.0);
+  EXPECT_EQ(g2.g, g2.g1_o);
+  EXPECT_LT(g2.g, 1.0);
+  const double smith = 1.0 / (1.0 + analytic::Lambda_beckmann(75.0 * std::numbers::pi / 180.0, 0.3));
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(g2.models[static_cast<std::size_t>(k)].value, smith, 1e-15);
+  // The overall G1 (weight (o.N)+, the projected area) is Smith's on any field whose D is
+  // Beckmann's (docs/derivations/heightfield.md), and the V-cavity's too (it keeps the projected
+  // area as well): both within noise.
+  const HeightfieldMaskingValue& g1 = o.g1[1];
+  ASSERT_EQ(g1.models.size(), 2u);
+  EXPECT_NEAR(g1.models[0].value, smith, 1e-15);
+  EXPECT_NEAR(g1.models[1].value, smith, 1e-4);
+  EXPECT_TRUE(g1.models[0].overall_within_noise) << g1.g << " +- " << g1.g_se << " vs " << smith;
+  EXPECT_TRUE(g1.models[1].overall_within_noise) << g1.g << " +- " << g1.g_se << " vs " << g1.models[1].value;
+  const double rough = 1.0 / (1.0 + analytic::Lambda_beckmann(75.0 * std::numbers::pi / 180.0, 0.45));
+  const HeightfieldMaskingMiss wrong = heightfield_masking_miss(
+      "rough", g1, rough, std::vector<double>(g1.bins.size(), rough), s.sigmas, s.model_tolerance);
+  EXPECT_FALSE(wrong.overall_within_noise) << wrong.diff << " (" << wrong.z << " se)";
+
+  const json r = heightfield_report_json(s, run);
+  const json& m = r["cases"][0]["masking"];
+  ASSERT_EQ(m["g2"].size(), 4u);
+  for (const json& v : m["g2"])
+    for (const char* name :
+         {"smith_separable", "smith_height_correlated", "smith_height_direction_correlated", "vcavity"}) {
+      const json& mm = v["models"][name];
+      EXPECT_EQ(mm["overall_within_noise"].get<bool>(),
+                std::abs(mm["diff"].get<double>()) <= s.sigmas * v["traced_se"].get<double>() + s.model_tolerance)
+          << name;
+    }
+  std::ostringstream table;
+  print_heightfield_table(table, s, run);
+  EXPECT_NE(table.str().find("G2 theta_o 75.0 dphi 180.0: "), std::string::npos) << table.str();
+  EXPECT_NE(table.str().find("within noise overall: "), std::string::npos);
+
+  // Two threads: the same values.
+  const HeightfieldRun two = run_heightfield_suite(s, 0, 2);
+  EXPECT_EQ(two.cases[0].g2[3].g, g2.g);
+  ASSERT_EQ(two.cases[0].g2[3].bins.size(), g2.bins.size());
+  for (std::size_t b = 0; b < g2.bins.size(); ++b) {  // NaN in bins without points on every field
+    const double x = two.cases[0].g2[3].bins[b];
+    EXPECT_TRUE(x == g2.bins[b] || (std::isnan(x) && std::isnan(g2.bins[b]))) << b;
+  }
 }
 
 // The command line: an oversized field is refused before any work, one line naming the key and
