@@ -80,6 +80,7 @@ cat >"$t/heightfield.json" <<'J'
 {"name": "tiny_heightfield", "kind": "heightfield", "ndf": ["beckmann", "ggx"], "alpha": [0.5], "theta_i_deg": [0, 60],
  "field_size": 64, "correlation_length": 4, "fields": 2, "rays": 3000, "walk_paths": 5000, "theta_bins": 6,
  "phi_bins": 4, "seed": 3, "thresholds": {"sigmas": 5},
+ "masking": {"theta_o_deg": [45, 85], "phi_deg": [0, 180], "points": 500, "theta_m_bins": 3, "phi_m_bins": 2},
  "controls": [{"model": "cook_torrance_smith", "ndf": "beckmann", "alpha": 0.5, "theta_i_deg": 0}]}
 J
 cat >"$t/sampling.json" <<'J'
