@@ -2,8 +2,10 @@
 // a JSON file.
 #include "vgroove/app/commands.h"
 
+#include "vgroove/app/distributed.h"
 #include "vgroove/app/mpi_world.h"
 #include "vgroove/app/options.h"
+#include "vgroove/app/outputs.h"
 #include "vgroove/app/progress.h"
 #include "vgroove/support/atomic_file.h"
 #include "vgroove/support/json_text.h"
@@ -12,6 +14,7 @@
 #include "vgroove/validation/energy_table.h"
 #include "vgroove/validation/glass_energy.h"
 
+#include <chrono>
 #include <iostream>
 
 namespace vgroove::app {
@@ -21,8 +24,6 @@ using namespace validation;
 int cmd_energy_glass(const EnergyArgs& a) {
   check_threads(a.threads, "--threads");
   check_seed(a.seed, "--seed");
-  if (!a.shard.empty() || world().distributed())
-    throw support::UserError("--eta tables run in one process (--shard and mpirun apply to the conductor tables)");
   if (a.npy) throw support::UserError("--npy applies to the conductor tables (--eta writes its arrays in the JSON)");
   GlassGrid g;
   // Without --ndf: GGX (the default list's Phong has no glass tables).
@@ -41,16 +42,41 @@ int cmd_energy_glass(const EnergyArgs& a) {
   g.max_k = a.max_k;
   g.grooves = a.grooves;
   check_glass_grid(g);
+  const std::optional<support::Shard> shard = shard_from(a.shard, a.out);
+  if (shard && world().distributed())
+    throw support::UserError("--shard cannot be combined with mpirun (the ranks split the work among themselves)");
   if (!a.out.empty()) support::check_writable_target(a.out, a.force);
   if (a.dry_run) return 0;
+  if (shard) {
+    const auto part = run_job_part(glass_job(g, a.cancel), *shard, a.threads,
+                                   terminal_progress("energy --eta " + shard->text()), a.cancel);
+    if (!part) return interrupted_no_report();
+    write_partial(a.out, *part, a.force);
+    return 0;
+  }
+  if (world().distributed()) {
+    const auto t0 = std::chrono::steady_clock::now();
+    int threads = 0;
+    auto results =
+        run_distributed(glass_job(g, a.cancel), a.threads, terminal_progress("energy --eta"), a.cancel, &threads);
+    if (!results) return 0;  // not rank 0: its results went there
+    GlassTable t = glass_table_from(g, std::move(*results));
+    t.threads = threads;
+    t.wall_s = support::seconds_since(t0);
+    write_glass_table(t, a.out, a.force);
+    return 0;
+  }
   const auto t = run_glass_table(g, a.threads, terminal_progress("energy --eta"), a.cancel);
   if (!t) return interrupted_no_report();
-  print_glass_table(std::cout, *t);
-  if (!a.out.empty()) {
-    support::write_file_atomically(a.out, support::json_text(glass_table_json(*t), 1) + "\n", a.force);
-    std::cout << "table: " << support::printable(a.out) << "\n";
-  }
+  write_glass_table(*t, a.out, a.force);
   return 0;
+}
+
+void write_glass_table(const validation::GlassTable& t, const std::string& out, bool force) {
+  print_glass_table(std::cout, t);
+  if (out.empty()) return;
+  support::write_file_atomically(out, support::json_text(glass_table_json(t), 1) + "\n", force);
+  std::cout << "table: " << support::printable(out) << "\n";
 }
 
 }  // namespace vgroove::app

@@ -5,6 +5,7 @@
 #include "vgroove/support/atomic_file.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/energy_table.h"
+#include "vgroove/validation/glass_energy.h"
 #include "vgroove/validation/partial_report.h"
 
 #include <algorithm>
@@ -25,6 +26,16 @@ int merge_energy(const std::vector<Part>& parts, const MergeArgs& a) {
   for (const Part& p : parts) t.threads += p.header.threads, t.wall_s = std::max(t.wall_s, p.header.wall_s);
   t.threads -= 1;  // energy_table_from starts at 1
   write_energy_table(t, a.out, a.npy, a.force);
+  return 0;
+}
+
+int merge_glass(const std::vector<Part>& parts, const MergeArgs& a) {
+  const GlassGrid g = glass_grid_from_json(parts.front().header.job.at("input"), parts.front().file);
+  if (a.dry_run) return 0;
+  GlassTable t = glass_table_from(g, merge_job_parts(glass_job(g), parts));
+  t.threads = 0;
+  for (const Part& p : parts) t.threads += p.header.threads, t.wall_s = std::max(t.wall_s, p.header.wall_s);
+  write_glass_table(t, a.out, a.force);
   return 0;
 }
 
@@ -52,6 +63,7 @@ int cmd_merge(const MergeArgs& a) {
   if (!a.out.empty()) support::check_writable_target(a.out, a.force, inputs);
   const std::string command = parts.front().header.job.value("command", "");
   if (command == "energy") return merge_energy(parts, a);
+  if (command == "energy --eta") return merge_glass(parts, a);
   if (command == "simulate") return merge_simulate(parts, a);
   if (command == "bench accuracy") return merge_accuracy(parts, a);
   if (command == "validate") return merge_validate(parts, a);

@@ -5,6 +5,7 @@
 #include "vgroove/scene/simulate.h"
 #include "vgroove/support/work_plan.h"
 #include "vgroove/validation/energy_table.h"
+#include "vgroove/validation/glass_energy.h"
 #include "vgroove/validation/groove_suite_run.h"
 #include "vgroove/validation/partial_report.h"
 #include "vgroove/validation/validate.h"
@@ -27,6 +28,8 @@ void write_partial(const std::string& out, const nlohmann::json& part, bool forc
 std::vector<std::string> energy_npy_files(const validation::EnergyGrid& g, const std::string& out, bool npy);
 // Prints the table; writes the .npy files then the JSON (each whole or absent).
 void write_energy_table(const validation::EnergyTable& t, const std::string& out, bool npy, bool force);
+// Glass tables (`energy --eta`): prints the table; writes the JSON (whole or absent).
+void write_glass_table(const validation::GlassTable& t, const std::string& out, bool force);
 
 // Scenes: the job descriptor of `vgroove simulate`, and its table and result JSON.
 nlohmann::json simulate_descriptor(const scene::Scene& scene);

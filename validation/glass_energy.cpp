@@ -9,6 +9,7 @@
 #include "vgroove/support/format.h"
 #include "vgroove/support/seconds_since.h"
 #include "vgroove/support/user_error.h"
+#include "vgroove/validation/detail/part_fields.h"
 #include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
 
@@ -24,8 +25,6 @@ namespace {
 
 constexpr std::uint64_t kGlassSurfaceStream = 0x676c617373ULL;  // "glass"
 constexpr std::uint64_t kGlassRayStream = 0x676c61737372ULL;    // "glassr"
-// Chunks of sim::kRaysPerChunk rays a work unit holds (the surface is built once per unit).
-constexpr std::int64_t kChunksPerUnit = 8;
 
 const char* side_name(sim::Medium m) { return m == sim::Medium::above ? "above" : "below"; }
 
@@ -222,30 +221,123 @@ void GlassCounts::merge(const GlassCounts& o) {
   bounce_limit += o.bounce_limit, vertex += o.vertex, interactions += o.interactions;
 }
 
-std::optional<GlassTable> run_glass_table(const GlassGrid& g, int threads, const support::ProgressFn& progress,
-                                          const std::atomic<bool>* cancel) {
+std::shared_ptr<const GlassWork::Context> GlassWork::prepare(std::size_t cell) const {
+  return std::make_shared<const Context>(Context{glass_surface(grid, grid.cell_at(cell), surface_index(grid, cell))});
+}
+
+GlassCounts GlassWork::run_chunks(const Context& ctx, std::size_t cell, std::int64_t begin, std::int64_t end) const {
+  GlassCounts t = empty_counts(grid.max_k);
+  trace_unit(grid, cell, ctx.surface, begin, end, t, cancel);
+  return t;
+}
+
+nlohmann::json GlassWork::tally_json(const Tally& t) {
+  return {{"rays", t.rays},
+          {"reflected", t.reflected},
+          {"transmitted", t.transmitted},
+          {"bounce_limit", t.bounce_limit},
+          {"vertex", t.vertex},
+          {"interactions", t.interactions}};
+}
+
+GlassCounts GlassWork::read_tally(support::JsonObject& j, std::size_t, const std::vector<ChunkRun>& runs) const {
+  const std::int64_t n = rays_in_chunks(runs, grid.rays, sim::kRaysPerChunk);
+  GlassCounts t = empty_counts(grid.max_k);
+  t.rays = j.integer("rays", n, n);
+  const std::size_t rows = static_cast<std::size_t>(grid.max_k) + 1;
+  const auto counts = [&](const std::string& key, std::vector<long long>& into) {
+    const std::vector<std::int64_t> v = read_counts(j, key, rows, t.rays);
+    into.assign(v.begin(), v.end());
+  };
+  counts("reflected", t.reflected);
+  counts("transmitted", t.transmitted);
+  t.bounce_limit = j.integer("bounce_limit", 0, t.rays);
+  t.vertex = j.integer("vertex", 0, t.rays);
+  // Each ray meets the surface at least once and at most max_interactions times.
+  t.interactions = j.integer("interactions", t.rays, t.rays * static_cast<long long>(grid.max_interactions));
+  const double ended = sum(t.reflected) + sum(t.transmitted) + static_cast<double>(t.bounce_limit + t.vertex);
+  if (ended != static_cast<double>(t.rays))
+    j.fail("rays", "= " + std::to_string(t.rays) + " but reflected, transmitted, bounce_limit and vertex hold " +
+                       support::number_text(ended) + " (every ray ends in exactly one)");
+  return t;
+}
+
+GlassWork::Fixed GlassWork::read_fixed(support::JsonObject& j, std::size_t) const {
+  throw support::UserError(j.file() + ": " + j.pointer() + " is given: a glass cell has no fixed part");
+}
+
+nlohmann::json glass_grid_json(const GlassGrid& g) {
+  nlohmann::json ndfs = nlohmann::json::array(), dims = nlohmann::json::array(), sides = nlohmann::json::array();
+  for (NdfKind n : g.ndfs) ndfs.push_back(ndf_name(n));
+  for (SurfaceDim d : g.dims) dims.push_back(surface_dim_name(d));
+  for (sim::Medium m : g.sides) sides.push_back(side_name(m));
+  return {{"ndf", ndfs},
+          {"dimensions", dims},
+          {"sides", sides},
+          {"eta", exact_json(g.etas)},
+          {"alpha", exact_json(g.alphas)},
+          {"mu", exact_json(g.mus)},
+          {"rays", g.rays},
+          {"seed", g.seed},
+          {"max_k", g.max_k},
+          {"grooves", g.grooves},
+          {"max_interactions", g.max_interactions},
+          {"conductor_limit", g.conductor_limit}};
+}
+
+GlassGrid glass_grid_from_json(const nlohmann::json& j, const std::string& where) {
+  GlassGrid g;
+  try {
+    std::vector<std::string> ndfs, dims, sides;
+    for (const auto& n : j.at("ndf")) ndfs.push_back(n.get<std::string>());
+    for (const auto& d : j.at("dimensions")) dims.push_back(d.get<std::string>());
+    for (const auto& s : j.at("sides")) sides.push_back(s.get<std::string>());
+    set_glass_axes(g, ndfs, dims, sides, where + ": ");
+    g.etas = exact_doubles(j.at("eta"));
+    g.alphas = exact_doubles(j.at("alpha"));
+    g.mus = exact_doubles(j.at("mu"));
+    g.rays = j.at("rays").get<long long>();
+    g.seed = j.at("seed").get<std::uint64_t>();
+    g.max_k = j.at("max_k").get<int>();
+    g.grooves = j.at("grooves").get<int>();
+    g.max_interactions = j.at("max_interactions").get<int>();
+    g.conductor_limit = j.at("conductor_limit").get<bool>();
+  } catch (const nlohmann::json::exception& e) {
+    throw support::UserError(where + ": not a glass table's grid (" + e.what() + ")");
+  }
+  check_glass_grid(g, where + ": ");
+  return g;
+}
+
+Job<GlassWork> glass_job(const GlassGrid& g, const std::atomic<bool>* cancel) {
   check_glass_grid(g);
-  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<support::WorkUnit> units(g.cells() + g.average_cells());
   const std::int64_t chunks = chunks_of(g);
-  const std::int64_t per_cell = (chunks + kChunksPerUnit - 1) / kChunksPerUnit;
-  const std::size_t all_cells = g.cells() + g.average_cells();
-  const std::size_t units = all_cells * static_cast<std::size_t>(per_cell);
-  std::vector<GlassCounts> unit_counts(units, empty_counts(g.max_k));
-  const bool all = support::parallel_for(
-      units, support::resolve_threads(threads),
-      [&](std::size_t u) {
-        const std::size_t cell = u / static_cast<std::size_t>(per_cell);
-        const std::int64_t part = static_cast<std::int64_t>(u % static_cast<std::size_t>(per_cell));
-        const sim::Microsurface surface = glass_surface(g, g.cell_at(cell), surface_index(g, cell));
-        trace_unit(g, cell, surface, part * kChunksPerUnit, std::min(chunks, (part + 1) * kChunksPerUnit),
-                   unit_counts[u], cancel);
-      },
-      progress, cancel, 1);
-  if (!all || (cancel && cancel->load())) return std::nullopt;
+  for (std::size_t c = 0; c < units.size(); ++c) {
+    units[c].chunks = chunks;
+    // About a microsecond per ray (a few interactions each); rougher surfaces take more.
+    units[c].chunk_cost = static_cast<std::int64_t>(1000.0 * (1.0 + g.cell_at(c).alpha)) *
+                          std::min<std::int64_t>(g.rays, sim::kRaysPerChunk);
+  }
+  nlohmann::json d = {
+      {"command", "energy --eta"}, {"kind", "glass_energy"},      {"input_file", ""},
+      {"input_path", ""},          {"input", glass_grid_json(g)}, {"options", nlohmann::json::object()}};
+  return make_job(GlassWork{g, cancel}, std::move(units), std::move(d));
+}
+
+GlassTable glass_table_from(const GlassGrid& g, std::vector<UnitResult<GlassWork>> results) {
   GlassTable t;
   t.grid = g;
-  t.cells.assign(all_cells, empty_counts(g.max_k));
-  for (std::size_t u = 0; u < units; ++u) t.cells[u / static_cast<std::size_t>(per_cell)].merge(unit_counts[u]);
+  for (auto& r : results) t.cells.push_back(std::move(r.tally));
+  return t;
+}
+
+std::optional<GlassTable> run_glass_table(const GlassGrid& g, int threads, const support::ProgressFn& progress,
+                                          const std::atomic<bool>* cancel) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto results = run_job(glass_job(g, cancel), threads, progress, cancel);
+  if (!results) return std::nullopt;
+  GlassTable t = glass_table_from(g, std::move(*results));
   t.threads = support::resolve_threads(threads);
   t.wall_s = support::seconds_since(t0);
   return t;

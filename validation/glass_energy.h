@@ -13,14 +13,17 @@
 
 #include "vgroove/common/ndf_kind.h"
 #include "vgroove/sim/dielectric_groove.h"
+#include "vgroove/sim/microsurface.h"
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/brdf_suite.h"
 #include "vgroove/validation/ranges.h"
+#include "vgroove/validation/work_run.h"
 
 #include <nlohmann/json.hpp>
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -81,6 +84,37 @@ struct GlassTable {
   int threads = 1;
   double wall_s = 0.0;
 };
+
+// The work of a table (work_run.h): a unit per cell (the grid's, then the hemispherical ones), its
+// rays in chunks of sim::kRaysPerChunk, chunk c of cell k from the stream (seed, glass rays + k, c);
+// the context is the cell's surface. One process, shards (`--shard`, `vgroove merge`) and MPI ranks
+// give the same counts.
+struct GlassWork {
+  struct Context {
+    sim::Microsurface surface;
+  };
+  using Tally = GlassCounts;
+  struct Fixed {};
+  GlassGrid grid;
+  const std::atomic<bool>* cancel = nullptr;
+  std::shared_ptr<const Context> prepare(std::size_t cell) const;
+  Tally run_chunks(const Context& ctx, std::size_t cell, std::int64_t begin, std::int64_t end) const;
+  Fixed run_fixed(std::size_t) const { return {}; }
+  static void merge(Tally& into, const Tally& from) { into.merge(from); }
+  static nlohmann::json tally_json(const Tally& t);
+  static nlohmann::json fixed_json(const Fixed&) { return nlohmann::json::object(); }
+  // As strictly as a suite: the chunks' ray count, every bucket within it and the buckets adding up
+  // to it (every ray ends in exactly one).
+  Tally read_tally(support::JsonObject& j, std::size_t cell, const std::vector<ChunkRun>& runs) const;
+  Fixed read_fixed(support::JsonObject& j, std::size_t cell) const;  // throws: glass cells have none
+};
+
+// The grid as the job's input (every field the counts depend on) and back, checked as the command
+// line checks it (`where` names the file).
+nlohmann::json glass_grid_json(const GlassGrid& g);
+GlassGrid glass_grid_from_json(const nlohmann::json& j, const std::string& where);
+Job<GlassWork> glass_job(const GlassGrid& g, const std::atomic<bool>* cancel = nullptr);
+GlassTable glass_table_from(const GlassGrid& g, std::vector<UnitResult<GlassWork>> results);
 
 // Every cell in this process (deterministic: the same counts for any thread count); nothing when
 // *cancel was set.

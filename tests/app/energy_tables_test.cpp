@@ -247,7 +247,7 @@ TEST(EnergyGlassCli, BadInputNamesTheFlagAndASmallRunWritesItsTable) {
            {"--eta 1.5 --side inside", "--side = \"inside\" is not one of \"above\", \"below\""},
            {"--eta 1.5 --grooves 0", "--grooves"},
            {"--eta 1.5 --audit", "--audit and --eta are two runs: give one"},
-           {"--eta 1.5 --shard 1/2", "--eta tables run in one process"},
+           {"--eta 1.5 --shard 3/2", "--shard = 3/2 is out of range: I/N with 1 <= I <= N"},
            {"--eta 1.5 --npy", "--npy applies to the conductor tables"},
            {"--side below", "--side applies to the glass tables (--eta)"},
            {"--eta 1.5 --mu 0", "--mu = 0 is out of range"}}) {

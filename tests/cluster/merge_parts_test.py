@@ -2,7 +2,7 @@
 """merge_parts_test.py VGROOVE: `vgroove merge` reads shard parts as strictly as suite files.
 
 Real parts of every kind that shards (brdf in flatland and 3D, table2, single grooves, energy,
-simulate) are damaged one value at a time, in their tallies, their headers and their provenance: counts made negative, fractional, 1e300, 2^64, off by
+glass tables, simulate) are damaged one value at a time, in their tallies, their headers and their provenance: counts made negative, fractional, 1e300, 2^64, off by
 one or of the wrong type; arrays cut, extended or emptied; model values of the wrong type. Each
 damaged set must be refused with exit 2, one line on stderr naming the damaged part and the JSON
 path of the value, and no report; only a value no check can see (timings, and counts that no sum
@@ -58,6 +58,8 @@ COMMANDS = {
     "table1": ["validate", f"{T}/table1.json"],
     "energy": ["energy", "--ndf", "ggx,beckmann", "--dim", "flatland,3d", "--mu-points", "1", "--alpha-points", "1",
                "--rays", "2000", "--max-k", "3"],
+    "glass": ["energy", "--eta", "1.5", "--dim", "3d,flatland", "--alpha", "0.3", "--mu", "1", "--rays", "2000",
+              "--grooves", "200", "--max-k", "3"],
     "simulate": ["simulate", f"{T}/scene.json"],
     "audit": ["validate", f"{T}/audit.json"],
 }
@@ -69,7 +71,8 @@ UNSEEN = {"thread_s", "wall_s", "model_s", "bounces", "max_k_seen", "k", "zones"
 # albedo (one of the channels of *_E_F), Filament's texel, the V-groove rows (bounded by their
 # total, not tied to it); a facet's figures below its case's largest.
 # The audit's tally keeps each row's energy in units of 2^-32, bounded by its paths, with no sum.
-UNSEEN_BY_KIND = {"audit": {"energy"}}
+# The glass tables' interactions: at least one per ray, at most max_interactions, with no sum.
+UNSEEN_BY_KIND = {"audit": {"energy"}, "glass": {"interactions"}}
 # The audit's headers are every kind's (damaged above): its units of one part are damaged alone.
 DAMAGED = {"audit": ((0,), ("units",))}
 SLIGHTLY_UNSEEN = {"cook_torrance", "E", "E_avg", "smith_E_F", "vcavity_E_F", "filament_dfg_y", "vgroove_rows",

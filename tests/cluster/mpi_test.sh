@@ -3,7 +3,8 @@
 #   validate: `mpirun -n K vgroove validate` for K = 1, 2, 3 (oversubscribed on this machine) writes
 #     the report of one process, value for value (timings aside): brdf and single-groove suites on
 #     1, 2 and 3 ranks, table2 on 3, furnace on 2 and 3.
-#   commands: the same for bench accuracy, simulate (one case: ray chunks) and energy on 2 and 3 ranks.
+#   commands: the same for bench accuracy, simulate (one case: ray chunks), energy and its glass tables
+#     (--eta) on 2 and 3 ranks.
 #   failure: a rank that fails (VGROOVE_TEST_FAIL_RANK) ends the run with an error naming it, a
 #     non-zero exit and no report.
 set -euo pipefail
@@ -72,6 +73,7 @@ case $check in
     ranks accuracy "2 3" bench accuracy "$t/table1.json" --rays 50,200
     ranks simulate "2 3" simulate "$t/scene.json"
     ranks energy "2 3" energy --ndf ggx,phong --dim flatland --mu-points 2 --alpha-points 2 --rays 2000 --max-k 4
+    ranks glass "2 3" energy --eta 1.5 --dim 3d,flatland --alpha 0.3 --mu 1,0.5 --rays 2000 --grooves 300
     ;;
   failure)
     rc=0

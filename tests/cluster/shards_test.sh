@@ -164,6 +164,8 @@ PY
   energy)
     sharded energy 3 "${ENERGY[@]}"
     sharded energy_chunks 40 "${ENERGY_FLAT[@]}"   # 12 cells: split into ray chunks
+    # Glass tables (--eta): both sides, both dimensions, the hemispherical cells; 5 shards split cells.
+    sharded glass 5 energy --eta 1.5,0.8 --dim 3d,flatland --alpha 0.3 --mu 1,0.5 --rays 3000 --grooves 300
     ;;
   refusals)
     p() { "$bin" validate "$t/$1" --threads 1 --shard "$2" --out "$t/$3" "${@:4}" >/dev/null; }
