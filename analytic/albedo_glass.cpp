@@ -162,7 +162,9 @@ double theta_of_v(NdfKind ndf, double alpha, double v) {
   return std::atan2(s, c);
 }
 
-double g1v_ratio(double ih_or_oh, double n_dot, double cos_h) { return 2.0 * cos_h * std::abs(n_dot) / std::abs(ih_or_oh); }
+double g1v_ratio(double ih_or_oh, double n_dot, double cos_h) {
+  return 2.0 * cos_h * std::abs(n_dot) / std::abs(ih_or_oh);
+}
 
 BoundedValue integrate_lobe(const Setup& s, const AlbedoOptions& opt) {
   const bool vcavity = s.m.masking == MaskingKind::vcavity;
@@ -312,8 +314,8 @@ GlassAlbedo albedo_glass_average(const MicrofacetModel& m, double alpha, double 
     AdaptiveOptions o;
     o.abs_tol = 0.5 * opt.tol;
     o.max_pieces = opt.max_pieces;
-    const AdaptiveResult r =
-        integrate_adaptive([&](double mu) { return 2.0 * mu * g(mu); }, refined({0.0, 0.25, 0.5, 0.75, 1.0}, opt.refine), o);
+    const AdaptiveResult r = integrate_adaptive([&](double mu) { return 2.0 * mu * g(mu); },
+                                                refined({0.0, 0.25, 0.5, 0.75, 1.0}, opt.refine), o);
     (lobe == Lobe::reflect ? out.R : out.T) =
         BoundedValue{r.value, r.error + inner_error + rounding(r.value), converged && r.converged, evaluations};
   }

@@ -7,10 +7,10 @@
 // Cut at every kink (o.n = 0, i.h = 0, the facet's critical angle when eta < 1); the bound is that
 // of analytic/albedo_single.h. T_avg(eta) = eta^2 T_avg(1 / eta) for every G2 symmetric in (i, o).
 // Tests: tests/analytic/albedo_glass_test.cpp (AlbedoGlass.SmallRoughnessIsFlatFresnel,
-// AlbedoGlass.HalvingTheStepMovesEachValueLessThanItsBound, AlbedoGlass.ReflectionIsTheConductorFormWithF,
-// AlbedoGlass.AgreesWithTheBsdfIntegratedOverO, AlbedoGlass.TransmittedAveragesObeyReciprocity,
-// AlbedoGlass.SmithLosesEnergy, AlbedoGlass.IndexOneIsTheMaskingOfTheStraightPath).
-// Derivation: docs/derivations/albedo.md ("Rough glass") and the header of albedo_glass.cpp.
+// AlbedoGlass.HalvingTheStepMovesEachValueLessThanItsBound, AlbedoGlass.CriticalAngleIsCut,
+// AlbedoGlass.ReflectionIsTheConductorFormWithF, AlbedoGlass.AgreesWithTheBsdfIntegratedOverO,
+// AlbedoGlass.TransmittedAveragesObeyReciprocity, AlbedoGlass.SmithLosesEnergy,
+// AlbedoGlass.IndexOneIsTheMaskingOfTheStraightPath). Derivation: the opening comment of albedo_glass.cpp.
 #pragma once
 
 #include "vgroove/analytic/albedo_single.h"
