@@ -185,7 +185,6 @@ BoundedValue integrate_lobe(const Setup& s, const AlbedoOptions& opt) {
     // sqrt(1 - eta^2) and o_t.n = 0 (eta < 1); the V-cavity's G1(i) = 1, G1(o) = 1, G1(i) = G1(o).
     std::vector<std::function<double(const Exit&, double)>> kink_fns;
     if (s.eta < 1.0) {
-      const double c_crit = std::sqrt((1.0 - s.eta) * (1.0 + s.eta));
       if (s.lobe == Lobe::transmit) kink_fns.push_back([](const Exit& e, double) { return e.ih > 0.0 ? e.oz : 1.0; });
     }
     if (vcavity) {

@@ -65,12 +65,13 @@ TEST(AlbedoGlass, SmallRoughnessIsFlatFresnel) {
 
 // The bound: every value computed again with every initial piece halved (refine 2) moves by less
 // than the two bounds, at smooth and kinked points (eta < 1: the critical angle inside the lobes).
+// The V-cavity too in AlbedoGlassLong.HalvingTheStepMovesEachValueLessThanItsBound.
 TEST(AlbedoGlass, HalvingTheStepMovesEachValueLessThanItsBound) {
   va::AlbedoOptions coarse, fine;
   coarse.tol = fine.tol = 1e-7;
   fine.refine = 2;
   int n = 0;
-  for (const auto& m : {kModels[0], kModels[2], kModels[4]})
+  for (const auto& m : {kModels[0], kModels[4]})
     for (double eta : {1.5, 1.0 / 1.5})
       for (double alpha : {0.1, 0.6})
         for (double mu : {0.5, 0.1}) {
@@ -85,7 +86,31 @@ TEST(AlbedoGlass, HalvingTheStepMovesEachValueLessThanItsBound) {
             ++n;
           }
         }
-  EXPECT_EQ(n, 36);
+  EXPECT_EQ(n, 24);
+}
+
+// The same for all six models.
+TEST(AlbedoGlassLong, HalvingTheStepMovesEachValueLessThanItsBound) {
+  va::AlbedoOptions coarse, fine;
+  coarse.tol = fine.tol = 1e-7;
+  fine.refine = 2;
+  int n = 0;
+  for (const auto& m : kModels)
+    for (double eta : {1.5, 1.0 / 1.5})
+      for (double alpha : {0.1, 0.6})
+        for (double mu : {0.5, 0.1}) {
+          if (alpha == 0.6 && mu == 0.5) continue;
+          const va::GlassAlbedo a = va::albedo_glass(m, alpha, mu, eta, coarse);
+          const va::GlassAlbedo b = va::albedo_glass(m, alpha, mu, eta, fine);
+          for (auto [x, y] : {std::pair{a.R, b.R}, std::pair{a.T, b.T}}) {
+            EXPECT_TRUE(x.converged && y.converged) << name(m);
+            EXPECT_LT(x.error, 2e-7);
+            EXPECT_LE(std::abs(x.value - y.value), x.error + y.error)
+                << name(m) << " eta " << eta << " alpha " << alpha << " mu " << mu;
+            ++n;
+          }
+        }
+  EXPECT_EQ(n, 72);
 }
 
 // Inside the denser medium the facet's critical angle i.h = sqrt(1 - eta^2) crosses the lobe (1 - F
@@ -178,9 +203,9 @@ TEST(AlbedoGlass, IndexOneIsTheMaskingOfTheStraightPath) {
 // the V-cavity's likewise; below 1 by what the masking drops (grazing and rough: well below).
 TEST(AlbedoGlass, SmithLosesEnergy) {
   va::AlbedoOptions o;
-  o.tol = 1e-7;
+  o.tol = 1e-6;
   for (const auto& m : kModels)
-    for (double eta : {1.5, 1.0 / 1.5, 3.0})
+    for (double eta : {3.0, 1.0 / 1.5})
       for (double alpha : {0.05, 1.5})
         for (double mu : {0.5, 0.05}) {
           const va::GlassAlbedo e = va::albedo_glass(m, alpha, mu, eta, o);
