@@ -10,7 +10,8 @@
 // AlbedoGlass.HalvingTheStepMovesEachValueLessThanItsBound, AlbedoGlass.CriticalAngleIsCut,
 // AlbedoGlass.ReflectionIsTheConductorFormWithF, AlbedoGlass.AgreesWithTheBsdfIntegratedOverO,
 // AlbedoGlass.TransmittedAveragesObeyReciprocity, AlbedoGlass.SmithLosesEnergy,
-// AlbedoGlass.IndexOneIsTheMaskingOfTheStraightPath). Derivation: the opening comment of albedo_glass.cpp.
+// AlbedoGlass.IndexOneIsTheMaskingOfTheStraightPath, AlbedoGlass.ExtremesAreFinite).
+// Derivation: the opening comment of albedo_glass.cpp.
 #pragma once
 
 #include "vgroove/analytic/albedo_single.h"

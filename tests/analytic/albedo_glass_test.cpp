@@ -216,6 +216,26 @@ TEST(AlbedoGlass, SmithLosesEnergy) {
         }
 }
 
+// The corners of the domain: alpha 1e-4 and 2, mu 1e-3 and 1, eta 3, 1/3 and 1.0001: finite,
+// converged, within [0, 1] by their bounds.
+TEST(AlbedoGlass, ExtremesAreFinite) {
+  va::AlbedoOptions o;
+  o.tol = 1e-6;
+  for (const auto& m : kModels)
+    for (double alpha : {1e-4, 2.0})
+      for (double mu : {1e-3, 1.0})
+        for (double eta : {3.0, 1.0 / 3.0, 1.0001}) {
+          const va::GlassAlbedo e = va::albedo_glass(m, alpha, mu, eta, o);
+          for (const va::BoundedValue& v : {e.R, e.T}) {
+            EXPECT_TRUE(std::isfinite(v.value) && v.converged && v.error < 1e-6)
+                << name(m) << " alpha " << alpha << " mu " << mu << " eta " << eta << " " << v.value << " +- "
+                << v.error;
+            EXPECT_GE(v.value, -v.error);
+          }
+          EXPECT_LE(e.R.value + e.T.value, 1.0 + e.R.error + e.T.error) << name(m) << alpha << mu << eta;
+        }
+}
+
 // Generalized reciprocity f_t(i, o) / eta^2 = f_t'(o, i) (walter.h) integrated over both directions
 // with |i.n| |o.n|: T_avg(eta) = eta^2 T_avg(1 / eta) for every G2 symmetric in (i, o) (all three).
 // Each side is computed alone (one has TIR, the other not): a test of both. Broken: eta^1.
