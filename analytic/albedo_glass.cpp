@@ -282,7 +282,9 @@ BoundedValue integrate_lobe(const Setup& s, const AlbedoOptions& opt) {
 }
 
 Setup make_setup(const MicrofacetModel& m, double alpha, double mu, double eta, Lobe lobe) {
-  assert(model_supported(m) && alpha > 0.0 && mu > 0.0 && mu <= 1.0 && eta > 0.0);
+  // w_of and h_of have GGX's and Beckmann's closed forms only.
+  assert((m.ndf == NdfKind::ggx || m.ndf == NdfKind::beckmann) && model_supported(m));
+  assert(alpha > 0.0 && mu > 0.0 && mu <= 1.0 && eta > 0.0);
   Setup s{m, alpha, mu, std::sqrt((1.0 - mu) * (1.0 + mu)), eta, 0.0, lobe};
   if (m.masking != MaskingKind::vcavity) s.lambda_i = lambda_of(m.ndf, alpha, s.sin_i, 0.0, mu);
   return s;

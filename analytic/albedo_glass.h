@@ -25,7 +25,8 @@ struct GlassAlbedo {
   BoundedValue R, T;
 };
 
-// E_R(mu) and E_T(mu), mu in (0, 1], alpha > 0; each to opt.tol with its own bound.
+// E_R(mu) and E_T(mu), mu in (0, 1], alpha > 0, NDF GGX or Beckmann (any MaskingKind); each to
+// opt.tol with its own bound.
 GlassAlbedo albedo_glass(const MicrofacetModel& m, double alpha, double mu, double eta, const AlbedoOptions& opt = {});
 
 // R_avg = 2 int_0^1 E_R(mu) mu dmu and T_avg likewise (Kulla and Conty 2017's E_avg per lobe).
