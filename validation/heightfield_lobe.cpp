@@ -14,7 +14,21 @@
 
 namespace vgroove::validation {
 
+const char* heightfield_surface_name(HeightfieldSurfaceKind k) {
+  return k == HeightfieldSurfaceKind::grooves ? "grooves" : "gaussian";
+}
+
+sim::GrooveFieldOptions groove_field_options(const HeightfieldFieldSpec& spec, std::uint64_t seed) {
+  sim::GrooveFieldOptions g;
+  g.n = spec.field_size, g.ndf = spec.ndf, g.alpha = spec.alpha;
+  g.groove_length = 3.0 * spec.correlation_length, g.groove_spacing = 3.0 * spec.correlation_length;
+  g.seed_step = 0.5 * spec.correlation_length, g.seed = seed;
+  return g;
+}
+
 sim::HeightfieldSurface make_field_surface(const HeightfieldFieldSpec& spec, std::uint64_t seed) {
+  if (spec.surface == HeightfieldSurfaceKind::grooves)
+    return sim::make_heightfield_surface(sim::make_random_groove_field(groove_field_options(spec, seed)));
   sim::GaussianHeightfieldOptions o;
   o.n = spec.field_size, o.alpha_x = spec.alpha, o.alpha_y = spec.alpha;
   o.correlation_length = spec.correlation_length, o.seed = seed;

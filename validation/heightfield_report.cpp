@@ -113,16 +113,27 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
   j["inputs"] = {{"ndf", ndfs},
                  {"alpha", suite.alphas},
                  {"theta_i_deg", suite.theta_i_deg},
+                 {"surface", heightfield_surface_name(suite.surface)},
                  {"field_size", suite.field_size},
                  {"correlation_length", suite.correlation_length},
                  {"fields", suite.fields},
                  {"field_bytes", sim::heightfield_bytes(suite.field_size)},
-                 {"patches_per_field", heightfield_patches(suite.field_size, suite.correlation_length, 1)},
                  {"rays", suite.rays},
                  {"walk_paths", suite.walk_paths},
                  {"theta_bins", suite.theta_bins},
                  {"phi_bins", suite.phi_bins},
                  {"rows", {"1", "2", "3+"}}};
+  if (suite.surface == HeightfieldSurfaceKind::grooves) {
+    const sim::GrooveFieldOptions g = groove_field_options(
+        {analytic::NdfKind::beckmann, 1.0, suite.field_size, suite.correlation_length, suite.surface}, 0);
+    j["inputs"]["grooves"] = {
+        {"groove_length", g.groove_length},
+        {"groove_spacing", g.groove_spacing},
+        {"seed_step", g.seed_step},
+        {"grooves_per_field", std::lround(static_cast<double>(g.n) * g.n / (g.groove_spacing * g.groove_spacing))}};
+  } else {
+    j["inputs"]["patches_per_field"] = heightfield_patches(suite.field_size, suite.correlation_length, 1);
+  }
   if (suite.masking)
     j["inputs"]["masking"] = {
         {"theta_o_deg", suite.masking->theta_o_deg}, {"phi_deg", suite.masking->phi_deg},
@@ -211,12 +222,15 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
 }
 
 void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, const HeightfieldRun& run) {
-  print_table_title(os, suite.name, "heightfield",
-                    support::format("%zu cases, %d fields of %d^2 cells (correlation %g cells) per case, %ld rays "
-                                    "per field, %ld walk paths, %d x %d bins, F = 1",
-                                    run.cases.size(), suite.fields, suite.field_size, suite.correlation_length,
-                                    suite.rays, suite.walk_paths, suite.theta_bins, suite.phi_bins),
-                    run.threads);
+  const bool grooves = suite.surface == HeightfieldSurfaceKind::grooves;
+  print_table_title(
+      os, suite.name, "heightfield",
+      support::format("%zu cases, %d %sfields of %d^2 cells (correlation %g cells%s) per case, %ld rays per field, "
+                      "%ld walk paths, %d x %d bins, F = 1",
+                      run.cases.size(), suite.fields, grooves ? "random-orientation V-groove " : "", suite.field_size,
+                      suite.correlation_length, grooves ? ": grooves 3 l long, 3 l apart" : "", suite.rays,
+                      suite.walk_paths, suite.theta_bins, suite.phi_bins),
+      run.threads);
   os << "  traced E_k over the fields (se); each model: within noise (L1 per k <= expected + sigmas sd, E_k within "
         "sigmas se), or where it misses (L1 over its threshold, model E_k minus traced)\n";
   for (const HeightfieldOutcome& o : run.cases) {

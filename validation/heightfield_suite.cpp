@@ -4,6 +4,7 @@
 #include "vgroove/common/angles.h"
 #include "vgroove/sim/heightfield.h"
 #include "vgroove/sim/rng.h"
+#include "vgroove/support/format.h"
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/seconds_since.h"
 #include "vgroove/validation/check_brdf.h"
@@ -109,7 +110,19 @@ HeightfieldSuite parse_heightfield_suite(const nlohmann::json& j, const std::str
   s.field_size = static_cast<int>(root.integer("field_size", kMinFieldSize, 65536));
   if ((s.field_size & (s.field_size - 1)) != 0)
     root.fail("field_size", "= " + std::to_string(s.field_size) + " must be a power of two in [16, 65536]");
+  const std::string gaussian = "gaussian";
+  if (root.one_of("surface", {"gaussian", "grooves"}, &gaussian) == "grooves")
+    s.surface = HeightfieldSurfaceKind::grooves;
   s.correlation_length = root.number("correlation_length", 2.0, true, s.field_size / 8.0, true);
+  if (s.surface == HeightfieldSurfaceKind::grooves && s.field_size > 4096)
+    root.fail("field_size",
+              "= " + std::to_string(s.field_size) +
+                  " must be a power of two in [16, 4096] with surface grooves (sim/heightfield_grooves.h)");
+  if (s.surface == HeightfieldSurfaceKind::grooves && s.correlation_length > s.field_size / 12.0)
+    root.fail("correlation_length",
+              support::format("= %g must be in [2, %g] (field_size / 12) with surface grooves: grooves 3 l long "
+                              "and 3 l apart, at most field_size / 4",
+                              s.correlation_length, s.field_size / 12.0));
   s.fields = static_cast<int>(root.integer("fields", 2, 1000));
   s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
   s.walk_paths = static_cast<long>(root.integer("walk_paths", 1, kMaxRays));
@@ -200,7 +213,7 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
   const CaseIndex ix = index_of(suite, case_index);
   const double theta_i = deg_to_rad(out.c.theta_i_deg);
   const int bins = suite.bins(), rows = kHeightfieldRows;
-  const HeightfieldFieldSpec spec{out.c.ndf, out.c.alpha, suite.field_size, suite.correlation_length};
+  const HeightfieldFieldSpec spec{out.c.ndf, out.c.alpha, suite.field_size, suite.correlation_length, suite.surface};
 
   // The fields: one at a time, each from its own seed (the same fields at every theta_i).
   std::vector<std::vector<double>> lobes, energies;
