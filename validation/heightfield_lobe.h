@@ -13,6 +13,7 @@
 // Tests: tests/validation/heightfield_suite_test.cpp, tests/validation/heightfield_check_brdf_test.cpp.
 #pragma once
 
+#include "vgroove/analytic/ndf_anisotropic.h"
 #include "vgroove/common/ndf_kind.h"
 #include "vgroove/sim/heightfield_grooves.h"
 #include "vgroove/sim/heightfield_tracer.h"
@@ -35,6 +36,7 @@ struct HeightfieldFieldSpec {
   int field_size = 256;             // cells per side: a power of two in [16, 65536]
   double correlation_length = 8.0;  // cells, in [2, field_size / 8] (grooves: [2, field_size / 12])
   HeightfieldSurfaceKind surface = HeightfieldSurfaceKind::gaussian;
+  double aspect = 1.0;  // alpha_y / alpha (Beckmann Gaussian fields only; alpha is alpha_x)
 };
 
 // The groove field of correlation length l: grooves 3 l long, 3 l apart (about n^2 / (9 l^2)
@@ -66,6 +68,11 @@ sim::HeightfieldTally trace_field(const sim::HeightfieldSurface& s, double theta
 // The Smith random walk (analytic/smith_walk_3d.h) from dir3(theta_i, pi), binned as trace_field
 // bins (the same tally type): `paths` walks from `seed` in chunks of sim::kHeightfieldRaysPerChunk.
 sim::HeightfieldTally walk_lobe(NdfKind ndf, double alpha, double theta_i, long paths, std::uint64_t seed,
+                                int theta_bins, int phi_bins, int max_k, const std::atomic<bool>* cancel = nullptr);
+
+// The same for anisotropic roughness (alpha_x along the x axis, the mirror azimuth 0): the
+// Roughness walk of analytic/smith_walk_3d.h (heights log C1).
+sim::HeightfieldTally walk_lobe(const analytic::Roughness& r, double theta_i, long paths, std::uint64_t seed,
                                 int theta_bins, int phi_bins, int max_k, const std::atomic<bool>* cancel = nullptr);
 
 // Joint fractions of the tally's rays per (row, bin) for rows k = first_row..last row, row by row.

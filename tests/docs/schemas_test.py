@@ -52,6 +52,9 @@ check(heightfield, "suite", "heightfield with a field_size not a power of two", 
 heightfield["field_size"] = 256
 heightfield["surface"] = "voronoi"
 check(heightfield, "suite", "heightfield with an unknown surface", valid=False)
+heightfield["surface"] = "gaussian"
+heightfield["aspect"] = 5
+check(heightfield, "suite", "heightfield with aspect 5", valid=False)
 gold = json.loads((src / "data/scenes/gold_groove.json").read_text())
 gold["geometry"]["theta_v_deg"] = 195
 check(gold, "scene", "gold_groove with theta_v 195", valid=False)

@@ -14,6 +14,7 @@
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/check_brdf.h"
 #include "vgroove/validation/energy_lobe_shape.h"
+#include "vgroove/validation/heightfield_lobe.h"
 #include "vgroove/validation/histogram_metrics.h"
 
 #include <gtest/gtest.h>
@@ -360,6 +361,64 @@ TEST(HeightfieldSuite, GrooveFieldsAreTracedAndReported) {
   std::ostringstream table;
   print_heightfield_table(table, s, run);
   EXPECT_NE(table.str().find("random-orientation V-groove fields of 64^2 cells"), std::string::npos) << table.str();
+}
+
+// "aspect": alpha_y = aspect alpha on Beckmann Gaussian fields (alpha_x = alpha along the mirror
+// azimuth). The control: on mildly anisotropic smooth fields (alpha 0.3 x 0.45) at normal
+// incidence the anisotropic walk is within noise (masking and multiple scattering nearly absent);
+// the same walk with its axes swapped (0.45 x 0.3: the lobe turned a quarter) is caught by the
+// same rule. Cook-Torrance and the V-groove model (isotropic here) are skipped, and say so.
+TEST(HeightfieldSuite, AnisotropicWalkIsWithinNoiseAndItsSwappedAxesAreNot) {
+  json j = small();
+  j.erase("masking");
+  j["aspect"] = 1.5;
+  j["controls"] = {{{"model", "smith_walk"}, {"ndf", "beckmann"}, {"alpha", 0.3}, {"theta_i_deg", 0}}};
+  const HeightfieldSuite s = parse_heightfield_suite(j, "a.json");
+  ASSERT_TRUE(s.anisotropic());
+  const HeightfieldRun run = run_heightfield_suite(s, 0, 2);
+  ASSERT_EQ(run.cases.size(), 1u);
+  const HeightfieldOutcome& o = run.cases[0];
+  EXPECT_TRUE(run.pass);
+  EXPECT_EQ(o.lost, 0);
+  ASSERT_EQ(run.controls_hold.size(), 1u);
+  EXPECT_TRUE(run.controls_hold[0]) << "walk L1 " << o.walk.l1_total << " threshold " << o.walk.l1_total_threshold;
+  EXPECT_TRUE(o.ct_lobe.empty());
+  EXPECT_TRUE(o.vgroove_lobe.empty());
+
+  const sim::HeightfieldTally w = walk_lobe(analytic::Roughness{NdfKind::beckmann, 0.45, 0.3}, 0.0, s.walk_paths, 7,
+                                            s.theta_bins, s.phi_bins, kHeightfieldRows - 1);
+  const std::vector<double> swapped = joint_fractions(w, 1);
+  std::vector<double> e(kHeightfieldRows, 0.0), var;
+  for (int r = 0; r < kHeightfieldRows; ++r)
+    for (int b = 0; b < s.bins(); ++b)
+      e[static_cast<std::size_t>(r)] += swapped[static_cast<std::size_t>(r * s.bins() + b)];
+  for (double p : swapped) var.push_back(p * (1.0 - p) / static_cast<double>(s.walk_paths));
+  const HeightfieldMiss m = heightfield_miss(o.lobe, o.lobe_se, o.energy, o.energy_se, swapped, var, e, {},
+                                             kHeightfieldRows, s.bins(), s.sigmas, 0.0);
+  EXPECT_FALSE(m.within_noise) << "swapped axes: L1 k=1 " << m.l1[0] << " threshold " << m.l1_threshold[0];
+
+  const json r = heightfield_report_json(s, run);
+  EXPECT_EQ(r["inputs"]["aspect"], 1.5);
+  EXPECT_NE(r["cases"][0]["vgroove"]["skipped"].get<std::string>().find("anisotropic"), std::string::npos);
+  EXPECT_TRUE(r["cases"][0]["cook_torrance_smith"].contains("skipped"));
+  std::ostringstream table;
+  print_heightfield_table(table, s, run);
+  EXPECT_NE(table.str().find("skipped: anisotropic roughness (alpha_y = 1.5 alpha_x)"), std::string::npos)
+      << table.str();
+
+  // What aspect != 1 refuses, one line each.
+  const auto bad = [&](json k, const std::string& part) {
+    json b = j;
+    for (auto& [key, v] : k.items()) b[key] = v;
+    EXPECT_USER_ERROR(parse_heightfield_suite(b, "a.json"), part);
+  };
+  bad({{"aspect", 5}}, "a.json: /aspect");
+  bad({{"ndf", {"ggx"}}, {"controls", json::array()}}, "a.json: /aspect = 1.5 (anisotropic) needs ndf [\"beckmann\"]");
+  bad({{"surface", "grooves"}}, "a.json: /aspect = 1.5 (anisotropic) needs surface gaussian");
+  bad({{"masking", {{"theta_o_deg", {45}}, {"phi_deg", {0}}, {"points", 10}}}}, "a.json: /masking is not measured");
+  bad({{"controls", {{{"model", "vgroove"}, {"ndf", "beckmann"}, {"alpha", 0.3}, {"theta_i_deg", 0}}}}},
+      "a.json: /controls/0 model vgroove is skipped when aspect != 1");
+  bad({{"aspect", 4}}, "a.json: /aspect = 4 (anisotropic) with alpha 0.3 and correlation_length 4: ");
 }
 
 // The command line: an oversized field is refused before any work, one line naming the key and
