@@ -14,9 +14,23 @@
 
 namespace vgroove::validation {
 
+const char* heightfield_surface_name(HeightfieldSurfaceKind k) {
+  return k == HeightfieldSurfaceKind::grooves ? "grooves" : "gaussian";
+}
+
+sim::GrooveFieldOptions groove_field_options(const HeightfieldFieldSpec& spec, std::uint64_t seed) {
+  sim::GrooveFieldOptions g;
+  g.n = spec.field_size, g.ndf = spec.ndf, g.alpha = spec.alpha;
+  g.groove_length = 3.0 * spec.correlation_length, g.groove_spacing = 3.0 * spec.correlation_length;
+  g.seed_step = 0.5 * spec.correlation_length, g.seed = seed;
+  return g;
+}
+
 sim::HeightfieldSurface make_field_surface(const HeightfieldFieldSpec& spec, std::uint64_t seed) {
+  if (spec.surface == HeightfieldSurfaceKind::grooves)
+    return sim::make_heightfield_surface(sim::make_random_groove_field(groove_field_options(spec, seed)));
   sim::GaussianHeightfieldOptions o;
-  o.n = spec.field_size, o.alpha_x = spec.alpha, o.alpha_y = spec.alpha;
+  o.n = spec.field_size, o.alpha_x = spec.alpha, o.alpha_y = spec.alpha * spec.aspect;
   o.correlation_length = spec.correlation_length, o.seed = seed;
   return sim::make_heightfield_surface(spec.ndf == NdfKind::ggx ? sim::make_ggx_heightfield(o)
                                                                 : sim::make_gaussian_heightfield(o));
@@ -74,6 +88,28 @@ sim::HeightfieldTally walk_lobe(NdfKind ndf, double alpha, double theta_i, long 
       r.bounces = w.k;
       r.o = Eigen::Vector3d(w.o.x, w.o.y, w.o.z);
       t.add(r);  // binned by the tracer's own rule
+    }
+  }
+  return t;
+}
+
+sim::HeightfieldTally walk_lobe(const analytic::Roughness& r, double theta_i, long paths, std::uint64_t seed,
+                                int theta_bins, int phi_bins, int max_k, const std::atomic<bool>* cancel) {
+  sim::HeightfieldTally t(theta_bins, phi_bins, max_k, std::numbers::pi);
+  const analytic::Dir3 wi = analytic::dir3(theta_i, std::numbers::pi);
+  const std::int64_t chunk_size = sim::kHeightfieldRaysPerChunk;
+  for (std::int64_t c = 0; c * chunk_size < paths; ++c) {
+    if (support::cancelled(cancel)) break;
+    sim::Rng rng(seed, sim::kHeightfieldRayStream, static_cast<std::uint64_t>(c));
+    auto uniform = [&rng] { return sim::uniform_open(rng); };
+    const std::int64_t end = std::min<std::int64_t>(paths, (c + 1) * chunk_size);
+    for (std::int64_t p = c * chunk_size; p < end; ++p) {
+      const analytic::Walk3d w = analytic::smith_walk_3d(r, analytic::WalkHeights::log_c1, wi, uniform);
+      sim::HeightfieldRayResult res;
+      res.how = w.left ? sim::HeightfieldFate::escaped : sim::HeightfieldFate::bounce_limit;
+      res.bounces = w.k;
+      res.o = Eigen::Vector3d(w.o.x, w.o.y, w.o.z);
+      t.add(res);
     }
   }
   return t;

@@ -103,6 +103,11 @@ std::string masking_text(const HeightfieldMaskingValue& v) {
          far;
 }
 
+// Why the isotropic models are not compared on an anisotropic suite.
+std::string skipped_text(const HeightfieldSuite& suite) {
+  return support::format("anisotropic roughness (alpha_y = %g alpha_x): the model is isotropic here", suite.aspect);
+}
+
 }  // namespace
 
 nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const HeightfieldRun& run) {
@@ -113,16 +118,28 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
   j["inputs"] = {{"ndf", ndfs},
                  {"alpha", suite.alphas},
                  {"theta_i_deg", suite.theta_i_deg},
+                 {"surface", heightfield_surface_name(suite.surface)},
+                 {"aspect", suite.aspect},
                  {"field_size", suite.field_size},
                  {"correlation_length", suite.correlation_length},
                  {"fields", suite.fields},
                  {"field_bytes", sim::heightfield_bytes(suite.field_size)},
-                 {"patches_per_field", heightfield_patches(suite.field_size, suite.correlation_length, 1)},
                  {"rays", suite.rays},
                  {"walk_paths", suite.walk_paths},
                  {"theta_bins", suite.theta_bins},
                  {"phi_bins", suite.phi_bins},
                  {"rows", {"1", "2", "3+"}}};
+  if (suite.surface == HeightfieldSurfaceKind::grooves) {
+    const sim::GrooveFieldOptions g = groove_field_options(
+        {analytic::NdfKind::beckmann, 1.0, suite.field_size, suite.correlation_length, suite.surface}, 0);
+    j["inputs"]["grooves"] = {
+        {"groove_length", g.groove_length},
+        {"groove_spacing", g.groove_spacing},
+        {"seed_step", g.seed_step},
+        {"grooves_per_field", std::lround(static_cast<double>(g.n) * g.n / (g.groove_spacing * g.groove_spacing))}};
+  } else {
+    j["inputs"]["patches_per_field"] = heightfield_patches(suite.field_size, suite.correlation_length, 1);
+  }
   if (suite.masking)
     j["inputs"]["masking"] = {
         {"theta_o_deg", suite.masking->theta_o_deg}, {"phi_deg", suite.masking->phi_deg},
@@ -157,14 +174,16 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
                        {"energy_by_k", o.walk_energy},
                        {"lobe_by_k", rows_of(o.walk_lobe, kHeightfieldRows, bins)},
                        {"against_traced", miss_json(o.walk, o)}}},
-                     {"cook_torrance_smith",
-                      {{"integration_error", o.ct_error},
-                       {"lobe_k1", o.ct_lobe},
-                       {"against_traced", miss_json(o.cook_torrance, o)}}},
-                     {"vgroove",
-                      {{"energy_by_k", o.vgroove_energy},
-                       {"lobe_by_k", rows_of(o.vgroove_lobe, kHeightfieldRows, bins)},
-                       {"against_traced", miss_json(o.vgroove, o)}}},
+                     {"cook_torrance_smith", suite.anisotropic()
+                                                 ? nlohmann::json{{"skipped", skipped_text(suite)}}
+                                                 : nlohmann::json{{"integration_error", o.ct_error},
+                                                                  {"lobe_k1", o.ct_lobe},
+                                                                  {"against_traced", miss_json(o.cook_torrance, o)}}},
+                     {"vgroove", suite.anisotropic()
+                                     ? nlohmann::json{{"skipped", skipped_text(suite)}}
+                                     : nlohmann::json{{"energy_by_k", o.vgroove_energy},
+                                                      {"lobe_by_k", rows_of(o.vgroove_lobe, kHeightfieldRows, bins)},
+                                                      {"against_traced", miss_json(o.vgroove, o)}}},
                      {"timing",
                       {{"field_s", o.field_s},
                        {"trace_s", o.trace_s},
@@ -211,12 +230,19 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
 }
 
 void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, const HeightfieldRun& run) {
-  print_table_title(os, suite.name, "heightfield",
-                    support::format("%zu cases, %d fields of %d^2 cells (correlation %g cells) per case, %ld rays "
-                                    "per field, %ld walk paths, %d x %d bins, F = 1",
-                                    run.cases.size(), suite.fields, suite.field_size, suite.correlation_length,
-                                    suite.rays, suite.walk_paths, suite.theta_bins, suite.phi_bins),
-                    run.threads);
+  const bool grooves = suite.surface == HeightfieldSurfaceKind::grooves;
+  print_table_title(
+      os, suite.name, "heightfield",
+      support::format("%zu cases, %d %sfields of %d^2 cells (correlation %g cells%s) per case, %ld rays per field, "
+                      "%ld walk paths, %d x %d bins, F = 1",
+                      run.cases.size(), suite.fields,
+                      grooves ? "random-orientation V-groove "
+                      : suite.anisotropic()
+                          ? support::format("anisotropic (alpha_y = %g alpha_x) ", suite.aspect).c_str()
+                          : "",
+                      suite.field_size, suite.correlation_length, grooves ? ": grooves 3 l long, 3 l apart" : "",
+                      suite.rays, suite.walk_paths, suite.theta_bins, suite.phi_bins),
+      run.threads);
   os << "  traced E_k over the fields (se); each model: within noise (L1 per k <= expected + sigmas sd, E_k within "
         "sigmas se), or where it misses (L1 over its threshold, model E_k minus traced)\n";
   for (const HeightfieldOutcome& o : run.cases) {
@@ -228,8 +254,11 @@ void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, co
         static_cast<long long>(o.lost), o.field_s + o.trace_s + o.walk_s + o.model_s,
         o.pass ? "" : "  FAIL (lost or not finite)");
     os << support::format("    %-20s %s\n", "smith_walk", miss_text(o.walk).c_str());
-    os << support::format("    %-20s %s\n", "cook_torrance_smith", miss_text(o.cook_torrance).c_str());
-    os << support::format("    %-20s %s\n", "vgroove", miss_text(o.vgroove).c_str());
+    const std::string skip = "skipped: " + skipped_text(suite);
+    os << support::format("    %-20s %s\n", "cook_torrance_smith",
+                          suite.anisotropic() ? skip.c_str() : miss_text(o.cook_torrance).c_str());
+    os << support::format("    %-20s %s\n", "vgroove",
+                          suite.anisotropic() ? skip.c_str() : miss_text(o.vgroove).c_str());
     if (suite.masking) {
       os << support::format(
           "    masking (%lld points, lost %lld, %.2f s): traced G(se); the models within noise overall, "

@@ -4,6 +4,7 @@
 #include "vgroove/common/angles.h"
 #include "vgroove/sim/heightfield.h"
 #include "vgroove/sim/rng.h"
+#include "vgroove/support/format.h"
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/seconds_since.h"
 #include "vgroove/validation/check_brdf.h"
@@ -109,7 +110,37 @@ HeightfieldSuite parse_heightfield_suite(const nlohmann::json& j, const std::str
   s.field_size = static_cast<int>(root.integer("field_size", kMinFieldSize, 65536));
   if ((s.field_size & (s.field_size - 1)) != 0)
     root.fail("field_size", "= " + std::to_string(s.field_size) + " must be a power of two in [16, 65536]");
+  const std::string gaussian = "gaussian";
+  if (root.one_of("surface", {"gaussian", "grooves"}, &gaussian) == "grooves")
+    s.surface = HeightfieldSurfaceKind::grooves;
   s.correlation_length = root.number("correlation_length", 2.0, true, s.field_size / 8.0, true);
+  if (s.surface == HeightfieldSurfaceKind::grooves && s.field_size > 4096)
+    root.fail("field_size",
+              "= " + std::to_string(s.field_size) +
+                  " must be a power of two in [16, 4096] with surface grooves (sim/heightfield_grooves.h)");
+  if (s.surface == HeightfieldSurfaceKind::grooves && s.correlation_length > s.field_size / 12.0)
+    root.fail("correlation_length",
+              support::format("= %g must be in [2, %g] (field_size / 12) with surface grooves: grooves 3 l long "
+                              "and 3 l apart, at most field_size / 4",
+                              s.correlation_length, s.field_size / 12.0));
+  s.aspect = root.number_or("aspect", 1.0, 0.25, true, 4.0, true);
+  if (s.anisotropic()) {
+    const auto fail = [&](const std::string& why) {
+      root.fail("aspect", support::format("= %g (anisotropic) ", s.aspect) + why);
+    };
+    for (auto n : s.ndfs)
+      if (n != analytic::NdfKind::beckmann) fail("needs ndf [\"beckmann\"] only: the GGX fields are isotropic");
+    if (s.surface != HeightfieldSurfaceKind::gaussian) fail("needs surface gaussian: the groove fields are isotropic");
+    for (double a : s.alphas) {
+      sim::GaussianHeightfieldOptions o;
+      o.n = s.field_size, o.alpha_x = a, o.alpha_y = a * s.aspect, o.correlation_length = s.correlation_length;
+      try {
+        (void)sim::gaussian_heightfield_parameters(o);
+      } catch (const std::invalid_argument& e) {
+        fail(support::format("with alpha %g and correlation_length %g: ", a, s.correlation_length) + e.what());
+      }
+    }
+  }
   s.fields = static_cast<int>(root.integer("fields", 2, 1000));
   s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
   s.walk_paths = static_cast<long>(root.integer("walk_paths", 1, kMaxRays));
@@ -149,10 +180,15 @@ HeightfieldSuite parse_heightfield_suite(const nlohmann::json& j, const std::str
         root.fail_at("controls", n,
                      "names no case of the suite (ndf " + ndf + ", alpha " + support::number_text(alpha) +
                          ", theta_i_deg " + support::number_text(theta) + "): a control must be one of its cases");
+      if (s.anisotropic() && ctl.model != HeightfieldModel::smith_walk)
+        root.fail_at("controls", n,
+                     "model " + model + " is skipped when aspect != 1 (isotropic here): only smith_walk");
       s.controls.push_back(ctl);
     }
   }
   if (root.has("masking")) {
+    if (s.anisotropic())
+      root.fail("masking", "is not measured when aspect != 1 (its models are isotropic here): drop it or set aspect 1");
     support::JsonObject m = root.object("masking");
     s.masking = parse_heightfield_masking(m);
   }
@@ -200,7 +236,8 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
   const CaseIndex ix = index_of(suite, case_index);
   const double theta_i = deg_to_rad(out.c.theta_i_deg);
   const int bins = suite.bins(), rows = kHeightfieldRows;
-  const HeightfieldFieldSpec spec{out.c.ndf, out.c.alpha, suite.field_size, suite.correlation_length};
+  const HeightfieldFieldSpec spec{out.c.ndf,     out.c.alpha, suite.field_size, suite.correlation_length,
+                                  suite.surface, suite.aspect};
 
   // The fields: one at a time, each from its own seed (the same fields at every theta_i).
   std::vector<std::vector<double>> lobes, energies;
@@ -244,9 +281,12 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
 
   // The Smith walk.
   auto t0 = Clock::now();
+  const std::uint64_t walk_seed = derived_seed(suite.seed, kWalkSeeds, case_index);
   const sim::HeightfieldTally w =
-      walk_lobe(out.c.ndf, out.c.alpha, theta_i, suite.walk_paths, derived_seed(suite.seed, kWalkSeeds, case_index),
-                suite.theta_bins, suite.phi_bins, kMaxK, cancel);
+      suite.anisotropic() ? walk_lobe(analytic::Roughness{out.c.ndf, out.c.alpha, out.c.alpha * suite.aspect}, theta_i,
+                                      suite.walk_paths, walk_seed, suite.theta_bins, suite.phi_bins, kMaxK, cancel)
+                          : walk_lobe(out.c.ndf, out.c.alpha, theta_i, suite.walk_paths, walk_seed, suite.theta_bins,
+                                      suite.phi_bins, kMaxK, cancel);
   out.walk_s = seconds_since(t0);
   if (support::cancelled(cancel)) return out;
   out.walk_paths = w.rays, out.walk_left = w.escaped;
@@ -254,7 +294,17 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
   out.walk_energy = row_sums(out.walk_lobe, rows, bins);
 
   // Cook-Torrance with Smith's height-correlated G, over the bins as check_brdf integrates it, and
-  // the V-groove model's lobe (Eq. 16, k = 1, 2, 3+).
+  // the V-groove model's lobe (Eq. 16, k = 1, 2, 3+): isotropic, skipped when the suite is not.
+  const double tol = suite.model_tolerance;
+  const double paths = static_cast<double>(out.walk_paths);
+  out.walk = heightfield_miss(out.lobe, out.lobe_se, out.energy, out.energy_se, out.walk_lobe,
+                              multinomial_var(out.walk_lobe, paths), out.walk_energy,
+                              multinomial_var(out.walk_energy, paths), rows, bins, suite.sigmas, 0.0);
+  if (suite.anisotropic()) {
+    out.non_finite = !(all_finite(out.lobe) && all_finite(out.walk_lobe) && std::isfinite(out.albedo));
+    out.pass = out.lost == 0 && !out.non_finite;
+    return out;
+  }
   t0 = Clock::now();
   CheckBrdfOptions co;
   co.ndf = out.c.ndf, co.alpha = out.c.alpha, co.theta_i_deg = {out.c.theta_i_deg};
@@ -277,11 +327,6 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
   out.vgroove_energy.assign(v.by_k.begin() + 1, v.by_k.end());
   out.model_s = seconds_since(t0);
 
-  const double tol = suite.model_tolerance;
-  const double paths = static_cast<double>(out.walk_paths);
-  out.walk = heightfield_miss(out.lobe, out.lobe_se, out.energy, out.energy_se, out.walk_lobe,
-                              multinomial_var(out.walk_lobe, paths), out.walk_energy,
-                              multinomial_var(out.walk_energy, paths), rows, bins, suite.sigmas, 0.0);
   out.cook_torrance = heightfield_miss(out.lobe, out.lobe_se, out.energy, out.energy_se, out.ct_lobe, {},
                                        {sum(out.ct_lobe)}, {}, 1, bins, suite.sigmas, tol + out.ct_error);
   out.vgroove = heightfield_miss(out.lobe, out.lobe_se, out.energy, out.energy_se, out.vgroove_lobe, {},
@@ -326,9 +371,10 @@ Job<HeightfieldWork> heightfield_job(const HeightfieldSuite& suite, long rays, n
         out.c = suite.case_at(c);
         const std::size_t joint = static_cast<std::size_t>(kHeightfieldRows) * static_cast<std::size_t>(suite.bins());
         const std::size_t bins = static_cast<std::size_t>(suite.bins()), rows = kHeightfieldRows;
+        const std::size_t iso = suite.anisotropic() ? 0 : 1;  // the isotropic models: skipped
         if (out.lobe.size() != joint || out.lobe_se.size() != joint || out.walk_lobe.size() != joint ||
-            out.vgroove_lobe.size() != joint || out.ct_lobe.size() != bins || out.energy.size() != rows ||
-            out.energy_se.size() != rows || out.walk_energy.size() != rows || out.vgroove_energy.size() != rows ||
+            out.vgroove_lobe.size() != iso * joint || out.ct_lobe.size() != iso * bins || out.energy.size() != rows ||
+            out.energy_se.size() != rows || out.walk_energy.size() != rows || out.vgroove_energy.size() != iso * rows ||
             out.g1.size() != (suite.masking ? suite.masking->theta_o_deg.size() : 0) ||
             out.g2.size() != (suite.masking ? suite.masking->pairs() : 0))
           o.fail("outcome", "/lobe, /walk_lobe, /vgroove_lobe, /ct_lobe an energy, /g1 or /g2 is not of the suite's " +

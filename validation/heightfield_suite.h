@@ -1,15 +1,15 @@
 // vgroove validation: the suite of kind "heightfield": random heightfields (sim/heightfield.h,
-// Beckmann and GGX-slope fields) traced exactly in 3D (validation/heightfield_lobe.h), their lobes
-// per k (rows 1, 2, 3+) and energies held against the 3D Smith walk (analytic/smith_walk_3d.h),
-// Cook-Torrance with Smith's height-correlated G (k = 1, integrated over the bins as check_brdf
-// integrates a model) and the V-groove model (Eq. 16, analytic/lobe_3d.h). Per case (ndf, alpha,
-// theta_i): `fields` fields (the same at every theta_i), `rays` rays on each; per cell the mean
-// over the fields and its standard error (their spread, at least the rays' multinomial error). A
-// model is within noise when every row's L1 <= expected + sigmas sd + tolerance and every E_k
-// within sigmas se: measured, not a verdict. The verdict: no ray lost, every value finite, and
-// the suite's `controls`. Optional "masking": traced G1 and G2 per facet-normal bin against
-// Smith's forms and the V-cavity (HeightfieldMaskingSpec), reported. One work item per case: the same report for any
-// thread, shard or rank count. Memory: one field with its hierarchy per worker, refused in one line before any work.
+// Beckmann and GGX-slope fields, "aspect": anisotropic Beckmann; "surface": "grooves": V-grooves
+// at random orientations, sim/heightfield_grooves.h) traced exactly in 3D (heightfield_lobe.h),
+// their lobes per k (rows 1, 2, 3+) and energies against the 3D Smith walk (analytic/smith_walk_3d.h),
+// Cook-Torrance with Smith's height-correlated G (k = 1, integrated over the bins as check_brdf)
+// and the V-groove model (Eq. 16, analytic/lobe_3d.h; both skipped when anisotropic). Per case
+// (ndf, alpha, theta_i): `fields` fields, `rays` rays on each; per cell the mean over the fields
+// and its standard error (their spread, at least the rays' multinomial error). A model is within
+// noise when every row's L1 <= expected + sigmas sd + tolerance and every E_k within sigmas se:
+// measured, not a verdict. The verdict: no ray lost, every value finite, the `controls`. Optional
+// "masking": traced G1, G2 per facet-normal bin against Smith's forms and the V-cavity. One work
+// item per case: one report for any thread, shard or rank count. Memory: one field per worker.
 // Tests: tests/validation/heightfield_suite_test.cpp (HeightfieldSuite.*, HeightfieldSuiteCli.*),
 // tests/cluster/shards_test.sh. Schema: docs/schemas/suite.schema.json ($defs/heightfield).
 // Derivation: docs/derivations/heightfield.md (the suite's section).
@@ -19,6 +19,7 @@
 #include "vgroove/sim/heightfield_masking.h"
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/parallel.h"
+#include "vgroove/validation/heightfield_lobe.h"
 #include "vgroove/validation/item_work.h"
 
 #include <nlohmann/json.hpp>
@@ -68,8 +69,13 @@ struct HeightfieldSuite {
   std::vector<analytic::NdfKind> ndfs;
   std::vector<double> alphas;
   std::vector<double> theta_i_deg;
+  HeightfieldSurfaceKind surface = HeightfieldSurfaceKind::gaussian;  // "surface" (default gaussian)
   int field_size = 256;
-  double correlation_length = 8.0;
+  double correlation_length = 8.0;  // grooves: 3 l long and apart (groove_field_options)
+  double aspect = 1.0;              // "aspect": alpha_y / alpha (Beckmann Gaussian fields; alpha is alpha_x)
+  // Anisotropic (aspect != 1): the walk takes alpha_x, alpha_y; Cook-Torrance and the V-groove
+  // model (isotropic here) are skipped, and so is the masking section.
+  bool anisotropic() const { return aspect != 1.0; }
   int fields = 4;
   long rays = 20000;         // per field and case
   long walk_paths = 200000;  // per case

@@ -83,6 +83,17 @@ cat >"$t/heightfield.json" <<'J'
  "masking": {"theta_o_deg": [45, 85], "phi_deg": [0, 180], "points": 500, "theta_m_bins": 3, "phi_m_bins": 2},
  "controls": [{"model": "cook_torrance_smith", "ndf": "beckmann", "alpha": 0.5, "theta_i_deg": 0}]}
 J
+cat >"$t/heightfield_grooves.json" <<'J'
+{"name": "tiny_heightfield_grooves", "kind": "heightfield", "surface": "grooves", "ndf": ["ggx"], "alpha": [0.5],
+ "theta_i_deg": [0, 60], "field_size": 64, "correlation_length": 4, "fields": 2, "rays": 3000, "walk_paths": 5000,
+ "theta_bins": 6, "phi_bins": 4, "seed": 3, "thresholds": {"sigmas": 5}}
+J
+cat >"$t/heightfield_aniso.json" <<'J'
+{"name": "tiny_heightfield_aniso", "kind": "heightfield", "aspect": 1.5, "ndf": ["beckmann"], "alpha": [0.3, 0.5],
+ "theta_i_deg": [0], "field_size": 64, "correlation_length": 4, "fields": 2, "rays": 3000, "walk_paths": 5000,
+ "theta_bins": 6, "phi_bins": 4, "seed": 3, "thresholds": {"sigmas": 5},
+ "controls": [{"model": "smith_walk", "ndf": "beckmann", "alpha": 0.3, "theta_i_deg": 0}]}
+J
 cat >"$t/sampling.json" <<'J'
 {"name": "tiny_sampling", "kind": "sampling", "seed": 4, "max_k": 32,
  "chi_square": {"level": 0.01, "samples": {"3d": 20000, "flatland": 20000}, "cos_bins": 4, "phi_bins": 8, "theta_bins": 12,
@@ -143,6 +154,8 @@ case $check in
     sharded profiles 3 validate "$t/profiles.json"
     sharded sampling 3 validate "$t/sampling.json"
     sharded heightfield 3 validate "$t/heightfield.json"
+    sharded heightfield_grooves 2 validate "$t/heightfield_grooves.json"
+    sharded heightfield_aniso 2 validate "$t/heightfield_aniso.json"
     sharded dielectric_grooves 3 validate "$t/dielectric_grooves.json"
     # A foreign model: the brdf suite's layout filled with a flat lobe (it fails: the same verdict
     # merged as in one process).

@@ -2,7 +2,8 @@
 // before any work, and a small run whose controls hold (Cook-Torrance with Smith's G and the
 // Smith walk on smooth Beckmann fields at normal incidence, where masking and multiple scattering
 // are nearly absent and heights are independent of slopes) while deliberately wrong models are
-// caught by the same metric, with the same numbers on one thread as on two.
+// caught by the same metric, with the same numbers on one thread as on two; "surface": the
+// default Gaussian fields as before, and random-orientation V-groove fields.
 #include "vgroove/validation/heightfield_suite.h"
 
 #include "tests/cli_run.h"
@@ -13,6 +14,7 @@
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/check_brdf.h"
 #include "vgroove/validation/energy_lobe_shape.h"
+#include "vgroove/validation/heightfield_lobe.h"
 #include "vgroove/validation/histogram_metrics.h"
 
 #include <gtest/gtest.h>
@@ -90,6 +92,23 @@ TEST(HeightfieldSuite, BadSpecsNameTheFieldAndRange) {
   bad("ndf", json{"phong"}, "h.json: /ndf");
   bad("theta_i_deg", json{90}, "h.json: /theta_i_deg");
   bad("feild_size", 64, "h.json: /feild_size is not a known key");
+  bad("surface", "voronoi", "h.json: /surface");
+  {
+    json j = shipped();  // l = 24 fits a Gaussian 256^2 field (<= 32), not grooves 72 long (> 64)
+    j["surface"] = "grooves";
+    j["correlation_length"] = 24;
+    EXPECT_USER_ERROR(
+        parse_heightfield_suite(j, "h.json"),
+        "h.json: /correlation_length = 24 must be in [2, 21.3333] (field_size / 12) with surface grooves");
+    j["correlation_length"] = 8;
+    j["field_size"] = 8192;
+    EXPECT_USER_ERROR(parse_heightfield_suite(j, "h.json"),
+                      "h.json: /field_size = 8192 must be a power of two in [16, 4096] with surface grooves");
+    j["surface"] = "gaussian";
+    j["field_size"] = 256;
+    j["correlation_length"] = 24;
+    EXPECT_EQ(parse_heightfield_suite(j, "h.json").correlation_length, 24.0);
+  }
   bad("controls", json{{{"model", "smith_walk"}, {"ndf", "ggx"}, {"alpha", 0.4}, {"theta_i_deg", 0}}},
       "h.json: /controls/0 names no case of the suite");
   bad("controls", json{{{"model", "walter"}, {"ndf", "ggx"}, {"alpha", 0.3}, {"theta_i_deg", 0}}},
@@ -108,6 +127,15 @@ TEST(HeightfieldSuite, AFieldTooLargeForMemoryIsRefusedBeforeAnyWork) {
   if (support::memory_limit_bytes() >= sim::heightfield_bytes(65536)) GTEST_SKIP() << "this machine holds 126 GB";
   EXPECT_USER_ERROR(heightfield_run_memory_bytes(s, 1), "h.json: /field_size = 65536 needs 126.0 GB");
   EXPECT_USER_ERROR(heightfield_run_memory_bytes(s, 1), "it must be a power of two in [16, ");
+  // Groove fields (at most 4096^2, refused above by the spec): the same bytes per cell (their
+  // synthesis holds 8 bytes per cell and the seeds, below the hierarchy), the same estimate.
+  j["field_size"] = 4096;
+  json jg = j;
+  jg["surface"] = "grooves";
+  const HeightfieldSuite g = parse_heightfield_suite(jg, "h.json");
+  EXPECT_EQ(g.surface, HeightfieldSurfaceKind::grooves);
+  EXPECT_EQ(heightfield_run_memory_bytes(g, 2), heightfield_run_memory_bytes(parse_heightfield_suite(j, "h.json"), 2));
+  EXPECT_GE(heightfield_run_memory_bytes(g, 2), 2.0 * sim::heightfield_bytes(4096));
   // The shipped size fits, and the estimate counts the field with its hierarchy per worker.
   const HeightfieldSuite ok = parse_heightfield_suite(shipped(), "h.json");
   EXPECT_GE(heightfield_run_memory_bytes(ok, 2), 2.0 * sim::heightfield_bytes(256));
@@ -259,6 +287,140 @@ TEST(HeightfieldSuite, MaskingSectionSaysWhichModelIsWithinNoise) {
     const double x = two.cases[0].g2[3].bins[b];
     EXPECT_TRUE(x == g2.bins[b] || (std::isnan(x) && std::isnan(g2.bins[b]))) << b;
   }
+}
+
+// "surface" absent and "surface": "gaussian" are one suite, and its report is value for value
+// what the suite gave before the key existed (main at b617e36, the small run: 6 of 16000 rays
+// twice scattered, the walk's and the V-groove model's L1, the masking's G2 at 75 deg).
+TEST(HeightfieldSuite, SurfaceGaussianIsTheDefaultValueForValue) {
+  const HeightfieldSuite absent = parse_heightfield_suite(small(), "small.json");
+  EXPECT_EQ(absent.surface, HeightfieldSurfaceKind::gaussian);
+  json j = small();
+  j["surface"] = "gaussian";
+  const HeightfieldSuite s = parse_heightfield_suite(j, "small.json");
+  ASSERT_EQ(s.surface, HeightfieldSurfaceKind::gaussian);
+  const HeightfieldRun run = run_heightfield_suite(s, 0, 1);
+  ASSERT_EQ(run.cases.size(), 1u);
+  const HeightfieldOutcome& o = run.cases[0];
+  EXPECT_EQ(o.energy, (std::vector<double>{0.999625, 0.000375, 0.0}));
+  EXPECT_EQ(o.walk.l1_total, 0.09679999999999998);
+  EXPECT_DOUBLE_EQ(o.vgroove.l1_total, 0.08901195469699476);
+  ASSERT_EQ(o.g2.size(), 4u);
+  EXPECT_EQ(o.g2[3].g, 0.9557577974481588);
+  const json r = heightfield_report_json(s, run);
+  EXPECT_EQ(r["inputs"]["surface"], "gaussian");
+  EXPECT_TRUE(r["inputs"].contains("patches_per_field"));
+  EXPECT_FALSE(r["inputs"].contains("grooves"));
+}
+
+// "surface": "grooves": random-orientation V-groove fields of the case's tilts (64^2 cells, l = 4:
+// grooves 12 long and 12 apart, 28 per field). At normal incidence on Beckmann alpha 0.1 every
+// groove's tilt is below 30 deg / sqrt(2) (a slope above 0.41 has probability 6e-8 per groove), so
+// every triangle, a chord of an s-Lipschitz h, tilts less than 30 deg: a reflected ray climbs at
+// more than 30 deg, faster than the surface can rise, and leaves after one bounce: E_1 = 1
+// exactly. GGX alpha 0.6 at 45 deg (the broken variant of that bound: its steep grooves scatter
+// twice) and every case: no ray lost, F = 1 gives albedo 1, the report names the surface and the
+// grooves, and the fields are not the Gaussian ones.
+TEST(HeightfieldSuite, GrooveFieldsAreTracedAndReported) {
+  json j = small();
+  j.erase("masking"), j.erase("controls");
+  j["surface"] = "grooves";
+  j["ndf"] = {"beckmann"};
+  j["alpha"] = {0.1};
+  const HeightfieldSuite flat = parse_heightfield_suite(j, "g.json");
+  const HeightfieldRun a = run_heightfield_suite(flat, 0, 2);
+  ASSERT_EQ(a.cases.size(), 1u);
+  EXPECT_TRUE(a.pass);
+  EXPECT_EQ(a.cases[0].energy, (std::vector<double>{1.0, 0.0, 0.0}));
+
+  j["ndf"] = {"ggx"};
+  j["alpha"] = {0.6};
+  j["theta_i_deg"] = {45};
+  const HeightfieldSuite s = parse_heightfield_suite(j, "g.json");
+  const HeightfieldRun run = run_heightfield_suite(s, 0, 2);
+  ASSERT_EQ(run.cases.size(), 1u);
+  const HeightfieldOutcome& o = run.cases[0];
+  EXPECT_TRUE(run.pass);
+  EXPECT_EQ(o.lost, 0);
+  EXPECT_FALSE(o.non_finite);
+  EXPECT_NEAR(o.albedo, 1.0, 1e-15);
+  EXPECT_GT(o.energy[1], s.sigmas * o.energy_se[1]) << "steep grooves scatter twice";
+  j["surface"] = "gaussian";
+  const HeightfieldRun gauss = run_heightfield_suite(parse_heightfield_suite(j, "g.json"), 0, 2);
+  EXPECT_NE(gauss.cases[0].lobe, o.lobe);
+
+  const json r = heightfield_report_json(s, run);
+  EXPECT_EQ(r["inputs"]["surface"], "grooves");
+  EXPECT_EQ(r["inputs"]["grooves"]["groove_length"], 12.0);
+  EXPECT_EQ(r["inputs"]["grooves"]["groove_spacing"], 12.0);
+  EXPECT_EQ(r["inputs"]["grooves"]["seed_step"], 2.0);
+  EXPECT_EQ(r["inputs"]["grooves"]["grooves_per_field"], 28);
+  EXPECT_FALSE(r["inputs"].contains("patches_per_field"));
+  for (const char* m : {"smith_walk", "cook_torrance_smith", "vgroove"})
+    EXPECT_TRUE(r["cases"][0][m]["against_traced"].contains("within_noise")) << m;
+  std::ostringstream table;
+  print_heightfield_table(table, s, run);
+  EXPECT_NE(table.str().find("random-orientation V-groove fields of 64^2 cells"), std::string::npos) << table.str();
+}
+
+// "aspect": alpha_y = aspect alpha on Beckmann Gaussian fields (alpha_x = alpha along the mirror
+// azimuth). The control: on mildly anisotropic smooth fields (alpha 0.3 x 0.45) at normal
+// incidence the anisotropic walk is within noise (masking and multiple scattering nearly absent);
+// the same walk with its axes swapped (0.45 x 0.3: the lobe turned a quarter) is caught by the
+// same rule. Cook-Torrance and the V-groove model (isotropic here) are skipped, and say so. (With
+// 80000 rays on 256^2 fields the walk's k = 2 row misses by 1.7x at 0.3 x 0.45, as the isotropic
+// walk does at a like E_2, alpha 0.4: 1.5x; its k = 1 row stays within, 0.8x.)
+TEST(HeightfieldSuite, AnisotropicWalkIsWithinNoiseAndItsSwappedAxesAreNot) {
+  json j = small();
+  j.erase("masking");
+  j["aspect"] = 1.5;
+  j["controls"] = {{{"model", "smith_walk"}, {"ndf", "beckmann"}, {"alpha", 0.3}, {"theta_i_deg", 0}}};
+  const HeightfieldSuite s = parse_heightfield_suite(j, "a.json");
+  ASSERT_TRUE(s.anisotropic());
+  const HeightfieldRun run = run_heightfield_suite(s, 0, 2);
+  ASSERT_EQ(run.cases.size(), 1u);
+  const HeightfieldOutcome& o = run.cases[0];
+  EXPECT_TRUE(run.pass);
+  EXPECT_EQ(o.lost, 0);
+  ASSERT_EQ(run.controls_hold.size(), 1u);
+  EXPECT_TRUE(run.controls_hold[0]) << "walk L1 " << o.walk.l1_total << " threshold " << o.walk.l1_total_threshold;
+  EXPECT_TRUE(o.ct_lobe.empty());
+  EXPECT_TRUE(o.vgroove_lobe.empty());
+
+  const sim::HeightfieldTally w = walk_lobe(analytic::Roughness{NdfKind::beckmann, 0.45, 0.3}, 0.0, s.walk_paths, 7,
+                                            s.theta_bins, s.phi_bins, kHeightfieldRows - 1);
+  const std::vector<double> swapped = joint_fractions(w, 1);
+  std::vector<double> e(kHeightfieldRows, 0.0), var;
+  for (int r = 0; r < kHeightfieldRows; ++r)
+    for (int b = 0; b < s.bins(); ++b)
+      e[static_cast<std::size_t>(r)] += swapped[static_cast<std::size_t>(r * s.bins() + b)];
+  for (double p : swapped) var.push_back(p * (1.0 - p) / static_cast<double>(s.walk_paths));
+  const HeightfieldMiss m = heightfield_miss(o.lobe, o.lobe_se, o.energy, o.energy_se, swapped, var, e, {},
+                                             kHeightfieldRows, s.bins(), s.sigmas, 0.0);
+  EXPECT_FALSE(m.within_noise) << "swapped axes: L1 k=1 " << m.l1[0] << " threshold " << m.l1_threshold[0];
+
+  const json r = heightfield_report_json(s, run);
+  EXPECT_EQ(r["inputs"]["aspect"], 1.5);
+  EXPECT_NE(r["cases"][0]["vgroove"]["skipped"].get<std::string>().find("anisotropic"), std::string::npos);
+  EXPECT_TRUE(r["cases"][0]["cook_torrance_smith"].contains("skipped"));
+  std::ostringstream table;
+  print_heightfield_table(table, s, run);
+  EXPECT_NE(table.str().find("skipped: anisotropic roughness (alpha_y = 1.5 alpha_x)"), std::string::npos)
+      << table.str();
+
+  // What aspect != 1 refuses, one line each.
+  const auto bad = [&](json k, const std::string& part) {
+    json b = j;
+    for (auto& [key, v] : k.items()) b[key] = v;
+    EXPECT_USER_ERROR(parse_heightfield_suite(b, "a.json"), part);
+  };
+  bad({{"aspect", 5}}, "a.json: /aspect");
+  bad({{"ndf", {"ggx"}}, {"controls", json::array()}}, "a.json: /aspect = 1.5 (anisotropic) needs ndf [\"beckmann\"]");
+  bad({{"surface", "grooves"}}, "a.json: /aspect = 1.5 (anisotropic) needs surface gaussian");
+  bad({{"masking", {{"theta_o_deg", {45}}, {"phi_deg", {0}}, {"points", 10}}}}, "a.json: /masking is not measured");
+  bad({{"controls", {{{"model", "vgroove"}, {"ndf", "beckmann"}, {"alpha", 0.3}, {"theta_i_deg", 0}}}}},
+      "a.json: /controls/0 model vgroove is skipped when aspect != 1");
+  bad({{"aspect", 4}}, "a.json: /aspect = 4 (anisotropic) with alpha 0.3 and correlation_length 4: ");
 }
 
 // The command line: an oversized field is refused before any work, one line naming the key and
