@@ -4,7 +4,9 @@
 // status 0. Two pieces: at start-up a closed descriptor 0, 1 or 2 is reopened on /dev/null in the
 // direction that fails (stdout read-only), so that writing to it still fails, visibly, and no file
 // the run opens can take its number (a report opened as descriptor 1 would receive the table);
-// at the end, everything buffered is flushed and the stream's error state is read.
+// at the end, everything buffered is flushed and the stream's error state is read, with the reason
+// of the first write that failed (std::cout's buffer keeps its errno: output larger than C's buffer
+// fails before the flush).
 #pragma once
 
 #include <string>
