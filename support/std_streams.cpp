@@ -49,9 +49,11 @@ class FirstErrorBuf : public std::streambuf {
   int first_errno_ = 0;
 };
 
+// Never destroyed: std::cout is flushed after every static object's destructor has run (at the end
+// of std::ios_base::Init), and its buffer must still be there then.
 FirstErrorBuf& cout_buf() {
-  static FirstErrorBuf buf(std::cout.rdbuf());
-  return buf;
+  static FirstErrorBuf* const buf = new FirstErrorBuf(std::cout.rdbuf());
+  return *buf;
 }
 
 }  // namespace
