@@ -71,8 +71,13 @@ sim::HeightfieldTally trace_field(const sim::HeightfieldSurface& s, double theta
   return t;
 }
 
-sim::HeightfieldTally walk_lobe(NdfKind ndf, double alpha, double theta_i, long paths, std::uint64_t seed,
-                                int theta_bins, int phi_bins, int max_k, const std::atomic<bool>* cancel) {
+namespace {
+
+// `paths` walks from dir3(theta_i, pi) in chunks of sim::kHeightfieldRaysPerChunk, chunk c from
+// Rng(seed, kHeightfieldRayStream, c), binned by the tracer's own rule; walk(wi, uniform) walks once.
+template <class Walk>
+sim::HeightfieldTally walk_lobe_with(Walk&& walk, double theta_i, long paths, std::uint64_t seed, int theta_bins,
+                                     int phi_bins, int max_k, const std::atomic<bool>* cancel) {
   sim::HeightfieldTally t(theta_bins, phi_bins, max_k, std::numbers::pi);
   const analytic::Dir3 wi = analytic::dir3(theta_i, std::numbers::pi);
   const std::int64_t chunk_size = sim::kHeightfieldRaysPerChunk;
@@ -82,37 +87,33 @@ sim::HeightfieldTally walk_lobe(NdfKind ndf, double alpha, double theta_i, long 
     auto uniform = [&rng] { return sim::uniform_open(rng); };
     const std::int64_t end = std::min<std::int64_t>(paths, (c + 1) * chunk_size);
     for (std::int64_t p = c * chunk_size; p < end; ++p) {
-      const analytic::Walk3d w = analytic::smith_walk_3d(ndf, alpha, wi, uniform);
+      const analytic::Walk3d w = walk(wi, uniform);
       sim::HeightfieldRayResult r;
       r.how = w.left ? sim::HeightfieldFate::escaped : sim::HeightfieldFate::bounce_limit;
       r.bounces = w.k;
       r.o = Eigen::Vector3d(w.o.x, w.o.y, w.o.z);
-      t.add(r);  // binned by the tracer's own rule
+      t.add(r);
     }
   }
   return t;
 }
 
+}  // namespace
+
+sim::HeightfieldTally walk_lobe(NdfKind ndf, double alpha, double theta_i, long paths, std::uint64_t seed,
+                                int theta_bins, int phi_bins, int max_k, const std::atomic<bool>* cancel) {
+  return walk_lobe_with(
+      [&](const analytic::Dir3& wi, auto& uniform) { return analytic::smith_walk_3d(ndf, alpha, wi, uniform); },
+      theta_i, paths, seed, theta_bins, phi_bins, max_k, cancel);
+}
+
 sim::HeightfieldTally walk_lobe(const analytic::Roughness& r, double theta_i, long paths, std::uint64_t seed,
                                 int theta_bins, int phi_bins, int max_k, const std::atomic<bool>* cancel) {
-  sim::HeightfieldTally t(theta_bins, phi_bins, max_k, std::numbers::pi);
-  const analytic::Dir3 wi = analytic::dir3(theta_i, std::numbers::pi);
-  const std::int64_t chunk_size = sim::kHeightfieldRaysPerChunk;
-  for (std::int64_t c = 0; c * chunk_size < paths; ++c) {
-    if (support::cancelled(cancel)) break;
-    sim::Rng rng(seed, sim::kHeightfieldRayStream, static_cast<std::uint64_t>(c));
-    auto uniform = [&rng] { return sim::uniform_open(rng); };
-    const std::int64_t end = std::min<std::int64_t>(paths, (c + 1) * chunk_size);
-    for (std::int64_t p = c * chunk_size; p < end; ++p) {
-      const analytic::Walk3d w = analytic::smith_walk_3d(r, analytic::WalkHeights::log_c1, wi, uniform);
-      sim::HeightfieldRayResult res;
-      res.how = w.left ? sim::HeightfieldFate::escaped : sim::HeightfieldFate::bounce_limit;
-      res.bounces = w.k;
-      res.o = Eigen::Vector3d(w.o.x, w.o.y, w.o.z);
-      t.add(res);
-    }
-  }
-  return t;
+  return walk_lobe_with(
+      [&](const analytic::Dir3& wi, auto& uniform) {
+        return analytic::smith_walk_3d(r, analytic::WalkHeights::log_c1, wi, uniform);
+      },
+      theta_i, paths, seed, theta_bins, phi_bins, max_k, cancel);
 }
 
 std::vector<double> joint_fractions(const sim::HeightfieldTally& t, int first_row) {
