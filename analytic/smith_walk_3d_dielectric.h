@@ -40,8 +40,7 @@ struct DielectricWalk3d {
 // law transmits (DielectricFresnelLaw).
 template <class Uniform, class Law = DielectricFresnelLaw>
 DielectricWalk3d smith_walk_3d_dielectric(NdfKind ndf, double alpha, const Dir3& i, WalkMedium from,
-                                          const DielectricWalkOptions& opt, Uniform&& uniform,
-                                          const Law& law = Law{}) {
+                                          const DielectricWalkOptions& opt, Uniform&& uniform, const Law& law = Law{}) {
   DielectricWalk3d w;
   WalkMedium medium = from;
   // The frame of the medium the ray travels in: medium 1's is the world's, medium 2's the world's

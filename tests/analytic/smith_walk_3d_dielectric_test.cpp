@@ -186,8 +186,8 @@ Averages transmitted_averages(NdfKind ndf, double alpha, double eta, int walks) 
 // a flat interface). The same counts with the power 1 (a deliberately wrong identity) are rejected.
 // 10^6 walks a side: r = -0.0007, -0.0010, -0.0005 (se 0.0012) for the three cases.
 TEST(SmithWalk3dDielectric, TransmittedAveragesAreReciprocal) {
-  for (const auto& [ndf, alpha] : {std::pair{NdfKind::ggx, 0.3}, std::pair{NdfKind::ggx, 1.0},
-                                   std::pair{NdfKind::beckmann, 0.6}}) {
+  for (const auto& [ndf, alpha] :
+       {std::pair{NdfKind::ggx, 0.3}, std::pair{NdfKind::ggx, 1.0}, std::pair{NdfKind::beckmann, 0.6}}) {
     const Averages a = transmitted_averages(ndf, alpha, 1.5, 60000);
     std::printf("%s alpha %.1f: r = %+.4f +- %.4f (power 1: %+.3f)\n", ndf_name(ndf), alpha, a.r(1.5, 2.0),
                 a.se(1.5, 2.0), a.r(1.5, 1.0));
