@@ -112,8 +112,8 @@ sim::HeightfieldTally walk_lobe(const analytic::Roughness& r, double theta_i, lo
   return walk_lobe(r, analytic::WalkHeights::log_c1, theta_i, paths, seed, theta_bins, phi_bins, max_k, cancel);
 }
 
-sim::HeightfieldTally walk_lobe(const analytic::Roughness& r, analytic::WalkHeights heights, double theta_i,
-                                long paths, std::uint64_t seed, int theta_bins, int phi_bins, int max_k,
+sim::HeightfieldTally walk_lobe(const analytic::Roughness& r, analytic::WalkHeights heights, double theta_i, long paths,
+                                std::uint64_t seed, int theta_bins, int phi_bins, int max_k,
                                 const std::atomic<bool>* cancel) {
   return walk_lobe_with(
       [&](const analytic::Dir3& wi, auto& uniform) { return analytic::smith_walk_3d(r, heights, wi, uniform); },

@@ -75,8 +75,8 @@ sim::HeightfieldTally walk_lobe(NdfKind ndf, double alpha, double theta_i, long 
 // Roughness walk of analytic/smith_walk_3d.h (heights log C1, or `heights`).
 sim::HeightfieldTally walk_lobe(const analytic::Roughness& r, double theta_i, long paths, std::uint64_t seed,
                                 int theta_bins, int phi_bins, int max_k, const std::atomic<bool>* cancel = nullptr);
-sim::HeightfieldTally walk_lobe(const analytic::Roughness& r, analytic::WalkHeights heights, double theta_i,
-                                long paths, std::uint64_t seed, int theta_bins, int phi_bins, int max_k,
+sim::HeightfieldTally walk_lobe(const analytic::Roughness& r, analytic::WalkHeights heights, double theta_i, long paths,
+                                std::uint64_t seed, int theta_bins, int phi_bins, int max_k,
                                 const std::atomic<bool>* cancel = nullptr);
 
 // Joint fractions of the tally's rays per (row, bin) for rows k = first_row..last row, row by row.

@@ -172,7 +172,7 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
   for (const HeightfieldOutcome& o : run.cases) {
     const int bins = suite.bins();
     rays += o.rays, lost += o.lost, passed += o.pass;
-    const bool skipped = o.c.aspect != 1.0;
+    const bool case_is_anisotropic = o.c.aspect != 1.0;  // the isotropic models skipped
     cases.push_back({{"ndf", analytic::ndf_name(o.c.ndf)},
                      {"alpha", o.c.alpha},
                      {"theta_i_deg", o.c.theta_i_deg},
@@ -198,12 +198,12 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
                        {"energy_by_k", o.walk_energy},
                        {"lobe_by_k", rows_of(o.walk_lobe, kHeightfieldRows, bins)},
                        {"against_traced", miss_json(o.walk, o)}}},
-                     {"cook_torrance_smith", skipped
+                     {"cook_torrance_smith", case_is_anisotropic
                                                  ? nlohmann::json{{"skipped", skipped_text(o.c.aspect)}}
                                                  : nlohmann::json{{"integration_error", o.ct_error},
                                                                   {"lobe_k1", o.ct_lobe},
                                                                   {"against_traced", miss_json(o.cook_torrance, o)}}},
-                     {"vgroove", skipped
+                     {"vgroove", case_is_anisotropic
                                      ? nlohmann::json{{"skipped", skipped_text(o.c.aspect)}}
                                      : nlohmann::json{{"energy_by_k", o.vgroove_energy},
                                                       {"lobe_by_k", rows_of(o.vgroove_lobe, kHeightfieldRows, bins)},
@@ -268,8 +268,8 @@ void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, co
       support::format("%zu cases, %d %sfields of %d^2 cells (correlation %g cells%s) per case, %ld rays per field, "
                       "%ld walk paths, %d x %d bins, F = 1",
                       run.cases.size(), suite.fields,
-                      grooves ? "random-orientation V-groove "
-                      : several_aspects ? ("alpha_y = aspect alpha_x (aspect " + aspects + ") ").c_str()
+                      grooves           ? "random-orientation V-groove "
+                      : several_aspects ? ("anisotropic (alpha_y = aspect alpha_x, aspect " + aspects + ") ").c_str()
                       : suite.anisotropic()
                           ? support::format("anisotropic (alpha_y = %g alpha_x) ", suite.aspects[0]).c_str()
                           : "",
@@ -283,10 +283,9 @@ void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, co
         "  %-8s%s alpha %.2f theta_i %4.1f: E_1 %.4f(%.4f) E_2 %.4f(%.4f) E_3+ %.4f(%.4f) albedo "
         "%.4f; %lld rays, lost %lld, %.2f s%s\n",
         analytic::ndf_name(o.c.ndf), several_aspects ? support::format(" aspect %g", o.c.aspect).c_str() : "",
-        o.c.alpha, o.c.theta_i_deg, o.energy[0], o.energy_se[0], o.energy[1],
-        o.energy_se[1], o.energy[2], o.energy_se[2], o.albedo, static_cast<long long>(o.rays),
-        static_cast<long long>(o.lost), o.field_s + o.trace_s + o.walk_s + o.model_s,
-        o.pass ? "" : "  FAIL (lost or not finite)");
+        o.c.alpha, o.c.theta_i_deg, o.energy[0], o.energy_se[0], o.energy[1], o.energy_se[1], o.energy[2],
+        o.energy_se[2], o.albedo, static_cast<long long>(o.rays), static_cast<long long>(o.lost),
+        o.field_s + o.trace_s + o.walk_s + o.model_s, o.pass ? "" : "  FAIL (lost or not finite)");
     os << support::format("    %-20s %s\n", several_walks ? ("smith_walk " + first_walk).c_str() : "smith_walk",
                           miss_text(o.walk).c_str());
     for (const HeightfieldOtherWalk& w : o.other_walks)

@@ -438,8 +438,10 @@ Job<HeightfieldWork> heightfield_job(const HeightfieldSuite& suite, long rays, n
             out.energy_se.size() != rows || out.walk_energy.size() != rows || out.vgroove_energy.size() != iso * rows ||
             out.g1.size() != (suite.masking ? suite.masking->theta_o_deg.size() : 0) ||
             out.g2.size() != (suite.masking ? suite.masking->pairs() : 0) || !walks_shaped)
-          o.fail("outcome", "/lobe, /walk_lobe, /vgroove_lobe, /ct_lobe an energy, /g1, /g2 or /other_walks is not of the suite's " +
-                                std::to_string(kHeightfieldRows) + " rows x " + std::to_string(bins) + " bins");
+          o.fail(
+              "outcome",
+              "/lobe, /walk_lobe, /vgroove_lobe, /ct_lobe an energy, /g1, /g2 or /other_walks is not of the suite's " +
+                  std::to_string(kHeightfieldRows) + " rows x " + std::to_string(bins) + " bins");
       },
       std::move(descriptor),
       [&suite, n_rays](std::size_t) {

@@ -80,7 +80,9 @@ struct HeightfieldSuite {
   // the V-groove model (isotropic here) are skipped; a suite with one refuses the masking section.
   std::vector<double> aspects{1.0};
   bool aspect_list = false;  // given as a list (the report echoes the form given)
-  bool anisotropic() const { return std::any_of(aspects.begin(), aspects.end(), [](double a) { return a != 1.0; }); }
+  bool anisotropic() const {
+    return std::any_of(aspects.begin(), aspects.end(), [](double a) { return a != 1.0; });
+  }
   // "walk_heights": the Smith walk once per height distribution (Heitz et al. 2016, Sec. 4), the
   // first the walk the controls and the tables hold (default log C1, the walk before the key).
   std::vector<analytic::WalkHeights> walk_heights{analytic::WalkHeights::log_c1};
@@ -160,8 +162,8 @@ struct HeightfieldOutcome {
   std::vector<double> walk_lobe, walk_energy;  // the first of walk_heights
   std::int64_t walk_paths = 0, walk_left = 0;
   std::vector<HeightfieldOtherWalk> other_walks;  // walk_heights[1..]
-  std::vector<double> ct_lobe;  // k = 1 row
-  double ct_error = 0.0;        // the integration's error estimate
+  std::vector<double> ct_lobe;                    // k = 1 row
+  double ct_error = 0.0;                          // the integration's error estimate
   std::vector<double> vgroove_lobe, vgroove_energy;
   HeightfieldMiss walk, cook_torrance, vgroove;
   std::vector<HeightfieldMaskingValue> g1, g2;  // the masking section: per theta_o; per (theta_o, phi)

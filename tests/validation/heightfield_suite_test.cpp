@@ -465,9 +465,9 @@ TEST(HeightfieldSuite, WalkHeightDistributionsAgreeSideBySide) {
 
   // The broken variant: the uniform walk at alpha 0.4, against the first by the same rule.
   const double paths = static_cast<double>(s.walk_paths);
-  const sim::HeightfieldTally wide = walk_lobe(analytic::Roughness{NdfKind::beckmann, 0.4, 0.4},
-                                               analytic::WalkHeights::uniform, 0.0, s.walk_paths, 11, s.theta_bins,
-                                               s.phi_bins, kHeightfieldRows - 1);
+  const sim::HeightfieldTally wide =
+      walk_lobe(analytic::Roughness{NdfKind::beckmann, 0.4, 0.4}, analytic::WalkHeights::uniform, 0.0, s.walk_paths, 11,
+                s.theta_bins, s.phi_bins, kHeightfieldRows - 1);
   const std::vector<double> lobe = joint_fractions(wide, 1);
   std::vector<double> var, wide_e(kHeightfieldRows, 0.0), se, e_se;
   for (double p : lobe) var.push_back(p * (1.0 - p) / paths);
@@ -487,7 +487,8 @@ TEST(HeightfieldSuite, WalkHeightDistributionsAgreeSideBySide) {
     b["walk_heights"] = v;
     EXPECT_USER_ERROR(parse_heightfield_suite(b, "w.json"), part);
   };
-  bad({"uniform", "lognormal"}, "w.json: /walk_heights/1 = \"lognormal\" is not one of \"log_c1\", \"uniform\", \"gaussian\"");
+  bad({"uniform", "lognormal"},
+      "w.json: /walk_heights/1 = \"lognormal\" is not one of \"log_c1\", \"uniform\", \"gaussian\"");
   bad({"uniform", "uniform"}, "w.json: /walk_heights/1 = \"uniform\" is given twice");
   bad(json::array(), "w.json: /walk_heights = [] must be a non-empty list");
   bad("uniform", "w.json: /walk_heights = \"uniform\" must be a non-empty list");
@@ -508,7 +509,8 @@ TEST(HeightfieldSuite, AspectListIsCasesOverAspectsAndOneNumberIsAsBefore) {
   const HeightfieldRun a = run_heightfield_suite(one, 0, 2);
   ASSERT_EQ(a.cases.size(), 1u);
   EXPECT_EQ(a.cases[0].energy, (std::vector<double>{0.9929375, 0.007062500000000001, 0.0}));
-  EXPECT_EQ(a.cases[0].walk_energy, (std::vector<double>{0.9896499999999997, 0.009899999999999997, 0.00045000000000000004}));
+  EXPECT_EQ(a.cases[0].walk_energy,
+            (std::vector<double>{0.9896499999999997, 0.009899999999999997, 0.00045000000000000004}));
   EXPECT_EQ(a.cases[0].walk.l1_total, 0.102275);
   EXPECT_EQ(heightfield_report_json(one, a)["inputs"]["aspect"], 1.5);
   j["aspect"] = {1.5};
