@@ -125,10 +125,11 @@ void make_room(json& doc, const Bound& b) {
     // Its controls name cases of the suite: dropped, or (a control's own bound) given a case there.
     if (b.path[0] != "controls") doc.erase("controls");
     if (b.path[0] == "controls") doc["controls"] = json::array({doc["controls"][0]});
-    if (b.path[0] == "controls" && (field == "alpha" || field == "theta_i_deg")) doc[field] = json::array({at(b)});
+    if (b.path[0] == "controls" && (field == "alpha" || field == "theta_i_deg" || field == "aspect"))
+      doc[field] = json::array({at(b)});
     // An aspect a makes l_y about l_x / a, which must stay in [2, field_size / 8] (its own refusal):
-    // a field where both ends of the aspect's range fit.
-    if (field == "aspect") doc["field_size"] = 1024, doc["correlation_length"] = 16;
+    // a field where both ends of the aspect's range fit (the number, a list's item, a control's).
+    if (field == "aspect" || b.path[0] == "aspect") doc["field_size"] = 1024, doc["correlation_length"] = 16;
   }
   if (b.upper && (field == "flatland_bins" || field == "theta_bins" || field == "phi_bins" || field == "lobe_bins")) {
     if (b.kind != "heightfield") doc["max_k"] = b.kind == "profiles" ? 1 : 0;
