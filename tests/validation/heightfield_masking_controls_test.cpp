@@ -77,7 +77,7 @@ TEST(HeightfieldMaskingControls, ShippedControlsParseAndBadOnesAreRefused) {
   const HeightfieldSuite s = parse_heightfield_suite(shipped(), "heightfield.json");
   ASSERT_TRUE(s.masking.has_value());
   ASSERT_EQ(s.masking->controls.size(), 9u);
-  const HeightfieldMaskingControl& c = s.masking->controls[8];
+  const HeightfieldMaskingControl& c = s.masking->controls[3];  // G2 first (SchemaBounds reads control 0's fields)
   EXPECT_TRUE(c.g2);
   EXPECT_TRUE(c.every_bin);
   EXPECT_EQ(c.model, "smith_height_correlated");
