@@ -60,7 +60,8 @@ struct HeightfieldControl {
 // case's G1(theta_o) or G2(theta_o, phi), overall or overall and in every bin.
 struct HeightfieldMaskingControl {
   bool g2 = false;
-  std::string model;  // G1: smith, vcavity; G2: smith_separable, ..._height_correlated, ..._direction_correlated, vcavity
+  std::string
+      model;  // G1: smith, vcavity; G2: smith_separable, ..._height_correlated, ..._direction_correlated, vcavity
   std::size_t case_index = 0, theta_o_index = 0, phi_index = 0;  // phi: G2 only
   bool every_bin = false;
 };

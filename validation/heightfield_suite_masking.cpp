@@ -209,9 +209,9 @@ void print_masking_controls(std::ostream& os, const HeightfieldSuite& suite, con
     const HeightfieldMaskingControl& ctl = suite.masking->controls[n];
     const ControlText t = control_text(suite, ctl);
     const bool held = n < run.masking_controls_hold.size() && run.masking_controls_hold[n];
-    std::string where = support::format("%s %s on %s alpha %.2f theta_i %.1f theta_o %.1f", ctl.g2 ? "G2" : "G1",
-                                        ctl.model.c_str(), analytic::ndf_name(t.c.ndf), t.c.alpha, t.c.theta_i_deg,
-                                        t.theta_o);
+    std::string where =
+        support::format("%s %s on %s alpha %.2f theta_i %.1f theta_o %.1f", ctl.g2 ? "G2" : "G1", ctl.model.c_str(),
+                        analytic::ndf_name(t.c.ndf), t.c.alpha, t.c.theta_i_deg, t.theta_o);
     if (ctl.g2) where += support::format(" dphi %.1f", t.phi);
     where += ctl.every_bin ? ", overall and every bin" : ", overall";
     std::string how;

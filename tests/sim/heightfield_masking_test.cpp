@@ -242,8 +242,8 @@ TEST(HeightfieldJointMasking, BinsAreSymmetricInIAndO) {
     double theta_i, phi_i, theta_o, phi_o;
   };
   const double pi = std::numbers::pi;
-  for (const Pair& c : {Pair{1.2, 0.0, 1.2, pi}, Pair{0.9, 0.0, 1.3, 0.5 * pi}, Pair{1.4, 5.5, 0.6, 1.0},
-                        Pair{0.0, 0.0, 1.3, 2.0}}) {
+  for (const Pair& c :
+       {Pair{1.2, 0.0, 1.2, pi}, Pair{0.9, 0.0, 1.3, 0.5 * pi}, Pair{1.4, 5.5, 0.6, 1.0}, Pair{0.0, 0.0, 1.3, 2.0}}) {
     HeightfieldJointMaskingOptions opt;
     opt.theta_i = c.theta_i, opt.phi_i = c.phi_i, opt.theta_o = c.theta_o, opt.phi_o = c.phi_o;
     opt.points = 5000;

@@ -13,8 +13,8 @@
 //   the facets tilted away from o are hidden more than that (HeightfieldMaskingSmith.
 //   PerNormalG1RisesAsTheFacetTurnsTowardsTheViewer): it must fail, and with it the suite.
 #include "tests/test_files.h"
-#include "vgroove/support/user_error.h"
 #include "vgroove/analytic/ndf.h"
+#include "vgroove/support/user_error.h"
 #include "vgroove/validation/heightfield_suite.h"
 
 #include <gtest/gtest.h>
@@ -34,7 +34,8 @@ json shipped() {
 }
 
 json control(const char* g, const char* model, double theta_o, double phi, bool every_bin) {
-  json c = {{"g", g}, {"model", model}, {"ndf", "beckmann"}, {"alpha", 0.3}, {"theta_i_deg", 0}, {"theta_o_deg", theta_o}};
+  json c = {{"g", g},       {"model", model},   {"ndf", "beckmann"},
+            {"alpha", 0.3}, {"theta_i_deg", 0}, {"theta_o_deg", theta_o}};
   if (std::string(g) == "g2") c["phi_deg"] = phi;
   if (every_bin) c["every_bin"] = true;
   return c;
@@ -65,11 +66,11 @@ json small() {
   return j;
 }
 
-#define EXPECT_USER_ERROR(stmt, part)                                             \
-  try {                                                                           \
-    stmt;                                                                         \
-    ADD_FAILURE() << "no support::UserError";                                     \
-  } catch (const support::UserError& err) {                                       \
+#define EXPECT_USER_ERROR(stmt, part)                                               \
+  try {                                                                             \
+    stmt;                                                                           \
+    ADD_FAILURE() << "no support::UserError";                                       \
+  } catch (const support::UserError& err) {                                         \
     EXPECT_NE(std::string(err.what()).find(part), std::string::npos) << err.what(); \
   }
 
