@@ -8,11 +8,11 @@
 // and its standard error (their spread, at least the rays' multinomial error). A model is within
 // noise when every row's L1 <= expected + sigmas sd + tolerance and every E_k within sigmas se:
 // measured, not a verdict. The verdict: no ray lost, every value finite, the `controls`. Optional
-// "masking": traced G1, G2 per facet-normal bin against Smith's forms and the V-cavity. One work
-// item per case: one report for any thread, shard or rank count. Memory: one field per worker.
-// Tests: tests/validation/heightfield_suite_test.cpp (HeightfieldSuite.*, HeightfieldSuiteCli.*),
-// tests/cluster/shards_test.sh. Schema: docs/schemas/suite.schema.json ($defs/heightfield).
-// Derivation: docs/derivations/heightfield.md (the suite's section).
+// "masking": traced G1, G2 per facet-normal bin against Smith's forms and the V-cavity, controls in
+// the verdict. One work item per case: one report for any thread, shard or rank count. Memory: one
+// field per worker. Tests: tests/validation/heightfield_suite_test.cpp (HeightfieldSuite.*,
+// HeightfieldSuiteCli.*), tests/cluster/shards_test.sh. Schema: docs/schemas/suite.schema.json
+// ($defs/heightfield). Derivation: docs/derivations/heightfield.md (the suite's section).
 #pragma once
 
 #include "vgroove/analytic/ndf.h"
