@@ -239,6 +239,7 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
                         {"within_noise", n < run.controls_hold.size() && run.controls_hold[n]}});
   }
   j["controls"] = std::move(controls);
+  j["masking_controls"] = masking_controls_json(suite, run);
   j["summary"] = {
       {"cases", run.cases.size()}, {"passed", passed}, {"rays", rays}, {"lost", lost}, {"wall_s", run.wall_s}};
   j["thresholds"] = {
@@ -248,9 +249,10 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
        "spread but at least the rays' multinomial error, plus the walk's own) and every row's |E_traced - E_model| "
        "<= sigmas se + tolerance; the other models' distances are results, not verdicts"},
       {"masking_rule",
-       "masking (reported, not a verdict): a model is within noise when |traced - model| <= sigmas se + "
-       "model_tolerance overall and in every facet-normal bin with points on every field (se: the fields' spread, at "
-       "least the points' binomial error)"},
+       "masking: a model is within noise when |traced - model| <= sigmas se + model_tolerance overall (and, for "
+       "every_bin, in every facet-normal bin with points on every field; se: the fields' spread, at least the "
+       "points' binomial error); each masking control's model within noise enters the verdict, the others are "
+       "results"},
       {"sigmas", suite.sigmas},
       {"model_tolerance", suite.model_tolerance}};
   j["pass"] = run.pass;
@@ -317,6 +319,7 @@ void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, co
                           several_aspects ? support::format(" aspect %g", c.aspect).c_str() : "", c.alpha,
                           c.theta_i_deg, held ? "within noise" : "NOT within noise (fails the suite)");
   }
+  print_masking_controls(os, suite, run);
   std::size_t passed = 0;
   for (const auto& o : run.cases) passed += o.pass;
   print_table_close(os, passed, run.cases.size(), run.wall_s);

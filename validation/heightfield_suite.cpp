@@ -216,7 +216,7 @@ HeightfieldSuite parse_heightfield_suite(const nlohmann::json& j, const std::str
     if (s.anisotropic())
       root.fail("masking", "is not measured when aspect != 1 (its models are isotropic here): drop it or set aspect 1");
     support::JsonObject m = root.object("masking");
-    s.masking = parse_heightfield_masking(m);
+    s.masking = parse_heightfield_masking(m, s);
   }
   root.finish();
   return s;
@@ -470,6 +470,12 @@ HeightfieldRun heightfield_run_from(const HeightfieldSuite& suite,
     run.controls_hold.push_back(m.within_noise);
     run.pass = run.pass && m.within_noise;
   }
+  if (suite.masking)
+    for (const HeightfieldMaskingControl& c : suite.masking->controls) {
+      const bool held = masking_control_holds(c, run.cases[c.case_index]);
+      run.masking_controls_hold.push_back(held);
+      run.pass = run.pass && held;
+    }
   return run;
 }
 

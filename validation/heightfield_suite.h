@@ -3,16 +3,15 @@
 // "grooves": V-grooves at random orientations, sim/heightfield_grooves.h) traced exactly in 3D
 // (heightfield_lobe.h), their lobes per k (rows 1, 2, 3+) and energies against the 3D Smith walk
 // (analytic/smith_walk_3d.h, one per "walk_heights" distribution, side by side), Cook-Torrance with
-// Smith's height-correlated G (k = 1, integrated over the bins as check_brdf) and the V-groove
-// model (Eq. 16, analytic/lobe_3d.h; both skipped when anisotropic). Per case (ndf, aspect, alpha,
-// theta_i): `fields` fields, `rays` rays on each; per cell the mean over the fields and its
-// standard error (their spread, at least the rays' multinomial error). A model is within noise when
+// Smith's height-correlated G (k = 1) and the V-groove model (Eq. 16, analytic/lobe_3d.h; both
+// skipped when anisotropic). Per case (ndf, aspect, alpha, theta_i): `fields` fields, `rays` rays on
+// each; per cell the mean over the fields and its standard error. A model is within noise when
 // every row's L1 <= expected + sigmas sd + tolerance and every E_k within sigmas se: measured, not
 // a verdict. The verdict: no ray lost, every value finite, the `controls`. Optional "masking": G1,
-// G2 per facet-normal bin against Smith's forms and the V-cavity. One work item per case; memory:
-// one field per worker. Tests: tests/validation/heightfield_suite_test.cpp (HeightfieldSuite.*,
-// HeightfieldSuiteCli.*, HeightfieldSuiteLong.*), tests/cluster/shards_test.sh. Schema:
-// docs/schemas/suite.schema.json ($defs/heightfield). Derivation: docs/derivations/heightfield.md.
+// G2 per facet-normal bin against Smith's forms and the V-cavity, controls in the verdict. One work
+// item per case; memory: one field per worker. Tests: tests/validation/heightfield_suite_test.cpp
+// (HeightfieldSuite.*, HeightfieldSuiteCli.*, HeightfieldSuiteLong.*), tests/cluster/shards_test.sh.
+// Schema: docs/schemas/suite.schema.json ($defs/heightfield). Derivation: docs/derivations/heightfield.md.
 #pragma once
 
 #include "vgroove/analytic/ndf.h"
@@ -57,12 +56,22 @@ struct HeightfieldControl {
 // The masking section (optional "masking" in the suite): per case (its theta_i, the light at
 // azimuth 0) the traced G1(o) for each theta_o (sim/heightfield_masking.h, `points` points per
 // field) and G2(i, o) for each theta_o x azimuth difference phi (o at azimuth phi), on the case's
-// fields, per facet-normal bin (theta_m_bins over [0, 90) deg x phi_m_bins relative to o's azimuth)
-// and overall, against Smith's forms and the V-cavity (analytic/masking_shadowing.h).
+// fields, per facet-normal bin (theta_m_bins over [0, 90) deg x phi_m_bins from o's azimuth (G1)
+// or the bisector of i's and o's (G2)) and overall, against Smith's forms and the V-cavity
+// (analytic/masking_shadowing.h). Its controls enter the verdict: a named model within noise for a
+// case's G1(theta_o) or G2(theta_o, phi), overall or overall and in every bin.
+struct HeightfieldMaskingControl {
+  bool g2 = false;
+  std::string
+      model;  // G1: smith, vcavity; G2: smith_separable, ..._height_correlated, ..._direction_correlated, vcavity
+  std::size_t case_index = 0, theta_o_index = 0, phi_index = 0;  // phi: G2 only
+  bool every_bin = false;
+};
 struct HeightfieldMaskingSpec {
   std::vector<double> theta_o_deg, phi_deg;
   long points = 20000;  // per field, theta_o and pair
   int theta_m_bins = 3, phi_m_bins = 4;
+  std::vector<HeightfieldMaskingControl> controls;
   std::size_t pairs() const { return theta_o_deg.size() * phi_deg.size(); }
   int bins() const { return theta_m_bins * phi_m_bins; }
 };
@@ -202,7 +211,8 @@ void fields(HeightfieldOutcome& o, F&& f) {
 
 struct HeightfieldRun {
   std::vector<HeightfieldOutcome> cases;
-  std::vector<bool> controls_hold;  // per suite control
+  std::vector<bool> controls_hold;          // per suite control
+  std::vector<bool> masking_controls_hold;  // per masking control
   int threads = 1;
   double wall_s = 0.0;
   bool interrupted = false;
@@ -252,8 +262,14 @@ HeightfieldMaskingMiss heightfield_masking_miss(const std::string& name, const H
                                                 double value, std::vector<double> bins, double sigmas,
                                                 double tolerance);
 // The masking spec from the suite's "masking" object (theta_o_deg within [0, 89.9], phi_deg
-// within [0, 180], points, bins).
-HeightfieldMaskingSpec parse_heightfield_masking(support::JsonObject& m);
+// within [0, 180], points, bins, controls naming a case of `suite` and a measured theta_o, phi).
+HeightfieldMaskingSpec parse_heightfield_masking(support::JsonObject& m, const HeightfieldSuite& suite);
+// A masking control's miss in a case's outcome (nullptr where the outcome lacks it: an interrupted
+// run) and whether it holds; the controls in the report and the table.
+const HeightfieldMaskingMiss* masking_control_miss(const HeightfieldMaskingControl& c, const HeightfieldOutcome& o);
+bool masking_control_holds(const HeightfieldMaskingControl& c, const HeightfieldOutcome& o);
+nlohmann::json masking_controls_json(const HeightfieldSuite& suite, const HeightfieldRun& run);
+void print_masking_controls(std::ostream& os, const HeightfieldSuite& suite, const HeightfieldRun& run);
 
 nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const HeightfieldRun& run);
 void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, const HeightfieldRun& run);

@@ -27,7 +27,9 @@ One or more images per report, named after the report (or --out) with a suffix p
                                                             3+) against theta_i, a series per alpha (<= 1:
                                                             within noise), and E_k model minus traced;
                                              BASE-masking-NDF.png  G1 per facet-normal bin: traced,
-                                                            Smith, V-cavity (a row per alpha, a column per view)
+                                                            Smith, V-cavity (a row per alpha, a column per view);
+                                                            the masking controls' verdict in the title, a G1
+                                                            control's panel titled held / NOT within noise
     "energy_audit"                           BASE-REF-NDF.png  per compensation formula, its albedo minus the
                                                             exact one over (mu, alpha), the grey F0 with the
                                                             largest |error| per cell (REF: vgroove, smith_walk)
@@ -1162,6 +1164,26 @@ def _heightfield_masking_figures(report: Node, name: str) -> List[Tuple[str, Dra
                           "smith": g["models"]["smith"]["value"].number(0.0, 1.0),
                           "vcavity": g["models"]["vcavity"]["bins"].numbers_or_gaps(bins)})
         groups.setdefault(ndf, {})[alpha] = views
+    # The masking controls (the verdict): held / all, those that failed by name, and per G1 panel
+    # (ndf, alpha, view) whether its controls held.
+    held, failed, panel = 0, [], {}
+    controls = report["masking_controls"].items() if report.has("masking_controls") else []
+    for c in controls:
+        ok = c["within_noise"].boolean()
+        held += ok
+        g = c["g"].one_of(("g1", "g2"))
+        what = (f"{g.upper()} {safe_text(c['model'].text(), 40)} {c['ndf'].one_of(_NDFS)} alpha "
+                f"{c['alpha'].number(0.0, 2.0):g} view {c['theta_o_deg'].number(0.0, 90.0):g}")
+        if not ok:
+            failed.append(what)
+        if g == "g1":
+            key = (c["ndf"].one_of(_NDFS), c["alpha"].number(0.0, 2.0), c["theta_o_deg"].number(0.0, 90.0))
+            panel[key] = panel.get(key, True) and ok
+    verdict = ""
+    if controls:
+        verdict = f"; masking controls: {held}/{len(controls)} within noise"
+        if failed:
+            verdict += " (NOT: " + "; ".join(failed) + ")"
 
     def drawer(ndf: str, by_alpha: Dict[float, List[Dict[str, Any]]]) -> Drawer:
         def draw() -> Figure:
@@ -1179,7 +1201,10 @@ def _heightfield_masking_figures(report: Node, name: str) -> List[Tuple[str, Dra
                     ax.plot(x, v["vcavity"], "s--", ms=3, lw=0.9, color="#ff7f0e", label="V-cavity")
                     ax.axhline(v["smith"], color="black", lw=0.8, ls=":", label="Smith")
                     ax.set_ylim(-0.02, 1.05)
-                    ax.set_title(f"{ndf} alpha {a:g}, view {v['theta_o']:g} deg", fontsize=7)
+                    ctl = panel.get((ndf, a, v["theta_o"]))
+                    tag = "" if ctl is None else (", control held" if ctl else ", control NOT within noise")
+                    ax.set_title(f"{ndf} alpha {a:g}, view {v['theta_o']:g} deg{tag}", fontsize=7,
+                                 color="black" if ctl is not False else "#d62728")
                     ax.set_xticks(x)
                     ax.set_xticklabels(labels, fontsize=5)
                     ax.set_xlabel("facet normal bin: theta_m (deg), azimuth from the view (deg)", fontsize=6)
@@ -1187,7 +1212,7 @@ def _heightfield_masking_figures(report: Node, name: str) -> List[Tuple[str, Dra
                     ax.tick_params(labelsize=6)
             axes[0][0].legend(fontsize=5)
             _suptitle(fig, f"{name}: masking G1 per facet-normal bin on traced heightfields, Smith and V-cavity",
-                      _title_bits(report))
+                      _title_bits(report) + verdict)
             return fig
         return draw
 
