@@ -69,8 +69,8 @@ HeightfieldAlbedoOutcome run_heightfield_albedo_item(const HeightfieldAlbedoSuit
     for (std::size_t m = 0; m < nm; ++m) {
       const std::uint64_t key = (item * 65536 + static_cast<std::uint64_t>(r)) * 4096 + m;
       // One theta bin and two phi bins: counted per k only.
-      const sim::HeightfieldTally t = trace_field(s, theta_of(suite.mus[m]), rays,
-                                                  derived_seed(suite.seed, kRaySeeds, key), 1, 2, kMaxK, cancel);
+      const sim::HeightfieldTally t =
+          trace_field(s, theta_of(suite.mus[m]), rays, derived_seed(suite.seed, kRaySeeds, key), 1, 2, kMaxK, cancel);
       if (support::cancelled(cancel)) return out;
       out.rays += t.rays, out.lost += t.lost, out.bounce_limit += t.bounce_limit;
       out.edge_hits += t.edge_hits, out.vertex_hits += t.vertex_hits;
@@ -83,8 +83,9 @@ HeightfieldAlbedoOutcome run_heightfield_albedo_item(const HeightfieldAlbedoSuit
   }
   auto t0 = Clock::now();
   for (std::size_t m = 0; m < nm; ++m) {
-    const sim::HeightfieldTally w = walk_lobe(ndf, alpha, theta_of(suite.mus[m]), suite.walk_paths,
-                                              derived_seed(suite.seed, kWalkSeeds, item * 4096 + m), 1, 2, kMaxK, cancel);
+    const sim::HeightfieldTally w =
+        walk_lobe(ndf, alpha, theta_of(suite.mus[m]), suite.walk_paths,
+                  derived_seed(suite.seed, kWalkSeeds, item * 4096 + m), 1, 2, kMaxK, cancel);
     if (support::cancelled(cancel)) return out;
     out.walk_paths = w.rays;
     out.walk_counts.push_back(w.escaped);
@@ -123,8 +124,8 @@ Job<HeightfieldAlbedoWork> heightfield_albedo_job(const HeightfieldAlbedoSuite& 
       [suite, n_rays, cancel](std::size_t c) { return run_heightfield_albedo_item(suite, c, n_rays, cancel); },
       [suite](support::JsonObject& o, std::size_t, HeightfieldAlbedoOutcome& out) {
         const std::size_t nm = suite.mus.size(), f = static_cast<std::size_t>(suite.fields);
-        if (out.traced.size() != f * nm * kStored || out.walk_counts.size() != nm * kStored ||
-            out.ess.size() != nm || out.ess_error.size() != nm || out.vgroove.size() != nm * kStored)
+        if (out.traced.size() != f * nm * kStored || out.walk_counts.size() != nm * kStored || out.ess.size() != nm ||
+            out.ess_error.size() != nm || out.vgroove.size() != nm * kStored)
           o.fail("outcome", "/traced, /walk_counts, /ess, /ess_error or /vgroove is not of the suite's " +
                                 std::to_string(suite.fields) + " fields x " + std::to_string(nm) + " mu x " +
                                 std::to_string(kStored) + " rows");
@@ -163,9 +164,9 @@ HeightfieldAlbedoRun heightfield_albedo_run_from(const HeightfieldAlbedoSuite& s
         for (double v : x) var += (v - mean) * (v - mean);
         const double q = std::clamp(mean, 0.0, 1.0);
         p.traced[row] = mean;
-        p.traced_se[row] = std::max(suite.fields >= 2 ? std::sqrt(var / (nf - 1.0) / nf) : 0.0,
-                                    std::sqrt(std::max(q * (1.0 - q), 1.0 / (rays_per_field * nf)) /
-                                              (rays_per_field * nf)));
+        p.traced_se[row] =
+            std::max(suite.fields >= 2 ? std::sqrt(var / (nf - 1.0) / nf) : 0.0,
+                     std::sqrt(std::max(q * (1.0 - q), 1.0 / (rays_per_field * nf)) / (rays_per_field * nf)));
         ok = ok && std::isfinite(mean);
       }
       const double paths = static_cast<double>(o.walk_paths);

@@ -41,8 +41,9 @@ HeightfieldAlbedoSuite parse_heightfield_albedo_suite(const nlohmann::json& j, c
     s.surface = HeightfieldSurfaceKind::grooves;
   const bool grooves = s.surface == HeightfieldSurfaceKind::grooves;
   if (grooves && s.field_size > 4096)
-    root.fail("field_size", "= " + std::to_string(s.field_size) +
-                                " must be a power of two in [16, 4096] with surface grooves (sim/heightfield_grooves.h)");
+    root.fail("field_size",
+              "= " + std::to_string(s.field_size) +
+                  " must be a power of two in [16, 4096] with surface grooves (sim/heightfield_grooves.h)");
   s.correlation_length = root.number("correlation_length", 2.0, true, s.field_size / (grooves ? 12.0 : 8.0), true);
   s.fields = static_cast<int>(root.integer("fields", 2, 1000));
   s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
@@ -103,8 +104,8 @@ nlohmann::json heightfield_albedo_report_json(const HeightfieldAlbedoSuite& suit
         diff.push_back(number_or_null(c.diff)), thr.push_back(number_or_null(c.threshold));
         z.push_back(number_or_null(c.z)), within.push_back(has ? nlohmann::json(c.within_noise) : nullptr);
       }
-      models[kAlbedoModelNames[m]] = {{"value", value}, {"value_sd", sd},       {"diff", diff},
-                                      {"threshold", thr}, {"z", z},            {"within_noise", within}};
+      models[kAlbedoModelNames[m]] = {{"value", value},   {"value_sd", sd}, {"diff", diff},
+                                      {"threshold", thr}, {"z", z},         {"within_noise", within}};
     }
     nlohmann::json text = nlohmann::json::object();
     for (int r = 0; r < kAlbedoRows; ++r) text[kAlbedoRowNames[r]] = albedo_row_text(p, r);
@@ -123,21 +124,23 @@ nlohmann::json heightfield_albedo_report_json(const HeightfieldAlbedoSuite& suit
   for (std::size_t i = 0; i < run.items.size(); ++i) {
     const HeightfieldAlbedoOutcome& o = run.items[i];
     rays += o.rays, lost += o.lost, passed += run.item_pass[i];
-    items.push_back({{"ndf", analytic::ndf_name(suite.ndf_of(i))},
-                     {"alpha", suite.alpha_of(i)},
-                     {"rays", o.rays},
-                     {"lost", o.lost},
-                     {"bounce_limit", o.bounce_limit},
-                     {"edge_hits", o.edge_hits},
-                     {"vertex_hits", o.vertex_hits},
-                     {"walk_paths_per_mu", o.walk_paths},
-                     {"ess_error", o.ess_error},
-                     {"timing", {{"field_s", o.field_s}, {"trace_s", o.trace_s}, {"walk_s", o.walk_s}, {"model_s", o.model_s}}},
-                     {"pass", run.item_pass[i]}});
+    items.push_back(
+        {{"ndf", analytic::ndf_name(suite.ndf_of(i))},
+         {"alpha", suite.alpha_of(i)},
+         {"rays", o.rays},
+         {"lost", o.lost},
+         {"bounce_limit", o.bounce_limit},
+         {"edge_hits", o.edge_hits},
+         {"vertex_hits", o.vertex_hits},
+         {"walk_paths_per_mu", o.walk_paths},
+         {"ess_error", o.ess_error},
+         {"timing", {{"field_s", o.field_s}, {"trace_s", o.trace_s}, {"walk_s", o.walk_s}, {"model_s", o.model_s}}},
+         {"pass", run.item_pass[i]}});
   }
   j["points"] = std::move(points);
   j["items"] = std::move(items);
-  j["summary"] = {{"items", run.items.size()}, {"passed", passed}, {"rays", rays}, {"lost", lost}, {"wall_s", run.wall_s}};
+  j["summary"] = {
+      {"items", run.items.size()}, {"passed", passed}, {"rays", rays}, {"lost", lost}, {"wall_s", run.wall_s}};
   j["thresholds"] = {
       {"rule",
        "every (ndf, alpha): every ray leaves (F = 1: E = 1 exactly), every value finite. A model is within noise in "
@@ -163,8 +166,9 @@ void print_heightfield_albedo_table(std::ostream& os, const HeightfieldAlbedoSui
         "each other's model - traced (z)\n";
   for (const AlbedoPoint& p : run.points) {
     os << support::format("  %-8s alpha %.2f mu %.4f (%4.1f deg): E %.4f(%.4f) E_1 %.4f(%.4f) E_ms %.4f(%.4f)\n",
-                          analytic::ndf_name(p.ndf), p.alpha, p.mu, std::acos(std::min(1.0, p.mu)) * 180.0 / std::numbers::pi,
-                          p.traced[0], p.traced_se[0], p.traced[1], p.traced_se[1], p.traced[2], p.traced_se[2]);
+                          analytic::ndf_name(p.ndf), p.alpha, p.mu,
+                          std::acos(std::min(1.0, p.mu)) * 180.0 / std::numbers::pi, p.traced[0], p.traced_se[0],
+                          p.traced[1], p.traced_se[1], p.traced[2], p.traced_se[2]);
     for (int r = 1; r < kAlbedoRows; ++r)
       os << support::format("    %-5s %s\n", kAlbedoRowNames[r], albedo_row_text(p, r).c_str());
   }

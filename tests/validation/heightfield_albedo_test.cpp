@@ -40,7 +40,8 @@ json outcome_without_timing(HeightfieldAlbedoOutcome o) {
 
 // One shared run of the small suite (about 0.4 s in Release).
 const HeightfieldAlbedoRun& small_run() {
-  static const HeightfieldAlbedoRun run = run_heightfield_albedo(parse_heightfield_albedo_suite(small(), "s.json"), 0, 1);
+  static const HeightfieldAlbedoRun run =
+      run_heightfield_albedo(parse_heightfield_albedo_suite(small(), "s.json"), 0, 1);
   return run;
 }
 
