@@ -100,6 +100,10 @@ cat >"$t/heightfield_aspects.json" <<'J'
  "rays": 3000, "walk_paths": 5000, "theta_bins": 6, "phi_bins": 4, "seed": 3, "thresholds": {"sigmas": 5},
  "controls": [{"model": "smith_walk", "ndf": "beckmann", "alpha": 0.3, "theta_i_deg": 0, "aspect": 1.5}]}
 J
+cat >"$t/heightfield_albedo.json" <<'J'
+{"name": "tiny_hfa", "kind": "heightfield_albedo", "ndf": ["beckmann", "ggx"], "alpha": [0.3, 0.6], "mu": [1, 0.3],
+ "field_size": 32, "correlation_length": 2, "fields": 2, "rays": 500, "walk_paths": 500, "seed": 3, "thresholds": {"sigmas": 5}}
+J
 cat >"$t/sampling.json" <<'J'
 {"name": "tiny_sampling", "kind": "sampling", "seed": 4, "max_k": 32,
  "chi_square": {"level": 0.01, "samples": {"3d": 20000, "flatland": 20000}, "cos_bins": 4, "phi_bins": 8, "theta_bins": 12,
@@ -163,6 +167,7 @@ case $check in
     sharded heightfield_grooves 2 validate "$t/heightfield_grooves.json"
     sharded heightfield_aniso 2 validate "$t/heightfield_aniso.json"
     sharded heightfield_aspects 3 validate "$t/heightfield_aspects.json"
+    sharded heightfield_albedo 3 validate "$t/heightfield_albedo.json"
     sharded dielectric_grooves 3 validate "$t/dielectric_grooves.json"
     # A foreign model: the brdf suite's layout filled with a flat lobe (it fails: the same verdict
     # merged as in one process).
@@ -186,6 +191,7 @@ PY
     sharded energy_chunks 40 "${ENERGY_FLAT[@]}"   # 12 cells: split into ray chunks
     # Glass tables (--eta): both sides, both dimensions, the hemispherical cells; 5 shards split cells.
     sharded glass 5 energy --eta 1.5,0.8 --dim 3d,flatland --alpha 0.3 --mu 1,0.5 --rays 3000 --grooves 300
+    sharded glass_walk 3 energy --eta 1.5 --dim 3d,flatland --alpha 0.3 --mu 1,0.5 --rays 3000 --reference smith_walk
     ;;
   refusals)
     p() { "$bin" validate "$t/$1" --threads 1 --shard "$2" --out "$t/$3" "${@:4}" >/dev/null; }
