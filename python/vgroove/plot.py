@@ -1093,6 +1093,9 @@ def heightfield_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
         case = {"alpha": c["alpha"].number(0.0, 2.0), "theta_i": c["theta_i_deg"].number(0.0, 90.0), "models": {}}
         for m in _HF_MODELS:
             rows = []
+            if c[m].has("skipped"):  # an isotropic model on an anisotropic case: no lobe to draw
+                case["models"][m] = rows
+                continue
             for r in c[m]["against_traced"]["rows"].nonempty():
                 rows.append((r["k"].one_of(tuple(_HF_MARKS)), r["l1"].number(0.0), r["l1_threshold"].number(0.0),
                              -r["energy_diff"].number(-1.0, 1.0), r["energy_threshold"].number(0.0)))

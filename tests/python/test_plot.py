@@ -367,3 +367,21 @@ def test_a_model_table_report_draws_a_figure_per_ndf_and_dimension_and_its_input
     assert status == 2
     assert err.strip() == (f"vgroove: error: {table}: / is a model table, not a report: draw the report of "
                            "`vgroove validate SUITE --model-table TABLE --out REPORT`")
+
+
+def test_a_heightfield_report_with_anisotropic_cases_draws(tmp_path, capsys):
+    # aspect [1, 1.5]: the anisotropic cases skip Cook-Torrance and the V-groove model (the report
+    # says "skipped"); the figure draws the isotropic cases' models and every case's walk.
+    suite = {"name": "tiny_hf_aspects", "kind": "heightfield", "aspect": [1, 1.5], "ndf": ["beckmann"],
+             "alpha": [0.3], "theta_i_deg": [0, 60], "field_size": 64, "correlation_length": 4, "fields": 2,
+             "rays": 500, "walk_paths": 1000, "theta_bins": 6, "phi_bins": 4, "seed": 3, "thresholds": {"sigmas": 5}}
+    spec, report = tmp_path / "hf.json", tmp_path / "hf-report.json"
+    spec.write_text(json.dumps(suite))
+    r = cli("validate", spec, "--out", report, check=False)
+    assert r.returncode in (0, 1), r.stderr
+    cases = json.loads(report.read_text())["cases"]
+    assert any("skipped" in c["cook_torrance_smith"] for c in cases)
+    assert any("against_traced" in c["cook_torrance_smith"] for c in cases)
+    status, out, err = plot_in_process(capsys, report, "--out", tmp_path / "hf")
+    assert status == 0, err
+    check_image(tmp_path / "hf-beckmann.png", "png")
