@@ -201,6 +201,21 @@ TEST(ModelTableHeightfield, CliWritesTheLayoutAndRefusesBadSuitesWithoutAFile) {
     EXPECT_NE(r.err.find("field_size = 100 is out of range [16, 65536], a power of two"), std::string::npos) << r;
     EXPECT_FALSE(std::filesystem::exists(out));
   }
+  // The table through the CLI, whole and in two shards merged: the same cases.
+  const std::string table = d.file("t.json"), p1 = d.file("p1.json"), p2 = d.file("p2.json"), m = d.file("m.json");
+  write_text(table, table_of(suite(), smith(0.2)).dump());
+  const std::string run = "validate '" + kSuiteFile + "' --model-table '" + table + "' --threads 2 --out ";
+  const auto whole = testing_files::vgroove(run + "'" + out + "'");
+  ASSERT_EQ(whole.status, 0) << whole;
+  EXPECT_NE(whole.out.find("rays over 4 heightfields of 64^2 cells"), std::string::npos) << whole;
+  ASSERT_EQ(testing_files::vgroove(run + "'" + p1 + "' --shard 1/2").status, 0);
+  ASSERT_EQ(testing_files::vgroove(run + "'" + p2 + "' --shard 2/2").status, 0);
+  const auto merged = testing_files::vgroove("merge '" + p2 + "' '" + p1 + "' --out '" + m + "'");
+  ASSERT_EQ(merged.status, 0) << merged;
+  const json a = support::read_json_file(out), b = support::read_json_file(m);
+  EXPECT_TRUE(a["pass"].get<bool>());
+  EXPECT_EQ(a["cases"], b["cases"]);
+  std::filesystem::remove(out);
   // Without a model table there is no model to hold against the fields.
   const auto none = testing_files::vgroove("validate '" + kSuiteFile + "' --out '" + out + "'");
   EXPECT_EQ(none.status, 2) << none;
