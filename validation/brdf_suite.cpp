@@ -160,9 +160,9 @@ BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
   } else if (root.has("heightfield")) {
     root.fail("heightfield", "is given but surface is \"vgroove\" (set \"surface\": \"heightfield\")");
   }
-  s.grooves = static_cast<int>(s.surface == CheckSurface::heightfield
-                                   ? root.integer_or("grooves", s.grooves, 1, kMaxGrooves)
-                                   : root.integer("grooves", 1, kMaxGrooves));
+  s.grooves =
+      static_cast<int>(s.surface == CheckSurface::heightfield ? root.integer_or("grooves", s.grooves, 1, kMaxGrooves)
+                                                              : root.integer("grooves", 1, kMaxGrooves));
   s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, kMaxSeed));
   {
     const bool flat = std::find(s.dims.begin(), s.dims.end(), SurfaceDim::flatland) != s.dims.end();
@@ -203,8 +203,8 @@ double brdf_run_memory_bytes(const BrdfSuite& suite, int threads, bool report) {
   // Per case: its merged tally and model (joint cells each), held twice while the parts are
   // merged, then its outcome.
   // A heightfield suite holds one field per worker (sim::heightfield_bytes) in place of the grooves.
-  const double surface = suite.surface == CheckSurface::heightfield ? sim::heightfield_bytes(suite.field_size)
-                                                                    : suite.grooves * groove;
+  const double surface =
+      suite.surface == CheckSurface::heightfield ? sim::heightfield_bytes(suite.field_size) : suite.grooves * groove;
   const double per_worker = surface + 10.0 * cells * 8.0;
   const double per_case = sizeof(BrdfOutcome) + 4.0 * cells * 8.0 + (2.0 * rows + plane) * 8.0 +
                           (report ? (2.0 * rows + plane) * kNumberBytes : 0.0);

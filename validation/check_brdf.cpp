@@ -454,8 +454,9 @@ CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt) {
     // The model's side is known to within its integration error: it widens each threshold.
     const double tol = opt.model_tolerance + model[c].error;
     // The V-groove surface: the bound from N rays over G grooves; heightfields: their fields' spread.
-    CheckBrdfCase out = field ? check_lobes_with_variance(sim, m, pooled[c].var, pooled[c].albedo_var, N, opt.sigmas, tol)
-                              : check_lobes(sim, m, N, opt.grooves, opt.sigmas, tol);
+    CheckBrdfCase out = field
+                            ? check_lobes_with_variance(sim, m, pooled[c].var, pooled[c].albedo_var, N, opt.sigmas, tol)
+                            : check_lobes(sim, m, N, opt.grooves, opt.sigmas, tol);
     out.model_error = model[c].error;
     out.model_evals = model[c].evals;
     out.theta_i_deg = opt.theta_i_deg[c];

@@ -202,8 +202,8 @@ LobeTally ModelTableWork::run_chunks(const Context& ctx, std::size_t u, std::int
   if (heightfield(suite)) {
     // check_brdf's rays of field r at incidence c % theta_i (check_field_trace), chunk by chunk.
     const auto t0 = Clock::now();
-    const sim::HeightfieldTraceOptions to = check_field_trace(case_check_options(suite, c, rays), suite.case_at(c).theta_i,
-                                                              c % suite.theta_i.size(), field_of(u));
+    const sim::HeightfieldTraceOptions to = check_field_trace(
+        case_check_options(suite, c, rays), suite.case_at(c).theta_i, c % suite.theta_i.size(), field_of(u));
     LobeTally out;
     out.hist.assign(static_cast<std::size_t>(suite.theta_bins) * static_cast<std::size_t>(suite.phi_bins), 0);
     for (std::int64_t k = begin; k < end && !support::cancelled(cancel); ++k)
@@ -304,8 +304,8 @@ ModelTableRun model_table_run_from(const BrdfSuite& s, const ModelTable& t, long
       }
       const FieldLobe pooled = pool_fields(counts, rays_of);
       flux = pooled.flux;
-      out = check_lobes_with_variance(flux, t.flux[c], pooled.var, pooled.albedo_var,
-                                      static_cast<double>(traced.rays), s.sigmas, tolerance(s, k.dim));
+      out = check_lobes_with_variance(flux, t.flux[c], pooled.var, pooled.albedo_var, static_cast<double>(traced.rays),
+                                      s.sigmas, tolerance(s, k.dim));
     } else {
       traced = results[c].tally;
       flux = fractions(traced.hist, static_cast<double>(traced.rays));

@@ -10,7 +10,8 @@
 //               "flux": [<fraction of the incident flux in each bin, in the layout's order>]}, ...]}
 // Every case of the suite exactly once; ndf, alpha, theta_i_deg and dimension must repeat the
 // layout's (a table made for another suite is refused); each flux a list of the layout's length
-// of finite numbers >= 0.
+// of finite numbers >= 0. A suite with "surface": "heightfield" is traced on check_brdf's fields.
+// Tests: tests/validation/model_table_test.cpp, tests/validation/model_table_heightfield_test.cpp.
 #pragma once
 
 #include "vgroove/sim/microsurface.h"
@@ -72,7 +73,7 @@ struct LobeTally {
   double thread_s = 0.0;  // time spent tracing (a timing: never compared)
 };
 struct ModelTableSurface {
-  CaseSurface grooves;           // surface vgroove
+  CaseSurface grooves;            // surface vgroove
   sim::HeightfieldSurface field;  // surface heightfield
 };
 struct ModelTableWork {

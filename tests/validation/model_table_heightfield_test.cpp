@@ -126,7 +126,8 @@ TEST(ModelTableHeightfield, OneReportForAnyThreadsAndShards) {
   std::vector<Part> parts;
   for (int k = 1; k <= 3; ++k)
     parts.push_back(part_from_json(*run_job_part(job, support::Shard{k, 3}, 1), "part " + std::to_string(k)));
-  const json merged = model_table_report_json(s, t, model_table_run_from(s, t, 0, merge_job_parts(job, parts)))["cases"];
+  const json merged =
+      model_table_report_json(s, t, model_table_run_from(s, t, 0, merge_job_parts(job, parts)))["cases"];
   ASSERT_EQ(one.size(), 2u);
   for (const json* other : {&two, &merged}) {
     for (std::size_t c = 0; c < one.size(); ++c) {
@@ -169,8 +170,7 @@ TEST(ModelTableHeightfield, BadSurfacesAreRefusedInOneLine) {
   EXPECT_EQ(refusal(j), "s.json: surface heightfield: dim = flatland: surface heightfield is a 3D surface (dim 3d)");
   j = suite_json();
   j["ndf"] = {"phong"};
-  EXPECT_NE(refusal(j).find("ndf = phong: surface heightfield takes beckmann or ggx"), std::string::npos)
-      << refusal(j);
+  EXPECT_NE(refusal(j).find("ndf = phong: surface heightfield takes beckmann or ggx"), std::string::npos) << refusal(j);
   j = suite_json();
   j.erase("heightfield");
   EXPECT_EQ(refusal(j).find("s.json: /heightfield"), 0u) << refusal(j);
@@ -194,7 +194,8 @@ TEST(ModelTableHeightfield, CliWritesTheLayoutAndRefusesBadSuitesWithoutAFile) {
   json j = suite_json();
   j["heightfield"]["field_size"] = 100;
   write_text(bad, j.dump());
-  for (const std::string& cmd : {"bins '" + bad + "' --out '" + out + "'", "validate '" + bad + "' --out '" + out + "'"}) {
+  for (const std::string& cmd :
+       {"bins '" + bad + "' --out '" + out + "'", "validate '" + bad + "' --out '" + out + "'"}) {
     const auto r = testing_files::vgroove(cmd);
     EXPECT_EQ(r.status, 2) << r;
     EXPECT_EQ(testing_files::lines(r.err), 1) << r;
