@@ -36,6 +36,8 @@ double cycles_energy_factor(double E, double E_avg, double Fss) {
   return 1.0 + Fms * missing;
 }
 
+double cycles_glass_albedo_scaling(double E, double Fss) { return 1.0 + Fss * ((1.0 - E) / E); }
+
 namespace {
 SplitSumScattering split_sum_multi(double FssEss, double Ess, double F0) {
   const double Ems = 1.0 - Ess;

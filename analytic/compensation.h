@@ -10,6 +10,7 @@
 // Tests: tests/analytic/compensation_test.cpp (KullaConty.WhiteFurnaceByIntegratingTheLobe,
 // Turquin.CompensatedAlbedoFromTheViewIsOneAndFromTheLightIsNot,
 // EngineForms.FilamentBevyAndCyclesRestateTheirSources, KarisEnvBrdfApprox.*,
+// tests/analytic/albedo_glass_test.cpp (CyclesGlass.*),
 // Compensation.FiniteAtTheExtremes), tests/analytic/albedo_table_test.cpp.
 // Derivation and sources: docs/derivations/energy_compensation.md; tables: docs/albedo_tables.md.
 #pragma once
@@ -47,6 +48,15 @@ double filament_energy_compensation(double F0, double dfg_y);
 // The net factor on the single-scattering lobe: 1 + Fms (1 - E) / E, Fms the one-bounce-removed
 // Kulla-Conty factor of Fss (the Fresnel average; Fss = 1 gives 1/E, the energy_scale alone).
 double cycles_energy_factor(double E, double E_avg, double Fss);
+
+// ---- Cycles glass (microfacet_ggx_glass_albedo_scaling, Blender 3.x multi-GGX glass) ----------
+// The factor on both lobes of the rough glass, reflected and transmitted: 1 + Fms (1 - E) / E, E =
+// E_R + E_T the single-scattering albedo of the glass at the view direction on its own side (light
+// from inside reads the table of 1 / eta), Fms = Fss the tint (1 for clear glass: 1 / E). Every
+// side's albedo becomes 1, but E differs between the sides, so the transmitted averages lose the
+// reciprocity T_avg(eta) = eta^2 T_avg(1 / eta) the exact BSDF keeps
+// (CyclesGlass.ScalingBothLobesBreaksTheTransmittedReciprocity).
+double cycles_glass_albedo_scaling(double E, double Fss);
 
 // ---- Fdez-Aguera 2019: the split sum with multiple scattering ---------------------------------
 // Radiance weights of a prefiltered environment (single, for the specular radiance) and of the

@@ -78,6 +78,7 @@ int cmd_energy(const EnergyArgs& a) {
   if (!a.eta.empty()) return cmd_energy_glass(a);
   if (a.sides_given) throw support::UserError("--side applies to the glass tables (--eta)");
   if (a.grooves_given) throw support::UserError("--grooves applies to the glass tables (--eta)");
+  if (a.reference_given) throw support::UserError("--reference applies to the glass tables (--eta)");
   if (a.audit) return cmd_energy_audit(a);
   if (a.lobe_shape) return cmd_energy_lobe_shape(a);
   if (!a.export_base.empty()) return cmd_energy_export(a);
@@ -209,9 +210,14 @@ void add_energy_command(CLI::App& app, Commands& commands) {
   auto* grooves =
       add_integer(energy, "--grooves", ea.grooves, "--eta's grooves per surface", 1, validation::kMaxGlassGrooves)
           ->capture_default_str();
-  energy->callback([&ea, sides, grooves]() {
+  auto* reference = add_text(energy, "--reference", ea.reference,
+                             "--eta's tables from: vgroove (the traced V-groove surfaces) or smith_walk (Heitz et al. "
+                             "2016's dielectric random walk; --grooves not used)")
+                        ->capture_default_str();
+  energy->callback([&ea, sides, grooves, reference]() {
     ea.sides_given = sides->count() > 0;
     ea.grooves_given = grooves->count() > 0;
+    ea.reference_given = reference->count() > 0;
   });
   add_text(energy, "--export", ea.export_base,
            "write tables engines can load to BASE.json, .npz, .h, .png, .exr (see --formats): E_ss, E_avg, the DFG "

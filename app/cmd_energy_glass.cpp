@@ -41,6 +41,7 @@ int cmd_energy_glass(const EnergyArgs& a) {
   g.seed = static_cast<std::uint64_t>(a.seed);
   g.max_k = a.max_k;
   g.grooves = a.grooves;
+  g.reference = glass_reference_from(a.reference);
   check_glass_grid(g);
   const std::optional<support::Shard> shard = shard_from(a.shard, a.out);
   if (shard && world().distributed())

@@ -228,6 +228,8 @@ struct EnergyArgs {
   bool sides_given = false;
   int grooves = 10000;
   bool grooves_given = false;
+  std::string reference = "vgroove";  // --eta's: vgroove (traced surfaces) or smith_walk
+  bool reference_given = false;
 };
 int cmd_energy(const EnergyArgs& a);
 // Its --audit and --export (app/cmd_energy_tables.cpp).

@@ -102,6 +102,25 @@ struct Binning {
 
 }  // namespace
 
+double heightfield_joint_bin_azimuth(double theta_i, double phi_i, double theta_o, double phi_o) {
+  constexpr double two_pi = 2.0 * std::numbers::pi;
+  // A direction at the normal has no azimuth: the other's (either when both are).
+  if (theta_i == 0.0 && theta_o == 0.0) return 0.0;
+  if (theta_i == 0.0) return phi_o;
+  if (theta_o == 0.0) return phi_i;
+  const auto wrap = [two_pi](double phi) {
+    const double w = std::fmod(phi, two_pi);
+    return w < 0.0 ? w + two_pi : w;
+  };
+  // Only min and max of the two: the same bits for (i, o) and (o, i).
+  const double a = wrap(phi_i), b = wrap(phi_o);
+  const double lo = std::min(a, b), hi = std::max(a, b), d = hi - lo;
+  if (d < std::numbers::pi) return lo + 0.5 * d;
+  if (d > std::numbers::pi) return wrap(hi + 0.5 * (two_pi - d));
+  const double r = lo + 0.5 * std::numbers::pi;  // opposite: the bisector in [0, pi)
+  return r >= std::numbers::pi ? r - std::numbers::pi : r;
+}
+
 HeightfieldMaskingTally::HeightfieldMaskingTally(int theta_m_bins_, int phi_m_bins_)
     : theta_m_bins(theta_m_bins_), phi_m_bins(phi_m_bins_) {
   const auto bins = static_cast<std::size_t>(theta_m_bins) * phi_m_bins;
@@ -220,7 +239,8 @@ HeightfieldJointMaskingTally heightfield_joint_masking_chunk(const HeightfieldSu
   const std::int64_t count = std::min(kHeightfieldPointsPerChunk, opt.points - first);
   Rng rng(opt.seed, kHeightfieldMaskingStream, static_cast<std::uint64_t>(chunk));
   const Vec3 wi = direction(opt.theta_i, opt.phi_i), wo = direction(opt.theta_o, opt.phi_o);
-  const Binning bins(opt.theta_m_bins, opt.phi_m_bins, opt.phi_o);
+  const Binning bins(opt.theta_m_bins, opt.phi_m_bins,
+                     heightfield_joint_bin_azimuth(opt.theta_i, opt.phi_i, opt.theta_o, opt.phi_o));
   for (std::int64_t r = 0; r < count; ++r) {
     const SurfacePoint q = draw_point(s, rng);
     ++tally.points;

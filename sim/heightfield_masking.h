@@ -5,7 +5,8 @@
 // meets its own triangle (first_heightfield_hit, exact). G1 = sum w V / sum w with w = (o.N)+, its
 // projected area towards o per unit macro area; mean(w V) = cos theta_o on every surface (each
 // line from o meets the surface once): an identity of the tracer. G2: below. Bins: theta_m equal
-// over [0, pi/2), the facet azimuth relative to phi_o with bin 0 centred on it. Deterministic:
+// over [0, pi/2), the facet azimuth (bin 0 centred on the reference, counter-clockwise) from phi_o
+// (G1) or from the bisector of i's and o's azimuths (G2, heightfield_joint_bin_azimuth). Deterministic:
 // chunk c of kHeightfieldPointsPerChunk points draws from Rng(seed, kHeightfieldMaskingStream, c),
 // merged in chunk order. Tests: tests/sim/heightfield_masking_test.cpp (HeightfieldMasking.*,
 // HeightfieldJointMasking.*), tests/validation/heightfield_masking_smith_test.cpp.
@@ -68,15 +69,24 @@ HeightfieldMaskingTally heightfield_masking(const HeightfieldSurface& s, const H
 // G2 = sum w V_i V_o / sum w per bin and overall, beside the G1s under the same weight, sum w V_i
 // / sum w and sum w V_o / sum w. Points facing away from i or o (w = 0) are drawn, not traced.
 // Exact per realization: G2 <= min(G1_i, G1_o) bin by bin; i = o gives G2 = G1_i = G1_o and the
-// visible count of heightfield_masking(o); swapping i and o gives the same sums (the bins are
-// relative to phi_o, so bin by bin only with phi_m_bins = 1).
+// visible count of heightfield_masking(o); swapping i and o gives the same sums bin by bin to the
+// bit (reciprocity: the weight, the pair of traces and the bins are symmetric in i and o).
+//
+// G2's azimuth reference, a function of the unordered pair of directions (the same bits for (i,
+// o) and (o, i)): the bisector of the smaller angle between phi_i and phi_o (phi_o + phi_i) / 2
+// for |phi_o - phi_i| < pi; opposite azimuths (the mirror plane when theta_i = theta_o): the
+// bisector in [0, pi), that is pi / 2 for the suite's light at 0 and o at pi; a direction at the
+// normal (theta 0) has no azimuth: the other's (0 when both are). Result in [0, 2 pi) or the
+// other's phi as given.
+double heightfield_joint_bin_azimuth(double theta_i, double phi_i, double theta_o, double phi_o);
+
 struct HeightfieldJointMaskingOptions {
   double theta_i = 0.0, phi_i = 0.0;  // light, [0, pi/2)
   double theta_o = 0.0, phi_o = 0.0;  // view, [0, pi/2)
   std::int64_t points = 100000;
   std::uint64_t seed = 0;
   int theta_m_bins = 6;  // as HeightfieldMaskingOptions
-  int phi_m_bins = 4;    // relative to phi_o
+  int phi_m_bins = 4;    // from heightfield_joint_bin_azimuth
   HeightfieldRayOptions ray;
 };
 

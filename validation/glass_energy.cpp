@@ -1,5 +1,7 @@
 #include "vgroove/validation/glass_energy.h"
 
+#include "vgroove/analytic/smith_walk_3d_dielectric.h"
+#include "vgroove/analytic/smith_walk_flatland_dielectric.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/sim/beam.h"
 #include "vgroove/sim/dielectric_lifted.h"
@@ -131,6 +133,56 @@ void trace_unit(const GlassGrid& g, std::size_t cell, const sim::Microsurface& s
   }
 }
 
+// The same rays' cells from the dielectric Smith walk: per ray (cosine-weighted where the cell is
+// hemispherical, as trace_unit) one walk from the light's side; a walk still inside after
+// max_interactions counts in bounce_limit.
+void walk_unit(const GlassGrid& g, std::size_t cell, std::int64_t chunk0, std::int64_t chunk1, GlassCounts& t,
+               const std::atomic<bool>* cancel) {
+  const GlassCell c = g.cell_at(cell);
+  analytic::DielectricWalkOptions opt;
+  opt.eta = c.eta;
+  opt.conductor_limit = g.conductor_limit;
+  opt.max_k = g.max_interactions;
+  const bool hemisphere = c.mu == kHemisphere;
+  double st = std::sqrt((1.0 - c.mu) * (1.0 + c.mu)), ct = c.mu;
+  const analytic::WalkMedium from =
+      c.from == sim::Medium::above ? analytic::WalkMedium::above : analytic::WalkMedium::below;
+  for (std::int64_t chunk = chunk0; chunk < chunk1; ++chunk) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) return;
+    sim::Rng rng(g.seed, kGlassRayStream + cell, static_cast<std::uint64_t>(chunk));
+    const auto uniform = [&rng] { return sim::uniform_open(rng); };
+    const std::int64_t n = std::min<std::int64_t>(sim::kRaysPerChunk, g.rays - chunk * sim::kRaysPerChunk);
+    for (std::int64_t j = 0; j < n; ++j) {
+      if (hemisphere) {
+        const double u = sim::uniform_open(rng);
+        if (c.dim == SurfaceDim::three_d)
+          ct = std::sqrt(u), st = std::sqrt(1.0 - u);
+        else
+          st = u, ct = std::sqrt((1.0 - u) * (1.0 + u));
+      }
+      int k = 0;
+      bool left = false, same_side = false;
+      if (c.dim == SurfaceDim::three_d) {
+        const analytic::Dir3 i{st, 0.0, from == analytic::WalkMedium::above ? ct : -ct};
+        const analytic::DielectricWalk3d w = analytic::smith_walk_3d_dielectric(c.ndf, c.alpha, i, from, opt, uniform);
+        k = w.k, left = w.left, same_side = w.side == from;
+      } else {
+        const analytic::FlatlandDielectricWalk w =
+            analytic::smith_walk_flatland_dielectric(c.ndf, c.alpha, std::atan2(st, ct), from, opt, uniform);
+        k = w.k, left = w.left, same_side = w.side == from;
+      }
+      t.rays += 1;
+      t.interactions += k;
+      if (!left) {
+        t.bounce_limit += 1;
+        continue;
+      }
+      const std::size_t row = static_cast<std::size_t>(std::min(k, g.max_k + 1) - 1);
+      (same_side ? t.reflected : t.transmitted)[row] += 1;
+    }
+  }
+}
+
 GlassCounts empty_counts(int max_k) {
   GlassCounts t;
   t.reflected.assign(static_cast<std::size_t>(max_k) + 1, 0);
@@ -221,13 +273,27 @@ void GlassCounts::merge(const GlassCounts& o) {
   bounce_limit += o.bounce_limit, vertex += o.vertex, interactions += o.interactions;
 }
 
+const char* glass_reference_name(GlassReference r) {
+  return r == GlassReference::smith_walk ? "smith_walk" : "vgroove";
+}
+
+GlassReference glass_reference_from(const std::string& name, const std::string& prefix) {
+  if (name == "vgroove") return GlassReference::vgroove;
+  if (name == "smith_walk") return GlassReference::smith_walk;
+  throw support::UserError(prefix + "reference = \"" + name + "\" is not one of \"vgroove\", \"smith_walk\"");
+}
+
 std::shared_ptr<const GlassWork::Context> GlassWork::prepare(std::size_t cell) const {
+  if (grid.reference == GlassReference::smith_walk) return std::make_shared<const Context>();
   return std::make_shared<const Context>(Context{glass_surface(grid, grid.cell_at(cell), surface_index(grid, cell))});
 }
 
 GlassCounts GlassWork::run_chunks(const Context& ctx, std::size_t cell, std::int64_t begin, std::int64_t end) const {
   GlassCounts t = empty_counts(grid.max_k);
-  trace_unit(grid, cell, ctx.surface, begin, end, t, cancel);
+  if (grid.reference == GlassReference::smith_walk)
+    walk_unit(grid, cell, begin, end, t, cancel);
+  else
+    trace_unit(grid, cell, ctx.surface, begin, end, t, cancel);
   return t;
 }
 
@@ -282,7 +348,8 @@ nlohmann::json glass_grid_json(const GlassGrid& g) {
           {"max_k", g.max_k},
           {"grooves", g.grooves},
           {"max_interactions", g.max_interactions},
-          {"conductor_limit", g.conductor_limit}};
+          {"conductor_limit", g.conductor_limit},
+          {"reference", glass_reference_name(g.reference)}};
 }
 
 GlassGrid glass_grid_from_json(const nlohmann::json& j, const std::string& where) {
@@ -302,6 +369,7 @@ GlassGrid glass_grid_from_json(const nlohmann::json& j, const std::string& where
     g.grooves = j.at("grooves").get<int>();
     g.max_interactions = j.at("max_interactions").get<int>();
     g.conductor_limit = j.at("conductor_limit").get<bool>();
+    g.reference = glass_reference_from(j.at("reference").get<std::string>(), where + ": ");
   } catch (const nlohmann::json::exception& e) {
     throw support::UserError(where + ": not a glass table's grid (" + e.what() + ")");
   }
@@ -380,11 +448,17 @@ nlohmann::json glass_table_json(const GlassTable& t) {
   for (NdfKind n : g.ndfs) ndfs.push_back(ndf_name(n));
   for (SurfaceDim d : g.dims) dims.push_back(surface_dim_name(d));
   for (sim::Medium m : g.sides) sides.push_back(side_name(m));
-  j["grid"] = {{"ndf", ndfs},          {"dimension", dims},
-               {"side", sides},        {"eta", g.etas},
-               {"alpha", g.alphas},    {"mu", g.mus},
-               {"rays", g.rays},       {"max_k", g.max_k},
-               {"grooves", g.grooves}, {"max_interactions", g.max_interactions}};
+  j["grid"] = {{"ndf", ndfs},
+               {"dimension", dims},
+               {"side", sides},
+               {"eta", g.etas},
+               {"alpha", g.alphas},
+               {"mu", g.mus},
+               {"rays", g.rays},
+               {"max_k", g.max_k},
+               {"grooves", g.grooves},
+               {"max_interactions", g.max_interactions},
+               {"reference", glass_reference_name(g.reference)}};
   j["definitions"] = {
       {"axes",
        "arrays are indexed [ndf][dimension][side][eta][alpha][mu] (and [row] for the by-k arrays, rows k = "
@@ -399,8 +473,11 @@ nlohmann::json glass_table_json(const GlassTable& t) {
       {"E_T", "the share that leaves into the other medium"},
       {"se", "standard error sqrt(E (1 - E) / rays) of a share"},
       {"surface",
-       "V-grooves of equal width, facet angles from the NDF (3D: the projected-area law 2 pi D cos sin; "
-       "flatland: 2 D2 cos), extruded along one axis; in 3D the grooves' azimuth is uniform per ray"}};
+       g.reference == GlassReference::smith_walk
+           ? "the Smith microsurface of the NDF as Heitz et al. 2016's dielectric random walk sees it (no "
+             "grooves: the grooves value is not used)"
+           : "V-grooves of equal width, facet angles from the NDF (3D: the projected-area law 2 pi D cos sin; "
+             "flatland: 2 D2 cos), extruded along one axis; in 3D the grooves' azimuth is uniform per ray"}};
   const std::size_t nc = g.cells(), rows = static_cast<std::size_t>(g.max_k) + 1;
   std::vector<double> er(nc), et(nc), ser(nc), set(nc), lim(nc), vtx(nc), erk(nc * rows), etk(nc * rows);
   for (std::size_t c = 0; c < nc; ++c) {
@@ -464,8 +541,13 @@ nlohmann::json glass_table_json(const GlassTable& t) {
 void print_glass_table(std::ostream& os, const GlassTable& t) {
   const GlassGrid& g = t.grid;
   char line[256];
-  std::snprintf(line, sizeof line, "glass energy: %zu cells, %lld rays each, %d grooves; %.1f s on %d threads\n",
-                g.cells(), g.rays, g.grooves, t.wall_s, t.threads);
+  if (g.reference == GlassReference::smith_walk)
+    std::snprintf(line, sizeof line,
+                  "glass energy (the Smith walk): %zu cells, %lld walks each; %.1f s on %d threads\n", g.cells(),
+                  g.rays, t.wall_s, t.threads);
+  else
+    std::snprintf(line, sizeof line, "glass energy: %zu cells, %lld rays each, %d grooves; %.1f s on %d threads\n",
+                  g.cells(), g.rays, g.grooves, t.wall_s, t.threads);
   os << line;
   os << "  ndf       dim       side   eta     alpha   mu        E_R        E_T        se     limit\n";
   const std::size_t most = 200;

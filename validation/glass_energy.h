@@ -5,9 +5,11 @@
 // from the normal of the light's own side, eta = n2 / n1. Nothing is absorbed: E_R + E_T + limit +
 // vertex = 1 per cell (counts). Beside the grid, cosine-weighted cells give the hemispherical
 // averages, whose reciprocity T_avg(above) = eta^2 T_avg(below) (flatland: eta) the table reports.
+// With reference smith_walk, the same cells from the dielectric Smith walk (no surface, no grooves).
 // Tests: tests/validation/glass_energy_test.cpp (GlassEnergy.NearlyFlatIsFresnel,
 // GlassEnergy.ReciprocityOfTheAverages, GlassEnergy.ConductorLimitIsTheConductorTable,
-// GlassEnergy.EnergyIsAccountedAndTheCountsDoNotDependOnThreads).
+// GlassEnergy.EnergyIsAccountedAndTheCountsDoNotDependOnThreads,
+// GlassEnergy.SmithWalkFirstOrderIsWaltersAndItsAveragesAreReciprocal).
 // Derivation: docs/derivations/dielectric_lifting.md ("Energy tables").
 #pragma once
 
@@ -41,6 +43,14 @@ struct GlassCell {
 };
 inline constexpr double kHemisphere = -1.0;
 
+// What the table measures: the traced V-groove surfaces, or Heitz et al. 2016's dielectric Smith
+// walk (analytic/smith_walk_3d_dielectric.h in 3D, smith_walk_flatland_dielectric.h in flatland),
+// whose k = 1 is Walter's BSDF with the height-correlated G2 and whose orders are Smith's.
+enum class GlassReference : unsigned char { vgroove, smith_walk };
+const char* glass_reference_name(GlassReference r);  // "vgroove", "smith_walk"
+// The reference by name; one line naming `prefix` + reference and the names otherwise.
+GlassReference glass_reference_from(const std::string& name, const std::string& prefix = "--");
+
 struct GlassGrid {
   std::vector<NdfKind> ndfs{NdfKind::ggx};
   std::vector<SurfaceDim> dims{SurfaceDim::three_d};
@@ -54,6 +64,7 @@ struct GlassGrid {
   int grooves = 10000;  // per surface (one surface per ndf, dimension and alpha)
   int max_interactions = 100000;
   bool conductor_limit = false;  // F = 1 at every hit (a check: the conductor tables' E_k)
+  GlassReference reference = GlassReference::vgroove;
   std::size_t cells() const { return average_cells() * mus.size(); }
   // The hemispherical cells, after the grid's: one per (ndf, dimension, side, eta, alpha).
   std::size_t average_cells() const { return ndfs.size() * dims.size() * sides.size() * etas.size() * alphas.size(); }

@@ -109,10 +109,14 @@ sim::HeightfieldTally walk_lobe(NdfKind ndf, double alpha, double theta_i, long 
 
 sim::HeightfieldTally walk_lobe(const analytic::Roughness& r, double theta_i, long paths, std::uint64_t seed,
                                 int theta_bins, int phi_bins, int max_k, const std::atomic<bool>* cancel) {
+  return walk_lobe(r, analytic::WalkHeights::log_c1, theta_i, paths, seed, theta_bins, phi_bins, max_k, cancel);
+}
+
+sim::HeightfieldTally walk_lobe(const analytic::Roughness& r, analytic::WalkHeights heights, double theta_i, long paths,
+                                std::uint64_t seed, int theta_bins, int phi_bins, int max_k,
+                                const std::atomic<bool>* cancel) {
   return walk_lobe_with(
-      [&](const analytic::Dir3& wi, auto& uniform) {
-        return analytic::smith_walk_3d(r, analytic::WalkHeights::log_c1, wi, uniform);
-      },
+      [&](const analytic::Dir3& wi, auto& uniform) { return analytic::smith_walk_3d(r, heights, wi, uniform); },
       theta_i, paths, seed, theta_bins, phi_bins, max_k, cancel);
 }
 

@@ -14,6 +14,7 @@
 #pragma once
 
 #include "vgroove/analytic/ndf_anisotropic.h"
+#include "vgroove/analytic/smith_walk_3d.h"
 #include "vgroove/common/ndf_kind.h"
 #include "vgroove/sim/heightfield_grooves.h"
 #include "vgroove/sim/heightfield_tracer.h"
@@ -71,9 +72,12 @@ sim::HeightfieldTally walk_lobe(NdfKind ndf, double alpha, double theta_i, long 
                                 int theta_bins, int phi_bins, int max_k, const std::atomic<bool>* cancel = nullptr);
 
 // The same for anisotropic roughness (alpha_x along the x axis, the mirror azimuth 0): the
-// Roughness walk of analytic/smith_walk_3d.h (heights log C1).
+// Roughness walk of analytic/smith_walk_3d.h (heights log C1, or `heights`).
 sim::HeightfieldTally walk_lobe(const analytic::Roughness& r, double theta_i, long paths, std::uint64_t seed,
                                 int theta_bins, int phi_bins, int max_k, const std::atomic<bool>* cancel = nullptr);
+sim::HeightfieldTally walk_lobe(const analytic::Roughness& r, analytic::WalkHeights heights, double theta_i, long paths,
+                                std::uint64_t seed, int theta_bins, int phi_bins, int max_k,
+                                const std::atomic<bool>* cancel = nullptr);
 
 // Joint fractions of the tally's rays per (row, bin) for rows k = first_row..last row, row by row.
 std::vector<double> joint_fractions(const sim::HeightfieldTally& t, int first_row);

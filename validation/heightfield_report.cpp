@@ -103,9 +103,29 @@ std::string masking_text(const HeightfieldMaskingValue& v) {
          far;
 }
 
-// Why the isotropic models are not compared on an anisotropic suite.
-std::string skipped_text(const HeightfieldSuite& suite) {
-  return support::format("anisotropic roughness (alpha_y = %g alpha_x): the model is isotropic here", suite.aspect);
+// Why the isotropic models are not compared on an anisotropic case.
+std::string skipped_text(double aspect) {
+  return support::format("anisotropic roughness (alpha_y = %g alpha_x): the model is isotropic here", aspect);
+}
+
+// The walks of walk_heights[1..], side by side with the first.
+nlohmann::json other_walks_json(const HeightfieldOutcome& o, int bins) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const HeightfieldOtherWalk& w : o.other_walks)
+    out.push_back({{"heights", w.heights},
+                   {"paths", w.paths},
+                   {"left", w.left},
+                   {"energy_by_k", w.energy},
+                   {"lobe_by_k", rows_of(w.lobe, kHeightfieldRows, bins)},
+                   {"against_traced", miss_json(w.against_traced, o)},
+                   {"against_first", miss_json(w.against_first, o)}});
+  return out;
+}
+
+nlohmann::json walk_heights_names(const HeightfieldSuite& suite) {
+  nlohmann::json out = nlohmann::json::array();
+  for (analytic::WalkHeights h : suite.walk_heights) out.push_back(analytic::walk_heights_name(h));
+  return out;
 }
 
 }  // namespace
@@ -119,7 +139,8 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
                  {"alpha", suite.alphas},
                  {"theta_i_deg", suite.theta_i_deg},
                  {"surface", heightfield_surface_name(suite.surface)},
-                 {"aspect", suite.aspect},
+                 {"aspect", suite.aspect_list ? nlohmann::json(suite.aspects) : nlohmann::json(suite.aspects[0])},
+                 {"walk_heights", walk_heights_names(suite)},
                  {"field_size", suite.field_size},
                  {"correlation_length", suite.correlation_length},
                  {"fields", suite.fields},
@@ -151,9 +172,11 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
   for (const HeightfieldOutcome& o : run.cases) {
     const int bins = suite.bins();
     rays += o.rays, lost += o.lost, passed += o.pass;
+    const bool case_is_anisotropic = o.c.aspect != 1.0;  // the isotropic models skipped
     cases.push_back({{"ndf", analytic::ndf_name(o.c.ndf)},
                      {"alpha", o.c.alpha},
                      {"theta_i_deg", o.c.theta_i_deg},
+                     {"aspect", o.c.aspect},
                      {"rays", o.rays},
                      {"lost", o.lost},
                      {"bounce_limit", o.bounce_limit},
@@ -169,18 +192,19 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
                        {"lobe_by_k", rows_of(o.lobe, kHeightfieldRows, bins)},
                        {"lobe_se_by_k", rows_of(o.lobe_se, kHeightfieldRows, bins)}}},
                      {"smith_walk",
-                      {{"paths", o.walk_paths},
+                      {{"heights", analytic::walk_heights_name(suite.walk_heights.front())},
+                       {"paths", o.walk_paths},
                        {"left", o.walk_left},
                        {"energy_by_k", o.walk_energy},
                        {"lobe_by_k", rows_of(o.walk_lobe, kHeightfieldRows, bins)},
                        {"against_traced", miss_json(o.walk, o)}}},
-                     {"cook_torrance_smith", suite.anisotropic()
-                                                 ? nlohmann::json{{"skipped", skipped_text(suite)}}
+                     {"cook_torrance_smith", case_is_anisotropic
+                                                 ? nlohmann::json{{"skipped", skipped_text(o.c.aspect)}}
                                                  : nlohmann::json{{"integration_error", o.ct_error},
                                                                   {"lobe_k1", o.ct_lobe},
                                                                   {"against_traced", miss_json(o.cook_torrance, o)}}},
-                     {"vgroove", suite.anisotropic()
-                                     ? nlohmann::json{{"skipped", skipped_text(suite)}}
+                     {"vgroove", case_is_anisotropic
+                                     ? nlohmann::json{{"skipped", skipped_text(o.c.aspect)}}
                                      : nlohmann::json{{"energy_by_k", o.vgroove_energy},
                                                       {"lobe_by_k", rows_of(o.vgroove_lobe, kHeightfieldRows, bins)},
                                                       {"against_traced", miss_json(o.vgroove, o)}}},
@@ -192,6 +216,9 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
                        {"masking_s", o.masking_s}}},
                      {"non_finite", o.non_finite},
                      {"pass", o.pass}});
+    // The first distribution's walk is "smith_walk"; the others beside it, each against the traced
+    // lobe and against the first walk.
+    if (!o.other_walks.empty()) cases.back()["smith_walk_other_heights"] = other_walks_json(o, bins);
     if (suite.masking) {
       nlohmann::json g1 = nlohmann::json::array(), g2 = nlohmann::json::array();
       for (const auto& v : o.g1) g1.push_back(masking_value_json(v, false));
@@ -208,9 +235,11 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
                         {"ndf", analytic::ndf_name(c.ndf)},
                         {"alpha", c.alpha},
                         {"theta_i_deg", c.theta_i_deg},
+                        {"aspect", c.aspect},
                         {"within_noise", n < run.controls_hold.size() && run.controls_hold[n]}});
   }
   j["controls"] = std::move(controls);
+  j["masking_controls"] = masking_controls_json(suite, run);
   j["summary"] = {
       {"cases", run.cases.size()}, {"passed", passed}, {"rays", rays}, {"lost", lost}, {"wall_s", run.wall_s}};
   j["thresholds"] = {
@@ -220,9 +249,10 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
        "spread but at least the rays' multinomial error, plus the walk's own) and every row's |E_traced - E_model| "
        "<= sigmas se + tolerance; the other models' distances are results, not verdicts"},
       {"masking_rule",
-       "masking (reported, not a verdict): a model is within noise when |traced - model| <= sigmas se + "
-       "model_tolerance overall and in every facet-normal bin with points on every field (se: the fields' spread, at "
-       "least the points' binomial error)"},
+       "masking: a model is within noise when |traced - model| <= sigmas se + model_tolerance overall (and, for "
+       "every_bin, in every facet-normal bin with points on every field; se: the fields' spread, at least the "
+       "points' binomial error); each masking control's model within noise enters the verdict, the others are "
+       "results"},
       {"sigmas", suite.sigmas},
       {"model_tolerance", suite.model_tolerance}};
   j["pass"] = run.pass;
@@ -231,14 +261,19 @@ nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const Heig
 
 void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, const HeightfieldRun& run) {
   const bool grooves = suite.surface == HeightfieldSurfaceKind::grooves;
+  std::string aspects;
+  for (double a : suite.aspects) aspects += (aspects.empty() ? "" : ", ") + support::number_text(a);
+  const bool several_aspects = suite.aspects.size() > 1, several_walks = suite.walk_heights.size() > 1;
+  const std::string first_walk = analytic::walk_heights_name(suite.walk_heights.front());
   print_table_title(
       os, suite.name, "heightfield",
       support::format("%zu cases, %d %sfields of %d^2 cells (correlation %g cells%s) per case, %ld rays per field, "
                       "%ld walk paths, %d x %d bins, F = 1",
                       run.cases.size(), suite.fields,
-                      grooves ? "random-orientation V-groove "
+                      grooves           ? "random-orientation V-groove "
+                      : several_aspects ? ("anisotropic (alpha_y = aspect alpha_x, aspect " + aspects + ") ").c_str()
                       : suite.anisotropic()
-                          ? support::format("anisotropic (alpha_y = %g alpha_x) ", suite.aspect).c_str()
+                          ? support::format("anisotropic (alpha_y = %g alpha_x) ", suite.aspects[0]).c_str()
                           : "",
                       suite.field_size, suite.correlation_length, grooves ? ": grooves 3 l long, 3 l apart" : "",
                       suite.rays, suite.walk_paths, suite.theta_bins, suite.phi_bins),
@@ -247,18 +282,23 @@ void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, co
         "sigmas se), or where it misses (L1 over its threshold, model E_k minus traced)\n";
   for (const HeightfieldOutcome& o : run.cases) {
     os << support::format(
-        "  %-8s alpha %.2f theta_i %4.1f: E_1 %.4f(%.4f) E_2 %.4f(%.4f) E_3+ %.4f(%.4f) albedo "
+        "  %-8s%s alpha %.2f theta_i %4.1f: E_1 %.4f(%.4f) E_2 %.4f(%.4f) E_3+ %.4f(%.4f) albedo "
         "%.4f; %lld rays, lost %lld, %.2f s%s\n",
-        analytic::ndf_name(o.c.ndf), o.c.alpha, o.c.theta_i_deg, o.energy[0], o.energy_se[0], o.energy[1],
-        o.energy_se[1], o.energy[2], o.energy_se[2], o.albedo, static_cast<long long>(o.rays),
-        static_cast<long long>(o.lost), o.field_s + o.trace_s + o.walk_s + o.model_s,
-        o.pass ? "" : "  FAIL (lost or not finite)");
-    os << support::format("    %-20s %s\n", "smith_walk", miss_text(o.walk).c_str());
-    const std::string skip = "skipped: " + skipped_text(suite);
+        analytic::ndf_name(o.c.ndf), several_aspects ? support::format(" aspect %g", o.c.aspect).c_str() : "",
+        o.c.alpha, o.c.theta_i_deg, o.energy[0], o.energy_se[0], o.energy[1], o.energy_se[1], o.energy[2],
+        o.energy_se[2], o.albedo, static_cast<long long>(o.rays), static_cast<long long>(o.lost),
+        o.field_s + o.trace_s + o.walk_s + o.model_s, o.pass ? "" : "  FAIL (lost or not finite)");
+    os << support::format("    %-20s %s\n", several_walks ? ("smith_walk " + first_walk).c_str() : "smith_walk",
+                          miss_text(o.walk).c_str());
+    for (const HeightfieldOtherWalk& w : o.other_walks)
+      os << support::format("    %-20s %s; against %s: %s\n", ("smith_walk " + w.heights).c_str(),
+                            miss_text(w.against_traced).c_str(), first_walk.c_str(),
+                            miss_text(w.against_first).c_str());
+    const bool skipped = o.c.aspect != 1.0;
+    const std::string skip = "skipped: " + skipped_text(o.c.aspect);
     os << support::format("    %-20s %s\n", "cook_torrance_smith",
-                          suite.anisotropic() ? skip.c_str() : miss_text(o.cook_torrance).c_str());
-    os << support::format("    %-20s %s\n", "vgroove",
-                          suite.anisotropic() ? skip.c_str() : miss_text(o.vgroove).c_str());
+                          skipped ? skip.c_str() : miss_text(o.cook_torrance).c_str());
+    os << support::format("    %-20s %s\n", "vgroove", skipped ? skip.c_str() : miss_text(o.vgroove).c_str());
     if (suite.masking) {
       os << support::format(
           "    masking (%lld points, lost %lld, %.2f s): traced G(se); the models within noise overall, "
@@ -274,10 +314,12 @@ void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, co
   for (std::size_t n = 0; n < suite.controls.size(); ++n) {
     const HeightfieldCase c = suite.case_at(suite.controls[n].case_index);
     const bool held = n < run.controls_hold.size() && run.controls_hold[n];
-    os << support::format("  control: %s on %s alpha %.2f theta_i %.1f: %s\n",
-                          heightfield_model_name(suite.controls[n].model), analytic::ndf_name(c.ndf), c.alpha,
+    os << support::format("  control: %s on %s%s alpha %.2f theta_i %.1f: %s\n",
+                          heightfield_model_name(suite.controls[n].model), analytic::ndf_name(c.ndf),
+                          several_aspects ? support::format(" aspect %g", c.aspect).c_str() : "", c.alpha,
                           c.theta_i_deg, held ? "within noise" : "NOT within noise (fails the suite)");
   }
+  print_masking_controls(os, suite, run);
   std::size_t passed = 0;
   for (const auto& o : run.cases) passed += o.pass;
   print_table_close(os, passed, run.cases.size(), run.wall_s);

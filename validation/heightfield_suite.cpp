@@ -37,12 +37,15 @@ std::uint64_t derived_seed(std::uint64_t seed, std::uint64_t stream, std::uint64
 }
 
 struct CaseIndex {
-  std::size_t ndf, alpha, theta;
+  std::size_t ndf, aspect, alpha, theta;
 };
 CaseIndex index_of(const HeightfieldSuite& s, std::size_t c) {
-  const std::size_t nt = s.theta_i_deg.size(), na = s.alphas.size();
-  return {c / (nt * na), (c / nt) % na, c % nt};
+  const std::size_t nt = s.theta_i_deg.size(), na = s.alphas.size(), nr = s.aspects.size();
+  return {c / (nt * na * nr), (c / (nt * na)) % nr, (c / nt) % na, c % nt};
 }
+
+// Smith walk height distributions by name ("walk_heights"), in analytic::WalkHeights order.
+const std::vector<std::string> kWalkHeightNames = {"log_c1", "uniform", "gaussian"};
 
 // Per-bin mean over the fields ([r][b]) and standard error: the fields' spread, at least the
 // multinomial error of all `rays` (p the mean).
@@ -93,7 +96,7 @@ const char* heightfield_model_name(HeightfieldModel m) {
 
 HeightfieldCase HeightfieldSuite::case_at(std::size_t c) const {
   const CaseIndex ix = index_of(*this, c);
-  return {ndfs[ix.ndf], alphas[ix.alpha], theta_i_deg[ix.theta]};
+  return {ndfs[ix.ndf], alphas[ix.alpha], theta_i_deg[ix.theta], aspects[ix.aspect]};
 }
 
 HeightfieldSuite parse_heightfield_suite(const nlohmann::json& j, const std::string& file) {
@@ -123,22 +126,39 @@ HeightfieldSuite parse_heightfield_suite(const nlohmann::json& j, const std::str
               support::format("= %g must be in [2, %g] (field_size / 12) with surface grooves: grooves 3 l long "
                               "and 3 l apart, at most field_size / 4",
                               s.correlation_length, s.field_size / 12.0));
-  s.aspect = root.number_or("aspect", 1.0, 0.25, true, 4.0, true);
-  if (s.anisotropic()) {
+  s.aspect_list = root.has("aspect") && root.raw("aspect").is_array();
+  s.aspects = s.aspect_list ? read_numbers(root, "aspect", 0.25, true, 4.0, true)
+                            : std::vector<double>{root.number_or("aspect", 1.0, 0.25, true, 4.0, true)};
+  for (std::size_t q = 0; q < s.aspects.size(); ++q) {
+    const double aspect = s.aspects[q];
+    if (aspect == 1.0) continue;
     const auto fail = [&](const std::string& why) {
-      root.fail("aspect", support::format("= %g (anisotropic) ", s.aspect) + why);
+      const std::string what = support::format("= %g (anisotropic) ", aspect) + why;
+      if (s.aspect_list) root.fail_at("aspect", q, what);
+      root.fail("aspect", what);
     };
     for (auto n : s.ndfs)
       if (n != analytic::NdfKind::beckmann) fail("needs ndf [\"beckmann\"] only: the GGX fields are isotropic");
     if (s.surface != HeightfieldSurfaceKind::gaussian) fail("needs surface gaussian: the groove fields are isotropic");
     for (double a : s.alphas) {
       sim::GaussianHeightfieldOptions o;
-      o.n = s.field_size, o.alpha_x = a, o.alpha_y = a * s.aspect, o.correlation_length = s.correlation_length;
+      o.n = s.field_size, o.alpha_x = a, o.alpha_y = a * aspect, o.correlation_length = s.correlation_length;
       try {
         (void)sim::gaussian_heightfield_parameters(o);
       } catch (const std::invalid_argument& e) {
         fail(support::format("with alpha %g and correlation_length %g: ", a, s.correlation_length) + e.what());
       }
+    }
+  }
+  if (root.has("walk_heights")) {
+    const std::vector<std::string> names = read_names(root, "walk_heights", kWalkHeightNames);
+    s.walk_heights.clear();
+    for (std::size_t n = 0; n < names.size(); ++n) {
+      const auto h = static_cast<analytic::WalkHeights>(
+          std::find(kWalkHeightNames.begin(), kWalkHeightNames.end(), names[n]) - kWalkHeightNames.begin());
+      if (std::find(s.walk_heights.begin(), s.walk_heights.end(), h) != s.walk_heights.end())
+        root.fail_at("walk_heights", n, "= \"" + names[n] + "\" is given twice: each distribution once");
+      s.walk_heights.push_back(h);
     }
   }
   s.fields = static_cast<int>(root.integer("fields", 2, 1000));
@@ -165,6 +185,10 @@ HeightfieldSuite parse_heightfield_suite(const nlohmann::json& j, const std::str
       const std::string ndf = c.one_of("ndf", {"beckmann", "ggx"});
       const double alpha = c.number("alpha", kMinAlpha, true, kMaxAlpha, true);
       const double theta = c.number("theta_i_deg", 0.0, true, kMaxSurfaceThetaIDeg, true);
+      // Its aspect: required when the suite has several.
+      const double aspect = c.number_or("aspect", s.aspects.front(), 0.25, true, 4.0, true);
+      if (s.aspects.size() > 1 && !c.has("aspect"))
+        root.fail_at("controls", n, "needs an aspect: the suite has several");
       c.finish();
       HeightfieldControl ctl;
       ctl.model = model == "smith_walk"            ? HeightfieldModel::smith_walk
@@ -173,14 +197,16 @@ HeightfieldSuite parse_heightfield_suite(const nlohmann::json& j, const std::str
       bool found = false;
       for (std::size_t k = 0; k < s.cases() && !found; ++k) {
         const HeightfieldCase hc = s.case_at(k);
-        if (analytic::ndf_name(hc.ndf) == ndf && hc.alpha == alpha && hc.theta_i_deg == theta)
+        if (analytic::ndf_name(hc.ndf) == ndf && hc.alpha == alpha && hc.theta_i_deg == theta && hc.aspect == aspect)
           ctl.case_index = k, found = true;
       }
       if (!found)
         root.fail_at("controls", n,
                      "names no case of the suite (ndf " + ndf + ", alpha " + support::number_text(alpha) +
-                         ", theta_i_deg " + support::number_text(theta) + "): a control must be one of its cases");
-      if (s.anisotropic() && ctl.model != HeightfieldModel::smith_walk)
+                         ", theta_i_deg " + support::number_text(theta) +
+                         (s.aspects.size() > 1 ? ", aspect " + support::number_text(aspect) : std::string()) +
+                         "): a control must be one of its cases");
+      if (aspect != 1.0 && ctl.model != HeightfieldModel::smith_walk)
         root.fail_at("controls", n,
                      "model " + model + " is skipped when aspect != 1 (isotropic here): only smith_walk");
       s.controls.push_back(ctl);
@@ -190,7 +216,7 @@ HeightfieldSuite parse_heightfield_suite(const nlohmann::json& j, const std::str
     if (s.anisotropic())
       root.fail("masking", "is not measured when aspect != 1 (its models are isotropic here): drop it or set aspect 1");
     support::JsonObject m = root.object("masking");
-    s.masking = parse_heightfield_masking(m);
+    s.masking = parse_heightfield_masking(m, s);
   }
   root.finish();
   return s;
@@ -237,7 +263,7 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
   const double theta_i = deg_to_rad(out.c.theta_i_deg);
   const int bins = suite.bins(), rows = kHeightfieldRows;
   const HeightfieldFieldSpec spec{out.c.ndf,     out.c.alpha, suite.field_size, suite.correlation_length,
-                                  suite.surface, suite.aspect};
+                                  suite.surface, out.c.aspect};
 
   // The fields: one at a time, each from its own seed (the same fields at every theta_i).
   std::vector<std::vector<double>> lobes, energies;
@@ -245,8 +271,9 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
   for (int r = 0; r < suite.fields; ++r) {
     if (support::cancelled(cancel)) return out;
     auto t0 = Clock::now();
-    const std::uint64_t key =
-        (static_cast<std::uint64_t>(ix.ndf) * 4096 + ix.alpha) * 65536 + static_cast<std::uint64_t>(r);
+    // The first aspect's keys are the keys before "aspect" was a list.
+    const std::uint64_t key = ((static_cast<std::uint64_t>(ix.aspect) * 16 + ix.ndf) * 4096 + ix.alpha) * 65536 +
+                              static_cast<std::uint64_t>(r);
     const sim::HeightfieldSurface s = make_field_surface(spec, derived_seed(suite.seed, kFieldSeeds, key));
     out.field_s += seconds_since(t0);
     t0 = Clock::now();
@@ -279,19 +306,48 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
     out.albedo = a[0], out.albedo_se = ase[0];
   }
 
-  // The Smith walk.
+  // The Smith walk, once per height distribution, each from its own stream (log C1's the stream
+  // before "walk_heights" existed): independent walks, so that their agreement is a measurement.
+  const bool anisotropic = out.c.aspect != 1.0;
+  const auto walk_of = [&](analytic::WalkHeights h) {
+    const std::uint64_t walk_seed =
+        derived_seed(suite.seed, kWalkSeeds, case_index + (static_cast<std::uint64_t>(h) << 40));
+    if (!anisotropic && h == analytic::WalkHeights::log_c1)
+      return walk_lobe(out.c.ndf, out.c.alpha, theta_i, suite.walk_paths, walk_seed, suite.theta_bins, suite.phi_bins,
+                       kMaxK, cancel);
+    return walk_lobe(analytic::Roughness{out.c.ndf, out.c.alpha, out.c.alpha * out.c.aspect}, h, theta_i,
+                     suite.walk_paths, walk_seed, suite.theta_bins, suite.phi_bins, kMaxK, cancel);
+  };
   auto t0 = Clock::now();
-  const std::uint64_t walk_seed = derived_seed(suite.seed, kWalkSeeds, case_index);
-  const sim::HeightfieldTally w =
-      suite.anisotropic() ? walk_lobe(analytic::Roughness{out.c.ndf, out.c.alpha, out.c.alpha * suite.aspect}, theta_i,
-                                      suite.walk_paths, walk_seed, suite.theta_bins, suite.phi_bins, kMaxK, cancel)
-                          : walk_lobe(out.c.ndf, out.c.alpha, theta_i, suite.walk_paths, walk_seed, suite.theta_bins,
-                                      suite.phi_bins, kMaxK, cancel);
-  out.walk_s = seconds_since(t0);
+  const sim::HeightfieldTally w = walk_of(suite.walk_heights.front());
   if (support::cancelled(cancel)) return out;
   out.walk_paths = w.rays, out.walk_left = w.escaped;
   out.walk_lobe = joint_fractions(w, 1);
   out.walk_energy = row_sums(out.walk_lobe, rows, bins);
+  const double first_paths = static_cast<double>(out.walk_paths);
+  std::vector<double> first_se = multinomial_var(out.walk_lobe, first_paths),
+                      first_energy_se = multinomial_var(out.walk_energy, first_paths);
+  for (double& v : first_se) v = std::sqrt(v);
+  for (double& v : first_energy_se) v = std::sqrt(v);
+  for (std::size_t h = 1; h < suite.walk_heights.size(); ++h) {
+    const sim::HeightfieldTally wh = walk_of(suite.walk_heights[h]);
+    if (support::cancelled(cancel)) return out;
+    HeightfieldOtherWalk ow;
+    ow.heights = analytic::walk_heights_name(suite.walk_heights[h]);
+    ow.paths = wh.rays, ow.left = wh.escaped;
+    ow.lobe = joint_fractions(wh, 1);
+    ow.energy = row_sums(ow.lobe, rows, bins);
+    const double p = static_cast<double>(ow.paths);
+    const std::vector<double> var = multinomial_var(ow.lobe, p), energy_var = multinomial_var(ow.energy, p);
+    ow.against_traced = heightfield_miss(out.lobe, out.lobe_se, out.energy, out.energy_se, ow.lobe, var, ow.energy,
+                                         energy_var, rows, bins, suite.sigmas, 0.0);
+    ow.against_first = heightfield_miss(out.walk_lobe, first_se, out.walk_energy, first_energy_se, ow.lobe, var,
+                                        ow.energy, energy_var, rows, bins, suite.sigmas, 0.0);
+    out.other_walks.push_back(std::move(ow));
+  }
+  out.walk_s = seconds_since(t0);
+  bool walks_finite = all_finite(out.walk_lobe);
+  for (const HeightfieldOtherWalk& ow : out.other_walks) walks_finite = walks_finite && all_finite(ow.lobe);
 
   // Cook-Torrance with Smith's height-correlated G, over the bins as check_brdf integrates it, and
   // the V-groove model's lobe (Eq. 16, k = 1, 2, 3+): isotropic, skipped when the suite is not.
@@ -300,8 +356,8 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
   out.walk = heightfield_miss(out.lobe, out.lobe_se, out.energy, out.energy_se, out.walk_lobe,
                               multinomial_var(out.walk_lobe, paths), out.walk_energy,
                               multinomial_var(out.walk_energy, paths), rows, bins, suite.sigmas, 0.0);
-  if (suite.anisotropic()) {
-    out.non_finite = !(all_finite(out.lobe) && all_finite(out.walk_lobe) && std::isfinite(out.albedo));
+  if (anisotropic) {
+    out.non_finite = !(all_finite(out.lobe) && walks_finite && std::isfinite(out.albedo));
     out.pass = out.lost == 0 && !out.non_finite;
     return out;
   }
@@ -340,7 +396,7 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
   for (const auto* list : {&out.g1, &out.g2})
     for (const HeightfieldMaskingValue& mv : *list) masking_finite = masking_finite && std::isfinite(mv.g);
   out.non_finite =
-      !masking_finite || !(all_finite(out.lobe) && all_finite(out.walk_lobe) && all_finite(out.ct_lobe) &&
+      !masking_finite || !(all_finite(out.lobe) && walks_finite && all_finite(out.ct_lobe) &&
                            all_finite(out.vgroove_lobe) && all_finite(out.vgroove_energy) && std::isfinite(out.albedo));
   out.pass = out.lost == 0 && out.masking_lost == 0 && !out.non_finite;
   return out;
@@ -358,8 +414,9 @@ double heightfield_run_memory_bytes(const HeightfieldSuite& suite, int threads) 
                                    static_cast<double>(suite.masking->theta_o_deg.size() + suite.masking->pairs()) *
                                    (suite.fields + 8.0)
                              : 0.0;
+  const double walks = static_cast<double>(suite.walk_heights.size());
   return workers * (sim::heightfield_bytes(suite.field_size) + 4.0 * joint + masking) +
-         cases * (joint * (8.0 + 2.0 * suite.fields) + masking);
+         cases * (joint * (6.0 + 2.0 * walks + 2.0 * suite.fields) + masking);
 }
 
 Job<HeightfieldWork> heightfield_job(const HeightfieldSuite& suite, long rays, nlohmann::json descriptor,
@@ -371,14 +428,20 @@ Job<HeightfieldWork> heightfield_job(const HeightfieldSuite& suite, long rays, n
         out.c = suite.case_at(c);
         const std::size_t joint = static_cast<std::size_t>(kHeightfieldRows) * static_cast<std::size_t>(suite.bins());
         const std::size_t bins = static_cast<std::size_t>(suite.bins()), rows = kHeightfieldRows;
-        const std::size_t iso = suite.anisotropic() ? 0 : 1;  // the isotropic models: skipped
+        const std::size_t iso = out.c.aspect != 1.0 ? 0 : 1;  // the isotropic models: skipped
+        bool walks_shaped = out.other_walks.size() + 1 == suite.walk_heights.size();
+        for (const HeightfieldOtherWalk& w : out.other_walks)
+          walks_shaped = walks_shaped && w.lobe.size() == joint && w.energy.size() == rows &&
+                         w.against_traced.l1.size() == rows && w.against_first.l1.size() == rows;
         if (out.lobe.size() != joint || out.lobe_se.size() != joint || out.walk_lobe.size() != joint ||
             out.vgroove_lobe.size() != iso * joint || out.ct_lobe.size() != iso * bins || out.energy.size() != rows ||
             out.energy_se.size() != rows || out.walk_energy.size() != rows || out.vgroove_energy.size() != iso * rows ||
             out.g1.size() != (suite.masking ? suite.masking->theta_o_deg.size() : 0) ||
-            out.g2.size() != (suite.masking ? suite.masking->pairs() : 0))
-          o.fail("outcome", "/lobe, /walk_lobe, /vgroove_lobe, /ct_lobe an energy, /g1 or /g2 is not of the suite's " +
-                                std::to_string(kHeightfieldRows) + " rows x " + std::to_string(bins) + " bins");
+            out.g2.size() != (suite.masking ? suite.masking->pairs() : 0) || !walks_shaped)
+          o.fail(
+              "outcome",
+              "/lobe, /walk_lobe, /vgroove_lobe, /ct_lobe an energy, /g1, /g2 or /other_walks is not of the suite's " +
+                  std::to_string(kHeightfieldRows) + " rows x " + std::to_string(bins) + " bins");
       },
       std::move(descriptor),
       [&suite, n_rays](std::size_t) {
@@ -388,7 +451,9 @@ Job<HeightfieldWork> heightfield_job(const HeightfieldSuite& suite, long rays, n
                 ? static_cast<std::int64_t>(suite.masking->points) * suite.fields *
                       static_cast<std::int64_t>(suite.masking->theta_o_deg.size() + 2 * suite.masking->pairs()) / 4
                 : 0;
-        return static_cast<std::int64_t>(n_rays) * suite.fields + suite.walk_paths + mask;
+        return static_cast<std::int64_t>(n_rays) * suite.fields +
+               static_cast<std::int64_t>(suite.walk_paths) * static_cast<std::int64_t>(suite.walk_heights.size()) +
+               mask;
       });
 }
 
@@ -405,6 +470,12 @@ HeightfieldRun heightfield_run_from(const HeightfieldSuite& suite,
     run.controls_hold.push_back(m.within_noise);
     run.pass = run.pass && m.within_noise;
   }
+  if (suite.masking)
+    for (const HeightfieldMaskingControl& c : suite.masking->controls) {
+      const bool held = masking_control_holds(c, run.cases[c.case_index]);
+      run.masking_controls_hold.push_back(held);
+      run.pass = run.pass && held;
+    }
   return run;
 }
 

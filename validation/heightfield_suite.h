@@ -1,21 +1,21 @@
 // vgroove validation: the suite of kind "heightfield": random heightfields (sim/heightfield.h,
-// Beckmann and GGX-slope fields, "aspect": anisotropic Beckmann; "surface": "grooves": V-grooves
-// at random orientations, sim/heightfield_grooves.h) traced exactly in 3D (heightfield_lobe.h),
-// their lobes per k (rows 1, 2, 3+) and energies against the 3D Smith walk (analytic/smith_walk_3d.h),
-// Cook-Torrance with Smith's height-correlated G (k = 1, integrated over the bins as check_brdf)
-// and the V-groove model (Eq. 16, analytic/lobe_3d.h; both skipped when anisotropic). Per case
-// (ndf, alpha, theta_i): `fields` fields, `rays` rays on each; per cell the mean over the fields
-// and its standard error (their spread, at least the rays' multinomial error). A model is within
-// noise when every row's L1 <= expected + sigmas sd + tolerance and every E_k within sigmas se:
-// measured, not a verdict. The verdict: no ray lost, every value finite, the `controls`. Optional
-// "masking": traced G1, G2 per facet-normal bin against Smith's forms and the V-cavity. One work
-// item per case: one report for any thread, shard or rank count. Memory: one field per worker.
-// Tests: tests/validation/heightfield_suite_test.cpp (HeightfieldSuite.*, HeightfieldSuiteCli.*),
-// tests/cluster/shards_test.sh. Schema: docs/schemas/suite.schema.json ($defs/heightfield).
-// Derivation: docs/derivations/heightfield.md (the suite's section).
+// Beckmann and GGX-slope fields, "aspect" (a number or a list): anisotropic Beckmann; "surface":
+// "grooves": V-grooves at random orientations, sim/heightfield_grooves.h) traced exactly in 3D
+// (heightfield_lobe.h), their lobes per k (rows 1, 2, 3+) and energies against the 3D Smith walk
+// (analytic/smith_walk_3d.h, one per "walk_heights" distribution, side by side), Cook-Torrance with
+// Smith's height-correlated G (k = 1) and the V-groove model (Eq. 16, analytic/lobe_3d.h; both
+// skipped when anisotropic). Per case (ndf, aspect, alpha, theta_i): `fields` fields, `rays` rays on
+// each; per cell the mean over the fields and its standard error. A model is within noise when
+// every row's L1 <= expected + sigmas sd + tolerance and every E_k within sigmas se: measured, not
+// a verdict. The verdict: no ray lost, every value finite, the `controls`. Optional "masking": G1,
+// G2 per facet-normal bin against Smith's forms and the V-cavity, controls in the verdict. One work
+// item per case; memory: one field per worker. Tests: tests/validation/heightfield_suite_test.cpp
+// (HeightfieldSuite.*, HeightfieldSuiteCli.*, HeightfieldSuiteLong.*), tests/cluster/shards_test.sh.
+// Schema: docs/schemas/suite.schema.json ($defs/heightfield). Derivation: docs/derivations/heightfield.md.
 #pragma once
 
 #include "vgroove/analytic/ndf.h"
+#include "vgroove/analytic/smith_walk_3d.h"
 #include "vgroove/sim/heightfield_masking.h"
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/parallel.h"
@@ -24,6 +24,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <optional>
@@ -44,6 +45,7 @@ struct HeightfieldCase {
   analytic::NdfKind ndf = analytic::NdfKind::beckmann;
   double alpha = 0.5;
   double theta_i_deg = 0.0;
+  double aspect = 1.0;  // alpha_y / alpha
 };
 
 struct HeightfieldControl {
@@ -54,12 +56,22 @@ struct HeightfieldControl {
 // The masking section (optional "masking" in the suite): per case (its theta_i, the light at
 // azimuth 0) the traced G1(o) for each theta_o (sim/heightfield_masking.h, `points` points per
 // field) and G2(i, o) for each theta_o x azimuth difference phi (o at azimuth phi), on the case's
-// fields, per facet-normal bin (theta_m_bins over [0, 90) deg x phi_m_bins relative to o's azimuth)
-// and overall, against Smith's forms and the V-cavity (analytic/masking_shadowing.h).
+// fields, per facet-normal bin (theta_m_bins over [0, 90) deg x phi_m_bins from o's azimuth (G1)
+// or the bisector of i's and o's (G2)) and overall, against Smith's forms and the V-cavity
+// (analytic/masking_shadowing.h). Its controls enter the verdict: a named model within noise for a
+// case's G1(theta_o) or G2(theta_o, phi), overall or overall and in every bin.
+struct HeightfieldMaskingControl {
+  bool g2 = false;
+  std::string
+      model;  // G1: smith, vcavity; G2: smith_separable, ..._height_correlated, ..._direction_correlated, vcavity
+  std::size_t case_index = 0, theta_o_index = 0, phi_index = 0;  // phi: G2 only
+  bool every_bin = false;
+};
 struct HeightfieldMaskingSpec {
   std::vector<double> theta_o_deg, phi_deg;
   long points = 20000;  // per field, theta_o and pair
   int theta_m_bins = 3, phi_m_bins = 4;
+  std::vector<HeightfieldMaskingControl> controls;
   std::size_t pairs() const { return theta_o_deg.size() * phi_deg.size(); }
   int bins() const { return theta_m_bins * phi_m_bins; }
 };
@@ -72,10 +84,17 @@ struct HeightfieldSuite {
   HeightfieldSurfaceKind surface = HeightfieldSurfaceKind::gaussian;  // "surface" (default gaussian)
   int field_size = 256;
   double correlation_length = 8.0;  // grooves: 3 l long and apart (groove_field_options)
-  double aspect = 1.0;              // "aspect": alpha_y / alpha (Beckmann Gaussian fields; alpha is alpha_x)
-  // Anisotropic (aspect != 1): the walk takes alpha_x, alpha_y; Cook-Torrance and the V-groove
-  // model (isotropic here) are skipped, and so is the masking section.
-  bool anisotropic() const { return aspect != 1.0; }
+  // "aspect": alpha_y / alpha (Beckmann Gaussian fields; alpha is alpha_x), one number or a list
+  // (cases over them). A case with aspect != 1: the walk takes alpha_x, alpha_y; Cook-Torrance and
+  // the V-groove model (isotropic here) are skipped; a suite with one refuses the masking section.
+  std::vector<double> aspects{1.0};
+  bool aspect_list = false;  // given as a list (the report echoes the form given)
+  bool anisotropic() const {
+    return std::any_of(aspects.begin(), aspects.end(), [](double a) { return a != 1.0; });
+  }
+  // "walk_heights": the Smith walk once per height distribution (Heitz et al. 2016, Sec. 4), the
+  // first the walk the controls and the tables hold (default log C1, the walk before the key).
+  std::vector<analytic::WalkHeights> walk_heights{analytic::WalkHeights::log_c1};
   int fields = 4;
   long rays = 20000;         // per field and case
   long walk_paths = 200000;  // per case
@@ -85,8 +104,8 @@ struct HeightfieldSuite {
   double model_tolerance = 1e-4;  // added to every L1 threshold (the integrated models' target error)
   std::vector<HeightfieldControl> controls;
   std::optional<HeightfieldMaskingSpec> masking;
-  std::size_t cases() const { return ndfs.size() * alphas.size() * theta_i_deg.size(); }
-  HeightfieldCase case_at(std::size_t c) const;  // order: ndf, alpha, theta_i (innermost)
+  std::size_t cases() const { return ndfs.size() * aspects.size() * alphas.size() * theta_i_deg.size(); }
+  HeightfieldCase case_at(std::size_t c) const;  // order: ndf, aspect, alpha, theta_i (innermost)
   int bins() const { return theta_bins * phi_bins; }
 };
 
@@ -135,16 +154,25 @@ void fields(HeightfieldMaskingValue& v, F&& f) {
   f("models", v.models);
 }
 
+// The walk of one more height distribution (walk_heights[1..]) against the traced lobe and against
+// the first distribution's walk (both sides with their multinomial errors).
+struct HeightfieldOtherWalk {
+  std::string heights;
+  std::int64_t paths = 0, left = 0;
+  std::vector<double> lobe, energy;
+  HeightfieldMiss against_traced, against_first;
+};
 struct HeightfieldOutcome {
   HeightfieldCase c;
   std::int64_t rays = 0, lost = 0, bounce_limit = 0, edge_hits = 0, vertex_hits = 0, bounces = 0;
   std::vector<double> lobe, lobe_se;      // traced joint fractions, rows k = 1, 2, 3+ (row by row)
   std::vector<double> energy, energy_se;  // traced E_k per row
   double albedo = 0.0, albedo_se = 0.0;
-  std::vector<double> walk_lobe, walk_energy;
+  std::vector<double> walk_lobe, walk_energy;  // the first of walk_heights
   std::int64_t walk_paths = 0, walk_left = 0;
-  std::vector<double> ct_lobe;  // k = 1 row
-  double ct_error = 0.0;        // the integration's error estimate
+  std::vector<HeightfieldOtherWalk> other_walks;  // walk_heights[1..]
+  std::vector<double> ct_lobe;                    // k = 1 row
+  double ct_error = 0.0;                          // the integration's error estimate
   std::vector<double> vgroove_lobe, vgroove_energy;
   HeightfieldMiss walk, cook_torrance, vgroove;
   std::vector<HeightfieldMaskingValue> g1, g2;  // the masking section: per theta_o; per (theta_o, phi)
@@ -163,6 +191,11 @@ void fields(HeightfieldMiss& m, F&& f) {
   f("within_noise", m.within_noise);
 }
 template <class F>
+void fields(HeightfieldOtherWalk& w, F&& f) {
+  f("heights", w.heights), f("paths", w.paths), f("left", w.left), f("lobe", w.lobe), f("energy", w.energy);
+  f("against_traced", w.against_traced), f("against_first", w.against_first);
+}
+template <class F>
 void fields(HeightfieldOutcome& o, F&& f) {
   f("rays", o.rays), f("lost", o.lost), f("bounce_limit", o.bounce_limit), f("edge_hits", o.edge_hits);
   f("vertex_hits", o.vertex_hits), f("bounces", o.bounces), f("lobe", o.lobe), f("lobe_se", o.lobe_se);
@@ -173,12 +206,13 @@ void fields(HeightfieldOutcome& o, F&& f) {
   f("cook_torrance", o.cook_torrance), f("vgroove", o.vgroove), f("field_s", o.field_s), f("trace_s", o.trace_s);
   f("walk_s", o.walk_s), f("model_s", o.model_s), f("non_finite", o.non_finite), f("pass", o.pass);
   f("g1", o.g1), f("g2", o.g2), f("masking_points", o.masking_points), f("masking_lost", o.masking_lost);
-  f("masking_s", o.masking_s);
+  f("masking_s", o.masking_s), f("other_walks", o.other_walks);
 }
 
 struct HeightfieldRun {
   std::vector<HeightfieldOutcome> cases;
-  std::vector<bool> controls_hold;  // per suite control
+  std::vector<bool> controls_hold;          // per suite control
+  std::vector<bool> masking_controls_hold;  // per masking control
   int threads = 1;
   double wall_s = 0.0;
   bool interrupted = false;
@@ -228,8 +262,14 @@ HeightfieldMaskingMiss heightfield_masking_miss(const std::string& name, const H
                                                 double value, std::vector<double> bins, double sigmas,
                                                 double tolerance);
 // The masking spec from the suite's "masking" object (theta_o_deg within [0, 89.9], phi_deg
-// within [0, 180], points, bins).
-HeightfieldMaskingSpec parse_heightfield_masking(support::JsonObject& m);
+// within [0, 180], points, bins, controls naming a case of `suite` and a measured theta_o, phi).
+HeightfieldMaskingSpec parse_heightfield_masking(support::JsonObject& m, const HeightfieldSuite& suite);
+// A masking control's miss in a case's outcome (nullptr where the outcome lacks it: an interrupted
+// run) and whether it holds; the controls in the report and the table.
+const HeightfieldMaskingMiss* masking_control_miss(const HeightfieldMaskingControl& c, const HeightfieldOutcome& o);
+bool masking_control_holds(const HeightfieldMaskingControl& c, const HeightfieldOutcome& o);
+nlohmann::json masking_controls_json(const HeightfieldSuite& suite, const HeightfieldRun& run);
+void print_masking_controls(std::ostream& os, const HeightfieldSuite& suite, const HeightfieldRun& run);
 
 nlohmann::json heightfield_report_json(const HeightfieldSuite& suite, const HeightfieldRun& run);
 void print_heightfield_table(std::ostream& os, const HeightfieldSuite& suite, const HeightfieldRun& run);

@@ -1,8 +1,11 @@
 // The masking section of the "heightfield" suite (validation/heightfield_suite.h): traced G1 and
-// G2 per case on its fields, their means and errors over the fields, and the models.
+// G2 per case on its fields, their means and errors over the fields, the models, and the masking
+// controls (parsed, looked up, reported).
 #include "vgroove/analytic/masking_shadowing.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/sim/rng.h"
+#include "vgroove/support/format.h"
+#include "vgroove/support/user_error.h"
 #include "vgroove/validation/heightfield_suite.h"
 #include "vgroove/validation/spec_lists.h"
 
@@ -62,11 +65,11 @@ HeightfieldMaskingValue traced_value(int bins, int fields, G&& g, GBin&& g_bin, 
 }
 
 // The bin of the tallies (sim/heightfield_masking.h): theta_m equal over [0, pi/2), the normal's
-// azimuth relative to phi_o with bin 0 centred on it.
-analytic::NormalBin normal_bin(const HeightfieldMaskingSpec& m, int b, double phi_o) {
+// azimuth relative to phi_ref (G1: phi_o; G2: the pair's bisector) with bin 0 centred on it.
+analytic::NormalBin normal_bin(const HeightfieldMaskingSpec& m, int b, double phi_ref) {
   const int t = b / m.phi_m_bins, p = b % m.phi_m_bins;
   const double tw = 0.5 * std::numbers::pi / m.theta_m_bins, pw = 2.0 * std::numbers::pi / m.phi_m_bins;
-  return {t * tw, (t + 1) * tw, phi_o + (p - 0.5) * pw, phi_o + (p + 0.5) * pw};
+  return {t * tw, (t + 1) * tw, phi_ref + (p - 0.5) * pw, phi_ref + (p + 0.5) * pw};
 }
 
 }  // namespace
@@ -94,15 +97,134 @@ HeightfieldMaskingMiss heightfield_masking_miss(const std::string& name, const H
   return m;
 }
 
-HeightfieldMaskingSpec parse_heightfield_masking(support::JsonObject& m) {
+HeightfieldMaskingSpec parse_heightfield_masking(support::JsonObject& m, const HeightfieldSuite& suite) {
   HeightfieldMaskingSpec s;
   s.theta_o_deg = read_numbers(m, "theta_o_deg", 0.0, true, kMaxSurfaceThetaIDeg, true);
   s.phi_deg = read_numbers(m, "phi_deg", 0.0, true, 180.0, true);
   s.points = static_cast<long>(m.integer("points", 1, kMaxRays));
   s.theta_m_bins = static_cast<int>(m.integer_or("theta_m_bins", s.theta_m_bins, 1, 90));
   s.phi_m_bins = static_cast<int>(m.integer_or("phi_m_bins", s.phi_m_bins, 1, 360));
+  if (m.has("controls")) {
+    const nlohmann::json& cs = m.raw("controls");
+    if (!cs.is_array())
+      m.fail("controls", "must be an array of {g, model, ndf, alpha, theta_i_deg, theta_o_deg, phi_deg, every_bin}");
+    for (std::size_t n = 0; n < cs.size(); ++n) {
+      support::JsonObject c(cs[n], m.file(), m.path("controls") + "/" + std::to_string(n));
+      HeightfieldMaskingControl ctl;
+      ctl.g2 = c.one_of("g", {"g1", "g2"}) == "g2";
+      ctl.model = ctl.g2 ? c.one_of("model", {"smith_separable", "smith_height_correlated",
+                                              "smith_height_direction_correlated", "vcavity"})
+                         : c.one_of("model", {"smith", "vcavity"});
+      const std::string ndf = c.one_of("ndf", {"beckmann", "ggx"});
+      const double alpha = c.number("alpha", kMinAlpha, true, kMaxAlpha, true);
+      const double theta_i = c.number("theta_i_deg", 0.0, true, kMaxSurfaceThetaIDeg, true);
+      const double theta_o = c.number("theta_o_deg", 0.0, true, kMaxSurfaceThetaIDeg, true);
+      const double phi = ctl.g2 ? c.number("phi_deg", 0.0, true, 180.0, true) : 0.0;
+      ctl.every_bin = c.boolean_or("every_bin", false);
+      c.finish();
+      bool found = false;
+      for (std::size_t k = 0; k < suite.cases() && !found; ++k) {
+        const HeightfieldCase hc = suite.case_at(k);
+        if (analytic::ndf_name(hc.ndf) == ndf && hc.alpha == alpha && hc.theta_i_deg == theta_i)
+          ctl.case_index = k, found = true;
+      }
+      if (!found)
+        m.fail_at("controls", n,
+                  "names no case of the suite (ndf " + ndf + ", alpha " + support::number_text(alpha) +
+                      ", theta_i_deg " + support::number_text(theta_i) + "): a control must be one of its cases");
+      const auto at = [](const std::vector<double>& v, double x) {
+        return static_cast<std::size_t>(std::find(v.begin(), v.end(), x) - v.begin());
+      };
+      ctl.theta_o_index = at(s.theta_o_deg, theta_o), ctl.phi_index = at(s.phi_deg, phi);
+      if (ctl.theta_o_index == s.theta_o_deg.size())
+        m.fail_at("controls", n, "theta_o_deg " + support::number_text(theta_o) + " is not one of masking/theta_o_deg");
+      if (ctl.g2 && ctl.phi_index == s.phi_deg.size())
+        m.fail_at("controls", n, "phi_deg " + support::number_text(phi) + " is not one of masking/phi_deg");
+      s.controls.push_back(ctl);
+    }
+  }
   m.finish();
   return s;
+}
+
+const HeightfieldMaskingMiss* masking_control_miss(const HeightfieldMaskingControl& c, const HeightfieldOutcome& o) {
+  if (o.g1.empty()) return nullptr;  // not measured (interrupted)
+  const std::size_t item = c.g2 ? c.theta_o_index * (o.g2.size() / o.g1.size()) + c.phi_index : c.theta_o_index;
+  const std::vector<HeightfieldMaskingValue>& list = c.g2 ? o.g2 : o.g1;
+  if (item >= list.size()) return nullptr;
+  for (const HeightfieldMaskingMiss& m : list[item].models)
+    if (m.model == c.model) return &m;
+  return nullptr;
+}
+
+bool masking_control_holds(const HeightfieldMaskingControl& c, const HeightfieldOutcome& o) {
+  const HeightfieldMaskingMiss* m = masking_control_miss(c, o);
+  return m != nullptr && (c.every_bin ? m->within_noise : m->overall_within_noise);
+}
+
+namespace {
+
+struct ControlText {
+  HeightfieldCase c;
+  double theta_o = 0.0, phi = 0.0;
+};
+ControlText control_text(const HeightfieldSuite& suite, const HeightfieldMaskingControl& ctl) {
+  return {suite.case_at(ctl.case_index), suite.masking->theta_o_deg[ctl.theta_o_index],
+          ctl.g2 ? suite.masking->phi_deg[ctl.phi_index] : 0.0};
+}
+
+}  // namespace
+
+nlohmann::json masking_controls_json(const HeightfieldSuite& suite, const HeightfieldRun& run) {
+  nlohmann::json out = nlohmann::json::array();
+  if (!suite.masking) return out;
+  for (std::size_t n = 0; n < suite.masking->controls.size(); ++n) {
+    const HeightfieldMaskingControl& ctl = suite.masking->controls[n];
+    const ControlText t = control_text(suite, ctl);
+    nlohmann::json j = {{"g", ctl.g2 ? "g2" : "g1"},
+                        {"model", ctl.model},
+                        {"ndf", analytic::ndf_name(t.c.ndf)},
+                        {"alpha", t.c.alpha},
+                        {"theta_i_deg", t.c.theta_i_deg},
+                        {"theta_o_deg", t.theta_o},
+                        {"every_bin", ctl.every_bin},
+                        {"within_noise", n < run.masking_controls_hold.size() && run.masking_controls_hold[n]}};
+    if (ctl.g2) j["phi_deg"] = t.phi;
+    if (ctl.case_index < run.cases.size())
+      if (const HeightfieldMaskingMiss* m = masking_control_miss(ctl, run.cases[ctl.case_index])) {
+        j["traced"] = m->value + m->diff;
+        j["model_value"] = m->value;
+        j["z"] = m->z;
+        j["worst_bin"] = m->worst_bin;
+        j["worst_bin_z"] = m->worst_bin_z;
+      }
+    out.push_back(std::move(j));
+  }
+  return out;
+}
+
+void print_masking_controls(std::ostream& os, const HeightfieldSuite& suite, const HeightfieldRun& run) {
+  if (!suite.masking) return;
+  for (std::size_t n = 0; n < suite.masking->controls.size(); ++n) {
+    const HeightfieldMaskingControl& ctl = suite.masking->controls[n];
+    const ControlText t = control_text(suite, ctl);
+    const bool held = n < run.masking_controls_hold.size() && run.masking_controls_hold[n];
+    std::string where =
+        support::format("%s %s on %s alpha %.2f theta_i %.1f theta_o %.1f", ctl.g2 ? "G2" : "G1", ctl.model.c_str(),
+                        analytic::ndf_name(t.c.ndf), t.c.alpha, t.c.theta_i_deg, t.theta_o);
+    if (ctl.g2) where += support::format(" dphi %.1f", t.phi);
+    where += ctl.every_bin ? ", overall and every bin" : ", overall";
+    std::string how;
+    if (ctl.case_index < run.cases.size())
+      if (const HeightfieldMaskingMiss* m = masking_control_miss(ctl, run.cases[ctl.case_index])) {
+        how = support::format(" (%.1f se", std::abs(m->z));
+        if (ctl.every_bin && m->worst_bin >= 0)
+          how += support::format("; worst bin %d, %.1f se", m->worst_bin, std::abs(m->worst_bin_z));
+        how += ")";
+      }
+    os << "  masking control: " << where << ": " << (held ? "within noise" : "NOT within noise (fails the suite)")
+       << how << "\n";
+  }
 }
 
 void trace_masking_field(const HeightfieldSuite& suite, std::size_t case_index, int field,
@@ -183,9 +305,10 @@ void finish_masking(const HeightfieldSuite& suite, const HeightfieldMaskingField
       smith("smith_height_direction_correlated",
             analytic::G2_smith_height_direction_correlated(lambda_i, lambda_o, phi_o));
       std::vector<double> vb;
+      const double phi_ref = sim::heightfield_joint_bin_azimuth(theta_i, 0.0, theta_o, phi_o);
       for (int b = 0; b < bins; ++b)
         vb.push_back(
-            analytic::vcavity_g2_bin_average(ndf, alpha, theta_i, 0.0, theta_o, phi_o, normal_bin(m, b, phi_o)));
+            analytic::vcavity_g2_bin_average(ndf, alpha, theta_i, 0.0, theta_o, phi_o, normal_bin(m, b, phi_ref)));
       v.models.push_back(heightfield_masking_miss(
           "vcavity", v, analytic::vcavity_g2_bin_average(ndf, alpha, theta_i, 0.0, theta_o, phi_o, all), vb, sig, tol));
       out.g2.push_back(std::move(v));

@@ -7,8 +7,17 @@ namespace vgroove::validation {
 
 const std::vector<const SuiteKind*>& suite_kinds() {
   static const std::vector<const SuiteKind*> kinds = {
-      &brdf_kind(),     &table2_kind(), &furnace_kind(),      &sampling_kind(),    &nonsymmetric_kind(),
-      &profiles_kind(), &groove_kind(), &energy_audit_kind(), &heightfield_kind(), &dielectric_grooves_kind(),
+      &brdf_kind(),
+      &table2_kind(),
+      &furnace_kind(),
+      &sampling_kind(),
+      &nonsymmetric_kind(),
+      &profiles_kind(),
+      &groove_kind(),
+      &energy_audit_kind(),
+      &heightfield_kind(),
+      &dielectric_grooves_kind(),
+      &heightfield_albedo_kind(),
   };
   return kinds;
 }

@@ -46,9 +46,11 @@ py::object energy_lobe_shape(const std::string& ndf, const std::vector<double>& 
 py::object glass_energy(const std::vector<double>& eta, const std::vector<double>& alpha, const std::vector<double>& mu,
                         const std::vector<std::string>& ndfs, const std::vector<std::string>& dims,
                         const std::vector<std::string>& sides, const py::object& rays, const py::object& grooves,
-                        const py::object& seed, int max_k, int threads, bool verbose, const py::object& progress) {
+                        const py::object& seed, int max_k, int threads, bool verbose, const std::string& reference,
+                        const py::object& progress) {
   validation::GlassGrid g;
   validation::set_glass_axes(g, ndfs, dims, sides, "");
+  g.reference = validation::glass_reference_from(reference, "");
   g.etas = eta, g.alphas = alpha, g.mus = mu;
   g.rays = to_count(rays, "rays", 1, validation::kMaxEnergyRays);
   g.grooves = static_cast<int>(to_count(grooves, "grooves", 1, validation::kMaxGlassGrooves));
@@ -74,7 +76,7 @@ py::object glass_energy(const std::vector<double>& eta, const std::vector<double
 void bind_energy(py::module_& m) {
   m.def("glass_energy", &glass_energy, py::arg("eta"), py::arg("alpha"), py::arg("mu"), py::arg("ndf"), py::arg("dim"),
         py::arg("side"), py::arg("rays"), py::arg("grooves"), py::arg("seed"), py::arg("max_k"), py::arg("threads"),
-        py::arg("verbose"), py::arg("progress") = py::none());
+        py::arg("verbose"), py::arg("reference") = "vgroove", py::arg("progress") = py::none());
   m.def("energy_lobe_shape", &energy_lobe_shape, py::arg("ndf"), py::arg("alpha"), py::arg("theta_i_deg"),
         py::arg("rays"), py::arg("grooves"), py::arg("seed"), py::arg("theta_bins"), py::arg("phi_bins"),
         py::arg("sigmas"), py::arg("threads"), py::arg("verbose"));

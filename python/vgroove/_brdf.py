@@ -14,7 +14,7 @@ from . import _args
 from . import _vgroove
 from ._ranges import RANGES, fill_ranges
 from ._results import Lobe, SampleBatch, SurfaceTrace
-from ._sampling import _sampler_max_k
+from ._sampling import _sampler_max_k, _WALTER_ETA
 
 _MODELS = ("vgroove", "vgroove-nonsymmetric", "cook-torrance", "walter")
 
@@ -30,7 +30,8 @@ class BRDF:
         analytic/brdf_flatland.h). ``"vgroove-nonsymmetric"``: Eq. 21-23 with the partner law of
         Eq. 20 (analytic/brdf_nonsymmetric.h). ``"cook-torrance"`` (also ``"cook_torrance"``): Eq.
         1-3 with the V-cavity G, single scattering. ``"walter"``: Walter et al. 2007, Eq. 20-21
-        (analytic/walter.h), reflection and transmission, single scattering: :meth:`eval` only.
+        (analytic/walter.h), reflection and transmission, single scattering: :meth:`eval`, :meth:`sample`
+        and :meth:`pdf` (analytic/walter_sampling.h); not binned.
     ndf : {"ggx", "beckmann", "phong"}
         The facet normals' distribution (Phong exponent 2/alpha^2 - 2).
     alpha : float
@@ -195,17 +196,25 @@ class BRDF:
                             self._eta, self._masking, _args.progress(progress))
         return out.reshape(shape)
 
+    def _walter_call(self, what, strategy):
+        """Walter's arguments for the extension's walter_sample and walter_pdf: eta, masking and
+        whether strategy or max_k was given (the extension refuses both with walter)."""
+        eta = _WALTER_ETA if self._eta is None else self._eta.real
+        masking = "smith_separable" if self._masking is None else self._masking
+        return eta, masking, strategy is not None, self._max_k_given
+
     def _sampler(self, what):
-        if self._model in ("cook-torrance", "walter"):
+        if self._model == "cook-torrance":
             raise ValueError(f"{what}: model = \"{self._model}\" has no sampler here (models \"vgroove\", "
-                             "\"vgroove-nonsymmetric\")")
+                             "\"vgroove-nonsymmetric\", \"walter\")")
         if self._alpha_y is not None or self._partner == "symmetric":
             raise ValueError(f"{what}: the nonsymmetric sampler takes the isotropic, independent partner law only "
                              "(alpha_y None, partner \"independent\")")
         return self._max_k if self._max_k_given else None
 
-    def sample(self, wi: _args.ArrayLike, u: _args.ArrayLike, *, strategy: str = "vndf", tolerance: float = 1e-9,
-               threads: int = 0, progress: Optional[_args.ProgressFn] = None) -> SampleBatch:
+    def sample(self, wi: _args.ArrayLike, u: _args.ArrayLike, *, strategy: Optional[str] = None,
+               tolerance: float = 1e-9, threads: int = 0,
+               progress: Optional[_args.ProgressFn] = None) -> SampleBatch:
         """Importance-samples the BRDF (Lee et al. 2018, Sec. 6): one exit direction per row of ``u``.
 
         Parameters
@@ -213,13 +222,15 @@ class BRDF:
         wi : array_like, shape (..., 3)
             Unit vectors towards the light, polar angle in [0, $max_surface_theta_i_deg] deg (flatland:
             signed, in [-$max_surface_theta_i_deg, $max_surface_theta_i_deg]), held to it by the angle rounded to 1e-9 deg.
-        u : array_like, shape (..., 4) or (..., 5)
+        u : array_like, shape (..., 4), (..., 5) or (..., 3)
             Uniform numbers in [0, 1) (:func:`vgroove.uniforms`), four per sample (five for
-            ``"vgroove-nonsymmetric"``); the batch shapes of wi and u broadcast to S.
-        strategy : {"vndf", "printed", "smith-vndf", "bounded-vndf"}
+            ``"vgroove-nonsymmetric"``, three for ``"walter"``: the facet, then the branch); the
+            batch shapes of wi and u broadcast to S.
+        strategy : {"vndf", "printed", "smith-vndf", "bounded-vndf"}, optional
             How the facet met first is drawn: the V-cavity's visible normals (samples the BRDF
             exactly: weight 1 with F = 1), the paper's |s.n| D(s), Smith's VNDF (GGX), bounded VNDF
-            (GGX, 3D); ``vgroove sample --strategy``.
+            (GGX, 3D); ``vgroove sample --strategy``. None: "vndf". Not with ``"walter"`` (its
+            facets come from the Smith visible normals, analytic/walter_sampling.h).
         tolerance : float
             ``"vgroove-nonsymmetric"``: the pdf's relative tolerance per piece, in [1e-12, 0.01].
         threads : int
@@ -230,7 +241,8 @@ class BRDF:
         Returns
         -------
         SampleBatch
-            ``wo``, ``k``, ``pdf``, ``weight`` and ``beyond_max_k`` over S (:class:`SampleBatch`);
+            ``wo``, ``k``, ``pdf``, ``weight`` and ``beyond_max_k`` over S (:class:`SampleBatch`;
+            ``"walter"``: ``transmitted`` in place of ``beyond_max_k``, ``wo`` in both hemispheres);
             ``as_dict()`` is what :func:`vgroove.sample` returns.
 
         Raises
@@ -252,20 +264,27 @@ class BRDF:
         """
         max_k = self._sampler("sample")
         u = _args.reals(u, "u")
-        m = 5 if self._model == "vgroove-nonsymmetric" else 4
+        m = 3 if self._model == "walter" else 5 if self._model == "vgroove-nonsymmetric" else 4
         if u.shape[-1:] != (m,):
             raise ValueError(f"u must be an array of uniform numbers, shape (..., {m}); got {u.shape}")
         wi = _args.vectors(wi, "wi")
         shape = np.broadcast_shapes(u.shape[:-1], wi.shape[:-1])
         u = np.ascontiguousarray(np.broadcast_to(u, shape + (m,))).reshape(-1, m)
+        if self._model == "walter":
+            out = _vgroove.walter_sample(self._ndf, self._alpha, _args.rows(wi, shape, 3), None, u,
+                                         *self._walter_call("sample", strategy), self._dim,
+                                         _args.integer(threads, "threads"), progress=_args.progress(progress))
+            return SampleBatch.from_dict({key: a.reshape(shape + a.shape[1:]) for key, a in out.items()})
         out = _vgroove.sample(self._model, self._ndf, self._alpha, _args.rows(wi, shape, 3), None, u,
-                              _args.text(strategy, "strategy"), _sampler_max_k(max_k, self._model),
+                              _args.text("vndf" if strategy is None else strategy, "strategy"),
+                              _sampler_max_k(max_k, self._model),
                               _args.real(tolerance, "tolerance"), self._dim, _args.integer(threads, "threads"),
                               self._eta, _args.progress(progress))
         return SampleBatch.from_dict({key: a.reshape(shape + a.shape[1:]) for key, a in out.items()})
 
-    def pdf(self, wi: _args.ArrayLike, wo: _args.ArrayLike, *, strategy: str = "vndf", tolerance: float = 1e-9,
-            threads: int = 0, progress: Optional[_args.ProgressFn] = None) -> np.ndarray:
+    def pdf(self, wi: _args.ArrayLike, wo: _args.ArrayLike, *, strategy: Optional[str] = None,
+            tolerance: float = 1e-9, threads: int = 0,
+            progress: Optional[_args.ProgressFn] = None) -> np.ndarray:
         """The density of the directions :meth:`sample` draws, at ``wo``.
 
         Parameters
@@ -285,7 +304,8 @@ class BRDF:
             Shape S: the density per steradian (per radian in flatland), the sum over every path
             of k <= max_k reflections that ends at wo; 0 below the horizon, +inf exactly at the
             mirror direction in 3D. With ``strategy="vndf"`` it equals eval(wi, wo) cos(theta_o)
-            for F = 1 (the same max_k).
+            for F = 1 (the same max_k). ``"walter"``: over both hemispheres (``wo`` below the
+            surface: the transmitted branch).
 
         Raises
         ------
@@ -305,8 +325,13 @@ class BRDF:
         wi, wo = _args.vectors(wi, "wi"), _args.vectors(wo, "wo")
         shape = np.broadcast_shapes(wi.shape, wo.shape)[:-1]
         wo = np.ascontiguousarray(np.broadcast_to(wo, shape + (3,))).reshape(-1, 3)
+        if self._model == "walter":
+            return _vgroove.walter_pdf(self._ndf, self._alpha, _args.rows(wi, shape, 3), None, wo,
+                                       *self._walter_call("pdf", strategy), self._dim,
+                                       _args.integer(threads, "threads"),
+                                       progress=_args.progress(progress)).reshape(shape)
         return _vgroove.pdf(self._model, self._ndf, self._alpha, _args.rows(wi, shape, 3), None, wo,
-                            _args.text(strategy, "strategy"), _sampler_max_k(max_k, self._model),
+                            _args.text("vndf" if strategy is None else strategy, "strategy"), _sampler_max_k(max_k, self._model),
                             _args.real(tolerance, "tolerance"), self._dim, _args.integer(threads, "threads"),
                             _args.progress(progress)).reshape(shape)
 

@@ -87,7 +87,7 @@ def glass_energy(eta: Sequence[float], alpha: Sequence[float] = (0.1, 0.5, 1.0),
                  *, ndf: Union[str, Sequence[str]] = "ggx", dim: Union[str, Sequence[str]] = "3d",
                  side: Union[str, Sequence[str]] = ("above", "below"), rays: int = 100000, grooves: int = 10000,
                  seed: int = 1, max_k: int = 16, threads: int = 0, verbose: bool = False,
-                 progress: Optional[ProgressFn] = None) -> dict:
+                 reference: str = "vgroove", progress: Optional[ProgressFn] = None) -> dict:
     """Exact energy tables of rough glass, as ``vgroove energy --eta`` computes them
     (validation/glass_energy.h): E_R and E_T of V-groove surfaces between two dielectrics, per
     number of interactions k, for light from either side.
@@ -119,6 +119,9 @@ def glass_energy(eta: Sequence[float], alpha: Sequence[float] = (0.1, 0.5, 1.0),
         In [0, $max_threads] (0: all cores); the counts do not depend on it.
     verbose : bool
         Print the command line's table.
+    reference : {"vgroove", "smith_walk"}
+        The traced V-groove surfaces, or Heitz et al. 2016's dielectric Smith random walk (3D and
+        flatland; ``vgroove energy --eta --reference smith_walk``; grooves not used).
     progress : callable, optional
         ``progress(done, total)``, counting work units.
 
@@ -151,7 +154,7 @@ def glass_energy(eta: Sequence[float], alpha: Sequence[float] = (0.1, 0.5, 1.0),
         [float(x) for x in np.atleast_1d(reals(eta, "eta"))], [float(a) for a in np.atleast_1d(reals(alpha, "alpha"))],
         [float(m) for m in np.atleast_1d(reals(mu, "mu"))], names(ndf), names(dim), names(side),
         integer(rays, "rays"), integer(grooves, "grooves"), integer(seed, "seed"), integer(max_k, "max_k"),
-        integer(threads, "threads"), bool(verbose), progress=_progress(progress))
+        integer(threads, "threads"), bool(verbose), text(reference, "reference"), progress=_progress(progress))
 
 
 glass_energy.__doc__ = fill_ranges(glass_energy.__doc__)

@@ -5,6 +5,7 @@ functions :func:`vgroove.trace_microsurface`, :func:`vgroove.lobe` and :func:`vg
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Optional
 
 import numpy as np
 
@@ -138,8 +139,11 @@ class SampleBatch:
         Density of ``wo`` per steradian (per radian in flatland); 0 on a zero-weight return.
     weight : numpy.ndarray
         rho cos(theta_o) / pdf, Fresnel included when the BRDF has one.
-    beyond_max_k : numpy.ndarray
-        bool: a zero-weight return because the drawn path has more than max_k reflections.
+    beyond_max_k : numpy.ndarray or None
+        bool: a zero-weight return because the drawn path has more than max_k reflections (None
+        for ``"walter"``, single scattering).
+    transmitted : numpy.ndarray or None
+        ``"walter"`` only: bool, the draw refracted into the far medium (``wo`` below the surface).
 
     Examples
     --------
@@ -153,13 +157,19 @@ class SampleBatch:
     k: np.ndarray
     pdf: np.ndarray
     weight: np.ndarray
-    beyond_max_k: np.ndarray
+    beyond_max_k: Optional[np.ndarray] = None
+    transmitted: Optional[np.ndarray] = None
 
     @classmethod
     def from_dict(cls, d: dict) -> "SampleBatch":
         """The batch from the dict :func:`vgroove.sample` returns."""
-        return cls(**{k: _frozen(d[k]) for k in ("wo", "k", "pdf", "weight", "beyond_max_k")})
+        return cls(**{k: _frozen(a) for k, a in d.items() if k in _SAMPLE_KEYS})
 
     def as_dict(self) -> dict:
         """The dict :func:`vgroove.sample` returns."""
-        return {k: getattr(self, k) for k in ("wo", "k", "pdf", "weight", "beyond_max_k")}
+        return {k: getattr(self, k) for k in _SAMPLE_KEYS if getattr(self, k) is not None}
+
+
+#: The keys of :func:`vgroove.sample`'s dict, in its order (``beyond_max_k`` for the V-groove
+#: samplers, ``transmitted`` for ``"walter"``).
+_SAMPLE_KEYS = ("wo", "k", "pdf", "weight", "beyond_max_k", "transmitted")

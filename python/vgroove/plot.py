@@ -27,7 +27,12 @@ One or more images per report, named after the report (or --out) with a suffix p
                                                             3+) against theta_i, a series per alpha (<= 1:
                                                             within noise), and E_k model minus traced;
                                              BASE-masking-NDF.png  G1 per facet-normal bin: traced,
-                                                            Smith, V-cavity (a row per alpha, a column per view)
+                                                            Smith, V-cavity (a row per alpha, a column per view);
+                                                            the masking controls' verdict in the title, a G1
+                                                            control's panel titled held / NOT within noise
+    "heightfield_albedo"                     BASE-NDF.png   E, E_1, E_ms over mu, a row per alpha: traced
+                                                            (2 se bars) against the Smith walk, Smith's
+                                                            exact E_ss (E_1) and the V-groove model
     "energy_audit"                           BASE-REF-NDF.png  per compensation formula, its albedo minus the
                                                             exact one over (mu, alpha), the grey F0 with the
                                                             largest |error| per cell (REF: vgroove, smith_walk)
@@ -209,7 +214,7 @@ def report_kind(report: Node) -> str:
         raise report.fail(f"is {_kind(v)}: a report is a JSON object")
     kind = v.get("kind")
     if kind in ("brdf", "furnace", "table2", "check_brdf", "sampling", "nonsymmetric_brdf", "profiles",
-                "energy_audit", "model_table", "heightfield"):
+                "energy_audit", "model_table", "heightfield", "heightfield_albedo"):
         return kind
     if "runs" in v:
         return "accuracy"
@@ -1162,6 +1167,26 @@ def _heightfield_masking_figures(report: Node, name: str) -> List[Tuple[str, Dra
                           "smith": g["models"]["smith"]["value"].number(0.0, 1.0),
                           "vcavity": g["models"]["vcavity"]["bins"].numbers_or_gaps(bins)})
         groups.setdefault(ndf, {})[alpha] = views
+    # The masking controls (the verdict): held / all, those that failed by name, and per G1 panel
+    # (ndf, alpha, view) whether its controls held.
+    held, failed, panel = 0, [], {}
+    controls = report["masking_controls"].items() if report.has("masking_controls") else []
+    for c in controls:
+        ok = c["within_noise"].boolean()
+        held += ok
+        g = c["g"].one_of(("g1", "g2"))
+        what = (f"{g.upper()} {safe_text(c['model'].text(), 40)} {c['ndf'].one_of(_NDFS)} alpha "
+                f"{c['alpha'].number(0.0, 2.0):g} view {c['theta_o_deg'].number(0.0, 90.0):g}")
+        if not ok:
+            failed.append(what)
+        if g == "g1":
+            key = (c["ndf"].one_of(_NDFS), c["alpha"].number(0.0, 2.0), c["theta_o_deg"].number(0.0, 90.0))
+            panel[key] = panel.get(key, True) and ok
+    verdict = ""
+    if controls:
+        verdict = f"; masking controls: {held}/{len(controls)} within noise"
+        if failed:
+            verdict += " (NOT: " + "; ".join(failed) + ")"
 
     def drawer(ndf: str, by_alpha: Dict[float, List[Dict[str, Any]]]) -> Drawer:
         def draw() -> Figure:
@@ -1179,7 +1204,10 @@ def _heightfield_masking_figures(report: Node, name: str) -> List[Tuple[str, Dra
                     ax.plot(x, v["vcavity"], "s--", ms=3, lw=0.9, color="#ff7f0e", label="V-cavity")
                     ax.axhline(v["smith"], color="black", lw=0.8, ls=":", label="Smith")
                     ax.set_ylim(-0.02, 1.05)
-                    ax.set_title(f"{ndf} alpha {a:g}, view {v['theta_o']:g} deg", fontsize=7)
+                    ctl = panel.get((ndf, a, v["theta_o"]))
+                    tag = "" if ctl is None else (", control held" if ctl else ", control NOT within noise")
+                    ax.set_title(f"{ndf} alpha {a:g}, view {v['theta_o']:g} deg{tag}", fontsize=7,
+                                 color="black" if ctl is not False else "#d62728")
                     ax.set_xticks(x)
                     ax.set_xticklabels(labels, fontsize=5)
                     ax.set_xlabel("facet normal bin: theta_m (deg), azimuth from the view (deg)", fontsize=6)
@@ -1187,11 +1215,64 @@ def _heightfield_masking_figures(report: Node, name: str) -> List[Tuple[str, Dra
                     ax.tick_params(labelsize=6)
             axes[0][0].legend(fontsize=5)
             _suptitle(fig, f"{name}: masking G1 per facet-normal bin on traced heightfields, Smith and V-cavity",
-                      _title_bits(report))
+                      _title_bits(report) + verdict)
             return fig
         return draw
 
     return [(f"-masking-{ndf}", drawer(ndf, by_alpha)) for ndf, by_alpha in groups.items()]
+
+
+_HFA_ROWS = ("E", "E_1", "E_ms", "E_2", "E_3+")
+_HFA_PANELS = ("E", "E_1", "E_ms")  # the rows drawn, one column each
+_HFA_MODELS = {"smith_walk": ("-", "#1f77b4", "Smith walk"), "smith_ess": ("--", "black", "Smith E_ss (exact)"),
+               "vgroove": (":", "#2ca02c", "V-groove model")}
+
+
+def heightfield_albedo_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
+    """The "heightfield_albedo" suite: one figure per NDF, a row per alpha, columns E, E_1 and
+    E_ms over mu: traced (the mean over the fields, bars 2 se) against each model's line."""
+    groups: Dict[str, Dict[float, List[Dict[str, Any]]]] = {}
+    for p in report["points"].nonempty():
+        ndf = p["ndf"].one_of(_NDFS)
+        alpha = p["alpha"].number(0.0, 2.0)
+        point = {"mu": p["mu"].number(0.0, 1.0), "traced": p["traced"].numbers_or_gaps(len(_HFA_ROWS), 0.0, 1.0 + 1e-6),
+                 "se": p["traced_se"].numbers_or_gaps(len(_HFA_ROWS), 0.0, 1.0),
+                 "models": {m: p["models"][m]["value"].numbers_or_gaps(len(_HFA_ROWS), -1e-6, 1.0 + 1e-6)
+                            for m in _HFA_MODELS}}
+        groups.setdefault(ndf, {}).setdefault(alpha, []).append(point)
+    name = safe_text(report["suite"].text())
+
+    def drawer(ndf: str, by_alpha: Dict[float, List[Dict[str, Any]]]) -> Drawer:
+        def draw() -> Figure:
+            alphas = sorted(by_alpha)
+            fig = _figure(3.6 * len(_HFA_PANELS) + 1.0, 2.3 * len(alphas) + 1.4)
+            axes = fig.subplots(len(alphas), len(_HFA_PANELS), squeeze=False)
+            for r, a in enumerate(alphas):
+                pts = sorted(by_alpha[a], key=lambda q: q["mu"])
+                mu = [q["mu"] for q in pts]
+                for c, row in enumerate(_HFA_PANELS):
+                    ax = axes[r][c]
+                    i = _HFA_ROWS.index(row)
+                    for m, (style, color, label) in _HFA_MODELS.items():
+                        y = [q["models"][m][i] for q in pts]
+                        if any(math.isfinite(v) for v in y):
+                            ax.plot(mu, y, style, color=color, lw=1.0, label=label)
+                    ax.errorbar(mu, [q["traced"][i] for q in pts], yerr=[2.0 * q["se"][i] for q in pts], fmt="o",
+                                ms=3, capsize=2, color="#d62728", label="traced fields (2 se)")
+                    if row == "E":  # 1 to rounding for every model and exactly 1 traced: no offset axis
+                        ax.set_ylim(0.9, 1.05)
+                        ax.ticklabel_format(axis="y", useOffset=False)
+                    ax.set_title(f"{ndf} alpha {a:g}: {row}", fontsize=8)
+                    ax.set_xlim(0.0, 1.02)
+                    ax.set_xlabel("mu = cos theta_i", fontsize=7)
+                    ax.tick_params(labelsize=6)
+            axes[0][1].legend(fontsize=6)
+            _suptitle(fig, f"{name}: albedo of {ndf} heightfields per bounce order, traced against three models",
+                      "F = 1: E = 1 on the surface; E_1 single scattering, E_ms = E_2 + E_3+. " + _title_bits(report))
+            return fig
+        return draw
+
+    return [(f"-{ndf}", drawer(ndf, by_alpha)) for ndf, by_alpha in groups.items()]
 
 
 KINDS = {
@@ -1207,6 +1288,7 @@ KINDS = {
     "energy_audit": energy_audit_figures,
     "model_table": model_table_figures,
     "heightfield": heightfield_figures,
+    "heightfield_albedo": heightfield_albedo_figures,
     # A new report kind adds a function here (and its name to report_kind).
 }
 

@@ -2,11 +2,14 @@
 // flat Fresnel as alpha -> 0, the conductor form of albedo_single.h with the dielectric F, Walter's
 // BSDF (walter.h) integrated over the exit directions, the hand values at eta = 1, the reciprocity
 // T_avg(eta) = eta^2 T_avg(1 / eta), Smith's E_R + E_T <= 1, and the stated error bounds. Each check
-// keeps a broken variant beside it that must fail.
+// keeps a broken variant beside it that must fail. CyclesGlass: Cycles' 1 / E scaling of both glass
+// lobes (analytic/compensation.h) against that reciprocity.
 #include "vgroove/analytic/albedo_glass.h"
 
+#include "vgroove/analytic/compensation.h"
 #include "vgroove/analytic/hemisphere_quadrature.h"
 #include "vgroove/analytic/ndf.h"
+#include "vgroove/analytic/quadrature.h"
 #include "vgroove/analytic/walter.h"
 #include "vgroove/optics/fresnel.h"
 
@@ -268,4 +271,45 @@ TEST(AlbedoGlassLong, TransmittedAveragesObeyReciprocity) {
     EXPECT_NEAR(out.T.value, eta * eta * in.T.value, out.T.error + eta * eta * in.T.error) << name(m);
     EXPECT_GT(std::abs(out.T.value - eta * in.T.value), 0.1);
   }
+}
+
+// Cycles' factor by hand: E = 0.8 gives 1.25 for clear glass, 1 + 0.5 (0.25) with the tint 0.5, and
+// no change with Fss = 0 or E = 1.
+TEST(CyclesGlass, FactorByHand) {
+  EXPECT_DOUBLE_EQ(va::cycles_glass_albedo_scaling(0.8, 1.0), 1.25);
+  EXPECT_DOUBLE_EQ(va::cycles_glass_albedo_scaling(0.8, 0.5), 1.125);
+  EXPECT_EQ(va::cycles_glass_albedo_scaling(0.8, 0.0), 1.0);
+  EXPECT_EQ(va::cycles_glass_albedo_scaling(1.0, 1.0), 1.0);
+}
+
+// The transmitted averages T_avg = 2 int E_T mu dmu from both sides, outside (eta 1.5) and inside
+// (1 / 1.5), by the 8-point rule over mu with the 4-point rule's difference as its error estimate,
+// r = T_avg(eta) / (eta^2 T_avg(1 / eta)) - 1. The exact BSDF (GGX, height-correlated Smith, alpha
+// 0.6) keeps r = 0 within that estimate; scaling both lobes by 1 / E (Cycles, clear glass, fed
+// with the exact E = E_R + E_T on each side) gives r = -0.265, over 100 times its estimate: the
+// inside's E is smaller (total internal reflection masks more), its scale larger. Seen failing
+// with the scale left out (r +0.00002).
+TEST(CyclesGlass, ScalingBothLobesBreaksTheTransmittedReciprocity) {
+  const va::MicrofacetModel m{NdfKind::ggx, va::MaskingKind::smith_height_correlated};
+  va::AlbedoOptions opt;
+  opt.tol = 1e-5;
+  const double alpha = 0.6, eta = 1.5;
+  // r for the exact lobes (scaled = false) or Cycles' (true), by the n-point rule.
+  const auto r = [&](int n, bool scaled) {
+    const va::GaussLegendre g = va::gauss_legendre(n);
+    double t[2] = {0.0, 0.0};
+    for (int side = 0; side < 2; ++side)
+      for (std::size_t k = 0; k < g.size(); ++k) {
+        const double mu = 0.5 + 0.5 * g.x[k];
+        const va::GlassAlbedo a = va::albedo_glass(m, alpha, mu, side == 0 ? eta : 1.0 / eta, opt);
+        const double s = scaled ? va::cycles_glass_albedo_scaling(a.R.value + a.T.value, 1.0) : 1.0;
+        t[side] += g.w[k] * mu * a.T.value * s;
+      }
+    return t[0] / (eta * eta * t[1]) - 1.0;
+  };
+  const double exact = r(8, false), exact_err = std::abs(exact - r(4, false));
+  const double cycles = r(8, true), cycles_err = std::abs(cycles - r(4, true));
+  std::printf("r exact %+.2e (+- %.1e), Cycles %+.5f (+- %.1e)\n", exact, exact_err, cycles, cycles_err);
+  EXPECT_LE(std::abs(exact), exact_err);
+  EXPECT_GT(std::abs(cycles), 100.0 * cycles_err);
 }

@@ -94,6 +94,12 @@ cat >"$t/heightfield_aniso.json" <<'J'
  "theta_bins": 6, "phi_bins": 4, "seed": 3, "thresholds": {"sigmas": 5},
  "controls": [{"model": "smith_walk", "ndf": "beckmann", "alpha": 0.3, "theta_i_deg": 0}]}
 J
+cat >"$t/heightfield_aspects.json" <<'J'
+{"name": "tiny_heightfield_aspects", "kind": "heightfield", "aspect": [1, 1.5], "walk_heights": ["log_c1", "gaussian"],
+ "ndf": ["beckmann"], "alpha": [0.3], "theta_i_deg": [0, 60], "field_size": 64, "correlation_length": 4, "fields": 2,
+ "rays": 3000, "walk_paths": 5000, "theta_bins": 6, "phi_bins": 4, "seed": 3, "thresholds": {"sigmas": 5},
+ "controls": [{"model": "smith_walk", "ndf": "beckmann", "alpha": 0.3, "theta_i_deg": 0, "aspect": 1.5}]}
+J
 cat >"$t/sampling.json" <<'J'
 {"name": "tiny_sampling", "kind": "sampling", "seed": 4, "max_k": 32,
  "chi_square": {"level": 0.01, "samples": {"3d": 20000, "flatland": 20000}, "cos_bins": 4, "phi_bins": 8, "theta_bins": 12,
@@ -156,6 +162,7 @@ case $check in
     sharded heightfield 3 validate "$t/heightfield.json"
     sharded heightfield_grooves 2 validate "$t/heightfield_grooves.json"
     sharded heightfield_aniso 2 validate "$t/heightfield_aniso.json"
+    sharded heightfield_aspects 3 validate "$t/heightfield_aspects.json"
     sharded dielectric_grooves 3 validate "$t/dielectric_grooves.json"
     # A foreign model: the brdf suite's layout filled with a flat lobe (it fails: the same verdict
     # merged as in one process).

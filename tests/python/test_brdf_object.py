@@ -105,7 +105,7 @@ def test_walter_refuses_what_it_cannot_do(vg):
         (lambda: vg.BRDF("walter", "phong", 0.3), r"model walter with ndf phong needs masking = \"vcavity\""),
         (lambda: vg.BRDF("vgroove", "ggx", 0.3, masking="smith"), r"masking applies to model walter only"),
         (lambda: f.eval(below, wi), r"wi\[0\] = \(0, 0, -1\) is not above the interface"),
-        (lambda: f.sample(wi, [0.5, 0.5]), r'sample: model = "walter" has no sampler here'),
+        (lambda: f.sample(wi, [0.5, 0.5]), r"u must be an array of uniform numbers, shape \(\.\.\., 3\)"),
         (lambda: f.lobe(30), r'lobe: model = "walter" is not binned here'),
         (lambda: vg.check_brdf("walter", rays=10), r'f = "walter": check_brdf holds reflection BRDFs'),
     ]

@@ -28,6 +28,25 @@ def test_tables_are_the_command_lines(vg, tmp_path):
         assert abs(p["z"]) < 4.5, p
 
 
+def test_smith_walk_tables_are_the_command_lines(vg, tmp_path):
+    # reference="smith_walk": Heitz et al. 2016's dielectric walk, the same counts as
+    # `vgroove energy --eta --reference smith_walk`, reciprocal averages, and not the traced surfaces'.
+    kw = dict(dim=["3d", "flatland"], rays=4000, max_k=4)
+    r = vg.glass_energy([1.5], [0.4], [1.0, 0.3], reference="smith_walk", threads=2, **kw)
+    out = tmp_path / "walk.json"
+    subprocess.run([os.environ["VGROOVE_BIN"], "energy", "--eta", "1.5", "--alpha", "0.4", "--mu", "1,0.3", "--dim",
+                    "3d,flatland", "--rays", "4000", "--max-k", "4", "--reference", "smith_walk", "--threads", "1",
+                    "--out", str(out)], check=True, capture_output=True)
+    assert tables(r) == tables(json.loads(out.read_text()))
+    assert r["grid"]["reference"] == "smith_walk"
+    for p in r["reciprocity"]["pairs"]:
+        assert abs(p["z"]) < 4.5, p
+    traced = vg.glass_energy([1.5], [0.4], [1.0, 0.3], threads=2, grooves=400, **kw)
+    assert traced["arrays"]["E_R_by_k"] != r["arrays"]["E_R_by_k"]
+    with pytest.raises(ValueError, match='^reference = "walk" is not one of "vgroove", "smith_walk"'):
+        vg.glass_energy([1.5], reference="walk")
+
+
 @pytest.mark.parametrize("kwargs, message", [
     (dict(eta=[1.0]), "eta = 1 is no interface"),
     (dict(eta=[0.05]), "eta = 0.05 is out of range [0.1, 10]"),

@@ -164,3 +164,44 @@ def test_walter_bad_arrays(vg):
         vg.sample("ggx", 0.5, [[0.1, 0.2, 0.3]], theta_i_deg=90, model="walter")
     with pytest.raises(ValueError, match="eta"):
         vg.sample("ggx", 0.5, [[0.1, 0.2, 0.3]], theta_i_deg=30, model="walter", eta=math.nan)
+
+
+@pytest.mark.parametrize("ndf,alpha,eta,theta_i,masking", CASES)
+def test_brdf_object_samples_walter_as_the_functions(vg, ndf, alpha, eta, theta_i, masking):
+    # BRDF("walter").sample and .pdf are sample() and pdf() with model="walter" to the last bit; the
+    # batch carries `transmitted` (no beyond_max_k), and as_dict() is sample()'s dict.
+    f = vg.BRDF("walter", ndf, alpha, eta=eta, masking=masking)
+    wi = vg.direction(theta_i, 180)
+    u = vg.uniforms(2000, 5, STREAM, dims=3)
+    b = f.sample(wi, u)
+    r = vg.sample(ndf, alpha, u, wi=wi, model="walter", eta=eta, masking=masking)
+    d = b.as_dict()
+    assert list(d) == list(r) and b.beyond_max_k is None
+    for key in r:
+        np.testing.assert_array_equal(d[key], r[key])
+    assert b.transmitted.any() and (b.wo[b.transmitted, 2] < 0).all() and (b.wo[~b.transmitted & (b.k > 0), 2] > 0).all()
+    ok = b.k > 0
+    np.testing.assert_array_equal(f.pdf(wi, b.wo[ok]), vg.pdf(ndf, alpha, b.wo[ok], wi=wi, model="walter", eta=eta,
+                                                              masking=masking))
+    np.testing.assert_allclose(f.pdf(wi, b.wo[ok]), b.pdf[ok], rtol=1e-12)
+    # Power: the other side's eta gives other draws.
+    other = vg.BRDF("walter", ndf, alpha, eta=1 / eta, masking=masking).sample(wi, u)
+    assert not np.array_equal(other.wo, b.wo)
+
+
+def test_brdf_object_walter_defaults_and_refusals(vg):
+    # eta None is 1.5 and masking None smith_separable, as sample()'s; a strategy or max_k is refused
+    # with sample()'s message; Cook-Torrance still has no sampler.
+    wi, u = vg.direction(30, 180), vg.uniforms(500, 2, STREAM, dims=3)
+    b = vg.BRDF("walter", "ggx", 0.5).sample(wi, u)
+    r = vg.sample("ggx", 0.5, u, wi=wi, model="walter")
+    np.testing.assert_array_equal(b.weight, r["weight"])
+    with pytest.raises(ValueError) as e:
+        vg.sample("ggx", 0.5, u, wi=wi, model="walter", strategy="vndf")
+    with pytest.raises(ValueError) as e2:
+        vg.BRDF("walter", "ggx", 0.5).sample(wi, u, strategy="vndf")
+    assert str(e2.value) == str(e.value)
+    with pytest.raises(ValueError, match=r"shape \(\.\.\., 3\)"):
+        vg.BRDF("walter", "ggx", 0.5).sample(wi, vg.uniforms(5))
+    with pytest.raises(ValueError, match="has no sampler here"):
+        vg.BRDF("cook-torrance", "ggx", 0.5).sample(wi, vg.uniforms(5))

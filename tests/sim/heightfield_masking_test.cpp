@@ -183,7 +183,8 @@ TEST(HeightfieldJointMasking, SameDirectionIsG1OnTheSamePoints) {
 
 // Apart: G1_i + G1_o - 1 <= G2 <= min(G1_i, G1_o) bin by bin (a point visible from both is
 // visible from each; one hidden from i or from o is not counted), and swapping i and o gives the
-// same sums to the bit (one azimuth bin, so the bins do not depend on which one is o).
+// same sums to the bit, bin by bin (4 azimuth bins from the pair's bisector: reciprocity,
+// G2(i, o, m) = G2(o, i, m)); HeightfieldJointMasking.BinsAreSymmetricInIAndO: more pairs.
 TEST(HeightfieldJointMasking, BoundedByEachG1AndSymmetric) {
   for (bool ggx : {false, true}) {
     const GaussianHeightfieldOptions f{64, 0.8, 0.8, 4.0, 9};
@@ -192,11 +193,11 @@ TEST(HeightfieldJointMasking, BoundedByEachG1AndSymmetric) {
     opt.theta_i = 70.0 * kDeg, opt.phi_i = 0.3;
     opt.theta_o = 50.0 * kDeg, opt.phi_o = 0.3 + 2.0;
     opt.points = 6000;
-    opt.theta_m_bins = 4, opt.phi_m_bins = 1;
+    opt.theta_m_bins = 4, opt.phi_m_bins = 4;
     const HeightfieldJointMaskingTally t = heightfield_joint_masking(s, opt);
     EXPECT_EQ(t.lost, 0);
     EXPECT_LT(t.visible_both, std::min(t.visible_i, t.visible_o));
-    for (int b = -1; b < opt.theta_m_bins; ++b) {
+    for (int b = -1; b < opt.theta_m_bins * opt.phi_m_bins; ++b) {
       const double g2 = b < 0 ? t.g2() : t.g2(b), gi = b < 0 ? t.g1_i() : t.g1_i(b), go = b < 0 ? t.g1_o() : t.g1_o(b);
       if (b >= 0 && t.count[static_cast<std::size_t>(b)] == 0) continue;
       EXPECT_LE(g2, std::min(gi, go)) << "bin " << b;
@@ -210,7 +211,61 @@ TEST(HeightfieldJointMasking, BoundedByEachG1AndSymmetric) {
     EXPECT_EQ(u.sum_wi, t.sum_wo);
     EXPECT_EQ(u.sum_wo, t.sum_wi);
     EXPECT_EQ(u.weight_io, t.weight_io);
+    EXPECT_EQ(u.weight, t.weight);
+    EXPECT_EQ(u.weight_i, t.weight_o);
+    EXPECT_EQ(u.count, t.count);
     EXPECT_EQ(u.visible_both, t.visible_both);
+  }
+}
+
+// The reference azimuth of G2's bins by hand: the bisector of the smaller angle, across azimuth
+// 0 too; opposite azimuths: the bisector in [0, pi); a direction at the normal: the other's.
+TEST(HeightfieldJointMasking, BinAzimuthIsTheBisectorOfThePair) {
+  const double pi = std::numbers::pi;
+  EXPECT_NEAR(heightfield_joint_bin_azimuth(0.5, 0.2, 1.0, 1.0), 0.6, 1e-15);
+  EXPECT_NEAR(heightfield_joint_bin_azimuth(0.5, 6.0, 1.0, 0.2), 0.5 * (6.0 + 0.2 + 2.0 * pi), 1e-14);
+  EXPECT_NEAR(heightfield_joint_bin_azimuth(0.5, -0.3, 1.0, 0.3), 0.0, 1e-15);
+  EXPECT_EQ(heightfield_joint_bin_azimuth(1.0, 0.0, 1.0, pi), 0.5 * pi);
+  EXPECT_NEAR(heightfield_joint_bin_azimuth(1.0, 1.5 * pi, 1.0, 0.5 * pi), 0.0, 1e-15);
+  EXPECT_EQ(heightfield_joint_bin_azimuth(0.0, 0.0, 1.0, 2.5), 2.5);
+  EXPECT_EQ(heightfield_joint_bin_azimuth(1.0, 2.5, 0.0, 0.0), 2.5);
+  for (const auto& [a, b] : {std::pair{0.1, 3.0}, std::pair{0.0, pi}, std::pair{5.9, 0.4}, std::pair{-2.0, 2.0}})
+    EXPECT_EQ(heightfield_joint_bin_azimuth(0.7, a, 0.4, b), heightfield_joint_bin_azimuth(0.4, b, 0.7, a)) << a;
+}
+
+// Reciprocity bin by bin on more pairs (8 azimuth bins): across, opposite (the mirror plane, the
+// suite's dphi 180), the light at the normal (the bins are then G1's from phi_o: the same
+// front-facing count per bin as heightfield_masking(o) on the same points).
+TEST(HeightfieldJointMasking, BinsAreSymmetricInIAndO) {
+  const HeightfieldSurface s = make_heightfield_surface(make_gaussian_heightfield({64, 0.7, 0.7, 4.0, 4}));
+  struct Pair {
+    double theta_i, phi_i, theta_o, phi_o;
+  };
+  const double pi = std::numbers::pi;
+  for (const Pair& c :
+       {Pair{1.2, 0.0, 1.2, pi}, Pair{0.9, 0.0, 1.3, 0.5 * pi}, Pair{1.4, 5.5, 0.6, 1.0}, Pair{0.0, 0.0, 1.3, 2.0}}) {
+    HeightfieldJointMaskingOptions opt;
+    opt.theta_i = c.theta_i, opt.phi_i = c.phi_i, opt.theta_o = c.theta_o, opt.phi_o = c.phi_o;
+    opt.points = 5000;
+    opt.theta_m_bins = 3, opt.phi_m_bins = 8;
+    opt.seed = 5;
+    HeightfieldJointMaskingOptions swapped = opt;
+    std::swap(swapped.theta_i, swapped.theta_o);
+    std::swap(swapped.phi_i, swapped.phi_o);
+    const HeightfieldJointMaskingTally t = heightfield_joint_masking(s, opt), u = heightfield_joint_masking(s, swapped);
+    EXPECT_EQ(t.lost, 0);
+    EXPECT_LT(t.visible_both, t.front);  // some shadowing or masking to compare
+    EXPECT_EQ(u.count, t.count) << c.theta_i << " " << c.phi_o;
+    EXPECT_EQ(u.weight, t.weight) << c.theta_i << " " << c.phi_o;
+    EXPECT_EQ(u.weight_io, t.weight_io) << c.theta_i << " " << c.phi_o;
+    EXPECT_EQ(u.weight_i, t.weight_o) << c.theta_i << " " << c.phi_o;
+    EXPECT_EQ(u.weight_o, t.weight_i) << c.theta_i << " " << c.phi_o;
+    if (c.theta_i == 0.0) {
+      HeightfieldMaskingOptions g1;
+      g1.theta_o = opt.theta_o, g1.phi_o = opt.phi_o, g1.points = opt.points, g1.seed = opt.seed;
+      g1.theta_m_bins = opt.theta_m_bins, g1.phi_m_bins = opt.phi_m_bins;
+      EXPECT_EQ(heightfield_masking(s, g1).count, t.count);
+    }
   }
 }
 

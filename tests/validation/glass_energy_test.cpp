@@ -3,8 +3,10 @@
 // T_avg(above) = eta^2 T_avg(below) in 3D and eta T_avg(below) in flatland, within the sample
 // count's noise (the other power, and the flat interface's identity by quadrature, beside it); the
 // conductor limit gives the conductor tables' E_k; every ray is accounted; the counts do not depend
-// on the thread count.
+// on the thread count. With the Smith walk as the reference: its first order is Walter's BSDF with
+// the height-correlated G2 (analytic/albedo_glass.h) and its averages are reciprocal.
 #include "vgroove/validation/glass_energy.h"
+#include "vgroove/analytic/albedo_glass.h"
 #include "vgroove/analytic/hemisphere_quadrature.h"
 #include "vgroove/analytic/quadrature.h"
 #include "vgroove/analytic/walter.h"
@@ -198,6 +200,51 @@ TEST(GlassEnergy, EnergyIsAccountedAndTheCountsDoNotDependOnThreads) {
   }
 }
 
+// The dielectric Smith walk's table: in 3D the k = 1 rows at mu = 0.7 are albedo_glass's E_R and E_T
+// (Walter, GGX, height-correlated Smith G2) within 5 binomial standard errors from either side; the
+// averages are reciprocal in 3D (eta^2) and flatland (eta) within 4 se, the other power 20 se off;
+// every walk is accounted, and the counts do not depend on the thread count.
+TEST(GlassEnergy, SmithWalkFirstOrderIsWaltersAndItsAveragesAreReciprocal) {
+  GlassGrid g;
+  g.reference = GlassReference::smith_walk;
+  g.dims = {SurfaceDim::three_d, SurfaceDim::flatland};
+  g.etas = {1.5};
+  g.alphas = {0.5};
+  g.mus = {0.7};
+  g.rays = 40000;
+  const GlassTable t = run(g), one = run(g, 1);
+  for (std::size_t c = 0; c < g.cells(); ++c) {
+    const GlassCell x = g.cell_at(c);
+    const GlassCounts& n = t.cells[c];
+    EXPECT_EQ(n.reflected, one.cells[c].reflected) << c;
+    EXPECT_EQ(n.transmitted, one.cells[c].transmitted) << c;
+    EXPECT_EQ(share(n.reflected, n.rays) + share(n.transmitted, n.rays) + static_cast<double>(n.bounce_limit) / n.rays,
+              1.0);
+    if (x.dim != SurfaceDim::three_d) continue;
+    const double eta_rel = x.from == sim::Medium::above ? x.eta : 1.0 / x.eta;
+    analytic::AlbedoOptions q;
+    q.tol = 1e-6;
+    const analytic::GlassAlbedo e =
+        analytic::albedo_glass({x.ndf, analytic::MaskingKind::smith_height_correlated}, x.alpha, x.mu, eta_rel, q);
+    const double N = static_cast<double>(n.rays);
+    const double r1 = static_cast<double>(n.reflected[0]) / N, t1 = static_cast<double>(n.transmitted[0]) / N;
+    std::printf("walk %s: E_R1 %.4f (Walter %.4f), E_T1 %.4f (Walter %.4f)\n",
+                x.from == sim::Medium::above ? "above" : "below", r1, e.R.value, t1, e.T.value);
+    EXPECT_LE(std::abs(r1 - e.R.value), 5.0 * std::sqrt(e.R.value * (1 - e.R.value) / N));
+    EXPECT_LE(std::abs(t1 - e.T.value), 5.0 * std::sqrt(e.T.value * (1 - e.T.value) / N));
+  }
+  const std::vector<GlassReciprocity> pairs = glass_reciprocity(t);
+  ASSERT_EQ(pairs.size(), 2u);
+  for (const GlassReciprocity& r : pairs) {
+    const bool three_d = r.cell.dim == SurfaceDim::three_d;
+    std::printf("walk %s: T_avg above %.4f, scaled below %.4f (z %+.2f)\n", surface_dim_name(r.cell.dim), r.above,
+                r.scaled_below, r.z());
+    EXPECT_LT(std::abs(r.z()), 4.0) << surface_dim_name(r.cell.dim);
+    const double wrong = (three_d ? r.cell.eta : r.cell.eta * r.cell.eta) * r.below;
+    EXPECT_GT(std::abs(r.above - wrong) / r.se, 20.0) << surface_dim_name(r.cell.dim);
+  }
+}
+
 TEST(GlassEnergy, BadGridsAreNamed) {
   GlassGrid g;
   g.etas = {1.5};
@@ -226,6 +273,12 @@ TEST(GlassEnergy, BadGridsAreNamed) {
   }
   x = g, x.grooves = 0;
   EXPECT_NE(message(x).find("--grooves = 0 is out of range"), std::string::npos);
+  try {
+    glass_reference_from("walk");
+    ADD_FAILURE() << "reference \"walk\" taken";
+  } catch (const std::exception& e) {
+    EXPECT_STREQ(e.what(), "--reference = \"walk\" is not one of \"vgroove\", \"smith_walk\"");
+  }
   x = g, x.mus = {0.0};
   EXPECT_NE(message(x).find("--mu = 0 is out of range"), std::string::npos);
 }

@@ -3,7 +3,8 @@
 // Smith walk on smooth Beckmann fields at normal incidence, where masking and multiple scattering
 // are nearly absent and heights are independent of slopes) while deliberately wrong models are
 // caught by the same metric, with the same numbers on one thread as on two; "surface": the
-// default Gaussian fields as before, and random-orientation V-groove fields.
+// default Gaussian fields as before, and random-orientation V-groove fields; "walk_heights" and
+// "aspect" lists; the full-size groove fields (HeightfieldSuiteLong, ctest -L long).
 #include "vgroove/validation/heightfield_suite.h"
 
 #include "tests/cli_run.h"
@@ -421,6 +422,180 @@ TEST(HeightfieldSuite, AnisotropicWalkIsWithinNoiseAndItsSwappedAxesAreNot) {
   bad({{"controls", {{{"model", "vgroove"}, {"ndf", "beckmann"}, {"alpha", 0.3}, {"theta_i_deg", 0}}}}},
       "a.json: /controls/0 model vgroove is skipped when aspect != 1");
   bad({{"aspect", 4}}, "a.json: /aspect = 4 (anisotropic) with alpha 0.3 and correlation_length 4: ");
+}
+
+// "walk_heights": the walk once per height distribution (Heitz et al. 2016, Sec. 4), each from
+// its own stream, side by side. The walk meets heights only through C1(h) (analytic/smith_walk_3d.h),
+// so the log C1, uniform and Gaussian walks are one random walk: independent samples of it agree
+// within noise (the report's against_first), and each is within noise of the smooth field at
+// normal incidence as the control is. The first is the walk before the key, value for value. The
+// broken variant: a uniform walk of alpha 0.4 is caught by the same rule. A bad name is refused,
+// naming the field and the allowed values.
+TEST(HeightfieldSuite, WalkHeightDistributionsAgreeSideBySide) {
+  json j = small();
+  j.erase("masking");
+  j["walk_heights"] = {"log_c1", "uniform", "gaussian"};
+  const HeightfieldSuite s = parse_heightfield_suite(j, "w.json");
+  ASSERT_EQ(s.walk_heights.size(), 3u);
+  const HeightfieldRun run = run_heightfield_suite(s, 0, 2);
+  ASSERT_EQ(run.cases.size(), 1u);
+  const HeightfieldOutcome& o = run.cases[0];
+  EXPECT_TRUE(run.pass);
+  EXPECT_EQ(o.walk.l1_total, 0.09679999999999998);  // SurfaceGaussianIsTheDefaultValueForValue's
+  ASSERT_EQ(o.other_walks.size(), 2u);
+  const json r = heightfield_report_json(s, run);
+  EXPECT_EQ(r["inputs"]["walk_heights"], json({"log_c1", "uniform", "gaussian"}));
+  EXPECT_EQ(r["cases"][0]["smith_walk"]["heights"], "log_c1");
+  const json& others = r["cases"][0]["smith_walk_other_heights"];
+  ASSERT_EQ(others.size(), 2u);
+  for (std::size_t h = 0; h < 2; ++h) {
+    const HeightfieldOtherWalk& w = o.other_walks[h];
+    EXPECT_EQ(others[h]["heights"], h == 0 ? "uniform" : "gaussian");
+    EXPECT_EQ(w.paths, s.walk_paths);
+    EXPECT_NE(w.lobe, o.walk_lobe) << "independent streams";
+    EXPECT_TRUE(others[h]["against_first"]["within_noise"])
+        << w.heights << ": L1 " << w.against_first.l1_total << " threshold " << w.against_first.l1_total_threshold;
+    EXPECT_TRUE(others[h]["against_traced"]["within_noise"])
+        << w.heights << ": L1 " << w.against_traced.l1_total << " threshold " << w.against_traced.l1_total_threshold;
+  }
+  std::ostringstream table;
+  print_heightfield_table(table, s, run);
+  EXPECT_NE(table.str().find("smith_walk gaussian  within noise; against log_c1: within noise"), std::string::npos)
+      << table.str();
+
+  // The broken variant: the uniform walk at alpha 0.4, against the first by the same rule.
+  const double paths = static_cast<double>(s.walk_paths);
+  const sim::HeightfieldTally wide =
+      walk_lobe(analytic::Roughness{NdfKind::beckmann, 0.4, 0.4}, analytic::WalkHeights::uniform, 0.0, s.walk_paths, 11,
+                s.theta_bins, s.phi_bins, kHeightfieldRows - 1);
+  const std::vector<double> lobe = joint_fractions(wide, 1);
+  std::vector<double> var, wide_e(kHeightfieldRows, 0.0), se, e_se;
+  for (double p : lobe) var.push_back(p * (1.0 - p) / paths);
+  for (double p : o.walk_lobe) se.push_back(std::sqrt(p * (1.0 - p) / paths));
+  for (int q = 0; q < kHeightfieldRows; ++q) {
+    for (int b = 0; b < s.bins(); ++b)
+      wide_e[static_cast<std::size_t>(q)] += lobe[static_cast<std::size_t>(q * s.bins() + b)];
+    const double p = o.walk_energy[static_cast<std::size_t>(q)];
+    e_se.push_back(std::sqrt(p * (1.0 - p) / paths));
+  }
+  const HeightfieldMiss m = heightfield_miss(o.walk_lobe, se, o.walk_energy, e_se, lobe, var, wide_e, {},
+                                             kHeightfieldRows, s.bins(), s.sigmas, 0.0);
+  EXPECT_FALSE(m.within_noise) << "alpha 0.4: L1 k=1 " << m.l1[0] << " threshold " << m.l1_threshold[0];
+
+  const auto bad = [&](const json& v, const std::string& part) {
+    json b = j;
+    b["walk_heights"] = v;
+    EXPECT_USER_ERROR(parse_heightfield_suite(b, "w.json"), part);
+  };
+  bad({"uniform", "lognormal"},
+      "w.json: /walk_heights/1 = \"lognormal\" is not one of \"log_c1\", \"uniform\", \"gaussian\"");
+  bad({"uniform", "uniform"}, "w.json: /walk_heights/1 = \"uniform\" is given twice");
+  bad(json::array(), "w.json: /walk_heights = [] must be a non-empty list");
+  bad("uniform", "w.json: /walk_heights = \"uniform\" must be a non-empty list");
+}
+
+// "aspect" as a list: cases over its values (ndf, aspect, alpha, theta_i). One number is the
+// suite before the list, value for value (main at 05b6ad5, the small anisotropic run: traced E_k,
+// the walk's E_k and L1), and a list of one is that number. In a list the first aspect's cases are
+// the suite of that aspect alone (the same fields, rays and walks); an isotropic case among them
+// compares Cook-Torrance and the V-groove model, an anisotropic one skips them. Each value is
+// checked as the number is (range, l_y, ndf, surface), and a control names its aspect.
+TEST(HeightfieldSuite, AspectListIsCasesOverAspectsAndOneNumberIsAsBefore) {
+  json j = small();
+  j.erase("masking");
+  j["aspect"] = 1.5;
+  j["controls"] = {{{"model", "smith_walk"}, {"ndf", "beckmann"}, {"alpha", 0.3}, {"theta_i_deg", 0}}};
+  const HeightfieldSuite one = parse_heightfield_suite(j, "a.json");
+  const HeightfieldRun a = run_heightfield_suite(one, 0, 2);
+  ASSERT_EQ(a.cases.size(), 1u);
+  EXPECT_EQ(a.cases[0].energy, (std::vector<double>{0.9929375, 0.007062500000000001, 0.0}));
+  EXPECT_EQ(a.cases[0].walk_energy,
+            (std::vector<double>{0.9896499999999997, 0.009899999999999997, 0.00045000000000000004}));
+  EXPECT_EQ(a.cases[0].walk.l1_total, 0.102275);
+  EXPECT_EQ(heightfield_report_json(one, a)["inputs"]["aspect"], 1.5);
+  j["aspect"] = {1.5};
+  const HeightfieldSuite listed = parse_heightfield_suite(j, "a.json");
+  const HeightfieldRun b = run_heightfield_suite(listed, 0, 2);
+  EXPECT_EQ(b.cases[0].lobe, a.cases[0].lobe);
+  EXPECT_EQ(b.cases[0].walk_lobe, a.cases[0].walk_lobe);
+  EXPECT_EQ(heightfield_report_json(listed, b)["inputs"]["aspect"], json({1.5}));
+
+  j["aspect"] = {1, 1.5};
+  j["controls"] = {
+      {{"model", "cook_torrance_smith"}, {"ndf", "beckmann"}, {"alpha", 0.3}, {"theta_i_deg", 0}, {"aspect", 1}},
+      {{"model", "smith_walk"}, {"ndf", "beckmann"}, {"alpha", 0.3}, {"theta_i_deg", 0}, {"aspect", 1.5}}};
+  const HeightfieldSuite s = parse_heightfield_suite(j, "a.json");
+  ASSERT_EQ(s.cases(), 2u);
+  EXPECT_EQ(s.case_at(1).aspect, 1.5);
+  EXPECT_EQ(s.controls[1].case_index, 1u);
+  const HeightfieldRun run = run_heightfield_suite(s, 0, 2);
+  ASSERT_EQ(run.cases.size(), 2u);
+  EXPECT_TRUE(run.pass);
+  json iso = small();
+  iso.erase("masking");
+  const HeightfieldRun alone = run_heightfield_suite(parse_heightfield_suite(iso, "a.json"), 0, 2);
+  EXPECT_EQ(run.cases[0].lobe, alone.cases[0].lobe);
+  EXPECT_EQ(run.cases[0].walk_lobe, alone.cases[0].walk_lobe);
+  EXPECT_EQ(run.cases[0].ct_lobe, alone.cases[0].ct_lobe);
+  EXPECT_NE(run.cases[1].lobe, a.cases[0].lobe) << "the second aspect's fields are its own";
+  EXPECT_TRUE(run.cases[1].ct_lobe.empty());
+  const json r = heightfield_report_json(s, run);
+  EXPECT_EQ(r["inputs"]["aspect"], json({1, 1.5}));
+  EXPECT_EQ(r["cases"][1]["aspect"], 1.5);
+  EXPECT_TRUE(r["cases"][0]["vgroove"].contains("against_traced"));
+  EXPECT_TRUE(r["cases"][1]["vgroove"].contains("skipped"));
+  EXPECT_EQ(r["controls"][1]["aspect"], 1.5);
+  std::ostringstream table;
+  print_heightfield_table(table, s, run);
+  EXPECT_NE(table.str().find("beckmann aspect 1.5 alpha 0.30"), std::string::npos) << table.str();
+  EXPECT_NE(table.str().find("control: smith_walk on beckmann aspect 1.5 alpha 0.30"), std::string::npos)
+      << table.str();
+
+  const auto bad = [&](json k, const std::string& part) {
+    json c = j;
+    for (auto& [key, v] : k.items()) c[key] = v;
+    EXPECT_USER_ERROR(parse_heightfield_suite(c, "a.json"), part);
+  };
+  bad({{"aspect", {1, 5}}}, "a.json: /aspect/1 = 5 is out of range");
+  bad({{"aspect", json::array()}}, "a.json: /aspect = [] must be a non-empty list");
+  bad({{"aspect", {1, 4}}}, "a.json: /aspect/1 = 4 (anisotropic) with alpha 0.3 and correlation_length 4: ");
+  bad({{"ndf", {"ggx"}}, {"controls", json::array()}}, "a.json: /aspect/1 = 1.5 (anisotropic) needs ndf");
+  bad({{"controls", {{{"model", "smith_walk"}, {"ndf", "beckmann"}, {"alpha", 0.3}, {"theta_i_deg", 0}}}}},
+      "a.json: /controls/0 needs an aspect: the suite has several");
+  bad({{"controls",
+        {{{"model", "vgroove"}, {"ndf", "beckmann"}, {"alpha", 0.3}, {"theta_i_deg", 0}, {"aspect", 1.5}}}}},
+      "a.json: /controls/0 model vgroove is skipped when aspect != 1");
+  bad({{"controls",
+        {{{"model", "smith_walk"}, {"ndf", "beckmann"}, {"alpha", 0.3}, {"theta_i_deg", 0}, {"aspect", 2}}}}},
+      "a.json: /controls/0 names no case of the suite (ndf beckmann, alpha 0.3, theta_i_deg 0, aspect 2)");
+  bad({{"masking", {{"theta_o_deg", {45}}, {"phi_deg", {0}}, {"points", 10}}}}, "a.json: /masking is not measured");
+}
+
+// The groove suite at full size (data/suites/heightfield_grooves_512.json: 512^2 fields, l = 16,
+// 24 cases, 8 fields of 10,000 rays each): what physics says holds. Every ray leaves (F = 1: albedo
+// 1, none lost) and, the control, Cook-Torrance with Smith's G is within noise on Beckmann 0.3 at
+// normal incidence, where nothing is masked and the k = 1 lobe is the facets' (at 256^2, l = 8, it
+// misses by 1.6 times: the triangles across the creases).
+TEST(HeightfieldSuiteLong, FullSizeGrooveFieldsHoldTheControls) {
+  const std::string file = std::string(VGROOVE_SOURCE_DIR) + "/data/suites/heightfield_grooves_512.json";
+  const HeightfieldSuite s = parse_heightfield_suite(json::parse(testing_files::read_text(file)), file);
+  ASSERT_EQ(s.field_size, 512);
+  ASSERT_EQ(s.controls.size(), 1u);
+  const HeightfieldRun run = run_heightfield_suite(s, 0, 2);
+  ASSERT_EQ(run.cases.size(), s.cases());
+  for (const HeightfieldOutcome& o : run.cases) {
+    SCOPED_TRACE(std::string(analytic::ndf_name(o.c.ndf)) + " alpha " + std::to_string(o.c.alpha) + " theta_i " +
+                 std::to_string(o.c.theta_i_deg));
+    EXPECT_EQ(o.lost, 0);
+    EXPECT_FALSE(o.non_finite);
+    EXPECT_NEAR(o.albedo, 1.0, 1e-12);
+  }
+  const HeightfieldOutcome& c = run.cases[s.controls[0].case_index];
+  EXPECT_TRUE(run.controls_hold[0]) << "Cook-Torrance k = 1: L1 " << c.cook_torrance.l1[0] << " threshold "
+                                    << c.cook_torrance.l1_threshold[0] << ", E_1 diff "
+                                    << c.cook_torrance.energy_diff[0] << " threshold "
+                                    << c.cook_torrance.energy_threshold[0];
+  EXPECT_TRUE(run.pass);
 }
 
 // The command line: an oversized field is refused before any work, one line naming the key and

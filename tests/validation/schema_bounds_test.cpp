@@ -125,10 +125,20 @@ void make_room(json& doc, const Bound& b) {
     // Its controls name cases of the suite: dropped, or (a control's own bound) given a case there.
     if (b.path[0] != "controls") doc.erase("controls");
     if (b.path[0] == "controls") doc["controls"] = json::array({doc["controls"][0]});
-    if (b.path[0] == "controls" && (field == "alpha" || field == "theta_i_deg")) doc[field] = json::array({at(b)});
+    if (b.path[0] == "controls" && (field == "alpha" || field == "theta_i_deg" || field == "aspect"))
+      doc[field] = json::array({at(b)});
+    // The masking controls name cases and measured angles: dropped, or (a masking control's own
+    // bound) the first (a g2 control: it has every field) alone, its case and angles the suite's.
+    if (b.path.size() > 2 && b.path[0] == "masking" && b.path[1] == "controls") {
+      doc["masking"]["controls"] = json::array({doc["masking"]["controls"][0]});
+      if (field == "alpha" || field == "theta_i_deg") doc[field] = json::array({at(b)});
+      if (field == "theta_o_deg" || field == "phi_deg") doc["masking"][field] = json::array({at(b)});
+    } else if (doc.contains("masking")) {
+      doc["masking"].erase("controls");
+    }
     // An aspect a makes l_y about l_x / a, which must stay in [2, field_size / 8] (its own refusal):
-    // a field where both ends of the aspect's range fit.
-    if (field == "aspect") doc["field_size"] = 1024, doc["correlation_length"] = 16;
+    // a field where both ends of the aspect's range fit (the number, a list's item, a control's).
+    if (field == "aspect" || b.path[0] == "aspect") doc["field_size"] = 1024, doc["correlation_length"] = 16;
   }
   if (b.upper && (field == "flatland_bins" || field == "theta_bins" || field == "phi_bins" || field == "lobe_bins")) {
     if (b.kind != "heightfield") doc["max_k"] = b.kind == "profiles" ? 1 : 0;

@@ -19,6 +19,7 @@ const SuiteKind& nonsymmetric_kind();        // "nonsymmetric_brdf" (nonsymmetri
 const SuiteKind& profiles_kind();            // "profiles" (profiles_kind.cpp)
 const SuiteKind& energy_audit_kind();        // "energy_audit" (energy_audit_kind.cpp)
 const SuiteKind& heightfield_kind();         // "heightfield" (heightfield_kind.cpp)
+const SuiteKind& heightfield_albedo_kind();  // "heightfield_albedo" (heightfield_albedo_kind.cpp)
 const SuiteKind& dielectric_grooves_kind();  // "dielectric_grooves" (dielectric_grooves_kind.cpp)
 
 // The result of a finished run: `print(std::ostream&)` writes its table, `report_json()` (called
