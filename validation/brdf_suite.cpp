@@ -7,12 +7,14 @@
 #include "vgroove/support/printable.h"
 #include "vgroove/validation/lobe_bins.h"
 #include "vgroove/validation/lobe_comparison.h"
+#include "vgroove/validation/model_table.h"
 #include "vgroove/validation/plane_cut.h"
 
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/analytic/brdf_flatland.h"
 #include "vgroove/analytic/lobe_3d.h"
 #include "vgroove/common/angles.h"
+#include "vgroove/sim/heightfield.h"
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/microsurface3d.h"
 #include "vgroove/support/json_reader.h"
@@ -144,7 +146,23 @@ BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
   for (const auto& d : read_names(root, "dimensions", {"flatland", "3d"}))
     s.dims.push_back(d == "flatland" ? SurfaceDim::flatland : SurfaceDim::three_d);
   s.rays = static_cast<long>(root.integer("rays", 1, kMaxRays));
-  s.grooves = static_cast<int>(root.integer("grooves", 1, kMaxGrooves));
+  // The surface: check_brdf's names and options, its ranges checked by check_brdf itself
+  // (check_suite_surface, below). A heightfield suite needs no grooves.
+  static const std::string kVgroove = "vgroove";
+  s.surface = root.one_of("surface", {"vgroove", "heightfield"}, &kVgroove) == "heightfield" ? CheckSurface::heightfield
+                                                                                             : CheckSurface::vgroove;
+  if (s.surface == CheckSurface::heightfield) {
+    support::JsonObject h = root.object("heightfield");
+    s.fields = static_cast<int>(h.integer("fields", 2, 1000));
+    s.field_size = static_cast<int>(h.integer("field_size", 16, 65536));
+    s.correlation_length = h.number("correlation_length", 2.0, true, 65536.0 / 8.0, true);
+    h.finish();
+  } else if (root.has("heightfield")) {
+    root.fail("heightfield", "is given but surface is \"vgroove\" (set \"surface\": \"heightfield\")");
+  }
+  s.grooves =
+      static_cast<int>(s.surface == CheckSurface::heightfield ? root.integer_or("grooves", s.grooves, 1, kMaxGrooves)
+                                                              : root.integer("grooves", 1, kMaxGrooves));
   s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, kMaxSeed));
   {
     const bool flat = std::find(s.dims.begin(), s.dims.end(), SurfaceDim::flatland) != s.dims.end();
@@ -163,6 +181,7 @@ BrdfSuite parse_brdf_suite(const nlohmann::json& j, const std::string& file) {
     t.finish();
   }
   root.finish();
+  check_suite_surface(s, s.rays);
   return s;
 }
 
@@ -183,7 +202,10 @@ double brdf_run_memory_bytes(const BrdfSuite& suite, int threads, bool report) {
   // and Cook-Torrance) and the comparison's copies: about ten arrays of the joint (k, bin) cells.
   // Per case: its merged tally and model (joint cells each), held twice while the parts are
   // merged, then its outcome.
-  const double per_worker = suite.grooves * groove + 10.0 * cells * 8.0;
+  // A heightfield suite holds one field per worker (sim::heightfield_bytes) in place of the grooves.
+  const double surface =
+      suite.surface == CheckSurface::heightfield ? sim::heightfield_bytes(suite.field_size) : suite.grooves * groove;
+  const double per_worker = surface + 10.0 * cells * 8.0;
   const double per_case = sizeof(BrdfOutcome) + 4.0 * cells * 8.0 + (2.0 * rows + plane) * 8.0 +
                           (report ? (2.0 * rows + plane) * kNumberBytes : 0.0);
   return workers * per_worker + cases * per_case;

@@ -61,6 +61,13 @@ struct BrdfSuite {
   double sigmas = 5.0;
   double model_tolerance_flatland = 1e-6;
   double model_tolerance_3d = 1e-4;
+  // The traced surface: "vgroove" (grooves above) or "heightfield": `fields` random fields of
+  // field_size^2 cells, correlation length in cells (check_brdf.h's options and ranges; 3D, beckmann
+  // or ggx; held against a model table only).
+  CheckSurface surface = CheckSurface::vgroove;
+  int field_size = 256;
+  double correlation_length = 8.0;
+  int fields = 4;
   std::size_t cases() const { return ndfs.size() * alphas.size() * theta_i.size() * dims.size(); }
   // Order: dimension, ndf, alpha, theta_i (innermost).
   BrdfCase case_at(std::size_t c) const;

@@ -8,6 +8,8 @@ namespace vgroove::validation {
 
 const char* surface_dim_name(SurfaceDim d) { return d == SurfaceDim::flatland ? "flatland" : "3d"; }
 
+const char* check_surface_name(CheckSurface s) { return s == CheckSurface::heightfield ? "heightfield" : "vgroove"; }
+
 CaseSurface make_case_surface(SurfaceDim dim, NdfKind ndf, double alpha, int grooves, std::uint64_t seed) {
   CaseSurface s;
   s.dim = dim;

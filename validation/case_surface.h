@@ -22,6 +22,11 @@ namespace vgroove::validation {
 enum class SurfaceDim : unsigned char { flatland, three_d };
 const char* surface_dim_name(SurfaceDim d);
 
+// The surface check_brdf (check_brdf.h) and the "brdf" suites' model tables (model_table.h) trace:
+// the procedural V-grooves below, or random heightfields (check_brdf.h: check_field).
+enum class CheckSurface : unsigned char { vgroove, heightfield };
+const char* check_surface_name(CheckSurface s);  // "vgroove", "heightfield"
+
 struct CaseSurface {
   SurfaceDim dim = SurfaceDim::three_d;
   sim::Microsurface flat;       // in flatland

@@ -207,38 +207,20 @@ ModelLobe model_bins(const BrdfBatchFn& f, double theta_i_deg, const CheckBrdfOp
 }
 
 // The heightfields' lobes at every incidence: field by field (one in memory at a time), each
-// field's rays cut into chunks traced as items (incidence, chunk) on the threads and merged in
-// chunk order; field r gets rays / fields rays (one more for r < rays mod fields), from its own
-// seeds. The same lobes for any thread count; empty when *cancel was set.
-constexpr std::uint64_t kCheckFieldSeeds = 0x63626866ULL, kCheckRaySeeds = 0x63627261ULL;
-
-// var[c][b]: the variance of the pooled fraction of bin b, the fields' spread (the sample variance
-// of the per-field fractions over the fields), at least the multinomial p (1 - p) / N of all N
-// rays; albedo_var[c] likewise for the albedo.
-struct FieldNoise {
-  std::vector<std::vector<double>> var;
-  std::vector<double> albedo_var;
-};
-
+// field's rays cut into chunks traced as items (incidence, chunk) on the threads; the counts per
+// field pooled by pool_fields. The same lobes for any thread count; empty when *cancel was set.
 std::vector<TracedLobe> trace_heightfield_lobes(const CheckBrdfOptions& o, const std::vector<double>& theta_i,
-                                                int threads, FieldNoise& noise) {
+                                                int threads, std::vector<FieldLobe>& pooled) {
   const std::size_t cases = theta_i.size();
   const std::size_t bins = static_cast<std::size_t>(o.theta_bins) * static_cast<std::size_t>(o.phi_bins);
   std::vector<TracedLobe> out(cases);
-  std::vector<std::vector<std::int64_t>> counts(cases, std::vector<std::int64_t>(bins, 0));
-  // Per case, per field: its fractions per bin and its albedo.
-  std::vector<std::vector<std::vector<double>>> per_field(cases);
-  const HeightfieldFieldSpec spec{o.ndf, o.alpha, o.field_size, o.correlation_length};
+  // Per case, per field: its counts per bin and its rays.
+  std::vector<std::vector<std::vector<std::int64_t>>> counts(cases);
+  std::vector<std::vector<std::int64_t>> rays(cases);
   for (int r = 0; r < o.fields; ++r) {
-    const sim::HeightfieldSurface s =
-        make_field_surface(spec, sim::Rng(o.seed, kCheckFieldSeeds, static_cast<std::uint64_t>(r)).next_u64());
-    const long rays = o.rays / o.fields + (r < o.rays % o.fields ? 1 : 0);
+    const sim::HeightfieldSurface s = check_field(o, r);
     std::vector<sim::HeightfieldTraceOptions> to(cases);
-    for (std::size_t c = 0; c < cases; ++c) {
-      to[c].theta_i = theta_i[c], to[c].phi_i = kPi, to[c].rays = rays;
-      to[c].seed = sim::Rng(o.seed, kCheckRaySeeds, static_cast<std::uint64_t>(r) * 65536 + c).next_u64();
-      to[c].theta_bins = o.theta_bins, to[c].phi_bins = o.phi_bins, to[c].max_k = 0;
-    }
+    for (std::size_t c = 0; c < cases; ++c) to[c] = check_field_trace(o, theta_i[c], c, r);
     const std::int64_t chunks = sim::heightfield_chunk_count(to[0]);
     const std::size_t items = cases * static_cast<std::size_t>(chunks);
     std::vector<sim::HeightfieldTally> tallies(items);
@@ -253,75 +235,22 @@ std::vector<TracedLobe> trace_heightfield_lobes(const CheckBrdfOptions& o, const
         },
         {}, o.cancel, 1);
     if (!complete || support::cancelled(o.cancel)) return {};
-    std::vector<std::vector<std::int64_t>> field_counts(cases, std::vector<std::int64_t>(bins, 0));
+    for (std::size_t c = 0; c < cases; ++c) counts[c].emplace_back(bins, 0), rays[c].push_back(0);
     for (std::size_t item = 0; item < items; ++item) {
       const std::size_t c = item / static_cast<std::size_t>(chunks);
-      const sim::HeightfieldTally& t = tallies[item];
-      // Rows k = 0 (none: every ray meets the field) and k >= 1, summed per bin.
-      for (std::size_t q = 0; q < t.hist_by_k.size(); ++q) field_counts[c][q % bins] += t.hist_by_k[q];
-      out[c].rays += t.rays;
+      rays[c].back() += add_field_counts(tallies[item], counts[c].back());
       out[c].thread_s += secs[item];
     }
-    for (std::size_t c = 0; c < cases; ++c) {
-      for (std::size_t b = 0; b < bins; ++b) counts[c][b] += field_counts[c][b];
-      per_field[c].push_back(fractions(field_counts[c], static_cast<double>(rays)));
-    }
   }
-  noise.var.assign(cases, std::vector<double>(bins, 0.0));
-  noise.albedo_var.assign(cases, 0.0);
-  const double F = o.fields;
+  pooled.clear();
   for (std::size_t c = 0; c < cases; ++c) {
-    const double N = static_cast<double>(out[c].rays);
-    out[c].flux = fractions(counts[c], N);
-    std::vector<double> albedos;
-    for (const auto& f : per_field[c]) albedos.push_back(sum(f));
-    const auto spread = [F](const auto& value_of) {
-      double m = 0.0, v = 0.0;
-      for (int r = 0; r < F; ++r) m += value_of(r);
-      m /= F;
-      for (int r = 0; r < F; ++r) v += (value_of(r) - m) * (value_of(r) - m);
-      return v / (F - 1.0) / F;
-    };
-    for (std::size_t b = 0; b < bins; ++b) {
-      const double p = std::clamp(out[c].flux[b], 0.0, 1.0);
-      noise.var[c][b] =
-          std::max(spread([&](int r) { return per_field[c][static_cast<std::size_t>(r)][b]; }), p * (1.0 - p) / N);
-    }
-    const double a = std::clamp(sum(out[c].flux), 0.0, 1.0);
-    noise.albedo_var[c] =
-        std::max(spread([&](int r) { return albedos[static_cast<std::size_t>(r)]; }), a * (1.0 - a) / N);
+    pooled.push_back(pool_fields(counts[c], rays[c]));
+    out[c].flux = pooled.back().flux, out[c].rays = pooled.back().rays;
   }
   return out;
 }
 
-// check_lobes with a variance per bin in place of the bound from rays and grooves: the same L1
-// distances (shape and flux fractions) and albedo, thresholds expected + sigmas sd + tolerance
-// from these variances (the shape's scaled by 1 / albedo^2).
-CheckBrdfCase check_lobes_with_variance(const std::vector<double>& sim, const std::vector<double>& model,
-                                        const std::vector<double>& var, double albedo_var, double rays, double sigmas,
-                                        double tolerance) {
-  CheckBrdfCase c;
-  c.albedo_sim = sum(sim);
-  c.albedo_model = sum(model);
-  c.non_finite = !all_finite(model) || std::any_of(model.begin(), model.end(), [](double v) { return v < 0.0; });
-  const auto expected = [&](double scale, double& mean, double& thr) {
-    double m = 0.0, v2 = 0.0;
-    for (double v : var) m += std::sqrt(2.0 * v * scale / kPi), v2 += (1.0 - 2.0 / kPi) * v * scale;
-    mean = m, thr = m + sigmas * std::sqrt(v2) + tolerance;
-  };
-  c.l1_flux = l1(sim, model);
-  expected(1.0, c.l1_flux_expected, c.l1_flux_threshold);
-  c.l1 = l1(normalized(sim), normalized(model));
-  expected(c.albedo_sim > 0.0 ? 1.0 / (c.albedo_sim * c.albedo_sim) : 1.0, c.l1_expected, c.l1_threshold);
-  c.albedo_threshold = sigmas * std::sqrt(albedo_var) + 1.0 / rays + tolerance;
-  c.pass = !c.non_finite && std::isfinite(c.l1) && c.l1 <= c.l1_threshold && c.l1_flux <= c.l1_flux_threshold &&
-           std::abs(c.albedo_sim - c.albedo_model) <= c.albedo_threshold;
-  return c;
-}
-
 }  // namespace
-
-const char* check_surface_name(CheckSurface s) { return s == CheckSurface::heightfield ? "heightfield" : "vgroove"; }
 
 void check_options(const CheckBrdfOptions& o) {
   // Each range from validation/ranges.h, the one table every face reads.
@@ -386,6 +315,81 @@ CheckBrdfCase check_lobes(const std::vector<double>& sim, const std::vector<doub
   return c;
 }
 
+// Field r's and its rays' seeds: streams of opt.seed apart from the V-groove surface's.
+constexpr std::uint64_t kCheckFieldSeeds = 0x63626866ULL, kCheckRaySeeds = 0x63627261ULL;
+
+sim::HeightfieldSurface check_field(const CheckBrdfOptions& o, int r) {
+  const HeightfieldFieldSpec spec{o.ndf, o.alpha, o.field_size, o.correlation_length};
+  return make_field_surface(spec, sim::Rng(o.seed, kCheckFieldSeeds, static_cast<std::uint64_t>(r)).next_u64());
+}
+
+sim::HeightfieldTraceOptions check_field_trace(const CheckBrdfOptions& o, double theta_i, std::size_t c, int r) {
+  sim::HeightfieldTraceOptions to;
+  to.theta_i = theta_i, to.phi_i = kPi, to.rays = o.rays / o.fields + (r < o.rays % o.fields ? 1 : 0);
+  to.seed = sim::Rng(o.seed, kCheckRaySeeds, static_cast<std::uint64_t>(r) * 65536 + c).next_u64();
+  to.theta_bins = o.theta_bins, to.phi_bins = o.phi_bins, to.max_k = 0;
+  return to;
+}
+
+std::int64_t add_field_counts(const sim::HeightfieldTally& t, std::vector<std::int64_t>& counts) {
+  // Rows k = 0 (none: every ray meets the field) and k >= 1, summed per bin.
+  for (std::size_t q = 0; q < t.hist_by_k.size(); ++q) counts[q % counts.size()] += t.hist_by_k[q];
+  return t.rays;
+}
+
+FieldLobe pool_fields(const std::vector<std::vector<std::int64_t>>& counts, const std::vector<std::int64_t>& rays) {
+  FieldLobe out;
+  const std::size_t F = counts.size(), bins = counts.front().size();
+  std::vector<std::int64_t> total(bins, 0);
+  std::vector<std::vector<double>> per_field;
+  for (std::size_t r = 0; r < F; ++r) {
+    for (std::size_t b = 0; b < bins; ++b) total[b] += counts[r][b];
+    out.rays += rays[r];
+    per_field.push_back(fractions(counts[r], static_cast<double>(rays[r])));
+  }
+  const double N = static_cast<double>(out.rays);
+  out.flux = fractions(total, N);
+  std::vector<double> albedos;
+  for (const auto& f : per_field) albedos.push_back(sum(f));
+  const auto spread = [F](const auto& value_of) {
+    double m = 0.0, v = 0.0;
+    for (std::size_t r = 0; r < F; ++r) m += value_of(r);
+    m /= static_cast<double>(F);
+    for (std::size_t r = 0; r < F; ++r) v += (value_of(r) - m) * (value_of(r) - m);
+    return v / (static_cast<double>(F) - 1.0) / static_cast<double>(F);
+  };
+  out.var.assign(bins, 0.0);
+  for (std::size_t b = 0; b < bins; ++b) {
+    const double p = std::clamp(out.flux[b], 0.0, 1.0);
+    out.var[b] = std::max(spread([&](std::size_t r) { return per_field[r][b]; }), p * (1.0 - p) / N);
+  }
+  const double a = std::clamp(sum(out.flux), 0.0, 1.0);
+  out.albedo_var = std::max(spread([&](std::size_t r) { return albedos[r]; }), a * (1.0 - a) / N);
+  return out;
+}
+
+CheckBrdfCase check_lobes_with_variance(const std::vector<double>& sim, const std::vector<double>& model,
+                                        const std::vector<double>& var, double albedo_var, double rays, double sigmas,
+                                        double tolerance) {
+  CheckBrdfCase c;
+  c.albedo_sim = sum(sim);
+  c.albedo_model = sum(model);
+  c.non_finite = !all_finite(model) || std::any_of(model.begin(), model.end(), [](double v) { return v < 0.0; });
+  const auto expected = [&](double scale, double& mean, double& thr) {
+    double m = 0.0, v2 = 0.0;
+    for (double v : var) m += std::sqrt(2.0 * v * scale / kPi), v2 += (1.0 - 2.0 / kPi) * v * scale;
+    mean = m, thr = m + sigmas * std::sqrt(v2) + tolerance;
+  };
+  c.l1_flux = l1(sim, model);
+  expected(1.0, c.l1_flux_expected, c.l1_flux_threshold);
+  c.l1 = l1(normalized(sim), normalized(model));
+  expected(c.albedo_sim > 0.0 ? 1.0 / (c.albedo_sim * c.albedo_sim) : 1.0, c.l1_expected, c.l1_threshold);
+  c.albedo_threshold = sigmas * std::sqrt(albedo_var) + 1.0 / rays + tolerance;
+  c.pass = !c.non_finite && std::isfinite(c.l1) && c.l1 <= c.l1_threshold && c.l1_flux <= c.l1_flux_threshold &&
+           std::abs(c.albedo_sim - c.albedo_model) <= c.albedo_threshold;
+  return c;
+}
+
 BrdfBatchFn batch_of(const BrdfFn& f) {
   return [&f](const double* wi, const double* wo, std::size_t n, double* out) {
     for (std::size_t j = 0; j < n; ++j)
@@ -433,9 +437,9 @@ CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt) {
   setup.grooves = opt.grooves, setup.seed = opt.seed;
   setup.theta_bins = opt.theta_bins, setup.phi_bins = opt.phi_bins, setup.flatland_bins = opt.flatland_bins;
   const bool field = opt.surface == CheckSurface::heightfield;
-  FieldNoise noise;
+  std::vector<FieldLobe> pooled;
   const std::vector<TracedLobe> traced = !integrated ? std::vector<TracedLobe>{}
-                                         : field     ? trace_heightfield_lobes(opt, theta_i, res.threads, noise)
+                                         : field     ? trace_heightfield_lobes(opt, theta_i, res.threads, pooled)
                                                      : trace_lobes(setup, theta_i, res.threads, opt.cancel);
   res.wall_s = seconds_since(t0);
   if (traced.size() != cases || (opt.cancel && opt.cancel->load())) {
@@ -450,8 +454,9 @@ CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt) {
     // The model's side is known to within its integration error: it widens each threshold.
     const double tol = opt.model_tolerance + model[c].error;
     // The V-groove surface: the bound from N rays over G grooves; heightfields: their fields' spread.
-    CheckBrdfCase out = field ? check_lobes_with_variance(sim, m, noise.var[c], noise.albedo_var[c], N, opt.sigmas, tol)
-                              : check_lobes(sim, m, N, opt.grooves, opt.sigmas, tol);
+    CheckBrdfCase out = field
+                            ? check_lobes_with_variance(sim, m, pooled[c].var, pooled[c].albedo_var, N, opt.sigmas, tol)
+                            : check_lobes(sim, m, N, opt.grooves, opt.sigmas, tol);
     out.model_error = model[c].error;
     out.model_evals = model[c].evals;
     out.theta_i_deg = opt.theta_i_deg[c];

@@ -17,6 +17,7 @@
 
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/common/ndf_kind.h"
+#include "vgroove/sim/heightfield_tracer.h"
 #include "vgroove/validation/brdf_suite.h"
 
 #include <nlohmann/json.hpp>
@@ -48,8 +49,7 @@ using BrdfBatchFn = std::function<void(const double* wi, const double* wo, std::
 // place of the bound from rays and grooves. A field that does not fit memory is refused before any
 // work (check_options, one line). Tests: tests/validation/heightfield_check_brdf_test.cpp
 // (HeightfieldCheckBrdf.*); docs/derivations/heightfield.md.
-enum class CheckSurface : unsigned char { vgroove, heightfield };
-const char* check_surface_name(CheckSurface s);  // "vgroove", "heightfield"
+// (CheckSurface and check_surface_name: case_surface.h.)
 
 struct CheckBrdfOptions {
   std::string name = "check_brdf";  // names the report
@@ -137,6 +137,28 @@ ModelLobe integrate_model_lobe(const BrdfBatchFn& f, double theta_i_deg, const C
 // It is validation/lobe_comparison.h's compare_lobes with one row, whose joint test is the flux fractions'.
 CheckBrdfCase check_lobes(const std::vector<double>& sim, const std::vector<double>& model, double rays, double grooves,
                           double sigmas, double model_tolerance);
+// The heightfield route's pieces, shared with the model tables (model_table.h), so that a table
+// sees check_brdf's fields and rays: field r of the options (its seed from opt.seed and r); its
+// rays at incidence number c of theta_i (radians), rays / fields of them (one more for r < rays
+// mod fields), max_k 0; a chunk's tally added to counts per bin (all bounce orders), returning its
+// rays; the fields' counts pooled into the flux fractions with the variance per bin and of the
+// albedo from the fields' spread (the sample variance of the per-field fractions over the fields,
+// at least the multinomial p (1 - p) / N of all N rays); and check_lobes with these variances in
+// place of the bound from rays and grooves (thresholds expected + sigmas sd + tolerance, the
+// shape's scaled by 1 / albedo^2; the albedo's sigmas sd + 1 / rays + tolerance).
+struct FieldLobe {
+  std::vector<double> flux, var;
+  double albedo_var = 0.0;
+  std::int64_t rays = 0;
+};
+sim::HeightfieldSurface check_field(const CheckBrdfOptions& opt, int r);
+sim::HeightfieldTraceOptions check_field_trace(const CheckBrdfOptions& opt, double theta_i, std::size_t c, int r);
+std::int64_t add_field_counts(const sim::HeightfieldTally& t, std::vector<std::int64_t>& counts);
+FieldLobe pool_fields(const std::vector<std::vector<std::int64_t>>& counts, const std::vector<std::int64_t>& rays);
+CheckBrdfCase check_lobes_with_variance(const std::vector<double>& sim, const std::vector<double>& model,
+                                        const std::vector<double>& var, double albedo_var, double rays, double sigmas,
+                                        double tolerance);
+
 // The five bins where |sim - model| is largest, largest first, with their centres.
 std::vector<WorstBin> worst_bins(const std::vector<double>& sim, const std::vector<double>& model, SurfaceDim dim,
                                  int theta_bins, int phi_bins, int flatland_bins);

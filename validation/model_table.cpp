@@ -2,6 +2,7 @@
 #include "vgroove/support/seconds_since.h"
 
 #include "vgroove/common/angles.h"
+#include "vgroove/sim/heightfield.h"
 #include "vgroove/support/format.h"
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/printable.h"
@@ -39,7 +40,48 @@ double tolerance(const BrdfSuite& s, SurfaceDim d) {
   return d == SurfaceDim::flatland ? s.model_tolerance_flatland : s.model_tolerance_3d;
 }
 
+bool heightfield(const BrdfSuite& s) { return s.surface == CheckSurface::heightfield; }
+
+nlohmann::json surface_json(const BrdfSuite& s) {
+  if (!heightfield(s)) return {{"surface", "vgroove"}, {"grooves", s.grooves}};
+  return {{"surface", "heightfield"},
+          {"heightfield",
+           {{"fields", s.fields},
+            {"field_size", s.field_size},
+            {"correlation_length", s.correlation_length},
+            {"field_bytes", sim::heightfield_bytes(s.field_size)}}}};
+}
+
 }  // namespace
+
+CheckBrdfOptions case_check_options(const BrdfSuite& s, std::size_t c, long rays) {
+  const BrdfCase k = s.case_at(c);
+  CheckBrdfOptions o;
+  o.name = s.name;
+  o.ndf = k.ndf, o.alpha = k.alpha, o.dim = k.dim;
+  o.theta_i_deg.clear();
+  for (double t : s.theta_i) o.theta_i_deg.push_back(output_deg(t));
+  o.rays = rays > 0 ? rays : s.rays;
+  o.grooves = s.grooves;
+  o.surface = s.surface;
+  o.field_size = s.field_size, o.correlation_length = s.correlation_length, o.fields = s.fields;
+  o.seed = s.seed;
+  o.theta_bins = s.theta_bins, o.phi_bins = s.phi_bins, o.flatland_bins = s.flatland_bins;
+  o.sigmas = s.sigmas;
+  o.model_tolerance = tolerance(s, k.dim);
+  return o;
+}
+
+void check_suite_surface(const BrdfSuite& s, long rays) {
+  if (!heightfield(s)) return;
+  for (std::size_t c = 0; c < s.cases(); ++c) {
+    try {
+      check_options(case_check_options(s, c, rays));
+    } catch (const support::UserError& e) {
+      throw support::UserError(s.file + ": surface heightfield: " + e.what());
+    }
+  }
+}
 
 nlohmann::json bin_layout_json(const BrdfSuite& s) {
   constexpr double pi = std::numbers::pi;
@@ -48,7 +90,7 @@ nlohmann::json bin_layout_json(const BrdfSuite& s) {
   j["suite"] = s.name;
   j["suite_file"] = s.file;
   j["rays"] = s.rays;
-  j["grooves"] = s.grooves;
+  j.update(surface_json(s));
   j["seed"] = s.seed;
   j["frame"] =
       "n = (0, 0, 1); the light at polar angle theta_i and azimuth 180 deg, so its mirror direction is at "
@@ -136,17 +178,44 @@ ModelTable parse_model_table(const nlohmann::json& j, const std::string& file, c
   return t;
 }
 
-std::shared_ptr<const ModelTableWork::Context> ModelTableWork::prepare(std::size_t c) const {
-  const BrdfCase k = suite.case_at(c);
-  return std::make_shared<Context>(make_case_surface(k.dim, k.ndf, k.alpha, suite.grooves, suite.seed));
+std::size_t ModelTableWork::case_of(std::size_t u) const {
+  return heightfield(suite) ? u / static_cast<std::size_t>(suite.fields) : u;
+}
+int ModelTableWork::field_of(std::size_t u) const {
+  return heightfield(suite) ? static_cast<int>(u % static_cast<std::size_t>(suite.fields)) : 0;
 }
 
-LobeTally ModelTableWork::run_chunks(const Context& ctx, std::size_t c, std::int64_t begin, std::int64_t end) const {
+std::shared_ptr<const ModelTableWork::Context> ModelTableWork::prepare(std::size_t u) const {
+  const std::size_t c = case_of(u);
+  auto ctx = std::make_shared<Context>();
+  if (heightfield(suite)) {
+    ctx->field = check_field(case_check_options(suite, c, rays), field_of(u));
+  } else {
+    const BrdfCase k = suite.case_at(c);
+    ctx->grooves = make_case_surface(k.dim, k.ndf, k.alpha, suite.grooves, suite.seed);
+  }
+  return ctx;
+}
+
+LobeTally ModelTableWork::run_chunks(const Context& ctx, std::size_t u, std::int64_t begin, std::int64_t end) const {
+  const std::size_t c = case_of(u);
+  if (heightfield(suite)) {
+    // check_brdf's rays of field r at incidence c % theta_i (check_field_trace), chunk by chunk.
+    const auto t0 = Clock::now();
+    const sim::HeightfieldTraceOptions to = check_field_trace(
+        case_check_options(suite, c, rays), suite.case_at(c).theta_i, c % suite.theta_i.size(), field_of(u));
+    LobeTally out;
+    out.hist.assign(static_cast<std::size_t>(suite.theta_bins) * static_cast<std::size_t>(suite.phi_bins), 0);
+    for (std::int64_t k = begin; k < end && !support::cancelled(cancel); ++k)
+      out.rays += add_field_counts(sim::trace_heightfield_chunk(ctx.field, to, k), out.hist);
+    out.thread_s = seconds_since(t0);
+    return out;
+  }
   CaseRays r;
   r.theta_i = suite.case_at(c).theta_i, r.rays = rays, r.seed = suite.seed;
   r.flatland_bins = suite.flatland_bins, r.theta_bins = suite.theta_bins, r.phi_bins = suite.phi_bins;
   r.max_k = 0;  // the histogram alone
-  BinnedTally t = trace_case_chunks(ctx, r, begin, end, cancel);
+  BinnedTally t = trace_case_chunks(ctx.grooves, r, begin, end, cancel);
   LobeTally out;
   out.hist = std::move(t.hist), out.rays = t.rays, out.thread_s = t.thread_s;
   return out;
@@ -166,9 +235,14 @@ nlohmann::json ModelTableWork::tally_json(const Tally& t) {
   return {{"hist", t.hist}, {"rays", t.rays}, {"thread_s", t.thread_s}};
 }
 
-LobeTally ModelTableWork::read_tally(support::JsonObject& j, std::size_t c, const std::vector<ChunkRun>& runs) const {
+LobeTally ModelTableWork::read_tally(support::JsonObject& j, std::size_t u, const std::vector<ChunkRun>& runs) const {
   LobeTally t;
-  const std::int64_t n = rays_in_chunks(runs, rays, sim::kRaysPerChunk);
+  const std::size_t c = case_of(u);
+  const std::int64_t n =
+      heightfield(suite)
+          ? rays_in_chunks(runs, check_field_trace(case_check_options(suite, c, rays), 0.0, 0, field_of(u)).rays,
+                           sim::kHeightfieldRaysPerChunk)
+          : rays_in_chunks(runs, rays, sim::kRaysPerChunk);
   t.rays = j.integer("rays", n, n);
   t.hist = read_counts(j, "hist", static_cast<std::size_t>(bins_of(suite, suite.case_at(c).dim)), t.rays);
   std::int64_t escaped = 0;
@@ -186,13 +260,26 @@ ModelTableWork::Fixed ModelTableWork::read_fixed(support::JsonObject& j, std::si
 Job<ModelTableWork> model_table_job(const BrdfSuite& s, long rays, nlohmann::json descriptor,
                                     const std::atomic<bool>* cancel) {
   const long n_rays = rays > 0 ? rays : s.rays;
+  ModelTableWork work{s, n_rays, cancel};
+  if (heightfield(s)) {
+    // A unit per case and field, its chunks those of the field's rays (cost: ~40 ray steps each).
+    check_suite_surface(s, n_rays);
+    std::vector<support::WorkUnit> units(s.cases() * static_cast<std::size_t>(s.fields));
+    for (std::size_t u = 0; u < units.size(); ++u) {
+      const sim::HeightfieldTraceOptions to =
+          check_field_trace(case_check_options(s, work.case_of(u), n_rays), 0.0, 0, work.field_of(u));
+      units[u].chunks = sim::heightfield_chunk_count(to);
+      units[u].chunk_cost = 40;
+    }
+    return make_job(std::move(work), std::move(units), std::move(descriptor));
+  }
   const std::int64_t chunks = (static_cast<std::int64_t>(n_rays) + sim::kRaysPerChunk - 1) / sim::kRaysPerChunk;
   std::vector<support::WorkUnit> units(s.cases());
   for (std::size_t c = 0; c < s.cases(); ++c) {
     units[c].chunks = chunks;
     units[c].chunk_cost = s.case_at(c).dim == SurfaceDim::flatland ? 1 : 4;
   }
-  return make_job(ModelTableWork{s, n_rays, cancel}, std::move(units), std::move(descriptor));
+  return make_job(std::move(work), std::move(units), std::move(descriptor));
 }
 
 ModelTableRun model_table_run_from(const BrdfSuite& s, const ModelTable& t, long rays,
@@ -200,12 +287,30 @@ ModelTableRun model_table_run_from(const BrdfSuite& s, const ModelTable& t, long
   ModelTableRun run;
   run.rays = rays > 0 ? rays : s.rays;
   run.pass = true;
-  for (std::size_t c = 0; c < results.size(); ++c) {
+  const std::size_t F = heightfield(s) ? static_cast<std::size_t>(s.fields) : 1;
+  for (std::size_t c = 0; c < results.size() / F; ++c) {
     const BrdfCase k = s.case_at(c);
-    const LobeTally& traced = results[c].tally;
-    const std::vector<double> flux = fractions(traced.hist, static_cast<double>(traced.rays));
-    CheckBrdfCase out =
-        check_lobes(flux, t.flux[c], static_cast<double>(traced.rays), s.grooves, s.sigmas, tolerance(s, k.dim));
+    LobeTally traced;
+    std::vector<double> flux;
+    CheckBrdfCase out;
+    if (heightfield(s)) {
+      // The fields' tallies pooled, the noise from their spread: check_brdf's heightfield route.
+      std::vector<std::vector<std::int64_t>> counts;
+      std::vector<std::int64_t> rays_of;
+      for (std::size_t r = 0; r < F; ++r) {
+        const LobeTally& f = results[c * F + r].tally;
+        counts.push_back(f.hist), rays_of.push_back(f.rays);
+        traced.rays += f.rays, traced.thread_s += f.thread_s;
+      }
+      const FieldLobe pooled = pool_fields(counts, rays_of);
+      flux = pooled.flux;
+      out = check_lobes_with_variance(flux, t.flux[c], pooled.var, pooled.albedo_var, static_cast<double>(traced.rays),
+                                      s.sigmas, tolerance(s, k.dim));
+    } else {
+      traced = results[c].tally;
+      flux = fractions(traced.hist, static_cast<double>(traced.rays));
+      out = check_lobes(flux, t.flux[c], static_cast<double>(traced.rays), s.grooves, s.sigmas, tolerance(s, k.dim));
+    }
     out.theta_i_deg = output_deg(k.theta_i);
     out.rays = traced.rays;
     out.sim_wall_s = traced.thread_s;
@@ -239,7 +344,7 @@ nlohmann::json model_table_report_json(const BrdfSuite& s, const ModelTable& t, 
   j["model"] = t.model;
   j["seed"] = s.seed;
   j["rays"] = run.rays;
-  j["grooves"] = s.grooves;
+  j.update(surface_json(s));
   j["threads"] = run.threads;
   j["wall_s"] = run.wall_s;
   j["thresholds"] = {{"sigmas", s.sigmas},
@@ -275,10 +380,14 @@ nlohmann::json model_table_report_json(const BrdfSuite& s, const ModelTable& t, 
 }
 
 void print_model_table(std::ostream& os, const BrdfSuite& s, const ModelTable& t, const ModelTableRun& run) {
-  os << support::format("%s against the model table %s (%s): %zu cases, %ld rays x %d grooves each\n",
-                        support::printable(s.name).c_str(), support::printable(t.file).c_str(),
-                        t.model.empty() ? "no name" : support::printable(t.model).c_str(), run.cases.size(), run.rays,
-                        s.grooves);
+  const std::string surface =
+      heightfield(s) ? support::format("%ld rays over %d heightfields of %d^2 cells (correlation length %g) each",
+                                       run.rays, s.fields, s.field_size, s.correlation_length)
+                     : support::format("%ld rays x %d grooves each", run.rays, s.grooves);
+  os << support::format("%s against the model table %s (%s): %zu cases, %s\n", support::printable(s.name).c_str(),
+                        support::printable(t.file).c_str(),
+                        t.model.empty() ? "no name" : support::printable(t.model).c_str(), run.cases.size(),
+                        surface.c_str());
   os << support::format("  %-8s %-8s %6s %7s %9s %9s %9s %9s %9s %9s  %s\n", "dim", "ndf", "alpha", "theta_i", "albedo",
                         "traced", "L1", "L1 thr", "flux L1", "thr", "pass");
   for (std::size_t c = 0; c < run.cases.size(); ++c) {

@@ -10,7 +10,8 @@
 //               "flux": [<fraction of the incident flux in each bin, in the layout's order>]}, ...]}
 // Every case of the suite exactly once; ndf, alpha, theta_i_deg and dimension must repeat the
 // layout's (a table made for another suite is refused); each flux a list of the layout's length
-// of finite numbers >= 0.
+// of finite numbers >= 0. A suite with "surface": "heightfield" is traced on check_brdf's fields.
+// Tests: tests/validation/model_table_test.cpp, tests/validation/model_table_heightfield_test.cpp.
 #pragma once
 
 #include "vgroove/sim/microsurface.h"
@@ -30,6 +31,16 @@
 #include <vector>
 
 namespace vgroove::validation {
+
+// check_brdf's options for case c of a suite (rays > 0 overriding the suite's): its ndf, alpha,
+// dimension, rays, grooves, seed, bins, sigmas, 3D tolerance and surface with its fields, and
+// theta_i_deg the suite's whole list, so that case c's rays are those check_brdf draws at incidence
+// c % theta_i.size() (check_field_trace): a table and check_brdf see the same fields and rays.
+CheckBrdfOptions case_check_options(const BrdfSuite& suite, std::size_t c, long rays);
+// With surface heightfield: check_options on every case (ranges of fields, field_size and
+// correlation_length, 3D, beckmann or ggx, a field that fits memory), throwing support::UserError
+// "<file>: surface heightfield: <what>" (one line); nothing for the V-groove surface.
+void check_suite_surface(const BrdfSuite& suite, long rays);
 
 // The layout of a "brdf" suite: its cases, the bins' edges and order, the frame.
 nlohmann::json bin_layout_json(const BrdfSuite& suite);
@@ -52,15 +63,21 @@ struct ModelTableRun {
 };
 // The run as work items (work_run.h): a unit per case, its rays in chunks (sim::kRaysPerChunk,
 // the procedural surface's streams, as trace_lobes draws them); the tally is the case's traced
-// histogram, the model the table's lobe. rays > 0 overrides the suite's; `cancel` (may be null) is
-// polled between chunks.
+// histogram, the model the table's lobe. With surface heightfield a unit per case and field
+// (unit c x fields + r: field r, check_field, its rays check_field_trace's in chunks of
+// sim::kHeightfieldRaysPerChunk), so the per-field tallies give the fields' spread as check_brdf's.
+// rays > 0 overrides the suite's; `cancel` (may be null) is polled between chunks.
 struct LobeTally {
   std::vector<std::int64_t> hist;  // escaped rays per bin
   std::int64_t rays = 0;
   double thread_s = 0.0;  // time spent tracing (a timing: never compared)
 };
+struct ModelTableSurface {
+  CaseSurface grooves;            // surface vgroove
+  sim::HeightfieldSurface field;  // surface heightfield
+};
 struct ModelTableWork {
-  using Context = CaseSurface;
+  using Context = ModelTableSurface;
   struct Fixed {};
   using Tally = LobeTally;
   BrdfSuite suite;
@@ -74,6 +91,9 @@ struct ModelTableWork {
   static nlohmann::json fixed_json(const Fixed&) { return nlohmann::json::object(); }
   Tally read_tally(support::JsonObject& j, std::size_t c, const std::vector<ChunkRun>& runs) const;
   Fixed read_fixed(support::JsonObject& j, std::size_t c) const;
+  // Unit u's case and field (field 0 on the V-groove surface).
+  std::size_t case_of(std::size_t u) const;
+  int field_of(std::size_t u) const;
 };
 Job<ModelTableWork> model_table_job(const BrdfSuite& suite, long rays, nlohmann::json descriptor,
                                     const std::atomic<bool>* cancel = nullptr);

@@ -33,7 +33,9 @@ def validate(suite: Union[str, os.PathLike, dict], *, rays: Optional[int] = None
         In [0, 2^63 - 1].
     model_table : str, optional
         A foreign model's bin-integrated lobes for a "brdf" suite (``vgroove validate
-        --model-table``; docs/schemas/model_table.schema.json).
+        --model-table``; docs/schemas/model_table.schema.json), traced on the suite's surface
+        (``"surface": "heightfield"``: check_brdf's random heightfields, e.g.
+        data/suites/brdf_heightfield.json).
     verbose : bool
         Print the command line's table.
     progress : callable, optional

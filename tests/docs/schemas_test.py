@@ -75,6 +75,14 @@ with tempfile.TemporaryDirectory() as tmp:
     subprocess.run([vgroove, "sample", "--n", "2000", "--dim", "flatland", "--out", str(out)], check=True,
                    capture_output=True, text=True)
     check(json.loads(out.read_text()), "report", "vgroove sample --out")
+hf_brdf = json.loads((src / "data/suites/brdf_heightfield.json").read_text())
+for key, value in (("surface", "heightfields"), ("dimensions", ["flatland"]), ("ndf", ["phong"])):
+    check(dict(hf_brdf, **{key: value}), "suite", f"brdf_heightfield with {key} {value}", valid=False)
+check(dict(hf_brdf, heightfield=dict(hf_brdf["heightfield"], field_size=100)), "suite",
+      "brdf_heightfield with field_size 100", valid=False)
+check({k: v for k, v in hf_brdf.items() if k != "heightfield"}, "suite", "brdf_heightfield without its fields",
+      valid=False)
+check(dict(fig11, heightfield=hf_brdf["heightfield"]), "suite", "fig11 with heightfield fields", valid=False)
 furnace = json.loads((src / "data/suites/furnace.json").read_text())
 furnace["strategy"] = "uniform"
 check(furnace, "suite", "furnace with an unknown strategy", valid=False)

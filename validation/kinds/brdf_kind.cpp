@@ -16,6 +16,12 @@ class BrdfPlan final : public SuitePlan<BrdfSuite> {
     check_rough_surface_overrides(o, file, "brdf");
     suite_ = parse_brdf_suite(j, file);
     apply_rays_and_seed(o);
+    check_suite_surface(suite_, rays_);  // --rays may leave fewer rays than fields
+    if (suite_.surface == CheckSurface::heightfield && !o.model_table)
+      throw support::UserError(file +
+                               ": surface heightfield is held against a model table: give --model-table FILE "
+                               "(`vgroove bins " +
+                               file + "` writes its layout)");
     if (o.model_table) {
       table_file_ = *o.model_table;
       table_ = std::make_shared<const ModelTable>(
@@ -30,6 +36,9 @@ class BrdfPlan final : public SuitePlan<BrdfSuite> {
     return brdf_run_memory_bytes(suite_, threads, report);
   }
   std::string memory_what(int) const override {
+    if (suite_.surface == CheckSurface::heightfield)
+      return std::to_string(suite_.cases()) + " cases, a " + std::to_string(suite_.field_size) +
+             "^2 heightfield on each thread";
     return std::to_string(suite_.cases()) + " cases, " + std::to_string(suite_.grooves) +
            " grooves per surface on each thread";
   }
