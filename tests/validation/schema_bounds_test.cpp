@@ -182,7 +182,11 @@ std::optional<std::string> refusal(const json& doc, const TempDir& dir) {
   try {
     (void)plan_validation(o);
   } catch (const support::UserError& e) {
-    return std::string(e.what());
+    // A brdf suite on heightfields runs only against a model table: read to the end, every field
+    // accepted, the suite is refused for the missing table alone.
+    const std::string what = e.what();
+    if (what.find("surface heightfield is held against a model table") != std::string::npos) return std::nullopt;
+    return what;
   }
   return std::nullopt;
 }
@@ -208,7 +212,12 @@ std::vector<std::pair<std::string, json>> shipped_suites() {
       json j = read_json(e.path());
       if (j.contains("kind")) out.emplace_back(e.path().filename().string(), std::move(j));
     }
-  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  // A brdf suite on heightfields last: the brdf fields' bounds are read on a V-groove suite
+  // (fig11.json), and only the fields of its own (its "heightfield" options) on it.
+  const auto late = [](const json& j) { return j.value("surface", "") == "heightfield"; };
+  std::sort(out.begin(), out.end(), [&](const auto& a, const auto& b) {
+    return std::pair(late(a.second), a.first) < std::pair(late(b.second), b.first);
+  });
   // Fields no shipped suite sets, added to a copy of one that does not.
   for (const auto& [name, doc] : std::vector(out)) {
     if (name == "stress.json") {
