@@ -26,6 +26,8 @@ One or more images per report, named after the report (or --out) with a suffix p
                                                             V-groove), L1 / threshold of each k's lobe (1, 2,
                                                             3+) against theta_i, a series per alpha (<= 1:
                                                             within noise), and E_k model minus traced;
+                                             BASE-lobes-NDF.png  the lobe per k = 1, 2, 3+ over theta_o
+                                                            (a row per case): traced (2 se) and each model;
                                              BASE-masking-NDF.png  G1 per facet-normal bin: traced,
                                                             Smith, V-cavity (a row per alpha, a column per view);
                                                             the masking controls' verdict in the title, a G1
@@ -1138,7 +1140,68 @@ def heightfield_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
         return draw
 
     out = [(f"-{ndf}", drawer(ndf, cases)) for ndf, cases in groups.items()]
-    return out + _heightfield_masking_figures(report, name)
+    return out + _heightfield_lobe_figures(report, name) + _heightfield_masking_figures(report, name)
+
+
+_HF_LOBE_MODELS = (("smith_walk", "Smith walk", "C1"), ("cook_torrance_smith", "Cook-Torrance, Smith G (k = 1)", "C2"),
+                   ("vgroove", "V-groove model", "C3"))
+
+
+def heightfield_theta_marginal(rows: Node, k: int, theta_bins: int, phi_bins: int, squared: bool = False) -> List[float]:
+    """Row k of a lobe [k][t * phi_bins + p] summed over phi_o: one value per theta_o bin (with
+    squared, the sum of squares, for standard errors)."""
+    row = rows[k].numbers(theta_bins * phi_bins)
+    f = (lambda v: v * v) if squared else (lambda v: v)
+    return [sum(f(row[t * phi_bins + p]) for p in range(phi_bins)) for t in range(theta_bins)]
+
+
+def _heightfield_lobe_figures(report: Node, name: str) -> List[Tuple[str, Drawer]]:
+    """The "heightfield" suite's lobes per k: one figure per NDF, a row per case, a column per k =
+    1, 2, 3+; the flux over theta_o (summed over phi_o), traced with 2 se bars (the bins' se
+    combined as if independent) against each model's lobe as the report gives it."""
+    tb, pb = (int(report["inputs"][key].number(1, 100000)) for key in ("theta_bins", "phi_bins"))
+    groups: Dict[str, List[Node]] = {}
+    for c in report["cases"].nonempty():
+        groups.setdefault(c["ndf"].one_of(_NDFS), []).append(c)
+    edges = [90.0 * t / tb for t in range(tb + 1)]
+    centres = [0.5 * (edges[t] + edges[t + 1]) for t in range(tb)]
+    rows_k = list(_HF_MARKS)
+
+    def drawer(ndf: str, cases: List[Node]) -> Drawer:
+        def draw() -> Figure:
+            fig = _figure(11.0, 2.2 * len(cases) + 1.0)
+            axes = fig.subplots(len(cases), len(rows_k), squeeze=False)
+            for i, c in enumerate(cases):
+                title = (f"alpha {c['alpha'].number():g}, theta_i {c['theta_i_deg'].number():g}"
+                         + (f", aspect {c['aspect'].number():g}" if c.has("aspect") and c["aspect"].number() != 1 else ""))
+                for k in range(len(rows_k)):
+                    ax = axes[i][k]
+                    traced = heightfield_theta_marginal(c["traced"]["lobe_by_k"], k, tb, pb)
+                    se = [math.sqrt(v) for v in heightfield_theta_marginal(c["traced"]["lobe_se_by_k"], k, tb, pb, True)]
+                    ax.errorbar(centres, traced, yerr=[2 * v for v in se], fmt="o", ms=3, capsize=2, color="black",
+                                label="traced")
+                    for key, label, color in _HF_LOBE_MODELS:
+                        m = c[key]
+                        if m.has("skipped"):
+                            continue
+                        if key == "cook_torrance_smith":
+                            if k != 0:
+                                continue
+                            row = m["lobe_k1"].numbers(tb * pb)
+                            y = [sum(row[t * pb + p] for p in range(pb)) for t in range(tb)]
+                        else:
+                            y = heightfield_theta_marginal(m["lobe_by_k"], k, tb, pb)
+                        ax.plot(centres, y, "-", color=color, label=label)
+                    ax.set_title(f"{title}: k {rows_k[k]}", fontsize=8)
+                    ax.set_xlabel("theta_o (deg)", fontsize=7)
+                    ax.tick_params(labelsize=7)
+            axes[0][0].legend(fontsize=6)
+            _suptitle(fig, f"{name}: {ndf} heightfields, the lobe per bounce order",
+                      "flux per theta_o bin (summed over phi_o): traced (2 se) against each model")
+            return fig
+        return draw
+
+    return [(f"-lobes-{ndf}", drawer(ndf, cases)) for ndf, cases in groups.items()]
 
 
 def _heightfield_masking_figures(report: Node, name: str) -> List[Tuple[str, Drawer]]:

@@ -385,3 +385,21 @@ def test_a_heightfield_report_with_anisotropic_cases_draws(tmp_path, capsys):
     status, out, err = plot_in_process(capsys, report, "--out", tmp_path / "hf")
     assert status == 0, err
     check_image(tmp_path / "hf-beckmann.png", "png")
+    check_image(tmp_path / "hf-lobes-beckmann.png", "png")
+    # The lobes per k: the traced points and each model's line are the report's lobes summed over
+    # phi_o, theta_o bin by bin (k = 1 of the first case: the isotropic one, every model drawn).
+    j = json.loads(report.read_text())
+    m = plot_module()
+    fig = dict(m.figures_for(j, str(report)))["-lobes-beckmann"]()
+    c, tb, pb = j["cases"][0], j["inputs"]["theta_bins"], j["inputs"]["phi_bins"]
+
+    def marginal(row):
+        return [sum(row[t * pb + p] for p in range(pb)) for t in range(tb)]
+
+    ax = fig.axes[0]
+    lines = {ln.get_label(): list(ln.get_ydata()) for ln in ax.get_lines()}
+    assert lines["Smith walk"] == marginal(c["smith_walk"]["lobe_by_k"][0])
+    assert lines["V-groove model"] == marginal(c["vgroove"]["lobe_by_k"][0])
+    assert lines["Cook-Torrance, Smith G (k = 1)"] == marginal(c["cook_torrance_smith"]["lobe_k1"])
+    traced = [list(cont.lines[0].get_ydata()) for cont in ax.containers][0]
+    assert traced == marginal(c["traced"]["lobe_by_k"][0])
