@@ -77,6 +77,16 @@ void tally(const sim::DielectricResult& r, sim::Medium from, int max_k, GlassCou
   }
 }
 
+// A hemispherical cell's light angle, cosine-weighted (one number): 3D mu = sqrt(u) (density 2
+// mu); flatland sin theta = u (density cos theta).
+void draw_cosine_weighted(SurfaceDim dim, sim::Rng& rng, double& st, double& ct) {
+  const double u = sim::uniform_open(rng);
+  if (dim == SurfaceDim::three_d)
+    ct = std::sqrt(u), st = std::sqrt(1.0 - u);
+  else
+    st = u, ct = std::sqrt((1.0 - u) * (1.0 + u));
+}
+
 // Rays [begin, end) of cell `cell` in chunks of sim::kRaysPerChunk, each chunk from its own stream.
 void trace_unit(const GlassGrid& g, std::size_t cell, const sim::Microsurface& surface, std::int64_t chunk0,
                 std::int64_t chunk1, GlassCounts& t, const std::atomic<bool>* cancel) {
@@ -98,14 +108,7 @@ void trace_unit(const GlassGrid& g, std::size_t cell, const sim::Microsurface& s
     sim::Rng rng(g.seed, kGlassRayStream + cell, static_cast<std::uint64_t>(chunk));
     const std::int64_t n = std::min<std::int64_t>(sim::kRaysPerChunk, g.rays - chunk * sim::kRaysPerChunk);
     for (std::int64_t j = 0; j < n; ++j) {
-      if (hemisphere) {
-        // Cosine-weighted: 3D mu = sqrt(u) (density 2 mu); flatland sin theta = u (density cos theta).
-        const double u = sim::uniform_open(rng);
-        if (c.dim == SurfaceDim::three_d)
-          ct = std::sqrt(u), st = std::sqrt(1.0 - u);
-        else
-          st = u, ct = std::sqrt((1.0 - u) * (1.0 + u));
-      }
+      if (hemisphere) draw_cosine_weighted(c.dim, rng, st, ct);
       // The lit point: a groove and a place across its opening (above), or a place in the period (below).
       const double x = sim::uniform_open(rng) * groove_count;
       const int gi = std::min(last, static_cast<int>(x));
@@ -153,13 +156,7 @@ void walk_unit(const GlassGrid& g, std::size_t cell, std::int64_t chunk0, std::i
     const auto uniform = [&rng] { return sim::uniform_open(rng); };
     const std::int64_t n = std::min<std::int64_t>(sim::kRaysPerChunk, g.rays - chunk * sim::kRaysPerChunk);
     for (std::int64_t j = 0; j < n; ++j) {
-      if (hemisphere) {
-        const double u = sim::uniform_open(rng);
-        if (c.dim == SurfaceDim::three_d)
-          ct = std::sqrt(u), st = std::sqrt(1.0 - u);
-        else
-          st = u, ct = std::sqrt((1.0 - u) * (1.0 + u));
-      }
+      if (hemisphere) draw_cosine_weighted(c.dim, rng, st, ct);
       int k = 0;
       bool left = false, same_side = false;
       if (c.dim == SurfaceDim::three_d) {
