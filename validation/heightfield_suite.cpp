@@ -339,10 +339,12 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
     ow.energy = row_sums(ow.lobe, rows, bins);
     const double p = static_cast<double>(ow.paths);
     const std::vector<double> var = multinomial_var(ow.lobe, p), energy_var = multinomial_var(ow.energy, p);
+    // The first walk's rule, model_tolerance included (without it a smooth field's E_1 = 1 with no
+    // spread would have a threshold of 0).
     ow.against_traced = heightfield_miss(out.lobe, out.lobe_se, out.energy, out.energy_se, ow.lobe, var, ow.energy,
-                                         energy_var, rows, bins, suite.sigmas, 0.0);
+                                         energy_var, rows, bins, suite.sigmas, suite.model_tolerance);
     ow.against_first = heightfield_miss(out.walk_lobe, first_se, out.walk_energy, first_energy_se, ow.lobe, var,
-                                        ow.energy, energy_var, rows, bins, suite.sigmas, 0.0);
+                                        ow.energy, energy_var, rows, bins, suite.sigmas, suite.model_tolerance);
     out.other_walks.push_back(std::move(ow));
   }
   out.walk_s = seconds_since(t0);
