@@ -40,4 +40,10 @@ class Rng {
   std::uint64_t state_;
 };
 
+// A seed derived from (seed, stream, key): the first value of that stream, for keying a second
+// level of streams (a field's, a beam's) from a suite's seed.
+inline std::uint64_t derived_seed(std::uint64_t seed, std::uint64_t stream, std::uint64_t key) {
+  return Rng(seed, stream, key).next_u64();
+}
+
 }  // namespace vgroove::sim

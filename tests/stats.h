@@ -14,6 +14,19 @@
 
 namespace vgroove::test_stats {
 
+// Uniforms in (0, 1) from SplitMix64 on a counter: a stream independent of sim::Rng, so that a
+// test's draws are not the code's own. Aggregate: Uniforms{seed}.
+struct Uniforms {
+  std::uint64_t state;
+  double operator()() {
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    z ^= z >> 31;
+    return (static_cast<double>(z >> 11) + 0.5) * 0x1.0p-53;
+  }
+};
+
 // Tanh-sinh (double exponential) quadrature of f over [a, b]: x = c + d tanh((pi/2) sinh t),
 // trapezoidal in t with step h. The nodes crowd both ends doubly exponentially, so a peak at an
 // end (split the range there) and integrable end singularities converge to near machine

@@ -27,10 +27,6 @@ constexpr int kMaxK = 2;
 constexpr int kStored = 4;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::uint64_t derived_seed(std::uint64_t seed, std::uint64_t stream, std::uint64_t key) {
-  return sim::Rng(seed, stream, key).next_u64();
-}
-
 // The polar angle of mu, exactly 0 at mu = 1.
 double theta_of(double mu) { return std::acos(std::min(1.0, mu)); }
 
@@ -62,15 +58,15 @@ HeightfieldAlbedoOutcome run_heightfield_albedo_item(const HeightfieldAlbedoSuit
   for (int r = 0; r < suite.fields; ++r) {
     if (support::cancelled(cancel)) return out;
     auto t0 = Clock::now();
-    const sim::HeightfieldSurface s =
-        make_field_surface(spec, derived_seed(suite.seed, kFieldSeeds, item * 65536 + static_cast<std::uint64_t>(r)));
+    const sim::HeightfieldSurface s = make_field_surface(
+        spec, sim::derived_seed(suite.seed, kFieldSeeds, item * 65536 + static_cast<std::uint64_t>(r)));
     out.field_s += seconds_since(t0);
     t0 = Clock::now();
     for (std::size_t m = 0; m < nm; ++m) {
       const std::uint64_t key = (item * 65536 + static_cast<std::uint64_t>(r)) * 4096 + m;
       // One theta bin and two phi bins: counted per k only.
-      const sim::HeightfieldTally t =
-          trace_field(s, theta_of(suite.mus[m]), rays, derived_seed(suite.seed, kRaySeeds, key), 1, 2, kMaxK, cancel);
+      const sim::HeightfieldTally t = trace_field(s, theta_of(suite.mus[m]), rays,
+                                                  sim::derived_seed(suite.seed, kRaySeeds, key), 1, 2, kMaxK, cancel);
       if (support::cancelled(cancel)) return out;
       out.rays += t.rays, out.lost += t.lost, out.bounce_limit += t.bounce_limit;
       out.edge_hits += t.edge_hits, out.vertex_hits += t.vertex_hits;
@@ -85,7 +81,7 @@ HeightfieldAlbedoOutcome run_heightfield_albedo_item(const HeightfieldAlbedoSuit
   for (std::size_t m = 0; m < nm; ++m) {
     const sim::HeightfieldTally w =
         walk_lobe(ndf, alpha, theta_of(suite.mus[m]), suite.walk_paths,
-                  derived_seed(suite.seed, kWalkSeeds, item * 4096 + m), 1, 2, kMaxK, cancel);
+                  sim::derived_seed(suite.seed, kWalkSeeds, item * 4096 + m), 1, 2, kMaxK, cancel);
     if (support::cancelled(cancel)) return out;
     out.walk_paths = w.rays;
     out.walk_counts.push_back(w.escaped);

@@ -32,10 +32,6 @@ constexpr int kMaxK = kHeightfieldRows - 1;
 // The smallest field: the correlation length's range [2, n / 8] is not empty.
 constexpr int kMinFieldSize = 16;
 
-std::uint64_t derived_seed(std::uint64_t seed, std::uint64_t stream, std::uint64_t key) {
-  return sim::Rng(seed, stream, key).next_u64();
-}
-
 struct CaseIndex {
   std::size_t ndf, aspect, alpha, theta;
 };
@@ -274,11 +270,11 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
     // The first aspect's keys are the keys before "aspect" was a list.
     const std::uint64_t key = ((static_cast<std::uint64_t>(ix.aspect) * 16 + ix.ndf) * 4096 + ix.alpha) * 65536 +
                               static_cast<std::uint64_t>(r);
-    const sim::HeightfieldSurface s = make_field_surface(spec, derived_seed(suite.seed, kFieldSeeds, key));
+    const sim::HeightfieldSurface s = make_field_surface(spec, sim::derived_seed(suite.seed, kFieldSeeds, key));
     out.field_s += seconds_since(t0);
     t0 = Clock::now();
     const sim::HeightfieldTally t = trace_field(
-        s, theta_i, rays, derived_seed(suite.seed, kRaySeeds, case_index * 65536 + static_cast<std::uint64_t>(r)),
+        s, theta_i, rays, sim::derived_seed(suite.seed, kRaySeeds, case_index * 65536 + static_cast<std::uint64_t>(r)),
         suite.theta_bins, suite.phi_bins, kMaxK, cancel);
     out.trace_s += seconds_since(t0);
     if (suite.masking) {
@@ -311,7 +307,7 @@ HeightfieldOutcome run_heightfield_case(const HeightfieldSuite& suite, std::size
   const bool anisotropic = out.c.aspect != 1.0;
   const auto walk_of = [&](analytic::WalkHeights h) {
     const std::uint64_t walk_seed =
-        derived_seed(suite.seed, kWalkSeeds, case_index + (static_cast<std::uint64_t>(h) << 40));
+        sim::derived_seed(suite.seed, kWalkSeeds, case_index + (static_cast<std::uint64_t>(h) << 40));
     if (!anisotropic && h == analytic::WalkHeights::log_c1)
       return walk_lobe(out.c.ndf, out.c.alpha, theta_i, suite.walk_paths, walk_seed, suite.theta_bins, suite.phi_bins,
                        kMaxK, cancel);

@@ -31,10 +31,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::uint64_t kProfileSeeds = 0x70726f66ULL, kBeamSeeds = 0x6265616dULL, kWalkSeeds = 0x77616c6bULL;
 constexpr std::int64_t kWalkChunk = 1 << 16;
 
-std::uint64_t derived_seed(std::uint64_t seed, std::uint64_t stream, std::uint64_t key) {
-  return sim::Rng(seed, stream, key).next_u64();
-}
-
 // Per-bin values of the realizations ([r][b]) to mean and standard error.
 BinStat bin_stat(const std::vector<std::vector<double>>& v) {
   BinStat s;
@@ -198,20 +194,20 @@ SurfaceOutcome run_surface(const ProfilesSuite& suite, std::size_t case_index, c
     if (support::cancelled(cancel)) return out;
     // One profile per (ndf, alpha, surface, realization): the same for every theta.
     const std::uint64_t key = ((ix.ndf * 64 + ix.alpha) * 65536 + static_cast<std::uint64_t>(r)) * 2 + surface_key;
-    const sim::Polyline p = make_profile(suite, c, surface, derived_seed(suite.seed, kProfileSeeds, key));
+    const sim::Polyline p = make_profile(suite, c, surface, sim::derived_seed(suite.seed, kProfileSeeds, key));
     const std::uint64_t beam_key = ((case_index * 65536 + static_cast<std::uint64_t>(r)) * 2 + surface_key) * 4;
     sim::VisibilityOptions vo;
     vo.theta_view = c.theta, vo.theta_light = -c.theta, vo.rays = rays;
-    vo.seed = derived_seed(suite.seed, kBeamSeeds, beam_key);
+    vo.seed = sim::derived_seed(suite.seed, kBeamSeeds, beam_key);
     sim::VisibilityOptions vi;
-    vi.theta_view = -c.theta, vi.rays = rays, vi.seed = derived_seed(suite.seed, kBeamSeeds, beam_key + 1);
+    vi.theta_view = -c.theta, vi.rays = rays, vi.seed = sim::derived_seed(suite.seed, kBeamSeeds, beam_key + 1);
     const sim::VisibilityTally from_o = sim::trace_visibility(p, vo, cancel);
     const sim::VisibilityTally from_i = sim::trace_visibility(p, vi, cancel);
     if (support::cancelled(cancel)) return out;  // the tallies are incomplete
     const MaskingMeasure m =
         measure_masking(p, MaskingCase{c.ndf, c.alpha, -c.theta, c.theta, suite.normal_bins}, from_o, from_i);
     sim::MicrosurfaceTraceOptions to;
-    to.theta_i = c.theta, to.rays = rays, to.seed = derived_seed(suite.seed, kBeamSeeds, beam_key + 2);
+    to.theta_i = c.theta, to.rays = rays, to.seed = sim::derived_seed(suite.seed, kBeamSeeds, beam_key + 2);
     to.theta_o_bins = bins, to.max_k = suite.max_k;
     const sim::MicrosurfaceTally t = sim::trace_profile(p, to, cancel);
     if (support::cancelled(cancel)) return out;
@@ -285,7 +281,7 @@ void run_walk(const ProfilesSuite& suite, std::size_t case_index, const Profiles
               support::CancelFlag cancel) {
   const int rows = suite.max_k + 2, bins = suite.lobe_bins;
   std::vector<std::int64_t> h(static_cast<std::size_t>(rows * bins), 0), by_k(static_cast<std::size_t>(rows), 0);
-  const std::uint64_t seed = derived_seed(suite.seed, kWalkSeeds, case_index);
+  const std::uint64_t seed = sim::derived_seed(suite.seed, kWalkSeeds, case_index);
   const double width = std::numbers::pi / bins;
   for (std::int64_t chunk = 0; chunk * kWalkChunk < suite.walk_paths; ++chunk) {
     if (support::cancelled(cancel)) return;

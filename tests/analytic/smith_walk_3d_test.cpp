@@ -47,16 +47,7 @@ constexpr double kPi = std::numbers::pi;
 double deg(double d) { return d * kPi / 180.0; }
 
 // A uniform stream for the walk (SplitMix64; (0, 1) open).
-struct Uniforms {
-  std::uint64_t state;
-  double operator()() {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return (static_cast<double>(z >> 11) + 0.5) * 0x1.0p-53;
-  }
-};
+using vgroove::test_stats::Uniforms;
 
 // Mean and standard error of a sample.
 struct Mean {

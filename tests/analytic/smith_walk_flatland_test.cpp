@@ -29,16 +29,7 @@ double deg(double d) { return d * std::numbers::pi / 180.0; }
 constexpr double kHalfPi = 0.5 * std::numbers::pi;
 
 // A uniform stream for the walk (SplitMix64; (0, 1) open).
-struct Uniforms {
-  std::uint64_t state;
-  double operator()() {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return (static_cast<double>(z >> 11) + 0.5) * 0x1.0p-53;
-  }
-};
+using vgroove::test_stats::Uniforms;
 
 // The support of D_v within (-pi/2, pi/2): where cos(theta_v - m) > 0, split at its ends and at
 // the NDF's peak m = 0.
