@@ -17,13 +17,17 @@
 #include "vgroove/validation/dielectric_grooves_case.h"
 #include "vgroove/validation/dielectric_grooves_suite.h"
 
+#include "vgroove/support/user_error.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <numbers>
+#include <string>
 #include <vector>
 
 namespace vgroove::analytic {
@@ -237,6 +241,59 @@ TEST(KaleidoscopeDielectricBelowTracer, BrokenModelsFail) {
               rim.l1, rim.ratio, snell.l1, snell.ratio);
   EXPECT_GT(rim.ratio, 1e6);
   EXPECT_GT(snell.ratio, 1e6);
+}
+
+nlohmann::json shipped_suite() {
+  std::ifstream in(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/dielectric_grooves.json");
+  return nlohmann::json::parse(in);
+}
+
+TEST(DielectricGroovesSuiteBelow, FromBelowCasesRunAfterTheOthersAndPassToRounding) {
+  nlohmann::json j = shipped_suite();
+  const validation::DielectricGroovesSuite full = validation::parse_dielectric_grooves_suite(j, "dielectric_grooves.json");
+  EXPECT_EQ(full.cases(), full.above_cases() + 6u * full.below_theta_v.size() * full.below_theta_i.size());
+  EXPECT_FALSE(full.case_at(full.above_cases() - 1).below);
+  EXPECT_TRUE(full.case_at(full.above_cases()).below);
+  j["theta_v_deg"] = {90};
+  j["theta_i_deg"] = {10};
+  j["surface_rays"] = 0;
+  j["from_below"] = {{"theta_v_deg", {20, 75, 130}}, {"theta_i_deg", {-50, 8, 62}}};
+  const validation::DielectricGroovesSuite s = validation::parse_dielectric_grooves_suite(j, "small.json");
+  ASSERT_EQ(s.cases(), 6u + 54u);
+  double largest = 0.0;
+  for (std::size_t c = s.above_cases(); c < s.cases(); ++c) {
+    const validation::DielectricGroovesOutcome o = validation::run_dielectric_grooves_case(s, s.case_at(c));
+    EXPECT_TRUE(o.pass) << "case " << c << " l1 " << o.l1 << " dir " << o.direction_error;
+    EXPECT_NEAR(o.reflected + o.transmitted, 1.0, 1e-14);
+    largest = std::max(largest, o.l1);
+  }
+  ASSERT_GT(largest, 0.0);  // rounding shows: a threshold of 0 must fail somewhere
+  j["thresholds"]["max_l1"] = 0.0;
+  const validation::DielectricGroovesSuite strict = validation::parse_dielectric_grooves_suite(j, "small.json");
+  int failed = 0;
+  for (std::size_t c = strict.above_cases(); c < strict.cases(); ++c)
+    failed += !validation::run_dielectric_grooves_case(strict, strict.case_at(c)).pass;
+  EXPECT_GT(failed, 0);
+}
+
+TEST(DielectricGroovesSuiteBelow, BadInputNamesTheField) {
+  const auto message = [](const nlohmann::json& below) {
+    nlohmann::json j = shipped_suite();
+    j["from_below"] = below;
+    try {
+      (void)validation::parse_dielectric_grooves_suite(j, "bad.json");
+    } catch (const support::UserError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(message({{"theta_v_deg", {0.5}}, {"theta_i_deg", {0}}}),
+            "bad.json: /from_below/theta_v_deg/0 = 0.5 is out of range [6, 180]");
+  EXPECT_EQ(message({{"theta_v_deg", {60}}, {"theta_i_deg", {90}}}),
+            "bad.json: /from_below/theta_i_deg/0 = 90 is out of range [-89.999, 89.999]");
+  EXPECT_NE(message({{"theta_v_deg", {60}}, {"theta_i_deg", {0}}, {"eta", {1.5}}}).find("/from_below/eta"),
+            std::string::npos);
+  EXPECT_NE(message({{"theta_v_deg", {60}}}).find("/from_below/theta_i_deg"), std::string::npos);
 }
 
 }  // namespace
