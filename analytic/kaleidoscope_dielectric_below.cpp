@@ -62,8 +62,8 @@ BelowBeamShares below_beam_shares(double theta_i, double theta_v, double lo, dou
 }
 
 DielectricBelowPrediction kaleidoscope_dielectric_below(double theta_i, double theta_v, double eta, FacetSide first) {
-  return kaleidoscope_dielectric_below_with(theta_i, theta_v, eta, first,
-                                            [](double c, double eta_rel) { return optics::fresnel_dielectric(c, eta_rel); });
+  return kaleidoscope_dielectric_below_with(
+      theta_i, theta_v, eta, first, [](double c, double eta_rel) { return optics::fresnel_dielectric(c, eta_rel); });
 }
 
 }  // namespace vgroove::analytic

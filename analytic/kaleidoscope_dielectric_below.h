@@ -46,14 +46,14 @@ struct BelowChainHit {
 
 struct DielectricBelowPrediction {
   bool lit = false;
-  double f_a = 0.0;      // the facet's width across the beam (unit facet) = cos at hit 0
-  double F0 = 1.0;       // F(f_a, 1/eta) at hit 0
-  bool tir0 = false;     // total internal reflection at hit 0 (eta > 1)
-  double alpha_t = 0.0;  // the refracted ray's signed angle from the facet's normal (KD-5)
-  int n_max = 0;         // the most hits of the chain in medium 1 (near the apex)
-  std::vector<BelowChainHit> hits;  // j = 1..n_max
-  std::vector<BelowLobe> lobes;     // every path class of positive share
-  double reflected_total() const;   // left into medium 2
+  double f_a = 0.0;                  // the facet's width across the beam (unit facet) = cos at hit 0
+  double F0 = 1.0;                   // F(f_a, 1/eta) at hit 0
+  bool tir0 = false;                 // total internal reflection at hit 0 (eta > 1)
+  double alpha_t = 0.0;              // the refracted ray's signed angle from the facet's normal (KD-5)
+  int n_max = 0;                     // the most hits of the chain in medium 1 (near the apex)
+  std::vector<BelowChainHit> hits;   // j = 1..n_max
+  std::vector<BelowLobe> lobes;      // every path class of positive share
+  double reflected_total() const;    // left into medium 2
   double transmitted_total() const;  // left into medium 1
 };
 
@@ -156,7 +156,7 @@ DielectricBelowPrediction kaleidoscope_dielectric_below_with(double theta_i, dou
       c.tir = detail::total_internal_reflection(c.cos_theta, eta);
       c.F = c.tir ? 1.0 : F(c.cos_theta, eta);
       if (!c.tir) {
-        const double sj = (m % 2 == 1) ? 1.0 : -1.0;  // odd hits on the right facet
+        const double sj = (m % 2 == 1) ? 1.0 : -1.0;                                     // odd hits on the right facet
         c.theta_t = sj * (s + std::asin(std::clamp(std::sin(gamma) / eta, -1.0, 1.0)));  // KD-7
         c.direct = std::cos(c.theta_t) > 0.0;
       }
@@ -184,8 +184,8 @@ DielectricBelowPrediction kaleidoscope_dielectric_below_with(double theta_i, dou
       const double a_next = n == p.n_max ? 0.0 : p.hits[static_cast<std::size_t>(n)].reaching;
       const double g = w * (a_n - a_next) * kept;
       if (g > 0.0)
-        L.push_back({1u, n + 1, true, g,
-                     std::remainder((n % 2 == 0 ? 1.0 : -1.0) * (p.alpha_t - s + n * theta_v), 2.0 * pi)});
+        L.push_back(
+            {1u, n + 1, true, g, std::remainder((n % 2 == 0 ? 1.0 : -1.0) * (p.alpha_t - s + n * theta_v), 2.0 * pi)});
     }
   }
   if (first == FacetSide::right) {

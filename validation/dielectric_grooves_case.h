@@ -9,8 +9,10 @@
 // entered (docs/derivations/kaleidoscope_dielectric.md, KD-4), and its weights depend on directions
 // only. So the zones of the conductor search, with the dielectric tracer deciding (first part, n),
 // carry the exact traced energy of every path: the width of each zone times the weights of one ray
-// traced inside it.
-// Tests: tests/analytic/kaleidoscope_dielectric_test.cpp (KaleidoscopeDielectricTracer.*).
+// traced inside it. Light from below (analytic/kaleidoscope_dielectric_below.h): the same search, every
+// path signature's traced energy and exit angle against the model's lobes.
+// Tests: tests/analytic/kaleidoscope_dielectric_test.cpp (KaleidoscopeDielectricTracer.*),
+// tests/analytic/kaleidoscope_dielectric_below_test.cpp (KaleidoscopeDielectricBelowTracer.*).
 #pragma once
 
 #include "vgroove/analytic/kaleidoscope_dielectric.h"

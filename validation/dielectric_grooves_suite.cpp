@@ -218,10 +218,9 @@ void print_dielectric_grooves_table(std::ostream& os, const DielectricGroovesSui
                         "R", "T", "L1", "dir err", "unknown", "surface", "rays", "wall ms", "pass");
   for (const DielectricGroovesOutcome& o : run.cases)
     os << support::format("  %5s %6.4f %7.2f %7.2f %8.5f %8.5f %9.1e %9.1e %9.6f %9.6f %8lld %9.2f %5s\n",
-                          o.c.below ? "below" : "above", o.c.eta,
-                          output_deg(o.c.theta_v), output_deg(o.c.theta_i), o.reflected, o.transmitted, o.l1,
-                          o.direction_error, o.unknown, o.surface_unknown, static_cast<long long>(o.rays),
-                          1e3 * o.wall_s, o.pass ? "yes" : "NO");
+                          o.c.below ? "below" : "above", o.c.eta, output_deg(o.c.theta_v), output_deg(o.c.theta_i),
+                          o.reflected, o.transmitted, o.l1, o.direction_error, o.unknown, o.surface_unknown,
+                          static_cast<long long>(o.rays), 1e3 * o.wall_s, o.pass ? "yes" : "NO");
   std::size_t passed = 0;
   for (const auto& o : run.cases) passed += o.pass;
   print_table_close(os, passed, run.cases.size(), run.wall_s);

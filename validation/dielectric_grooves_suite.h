@@ -4,12 +4,14 @@
 // and the light the single-groove model cannot know (validation/dielectric_grooves_case.h), each
 // case's error next to its rays and wall time. A case passes when the model's paths match to
 // max_l1 (shares) and max_direction_error_rad plus the model's own rounding bound (its change under a
-// 64-ulp change of theta_i), the traced unknown share equals the model's KD-4 share as closely, every ray conserves
-// energy to max_l1, no zone search cell is uncertified and nothing is NaN; cases lit from below hold
-// analytic/kaleidoscope_dielectric_below.h against the tracer per path signature. The periodic surface's unknown
-// share is measured (from above) and reported, never judged. Tests: tests/analytic/kaleidoscope_dielectric_test.cpp
-// (DielectricGroovesSuite.*), tests/cluster/shards_test.sh (shards merge to the one-process report). Derivation:
-// docs/derivations/kaleidoscope_dielectric.md.
+// 64-ulp change of theta_i), the traced unknown share equals the model's KD-4 share as closely, every
+// ray conserves energy to max_l1, no zone search cell is uncertified and nothing is NaN. Cases lit from
+// below ("from_below") hold analytic/kaleidoscope_dielectric_below.h per path signature. The periodic
+// surface's unknown share (from above) is measured and reported, never judged.
+// Tests: tests/analytic/kaleidoscope_dielectric_test.cpp (DielectricGroovesSuite.*),
+// tests/analytic/kaleidoscope_dielectric_below_test.cpp (DielectricGroovesSuiteBelow.*),
+// tests/cluster/shards_test.sh (shards merge to the one-process report).
+// Derivation: docs/derivations/kaleidoscope_dielectric.md.
 #pragma once
 
 #include "vgroove/validation/dielectric_grooves_case.h"
@@ -33,8 +35,8 @@ struct DielectricGroovesSuite {
   // Cases lit from below ("from_below": its own theta_v_deg and theta_i_deg, the same eta), after
   // the cases lit from above.
   std::vector<double> below_theta_v, below_theta_i;
-  std::vector<double> eta;               // with the inverses when the file asks for them
-  std::vector<double> eta_given;         // as the file gave it
+  std::vector<double> eta;        // with the inverses when the file asks for them
+  std::vector<double> eta_given;  // as the file gave it
   bool inverses = false;
   DielectricCaseOptions options;
   double max_l1 = 1e-12, max_direction_error = 1e-12;

@@ -92,7 +92,8 @@ TEST(KaleidoscopeDielectricBelow, AFlatGrooveIsFresnelAndSnell) {
   // asin(eta sin theta_i), as a flat rim.
   for (double eta : kEtas)
     for (double ti : {-75.0, -20.0, 0.0, 40.0, 70.0}) {
-      const DielectricBelowPrediction p = kaleidoscope_dielectric_below(deg(ti), std::numbers::pi, eta, FacetSide::left);
+      const DielectricBelowPrediction p =
+          kaleidoscope_dielectric_below(deg(ti), std::numbers::pi, eta, FacetSide::left);
       ASSERT_TRUE(p.lit);
       const double c = std::cos(deg(ti));
       const double s = std::sin(deg(ti));
@@ -214,9 +215,10 @@ TEST(KaleidoscopeDielectricBelowTracer, MatchesSplitTracingToRounding) {
   const auto t0 = std::chrono::steady_clock::now();
   const GridResult r = against_tracer(kGridEtas, kGridApertures, kGridAngles, 16, the_model);
   const double ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("from below: %ld lit facets (%ld at a boundary), %ld lobes, %ld rays: largest L1 %.3g, direction "
-              "%.3g rad; largest ratio to 1e-12 + the rounding bound %.3g (%.0f ms)\n",
-              r.facets, r.boundary, r.lobes, r.rays, r.l1, r.dir, r.ratio, ms);
+  std::printf(
+      "from below: %ld lit facets (%ld at a boundary), %ld lobes, %ld rays: largest L1 %.3g, direction "
+      "%.3g rad; largest ratio to 1e-12 + the rounding bound %.3g (%.0f ms)\n",
+      r.facets, r.boundary, r.lobes, r.rays, r.l1, r.dir, r.ratio, ms);
   EXPECT_GT(r.facets, 500);
   EXPECT_LT(r.ratio, 1.0);
 }
@@ -224,21 +226,21 @@ TEST(KaleidoscopeDielectricBelowTracer, MatchesSplitTracingToRounding) {
 TEST(KaleidoscopeDielectricBelowTracer, BrokenModelsFail) {
   // 1. The chain started as a parallel beam at the rim line (the from-above construction, its
   //    shadowed part dropped): wrong wherever that beam is shadowed.
-  const GridResult rim = against_tracer(kGridEtas, kGridApertures, kGridAngles, 16,
-                                        [](const validation::DielectricGrooveCase& c, Side side) {
-                                          return kaleidoscope_dielectric_below_with(
-                                              c.theta_i, c.theta_v, c.eta, side,
-                                              [](double x, double e) { return optics::fresnel_dielectric(x, e); },
-                                              BelowChainSource::rim_line_beam);
-                                        });
+  const GridResult rim = against_tracer(
+      kGridEtas, kGridApertures, kGridAngles, 16, [](const validation::DielectricGrooveCase& c, Side side) {
+        return kaleidoscope_dielectric_below_with(
+            c.theta_i, c.theta_v, c.eta, side, [](double x, double e) { return optics::fresnel_dielectric(x, e); },
+            BelowChainSource::rim_line_beam);
+      });
   // 2. Hit 0 refracted with Snell's eta instead of 1/eta (sin alpha_t = sin alpha_i / eta).
-  const GridResult snell = against_tracer(
-      {1.5}, {60.0, 90.0}, {0.0, 30.0}, 16, [](const validation::DielectricGrooveCase& c, Side side) {
+  const GridResult snell =
+      against_tracer({1.5}, {60.0, 90.0}, {0.0, 30.0}, 16, [](const validation::DielectricGrooveCase& c, Side side) {
         return kaleidoscope_dielectric_below(c.theta_i, c.theta_v, 1.0 / c.eta, side);
       });
-  std::printf("broken (largest L1 off boundaries, ratio to the bound): rim-line beam %.3g (%.3g); eta for 1/eta %.3g "
-              "(%.3g)\n",
-              rim.l1, rim.ratio, snell.l1, snell.ratio);
+  std::printf(
+      "broken (largest L1 off boundaries, ratio to the bound): rim-line beam %.3g (%.3g); eta for 1/eta %.3g "
+      "(%.3g)\n",
+      rim.l1, rim.ratio, snell.l1, snell.ratio);
   EXPECT_GT(rim.ratio, 1e6);
   EXPECT_GT(snell.ratio, 1e6);
 }
@@ -250,7 +252,8 @@ nlohmann::json shipped_suite() {
 
 TEST(DielectricGroovesSuiteBelow, FromBelowCasesRunAfterTheOthersAndPassToRounding) {
   nlohmann::json j = shipped_suite();
-  const validation::DielectricGroovesSuite full = validation::parse_dielectric_grooves_suite(j, "dielectric_grooves.json");
+  const validation::DielectricGroovesSuite full =
+      validation::parse_dielectric_grooves_suite(j, "dielectric_grooves.json");
   EXPECT_EQ(full.cases(), full.above_cases() + 6u * full.below_theta_v.size() * full.below_theta_i.size());
   EXPECT_FALSE(full.case_at(full.above_cases() - 1).below);
   EXPECT_TRUE(full.case_at(full.above_cases()).below);
