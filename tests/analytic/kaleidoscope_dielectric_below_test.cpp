@@ -245,6 +245,24 @@ TEST(KaleidoscopeDielectricBelowTracer, BrokenModelsFail) {
   EXPECT_GT(snell.ratio, 1e6);
 }
 
+TEST(KaleidoscopeDielectricBelowLong, DenseGridMatchesSplitTracingToRounding) {
+  // The same check over a dense grid: eight etas (1.05 and 1/1.05 near the critical angle's corner
+  // besides the six), theta_v 6-180 deg in 5.1 deg steps, theta_i -89..89 deg in 2.3 deg steps.
+  std::vector<double> tvs, tis;
+  for (double tv = 6.0; tv <= 180.0; tv += 5.1) tvs.push_back(tv);
+  for (double ti = -89.0; ti <= 89.0; ti += 2.3) tis.push_back(ti);
+  std::vector<double> etas = kGridEtas;
+  etas.push_back(1.05);
+  etas.push_back(1.0 / 1.05);
+  const GridResult r = against_tracer(etas, tvs, tis, 16, the_model);
+  std::printf(
+      "dense grid from below: %ld lit facets (%ld at a boundary), %ld lobes, %ld rays: largest L1 %.3g, "
+      "direction %.3g rad; largest ratio to 1e-12 + the rounding bound %.3g\n",
+      r.facets, r.boundary, r.lobes, r.rays, r.l1, r.dir, r.ratio);
+  EXPECT_GT(r.facets, 30000);
+  EXPECT_LT(r.ratio, 1.0);
+}
+
 nlohmann::json shipped_suite() {
   std::ifstream in(std::string(VGROOVE_SOURCE_DIR) + "/data/suites/dielectric_grooves.json");
   return nlohmann::json::parse(in);
