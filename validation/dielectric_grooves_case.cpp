@@ -67,6 +67,42 @@ sim::TraceResult outcome_of(const sim::DielectricResult& r) {
 
 double wrapped_difference(double a, double b) { return std::abs(std::remainder(a - b, 2.0 * std::numbers::pi)); }
 
+// Light from below: the outcome that fixes a ray's split tree, as outcome_of: the part met first and
+// the chain's hit count n in medium 1 (hit 0 is the facet met first; a path refracted there and
+// leaving after k interactions made k - 1 hits, one refracted again made that hit's index).
+sim::TraceResult outcome_below(const sim::DielectricResult& r) {
+  sim::TraceResult t;
+  if (r.vertex > 0.0 || r.exits.empty()) {
+    t.how = sim::Termination::vertex_hit;
+    return t;
+  }
+  const sim::Part first = r.exits.front().first;
+  if (first == sim::Part::left_flat || first == sim::Part::right_flat) {
+    t.how = sim::Termination::blocked;
+    return t;
+  }
+  int n = 0;
+  for (const sim::DielectricExit& e : r.exits) {
+    if ((e.path & 1u) == 0) continue;
+    const std::uint64_t rest = e.path & ~std::uint64_t{1};
+    n = std::max(n, rest == 0 ? e.k - 1 : std::countr_zero(rest));
+  }
+  t.how = sim::Termination::escaped;
+  t.first = static_cast<Side>(first);
+  t.bounces = n;
+  return t;
+}
+
+std::map<BelowSignature, analytic::BelowLobe> lobes_by_signature(const analytic::DielectricBelowPrediction& m) {
+  std::map<BelowSignature, analytic::BelowLobe> out;
+  for (const analytic::BelowLobe& l : m.lobes) {
+    analytic::BelowLobe& o = out[{l.path, l.k, l.up}];
+    o.theta = l.theta;
+    o.share += l.share;
+  }
+  return out;
+}
+
 }  // namespace
 
 void check_dielectric_groove_case(const DielectricGrooveCase& c) {
@@ -240,6 +276,120 @@ double rounding_bound(const DielectricGrooveCase& c, Side side, double& dir) {
   return bound;
 }
 
+TracedBelowEnergy trace_facet_energy_below(const DielectricGrooveCase& c, Side side, long grid, int max_interactions) {
+  TracedBelowEnergy out;
+  const sim::Groove g = sim::make_symmetric_groove(c.theta_v);
+  // The lines of the rays aimed at the facet are those of light from above at theta_i (sim/beam.h).
+  const sim::Interval aim = sim::aimed_at(g, c.theta_i, side);
+  if (!(aim.width() > 0.0)) return out;
+  out.lit = true;
+  const sim::DielectricGrooveTracer tracer(g, split_options(c.eta, max_interactions));
+  const sim::Vec2 dir = sim::direction_at(c.theta_i);  // light from below travels up along it
+  sim::Rng unused(0, 0, 0);
+  sim::DielectricResult r;
+  auto trace = [&](double x) -> const sim::DielectricResult& {
+    tracer.trace(sim::beam_ray(g, dir, x), sim::Medium::below, unused, r);
+    ++out.traced;
+    out.interactions += r.interactions;
+    out.conservation = std::max(out.conservation, std::abs(1.0 - r.total()));
+    return r;
+  };
+  const sim::ZoneSearch zs = sim::find_zones(
+      aim, grid,
+      [&](const double* x, int n, sim::TraceResult* o) {
+        for (int q = 0; q < n; ++q) o[q] = outcome_below(trace(x[q]));
+      },
+      [&](double x) { return outcome_below(trace(x)); }, sim::lemma_covers, [](double, const sim::TraceResult&) {});
+  out.uncertified_cells = zs.uncertified_cells;
+  out.missed_bound = zs.missed_bound() / aim.width();
+  const sim::TraceResult* last = nullptr;
+  for (const sim::Zone& z : zs.zones) {
+    const double share = z.width() / aim.width();
+    if (z.ray.how == sim::Termination::vertex_hit) {
+      out.lost += share;
+      continue;
+    }
+    if (last == nullptr || !sim::same_outcome(*last, z.ray)) ++out.zones;
+    last = &z.ray;
+    if (z.ray.how == sim::Termination::blocked) {
+      out.flat += share;
+      continue;
+    }
+    if (z.ray.first != side) {  // the other facet first: a sliver at the apex line, by rounding
+      out.lost += share;
+      continue;
+    }
+    const sim::DielectricResult& t = trace(z.lo + 0.5 * (z.hi - z.lo));
+    out.lost += share * (t.cut + t.bounce_limit + t.vertex);
+    for (const sim::DielectricExit& e : t.exits) {
+      const double w = share * e.weight;
+      if (!std::isfinite(w) || !e.dir.allFinite()) out.non_finite = true;
+      const BelowSignature key{e.path, e.k, e.side == sim::Medium::above};
+      out.energy[key] += w;
+      out.theta[key] = sim::exit_angle(e);
+    }
+  }
+  return out;
+}
+
+DielectricFacetOutcome compare_facet_below(const analytic::DielectricBelowPrediction& m, const TracedBelowEnergy& t) {
+  DielectricFacetOutcome o;
+  if (!m.lit || m.f_a < kMinProjectedWidth) return o;
+  o.compared = true;
+  if (!t.lit) {
+    o.l1 = 1.0;
+    return o;
+  }
+  o.k = m.n_max, o.f_a = m.f_a;
+  o.zones = t.zones, o.traced = t.traced, o.interactions = t.interactions;
+  o.uncertified_cells = t.uncertified_cells, o.missed_bound = t.missed_bound, o.conservation = t.conservation;
+  o.reflected = m.reflected_total(), o.transmitted = m.transmitted_total();
+  const std::map<BelowSignature, analytic::BelowLobe> model = lobes_by_signature(m);
+  double l1 = t.flat + t.lost;
+  for (const auto& [key, e] : t.energy) {
+    const auto it = model.find(key);
+    l1 += std::abs(e - (it == model.end() ? 0.0 : it->second.share));
+    if (it != model.end() && e > 0.0)
+      o.direction_error = std::max(o.direction_error, wrapped_difference(t.theta.at(key), it->second.theta));
+  }
+  for (const auto& [key, l] : model)
+    if (t.energy.count(key) == 0) l1 += std::abs(l.share);
+  o.l1 = l1;
+  return o;
+}
+
+double prediction_distance_below(const analytic::DielectricBelowPrediction& a,
+                                 const analytic::DielectricBelowPrediction& b, double& dir) {
+  dir = 0.0;
+  if (a.lit != b.lit) return 1.0;
+  if (!a.lit) return 0.0;
+  const std::map<BelowSignature, analytic::BelowLobe> la = lobes_by_signature(a), lb = lobes_by_signature(b);
+  double d = 0.0;
+  for (const auto& [key, l] : la) {
+    const auto it = lb.find(key);
+    d += std::abs(l.share - (it == lb.end() ? 0.0 : it->second.share));
+    if (it != lb.end()) dir = std::max(dir, wrapped_difference(l.theta, it->second.theta));
+  }
+  for (const auto& [key, l] : lb)
+    if (la.count(key) == 0) d += std::abs(l.share);
+  return d;
+}
+
+double rounding_bound_below(const DielectricGrooveCase& c, Side side, double& dir) {
+  const analytic::DielectricBelowPrediction m =
+      analytic::kaleidoscope_dielectric_below(c.theta_i, c.theta_v, c.eta, side);
+  double bound = 0.0;
+  dir = 0.0;
+  for (double sign : {-1.0, 1.0}) {
+    double d = 0.0;
+    const analytic::DielectricBelowPrediction p =
+        analytic::kaleidoscope_dielectric_below(c.theta_i + sign * kRoundingAngle, c.theta_v, c.eta, side);
+    bound = std::max(bound, prediction_distance_below(m, p, d));
+    dir = std::max(dir, d);
+  }
+  return bound;
+}
+
 namespace {
 
 // The periodic surface of the case's groove: the unknown shares of stratified rays over the opening.
@@ -285,9 +435,31 @@ DielectricCaseOutcome run_dielectric_groove_case(const DielectricGrooveCase& c, 
   double entering = 0.0;
   for (Side s : {Side::left, Side::right}) {
     if (cancel && cancel->load(std::memory_order_relaxed)) return out;
+    DielectricFacetOutcome& f = out.facet[static_cast<int>(s)];
+    if (c.below) {
+      // Light from below: every path class by signature; nothing left unknown with flat rims.
+      const analytic::DielectricBelowPrediction m =
+          analytic::kaleidoscope_dielectric_below(c.theta_i, c.theta_v, c.eta, s);
+      const TracedBelowEnergy t = trace_facet_energy_below(c, s, opt.grid, opt.max_interactions);
+      f = compare_facet_below(m, t);
+      out.non_finite = out.non_finite || t.non_finite || !std::isfinite(f.l1) || !std::isfinite(f.direction_error);
+      out.rays += t.traced;
+      out.interactions += t.interactions;
+      out.l1 = std::max(out.l1, f.l1);
+      out.direction_error = std::max(out.direction_error, f.direction_error);
+      out.conservation = std::max(out.conservation, f.conservation);
+      out.missed_bound = std::max(out.missed_bound, f.missed_bound);
+      if (!f.compared) continue;
+      double dir_bound = 0.0;
+      out.l1_bound = std::max(out.l1_bound, rounding_bound_below(c, s, dir_bound));
+      out.direction_bound = std::max(out.direction_bound, dir_bound);
+      entering += f.f_a;  // the facet's width across the beam; all of it is lit
+      out.reflected += f.f_a * f.reflected;
+      out.transmitted += f.f_a * f.transmitted;
+      continue;
+    }
     const analytic::DielectricFacetPrediction m = analytic::kaleidoscope_dielectric(c.theta_i, c.theta_v, c.eta, s);
     const TracedFacetEnergy t = trace_facet_energy(c, s, opt.grid, opt.max_interactions);
-    DielectricFacetOutcome& f = out.facet[static_cast<int>(s)];
     f = compare_facet(m, t);
     out.non_finite = out.non_finite || t.non_finite || !std::isfinite(f.l1) || !std::isfinite(f.direction_error);
     out.rays += t.traced;
@@ -311,7 +483,10 @@ DielectricCaseOutcome run_dielectric_groove_case(const DielectricGrooveCase& c, 
   if (entering > 0.0)
     for (double* v : {&out.unknown, &out.unknown_model, &out.unknown_recross, &out.reflected, &out.transmitted})
       *v /= entering;
-  if (opt.surface_rays > 0 && !(cancel && cancel->load(std::memory_order_relaxed))) measure_surface(c, opt, out);
+  // The periodic surface is measured for light from above only (from below it is the model at 1/eta,
+  // KaleidoscopeDielectricFromBelow.*).
+  if (!c.below && opt.surface_rays > 0 && !(cancel && cancel->load(std::memory_order_relaxed)))
+    measure_surface(c, opt, out);
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

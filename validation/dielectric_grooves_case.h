@@ -9,23 +9,28 @@
 // entered (docs/derivations/kaleidoscope_dielectric.md, KD-4), and its weights depend on directions
 // only. So the zones of the conductor search, with the dielectric tracer deciding (first part, n),
 // carry the exact traced energy of every path: the width of each zone times the weights of one ray
-// traced inside it.
-// Tests: tests/analytic/kaleidoscope_dielectric_test.cpp (KaleidoscopeDielectricTracer.*).
+// traced inside it. Light from below (analytic/kaleidoscope_dielectric_below.h): the same search, every
+// path signature's traced energy and exit angle against the model's lobes.
+// Tests: tests/analytic/kaleidoscope_dielectric_test.cpp (KaleidoscopeDielectricTracer.*),
+// tests/analytic/kaleidoscope_dielectric_below_test.cpp (KaleidoscopeDielectricBelowTracer.*).
 #pragma once
 
 #include "vgroove/analytic/kaleidoscope_dielectric.h"
+#include "vgroove/analytic/kaleidoscope_dielectric_below.h"
 #include "vgroove/common/side.h"
 
 #include <atomic>
 #include <cstdint>
 #include <map>
+#include <tuple>
 
 namespace vgroove::validation {
 
 struct DielectricGrooveCase {
   double theta_v = 0.0;  // aperture, (0, pi]
   double theta_i = 0.0;  // towards the light, (-pi/2, pi/2)
-  double eta = 1.5;      // n2 / n1, light from above (medium 1)
+  double eta = 1.5;      // n2 / n1
+  bool below = false;    // light from below (medium 2): analytic/kaleidoscope_dielectric_below.h
 };
 
 struct DielectricCaseOptions {
@@ -121,6 +126,35 @@ double prediction_distance(const analytic::DielectricFacetPrediction& a, const a
 // The model's rounding bound for one facet: the largest prediction_distance (and direction change)
 // to the model at theta_i -+ kRoundingAngle.
 double rounding_bound(const DielectricGrooveCase& c, Side side, double& dir);
+
+// Light from below: a path class by its signature (path bits, interactions, left into medium 1).
+using BelowSignature = std::tuple<std::uint64_t, int, bool>;
+
+// Light from below: the exact traced energy of the rays aimed at one facet (the rim-line interval of
+// sim::aimed_at: the same lines) per path signature, as shares of them, by the same breakpoint
+// search (the outcome: the part met first and the chain's hit count in medium 1).
+struct TracedBelowEnergy {
+  bool lit = false;
+  double flat = 0.0;  // met a flat part first (the model: none, KD-5)
+  double lost = 0.0;  // vertex hits, cut, bounce limit
+  std::map<BelowSignature, double> energy;
+  std::map<BelowSignature, double> theta;  // exit angle (sim::exit_angle; one traced ray's)
+  long zones = 0, traced = 0, uncertified_cells = 0;
+  std::int64_t interactions = 0;
+  double missed_bound = 0.0, conservation = 0.0;
+  bool non_finite = false;
+};
+TracedBelowEnergy trace_facet_energy_below(const DielectricGrooveCase& c, Side side, long grid, int max_interactions);
+
+// Light from below, model against traced for one facet: l1 = traced flat + lost + sum over every
+// signature of |traced - model|; direction_error over the signatures both have.
+DielectricFacetOutcome compare_facet_below(const analytic::DielectricBelowPrediction& model,
+                                           const TracedBelowEnergy& traced);
+
+// Light from below: prediction_distance and rounding_bound over the signatures.
+double prediction_distance_below(const analytic::DielectricBelowPrediction& a,
+                                 const analytic::DielectricBelowPrediction& b, double& dir);
+double rounding_bound_below(const DielectricGrooveCase& c, Side side, double& dir);
 
 // Throws std::invalid_argument naming the field and its range.
 void check_dielectric_groove_case(const DielectricGrooveCase& c);

@@ -23,8 +23,13 @@ constexpr long kMaxSurfaceRays = 10'000'000;
 }  // namespace
 
 DielectricGrooveCase DielectricGroovesSuite::case_at(std::size_t c) const {
-  const std::size_t ni = theta_i.size(), nv = theta_v.size();
-  return {theta_v[(c / ni) % nv], theta_i[c % ni], eta[c / (ni * nv)]};
+  if (c < above_cases()) {
+    const std::size_t ni = theta_i.size(), nv = theta_v.size();
+    return {theta_v[(c / ni) % nv], theta_i[c % ni], eta[c / (ni * nv)]};
+  }
+  c -= above_cases();
+  const std::size_t ni = below_theta_i.size(), nv = below_theta_v.size();
+  return {below_theta_v[(c / ni) % nv], below_theta_i[c % ni], eta[c / (ni * nv)], true};
 }
 
 DielectricGroovesSuite parse_dielectric_grooves_suite(const nlohmann::json& j, const std::string& file) {
@@ -38,6 +43,14 @@ DielectricGroovesSuite parse_dielectric_grooves_suite(const nlohmann::json& j, c
     s.theta_v.push_back(d * kRadPerDeg);
   for (double d : read_numbers(root, "theta_i_deg", -kMaxThetaIDeg, true, kMaxThetaIDeg, true))
     s.theta_i.push_back(d * kRadPerDeg);
+  if (root.has("from_below")) {
+    support::JsonObject b = root.object("from_below");
+    for (double d : read_numbers(b, "theta_v_deg", kMinDielectricApertureDeg, true, 180.0, true))
+      s.below_theta_v.push_back(d * kRadPerDeg);
+    for (double d : read_numbers(b, "theta_i_deg", -kMaxThetaIDeg, true, kMaxThetaIDeg, true))
+      s.below_theta_i.push_back(d * kRadPerDeg);
+    b.finish();
+  }
   s.eta_given = read_numbers(root, "eta", kMinEta, true, kMaxEta, true);
   s.inverses = root.boolean_or("inverses", false);
   s.eta = s.eta_given;
@@ -86,8 +99,9 @@ Job<DielectricGroovesWork> dielectric_grooves_job(const DielectricGroovesSuite& 
       [s](support::JsonObject&, std::size_t c, DielectricGroovesOutcome& o) { o.c = s.case_at(c); },
       std::move(descriptor),
       [s](std::size_t c) {
-        // The surface's paths grow as 1 / theta_v; the search's as the grid.
-        return static_cast<std::int64_t>(s.options.grid + s.options.surface_rays / s.case_at(c).theta_v);
+        // The surface's paths grow as 1 / theta_v (from above only); the search's as the grid.
+        const DielectricGrooveCase k = s.case_at(c);
+        return static_cast<std::int64_t>(s.options.grid + (k.below ? 0.0 : s.options.surface_rays / k.theta_v));
       });
 }
 
@@ -104,6 +118,9 @@ nlohmann::json dielectric_grooves_report_json(const DielectricGroovesSuite& s, c
   nlohmann::json tv = nlohmann::json::array(), ti = nlohmann::json::array();
   for (double v : s.theta_v) tv.push_back(output_deg(v));
   for (double v : s.theta_i) ti.push_back(output_deg(v));
+  nlohmann::json btv = nlohmann::json::array(), bti = nlohmann::json::array();
+  for (double v : s.below_theta_v) btv.push_back(output_deg(v));
+  for (double v : s.below_theta_i) bti.push_back(output_deg(v));
   j["inputs"] = {{"theta_v_deg", tv},
                  {"theta_i_deg", ti},
                  {"eta", s.eta_given},
@@ -112,7 +129,13 @@ nlohmann::json dielectric_grooves_report_json(const DielectricGroovesSuite& s, c
                  {"surface_rays", s.options.surface_rays},
                  {"surface_min_weight", s.options.surface_min_weight},
                  {"thresholds", {{"max_l1", s.max_l1}, {"max_direction_error_rad", s.max_direction_error}}}};
+  if (!s.below_theta_v.empty() || !s.below_theta_i.empty())
+    j["inputs"]["from_below"] = {{"theta_v_deg", btv}, {"theta_i_deg", bti}};
   j["columns"] = {
+      {"from",
+       "the side the light comes from; from below l1 sums |traced - model| over every path signature (R/T per "
+       "interaction, the side it leaves into) with the traced flat-first and lost shares, and the model knows "
+       "every path (unknown 0, no surface)"},
       {"l1",
        "per lit facet, the largest over the two: |traced shadow - Eq. 6 shadow| + vertex/cut/limit + sum_n |traced "
        "pure "
@@ -144,7 +167,8 @@ nlohmann::json dielectric_grooves_report_json(const DielectricGroovesSuite& s, c
     worst_unknown = std::max(worst_unknown, o.unknown);
     worst_surface = std::max(worst_surface, o.surface_unknown);
     rays += o.rays;
-    cases.push_back({{"eta", o.c.eta},
+    cases.push_back({{"from", o.c.below ? "below" : "above"},
+                     {"eta", o.c.eta},
                      {"theta_v_deg", output_deg(o.c.theta_v)},
                      {"theta_i_deg", output_deg(o.c.theta_i)},
                      {"k", {o.k_left, o.k_right}},
@@ -190,13 +214,13 @@ void print_dielectric_grooves_table(std::ostream& os, const DielectricGroovesSui
                                     "(breakpoints, grid %ld); surface %ld rays",
                                     run.cases.size(), s.options.grid, s.options.surface_rays),
                     run.threads);
-  os << support::format("  %6s %7s %7s %8s %8s %9s %9s %9s %9s %8s %9s %5s\n", "eta", "theta_v", "theta_i", "R", "T",
-                        "L1", "dir err", "unknown", "surface", "rays", "wall ms", "pass");
+  os << support::format("  %5s %6s %7s %7s %8s %8s %9s %9s %9s %9s %8s %9s %5s\n", "from", "eta", "theta_v", "theta_i",
+                        "R", "T", "L1", "dir err", "unknown", "surface", "rays", "wall ms", "pass");
   for (const DielectricGroovesOutcome& o : run.cases)
-    os << support::format("  %6.4f %7.2f %7.2f %8.5f %8.5f %9.1e %9.1e %9.6f %9.6f %8lld %9.2f %5s\n", o.c.eta,
-                          output_deg(o.c.theta_v), output_deg(o.c.theta_i), o.reflected, o.transmitted, o.l1,
-                          o.direction_error, o.unknown, o.surface_unknown, static_cast<long long>(o.rays),
-                          1e3 * o.wall_s, o.pass ? "yes" : "NO");
+    os << support::format("  %5s %6.4f %7.2f %7.2f %8.5f %8.5f %9.1e %9.1e %9.6f %9.6f %8lld %9.2f %5s\n",
+                          o.c.below ? "below" : "above", o.c.eta, output_deg(o.c.theta_v), output_deg(o.c.theta_i),
+                          o.reflected, o.transmitted, o.l1, o.direction_error, o.unknown, o.surface_unknown,
+                          static_cast<long long>(o.rays), 1e3 * o.wall_s, o.pass ? "yes" : "NO");
   std::size_t passed = 0;
   for (const auto& o : run.cases) passed += o.pass;
   print_table_close(os, passed, run.cases.size(), run.wall_s);

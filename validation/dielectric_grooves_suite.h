@@ -4,11 +4,14 @@
 // and the light the single-groove model cannot know (validation/dielectric_grooves_case.h), each
 // case's error next to its rays and wall time. A case passes when the model's paths match to
 // max_l1 (shares) and max_direction_error_rad plus the model's own rounding bound (its change under a
-// 64-ulp change of theta_i), the traced unknown share equals the model's KD-4 share as closely, every ray conserves
-// energy to max_l1, no zone search cell is uncertified and nothing is NaN. The periodic surface's unknown share is
-// measured and reported, never judged. Tests: tests/analytic/kaleidoscope_dielectric_test.cpp
-// (DielectricGroovesSuite.*), tests/cluster/shards_test.sh (shards merge to the one-process report). Derivation:
-// docs/derivations/kaleidoscope_dielectric.md.
+// 64-ulp change of theta_i), the traced unknown share equals the model's KD-4 share as closely, every
+// ray conserves energy to max_l1, no zone search cell is uncertified and nothing is NaN. Cases lit from
+// below ("from_below") hold analytic/kaleidoscope_dielectric_below.h per path signature. The periodic
+// surface's unknown share (from above) is measured and reported, never judged.
+// Tests: tests/analytic/kaleidoscope_dielectric_test.cpp (DielectricGroovesSuite.*),
+// tests/analytic/kaleidoscope_dielectric_below_test.cpp (DielectricGroovesSuiteBelow.*),
+// tests/cluster/shards_test.sh (shards merge to the one-process report).
+// Derivation: docs/derivations/kaleidoscope_dielectric.md.
 #pragma once
 
 #include "vgroove/validation/dielectric_grooves_case.h"
@@ -29,13 +32,18 @@ inline constexpr long kMaxDielectricGrid = 1'000'000;
 struct DielectricGroovesSuite {
   std::string file, name, description;
   std::vector<double> theta_v, theta_i;  // radians
-  std::vector<double> eta;               // with the inverses when the file asks for them
-  std::vector<double> eta_given;         // as the file gave it
+  // Cases lit from below ("from_below": its own theta_v_deg and theta_i_deg, the same eta), after
+  // the cases lit from above.
+  std::vector<double> below_theta_v, below_theta_i;
+  std::vector<double> eta;        // with the inverses when the file asks for them
+  std::vector<double> eta_given;  // as the file gave it
   bool inverses = false;
   DielectricCaseOptions options;
   double max_l1 = 1e-12, max_direction_error = 1e-12;
-  std::size_t cases() const { return eta.size() * theta_v.size() * theta_i.size(); }
-  DielectricGrooveCase case_at(std::size_t c) const;  // order: eta, theta_v, theta_i (innermost)
+  std::size_t above_cases() const { return eta.size() * theta_v.size() * theta_i.size(); }
+  std::size_t cases() const { return above_cases() + eta.size() * below_theta_v.size() * below_theta_i.size(); }
+  // Order: from above, then from below; each by eta, theta_v, theta_i (innermost).
+  DielectricGrooveCase case_at(std::size_t c) const;
 };
 
 struct DielectricGroovesOutcome {
