@@ -25,7 +25,10 @@ enum class DielectricLightFrom : unsigned char { above, below };
 struct DielectricLobeOptions {
   DielectricLightFrom from = DielectricLightFrom::above;
   // Grooves with Eq. (4)'s k above k_cap (the narrowest) are not binned: their flux is `unresolved`.
-  int k_cap = 64;
+  int k_cap = 32;
+  // A piece of groove slope whose flux (estimated at its middle) is below this is integrated node
+  // by node without cuts (the NDF's tail): a bin errs by at most the pieces' flux, `light`.
+  double light_piece = 1e-8;
   int order = 8;     // Gauss-Legendre nodes per piece of groove slope
   int samples = 16;  // per band of k: where a lobe's bin or form changes is bisected between samples
   // 3D: the groove azimuth over [0, pi/2] (mirror symmetry) in phi_panels panels of phi_order nodes.
@@ -55,6 +58,8 @@ struct DielectricLobe {
   double shadow_or_unknown = 0.0;
   double upward = 0.0;      // of it: transmitted lobes travelling back towards the surface
   double unresolved = 0.0;  // of it: grooves with k > k_cap
+  double light = 0.0;       // flux of the pieces integrated node by node (light_piece)
+  // The largest change of a bin or albedo when every node count doubles, or `light` if larger.
   double error_estimate = -1.0;
 };
 
