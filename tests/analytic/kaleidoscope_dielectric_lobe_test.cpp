@@ -286,6 +286,58 @@ TEST(KaleidoscopeDielectricLobeLong, FlatlandMissesMeasured) {
         for (double ti : {0.0, 20.0, 40.0, 60.0, 80.0}) flatland_miss(Case{ndf, alpha, eta, ti}, 30, 400000);
 }
 
+// Light from below on the flatland surface (trace_from_below: uniform over the period, travelling
+// along (sin theta_i, cos theta_i)), binned as sim::exit_angle: reflected = back below.
+Traced trace_flatland_from_below(NdfKind ndf, double alpha, double eta, double theta_i, int bins, int n) {
+  sim::MicrosurfaceOptions mo;
+  mo.ndf = ndf, mo.alpha = alpha, mo.grooves = n, mo.seed = kSurfaceSeed;
+  const sim::Microsurface surf = sim::make_microsurface(mo);
+  sim::DielectricOptions o;
+  o.eta = eta;
+  o.branching = sim::Branching::random;
+  const sim::DielectricSurfaceTracer tracer(surf, o);
+  sim::Rng rng(kSurfaceSeed, 4, 0);
+  Traced out;
+  out.r.assign(bins, 0.0), out.t.assign(bins, 0.0), out.n = n;
+  sim::DielectricResult r;
+  for (int j = 0; j < n; ++j) {
+    const double x = (j + sim::uniform_open(rng));
+    tracer.trace_from_below(x, sim::Vec2(std::sin(theta_i), std::cos(theta_i)), rng, r);
+    if (r.exits.empty()) {
+      out.lost += 1.0 / n;
+      continue;
+    }
+    const sim::DielectricExit& e = r.exits.front();
+    (e.side == sim::Medium::below ? out.r : out.t)[flat_bin(sim::exit_angle(e), bins)] += 1.0 / n;
+  }
+  return out;
+}
+
+TEST(KaleidoscopeDielectricLobe, FromBelowIsTheModelAtTheInverseEtaMirrored) {
+  // "Light from the other side": on a periodic surface, light from below at eta is the model at
+  // 1 / eta with the picture mirrored in the macrosurface. On a random surface the "groove" seen
+  // from below is two neighbouring grooves' facets, of independent slopes: measured here, at
+  // small alpha where the two slopes differ little. Without the mirror (bins not flipped) it fails.
+  const int bins = 30, n = 100000;
+  for (const Case& c : {Case{NdfKind::beckmann, 0.1, 1.5, 20.0}}) {
+    const double ti = deg(c.theta_i_deg);
+    const Traced tr = trace_flatland_from_below(c.ndf, c.alpha, c.eta, ti, bins, n);
+    DielectricLobeOptions o;
+    o.from = DielectricLightFrom::below;
+    const DielectricLobe L = kaleidoscope_dielectric_lobe_flatland(c.ndf, c.alpha, c.eta, ti, bins, 4, o);
+    DielectricLobe B = L;  // broken: the model at 1 / eta without the mirror (x -> x, y -> -y)
+    std::reverse(B.reflected.begin(), B.reflected.end());
+    std::reverse(B.transmitted.begin(), B.transmitted.end());
+    const Miss m = compare(L, tr, L.error_estimate), mb = compare(B, tr, L.error_estimate);
+    std::printf("from below %s alpha %.1f eta %.2f theta_i %.0f, %d rays: worst z %.2f (%s bin %d), L1 %.4f, "
+                "model R %.5f T %.5f unknown %.1e, traced R %.5f T %.5f; not mirrored: worst z %.0f\n",
+                "beckmann", c.alpha, c.eta, c.theta_i_deg, n, m.worst_z, m.worst_reflected ? "R" : "T", m.worst_bin,
+                m.l1, L.albedo_r, L.albedo_t, L.shadow_or_unknown, sum(tr.r), sum(tr.t), mb.worst_z);
+    EXPECT_LT(m.worst_z, kZ);
+    EXPECT_GT(mb.worst_z, 10.0 * kZ);
+  }
+}
+
 // ---- 3D -------------------------------------------------------------------------------------------
 
 TEST(KaleidoscopeDielectricLobe, ConductorLimitIsTheLobe3d) {
