@@ -162,7 +162,7 @@ void integrate_facet(const Section& s, FacetSide side, const std::vector<double>
   const DielectricLobeOptions& o = *s.opt;
   const double tf = side == FacetSide::left ? s.tau : -s.tau;
   const double lit_lo = std::max(0.0, 2.0 * tf);  // f_a = sin(theta_v/2 - tf) > 0
-  const double cpk = kPi + 2.0 * tf;               // Eq. (4): k changes at theta_v = cpk / m
+  const double cpk = kPi + 2.0 * tf;              // Eq. (4): k changes at theta_v = cpk / m
   std::vector<int> sa, sb;
   std::vector<std::pair<double, bool>> cuts;
   auto pieces = [&](double m_lo, double m_hi, auto&& on_piece) {
@@ -204,9 +204,8 @@ void integrate_facet(const Section& s, FacetSide side, const std::vector<double>
       for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
         const double x0 = cuts[c].first, x1 = cuts[c + 1].first;
         if (!(x1 > x0)) continue;
-        for_each_node(gl, x0, x1, cuts[c].second, cuts[c + 1].second, [&](double tm, double wq) {
-          deposit(s, side, tm, w_section * wq * s.pdf(tm), acc);
-        });
+        for_each_node(gl, x0, x1, cuts[c].second, cuts[c + 1].second,
+                      [&](double tm, double wq) { deposit(s, side, tm, w_section * wq * s.pdf(tm), acc); });
       }
     });
   }
@@ -318,7 +317,9 @@ DielectricLobe lobe_3d_once(NdfKind ndf, double alpha, double eta, double theta_
     s.tau = 0.0;
     s.eta = s.eta_dir = eta;
     s.opt = &o;
-    auto tbin = [&](double t) { return std::cos(t) > 0.0 ? std::min(tb - 1, static_cast<int>(std::abs(t) / dtheta)) : kNotBinned; };
+    auto tbin = [&](double t) {
+      return std::cos(t) > 0.0 ? std::min(tb - 1, static_cast<int>(std::abs(t) / dtheta)) : kNotBinned;
+    };
     s.bin_r = tbin;
     s.bin_t = tbin;
     s.pdf = [ndf, alpha](double tm) { return 2.0 * kPi * D(ndf, tm, alpha) * std::cos(tm) * std::sin(tm); };
@@ -327,11 +328,13 @@ DielectricLobe lobe_3d_once(NdfKind ndf, double alpha, double eta, double theta_
     for (int row = 0; row < max_k + 2; ++row)
       for (int t = 0; t < tb; ++t)
         for (int p = 0; p < pb; ++p) {
-          const std::size_t from = static_cast<std::size_t>(row) * tb + t, to = (static_cast<std::size_t>(row) * tb + t) * pb + p;
+          const std::size_t from = static_cast<std::size_t>(row) * tb + t,
+                            to = (static_cast<std::size_t>(row) * tb + t) * pb + p;
           acc.r[to] = one.r[from] / pb;
           acc.t[to] = one.t[from] / pb;
         }
-    acc.not_binned_r = one.not_binned_r, acc.upward = one.upward, acc.unresolved = one.unresolved, acc.light = one.light;
+    acc.not_binned_r = one.not_binned_r, acc.upward = one.upward, acc.unresolved = one.unresolved,
+    acc.light = one.light;
     return make_lobe(acc, tb, pb);
   }
   // Panels over [0, pi/2], cut where an exit at normal incidence crosses a phi edge (phi_a = (p + 1/2) dphi).
@@ -406,8 +409,8 @@ double largest_change(const DielectricLobe& a, const DielectricLobe& b) {
 double cut_error(NdfKind ndf, double alpha, bool three_d) {
   double pdf_max = 0.0;
   for (double tm : slope_grid(alpha)) {
-    const double p = three_d ? 2.0 * kPi * D(ndf, tm, alpha) * std::cos(tm) * std::sin(tm)
-                             : 2.0 * D2(ndf, tm, alpha) * std::cos(tm);
+    const double p =
+        three_d ? 2.0 * kPi * D(ndf, tm, alpha) * std::cos(tm) * std::sin(tm) : 2.0 * D2(ndf, tm, alpha) * std::cos(tm);
     if (std::isfinite(p)) pdf_max = std::max(pdf_max, p);
   }
   return 4.0 * kCutTolerance * pdf_max;
@@ -448,9 +451,8 @@ DielectricLobe kaleidoscope_dielectric_lobe_flatland(NdfKind ndf, double alpha, 
   return L;
 }
 
-DielectricLobe kaleidoscope_dielectric_lobe_3d(NdfKind ndf, double alpha, double eta, double theta_i,
-                                               int theta_bins, int phi_bins, int max_k,
-                                               const DielectricLobeOptions& opt) {
+DielectricLobe kaleidoscope_dielectric_lobe_3d(NdfKind ndf, double alpha, double eta, double theta_i, int theta_bins,
+                                               int phi_bins, int max_k, const DielectricLobeOptions& opt) {
   check_common(alpha, eta, theta_i, max_k, opt);
   check(theta_i >= 0.0, "theta_i must be in [0, pi/2)");
   check(theta_bins >= 1 && phi_bins >= 2 && phi_bins % 2 == 0, "theta_bins >= 1, phi_bins even >= 2");

@@ -67,8 +67,7 @@ struct DielectricLobe {
 DielectricLobe kaleidoscope_dielectric_lobe_flatland(NdfKind ndf, double alpha, double eta, double theta_i, int bins,
                                                      int max_k, const DielectricLobeOptions& opt = {});
 // phi_bins even (as Lobe3d).
-DielectricLobe kaleidoscope_dielectric_lobe_3d(NdfKind ndf, double alpha, double eta, double theta_i,
-                                               int theta_bins, int phi_bins, int max_k,
-                                               const DielectricLobeOptions& opt = {});
+DielectricLobe kaleidoscope_dielectric_lobe_3d(NdfKind ndf, double alpha, double eta, double theta_i, int theta_bins,
+                                               int phi_bins, int max_k, const DielectricLobeOptions& opt = {});
 
 }  // namespace vgroove::analytic

@@ -64,7 +64,7 @@ TEST(KaleidoscopeDielectricLobe, ConductorLimitIsTheFlatlandLobe) {
         const double d = std::abs(L.reflected_by_k[k][b] - ref.theta_o_by_k[static_cast<std::size_t>(k) * bins + b]);
         worst = std::max(worst, d);
         EXPECT_LE(d, L.error_estimate) << "alpha=" << c.alpha << " theta_i=" << c.theta_i_deg << " k=" << k
-                                              << " bin=" << b;
+                                       << " bin=" << b;
       }
     worst_est = std::max(worst_est, L.error_estimate);
     EXPECT_NEAR(L.albedo_r + L.shadow_or_unknown, 1.0, 1e-10) << "alpha=" << c.alpha;
@@ -93,8 +93,7 @@ TEST(KaleidoscopeDielectricLobe, EnergyIsConserved) {
   double worst = 0.0;
   for (const Case& c : {Case{NdfKind::ggx, 0.3, 1.5, 30.0}, Case{NdfKind::beckmann, 0.8, 1 / 1.5, -60.0},
                         Case{NdfKind::ggx, 0.1, 1 / 2.4, 10.0}, Case{NdfKind::phong, 1.0, 2.4, 80.0}}) {
-    const DielectricLobe L =
-        kaleidoscope_dielectric_lobe_flatland(c.ndf, c.alpha, c.eta, deg(c.theta_i_deg), 60, 4);
+    const DielectricLobe L = kaleidoscope_dielectric_lobe_flatland(c.ndf, c.alpha, c.eta, deg(c.theta_i_deg), 60, 4);
     const double e = L.albedo_r + L.albedo_t + L.shadow_or_unknown - 1.0;
     worst = std::max(worst, std::abs(e));
     EXPECT_LT(std::abs(e), 1e-9) << "alpha=" << c.alpha << " eta=" << c.eta << " theta_i=" << c.theta_i_deg;
@@ -103,8 +102,8 @@ TEST(KaleidoscopeDielectricLobe, EnergyIsConserved) {
     for (const auto& r : L.transmitted_by_k) rows += sum(r);
     EXPECT_NEAR(rows, L.albedo_r + L.albedo_t, 1e-13);
     std::printf("%-8s alpha %.1f eta %.3f theta_i %5.1f: R %.5f T %.5f upward %.2e unresolved %.2e (error %.2e)\n",
-                c.ndf == NdfKind::ggx ? "ggx" : (c.ndf == NdfKind::beckmann ? "beckmann" : "phong"), c.alpha,
-                c.eta, c.theta_i_deg, L.albedo_r, L.albedo_t, L.upward, L.unresolved, L.error_estimate);
+                c.ndf == NdfKind::ggx ? "ggx" : (c.ndf == NdfKind::beckmann ? "beckmann" : "phong"), c.alpha, c.eta,
+                c.theta_i_deg, L.albedo_r, L.albedo_t, L.upward, L.unresolved, L.error_estimate);
   }
   std::printf("largest |R + T + unknown - 1| = %.3g\n", worst);
 }
@@ -177,7 +176,8 @@ Traced trace_3d(NdfKind ndf, double alpha, double eta, double theta_i, int tb, i
   surf.options.ndf = ndf, surf.options.alpha = alpha, surf.options.grooves = n;
   sim::Rng grng(kSurfaceSeed, 2, 0);
   for (int j = 0; j < n; ++j) {
-    const double t = std::min(std::nextafter(0.5 * kPi, 0.0), sim::sample_theta_m_3d(ndf, alpha, sim::uniform_open(grng)));
+    const double t =
+        std::min(std::nextafter(0.5 * kPi, 0.0), sim::sample_theta_m_3d(ndf, alpha, sim::uniform_open(grng)));
     surf.theta_m.push_back(t);
     surf.grooves.push_back(sim::make_symmetric_groove(kPi - 2.0 * t));
     surf.data.push_back(sim::symmetric_groove_data(surf.grooves.back()));
@@ -258,11 +258,11 @@ FlatlandMiss flatland_miss(const Case& c, int bins, int n) {
   fast.error_estimate = false;
   const DielectricLobe B = kaleidoscope_dielectric_lobe_flatland(c.ndf, c.alpha, 1.0 / c.eta, ti, bins, 4, fast);
   FlatlandMiss f{compare(L, tr, L.error_estimate), compare(B, tr, L.error_estimate), L.shadow_or_unknown};
-  std::printf("flatland %-8s alpha %.1f eta %.3f theta_i %4.1f, %d rays: worst z %6.2f (%s bin %2d), L1 %.4f, "
-              "model unknown %.1e; eta inverted: worst z %.0f, L1 %.3f\n",
-              c.ndf == NdfKind::ggx ? "ggx" : "beckmann", c.alpha, c.eta, c.theta_i_deg, n, f.model.worst_z,
-              f.model.worst_reflected ? "R" : "T", f.model.worst_bin, f.model.l1, f.unknown, f.inverted.worst_z,
-              f.inverted.l1);
+  std::printf(
+      "flatland %-8s alpha %.1f eta %.3f theta_i %4.1f, %d rays: worst z %6.2f (%s bin %2d), L1 %.4f, "
+      "model unknown %.1e; eta inverted: worst z %.0f, L1 %.3f\n",
+      c.ndf == NdfKind::ggx ? "ggx" : "beckmann", c.alpha, c.eta, c.theta_i_deg, n, f.model.worst_z,
+      f.model.worst_reflected ? "R" : "T", f.model.worst_bin, f.model.l1, f.unknown, f.inverted.worst_z, f.inverted.l1);
   return f;
 }
 
@@ -329,10 +329,11 @@ TEST(KaleidoscopeDielectricLobe, FromBelowIsTheModelAtTheInverseEtaMirrored) {
     std::reverse(B.reflected.begin(), B.reflected.end());
     std::reverse(B.transmitted.begin(), B.transmitted.end());
     const Miss m = compare(L, tr, L.error_estimate), mb = compare(B, tr, L.error_estimate);
-    std::printf("from below %s alpha %.1f eta %.2f theta_i %.0f, %d rays: worst z %.2f (%s bin %d), L1 %.4f, "
-                "model R %.5f T %.5f unknown %.1e, traced R %.5f T %.5f; not mirrored: worst z %.0f\n",
-                "beckmann", c.alpha, c.eta, c.theta_i_deg, n, m.worst_z, m.worst_reflected ? "R" : "T", m.worst_bin,
-                m.l1, L.albedo_r, L.albedo_t, L.shadow_or_unknown, sum(tr.r), sum(tr.t), mb.worst_z);
+    std::printf(
+        "from below %s alpha %.1f eta %.2f theta_i %.0f, %d rays: worst z %.2f (%s bin %d), L1 %.4f, "
+        "model R %.5f T %.5f unknown %.1e, traced R %.5f T %.5f; not mirrored: worst z %.0f\n",
+        "beckmann", c.alpha, c.eta, c.theta_i_deg, n, m.worst_z, m.worst_reflected ? "R" : "T", m.worst_bin, m.l1,
+        L.albedo_r, L.albedo_t, L.shadow_or_unknown, sum(tr.r), sum(tr.t), mb.worst_z);
     EXPECT_LT(m.worst_z, kZ);
     EXPECT_GT(mb.worst_z, 10.0 * kZ);
   }
@@ -376,8 +377,7 @@ TEST(KaleidoscopeDielectricLobe, ThreeDEtaOneTransmitsIntoTheIncidentBinAndEnerg
   EXPECT_NEAR(L.transmitted[b] + L.unresolved, 1.0, 1e-12);
   // Energy, eta < 1 included (all-TIR azimuths: eta < |q|).
   for (const Case& c : {Case{NdfKind::ggx, 0.3, 1.5, 50.0}, Case{NdfKind::beckmann, 0.5, 1 / 1.5, 70.0}}) {
-    const DielectricLobe E =
-        kaleidoscope_dielectric_lobe_3d(c.ndf, c.alpha, c.eta, deg(c.theta_i_deg), tb, pb, 3, o);
+    const DielectricLobe E = kaleidoscope_dielectric_lobe_3d(c.ndf, c.alpha, c.eta, deg(c.theta_i_deg), tb, pb, 3, o);
     EXPECT_NEAR(E.albedo_r + E.albedo_t + E.shadow_or_unknown, 1.0, 1e-12) << c.eta;
     std::printf("3D alpha %.1f eta %.3f theta_i %.0f: R %.5f T %.5f upward %.2e unresolved %.2e\n", c.alpha, c.eta,
                 c.theta_i_deg, E.albedo_r, E.albedo_t, E.upward, E.unresolved);
@@ -399,11 +399,12 @@ ThreeDMiss three_d_miss(const Case& c, int n, int phi_panels) {
   o.error_estimate = false;
   const DielectricLobe B = kaleidoscope_dielectric_lobe_3d(c.ndf, c.alpha, c.eta, ti, tb, pb, 4, o);
   ThreeDMiss m{compare(L, tr, L.error_estimate), compare(B, tr, L.error_estimate)};
-  std::printf("3D %-8s alpha %.1f eta %.3f theta_i %4.1f, %d rays: worst z %6.2f (%s bin %2d), L1 %.4f, model R %.5f "
-              "T %.5f unknown %.1e (error %.1e), traced R %.5f T %.5f; Fresnel at the 2D angle: worst z %.1f, L1 %.4f\n",
-              c.ndf == NdfKind::ggx ? "ggx" : "beckmann", c.alpha, c.eta, c.theta_i_deg, n, m.model.worst_z,
-              m.model.worst_reflected ? "R" : "T", m.model.worst_bin, m.model.l1, L.albedo_r, L.albedo_t,
-              L.shadow_or_unknown, L.error_estimate, sum(tr.r), sum(tr.t), m.broken.worst_z, m.broken.l1);
+  std::printf(
+      "3D %-8s alpha %.1f eta %.3f theta_i %4.1f, %d rays: worst z %6.2f (%s bin %2d), L1 %.4f, model R %.5f "
+      "T %.5f unknown %.1e (error %.1e), traced R %.5f T %.5f; Fresnel at the 2D angle: worst z %.1f, L1 %.4f\n",
+      c.ndf == NdfKind::ggx ? "ggx" : "beckmann", c.alpha, c.eta, c.theta_i_deg, n, m.model.worst_z,
+      m.model.worst_reflected ? "R" : "T", m.model.worst_bin, m.model.l1, L.albedo_r, L.albedo_t, L.shadow_or_unknown,
+      L.error_estimate, sum(tr.r), sum(tr.t), m.broken.worst_z, m.broken.l1);
   return m;
 }
 
