@@ -32,7 +32,7 @@ struct DielectricLobeOptions {
   int order = 8;     // Gauss-Legendre nodes per piece of groove slope
   int samples = 16;  // per band of k: where a lobe's bin or form changes is bisected between samples
   // 3D: the groove azimuth over [0, pi/2] (mirror symmetry) in phi_panels panels of phi_order nodes.
-  int phi_panels = 48;
+  int phi_panels = 16;
   int phi_order = 4;
   // Also run with every node count above doubled: the finer lobe is returned and error_estimate is
   // the largest change of a bin (or of albedo_r, albedo_t). false: error_estimate = -1.
