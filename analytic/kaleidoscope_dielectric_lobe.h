@@ -1,13 +1,14 @@
 // vgroove analytic: the kaleidoscopic dielectric model (kaleidoscope_dielectric.h) over an NDF of
 // symmetric grooves: the fraction of the incident flux reflected into each bin above and transmitted
 // into each bin below, per interaction count k and summed, flatland and 3D (each groove azimuth's
-// cross-section with the lifted law's effective index, Fresnel at the 3D local angle, exits lifted).
-// Bins as brdf_flatland.h's FlatlandLobe (flatland) and lobe_3d.h's Lobe3d (3D), angles from the exit
-// side's normal (n above, -n below; sim::exit_angle's convention). Deterministic: Gauss-Legendre over
-// the groove slope between the points where a lobe changes bin or form, and over the azimuth.
+// cross-section with the lifted law's effective index, Fresnel at the 3D local angle, exits lifted),
+// light from above or (the model at 1 / eta, mirrored) from below. Bins as FlatlandLobe (flatland)
+// and Lobe3d (3D), angles from the exit side's normal. Deterministic: Gauss-Legendre over the groove
+// slope between the points where a lobe changes bin or form, and over the azimuth; error by doubling.
 // Holds: F = 1 gives the conductor lobes; eta = 1 transmits into the incident direction's bin;
-// albedo_r + albedo_t + shadow_or_unknown = 1.
-// Tests: tests/analytic/kaleidoscope_dielectric_lobe_test.cpp (KaleidoscopeDielectricLobe.*).
+// albedo_r + albedo_t + shadow_or_unknown = 1; agrees with the exact tracers at small alpha.
+// Tests: tests/analytic/kaleidoscope_dielectric_lobe_test.cpp (KaleidoscopeDielectricLobe.*, where the
+// model misses: KaleidoscopeDielectricLobeLong.*).
 // Derivation: docs/derivations/kaleidoscope_dielectric.md, "The BSDF over an NDF".
 #pragma once
 
