@@ -31,8 +31,10 @@ constexpr int kEmpty = -3;      // a reflected zone of zero width (Eq. 6's clamp
 constexpr int kTir = -4;        // total internal reflection at this hit
 
 // Where a lobe changes bin is located to this in theta_m: a cut moves at most the density times
-// this between two bins (cut_error).
+// this between two bins (cut_error). In 3D the azimuth quadrature errs by ~1e-6..1e-4 a bin, and
+// the bisection is half the cost: 1e-10 there.
 constexpr double kCutTolerance = 1e-14;
+constexpr double kCutTolerance3d = 1e-10;
 
 // One cross-section problem (flatland: the problem itself; 3D: one groove azimuth).
 struct Section {
@@ -42,8 +44,9 @@ struct Section {
   double eta = 1.5;      // the real index ratio (Fresnel)
   bool all_tir = false;  // 3D, eta < |q|: medium 2 has no direction with the axis component q
   const DielectricLobeOptions* opt = nullptr;
-  std::function<int(double)> bin_r;  // the 2D exit angle above -> bin, or kNotBinned
-  std::function<int(double)> bin_t;  // the 2D angle below (sim::exit_angle's) -> bin, or kNotBinned
+  double cut_tolerance = kCutTolerance;  // in theta_m
+  std::function<int(double)> bin_r;      // the 2D exit angle above -> bin, or kNotBinned
+  std::function<int(double)> bin_t;      // the 2D angle below (sim::exit_angle's) -> bin, or kNotBinned
   // The density of theta_m (per radian): flatland 2 D2 cos, 3D 2 pi D cos sin.
   std::function<double(double)> pdf;
 };
@@ -96,12 +99,12 @@ bool tir_changes(const std::vector<int>& a, const std::vector<int>& b) {
 
 double theta_v_of(double theta_m) { return kPi - 2.0 * theta_m; }
 
-// Every change of signature in (a, b) (theta_m), bisected to kCutTolerance.
+// Every change of signature in (a, b) (theta_m), bisected to s.cut_tolerance.
 void refine(const Section& s, FacetSide side, double a, const std::vector<int>& sa, double b,
             const std::vector<int>& sb, std::vector<std::pair<double, bool>>& cuts, int depth) {
   if (sa == sb) return;
   const double m = 0.5 * (a + b);
-  if (depth > 80 || !(b - a > kCutTolerance)) {
+  if (depth > 80 || !(b - a > s.cut_tolerance)) {
     cuts.emplace_back(m, tir_changes(sa, sb));
     return;
   }
@@ -359,6 +362,7 @@ DielectricLobe lobe_3d_once(NdfKind ndf, double alpha, double eta, double theta_
       const double c = std::sqrt((1.0 - i_u) * (1.0 + i_u));
       const double q_1 = -i_u;  // the travel direction's axis component in medium 1 (= p, n1 = 1)
       Section s;
+      s.cut_tolerance = kCutTolerance3d;
       s.tau = std::atan2(-i_a, ct);
       s.eta = eta;
       s.c3d = c;
@@ -413,7 +417,7 @@ double cut_error(NdfKind ndf, double alpha, bool three_d) {
         three_d ? 2.0 * kPi * D(ndf, tm, alpha) * std::cos(tm) * std::sin(tm) : 2.0 * D2(ndf, tm, alpha) * std::cos(tm);
     if (std::isfinite(p)) pdf_max = std::max(pdf_max, p);
   }
-  return 4.0 * kCutTolerance * pdf_max;
+  return 4.0 * (three_d ? kCutTolerance3d : kCutTolerance) * pdf_max;
 }
 
 DielectricLobeOptions doubled(const DielectricLobeOptions& o) {
