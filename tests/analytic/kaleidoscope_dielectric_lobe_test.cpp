@@ -199,7 +199,9 @@ Traced trace_flatland(NdfKind ndf, double alpha, double eta, double theta_i, int
 // 3D by lifting (validation/glass_energy.cpp's surface): n grooves with theta_m from the projected-
 // area law 2 pi D cos sin, ray j on groove j at an azimuth phi_a uniform in [0, pi), the light at
 // phi = pi, bins as Lobe3d's (theta from the exit side's normal).
-Traced trace_3d(NdfKind ndf, double alpha, double eta, double theta_i, int tb, int pb, int n) {
+// below: the light from below (travelling along (sin theta_i, 0, cos theta_i)), landing uniformly
+// over the period; reflected then means back below.
+Traced trace_3d(NdfKind ndf, double alpha, double eta, double theta_i, int tb, int pb, int n, bool below = false) {
   sim::Microsurface surf;
   surf.options.ndf = ndf, surf.options.alpha = alpha, surf.options.grooves = n;
   sim::Rng grng(kSurfaceSeed, 2, 0);
@@ -223,11 +225,15 @@ Traced trace_3d(NdfKind ndf, double alpha, double eta, double theta_i, int tb, i
     const sim::Groove& g = surf.grooves[j];
     const double phi_a = kPi * sim::uniform_open(rng);
     const sim::GrooveFrame3d frame{std::cos(phi_a), std::sin(phi_a)};
-    const sim::LiftedRay ray =
-        sim::lift_ray(sim::Vec3(std::sin(theta_i), 0.0, -std::cos(theta_i)), frame, sim::Medium::above, o);
+    const sim::Medium from = below ? sim::Medium::below : sim::Medium::above;
+    const sim::LiftedRay ray = sim::lift_ray(
+        sim::Vec3(std::sin(theta_i), 0.0, below ? std::cos(theta_i) : -std::cos(theta_i)), frame, from, o);
     const double xl = g.rim_x(sim::Side::left), xr = g.rim_x(sim::Side::right);
-    const double x = xl + sim::uniform_open(rng) * (xr - xl);
-    tracer.trace_from_above_with(j, sim::beam_ray(g, ray.e, x), ray.law, rng, r);
+    const double u = sim::uniform_open(rng);
+    if (below)
+      tracer.trace_from_below_with(j + u, ray.e, ray.law, rng, r);
+    else
+      tracer.trace_from_above_with(j, sim::beam_ray(g, ray.e, xl + u * (xr - xl)), ray.law, rng, r);
     if (r.exits.empty()) {
       out.lost += 1.0 / n;
       continue;
@@ -236,10 +242,11 @@ Traced trace_3d(NdfKind ndf, double alpha, double eta, double theta_i, int tb, i
     const sim::Vec3 d = sim::lift_exit(ray, frame, e.dir, e.side);
     const bool above = e.side == sim::Medium::above;
     const double z = above ? d.z() : -d.z();
+    const bool reflected = e.side == from;
     const int t = std::min(tb - 1, static_cast<int>(std::atan2(std::hypot(d.x(), d.y()), z) / (0.5 * kPi / tb)));
     int p = static_cast<int>(std::floor((std::atan2(d.y(), d.x()) + 0.5 * dphi) / dphi));
     p = ((p % pb) + pb) % pb;
-    (above ? out.r : out.t)[t * pb + p] += 1.0 / n;
+    (reflected ? out.r : out.t)[t * pb + p] += 1.0 / n;
   }
   return out;
 }
@@ -443,6 +450,29 @@ TEST(KaleidoscopeDielectricLobe, ThreeDAgreesWithTheLiftedSurfaceAtSmallAlpha) {
   const ThreeDMiss m = three_d_miss(Case{NdfKind::beckmann, 0.2, 1.5, 60.0}, 100000, 8);
   EXPECT_LT(m.model.worst_z, kZ);
   EXPECT_GT(m.broken.worst_z, 2.0 * kZ);
+}
+
+TEST(KaleidoscopeDielectricLobe, ThreeDFromBelowIsTheModelAtTheInverseEta) {
+  // Light from below on the lifted surface: the model at 1 / eta mirrored in z (angles from the exit
+  // side's normal and phi unchanged). The model at eta (not inverted) must fail.
+  const int tb = 9, pb = 8, n = 100000;
+  const double ti = deg(30.0);
+  const Traced tr = trace_3d(NdfKind::beckmann, 0.1, 1.5, ti, tb, pb, n, true);
+  DielectricLobeOptions o;
+  o.phi_panels = 8;
+  o.from = DielectricLightFrom::below;
+  const DielectricLobe L = kaleidoscope_dielectric_lobe_3d(NdfKind::beckmann, 0.1, 1.5, ti, tb, pb, 2, o);
+  o.from = DielectricLightFrom::above;
+  o.error_estimate = false;
+  const DielectricLobe B = kaleidoscope_dielectric_lobe_3d(NdfKind::beckmann, 0.1, 1.5, ti, tb, pb, 2, o);
+  const Miss m = compare(L, tr, L.error_estimate), mb = compare(B, tr, L.error_estimate);
+  std::printf(
+      "3D from below beckmann alpha 0.1 eta 1.5 theta_i 30, %d rays: worst z %.2f (%s bin %d), L1 %.4f, model "
+      "R %.5f T %.5f unknown %.1e, traced R %.5f T %.5f lost %.1e; eta not inverted: worst z %.0f\n",
+      n, m.worst_z, m.worst_reflected ? "R" : "T", m.worst_bin, m.l1, L.albedo_r, L.albedo_t, L.shadow_or_unknown,
+      sum(tr.r), sum(tr.t), tr.lost, mb.worst_z);
+  EXPECT_LT(m.worst_z, kZ);
+  EXPECT_GT(mb.worst_z, 10.0 * kZ);
 }
 
 TEST(KaleidoscopeDielectricLobeLong, ThreeDMissesMeasured) {
