@@ -59,15 +59,17 @@ struct DielectricLobe {
   double shadow_or_unknown = 0.0;
   double upward = 0.0;      // of it: transmitted lobes travelling back towards the surface
   double unresolved = 0.0;  // of it: grooves with k > k_cap
-  double light = 0.0;       // flux of the pieces integrated node by node (light_piece)
-  // The largest change of a bin or albedo when every node count doubles, or `light` if larger.
+  double light = 0.0;       // binned, but node by node: the pieces lighter than light_piece
+  // The largest change of a bin or albedo when every node count doubles, or `light` if larger, plus
+  // the cuts' location bound (4 x their bisection tolerance x the largest density).
   double error_estimate = -1.0;
 };
 
-// eta > 0 (n2 / n1, light in medium 1), theta_i in [0, pi/2), bins >= 1, max_k >= 0.
+// eta > 0 (n2 / n1, light in medium 1; below 1: inside the denser medium), theta_i signed in
+// (-pi/2, pi/2) towards the light, bins >= 1, max_k >= 0. Bad input: std::invalid_argument.
 DielectricLobe kaleidoscope_dielectric_lobe_flatland(NdfKind ndf, double alpha, double eta, double theta_i, int bins,
                                                      int max_k, const DielectricLobeOptions& opt = {});
-// phi_bins even (as Lobe3d).
+// theta_i in [0, pi/2) (the light at phi = pi), phi_bins even (as Lobe3d).
 DielectricLobe kaleidoscope_dielectric_lobe_3d(NdfKind ndf, double alpha, double eta, double theta_i, int theta_bins,
                                                int phi_bins, int max_k, const DielectricLobeOptions& opt = {});
 
