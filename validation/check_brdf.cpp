@@ -472,7 +472,8 @@ CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt) {
     const double tol = opt.model_tolerance + model[c].error;
     // The V-groove surface: the bound from N rays over G grooves; heightfields: their fields' spread.
     // With eta, both hemispheres and each lobe apart (check_bsdf.h).
-    CheckBrdfCase out = field ? check_lobes_with_variance(sim, m, pooled[c].var, pooled[c].albedo_var, N, opt.sigmas, tol)
+    CheckBrdfCase out = field
+                            ? check_lobes_with_variance(sim, m, pooled[c].var, pooled[c].albedo_var, N, opt.sigmas, tol)
                         : bsdf ? check_bsdf_lobes(sim, m, N, opt, tol)
                                : check_lobes(sim, m, N, opt.grooves, opt.sigmas, tol);
     out.model_error = model[c].error;

@@ -84,8 +84,7 @@ void trace_chunk(const CheckBrdfOptions& o, const sim::Microsurface& surface,
         tracer.trace_from_below(x, sim::Vec2(st, ct), rng, r);
       if (!r.exits.empty()) {
         const sim::DielectricExit& e = r.exits.front();
-        counts[(e.side == sim::Medium::above ? 0 : B) + static_cast<std::size_t>(hb.flat_bin(sim::exit_angle(e)))] +=
-            1;
+        counts[(e.side == sim::Medium::above ? 0 : B) + static_cast<std::size_t>(hb.flat_bin(sim::exit_angle(e)))] += 1;
       }
     } else {
       const double phi_a = kPi * rng.uniform();  // the patch's grooves' azimuth
@@ -112,8 +111,8 @@ void trace_chunk(const CheckBrdfOptions& o, const sim::Microsurface& surface,
 // q_b = s_b / a rests on the a N rays that left on its side: variance q (1 - q) / (a N) from the
 // rays and at most q (1 - a q) / (a G) from the grooves (Var(s_b) / a^2 with p_b = a q_b), its
 // L1 against the mean sum sqrt(2 v / pi) + sigmas sd, the tolerance scaled by 1 / a likewise.
-CheckLobeSide side_of(const char* lobe, const std::vector<double>& sim, const std::vector<double>& model,
-                      double rays, const CheckBrdfOptions& o, double tolerance, const HemisphereBins& hb) {
+CheckLobeSide side_of(const char* lobe, const std::vector<double>& sim, const std::vector<double>& model, double rays,
+                      const CheckBrdfOptions& o, double tolerance, const HemisphereBins& hb) {
   const CheckBrdfCase c = check_lobes(sim, model, rays, o.grooves, o.sigmas, tolerance);
   CheckLobeSide s;
   s.lobe = lobe;
@@ -208,10 +207,10 @@ CheckBrdfCase check_bsdf_lobes(const std::vector<double>& sim, const std::vector
   const bool above = o.side == sim::Medium::above;
   // Both hemispheres as one lobe: the total albedo R + T and the shape over all 2 B bins.
   CheckBrdfCase c = check_lobes(sim, model, rays, o.grooves, o.sigmas, tolerance);
-  c.lobes.push_back(side_of("reflected", above ? sim_up : sim_down, above ? model_up : model_down, rays, o, tolerance,
-                            hb));
-  c.lobes.push_back(side_of("transmitted", above ? sim_down : sim_up, above ? model_down : model_up, rays, o,
-                            tolerance, hb));
+  c.lobes.push_back(
+      side_of("reflected", above ? sim_up : sim_down, above ? model_up : model_down, rays, o, tolerance, hb));
+  c.lobes.push_back(
+      side_of("transmitted", above ? sim_down : sim_up, above ? model_down : model_up, rays, o, tolerance, hb));
   // The worst bins over both, each named by its lobe.
   for (const CheckLobeSide& s : c.lobes) c.worst.insert(c.worst.end(), s.worst.begin(), s.worst.end());
   std::stable_sort(c.worst.begin(), c.worst.end(), [](const WorstBin& a, const WorstBin& b) {

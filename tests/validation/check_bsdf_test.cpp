@@ -26,14 +26,17 @@ std::string dump(const CheckBrdfResult& r) {
   std::string out;
   char line[400];
   for (const CheckBrdfCase& c : r.cases) {
-    std::snprintf(line, sizeof line, "theta_i %g: both albedo %.5f model %.5f thr %.5f | L1 %.4f thr %.4f | flux %.4f thr %.4f | err %.2g evals %lld %s\n",
+    std::snprintf(line, sizeof line,
+                  "theta_i %g: both albedo %.5f model %.5f thr %.5f | L1 %.4f thr %.4f | flux %.4f thr %.4f | err %.2g "
+                  "evals %lld %s\n",
                   c.theta_i_deg, c.albedo_sim, c.albedo_model, c.albedo_threshold, c.l1, c.l1_threshold, c.l1_flux,
                   c.l1_flux_threshold, c.model_error, static_cast<long long>(c.model_evals), c.pass ? "pass" : "FAIL");
     out += line;
     for (const CheckLobeSide& s : c.lobes) {
-      std::snprintf(line, sizeof line, "  %-11s albedo %.5f model %.5f sd %.5f thr %.5f | L1 %.4f thr %.4f | flux %.4f thr %.4f %s\n",
-                    s.lobe.c_str(), s.albedo_sim, s.albedo_model, s.albedo_sd, s.albedo_threshold, s.l1, s.l1_threshold, s.l1_flux,
-                    s.l1_flux_threshold, s.pass ? "pass" : "FAIL");
+      std::snprintf(line, sizeof line,
+                    "  %-11s albedo %.5f model %.5f sd %.5f thr %.5f | L1 %.4f thr %.4f | flux %.4f thr %.4f %s\n",
+                    s.lobe.c_str(), s.albedo_sim, s.albedo_model, s.albedo_sd, s.albedo_threshold, s.l1, s.l1_threshold,
+                    s.l1_flux, s.l1_flux_threshold, s.pass ? "pass" : "FAIL");
       out += line;
     }
   }
@@ -70,7 +73,9 @@ struct TabulatedBsdf {
   explicit TabulatedBsdf(const CheckBrdfOptions& o) : table(o) {
     flux = trace_bsdf_lobes(o, {o.theta_i_deg[0] * kPi / 180.0}, o.threads).at(0).flux;
   }
-  int side_bins() const { return table.dim == SurfaceDim::flatland ? table.flatland_bins : table.theta_bins * table.phi_bins; }
+  int side_bins() const {
+    return table.dim == SurfaceDim::flatland ? table.flatland_bins : table.theta_bins * table.phi_bins;
+  }
   double operator()(const analytic::Dir3& wi, const analytic::Dir3& wo) const {
     (void)wi;  // one incidence
     bool below = wo.z < 0.0;
@@ -203,7 +208,8 @@ TEST(CheckBsdf, BadValuesAndOptionsAreNamed) {
   };
   for (const double eta : {-1.0, 1.0, 0.05, 11.0, std::numeric_limits<double>::quiet_NaN()}) {
     o.eta = eta;
-    EXPECT_EQ(refusal(o), "eta = " + support::number_text(eta) + " is out of range [0.1, 10], not 1 (0: the conductor check)");
+    EXPECT_EQ(refusal(o),
+              "eta = " + support::number_text(eta) + " is out of range [0.1, 10], not 1 (0: the conductor check)");
   }
   o.eta = 1.5;
   o.side = static_cast<sim::Medium>(7);
@@ -258,7 +264,8 @@ BrdfFn walter_of(const CheckBrdfOptions& o, analytic::MaskingKind g) {
 // cos); far side: (sin, -cos)), per radian; from below the same with z flipped and eta inverted.
 BrdfFn walter2_of(const CheckBrdfOptions& o, analytic::MaskingKind g) {
   return [=](const analytic::Dir3& wi, const analytic::Dir3& wo) {
-    const double s = o.side == sim::Medium::above ? 1.0 : -1.0, eta = o.side == sim::Medium::above ? o.eta : 1.0 / o.eta;
+    const double s = o.side == sim::Medium::above ? 1.0 : -1.0,
+                 eta = o.side == sim::Medium::above ? o.eta : 1.0 / o.eta;
     const double ti = std::atan2(-wi.x, s * wi.z);
     if (s * wo.z > 0.0) return analytic::walter_brdf2(ti, std::atan2(-wo.x, s * wo.z), o.ndf, o.alpha, eta, g);
     return analytic::walter_btdf2(ti, std::atan2(wo.x, -s * wo.z), o.ndf, o.alpha, eta, g);
@@ -294,7 +301,8 @@ TEST(CheckBsdf, WalterPassesAtSmallRoughness) {
 // (printed): within the noise at alpha 0.02 and theta_i 0 and 40 deg, out of it at alpha 0.2.
 TEST(CheckBsdfLong, WalterAgainstTheSurface) {
   for (const double alpha : {0.02, 0.05, 0.1, 0.2})
-    for (const analytic::MaskingKind g : {analytic::MaskingKind::smith_height_correlated, analytic::MaskingKind::vcavity})
+    for (const analytic::MaskingKind g :
+         {analytic::MaskingKind::smith_height_correlated, analytic::MaskingKind::vcavity})
       for (const sim::Medium side : {sim::Medium::above, sim::Medium::below}) {
         CheckBrdfOptions o = glass(SurfaceDim::three_d, side);
         o.alpha = alpha;
