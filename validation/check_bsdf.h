@@ -10,7 +10,8 @@
 // T against its binomial error, L1 of the normalized lobe and of the flux fractions) and both as
 // one lobe; pass = all hold.
 // Tests: tests/validation/check_bsdf_test.cpp (CheckBsdf.TabulatedTraceOfAnotherSurfacePasses,
-// CheckBsdf.BrokenBsdfsFail, CheckBsdf.BadValuesAndOptionsAreNamed, CheckBsdf.ResultsDoNotDependOnThreads).
+// CheckBsdf.WalterPassesAtSmallRoughness, CheckBsdf.BrokenBsdfsFail, CheckBsdf.BadValuesAndOptionsAreNamed,
+// CheckBsdf.ResultsDoNotDependOnThreads, CheckBsdfLong.WalterAgainstTheSurface).
 // Derivation: docs/derivations/validation.md (the brdf suite and its thresholds, per hemisphere).
 #pragma once
 

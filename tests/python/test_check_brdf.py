@@ -148,3 +148,21 @@ def test_bad_eta_and_side_are_named(vg):
                        r"\(theta_i_deg 30\): a BSDF's values must be finite and >= 0$"):
         vg.check_brdf(lambda wi, wo: np.where(wo[:, 2] < 0, np.nan, 0.1), theta_i_deg=[30], eta=1.5, side="below", rays=10,
                       grooves=10)
+
+
+def test_a_bsdf_report_draws_both_lobes(vg, tmp_path):
+    import json
+    from vgroove import plot
+    r = vg.check_brdf(lambda wi, wo: vg.brdf("walter", "ggx", 0.3, wi, wo, eta=1.5), "ggx", 0.3, [0, 40], eta=1.5,
+                      **GLASS)
+    path = tmp_path / "bsdf.json"
+    path.write_text(json.dumps(r))
+    assert plot.main([str(path), "--out", str(tmp_path / "bsdf")]) == 0
+    assert (tmp_path / "bsdf.png").stat().st_size > 0
+    # One figure, a series per lobe beside both as one (python/vgroove/plot.py check_brdf_figures).
+    (suffix, draw), = plot.figures_for(r, str(path))
+    fig = draw()
+    labels = [t.get_text() for ax in fig.axes if ax.get_legend() for t in ax.get_legend().get_texts()]
+    for lobe in ("R + T", "reflected", "transmitted"):
+        assert any(f"({lobe})" in t for t in labels), labels
+    assert "eta 1.5 from above" in fig._suptitle.get_text()
