@@ -188,7 +188,7 @@ def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], np.ndarray], str], nd
                                real(model_tolerance, "model_tolerance"), integer(quadrature_order, "quadrature_order"),
                                integer(threads, "threads"), _progress(progress), surface,
                                integer(field_size, "field_size"), real(correlation_length, "correlation_length"),
-                               integer(fields, "fields"), 0.0 if eta is None else real(eta, "eta"), side)
+                               integer(fields, "fields"), None if eta is None else real(eta, "eta"), side)
 
 
 for _f in (brdf, check_brdf):

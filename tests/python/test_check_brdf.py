@@ -136,9 +136,9 @@ def test_a_bsdf_is_called_below_the_surface_and_reported_per_lobe(vg):
 
 def test_bad_eta_and_side_are_named(vg):
     f = lambda wi, wo: np.zeros(len(wi))  # noqa: E731
-    for eta, text in ((-1, "-1"), (0.05, "0.05"), (1, "1"), (float("nan"), "nan"), (11, "11")):
+    for eta, text in ((-1, "-1"), (0.05, "0.05"), (1, "1"), (float("nan"), "nan"), (11, "11"), (0, "0")):
         with pytest.raises(ValueError, match=r"^eta = " + re.escape(text) +
-                           r" is out of range \[0.1, 10\], not 1 \(0: the conductor check\)$"):
+                           r" is out of range \[0.1, 10\], not 1 \((0|None): the conductor check\)$"):
             vg.check_brdf(f, eta=eta, rays=10, grooves=10)
     with pytest.raises(ValueError, match=r'^side = "sideways" is not one of "above", "below"$'):
         vg.check_brdf(f, eta=1.5, side="sideways", rays=10, grooves=10)
