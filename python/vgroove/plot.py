@@ -1003,10 +1003,11 @@ def accuracy_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
 # the traced lobes: per incidence the L1 distances over their thresholds, the albedos, and the
 # bins where the two differ most.
 
-def _verdict_case(c: Node) -> Dict[str, Any]:
+def _verdict_case(c: Node, theta_i: Optional[Node] = None) -> Dict[str, Any]:
     worst = [(w["theta_o_deg"].number(-90.0, 90.0), w["phi_o_deg"].number(-180.0, 180.0), w["sim"].number(),
               w["model"].number()) for w in c["worst_bins"].items()]
-    return {"theta_i": c["theta_i_deg"].number(-90.0, 90.0), "l1": c["l1"].number(), "l1_thr": c["l1_threshold"].number(),
+    theta = (theta_i if theta_i is not None else c["theta_i_deg"]).number(-90.0, 90.0)
+    return {"theta_i": theta, "l1": c["l1"].number(), "l1_thr": c["l1_threshold"].number(),
             "flux": c["l1_flux"].number(), "flux_thr": c["l1_flux_threshold"].number(),
             "a_sim": c["albedo_sim"].number(), "a_model": c["albedo_model"].number(),
             "a_thr": c["albedo_threshold"].number(), "pass": c["pass"].boolean(), "worst": worst}
@@ -1061,7 +1062,17 @@ def check_brdf_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
     what = ""
     if inputs is not None and inputs.has("ndf") and inputs.has("alpha"):
         what = f" ({safe_text(inputs['ndf'].text(), 12)}, alpha {inputs['alpha'].number():g})"
-    return [("", _verdict_drawer(report, f"{name}{what}", {"": cases}, "the BRDF checked"))]
+    if not any(c.has("lobes") for c in report["cases"].nonempty()):
+        return [("", _verdict_drawer(report, f"{name}{what}", {"": cases}, "the BRDF checked"))]
+    # A BSDF (check_brdf with eta): both lobes as one, and the reflected and transmitted apart.
+    series: Dict[str, List[Dict[str, Any]]] = {"R + T": cases}
+    for c in report["cases"].nonempty():
+        for s in c["lobes"].nonempty():
+            series.setdefault(s["lobe"].one_of(("reflected", "transmitted")), []).append(
+                _verdict_case(s, c["theta_i_deg"]))
+    eta = f", eta {inputs['eta'].number():g} from {safe_text(inputs['side'].text(), 8)}" if inputs is not None and \
+        inputs.has("eta") and inputs.has("side") else ""
+    return [("", _verdict_drawer(report, f"{name}{what}{eta}", series, "the BSDF checked"))]
 
 
 def model_table_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
