@@ -174,9 +174,8 @@ Tracing trace_vgroove(const DielectricBrdfSuite& s, std::size_t ci, long rays, s
           tracer.trace_from_above(gi, sim::beam_ray(groove, sim::Vec2(st, -ct), x_open), rng, r);
         else
           tracer.trace_from_below(x, sim::Vec2(-st, ct), rng, r);
-        t.add(r, c.side, s, bins, [&](std::size_t, const sim::DielectricExit& e) {
-          return flatland_bin(sim::exit_angle(e), bins);
-        });
+        t.add(r, c.side, s, bins,
+              [&](std::size_t, const sim::DielectricExit& e) { return flatland_bin(sim::exit_angle(e), bins); });
       } else {
         // The light at azimuth pi: travel along (st, 0, -+ct); the grooves' axis at a uniform azimuth.
         const double phi_a = kPi * rng.uniform();
@@ -221,9 +220,8 @@ Tracing trace_profiles(const DielectricBrdfSuite& s, std::size_t ci, long rays, 
       const std::int64_t end = std::min<std::int64_t>(n, (chunk + 1) * kChunk);
       for (std::int64_t j = chunk * kChunk; j < end; ++j) {
         tracer.trace(sim::landing_x(p, sim::uniform_open(rng)), dir, c.side, rng, r);
-        t.add(r, c.side, s, bins, [&](std::size_t, const sim::DielectricExit& e) {
-          return flatland_bin(sim::exit_angle(e), bins);
-        });
+        t.add(r, c.side, s, bins,
+              [&](std::size_t, const sim::DielectricExit& e) { return flatland_bin(sim::exit_angle(e), bins); });
       }
     }
   }
@@ -269,8 +267,8 @@ Counts run_walk(const DielectricBrdfSuite& s, std::size_t ci, support::CancelFla
 // is the mirror image of the near-side frame's (flatland: all signs flip, which leaves f unchanged;
 // 3D: z flips), so the bins read the same formula.
 std::pair<std::vector<double>, std::vector<double>> walter_lobes(const DielectricBrdfSuite& s,
-                                                                 const DielectricBrdfCase& c,
-                                                                 analytic::MaskingKind g, double eta_rel) {
+                                                                 const DielectricBrdfCase& c, analytic::MaskingKind g,
+                                                                 double eta_rel) {
   const int rows = s.rows(), bins = s.bins(c.dim);
   std::vector<double> r(static_cast<std::size_t>(rows * bins), 0.0), t = r;
   if (c.dim == SurfaceDim::flatland) {
@@ -350,7 +348,9 @@ const char* kModelKeys[] = {"walter_vcavity", "walter_smith_separable", "walter_
 
 }  // namespace
 
-const char* dielectric_surface_name(DielectricSurface s) { return s == DielectricSurface::vgroove ? "vgroove" : "profiles"; }
+const char* dielectric_surface_name(DielectricSurface s) {
+  return s == DielectricSurface::vgroove ? "vgroove" : "profiles";
+}
 
 bool DielectricBrdfSuite::has_model(const std::string& m) const {
   return std::find(models.begin(), models.end(), m) != models.end();
@@ -383,8 +383,9 @@ DielectricBrdfSuite parse_dielectric_brdf_suite(const nlohmann::json& j, const s
   if (root.has("models")) {
     s.models = read_names(root, "models", std::vector<std::string>(std::begin(kModelKeys), std::end(kModelKeys)));
     if (std::find(s.models.begin(), s.models.end(), "kaleidoscopic") != s.models.end())
-      root.fail("models", "names \"kaleidoscopic\": reserved for analytic/kaleidoscope_dielectric_lobe.h, not in this "
-                          "build; allowed: walter_vcavity, walter_smith_separable, walter_smith_correlated, smith_walk");
+      root.fail("models",
+                "names \"kaleidoscopic\": reserved for analytic/kaleidoscope_dielectric_lobe.h, not in this "
+                "build; allowed: walter_vcavity, walter_smith_separable, walter_smith_correlated, smith_walk");
   } else {
     s.models.assign(std::begin(kDielectricModels), std::end(kDielectricModels));
   }
@@ -403,9 +404,9 @@ DielectricBrdfSuite parse_dielectric_brdf_suite(const nlohmann::json& j, const s
   const LobeBins bins = read_lobe_bins(root, {s.flatland_bins, s.theta_bins, s.phi_bins, s.max_k}, flat, three);
   s.flatland_bins = bins.flatland_bins, s.theta_bins = bins.theta_bins, s.phi_bins = bins.phi_bins;
   s.max_k = bins.max_k;
-  if (s.max_k < 1) root.fail("max_k", "= " + std::to_string(s.max_k) + " is out of range [1, 1000] (the k = 1 row is compared)");
-  s.max_interactions =
-      static_cast<int>(root.integer_or("max_interactions", s.max_interactions, 1, kMaxBounces));
+  if (s.max_k < 1)
+    root.fail("max_k", "= " + std::to_string(s.max_k) + " is out of range [1, 1000] (the k = 1 row is compared)");
+  s.max_interactions = static_cast<int>(root.integer_or("max_interactions", s.max_interactions, 1, kMaxBounces));
   s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, kMaxSeed));
   {
     support::JsonObject t = root.object("thresholds");
@@ -466,9 +467,10 @@ DielectricBrdfOutcome run_dielectric_brdf_case(const DielectricBrdfSuite& s, std
     out.models.push_back(std::move(m));
   };
   using analytic::MaskingKind;
-  const std::pair<const char*, MaskingKind> walters[] = {{"walter_vcavity", MaskingKind::vcavity},
-                                                         {"walter_smith_separable", MaskingKind::smith_separable},
-                                                         {"walter_smith_correlated", MaskingKind::smith_height_correlated}};
+  const std::pair<const char*, MaskingKind> walters[] = {
+      {"walter_vcavity", MaskingKind::vcavity},
+      {"walter_smith_separable", MaskingKind::smith_separable},
+      {"walter_smith_correlated", MaskingKind::smith_height_correlated}};
   std::pair<std::vector<double>, std::vector<double>> correlated;  // Walter-Smith height-correlated, once
   for (const auto& [name, g] : walters)
     if (s.has_model(name)) {
@@ -487,8 +489,7 @@ DielectricBrdfOutcome run_dielectric_brdf_case(const DielectricBrdfSuite& s, std
     // The control: the walk's k = 1 share is Walter's with the height-correlated G2 (the walk's
     // own test, analytic/smith_walk_*_dielectric.h), within the walk's noise alone.
     if (correlated.first.empty() || s.break_control)
-      correlated =
-          walter_lobes(s, c, MaskingKind::smith_height_correlated, s.break_control ? 1.0 / eta_rel : eta_rel);
+      correlated = walter_lobes(s, c, MaskingKind::smith_height_correlated, s.break_control ? 1.0 / eta_rel : eta_rel);
     const auto& [hr, ht] = correlated;
     const ModelOutcome& wm = out.models.back();
     WalkControl ctl;
@@ -553,7 +554,8 @@ Job<DielectricBrdfWork> dielectric_brdf_job(const DielectricBrdfSuite& suite, lo
         for (const ModelOutcome& m : out.models)
           shaped = shaped && m.reflected.joint.size() == joint && m.transmitted.joint.size() == joint;
         if (!shaped)
-          o.fail("outcome", "/reflected, /transmitted or a model's lobe is not of the suite's (max_k + 2) x bins cells");
+          o.fail("outcome",
+                 "/reflected, /transmitted or a model's lobe is not of the suite's (max_k + 2) x bins cells");
       },
       std::move(descriptor),
       [suite, n_rays](std::size_t c) {

@@ -43,8 +43,8 @@ struct DielectricBrdfCase {
   SurfaceDim dim = SurfaceDim::flatland;  // profiles: flatland only
   analytic::NdfKind ndf = analytic::NdfKind::ggx;
   double alpha = 0.5;
-  double theta_i = 0.0;  // radians, >= 0, from the normal of the light's side
-  double eta = 1.5;      // n2 / n1 (medium 1 above)
+  double theta_i = 0.0;                   // radians, >= 0, from the normal of the light's side
+  double eta = 1.5;                       // n2 / n1 (medium 1 above)
   sim::Medium side = sim::Medium::above;  // where the light comes from
 };
 
@@ -52,9 +52,9 @@ struct DielectricBrdfSuite {
   std::string file, name, description;
   std::vector<DielectricBrdfCase> case_list;  // order: surface, dimension, ndf, alpha, theta_i, eta, side
   std::vector<std::string> models;
-  long rays = 200000;       // per case (profiles: over all realizations)
-  long walk_paths = 200000;  // per case
-  int grooves = 100000;     // V-groove surfaces
+  long rays = 200000;                                                 // per case (profiles: over all realizations)
+  long walk_paths = 200000;                                           // per case
+  int grooves = 100000;                                               // V-groove surfaces
   int realizations = 4, segments = 1 << 14, samples_per_length = 16;  // profiles
   int flatland_bins = 90, theta_bins = 15, phi_bins = 12, max_k = 8;
   int max_interactions = 100000;
@@ -84,8 +84,8 @@ void fields(SideLobe& s, F&& f) {
 // difference and its threshold (albedo_threshold).
 struct SideFit {
   double l1_k1 = 0.0, threshold_k1 = 0.0, l1_all = 0.0, threshold_all = 0.0;
-  double energy_k1 = 0.0, energy_all = 0.0;                // the model's
-  double se_k1 = 0.0, se_all = 0.0;                        // of traced - model
+  double energy_k1 = 0.0, energy_all = 0.0;  // the model's
+  double se_k1 = 0.0, se_all = 0.0;          // of traced - model
   double energy_threshold_k1 = 0.0, energy_threshold_all = 0.0;
   bool matches_k1 = false, matches_all = false;
 };
@@ -138,9 +138,9 @@ struct DielectricBrdfOutcome {
   DielectricBrdfCase c;
   std::int64_t rays = 0, interactions = 0;
   double cut = 0.0, bounce_limit = 0.0, vertex = 0.0;  // fractions of the rays
-  std::int64_t unbalanced = 0;  // rays whose R + T + cut + bounce limit + vertex differs from 1
+  std::int64_t unbalanced = 0;                         // rays whose R + T + cut + bounce limit + vertex differs from 1
   double largest_imbalance = 0.0;
-  double grooves_eff = 0.0;     // the independent surface features behind the noise (lobe_comparison.h's G)
+  double grooves_eff = 0.0;  // the independent surface features behind the noise (lobe_comparison.h's G)
   SideLobe reflected, transmitted;
   std::vector<ModelOutcome> models;
   std::vector<PathShare> paths;

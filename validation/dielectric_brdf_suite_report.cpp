@@ -54,8 +54,7 @@ std::string case_label(const DielectricBrdfCase& c) {
 }  // namespace
 
 nlohmann::json dielectric_brdf_report_json(const DielectricBrdfSuite& s, const DielectricBrdfRun& run) {
-  nlohmann::json j =
-      report_header({s.name, s.file, "dielectric_brdf", s.description, s.seed}, run.threads, run.wall_s);
+  nlohmann::json j = report_header({s.name, s.file, "dielectric_brdf", s.description, s.seed}, run.threads, run.wall_s);
   j["inputs"] = {{"cases", s.cases()},
                  {"models", s.models},
                  {"rays", s.rays},
@@ -69,10 +68,12 @@ nlohmann::json dielectric_brdf_report_json(const DielectricBrdfSuite& s, const D
                  {"phi_bins", s.phi_bins},
                  {"max_k", s.max_k},
                  {"max_interactions", s.max_interactions}};
-  j["bins"] = {{"flatland", "exit angle from the exit side's normal over (-90, 90) deg, counter-clockwise positive "
-                            "(sim::exit_angle), flatland_bins equal bins"},
-               {"3d", "theta_o from the exit side's normal over [0, 90) deg in theta_bins, phi_o in phi_bins centred "
-                      "on 0 (the light at azimuth 180 deg), index theta * phi_bins + phi"},
+  j["bins"] = {{"flatland",
+                "exit angle from the exit side's normal over (-90, 90) deg, counter-clockwise positive "
+                "(sim::exit_angle), flatland_bins equal bins"},
+               {"3d",
+                "theta_o from the exit side's normal over [0, 90) deg in theta_bins, phi_o in phi_bins centred "
+                "on 0 (the light at azimuth 180 deg), index theta * phi_bins + phi"},
                {"k_rows", "rows k = 0..max_k, row max_k + 1 holds every k > max_k"},
                {"unit", "fraction of the incident flux per bin"},
                {"reflected", "exits into the light's medium"},
@@ -89,8 +90,9 @@ nlohmann::json dielectric_brdf_report_json(const DielectricBrdfSuite& s, const D
       models[m.name] = {{"paths", m.paths},
                         {"reflected", lobe_json(m.reflected, rows, bins)},
                         {"transmitted", lobe_json(m.transmitted, rows, bins)},
-                        {"fit", {{"reflected", fit_json(o.reflected, m.fit_reflected)},
-                                 {"transmitted", fit_json(o.transmitted, m.fit_transmitted)}}},
+                        {"fit",
+                         {{"reflected", fit_json(o.reflected, m.fit_reflected)},
+                          {"transmitted", fit_json(o.transmitted, m.fit_transmitted)}}},
                         {"matches_k1", m.matches_k1},
                         {"matches_all", m.matches_all}};
       if (m.matches_all) matching.push_back(m.name);
@@ -102,41 +104,44 @@ nlohmann::json dielectric_brdf_report_json(const DielectricBrdfSuite& s, const D
       if (p.walk >= 0.0) e["walk"] = p.walk;
       paths.push_back(std::move(e));
     }
-    nlohmann::json cj = {{"surface", dielectric_surface_name(o.c.surface)},
-                         {"dimension", surface_dim_name(o.c.dim)},
-                         {"ndf", analytic::ndf_name(o.c.ndf)},
-                         {"alpha", o.c.alpha},
-                         {"theta_i_deg", output_deg(o.c.theta_i)},
-                         {"eta", o.c.eta},
-                         {"side", sim::medium_name(o.c.side)},
-                         {"traced",
-                          {{"rays", o.rays},
-                           {"interactions", o.interactions},
-                           {"grooves_eff", o.grooves_eff},
-                           {"reflected", lobe_json(o.reflected, rows, bins)},
-                           {"transmitted", lobe_json(o.transmitted, rows, bins)},
-                           {"cut", o.cut},
-                           {"bounce_limit", o.bounce_limit},
-                           {"vertex", o.vertex},
-                           {"energy_sum", o.reflected.energy + o.transmitted.energy + o.cut + o.bounce_limit + o.vertex},
-                           {"unbalanced_rays", o.unbalanced},
-                           {"largest_imbalance", o.largest_imbalance}}},
-                         {"models", models},
-                         {"matching_models", matching},
-                         {"matching_models_k1", matching_k1},
-                         {"paths", paths},
-                         {"non_finite", o.non_finite},
-                         {"wall_s", o.wall_s},
-                         {"pass", o.pass}};
+    nlohmann::json cj = {
+        {"surface", dielectric_surface_name(o.c.surface)},
+        {"dimension", surface_dim_name(o.c.dim)},
+        {"ndf", analytic::ndf_name(o.c.ndf)},
+        {"alpha", o.c.alpha},
+        {"theta_i_deg", output_deg(o.c.theta_i)},
+        {"eta", o.c.eta},
+        {"side", sim::medium_name(o.c.side)},
+        {"traced",
+         {{"rays", o.rays},
+          {"interactions", o.interactions},
+          {"grooves_eff", o.grooves_eff},
+          {"reflected", lobe_json(o.reflected, rows, bins)},
+          {"transmitted", lobe_json(o.transmitted, rows, bins)},
+          {"cut", o.cut},
+          {"bounce_limit", o.bounce_limit},
+          {"vertex", o.vertex},
+          {"energy_sum", o.reflected.energy + o.transmitted.energy + o.cut + o.bounce_limit + o.vertex},
+          {"unbalanced_rays", o.unbalanced},
+          {"largest_imbalance", o.largest_imbalance}}},
+        {"models", models},
+        {"matching_models", matching},
+        {"matching_models_k1", matching_k1},
+        {"paths", paths},
+        {"non_finite", o.non_finite},
+        {"wall_s", o.wall_s},
+        {"pass", o.pass}};
     if (o.control)
       cj["walk_control"] = {{"against", s.break_control ? "walter_smith_correlated with 1 / eta (broken on purpose)"
                                                         : "walter_smith_correlated"},
-                            {"reflected_k1", {{"l1", o.control->l1_reflected},
-                                              {"l1_threshold", o.control->threshold_reflected},
-                                              {"energy_z", o.control->z_reflected}}},
-                            {"transmitted_k1", {{"l1", o.control->l1_transmitted},
-                                                {"l1_threshold", o.control->threshold_transmitted},
-                                                {"energy_z", o.control->z_transmitted}}},
+                            {"reflected_k1",
+                             {{"l1", o.control->l1_reflected},
+                              {"l1_threshold", o.control->threshold_reflected},
+                              {"energy_z", o.control->z_reflected}}},
+                            {"transmitted_k1",
+                             {{"l1", o.control->l1_transmitted},
+                              {"l1_threshold", o.control->threshold_transmitted},
+                              {"energy_z", o.control->z_transmitted}}},
                             {"holds", o.control->holds}};
     cases.push_back(std::move(cj));
   }
@@ -148,7 +153,8 @@ nlohmann::json dielectric_brdf_report_json(const DielectricBrdfSuite& s, const D
                   {"wall_s", run.wall_s}};
   j["thresholds"] = {
       {"rule",
-       "verdict: every ray's R + T + cut + bounce limit + vertex = 1 to 1e-12, every value finite, and the Smith walk's "
+       "verdict: every ray's R + T + cut + bounce limit + vertex = 1 to 1e-12, every value finite, and the Smith "
+       "walk's "
        "k = 1 lobes and energies equal to Walter-Smith height-correlated within the walk's noise (L1 <= expected + "
        "sigmas sd + tolerance; |energy difference| <= albedo_threshold). Each model's fit (k1: the k = 1 row; all: "
        "every k summed) is a result: matches when both sides' L1 and energies are within the thresholds of "
@@ -161,10 +167,10 @@ nlohmann::json dielectric_brdf_report_json(const DielectricBrdfSuite& s, const D
 }
 
 void print_dielectric_brdf_table(std::ostream& os, const DielectricBrdfSuite& s, const DielectricBrdfRun& run) {
-  print_table_title(os, s.name, "dielectric_brdf",
-                    support::format("%zu cases, %ld rays and %ld walk paths per case", run.cases.size(), s.rays,
-                                    s.walk_paths),
-                    run.threads);
+  print_table_title(
+      os, s.name, "dielectric_brdf",
+      support::format("%zu cases, %ld rays and %ld walk paths per case", run.cases.size(), s.rays, s.walk_paths),
+      run.threads);
   os << "  R, T: traced albedos; per model (WV Walter V-cavity, WS Smith separable, WH Smith height-correlated, walk "
         "the Smith walk): L1/threshold of the reflected and transmitted lobes (all k), z of the R and T albedo misses; "
         "* = matches within noise\n";
@@ -172,7 +178,8 @@ void print_dielectric_brdf_table(std::ostream& os, const DielectricBrdfSuite& s,
   for (const DielectricBrdfOutcome& o : run.cases) {
     os << support::format("  %-52s R %.4f T %.4f", case_label(o.c).c_str(), o.reflected.energy, o.transmitted.energy);
     for (const ModelOutcome& m : o.models) {
-      const double zr = m.fit_reflected.se_all > 0 ? (o.reflected.energy - m.fit_reflected.energy_all) / m.fit_reflected.se_all : 0.0;
+      const double zr =
+          m.fit_reflected.se_all > 0 ? (o.reflected.energy - m.fit_reflected.energy_all) / m.fit_reflected.se_all : 0.0;
       const double zt = m.fit_transmitted.se_all > 0
                             ? (o.transmitted.energy - m.fit_transmitted.energy_all) / m.fit_transmitted.se_all
                             : 0.0;

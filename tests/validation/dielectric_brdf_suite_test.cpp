@@ -65,8 +65,8 @@ TEST(DielectricBrdfSuite, TinySuitePassesItsChecks) {
   const DielectricBrdfRun run = run_dielectric_brdf_suite(s, 0, 2);
   for (const DielectricBrdfOutcome& o : run.cases) {
     ASSERT_TRUE(o.control.has_value());
-    EXPECT_TRUE(o.control->holds) << dielectric_surface_name(o.c.surface) << " " << surface_dim_name(o.c.dim)
-                                  << " R z " << o.control->z_reflected << " L1 " << o.control->l1_reflected << " / "
+    EXPECT_TRUE(o.control->holds) << dielectric_surface_name(o.c.surface) << " " << surface_dim_name(o.c.dim) << " R z "
+                                  << o.control->z_reflected << " L1 " << o.control->l1_reflected << " / "
                                   << o.control->threshold_reflected << ", T z " << o.control->z_transmitted << " L1 "
                                   << o.control->l1_transmitted << " / " << o.control->threshold_transmitted;
     EXPECT_EQ(o.models.size(), 4u);
