@@ -1,4 +1,5 @@
 #include "vgroove/analytic/brdf_model.h"
+#include "vgroove/analytic/kaleidoscope_dielectric_lobe.h"
 #include "vgroove/analytic/partner_distribution.h"
 #include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
@@ -162,13 +163,98 @@ analytic::MaskingKind check_walter_options(const BrdfArgs& a, analytic::BrdfMode
   return *masking;
 }
 
+// --model vgroove-dielectric: the kaleidoscopic dielectric model's binned lobe (analytic/
+// kaleidoscope_dielectric_lobe.h) for light at --theta-i-deg, reflected and transmitted flux
+// fractions per bin: flatland 90 bins over (-90, 90) deg; 3D 18 theta bins over [0, 90) x 24 phi
+// bins centred on phi = 0, the light at phi = 180 (--phi-i-deg does not apply). Rows k = 1..
+// --per-k-max with --per-k.
+constexpr int kDielectricFlatBins = 90, kDielectricThetaBins = 18, kDielectricPhiBins = 24;
+
+int cmd_brdf_dielectric_lobe(const BrdfArgs& a, NdfKind ndf, bool flat) {
+  for (auto [given, flag] :
+       {std::pair{a.theta_o_given, "--theta-o-deg"}, std::pair{!a.directions.empty(), "--directions"},
+        std::pair{a.masking_given, "--masking"}, std::pair{a.alpha_y_given, "--alpha-y"},
+        std::pair{a.partner_given, "--partner"}, std::pair{a.max_k_given, "--max-k"}})
+    if (given)
+      throw support::UserError(std::string(flag) +
+                               " does not apply to --model vgroove-dielectric (it prints the binned lobe at "
+                               "--theta-i-deg)");
+  check_angle(a.eta, 0, false, validation::kMaxFresnelEta, true, "--eta");
+  if (flat)
+    check_angle(a.theta_i_deg, -90, false, 90, false, "--theta-i-deg");
+  else
+    check_angle(a.theta_i_deg, 0, true, 90, false, "--theta-i-deg");
+  if (a.per_k_max < 1 || a.per_k_max > validation::kMaxPrintedK)
+    throw support::UserError("--per-k-max = " + std::to_string(a.per_k_max) + " is out of range [1, " +
+                             std::to_string(validation::kMaxPrintedK) + "]");
+  if (a.dry_run) return 0;
+  const int rows = a.per_k ? a.per_k_max : 0;
+  const double ti = deg_to_rad(a.theta_i_deg);
+  const analytic::DielectricLobe L =
+      flat ? analytic::kaleidoscope_dielectric_lobe_flatland(ndf, a.alpha, a.eta, ti, kDielectricFlatBins, rows)
+           : analytic::kaleidoscope_dielectric_lobe_3d(ndf, a.alpha, a.eta, ti, kDielectricThetaBins,
+                                                       kDielectricPhiBins, rows);
+  if (support::cancelled(a.cancel)) return interrupted_no_report();
+  const int tb = flat ? kDielectricFlatBins : kDielectricThetaBins, pb = flat ? 1 : kDielectricPhiBins;
+  const double dt = flat ? 180.0 / tb : 90.0 / tb, dp = 360.0 / pb;
+  auto theta_lo = [&](int b) { return flat ? -90.0 + b * dt : (b / pb) * dt; };
+  auto phi_lo = [&](int b) { return (b % pb) * dp - 0.5 * dp; };
+  if (a.json) {
+    nlohmann::json j = validation::provenance();
+    j["kind"] = "brdf_lobe";
+    j["inputs"] = {{"model", a.model}, {"ndf", a.ndf},       {"alpha", a.alpha},
+                   {"eta", a.eta},     {"dimension", a.dim}, {"theta_i_deg", a.theta_i_deg}};
+    j["bins"] = flat
+                    ? nlohmann::json{{"theta_bins", tb}, {"theta_range_deg", {-90, 90}}}
+                    : nlohmann::json{{"theta_bins", tb}, {"phi_bins", pb}, {"index", "theta_bin * phi_bins + phi_bin"}};
+    j["reflected"] = L.reflected;
+    j["transmitted"] = L.transmitted;
+    if (rows > 0) j["reflected_by_k"] = L.reflected_by_k, j["transmitted_by_k"] = L.transmitted_by_k;
+    j["albedo_r"] = L.albedo_r, j["albedo_t"] = L.albedo_t, j["shadow_or_unknown"] = L.shadow_or_unknown;
+    j["upward"] = L.upward, j["unresolved"] = L.unresolved, j["error_estimate"] = L.error_estimate;
+    std::cout << support::json_text(j, 1) << "\n";
+    return 0;
+  }
+  std::printf(
+      "brdf vgroove-dielectric: %s alpha %g, eta %g, %s, theta_i %g deg: the kaleidoscopic dielectric model's "
+      "lobe, flux fractions per bin (%s)\n",
+      a.ndf.c_str(), a.alpha, a.eta, flat ? "flatland" : "3D", a.theta_i_deg,
+      flat ? "90 bins over (-90, 90) deg from the exit side's normal"
+           : "18 theta bins from the exit side's normal x 24 phi bins, the light at phi 180");
+  std::printf("  albedo_r %.9f  albedo_t %.9f  not binned %.3g (travelling back up %.3g, k > 32 %.3g)  error %.2g\n",
+              L.albedo_r, L.albedo_t, L.shadow_or_unknown, L.upward, L.unresolved, L.error_estimate);
+  std::printf("  %-12s %9s %9s%s  %s\n", "side", "theta_lo", "theta_hi", flat ? "" : "   phi_lo   phi_hi", "flux");
+  for (int side = 0; side < 2; ++side) {
+    const std::vector<double>& v = side == 0 ? L.reflected : L.transmitted;
+    const auto& by_k = side == 0 ? L.reflected_by_k : L.transmitted_by_k;
+    for (int b = 0; b < L.bins; ++b) {
+      if (!(v[b] > 0.0)) continue;
+      std::printf("  %-12s %9.3f %9.3f", side == 0 ? "reflected" : "transmitted", theta_lo(b), theta_lo(b) + dt);
+      if (!flat) std::printf(" %8.2f %8.2f", phi_lo(b), phi_lo(b) + dp);
+      std::printf("  %.9g\n", v[b]);
+      for (int k = 1; k <= rows; ++k)
+        std::printf("  %*s k = %-4d %.9g\n", flat ? 32 : 50, "", k, by_k[static_cast<std::size_t>(k)][b]);
+    }
+  }
+  return 0;
+}
+
 }  // namespace
 
 int cmd_brdf(const BrdfArgs& a) {
+  if (a.model == "vgroove-dielectric") {
+    const auto ndf = ndf_from_name(a.ndf);
+    if (!ndf) throw support::UserError("--ndf = \"" + a.ndf + "\" is not one of \"ggx\", \"beckmann\", \"phong\"");
+    if (a.dim != "3d" && a.dim != "flatland")
+      throw support::UserError("--dim = \"" + a.dim + "\" is not one of \"3d\", \"flatland\"");
+    check_angle(a.alpha, validation::kMinAlpha, true, validation::kMaxAlpha, true, "--alpha");
+    return cmd_brdf_dielectric_lobe(a, *ndf, a.dim == "flatland");
+  }
   const auto model = analytic::brdf_model_from_name(a.model);
   if (!model)
     throw support::UserError("--model = \"" + a.model +
-                             "\" is not one of \"vgroove\", \"vgroove-nonsymmetric\", \"cook-torrance\", \"walter\"");
+                             "\" is not one of \"vgroove\", \"vgroove-nonsymmetric\", \"cook-torrance\", \"walter\", "
+                             "\"vgroove-dielectric\"");
   const auto ndf = ndf_from_name(a.ndf);
   if (!ndf) throw support::UserError("--ndf = \"" + a.ndf + "\" is not one of \"ggx\", \"beckmann\", \"phong\"");
   if (a.dim != "3d" && a.dim != "flatland")
@@ -279,7 +365,10 @@ void add_brdf_command(CLI::App& app, Commands& commands) {
       "is below the interface, in the far medium.");
   BrdfArgs& ba = commands.add(brdf, cmd_brdf);
   ba.cancel = commands.context().cancel;
-  add_text(brdf, "--model", ba.model, "vgroove, vgroove-nonsymmetric, cook-torrance or walter")->capture_default_str();
+  add_text(brdf, "--model", ba.model,
+           "vgroove, vgroove-nonsymmetric, cook-torrance, walter, or vgroove-dielectric (the kaleidoscopic "
+           "dielectric model's binned lobe at --theta-i-deg, reflected and transmitted, with --eta)")
+      ->capture_default_str();
   add_text(brdf, "--ndf", ba.ndf, "ggx, beckmann or phong")->capture_default_str();
   add_real(brdf, "--alpha", ba.alpha,
            "roughness, " + support::interval_text(kMinAlpha, true, kMaxAlpha, true) +
@@ -296,11 +385,13 @@ void add_brdf_command(CLI::App& app, Commands& commands) {
                "vgroove-nonsymmetric only: the partner facet's tilt, independent (Eq. 20) or symmetric (equal to the "
                "first's: the symmetric model, anisotropic with --alpha-y)")
           ->capture_default_str();
-  auto* brdf_eta = add_real(brdf, "--eta", ba.eta,
-                            "walter only: n_far / n_near, the light in the near medium (below 1: from inside the "
-                            "denser medium), " +
-                                support::interval_text(0, false, validation::kMaxFresnelEta, true))
-                       ->capture_default_str();
+  auto* brdf_eta =
+      add_real(
+          brdf, "--eta", ba.eta,
+          "walter and vgroove-dielectric only: n_far / n_near, the light in the near medium (below 1: from inside the "
+          "denser medium), " +
+              support::interval_text(0, false, validation::kMaxFresnelEta, true))
+          ->capture_default_str();
   auto* brdf_masking = add_text(brdf, "--masking", ba.masking,
                                 "walter only: the G2, smith (height-correlated), smith_separable (Walter's Eq. 23) "
                                 "or vcavity; smith ones need ggx or beckmann")
