@@ -172,7 +172,8 @@ void print_dielectric_brdf_table(std::ostream& os, const DielectricBrdfSuite& s,
       support::format("%zu cases, %ld rays and %ld walk paths per case", run.cases.size(), s.rays, s.walk_paths),
       run.threads);
   os << "  R, T: traced albedos; per model (WV Walter V-cavity, WS Smith separable, WH Smith height-correlated, walk "
-        "the Smith walk): L1/threshold of the reflected and transmitted lobes (all k), z of the R and T albedo misses; "
+        "the Smith walk, KD kaleidoscopic): L1/threshold of the reflected and transmitted lobes (all k), z of the R "
+        "and T albedo misses; "
         "* = matches within noise\n";
   os << "  ctl: the walk's k = 1 share against Walter-Smith height-correlated (the verdict)\n";
   for (const DielectricBrdfOutcome& o : run.cases) {
@@ -188,6 +189,7 @@ void print_dielectric_brdf_table(std::ostream& os, const DielectricBrdfSuite& s,
       std::string tag = m.name == "walter_vcavity"            ? "WV"
                         : m.name == "walter_smith_separable"  ? "WS"
                         : m.name == "walter_smith_correlated" ? "WH"
+                        : m.name == "kaleidoscopic"           ? "KD"
                                                               : "walk";
       os << support::format(" | %s%s L1/thr %.1f,%.1f z %+.0f,%+.0f", tag.c_str(), m.matches_all ? "*" : "", lr, lt, zr,
                             zt);

@@ -1346,7 +1346,8 @@ def heightfield_albedo_figures(report: Node, base: str) -> List[Tuple[str, Drawe
 
 # Rough dielectrics: reflected and transmitted lobes against each model ----------------------------
 
-_DIELECTRIC_MODELS = ("walter_vcavity", "walter_smith_separable", "walter_smith_correlated", "smith_walk")
+_DIELECTRIC_MODELS = ("walter_vcavity", "walter_smith_separable", "walter_smith_correlated", "smith_walk",
+                      "kaleidoscopic")
 
 
 def _dielectric_curve(rows: Node, bins: int, dim: str, theta_bins: int, phi_bins: int, k: Optional[int]) -> List[float]:
@@ -1384,7 +1385,7 @@ def dielectric_brdf_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]
         groups.setdefault(key, []).append(case)
     name = safe_text(report["suite"].text())
     colors = {"walter_vcavity": "#d62728", "walter_smith_separable": "#2ca02c",
-              "walter_smith_correlated": "#1f77b4", "smith_walk": "#9467bd"}
+              "walter_smith_correlated": "#1f77b4", "smith_walk": "#9467bd", "kaleidoscopic": "#ff7f0e"}
 
     def drawer(key: Tuple[str, str, str, str], cases: List[Dict[str, Any]]) -> Drawer:
         surface, dim, ndf, side = key

@@ -1,6 +1,7 @@
 // The "dielectric_brdf" suite (validation/dielectric_brdf_suite.h): a tiny suite passes the
 // tracer's own checks, energy is conserved per ray, the report does not depend on the thread
-// count, the walk's control fails when it is broken on purpose, and bad specs name the field.
+// count, the walk's control fails when it is broken on purpose, the kaleidoscopic model is wired
+// from both sides, and bad specs name the field.
 #include "vgroove/validation/dielectric_brdf_suite.h"
 
 #include "tests/test_files.h"
@@ -129,6 +130,29 @@ TEST(DielectricBrdfSuite, ABrokenControlFails) {
   EXPECT_FALSE(run.pass);
 }
 
+// The kaleidoscopic model (analytic/kaleidoscope_dielectric_lobe.h) in the suite's rows and bins:
+// on flatland Beckmann grooves of alpha 0.1 it matches the traced lobes from either side (light
+// from below is its model at 1 / eta mirrored: the lobes reversed would miss by many thresholds).
+TEST(DielectricBrdfSuite, TheKaleidoscopicModelIsWiredFromBothSides) {
+  json j = tiny();
+  j["surfaces"] = {"vgroove"};
+  j["dimensions"] = {"flatland"};
+  j["ndf"] = {"beckmann"};
+  j["alpha"] = {0.1};
+  j["theta_i_deg"] = {30};
+  j["models"] = {"kaleidoscopic"};
+  const DielectricBrdfSuite s = parse_dielectric_brdf_suite(j, "tiny.json");
+  const DielectricBrdfRun run = run_dielectric_brdf_suite(s, 0, 2);
+  ASSERT_EQ(run.cases.size(), 2u);
+  for (const DielectricBrdfOutcome& o : run.cases) {
+    ASSERT_EQ(o.models.size(), 1u);
+    const ModelOutcome& m = o.models[0];
+    EXPECT_TRUE(m.matches_all) << sim::medium_name(o.c.side) << ": L1 R " << m.fit_reflected.l1_all << " / "
+                               << m.fit_reflected.threshold_all << ", T " << m.fit_transmitted.l1_all << " / "
+                               << m.fit_transmitted.threshold_all;
+  }
+}
+
 TEST(DielectricBrdfSuite, BadSpecsNameTheFieldAndRange) {
   json j = tiny();
   j["eta"] = {0.0};
@@ -140,8 +164,8 @@ TEST(DielectricBrdfSuite, BadSpecsNameTheFieldAndRange) {
   j["theta_i_deg"] = {90};
   EXPECT_USER_ERROR(parse_dielectric_brdf_suite(j, "x.json"), "/theta_i_deg");
   j = tiny();
-  j["models"] = {"kaleidoscopic"};
-  EXPECT_USER_ERROR(parse_dielectric_brdf_suite(j, "x.json"), "reserved");
+  j["models"] = {"walter"};
+  EXPECT_USER_ERROR(parse_dielectric_brdf_suite(j, "x.json"), "/models");
   j = tiny();
   j["surfaces"] = {"profiles"};
   j["dimensions"] = {"3d"};
