@@ -29,7 +29,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::uint64_t kAuditWalkStream = 0x6175646974ULL;  // "audit"
 // The heightfield reference's streams: fields (per ndf, alpha, field), rays (per cell, chunk).
 constexpr std::uint64_t kAuditFieldStream = 0x6175646668ULL, kAuditRayStream = 0x6175647268ULL;
-constexpr double kEnergyUnit = 4294967296.0;                 // 2^32 units per path of energy 1
+constexpr double kEnergyUnit = 4294967296.0;  // 2^32 units per path of energy 1
 
 std::vector<std::string> metal_symbols() {
   std::vector<std::string> s;
@@ -159,8 +159,8 @@ std::shared_ptr<const EnergyAuditWork::Context> EnergyAuditWork::prepare(std::si
 
 sim::HeightfieldSurface audit_heightfield_field(const EnergyAuditSuite& s, std::size_t cell, int field) {
   const EnergyAuditCell c = s.cell_at(cell);
-  const HeightfieldFieldSpec spec{c.ndf, c.alpha, s.hf_field_size, s.hf_correlation_length,
-                                  HeightfieldSurfaceKind::gaussian, 1.0};
+  const HeightfieldFieldSpec spec{
+      c.ndf, c.alpha, s.hf_field_size, s.hf_correlation_length, HeightfieldSurfaceKind::gaussian, 1.0};
   // One surface per (ndf, alpha) measured at every mu: the key drops the mu index.
   const std::uint64_t key = static_cast<std::uint64_t>(cell / s.mus.size()) * 65536 + static_cast<std::uint64_t>(field);
   return make_field_surface(spec, sim::Rng(s.seed, kAuditFieldStream, key).next_u64());
@@ -336,9 +336,12 @@ EnergyAuditWork::Fixed EnergyAuditWork::run_fixed(std::size_t cell) const {
 nlohmann::json EnergyAuditWork::tally_json(const Tally& t) {
   nlohmann::json j = {{"paths", t.paths}, {"lost", t.lost}, {"by_k", t.by_k}, {"energy", t.energy}};
   if (!t.hf_by_k.empty())
-    j["heightfield"] = {{"rays", t.hf_rays},           {"lost", t.hf_lost},
-                        {"bounce_limit", t.hf_bounce_limit}, {"by_k", t.hf_by_k},
-                        {"energy", t.hf_energy},       {"field_by_k", t.hf_field_by_k},
+    j["heightfield"] = {{"rays", t.hf_rays},
+                        {"lost", t.hf_lost},
+                        {"bounce_limit", t.hf_bounce_limit},
+                        {"by_k", t.hf_by_k},
+                        {"energy", t.hf_energy},
+                        {"field_by_k", t.hf_field_by_k},
                         {"field_energy", t.hf_field_energy}};
   return j;
 }
@@ -490,8 +493,8 @@ Job<EnergyAuditWork> energy_audit_job(const EnergyAuditSuite& s, nlohmann::json 
   std::vector<support::WorkUnit> units(s.cells());
   // A worker holds its cell's fields (at most two cells' at once per worker).
   if (s.heightfield)
-    check_field_fits(s.hf_field_size, 2.0 * s.hf_fields * support::resolve_threads(0), s.file + ": /heightfield/field_size",
-                     16);
+    check_field_fits(s.hf_field_size, 2.0 * s.hf_fields * support::resolve_threads(0),
+                     s.file + ": /heightfield/field_size", 16);
   for (std::size_t c = 0; c < units.size(); ++c) {
     // Estimates (ns of one core; they only balance the shards): ~1.5 us a path, ~0.3 s the fixed part
     // (three times that where E_avg is computed); a heightfield chunk about a walk chunk.

@@ -8,7 +8,8 @@
 // Verdict (the references, not the formulas): walk and heightfield white channels leave whole, the
 // walk's E_1 is Smith's E_ss within `sigmas`, the model sums to 1 and its first row is the V-cavity
 // E_ss. Integer tallies: any merge order gives the same bits. Tests: tests/validation/energy_audit_test.cpp
-// (EnergyAudit.VgrooveReferenceWithAConductorIsTheTracedGrooves, EnergyAudit.SmallAuditChecksPassAndEveryFormulaKeepsTheWhiteFurnace,
+// (EnergyAudit.VgrooveReferenceWithAConductorIsTheTracedGrooves,
+// EnergyAudit.SmallAuditChecksPassAndEveryFormulaKeepsTheWhiteFurnace,
 // EnergyAudit.HeightfieldChannelsAreTheFresnelTraces, EnergyAudit.HeightfieldTallyIsTheSameForAnyThreadsAndShards,
 // EnergyAudit.HeightfieldReferenceInTheReport, Colour.DeltaE2000AtSharmasTestPairs), tests/app/energy_tables_test.cpp
 // (EnergyAuditCli.*). Derivation: docs/derivations/energy_compensation.md.

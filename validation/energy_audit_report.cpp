@@ -221,8 +221,8 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
           var += x * x;
         }
         const double q = std::clamp(d.E[2][c], 0.0, 1.0);
-        d.se[2][c] = std::max(nf >= 2 ? std::sqrt(var / (nf - 1.0) / nf) : 0.0,
-                              std::sqrt(std::max(q * (1.0 - q), 1.0 / M) / M));
+        d.se[2][c] =
+            std::max(nf >= 2 ? std::sqrt(var / (nf - 1.0) / nf) : 0.0, std::sqrt(std::max(q * (1.0 - q), 1.0 / M) / M));
       }
       d.ss_avg[2] = d.ss_avg[1], d.E_F[2] = &f.smith_E_F;
     }
@@ -357,19 +357,19 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
       hf_lost += t.hf_lost, hf_limit += t.hf_bounce_limit;
       std::int64_t units = 0;
       for (int k = 0; k < R; ++k) units += t.hf_energy[static_cast<std::size_t>(k) * C + white];
-      hf_white = std::max(hf_white, std::abs(static_cast<double>(units) / kEnergyUnit - static_cast<double>(t.hf_rays)) /
-                                        static_cast<double>(t.hf_rays));
+      hf_white =
+          std::max(hf_white, std::abs(static_cast<double>(units) / kEnergyUnit - static_cast<double>(t.hf_rays)) /
+                                 static_cast<double>(t.hf_rays));
       const double M = static_cast<double>(t.hf_rays), nf = s.hf_fields, per_field = M / nf;
       const double E1 = static_cast<double>(t.hf_by_k[1]) / M;
       double var = 0.0;
       for (int fi = 0; fi < s.hf_fields; ++fi) {
-        const double x =
-            static_cast<double>(t.hf_field_by_k[static_cast<std::size_t>(fi) * R + 1]) / per_field - E1;
+        const double x = static_cast<double>(t.hf_field_by_k[static_cast<std::size_t>(fi) * R + 1]) / per_field - E1;
         var += x * x;
       }
       const double q = std::clamp(E1, 0.0, 1.0);
-      const double se = std::max(nf >= 2 ? std::sqrt(var / (nf - 1.0) / nf) : 0.0,
-                                 std::sqrt(std::max(q * (1.0 - q), 1.0 / M) / M));
+      const double se =
+          std::max(nf >= 2 ? std::sqrt(var / (nf - 1.0) / nf) : 0.0, std::sqrt(std::max(q * (1.0 - q), 1.0 / M) / M));
       hf_E1_minus_ess.push_back(E1 - f.smith.E), hf_E1_se.push_back(se);
       const double z = std::abs(E1 - f.smith.E) / se;
       if (z > hf_z || std::isnan(z)) hf_z = z, hf_z_at = cell_text(cells[n].cell), hf_d1 = E1 - f.smith.E;
@@ -605,16 +605,16 @@ nlohmann::json energy_audit_report_json(const EnergyAuditSuite& s, const EnergyA
 }
 
 void print_energy_audit(std::ostream& os, const EnergyAuditSuite& s, const EnergyAuditRun& run) {
-  print_table_title(os, s.name, "energy_audit",
-                    support::format("%zu cells (%zu NDFs x %zu alpha x %zu mu), %lld walk paths per cell, seed %llu",
-                                    s.cells(), s.ndfs.size(), s.alphas.size(), s.mus.size(), s.walk_paths,
-                                    static_cast<unsigned long long>(s.seed)) +
-                        (s.heightfield ? support::format("; heightfield: %d fields of %d^2 cells (l = %g), %lld rays "
-                                                         "per field and cell",
-                                                         s.hf_fields, s.hf_field_size, s.hf_correlation_length,
-                                                         s.hf_rays_per_field)
-                                       : std::string()),
-                    run.threads);
+  print_table_title(
+      os, s.name, "energy_audit",
+      support::format("%zu cells (%zu NDFs x %zu alpha x %zu mu), %lld walk paths per cell, seed %llu", s.cells(),
+                      s.ndfs.size(), s.alphas.size(), s.mus.size(), s.walk_paths,
+                      static_cast<unsigned long long>(s.seed)) +
+          (s.heightfield ? support::format("; heightfield: %d fields of %d^2 cells (l = %g), %lld rays "
+                                           "per field and cell",
+                                           s.hf_fields, s.hf_field_size, s.hf_correlation_length, s.hf_rays_per_field)
+                         : std::string()),
+      run.threads);
   os << run.table;
   // The verdict is the references' checks; the formulas' errors are results.
   std::size_t passed = 0, total = 0;

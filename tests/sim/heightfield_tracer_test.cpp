@@ -434,7 +434,7 @@ TEST(HeightfieldTracer, BounceCosinesGiveEveryReflectanceOfOneTrace) {
       broken = std::max(broken, std::abs(macro - b.throughput));
     }
   }
-  EXPECT_GT(multiple, 40);  // 60 of the 1000 rays reflect more than once
+  EXPECT_GT(multiple, 40);            // 60 of the 1000 rays reflect more than once
   EXPECT_GT(broken, 0.05) << broken;  // the macro normal's cosine is not the facets'
 }
 
