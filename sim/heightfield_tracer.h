@@ -11,7 +11,8 @@
 // HeightfieldTracer.EdgeAndVertexRaysTakeTheLimitOfOneSide,
 // HeightfieldTracer.ExactEdgeRaysNeverHitTheirEdgeTwice, HeightfieldTracer.HierarchyPrunesWithoutChangingAnyAnswer,
 // HeightfieldEnergy.EveryRayLeavesAndEnergyIsExactlyOne,
-// HeightfieldTracer.TwoThreadsMergedInChunkOrderGiveTheSameBits). Derivation: docs/derivations/heightfield.md.
+// HeightfieldTracer.TwoThreadsMergedInChunkOrderGiveTheSameBits,
+// HeightfieldTracer.BounceCosinesGiveEveryReflectanceOfOneTrace). Derivation: docs/derivations/heightfield.md.
 #pragma once
 
 #include "vgroove/sim/heightfield.h"
