@@ -302,7 +302,9 @@ TEST(EnergyAudit, HeightfieldChannelsAreTheFresnelTraces) {
       const double n = static_cast<double>(count[static_cast<std::size_t>(k)]);
       EXPECT_LE(std::abs(static_cast<double>(t.hf_energy[i]) - traced[i]), n)
           << "row " << k << " " << set.channels()[static_cast<std::size_t>(c)].name;
-      if (c == white) EXPECT_EQ(static_cast<double>(t.hf_energy[i]), n * 4294967296.0);
+      if (c == white) {
+        EXPECT_EQ(static_cast<double>(t.hf_energy[i]), n * 4294967296.0);
+      }
       if (n > 0) broken = std::max(broken, std::abs(macro[i] - traced[i]) / (n * 4294967296.0));
     }
   EXPECT_GT(broken, 1e-3) << "the macro normal's cosine would pass for the facets'";
