@@ -78,8 +78,9 @@ int cmd_energy(const EnergyArgs& a) {
   if (!a.eta.empty()) return cmd_energy_glass(a);
   if (a.sides_given) throw support::UserError("--side applies to the glass tables (--eta)");
   if (a.grooves_given) throw support::UserError("--grooves applies to the glass tables (--eta)");
-  if (a.reference_given) throw support::UserError("--reference applies to the glass tables (--eta)");
-  if (a.audit) return cmd_energy_audit(a);
+  if (a.audit) return cmd_energy_audit(a);  // --reference heightfield: its third reference
+  if (a.reference_given)
+    throw support::UserError("--reference applies to the glass tables (--eta) and to --audit (heightfield)");
   if (a.lobe_shape) return cmd_energy_lobe_shape(a);
   if (!a.export_base.empty()) return cmd_energy_export(a);
   check_threads(a.threads, "--threads");
@@ -212,7 +213,9 @@ void add_energy_command(CLI::App& app, Commands& commands) {
           ->capture_default_str();
   auto* reference = add_text(energy, "--reference", ea.reference,
                              "--eta's tables from: vgroove (the traced V-groove surfaces) or smith_walk (Heitz et al. "
-                             "2016's dielectric random walk; --grooves not used)")
+                             "2016's dielectric random walk; --grooves not used); with --audit, heightfield adds the "
+                             "random heightfields as a third reference (4 fields of 256^2 cells, --rays / 4 rays per "
+                             "field and cell)")
                         ->capture_default_str();
   energy->callback([&ea, sides, grooves, reference]() {
     ea.sides_given = sides->count() > 0;

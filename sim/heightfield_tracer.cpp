@@ -256,9 +256,10 @@ bool enters(const Feature& f, const std::array<std::array<std::int64_t, 2>, 3>& 
   return side_d == 0.0 || (side_d > 0.0) == (side_r > 0.0);
 }
 
-template <class Reflectance>
+template <bool kRecord, class Reflectance>
 HeightfieldRayResult trace_ray(const HeightfieldSurface& s, const Vec3& org0, const Vec3& dir0,
                                const HeightfieldRayOptions& opt, const Reflectance& F) {
+  if constexpr (kRecord) opt.cosines->clear();
   Tracer tr(s, opt);
   HeightfieldRayResult res;
   Feature none;
@@ -309,9 +310,12 @@ HeightfieldRayResult trace_ray(const HeightfieldSurface& s, const Vec3& org0, co
       const Vec3 nrm = tr.normal(refl);
       const double dn = tr.dir.dot(nrm);
       const double nn = nrm.squaredNorm();
-      // F = 1: no cosine, no product. The cosine is clamped to 1 against rounding.
-      if constexpr (!std::is_same_v<Reflectance, UnitReflectance>)
-        res.throughput *= F(std::min(1.0, std::abs(dn) / std::sqrt(nn * tr.dir.squaredNorm())));
+      // F = 1 and no cosines asked for: no cosine, no product. The cosine is clamped to 1 against rounding.
+      if constexpr (kRecord || !std::is_same_v<Reflectance, UnitReflectance>) {
+        const double cos_j = std::min(1.0, std::abs(dn) / std::sqrt(nn * tr.dir.squaredNorm()));
+        if constexpr (kRecord) opt.cosines->push_back(cos_j);
+        if constexpr (!std::is_same_v<Reflectance, UnitReflectance>) res.throughput *= F(cos_j);
+      }
       tr.dir = tr.dir - (2.0 * dn / nn) * nrm;
       if (++res.bounces > opt.max_bounces) {
         res.how = HeightfieldFate::bounce_limit;
@@ -340,19 +344,30 @@ HeightfieldSurface make_heightfield_surface(Heightfield f) {
   return s;
 }
 
-HeightfieldRayResult trace_heightfield_ray(const HeightfieldSurface& s, const Vec3& org, const Vec3& dir,
-                                           const HeightfieldRayOptions& opt) {
+namespace {
+
+template <bool kRecord>
+HeightfieldRayResult trace_with(const HeightfieldSurface& s, const Vec3& org, const Vec3& dir,
+                                const HeightfieldRayOptions& opt) {
   switch (opt.fresnel.kind) {
     case HeightfieldReflectance::unit:
       break;
     case HeightfieldReflectance::conductor:
-      return trace_ray(s, org, dir, opt, ConductorReflectance{opt.fresnel.eta, opt.fresnel.kappa});
+      return trace_ray<kRecord>(s, org, dir, opt, ConductorReflectance{opt.fresnel.eta, opt.fresnel.kappa});
     case HeightfieldReflectance::dielectric:
-      return trace_ray(s, org, dir, opt, DielectricReflectance{opt.fresnel.eta});
+      return trace_ray<kRecord>(s, org, dir, opt, DielectricReflectance{opt.fresnel.eta});
     case HeightfieldReflectance::schlick:
-      return trace_ray(s, org, dir, opt, SchlickReflectance{opt.fresnel.F0});
+      return trace_ray<kRecord>(s, org, dir, opt, SchlickReflectance{opt.fresnel.F0});
   }
-  return trace_ray(s, org, dir, opt, UnitReflectance{});
+  return trace_ray<kRecord>(s, org, dir, opt, UnitReflectance{});
+}
+
+}  // namespace
+
+HeightfieldRayResult trace_heightfield_ray(const HeightfieldSurface& s, const Vec3& org, const Vec3& dir,
+                                           const HeightfieldRayOptions& opt) {
+  // One test per ray: the traces without cosines are the code they were.
+  return opt.cosines ? trace_with<true>(s, org, dir, opt) : trace_with<false>(s, org, dir, opt);
 }
 
 HeightfieldFirstHit first_heightfield_hit(const HeightfieldSurface& s, const Vec3& org, const Vec3& dir,

@@ -11,7 +11,8 @@
 // HeightfieldTracer.EdgeAndVertexRaysTakeTheLimitOfOneSide,
 // HeightfieldTracer.ExactEdgeRaysNeverHitTheirEdgeTwice, HeightfieldTracer.HierarchyPrunesWithoutChangingAnyAnswer,
 // HeightfieldEnergy.EveryRayLeavesAndEnergyIsExactlyOne,
-// HeightfieldTracer.TwoThreadsMergedInChunkOrderGiveTheSameBits). Derivation: docs/derivations/heightfield.md.
+// HeightfieldTracer.TwoThreadsMergedInChunkOrderGiveTheSameBits,
+// HeightfieldTracer.BounceCosinesGiveEveryReflectanceOfOneTrace). Derivation: docs/derivations/heightfield.md.
 #pragma once
 
 #include "vgroove/sim/heightfield.h"
@@ -40,10 +41,16 @@ struct HeightfieldFresnel {
   double F0 = 1.0;                // schlick
 };
 
+// cosines: when set, the trace clears it and appends each reflection's local cosine |<d, m_j>| / |m_j|
+// (clamped to 1; the value the reflectance is evaluated at), in bounce order, up to max_bounces + 1
+// entries (a ray over the limit), so that one trace serves any number of reflectances: the
+// product of F_c(cos_j) is the throughput of fresnel = F_c. Null (the default) costs nothing; one
+// vector per thread.
 struct HeightfieldRayOptions {
   int max_bounces = 1000;
   std::int64_t max_tiles = 1 << 22;  // periods a horizontal ray may cross before it is lost
   HeightfieldFresnel fresnel;
+  std::vector<double>* cosines = nullptr;
 };
 
 enum class HeightfieldFate : unsigned char { escaped, bounce_limit, lost };

@@ -11,6 +11,7 @@
 #include "vgroove/support/json_reader.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/detail/part_fields.h"
+#include "vgroove/validation/heightfield_lobe.h"
 #include "vgroove/validation/partial_report.h"
 #include "vgroove/validation/spec_lists.h"
 
@@ -18,6 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
 namespace vgroove::validation {
 
@@ -25,7 +27,9 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::uint64_t kAuditWalkStream = 0x6175646974ULL;  // "audit"
-constexpr double kEnergyUnit = 4294967296.0;                 // 2^32 units per path of energy 1
+// The heightfield reference's streams: fields (per ndf, alpha, field), rays (per cell, chunk).
+constexpr std::uint64_t kAuditFieldStream = 0x6175646668ULL, kAuditRayStream = 0x6175647268ULL;
+constexpr double kEnergyUnit = 4294967296.0;  // 2^32 units per path of energy 1
 
 std::vector<std::string> metal_symbols() {
   std::vector<std::string> s;
@@ -75,6 +79,28 @@ EnergyAuditSuite parse_energy_audit(const nlohmann::json& j, const std::string& 
     r.finish();
   }
   s.cycles_table = root.boolean_or("cycles_table", true);
+  if (root.has("references")) {
+    const std::vector<std::string> refs =
+        read_names(root, "references", {kAuditReferences[0], kAuditReferences[1], kAuditReferences[2]});
+    for (const char* must : {kAuditReferences[0], kAuditReferences[1]})
+      if (std::find(refs.begin(), refs.end(), must) == refs.end())
+        root.fail("references", std::string("lacks \"") + must +
+                                    "\": the V-groove model and the Smith walk are always audited (\"heightfield\" is "
+                                    "the optional one)");
+    s.heightfield = std::find(refs.begin(), refs.end(), kAuditReferences[2]) != refs.end();
+  }
+  if (s.heightfield) {
+    support::JsonObject h = root.object("heightfield");
+    s.hf_fields = static_cast<int>(h.integer("fields", 1, kAuditMaxFields));
+    s.hf_rays_per_field = h.integer("rays_per_field", 1, kMaxAuditPaths);
+    s.hf_field_size = static_cast<int>(h.integer("field_size", 16, 4096));
+    if ((s.hf_field_size & (s.hf_field_size - 1)) != 0)
+      h.fail("field_size", "= " + std::to_string(s.hf_field_size) + " is not a power of two in [16, 4096]");
+    s.hf_correlation_length = h.number("correlation_length", 2.0, true, s.hf_field_size / 8.0, true);
+    h.finish();
+  } else if (root.has("heightfield")) {
+    root.fail("heightfield", "is given but /references has no \"heightfield\"");
+  }
   {
     support::JsonObject t = root.object("thresholds");
     s.sigmas = t.number("sigmas", 0.0, false, kMaxSigmas, true);
@@ -103,19 +129,131 @@ nlohmann::json energy_audit_json(const EnergyAuditSuite& s) {
                       {"regions", {{"rough_alpha", s.rough_alpha}, {"grazing_mu", s.grazing_mu}}},
                       {"thresholds", {{"sigmas", s.sigmas}, {"vgroove_furnace", s.vgroove_furnace}}}};
   j["cycles_table"] = s.cycles_table;
+  if (s.heightfield) {  // only then: the default audit's spec is what it was
+    j["references"] = {kAuditReferences[0], kAuditReferences[1], kAuditReferences[2]};
+    j["heightfield"] = {{"fields", s.hf_fields},
+                        {"rays_per_field", s.hf_rays_per_field},
+                        {"field_size", s.hf_field_size},
+                        {"correlation_length", exact_json(s.hf_correlation_length)}};
+  }
   return j;
 }
 
-EnergyAuditWork::Tally EnergyAuditWork::run_chunks(const Context&, std::size_t cell, std::int64_t begin,
+// The fields of one cell, each made once on first use by whichever thread needs it.
+struct AuditFields {
+  struct Slot {
+    std::once_flag made;
+    sim::HeightfieldSurface surface;
+  };
+  std::vector<std::unique_ptr<Slot>> slots;
+};
+
+std::shared_ptr<const EnergyAuditWork::Context> EnergyAuditWork::prepare(std::size_t) const {
+  auto ctx = std::make_shared<Context>();
+  if (suite.heightfield) {
+    ctx->fields = std::make_shared<AuditFields>();
+    for (int f = 0; f < suite.hf_fields; ++f) ctx->fields->slots.push_back(std::make_unique<AuditFields::Slot>());
+  }
+  return ctx;
+}
+
+sim::HeightfieldSurface audit_heightfield_field(const EnergyAuditSuite& s, std::size_t cell, int field) {
+  const EnergyAuditCell c = s.cell_at(cell);
+  const HeightfieldFieldSpec spec{
+      c.ndf, c.alpha, s.hf_field_size, s.hf_correlation_length, HeightfieldSurfaceKind::gaussian, 1.0};
+  // One surface per (ndf, alpha) measured at every mu: the key drops the mu index.
+  const std::uint64_t key = static_cast<std::uint64_t>(cell / s.mus.size()) * 65536 + static_cast<std::uint64_t>(field);
+  return make_field_surface(spec, sim::Rng(s.seed, kAuditFieldStream, key).next_u64());
+}
+
+int audit_heightfield_field_of(const EnergyAuditSuite& s, std::int64_t chunk) {
+  return static_cast<int>((chunk - s.walk_chunks()) / s.hf_chunks_per_field());
+}
+
+void audit_heightfield_rays(const EnergyAuditSuite& s, const sim::HeightfieldSurface& f, std::size_t cell,
+                            std::int64_t chunk, std::vector<Eigen::Vector3d>& origins, Eigen::Vector3d& dir) {
+  const EnergyAuditCell c = s.cell_at(cell);
+  const std::int64_t q = (chunk - s.walk_chunks()) % s.hf_chunks_per_field();
+  const std::int64_t first = q * kAuditRaysPerChunk,
+                     last = std::min<std::int64_t>(s.hf_rays_per_field, first + kAuditRaysPerChunk);
+  sim::Rng rng(sim::splitmix64(s.seed ^ kAuditRayStream), cell, static_cast<std::uint64_t>(chunk));
+  const double n = static_cast<double>(f.field.n), z0 = f.hierarchy.root().hi + 1.0;
+  origins.clear();
+  for (std::int64_t r = first; r < last; ++r) {
+    const double x = n * rng.uniform(), y = n * rng.uniform();
+    origins.emplace_back(x, y, z0);
+  }
+  dir = Eigen::Vector3d(-std::sqrt((1.0 - c.mu) * (1.0 + c.mu)), 0.0, -c.mu);
+}
+
+namespace {
+
+// The heightfield reference's chunk: each ray traced once with its bounce cosines, its weight per
+// channel prod_j F_c(cos_j) in bounce order (sim/heightfield_tracer.h: the throughput of a trace
+// with fresnel = F_c), in units of 2^-32 per ray.
+void run_heightfield_chunk(const EnergyAuditWork& w, const EnergyAuditWork::Context& ctx, std::size_t cell,
+                           std::int64_t chunk, AuditTally& t) {
+  const EnergyAuditSuite& s = w.suite;
+  const int C = w.channels->size(), R = s.max_k + 2;
+  const int field = audit_heightfield_field_of(s, chunk);
+  AuditFields::Slot& slot = *ctx.fields->slots[static_cast<std::size_t>(field)];
+  std::call_once(slot.made, [&] { slot.surface = audit_heightfield_field(s, cell, field); });
+  std::vector<Eigen::Vector3d> origins;
+  Eigen::Vector3d dir;
+  audit_heightfield_rays(s, slot.surface, cell, chunk, origins, dir);
+  std::vector<double> cosines, prod(static_cast<std::size_t>(C)), f(static_cast<std::size_t>(C));
+  sim::HeightfieldRayOptions opt;
+  opt.max_bounces = kHeightfieldMaxBounces;
+  opt.cosines = &cosines;
+  for (const Eigen::Vector3d& o : origins) {
+    const sim::HeightfieldRayResult r = sim::trace_heightfield_ray(slot.surface, o, dir, opt);
+    ++t.hf_rays;
+    if (r.how == sim::HeightfieldFate::lost) {
+      ++t.hf_lost;
+      continue;
+    }
+    if (r.how == sim::HeightfieldFate::bounce_limit) {
+      ++t.hf_bounce_limit;
+      continue;
+    }
+    std::fill(prod.begin(), prod.end(), 1.0);
+    for (double cj : cosines) {
+      w.channels->evaluate(cj, f.data());
+      for (int c = 0; c < C; ++c) prod[static_cast<std::size_t>(c)] *= f[static_cast<std::size_t>(c)];
+    }
+    const std::size_t row = static_cast<std::size_t>(std::min(r.bounces, s.max_k + 1));
+    ++t.hf_by_k[row];
+    ++t.hf_field_by_k[static_cast<std::size_t>(field) * R + row];
+    for (int c = 0; c < C; ++c) {
+      const std::int64_t units = std::llround(prod[static_cast<std::size_t>(c)] * kEnergyUnit);
+      t.hf_energy[row * C + static_cast<std::size_t>(c)] += units;
+      t.hf_field_energy[static_cast<std::size_t>(field) * C + static_cast<std::size_t>(c)] += units;
+    }
+  }
+}
+
+}  // namespace
+
+EnergyAuditWork::Tally EnergyAuditWork::run_chunks(const Context& ctx, std::size_t cell, std::int64_t begin,
                                                    std::int64_t end) const {
   const EnergyAuditCell c = suite.cell_at(cell);
   const int C = channels->size(), R = suite.max_k + 2;
   Tally t;
   t.by_k.assign(static_cast<std::size_t>(R), 0);
   t.energy.assign(static_cast<std::size_t>(R) * C, 0);
+  if (suite.heightfield) {
+    t.hf_by_k.assign(static_cast<std::size_t>(R), 0);
+    t.hf_energy.assign(static_cast<std::size_t>(R) * C, 0);
+    t.hf_field_by_k.assign(static_cast<std::size_t>(suite.hf_fields) * R, 0);
+    t.hf_field_energy.assign(static_cast<std::size_t>(suite.hf_fields) * C, 0);
+  }
   const analytic::Dir3 i{std::sqrt((1.0 - c.mu) * (1.0 + c.mu)), 0.0, c.mu};
   std::vector<double> prod(C), f(C);
   for (std::int64_t chunk = begin; chunk < end; ++chunk) {
+    if (chunk >= suite.walk_chunks()) {
+      run_heightfield_chunk(*this, ctx, cell, chunk, t);
+      continue;
+    }
     sim::Rng rng(sim::splitmix64(suite.seed ^ kAuditWalkStream), cell, static_cast<std::uint64_t>(chunk));
     auto uniform = [&rng] { return sim::uniform_open(rng); };
     const std::int64_t first = chunk * kAuditPathsPerChunk,
@@ -146,6 +284,12 @@ void EnergyAuditWork::merge(Tally& into, const Tally& from) {
   into.paths += from.paths, into.lost += from.lost;
   for (std::size_t r = 0; r < into.by_k.size(); ++r) into.by_k[r] += from.by_k[r];
   for (std::size_t r = 0; r < into.energy.size(); ++r) into.energy[r] += from.energy[r];
+  into.hf_rays += from.hf_rays, into.hf_lost += from.hf_lost, into.hf_bounce_limit += from.hf_bounce_limit;
+  auto add = [](std::vector<std::int64_t>& a, const std::vector<std::int64_t>& b) {
+    for (std::size_t r = 0; r < a.size(); ++r) a[r] += b[r];
+  };
+  add(into.hf_by_k, from.hf_by_k), add(into.hf_energy, from.hf_energy);
+  add(into.hf_field_by_k, from.hf_field_by_k), add(into.hf_field_energy, from.hf_field_energy);
 }
 
 EnergyAuditWork::Fixed EnergyAuditWork::run_fixed(std::size_t cell) const {
@@ -190,13 +334,33 @@ EnergyAuditWork::Fixed EnergyAuditWork::run_fixed(std::size_t cell) const {
 }
 
 nlohmann::json EnergyAuditWork::tally_json(const Tally& t) {
-  return {{"paths", t.paths}, {"lost", t.lost}, {"by_k", t.by_k}, {"energy", t.energy}};
+  nlohmann::json j = {{"paths", t.paths}, {"lost", t.lost}, {"by_k", t.by_k}, {"energy", t.energy}};
+  if (!t.hf_by_k.empty())
+    j["heightfield"] = {{"rays", t.hf_rays},
+                        {"lost", t.hf_lost},
+                        {"bounce_limit", t.hf_bounce_limit},
+                        {"by_k", t.hf_by_k},
+                        {"energy", t.hf_energy},
+                        {"field_by_k", t.hf_field_by_k},
+                        {"field_energy", t.hf_field_energy}};
+  return j;
 }
 
 EnergyAuditWork::Tally EnergyAuditWork::read_tally(support::JsonObject& j, std::size_t,
                                                    const std::vector<ChunkRun>& runs) const {
   Tally t;
-  const std::int64_t paths = rays_in_chunks(runs, suite.walk_paths, kAuditPathsPerChunk);
+  // The walk's chunks [0, walk_chunks) and the heightfield's after them.
+  const std::int64_t W = suite.walk_chunks();
+  std::vector<ChunkRun> walk_runs;
+  std::int64_t hf_rays = 0;
+  for (const ChunkRun& r : runs) {
+    if (r.first < W) walk_runs.emplace_back(r.first, std::min(r.second, W));
+    for (std::int64_t c = std::max(r.first, W); c < r.second; ++c) {
+      const std::int64_t q = (c - W) % suite.hf_chunks_per_field();
+      hf_rays += std::min<std::int64_t>(suite.hf_rays_per_field, (q + 1) * kAuditRaysPerChunk) - q * kAuditRaysPerChunk;
+    }
+  }
+  const std::int64_t paths = rays_in_chunks(walk_runs, suite.walk_paths, kAuditPathsPerChunk);
   t.paths = j.integer("paths", paths, paths);
   t.lost = j.integer("lost", 0, paths);
   const std::size_t R = static_cast<std::size_t>(suite.max_k) + 2, C = static_cast<std::size_t>(channels->size());
@@ -209,6 +373,36 @@ EnergyAuditWork::Tally EnergyAuditWork::read_tally(support::JsonObject& j, std::
         j.fail_at("energy", r * C + c,
                   "= " + std::to_string(t.energy[r * C + c]) + " exceeds its row's paths (" +
                       std::to_string(t.by_k[r]) + ") times 2^32: a path keeps at most all its energy");
+  if (suite.heightfield) {
+    support::JsonObject h = j.object("heightfield");
+    t.hf_rays = h.integer("rays", hf_rays, hf_rays);
+    t.hf_lost = h.integer("lost", 0, hf_rays);
+    t.hf_bounce_limit = h.integer("bounce_limit", 0, hf_rays - t.hf_lost);
+    t.hf_by_k = read_counts(h, "by_k", R, hf_rays);
+    check_sum(h, "by_k", t.hf_by_k, hf_rays - t.hf_lost - t.hf_bounce_limit,
+              "the rays that left (rays - lost - bounce_limit)");
+    t.hf_energy = read_counts(h, "energy", R * C, std::numeric_limits<std::int64_t>::max());
+    for (std::size_t r = 0; r < R; ++r)
+      for (std::size_t c = 0; c < C; ++c)
+        if (static_cast<double>(t.hf_energy[r * C + c]) > static_cast<double>(t.hf_by_k[r]) * kEnergyUnit)
+          h.fail_at("energy", r * C + c, "exceeds its row's rays times 2^32: a ray keeps at most all its energy");
+    const std::size_t F = static_cast<std::size_t>(suite.hf_fields);
+    t.hf_field_by_k = read_counts(h, "field_by_k", F * R, hf_rays);
+    t.hf_field_energy = read_counts(h, "field_energy", F * C, std::numeric_limits<std::int64_t>::max());
+    // The per-field arrays add up to the rows' totals.
+    for (std::size_t r = 0; r < R; ++r) {
+      std::int64_t n = 0;
+      for (std::size_t f = 0; f < F; ++f) n += t.hf_field_by_k[f * R + r];
+      if (n != t.hf_by_k[r]) h.fail("field_by_k", "does not add up over the fields to /by_k");
+    }
+    for (std::size_t c = 0; c < C; ++c) {
+      std::int64_t rows = 0, fields = 0;
+      for (std::size_t r = 0; r < R; ++r) rows += t.hf_energy[r * C + c];
+      for (std::size_t f = 0; f < F; ++f) fields += t.hf_field_energy[f * C + c];
+      if (rows != fields) h.fail("field_energy", "does not add up over the fields to /energy's channel total");
+    }
+    h.finish();
+  }
   return t;
 }
 
@@ -297,11 +491,14 @@ Job<EnergyAuditWork> energy_audit_job(const EnergyAuditSuite& s, nlohmann::json 
   EnergyAuditWork w{s, std::make_shared<const ChannelSet>(s.grey_F0, s.metals), nullptr};
   if (s.cycles_table) w.cycles = std::make_shared<const CyclesTables>(published_cycles_tables());
   std::vector<support::WorkUnit> units(s.cells());
-  const std::int64_t chunks = (s.walk_paths + kAuditPathsPerChunk - 1) / kAuditPathsPerChunk;
+  // A worker holds its cell's fields (at most two cells' at once per worker).
+  if (s.heightfield)
+    check_field_fits(s.hf_field_size, 2.0 * s.hf_fields * support::resolve_threads(0),
+                     s.file + ": /heightfield/field_size", 16);
   for (std::size_t c = 0; c < units.size(); ++c) {
     // Estimates (ns of one core; they only balance the shards): ~1.5 us a path, ~0.3 s the fixed part
-    // (three times that where E_avg is computed).
-    units[c].chunks = chunks;
+    // (three times that where E_avg is computed); a heightfield chunk about a walk chunk.
+    units[c].chunks = s.chunks();
     units[c].chunk_cost = 1500 * std::min<std::int64_t>(s.walk_paths, kAuditPathsPerChunk);
     units[c].has_fixed = true;
     units[c].fixed_cost = s.cell_at(c).mu_index == 0 ? 900'000'000 : 300'000'000;

@@ -1,21 +1,22 @@
 // vgroove validation: the energy audit (suite kind "energy_audit"; `vgroove energy --audit`): the
 // compensation formulas engines ship (validation/energy_formulas.h) held against the exact
-// multiple-scattering albedo of two references over mu x alpha x reflectance: the 3D V-groove
-// model (Lee et al. 2018; analytic/albedo_vgroove.h, exact to its quadrature, ~1e-8) and the 3D
-// Smith random walk (Heitz et al. 2016; analytic/smith_walk_3d.h, Monte Carlo, standard error at
-// most sqrt(E (1 - E) / N)). Reflectances: grey Schlick, Au, Ag, Cu, Al (exact conductors and
-// Schlick), metalness mixes; errors per variant, reference, group and region, and CIE Delta E 2000.
-// The verdict holds the references, not the formulas: the walk's white channel leaves whole and
-// its E_1 is the exact E_ss within `sigmas` standard errors; the model's white channel sums to 1
-// and its first row is the V-cavity E_ss within vgroove_furnace. One work unit per cell, integer
-// tallies: any merge order gives the same bits. Tests: tests/validation/energy_audit_test.cpp
+// multiple-scattering albedo of references over mu x alpha x reflectance: the 3D V-groove model
+// (analytic/albedo_vgroove.h, exact to ~1e-8), the 3D Smith random walk (analytic/smith_walk_3d.h,
+// Monte Carlo) and, opt-in (/references), random heightfields traced exactly (sim/heightfield_tracer.h,
+// each ray's bounce cosines weighted per channel). Reflectances: grey Schlick, Au, Ag, Cu, Al
+// (exact conductors and Schlick), metalness mixes; errors per variant, reference, group, region.
+// Verdict (the references, not the formulas): walk and heightfield white channels leave whole, the
+// walk's E_1 is Smith's E_ss within `sigmas`, the model sums to 1 and its first row is the V-cavity
+// E_ss. Integer tallies: any merge order gives the same bits. Tests: tests/validation/energy_audit_test.cpp
 // (EnergyAudit.VgrooveReferenceWithAConductorIsTheTracedGrooves,
-// EnergyAudit.SmallAuditChecksPassAndEveryFormulaKeepsTheWhiteFurnace, Colour.DeltaE2000AtSharmasTestPairs),
-// tests/app/energy_tables_test.cpp (EnergyAuditCli.*).
-// Derivation: docs/derivations/energy_compensation.md.
+// EnergyAudit.SmallAuditChecksPassAndEveryFormulaKeepsTheWhiteFurnace,
+// EnergyAudit.HeightfieldChannelsAreTheFresnelTraces, EnergyAudit.HeightfieldTallyIsTheSameForAnyThreadsAndShards,
+// EnergyAudit.HeightfieldReferenceInTheReport, Colour.DeltaE2000AtSharmasTestPairs), tests/app/energy_tables_test.cpp
+// (EnergyAuditCli.*). Derivation: docs/derivations/energy_compensation.md.
 #pragma once
 
 #include "vgroove/common/ndf_kind.h"
+#include "vgroove/sim/heightfield_tracer.h"
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/energy_formulas.h"
 #include "vgroove/validation/energy_materials.h"
@@ -32,8 +33,10 @@
 
 namespace vgroove::validation {
 
-inline constexpr const char* kAuditReferences[] = {"vgroove", "smith_walk"};
+inline constexpr const char* kAuditReferences[] = {"vgroove", "smith_walk", "heightfield"};
 inline constexpr std::int64_t kAuditPathsPerChunk = 8192;
+inline constexpr std::int64_t kAuditRaysPerChunk = 4096;  // heightfield rays (about a walk chunk's time)
+inline constexpr int kAuditMaxFields = 64;
 
 struct EnergyAuditCell {
   NdfKind ndf = NdfKind::ggx;
@@ -54,6 +57,17 @@ struct EnergyAuditSuite {
   double rough_alpha = 0.5, grazing_mu = 0.25;
   bool cycles_table = true;  // the cycles_table feed (Cycles' published table, compiled in)
   double sigmas = 5.0, vgroove_furnace = 1e-7;
+  // The heightfield reference (/references has "heightfield"; /heightfield): per (ndf, alpha)
+  // `fields` Gaussian fields (Beckmann; GGX through its height map), traced at every mu of the
+  // alpha with rays_per_field rays each.
+  bool heightfield = false;
+  int hf_fields = 4, hf_field_size = 256;
+  double hf_correlation_length = 8.0;
+  long long hf_rays_per_field = 20000;
+  std::int64_t walk_chunks() const { return (walk_paths + kAuditPathsPerChunk - 1) / kAuditPathsPerChunk; }
+  std::int64_t hf_chunks_per_field() const { return (hf_rays_per_field + kAuditRaysPerChunk - 1) / kAuditRaysPerChunk; }
+  // A cell's chunks: the walk's, then (heightfield) field by field the rays' chunks.
+  std::int64_t chunks() const { return walk_chunks() + (heightfield ? hf_fields * hf_chunks_per_field() : 0); }
   std::size_t cells() const { return ndfs.size() * alphas.size() * mus.size(); }
   EnergyAuditCell cell_at(std::size_t c) const;  // order: ndf, alpha, mu (innermost)
 };
@@ -65,11 +79,17 @@ nlohmann::json energy_audit_json(const EnergyAuditSuite& s);
 
 // One cell's walks: counts per row (k = 0..max_k, max_k + 1 for k > max_k) and each row's energy
 // per channel, [row * C + c], in units of 2^-32.
+// The heightfield's (empty without it): rays, lost (HeightfieldFate::lost), bounce_limit (over
+// kHeightfieldMaxBounces), hf_by_k and hf_energy as by_k and energy, and per field its rows' counts
+// [field * R + row] and its energy per channel [field * C + c] (the spread over fields).
 struct AuditTally {
   std::int64_t paths = 0, lost = 0;  // lost: still inside after kWalkMaxBounces reflections
   std::vector<std::int64_t> by_k, energy;
+  std::int64_t hf_rays = 0, hf_lost = 0, hf_bounce_limit = 0;
+  std::vector<std::int64_t> hf_by_k, hf_energy, hf_field_by_k, hf_field_energy;
 };
 inline constexpr int kWalkMaxBounces = 100000;
+inline constexpr int kHeightfieldMaxBounces = 1000;
 
 // One cell's deterministic part.
 struct AuditFixed {
@@ -80,14 +100,17 @@ struct AuditFixed {
   double seconds = 0.0;
 };
 
+struct AuditFields;  // a cell's fields, each made on first use (energy_audit.cpp)
 struct EnergyAuditWork {
-  struct Context {};
+  struct Context {
+    std::shared_ptr<AuditFields> fields;  // null without the heightfield reference
+  };
   using Tally = AuditTally;
   using Fixed = AuditFixed;
   EnergyAuditSuite suite;
   std::shared_ptr<const ChannelSet> channels;
   std::shared_ptr<const CyclesTables> cycles;  // null without the feed
-  std::shared_ptr<const Context> prepare(std::size_t) const { return std::make_shared<Context>(); }
+  std::shared_ptr<const Context> prepare(std::size_t cell) const;
   Tally run_chunks(const Context&, std::size_t cell, std::int64_t begin, std::int64_t end) const;
   Fixed run_fixed(std::size_t cell) const;
   static void merge(Tally& into, const Tally& from);
@@ -98,6 +121,14 @@ struct EnergyAuditWork {
 };
 
 Job<EnergyAuditWork> energy_audit_job(const EnergyAuditSuite& s, nlohmann::json descriptor);
+
+// The heightfield reference's field `field` of a cell (the same fields at every mu of an (ndf,
+// alpha)), and the origins of chunk `chunk`'s rays (a cell chunk index, in the heightfield's
+// range) with their direction -(sqrt(1 - mu^2), 0, mu): what run_chunks traces.
+sim::HeightfieldSurface audit_heightfield_field(const EnergyAuditSuite& s, std::size_t cell, int field);
+int audit_heightfield_field_of(const EnergyAuditSuite& s, std::int64_t chunk);
+void audit_heightfield_rays(const EnergyAuditSuite& s, const sim::HeightfieldSurface& f, std::size_t cell,
+                            std::int64_t chunk, std::vector<Eigen::Vector3d>& origins, Eigen::Vector3d& dir);
 
 // A finished audit: the cells' results with what the report is made of.
 struct EnergyAuditRun {

@@ -95,7 +95,8 @@ constexpr double kEnergyUnit = 4294967296.0;
 const char* const kRegions[] = {"all", "rough", "grazing"};
 const char* const kGroups[] = {"grey",         "conductor",        "metal_schlick",
                                "engine_metal", "metalness_before", "metalness_after"};
-constexpr int kRefs = 2, kNumRegions = 3, kNumGroups = 6;
+constexpr int kRefs = 3, kNumRegions = 3, kNumGroups = 6;
+constexpr int kHeightfield = 2;  // the optional reference (EnergyAuditSuite::heightfield)
 
 // Worst, mean |.| and mean of a set of errors, with where the worst is.
 struct Stat {
@@ -129,17 +130,21 @@ std::string cell_text(const EnergyAuditCell& c) {
 struct CellData {
   EnergyAuditCell cell;
   std::vector<double> E[kRefs], se[kRefs], rows[kRefs];  // [c], [c], [row * C + c]
-  const SingleScattering* ss[kRefs] = {nullptr, nullptr};
+  const SingleScattering* ss[kRefs] = {nullptr, nullptr, nullptr};
   SingleScattering ss_avg[kRefs];  // with the E_avg of its alpha
-  const std::vector<double>* E_F[kRefs] = {nullptr, nullptr};
+  const std::vector<double>* E_F[kRefs] = {nullptr, nullptr, nullptr};
   EngineValues engine{kNaN, kNaN, kNaN, {}};
   std::vector<std::vector<double>> A[kRefs];  // [variant][c]
 };
 
-// The feeds a reference's formulas take: engine tables against the walk for GGX only.
+// The feeds a reference's formulas take: engine tables against the walk and the heightfields
+// (both fed with Smith's single scattering) for GGX only.
 bool variant_applies(const FormulaVariant& v, int ref, NdfKind ndf) {
-  return v.feed == Feed::exact || (ref == 1 && ndf == NdfKind::ggx);
+  return v.feed == Feed::exact || (ref != 0 && ndf == NdfKind::ggx);
 }
+
+// The references a suite audits: the V-groove model and the walk always, the heightfields opt-in.
+bool audited(const EnergyAuditSuite& s, int ref) { return ref != kHeightfield || s.heightfield; }
 
 nlohmann::json nested(const std::vector<double>& v, const std::vector<std::size_t>& shape, std::size_t dim = 0,
                       std::size_t offset = 0) {
@@ -190,10 +195,42 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
       }
     for (int c = 0; c < C; ++c) d.se[1][c] = std::sqrt(std::max(0.0, d.E[1][c] * (1.0 - d.E[1][c])) / N);
     d.ss_avg[1] = f.smith, d.ss_avg[1].E_avg = avg.smith.E_avg, d.E_F[1] = &f.smith_E_F;
+    // heightfield: energy per ray; the formulas on Smith's height-correlated model (what engines
+    // fit to: the question is how far a surface is from it), E_1 a measured result beside it.
+    if (s.heightfield) {
+      const double M = static_cast<double>(t.hf_rays);
+      d.rows[2].assign(static_cast<std::size_t>(R) * C, 0.0);
+      d.E[2].assign(C, 0.0), d.se[2].assign(C, 0.0);
+      std::vector<std::int64_t> units(static_cast<std::size_t>(C), 0);
+      for (int k = 0; k < R; ++k)
+        for (int c = 0; c < C; ++c) {
+          const std::int64_t u = t.hf_energy[static_cast<std::size_t>(k) * C + c];
+          d.rows[2][static_cast<std::size_t>(k) * C + c] = static_cast<double>(u) / kEnergyUnit / M;
+          units[static_cast<std::size_t>(c)] += u;
+        }
+      // The total from the integers: the white channel is 1 to the bit when every ray left.
+      for (int c = 0; c < C; ++c) d.E[2][c] = static_cast<double>(units[static_cast<std::size_t>(c)]) / kEnergyUnit / M;
+      // Standard error: the fields' spread, at least the rays' (heightfield_albedo.h's rule).
+      const double nf = s.hf_fields, per_field = M / nf;
+      for (int c = 0; c < C; ++c) {
+        double var = 0.0;
+        for (int fi = 0; fi < s.hf_fields; ++fi) {
+          const double x =
+              static_cast<double>(t.hf_field_energy[static_cast<std::size_t>(fi) * C + c]) / kEnergyUnit / per_field -
+              d.E[2][c];
+          var += x * x;
+        }
+        const double q = std::clamp(d.E[2][c], 0.0, 1.0);
+        d.se[2][c] =
+            std::max(nf >= 2 ? std::sqrt(var / (nf - 1.0) / nf) : 0.0, std::sqrt(std::max(q * (1.0 - q), 1.0 / M) / M));
+      }
+      d.ss_avg[2] = d.ss_avg[1], d.E_F[2] = &f.smith_E_F;
+    }
     d.engine = {f.cycles_E, f.cycles_E_avg, f.filament_dfg_y,
                 analytic::karis_env_brdf_approx(std::min(1.0, std::sqrt(d.cell.alpha)), d.cell.mu)};
     for (int ref = 0; ref < kRefs; ++ref) {
       d.A[ref].assign(V, std::vector<double>(C, kNaN));
+      if (!audited(s, ref)) continue;
       for (int v = 0; v < V; ++v) {
         if (!variant_applies(variants[v], ref, d.cell.ndf)) continue;
         for (int c = 0; c < C; ++c) {
@@ -214,7 +251,7 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
     const CellData& d = cells[n];
     for (int ref = 0; ref < kRefs; ++ref)
       for (int v = 0; v < V; ++v) {
-        if (!variant_applies(variants[v], ref, d.cell.ndf)) continue;
+        if (!audited(s, ref) || !variant_applies(variants[v], ref, d.cell.ndf)) continue;
         auto add = [&](int g, double e, const std::string& what) {
           for (int reg = 0; reg < kNumRegions; ++reg)
             if (in_region(reg, s, d.cell)) stat(v, ref, g, reg).add(e, [&] { return cell_text(d.cell) + ", " + what; });
@@ -252,6 +289,7 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
     for (int ref = 0; ref < kRefs; ++ref)
       for (int v = 0; v < V; ++v)
         for (const std::string& given : {std::string("conductor"), std::string("metal_schlick")}) {
+          if (!audited(s, ref)) continue;
           Stat dE[kNumRegions], ratio[kNumRegions][3];
           bool any = false;
           for (const CellData& d : cells) {
@@ -306,15 +344,46 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
     const double g = std::abs(f.vgroove_rows[static_cast<std::size_t>(C) + white] - f.vcavity.E);
     if (g > vg_single) vg_single = g, vg_single_at = cell_text(d.cell);
   }
+  // The heightfields: every ray leaves, so the white channel is 1 exactly (a check); E_1 against
+  // Smith's E_ss in standard errors (a measured result: the fields are not Smith's surface).
+  double hf_white = 0.0, hf_z = 0.0, hf_d1 = 0.0;
+  std::int64_t hf_lost = 0, hf_limit = 0;
+  std::string hf_z_at;
+  std::vector<double> hf_E1_minus_ess, hf_E1_se;
+  if (s.heightfield)
+    for (std::size_t n = 0; n < cells.size(); ++n) {
+      const AuditTally& t = r[n].tally;
+      const AuditFixed& f = *r[n].fixed;
+      hf_lost += t.hf_lost, hf_limit += t.hf_bounce_limit;
+      std::int64_t units = 0;
+      for (int k = 0; k < R; ++k) units += t.hf_energy[static_cast<std::size_t>(k) * C + white];
+      hf_white =
+          std::max(hf_white, std::abs(static_cast<double>(units) / kEnergyUnit - static_cast<double>(t.hf_rays)) /
+                                 static_cast<double>(t.hf_rays));
+      const double M = static_cast<double>(t.hf_rays), nf = s.hf_fields, per_field = M / nf;
+      const double E1 = static_cast<double>(t.hf_by_k[1]) / M;
+      double var = 0.0;
+      for (int fi = 0; fi < s.hf_fields; ++fi) {
+        const double x = static_cast<double>(t.hf_field_by_k[static_cast<std::size_t>(fi) * R + 1]) / per_field - E1;
+        var += x * x;
+      }
+      const double q = std::clamp(E1, 0.0, 1.0);
+      const double se =
+          std::max(nf >= 2 ? std::sqrt(var / (nf - 1.0) / nf) : 0.0, std::sqrt(std::max(q * (1.0 - q), 1.0 / M) / M));
+      hf_E1_minus_ess.push_back(E1 - f.smith.E), hf_E1_se.push_back(se);
+      const double z = std::abs(E1 - f.smith.E) / se;
+      if (z > hf_z || std::isnan(z)) hf_z = z, hf_z_at = cell_text(cells[n].cell), hf_d1 = E1 - f.smith.E;
+    }
+  const bool hf_ok = hf_lost == 0 && hf_limit == 0 && hf_white == 0.0;
   const bool walk_ok = lost == 0 && walk_white == 0.0, z_ok = walk_z <= s.sigmas;
   const bool vg_ok = vg_white <= s.vgroove_furnace, vg1_ok = vg_single <= s.vgroove_furnace;
-  run.pass = walk_ok && z_ok && vg_ok && vg1_ok;
+  run.pass = walk_ok && z_ok && vg_ok && vg1_ok && hf_ok;
 
   // Which formula is closest where (the mean |error| among the compensations, "single" aside).
   nlohmann::json closest = nlohmann::json::array();
   std::vector<std::string> statements;
   for (int ref = 0; ref < kRefs; ++ref)
-    for (int g : {0, 1, 3, 4, 5})
+    for (int g : audited(s, ref) ? std::vector<int>{0, 1, 3, 4, 5} : std::vector<int>{})
       for (int reg = 0; reg < kNumRegions; ++reg) {
         int best = -1, worst = -1;
         for (int v = 1; v < V; ++v) {
@@ -367,6 +436,7 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
                                         static_cast<std::size_t>(C)};
   nlohmann::json refs;
   for (int ref = 0; ref < kRefs; ++ref) {
+    if (!audited(s, ref)) continue;
     std::vector<double> E, se, rows;
     for (const CellData& d : cells) {
       E.insert(E.end(), d.E[ref].begin(), d.E[ref].end());
@@ -374,7 +444,15 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
       rows.insert(rows.end(), d.rows[ref].begin(), d.rows[ref].end());
     }
     refs[kAuditReferences[ref]] = {{"E", nested(E, cell_shape)}, {"E_by_k", nested(rows, row_shape)}};
-    if (ref == 1) refs[kAuditReferences[ref]]["se"] = nested(se, cell_shape);
+    if (ref != 0) refs[kAuditReferences[ref]]["se"] = nested(se, cell_shape);
+  }
+  if (s.heightfield) {
+    const std::vector<std::size_t> shape = {s.ndfs.size(), s.alphas.size(), s.mus.size()};
+    refs["heightfield"]["E1_minus_smith_E_ss"] = nested(hf_E1_minus_ess, shape);
+    refs["heightfield"]["E1_se"] = nested(hf_E1_se, shape);
+    refs["heightfield"]["formulas_fed_with"] =
+        "Smith's height-correlated single scattering (E_ss, E_avg, split sum), as against the walk: the formulas "
+        "engines ship, held against a surface; the fields' own E_1 is a measured result beside it";
   }
   j["references"] = refs;
   {
@@ -433,20 +511,39 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
         {"at", vg_single_at},
         {"tolerance", s.vgroove_furnace},
         {"what", "the model's first row against the V-cavity E_ss by quadrature (Cook-Torrance's albedo)"}}}};
+  if (s.heightfield) {
+    j["checks"]["heightfield_white_furnace"] = {
+        {"pass", hf_ok},
+        {"largest_deviation", exact_json(hf_white)},
+        {"lost_rays", hf_lost},
+        {"bounce_limit_rays", hf_limit},
+        {"what", "F = 1: every ray leaves the field, so the white channel's albedo is 1 exactly"}};
+    j["heightfield_single_scattering"] = {
+        {"largest_z", exact_json(hf_z)},
+        {"at", hf_z_at},
+        {"E1_minus_smith_E_ss_there", exact_json(hf_d1)},
+        {"what",
+         "a measured result, not a check: the fields' E_1 against Smith's height-correlated E_ss by quadrature, in "
+         "standard errors (the fields' spread); the fields are not Smith's surface"}};
+  }
   j["lobe_shape"] =
       "not measured: the compensated lobes against the traced lobes by the Fig. 11 metric are not part of this audit";
   j["references_left_out"] =
-      "random heightfields (issue 33) and the dielectric tables (issue 32) do not exist yet; each plugs in as one "
-      "more reference (energy_audit.h)";
+      s.heightfield ? "the dielectric tables (issue 32): one more reference (energy_audit.h)"
+                    : "the random heightfields (opt-in: /references with \"heightfield\", `vgroove energy --audit "
+                      "--reference heightfield`) and the dielectric tables (issue 32)";
   j["model_s"] = model_s;
 
   // The table.
   std::ostringstream os;
   const int reg_rough = 1, reg_grazing = 2;
   for (int ref = 0; ref < kRefs; ++ref) {
+    if (!audited(s, ref)) continue;
     os << "  against " << kAuditReferences[ref]
-       << (ref == 0 ? " (the V-groove model; formulas fed with the V-cavity single scattering)\n"
-                    : " (the Smith random walk; formulas fed with Smith's height-correlated single scattering)\n");
+       << (ref == 0   ? " (the V-groove model; formulas fed with the V-cavity single scattering)\n"
+           : ref == 1 ? " (the Smith random walk; formulas fed with Smith's height-correlated single scattering)\n"
+                      : " (random heightfields traced exactly; formulas fed with Smith's height-correlated single "
+                        "scattering)\n");
     os << support::format("    %-30s %19s %9s %9s %9s %9s %9s %9s\n", "formula (feed)", "grey worst/mean", "rough",
                           "grazing", "conduct.", "engine", "mix-bef.", "mix-aft.");
     for (int v = 0; v < V; ++v) {
@@ -479,6 +576,12 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
       "se at %s); V-groove white furnace %s (%.1e at %s); V-groove E_1 vs V-cavity E_ss %s (%.1e)\n",
       walk_ok ? "ok" : "FAIL", static_cast<long long>(lost), walk_white, z_ok ? "ok" : "FAIL", walk_z,
       walk_z_at.c_str(), vg_ok ? "ok" : "FAIL", vg_white, vg_white_at.c_str(), vg1_ok ? "ok" : "FAIL", vg_single);
+  if (s.heightfield)
+    os << support::format(
+        "  heightfield: white furnace %s (lost %lld, over the bounce limit %lld, largest |E - 1| %.1e); E_1 - Smith's "
+        "E_ss (a result): largest %.2f se at %s (%+.4f)\n",
+        hf_ok ? "ok" : "FAIL", static_cast<long long>(hf_lost), static_cast<long long>(hf_limit), hf_white, hf_z,
+        hf_z_at.c_str(), hf_d1);
   for (const std::string& st : statements)
     if (st.find(", all:") != std::string::npos || st.find(", rough:") != std::string::npos ||
         st.find(", grazing:") != std::string::npos)
@@ -502,11 +605,16 @@ nlohmann::json energy_audit_report_json(const EnergyAuditSuite& s, const EnergyA
 }
 
 void print_energy_audit(std::ostream& os, const EnergyAuditSuite& s, const EnergyAuditRun& run) {
-  print_table_title(os, s.name, "energy_audit",
-                    support::format("%zu cells (%zu NDFs x %zu alpha x %zu mu), %lld walk paths per cell, seed %llu",
-                                    s.cells(), s.ndfs.size(), s.alphas.size(), s.mus.size(), s.walk_paths,
-                                    static_cast<unsigned long long>(s.seed)),
-                    run.threads);
+  print_table_title(
+      os, s.name, "energy_audit",
+      support::format("%zu cells (%zu NDFs x %zu alpha x %zu mu), %lld walk paths per cell, seed %llu", s.cells(),
+                      s.ndfs.size(), s.alphas.size(), s.mus.size(), s.walk_paths,
+                      static_cast<unsigned long long>(s.seed)) +
+          (s.heightfield ? support::format("; heightfield: %d fields of %d^2 cells (l = %g), %lld rays "
+                                           "per field and cell",
+                                           s.hf_fields, s.hf_field_size, s.hf_correlation_length, s.hf_rays_per_field)
+                         : std::string()),
+      run.threads);
   os << run.table;
   // The verdict is the references' checks; the formulas' errors are results.
   std::size_t passed = 0, total = 0;

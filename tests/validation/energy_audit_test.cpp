@@ -9,7 +9,9 @@
 // - a small audit: the references' checks pass; every formula fed with the exact E_ss keeps the
 //   white furnace (F = 1) within rounding against the walk, whose white albedo is exactly 1; no
 //   compensation loses energy
-//   everywhere; a broken walk tally (one path's white energy short) fails the white furnace check.
+//   everywhere; a broken walk tally (one path's white energy short) fails the white furnace check;
+// - the heightfield reference: its channels are the tracer's Fresnel traces of the same rays, its
+//   tallies the same for any threads and shards, its white channel 1 exactly in the report.
 #include "vgroove/validation/energy_audit.h"
 #include "tests/stats.h"
 #include "tests/test_files.h"
@@ -21,12 +23,14 @@
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/microsurface3d.h"
 #include "vgroove/sim/rng.h"
+#include "vgroove/support/user_error.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <numbers>
 
 namespace vgroove::validation {
@@ -230,6 +234,148 @@ TEST(EnergyAudit, SmallAuditChecksPassAndEveryFormulaKeepsTheWhiteFurnace) {
   auto broken = *results;
   const int C = ChannelSet(s.grey_F0, s.metals).size();
   broken[0].tally.energy[static_cast<std::size_t>(1) * C + white] -= 1;
+  EXPECT_FALSE(energy_audit_run_from(s, broken).pass);
+}
+
+EnergyAuditSuite tiny_heightfield_suite() {
+  nlohmann::json j = energy_audit_json(tiny_suite());
+  j["references"] = {"vgroove", "smith_walk", "heightfield"};
+  j["heightfield"] = {{"fields", 2}, {"rays_per_field", 1500}, {"field_size", 64}, {"correlation_length", 4}};
+  return parse_energy_audit(j, "<test>");
+}
+
+// The heightfield reference's tally of one cell (beckmann alpha 0.9, mu 0.15: ~6% of the rays
+// reflect more than once) against the tracer run once per channel with HeightfieldRayOptions.fresnel
+// set to that channel's reflectance, on the same fields and rays: per row and channel the same
+// energy to one unit (2^-32) per ray (the audit evaluates conductors through their table, within
+// 4.3e-13, and Schlick as (1 - c)^5 in its own order: rounding, not physics). The white channel
+// is each row's count times 2^32 exactly. Deliberately broken: the weights taken at the macro
+// normal's cosine, F_c(mu)^k, miss by far more than rounding.
+TEST(EnergyAudit, HeightfieldChannelsAreTheFresnelTraces) {
+  const EnergyAuditSuite s = tiny_heightfield_suite();
+  const Job<EnergyAuditWork> job = energy_audit_job(s, {{"command", "test"}});
+  const EnergyAuditWork& w = job.work;
+  const std::size_t cell = 2;  // beckmann, alpha 0.9, mu 0.15
+  ASSERT_EQ(s.cell_at(cell).ndf, NdfKind::beckmann);
+  ASSERT_EQ(s.cell_at(cell).mu, 0.15);
+  const AuditTally t = w.run_chunks(*w.prepare(cell), cell, s.walk_chunks(), s.chunks());
+  const ChannelSet& set = *w.channels;
+  const int C = set.size(), R = s.max_k + 2;
+  ASSERT_EQ(t.hf_rays, s.hf_fields * s.hf_rays_per_field);
+  ASSERT_EQ(t.hf_lost + t.hf_bounce_limit, 0);
+  std::vector<double> traced(static_cast<std::size_t>(R) * C, 0.0), macro(traced.size(), 0.0);
+  std::vector<std::int64_t> count(static_cast<std::size_t>(R), 0);
+  std::vector<Eigen::Vector3d> origins;
+  Eigen::Vector3d dir;
+  for (int field = 0; field < s.hf_fields; ++field) {
+    const sim::HeightfieldSurface f = audit_heightfield_field(s, cell, field);
+    for (std::int64_t chunk = s.walk_chunks(); chunk < s.chunks(); ++chunk) {
+      if (audit_heightfield_field_of(s, chunk) != field) continue;
+      audit_heightfield_rays(s, f, cell, chunk, origins, dir);
+      for (const Eigen::Vector3d& o : origins) {
+        int row = -1;
+        for (int c = 0; c < C; ++c) {
+          const Channel& ch = set.channels()[static_cast<std::size_t>(c)];
+          sim::HeightfieldRayOptions opt;
+          opt.max_bounces = kHeightfieldMaxBounces;
+          opt.fresnel = ch.kind == ChannelKind::schlick
+                            ? sim::HeightfieldFresnel{sim::HeightfieldReflectance::schlick, 1.0, 0.0, ch.F0}
+                            : sim::HeightfieldFresnel{sim::HeightfieldReflectance::conductor, ch.eta, ch.kappa};
+          const sim::HeightfieldRayResult r = sim::trace_heightfield_ray(f, o, dir, opt);
+          ASSERT_EQ(r.how, sim::HeightfieldFate::escaped);
+          row = std::min(r.bounces, s.max_k + 1);
+          traced[static_cast<std::size_t>(row) * C + c] += std::llround(r.throughput * 4294967296.0);
+          macro[static_cast<std::size_t>(row) * C + c] +=
+              std::llround(std::pow(ch.F(s.cell_at(cell).mu), r.bounces) * 4294967296.0);
+        }
+        ++count[static_cast<std::size_t>(row)];
+      }
+    }
+  }
+  EXPECT_EQ(t.hf_by_k, count);
+  EXPECT_GT(static_cast<double>(t.hf_rays - count[1]), 0.04 * static_cast<double>(t.hf_rays));
+  const int white = set.find_grey(1.0);
+  double broken = 0.0;
+  for (int k = 0; k < R; ++k)
+    for (int c = 0; c < C; ++c) {
+      const std::size_t i = static_cast<std::size_t>(k) * C + c;
+      const double n = static_cast<double>(count[static_cast<std::size_t>(k)]);
+      EXPECT_LE(std::abs(static_cast<double>(t.hf_energy[i]) - traced[i]), n)
+          << "row " << k << " " << set.channels()[static_cast<std::size_t>(c)].name;
+      if (c == white) {
+        EXPECT_EQ(static_cast<double>(t.hf_energy[i]), n * 4294967296.0);
+      }
+      if (n > 0) broken = std::max(broken, std::abs(macro[i] - traced[i]) / (n * 4294967296.0));
+    }
+  EXPECT_GT(broken, 1e-3) << "the macro normal's cosine would pass for the facets'";
+}
+
+// Chunk items only (the fixed parts are quadratures, not the heightfield's): one thread, two
+// threads, and two shards each written to JSON, read back strictly and merged in the other order,
+// give every cell's tally bit for bit. Deliberately broken: another seed changes the tallies.
+TEST(EnergyAudit, HeightfieldTallyIsTheSameForAnyThreadsAndShards) {
+  EnergyAuditSuite s = tiny_heightfield_suite();
+  s.hf_rays_per_field = 5000;  // two chunks per field
+  s.walk_paths = 3000;
+  s.ndfs = {NdfKind::beckmann};
+  auto tallies = [](const EnergyAuditSuite& suite, int threads, int parts) {
+    const Job<EnergyAuditWork> job = energy_audit_job(suite, {{"command", "test"}});
+    std::vector<std::vector<std::size_t>> mine(static_cast<std::size_t>(parts));
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < job.items.size(); ++i)
+      if (!job.items[i].fixed()) mine[n++ % mine.size()].push_back(i);
+    std::map<std::size_t, AuditTally> merged;
+    for (std::size_t p = mine.size(); p-- > 0;) {
+      const auto part = run_work_items(job.work, job.items, mine[p], threads);
+      const nlohmann::json j = nlohmann::json::parse(part_results_json<EnergyAuditWork>(*part).dump());
+      for (auto& [unit, u] : part_results_from_json(job.work, j, job.units, "part"))
+        if (merged.count(unit))
+          EnergyAuditWork::merge(merged[unit], *u.tally);
+        else
+          merged[unit] = *u.tally;
+    }
+    std::vector<nlohmann::json> out;
+    for (const auto& [unit, t] : merged) out.push_back(EnergyAuditWork::tally_json(t));
+    return out;
+  };
+  const auto one = tallies(s, 1, 1);
+  ASSERT_EQ(one.size(), s.cells());
+  EXPECT_EQ(one[0]["heightfield"]["rays"], 2 * 5000);
+  EXPECT_EQ(tallies(s, 2, 1), one);
+  EXPECT_EQ(tallies(s, 1, 2), one);
+  s.seed = 4;
+  EXPECT_NE(tallies(s, 1, 1), one);
+}
+
+// The whole audit with the heightfield reference: the references' checks pass, the heightfields'
+// white channel is 1 exactly (every ray left), every formula fed with the exact E_ss keeps the
+// white furnace against it within rounding; E_1 against Smith's E_ss is reported, not judged. The
+// default suite's spec has no "references" (its runs are what they were). Deliberately broken:
+// one unit short in one heightfield row's white energy fails the check.
+TEST(EnergyAudit, HeightfieldReferenceInTheReport) {
+  EXPECT_FALSE(energy_audit_json(tiny_suite()).contains("references"));
+  nlohmann::json bad = energy_audit_json(tiny_suite());
+  bad["references"] = {"vgroove", "heightfield"};
+  EXPECT_THROW(parse_energy_audit(bad, "<test>"), support::UserError);
+  EnergyAuditSuite s = tiny_heightfield_suite();
+  s.ndfs = {NdfKind::beckmann};
+  s.mus = {0.15};
+  EXPECT_EQ(energy_audit_json(parse_energy_audit(energy_audit_json(s), "<again>")), energy_audit_json(s));
+  const auto results = run_job(energy_audit_job(s, {{"command", "test"}}), 2);
+  ASSERT_TRUE(results);
+  const EnergyAuditRun run = energy_audit_run_from(s, *results);
+  const nlohmann::json& b = run.body;
+  EXPECT_TRUE(run.pass) << b["checks"].dump(1);
+  EXPECT_TRUE(b["checks"]["heightfield_white_furnace"]["pass"].get<bool>());
+  EXPECT_TRUE(b.contains("heightfield_single_scattering"));
+  const int white = ChannelSet(s.grey_F0, s.metals).find_grey(1.0);
+  for (std::size_t m = 0; m < s.mus.size(); ++m)
+    EXPECT_EQ(b["references"]["heightfield"]["E"][0][0][m][white].get<double>(), 1.0);
+  const nlohmann::json& e = b["errors"]["turquin"]["heightfield"];
+  for (std::size_t m = 0; m < s.mus.size(); ++m) EXPECT_NEAR(e[0][0][m][white].get<double>(), 0.0, 1e-12);
+  auto broken = *results;
+  const int C = ChannelSet(s.grey_F0, s.metals).size();
+  broken[0].tally.hf_energy[static_cast<std::size_t>(2) * C + white] -= 1;
   EXPECT_FALSE(energy_audit_run_from(s, broken).pass);
 }
 
