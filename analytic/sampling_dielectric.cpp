@@ -43,7 +43,8 @@ Drawn draw_in_section(const Section& s, double theta_m, double u_facet, double u
   const double theta_v = kPi - 2.0 * theta_m;
   auto F = [&](double cos2d) {
     if (s.all_tir) return 1.0;
-    const double c = s.c3d * cos2d;  // Fresnel's angle is the 3D one (dielectric_lifting.md)
+    // Fresnel's angle is the 3D one (dielectric_lifting.md, "The 3D local angle").
+    const double c = opt.broken == DielectricSamplerBreak::fresnel_cross_section_angle ? cos2d : s.c3d * cos2d;
     if (opt.reflectance) return opt.reflectance(c);
     const double e = opt.broken == DielectricSamplerBreak::fresnel_eta ? 1.1 * s.eta : s.eta;
     return optics::fresnel_dielectric(c, e);
@@ -102,8 +103,8 @@ Drawn draw_in_section(const Section& s, double theta_m, double u_facet, double u
 
 }  // namespace
 
-DielectricSampleFlatland sample_vgroove_dielectric_flatland(double theta_i, const std::array<double, 4>& u,
-                                                            NdfKind ndf, double alpha, double eta,
+DielectricSampleFlatland sample_vgroove_dielectric_flatland(double theta_i, const std::array<double, 4>& u, NdfKind ndf,
+                                                            double alpha, double eta,
                                                             const DielectricSamplerOptions& opt) {
   DielectricSampleFlatland r;
   r.failure = DielectricSampleFailure::other;

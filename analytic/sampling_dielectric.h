@@ -6,7 +6,7 @@
 // their density; the rest (transmitted lobes travelling back up, k > k_cap, rounding) are failures.
 // Holds: the histogram of the samples is the lobe's bins (reflected, transmitted, failures) by a
 // chi-square test, light from either side; a facet drawn 50/50 or Fresnel at a wrong eta is rejected.
-// Tests: tests/analytic/sampling_dielectric_test.cpp (SamplingDielectric.*).
+// Tests: tests/analytic/sampling_dielectric_test.cpp (SamplingDielectric.*, SamplingDielectricLong.*).
 // Derivation: docs/derivations/sampling.md, "The kaleidoscopic dielectric model".
 #pragma once
 
@@ -21,8 +21,9 @@ namespace vgroove::analytic {
 // Deliberately wrong samplers, for the tests' power.
 enum class DielectricSamplerBreak : unsigned char {
   none,
-  facet_uniform,  // the first facet drawn 50/50 instead of by its lit width
-  fresnel_eta,    // Fresnel evaluated at 1.1 eta (the directions still Snell's at eta)
+  facet_uniform,                // the first facet drawn 50/50 instead of by its lit width
+  fresnel_eta,                  // Fresnel evaluated at 1.1 eta (the directions still Snell's at eta)
+  fresnel_cross_section_angle,  // 3D: Fresnel at the cross-section's local angle, not the 3D one
 };
 
 struct DielectricSamplerOptions {
@@ -52,8 +53,8 @@ struct DielectricSample3d {
 };
 
 // theta_i signed in (-pi/2, pi/2) (kaleidoscope_dielectric_lobe_flatland's), eta > 0, u in [0, 1)^4.
-DielectricSampleFlatland sample_vgroove_dielectric_flatland(double theta_i, const std::array<double, 4>& u,
-                                                            NdfKind ndf, double alpha, double eta,
+DielectricSampleFlatland sample_vgroove_dielectric_flatland(double theta_i, const std::array<double, 4>& u, NdfKind ndf,
+                                                            double alpha, double eta,
                                                             const DielectricSamplerOptions& opt = {});
 // theta_i in [0, pi/2), the light at phi = pi (kaleidoscope_dielectric_lobe_3d's), u in [0, 1)^5.
 DielectricSample3d sample_vgroove_dielectric_3d(double theta_i, const std::array<double, 5>& u, NdfKind ndf,
