@@ -140,7 +140,7 @@ TEST(SamplingDielectric, FlatlandHistogramIsTheLobeEtaAboveOne) { histogram_is_t
 TEST(SamplingDielectric, FlatlandHistogramIsTheLobeEtaBelowOne) { histogram_is_the_lobe(false); }
 
 // The same test rejects a sampler with the first facet drawn 50/50 (light at 45 deg: the facets' lit
-// widths differ by a factor ~3) and one with Fresnel at 1.1 eta.
+// widths differ by a factor ~3) and one with Fresnel at 1.1 eta (at eta 1 / 1.5 and 1.5).
 TEST(SamplingDielectric, BrokenSamplersAreRejected) {
   const Case facet{NdfKind::beckmann, 0.5, 1.5, -45.0};
   const Outcome a = run(facet, kSamples, 1, 11, DielectricSamplerBreak::facet_uniform);
@@ -150,6 +150,11 @@ TEST(SamplingDielectric, BrokenSamplersAreRejected) {
   const Outcome b = run(fresnel, kSamples, 1, 12, DielectricSamplerBreak::fresnel_eta);
   std::printf("Fresnel at 1.1 eta: %s\n", b.text.c_str());
   EXPECT_TRUE(b.test.reject) << b.text;
+  // At eta 1.5 no total internal reflection moves: only R (~4 % -> ~5 %) and T change.
+  const Case fresnel_up{NdfKind::ggx, 0.3, 1.5, 30.0};
+  const Outcome c = run(fresnel_up, kSamples, 1, 13, DielectricSamplerBreak::fresnel_eta);
+  std::printf("Fresnel at 1.1 eta: %s\n", c.text.c_str());
+  EXPECT_TRUE(c.test.reject) << c.text;
 }
 
 // ---- 3D: cells (side, k, theta bin, phi bin) of kaleidoscope_dielectric_lobe_3d ----------------------
