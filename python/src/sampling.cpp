@@ -1,13 +1,15 @@
 // vgroove Python module: importance sampling of the symmetric V-groove BRDF (analytic/
 // sampling_3d.h, analytic/sampling_flatland.h), of the nonsymmetric one (analytic/
 // sampling_nonsymmetric.h; Lee et al. 2018, Sec. 6) and of Walter et al. 2007's rough dielectric
-// BSDF (analytic/walter_sampling.h) over arrays, the density of the directions they produce, and
+// BSDF (analytic/walter_sampling.h) and of the kaleidoscopic dielectric model
+// (analytic/sampling_dielectric.h) over arrays, the density of the directions they produce, and
 // the uniform numbers of vgroove's deterministic streams (sim/rng.h).
 #include "common.h"
 
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/analytic/facet_strategy.h"
 #include "vgroove/analytic/sampling_3d.h"
+#include "vgroove/analytic/sampling_dielectric.h"
 #include "vgroove/analytic/sampling_flatland.h"
 #include "vgroove/analytic/sampling_nonsymmetric.h"
 #include "vgroove/analytic/walter_sampling.h"
@@ -381,6 +383,75 @@ py::dict walter_sample(const std::string& ndf_name, double alpha, const std::opt
   return out;
 }
 
+// The kaleidoscopic dielectric model's sampler (analytic/sampling_dielectric.h), as `vgroove sample
+// --model vgroove-dielectric`: eta in (0, 1000], not 1; the light by theta_i_deg (3d: at azimuth
+// 180 deg, [0, 89.9]; flatland signed); u of shape (n, 5) in 3d, (n, 4) in flatland; light_from
+// "above" or "below". Returns wo (n x 3, z > 0 above the macrosurface; flatland in the (x, z) plane;
+// the normal with no direction), k, weight (1, or 0 with no direction), reflected.
+py::dict dielectric_sample(const std::string& ndf_name, double alpha, double eta,
+                           const std::optional<DoubleArray>& theta_i_deg, DoubleArray u, const std::string& dim_name,
+                           const std::string& light_from, int threads, const py::object& progress) {
+  const NdfKind ndf = sampler_ndf(ndf_name);
+  check_alpha(alpha);
+  if (!(eta > 0.0 && eta <= validation::kMaxFresnelEta && eta != 1.0))
+    throw support::UserError("eta = " + support::number_text(eta) + " is out of range " +
+                             support::interval_text(0, false, validation::kMaxFresnelEta, true) +
+                             ", not 1, with model vgroove-dielectric");
+  const SurfaceDim dim = parse_dim(dim_name);
+  const bool flat = dim == SurfaceDim::flatland;
+  analytic::DielectricSamplerOptions opt;
+  if (light_from == "below")
+    opt.from = analytic::DielectricLightFrom::below;
+  else if (light_from != "above")
+    throw support::UserError("light_from = \"" + light_from + "\" is not one of \"above\", \"below\"");
+  validation::check_threads(threads, "threads");
+  const std::size_t m = flat ? 4 : 5;
+  if (u.ndim() != 2 || static_cast<std::size_t>(u.shape(1)) != m)
+    throw support::UserError(std::string("u must be an array of shape (n, ") + (flat ? "4" : "5") + ")");
+  const std::size_t n = static_cast<std::size_t>(u.shape(0));
+  std::optional<Rows> wi_unit;
+  const Light light = light_of(std::nullopt, wi_unit, theta_i_deg, n, flat);
+  check_uniforms(u.data(), n, m);
+  ProgressRelay relay(progress);
+  const auto sn = static_cast<py::ssize_t>(n);
+  auto wo = new_array<double>({sn, 3});
+  auto k = new_array<std::int32_t>({sn});
+  auto weight = new_array<double>({sn});
+  auto reflected = new_array<bool>({sn});
+  double *po = wo.mutable_data(), *pw = weight.mutable_data();
+  std::int32_t* pk = k.mutable_data();
+  bool* pr = reflected.mutable_data();
+  const double* pu = u.data();
+  const bool below = opt.from == analytic::DielectricLightFrom::below;
+  for_rows(n, threads, light, relay, false, [&](std::size_t j, LightCursor&) {
+    const double* v = pu + m * j;
+    const double ti = light.angle(j);
+    if (flat) {
+      const analytic::DielectricSampleFlatland x =
+          analytic::sample_vgroove_dielectric_flatland(ti, {v[0], v[1], v[2], v[3]}, ndf, alpha, eta, opt);
+      // The exit side: above when reflected with the light above, or transmitted with it below;
+      // (-sin t, 0, cos t) above and (sin t, 0, -cos t) below (the lobe's angle from that side's normal).
+      const double side = (x.reflected != below) ? 1.0 : -1.0;
+      const bool ok = x.weight > 0.0;
+      po[3 * j] = ok ? -side * std::sin(x.theta_o) : 0.0, po[3 * j + 1] = 0.0;
+      po[3 * j + 2] = ok ? side * std::cos(x.theta_o) : 1.0;
+      pk[j] = x.k, pw[j] = x.weight, pr[j] = x.weight > 0.0 && x.reflected;
+    } else {
+      const analytic::DielectricSample3d x =
+          analytic::sample_vgroove_dielectric_3d(ti, {v[0], v[1], v[2], v[3], v[4]}, ndf, alpha, eta, opt);
+      const analytic::Dir3 o = x.weight > 0.0 ? x.o : analytic::Dir3{0.0, 0.0, 1.0};
+      po[3 * j] = o.x, po[3 * j + 1] = o.y, po[3 * j + 2] = o.z;
+      pk[j] = x.k, pw[j] = x.weight, pr[j] = x.weight > 0.0 && x.reflected;
+    }
+  });
+  py::dict out;
+  out["wo"] = wo;
+  out["k"] = k;
+  out["weight"] = weight;
+  out["reflected"] = reflected;
+  return out;
+}
+
 py::array_t<double> walter_pdf(const std::string& ndf_name, double alpha, const std::optional<DoubleArray>& wi,
                                const std::optional<DoubleArray>& theta_i_deg, DoubleArray wo, double eta,
                                const std::string& masking, bool strategy_given, bool max_k_given,
@@ -443,6 +514,9 @@ void bind_sampling(py::module_& m) {
   m.def("walter_pdf", &walter_pdf, py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("theta_i_deg"),
         py::arg("wo"), py::arg("eta"), py::arg("masking"), py::arg("strategy_given"), py::arg("max_k_given"),
         py::arg("dim"), py::arg("threads"), py::arg("progress") = py::none());
+  m.def("dielectric_sample", &dielectric_sample, py::arg("ndf"), py::arg("alpha"), py::arg("eta"),
+        py::arg("theta_i_deg"), py::arg("u"), py::arg("dim"), py::arg("light_from") = "above", py::arg("threads") = 0,
+        py::arg("progress") = py::none());
   // The samplers' default max_k (analytic/sampling_3d.h, analytic/sampling_nonsymmetric.h).
   m.attr("SAMPLER_MAX_K") = analytic::kSamplerMaxK;
   m.attr("NONSYMMETRIC_SAMPLER_MAX_K") = analytic::kNonsymmetricSamplerMaxK;
