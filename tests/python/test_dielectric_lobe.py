@@ -145,3 +145,11 @@ def test_bad_input_names_the_argument(vg, kwargs, message):
     args.update(kwargs)
     with pytest.raises(ValueError, match="^" + re.escape(message)):
         vg.dielectric_lobe(args.pop("ndf"), args.pop("alpha"), args.pop("eta"), args.pop("theta_i_deg"), **args)
+
+
+def test_progress_reports_the_end(vg):
+    calls = []
+    vg.dielectric_lobe("ggx", 0.5, 1.5, 10, dim="flatland", flatland_bins=6, progress=lambda d, t: calls.append((d, t)))
+    assert calls and calls[-1] == (1, 1), calls
+    with pytest.raises(ValueError, match="^progress = 3 must be a callable"):
+        vg.dielectric_lobe("ggx", 0.5, 1.5, 10, dim="flatland", progress=3)
