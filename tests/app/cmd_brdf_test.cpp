@@ -2,7 +2,9 @@
 // to the total; bad input named with its range; a directions file read strictly; the nonsymmetric
 // model (Lee et al. 2018, Eq. 21-23): its symmetric limit is the symmetric model (Eq. 24) and its
 // first order Cook-Torrance where Eq. (25) holds; Walter's BSDF on both sides of the interface: a
-// nearly flat interface gives Fresnel's R and T, peaked at the mirror and Snell directions.
+// nearly flat interface gives Fresnel's R and T, peaked at the mirror and Snell directions; the
+// kaleidoscopic dielectric lobe (--model vgroove-dielectric): the library's to the last bit, R + T +
+// unbinned = 1, eta = 1 all in the incident bin, bad input and the other models' flags refused.
 #include "vgroove/analytic/brdf_flatland.h"
 #include "vgroove/analytic/brdf_model.h"
 #include "vgroove/analytic/brdf_nonsymmetric.h"
