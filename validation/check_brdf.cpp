@@ -1,5 +1,6 @@
 #include "vgroove/validation/check_brdf.h"
 #include "vgroove/support/seconds_since.h"
+#include "vgroove/validation/check_bsdf.h"
 #include "vgroove/validation/lobe_comparison.h"
 
 #include "vgroove/analytic/quadrature.h"
@@ -64,21 +65,24 @@ std::string vector_text(const double* v) {
 
 class BinIntegrator {
  public:
+  // side_bins: the bins of the hemisphere above; a bin past them is below (check_bsdf.h: theta
+  // from -n, wo.z < 0; flatland wo = (sin theta, 0, -cos theta), sim::exit_angle's), for a BSDF.
   BinIntegrator(const BrdfBatchFn& f, const analytic::Dir3& wi, bool flat, const analytic::GaussLegendre& g,
-                double theta_i_deg)
-      : f_(f), wi_(wi), flat_(flat), g_(g), theta_i_deg_(theta_i_deg) {}
+                double theta_i_deg, std::size_t side_bins, bool bsdf)
+      : f_(f), wi_(wi), flat_(flat), g_(g), theta_i_deg_(theta_i_deg), side_bins_(side_bins), bsdf_(bsdf) {}
 
   // The rule on [t0, t1] x [p0, p1]: f(wi, wo) cos(theta) sin(theta) (3D) or f cos(theta) (flatland).
   // The nodes' values come from one batch call, then are summed in node order.
-  double rule(double t0, double t1, double p0, double p1) {
+  double rule(double t0, double t1, double p0, double p1, bool below = false) {
     const double ht = 0.5 * (t1 - t0), hp = 0.5 * (p1 - p0);
     const std::size_t m = g_.size(), nodes = flat_ ? m : m * m;
     wis_.resize(3 * nodes), wos_.resize(3 * nodes), vals_.resize(nodes);
     for (std::size_t a = 0, j = 0; a < m; ++a) {
       const double theta = t0 + ht * (1.0 + g_.x[a]);
       for (std::size_t b = 0; b < (flat_ ? 1 : m); ++b, ++j) {
-        const analytic::Dir3 wo = flat_ ? analytic::Dir3{-std::sin(theta), 0.0, std::cos(theta)}
-                                        : analytic::dir3(theta, p0 + hp * (1.0 + g_.x[b]));
+        analytic::Dir3 wo = flat_ ? analytic::Dir3{-std::sin(theta), 0.0, std::cos(theta)}
+                                  : analytic::dir3(theta, p0 + hp * (1.0 + g_.x[b]));
+        if (below) wo.z = -wo.z, wo.x = flat_ ? -wo.x : wo.x;
         wis_[3 * j] = wi_.x, wis_[3 * j + 1] = wi_.y, wis_[3 * j + 2] = wi_.z;
         wos_[3 * j] = wo.x, wos_[3 * j + 1] = wo.y, wos_[3 * j + 2] = wo.z;
       }
@@ -91,7 +95,8 @@ class BinIntegrator {
       if (!(vals_[j] >= 0.0 && vals_[j] <= std::numeric_limits<double>::max()))
         throw BadModelValue{"f(wi, wo) = " + support::number_text(vals_[j]) + " at wi = " + vector_text(&wis_[3 * j]) +
                             ", wo = " + vector_text(&wos_[3 * j]) + " (theta_i_deg " +
-                            support::number_text(theta_i_deg_) + "): a BRDF's values must be finite and >= 0"};
+                            support::number_text(theta_i_deg_) + (bsdf_ ? "): a BSDF's" : "): a BRDF's") +
+                            " values must be finite and >= 0"};
     double s = 0.0;
     for (std::size_t a = 0, j = 0; a < m; ++a) {
       const double theta = t0 + ht * (1.0 + g_.x[a]);
@@ -109,10 +114,11 @@ class BinIntegrator {
   Cell make(std::size_t bin, double t0, double t1, double p0, double p1, double coarse) {
     Cell c{bin, t0, t1, p0, p1, {}, 0.0, 0.0};
     const double tm = 0.5 * (t0 + t1), pm = 0.5 * (p0 + p1);
+    const bool d = bin >= side_bins_;
     if (flat_) {
-      c.part = {rule(t0, tm, p0, p1), rule(tm, t1, p0, p1), 0.0, 0.0};
+      c.part = {rule(t0, tm, p0, p1, d), rule(tm, t1, p0, p1, d), 0.0, 0.0};
     } else {
-      c.part = {rule(t0, tm, p0, pm), rule(tm, t1, p0, pm), rule(t0, tm, pm, p1), rule(tm, t1, pm, p1)};
+      c.part = {rule(t0, tm, p0, pm, d), rule(tm, t1, p0, pm, d), rule(t0, tm, pm, p1, d), rule(tm, t1, pm, p1, d)};
     }
     c.value = c.part[0] + c.part[1] + c.part[2] + c.part[3];
     c.err = std::abs(c.value - coarse);
@@ -141,6 +147,8 @@ class BinIntegrator {
   bool flat_;
   const analytic::GaussLegendre& g_;
   double theta_i_deg_;
+  std::size_t side_bins_;
+  bool bsdf_;
   std::vector<double> wis_, wos_, vals_;
 };
 
@@ -156,26 +164,35 @@ struct CaseStop {
 ModelLobe model_bins(const BrdfBatchFn& f, double theta_i_deg, const CheckBrdfOptions& o,
                      const analytic::GaussLegendre& g, const CaseStop& stop) {
   const bool flat = o.dim == SurfaceDim::flatland;
-  BinIntegrator in(f, analytic::dir3(deg_to_rad(theta_i_deg), kPi), flat, g, theta_i_deg);
+  const std::size_t side_bins = flat ? static_cast<std::size_t>(o.flatland_bins)
+                                     : static_cast<std::size_t>(o.theta_bins) * static_cast<std::size_t>(o.phi_bins);
+  const bool bsdf = o.eta != 0.0;  // both hemispheres' bins, the light on o.side (check_bsdf.h)
+  BinIntegrator in(f, bsdf_light(deg_to_rad(theta_i_deg), bsdf ? o.side : sim::Medium::above), flat, g, theta_i_deg,
+                   side_bins, bsdf);
   std::priority_queue<Cell> cells;
   double err = 0.0;
   // The first pass calls f five times per bin (three in flatland; up to 5 x 10^6 calls, a Python
   // callback each, or 70 ms of a flatland sum at max_k 1024): the stop is read before each bin.
-  if (flat) {
-    const double w = kPi / o.flatland_bins;
-    for (int b = 0; b < o.flatland_bins; ++b) {
-      if (stop()) break;
-      const double t0 = -0.5 * kPi + b * w, t1 = t0 + w;
-      cells.push(in.make(static_cast<std::size_t>(b), t0, t1, 0.0, 0.0, in.rule(t0, t1, 0.0, 0.0)));
-    }
-  } else {
-    const double dt = 0.5 * kPi / o.theta_bins, dp = 2.0 * kPi / o.phi_bins;
-    for (int t = 0; t < o.theta_bins; ++t)
-      for (int p = 0; p < o.phi_bins; ++p) {
+  for (std::size_t h = 0; h < (bsdf ? 2u : 1u); ++h) {
+    const std::size_t first = h * side_bins;
+    const bool below = h == 1;
+    if (flat) {
+      const double w = kPi / o.flatland_bins;
+      for (int b = 0; b < o.flatland_bins; ++b) {
         if (stop()) break;
-        const double t0 = t * dt, t1 = t0 + dt, p0 = p * dp - 0.5 * dp, p1 = p0 + dp;
-        cells.push(in.make(static_cast<std::size_t>(t) * o.phi_bins + p, t0, t1, p0, p1, in.rule(t0, t1, p0, p1)));
+        const double t0 = -0.5 * kPi + b * w, t1 = t0 + w;
+        cells.push(in.make(first + static_cast<std::size_t>(b), t0, t1, 0.0, 0.0, in.rule(t0, t1, 0.0, 0.0, below)));
       }
+    } else {
+      const double dt = 0.5 * kPi / o.theta_bins, dp = 2.0 * kPi / o.phi_bins;
+      for (int t = 0; t < o.theta_bins; ++t)
+        for (int p = 0; p < o.phi_bins; ++p) {
+          if (stop()) break;
+          const double t0 = t * dt, t1 = t0 + dt, p0 = p * dp - 0.5 * dp, p1 = p0 + dp;
+          cells.push(in.make(first + static_cast<std::size_t>(t) * o.phi_bins + p, t0, t1, p0, p1,
+                             in.rule(t0, t1, p0, p1, below)));
+        }
+    }
   }
   std::vector<Cell> children;
   double total = 0.0;  // the running sum of the estimates (summed afresh at the end)
@@ -192,10 +209,8 @@ ModelLobe model_bins(const BrdfBatchFn& f, double theta_i_deg, const CheckBrdfOp
       cells.push(std::move(ch));
     }
   }
-  const std::size_t bins = flat ? static_cast<std::size_t>(o.flatland_bins)
-                                : static_cast<std::size_t>(o.theta_bins) * static_cast<std::size_t>(o.phi_bins);
   ModelLobe out;
-  out.flux.assign(bins, 0.0);
+  out.flux.assign(bsdf ? 2 * side_bins : side_bins, 0.0);
   while (!cells.empty()) {
     out.flux[cells.top().bin] += cells.top().value;
     err += cells.top().err;
@@ -285,6 +300,7 @@ void check_options(const CheckBrdfOptions& o) {
     // One field in memory at a time, traced by every thread.
     check_field_fits(o.field_size, 1.0, "field_size", 16);
   }
+  check_bsdf_options(o);
 }
 
 ModelLobe integrate_model_lobe(const BrdfBatchFn& f, double theta_i_deg, const CheckBrdfOptions& opt) {
@@ -436,10 +452,11 @@ CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt) {
   setup.ndf = opt.ndf, setup.alpha = opt.alpha, setup.dim = opt.dim, setup.rays = opt.rays;
   setup.grooves = opt.grooves, setup.seed = opt.seed;
   setup.theta_bins = opt.theta_bins, setup.phi_bins = opt.phi_bins, setup.flatland_bins = opt.flatland_bins;
-  const bool field = opt.surface == CheckSurface::heightfield;
+  const bool field = opt.surface == CheckSurface::heightfield, bsdf = opt.eta != 0.0;
   std::vector<FieldLobe> pooled;
   const std::vector<TracedLobe> traced = !integrated ? std::vector<TracedLobe>{}
                                          : field     ? trace_heightfield_lobes(opt, theta_i, res.threads, pooled)
+                                         : bsdf      ? trace_bsdf_lobes(opt, theta_i, res.threads)
                                                      : trace_lobes(setup, theta_i, res.threads, opt.cancel);
   res.wall_s = seconds_since(t0);
   if (traced.size() != cases || (opt.cancel && opt.cancel->load())) {
@@ -454,16 +471,18 @@ CheckBrdfResult check_brdf(const BrdfBatchFn& f, const CheckBrdfOptions& opt) {
     // The model's side is known to within its integration error: it widens each threshold.
     const double tol = opt.model_tolerance + model[c].error;
     // The V-groove surface: the bound from N rays over G grooves; heightfields: their fields' spread.
+    // With eta, both hemispheres and each lobe apart (check_bsdf.h).
     CheckBrdfCase out = field
                             ? check_lobes_with_variance(sim, m, pooled[c].var, pooled[c].albedo_var, N, opt.sigmas, tol)
-                            : check_lobes(sim, m, N, opt.grooves, opt.sigmas, tol);
+                        : bsdf ? check_bsdf_lobes(sim, m, N, opt, tol)
+                               : check_lobes(sim, m, N, opt.grooves, opt.sigmas, tol);
     out.model_error = model[c].error;
     out.model_evals = model[c].evals;
     out.theta_i_deg = opt.theta_i_deg[c];
     out.rays = traced[c].rays;
     out.sim_wall_s = traced[c].thread_s;
     out.model_wall_s = model_s[c];
-    out.worst = worst_bins(sim, m, opt.dim, opt.theta_bins, opt.phi_bins, opt.flatland_bins);
+    if (!bsdf) out.worst = worst_bins(sim, m, opt.dim, opt.theta_bins, opt.phi_bins, opt.flatland_bins);
     res.pass = res.pass && out.pass;
     res.cases.push_back(std::move(out));
   }
@@ -519,10 +538,16 @@ nlohmann::json CheckBrdfResult::to_json() const {
                  {"quadrature_order", options.quadrature_order},
                  {"max_model_evals", options.max_model_evals}};
   nlohmann::json cs = nlohmann::json::array();
-  for (const CheckBrdfCase& c : cases) {
+  const auto worst_json = [](const std::vector<WorstBin>& bins) {
     nlohmann::json worst = nlohmann::json::array();
-    for (const WorstBin& w : c.worst)
+    for (const WorstBin& w : bins) {
       worst.push_back({{"theta_o_deg", w.theta_o_deg}, {"phi_o_deg", w.phi_o_deg}, {"sim", w.sim}, {"model", w.model}});
+      if (!w.lobe.empty()) worst.back()["lobe"] = w.lobe;
+    }
+    return worst;
+  };
+  for (const CheckBrdfCase& c : cases) {
+    const nlohmann::json worst = worst_json(c.worst);
     cs.push_back({{"theta_i_deg", c.theta_i_deg},
                   {"rays", c.rays},
                   {"albedo_sim", c.albedo_sim},
@@ -541,7 +566,25 @@ nlohmann::json CheckBrdfResult::to_json() const {
                   {"model_wall_s", c.model_wall_s},
                   {"non_finite", c.non_finite},
                   {"pass", c.pass}});
+    if (options.eta == 0.0) continue;
+    nlohmann::json lobes = nlohmann::json::array();
+    for (const CheckLobeSide& s : c.lobes)
+      lobes.push_back({{"lobe", s.lobe},
+                       {"albedo_sim", s.albedo_sim},
+                       {"albedo_model", s.albedo_model},
+                       {"albedo_sd", s.albedo_sd},
+                       {"albedo_threshold", s.albedo_threshold},
+                       {"l1", s.l1},
+                       {"l1_expected", s.l1_expected},
+                       {"l1_threshold", s.l1_threshold},
+                       {"l1_flux", s.l1_flux},
+                       {"l1_flux_expected", s.l1_flux_expected},
+                       {"l1_flux_threshold", s.l1_flux_threshold},
+                       {"worst_bins", worst_json(s.worst)},
+                       {"pass", s.pass}});
+    cs.back()["lobes"] = lobes;
   }
+  if (options.eta != 0.0) j["inputs"]["eta"] = options.eta, j["inputs"]["side"] = sim::medium_name(options.side);
   if (options.surface == CheckSurface::heightfield)
     j["inputs"]["heightfield"] = {{"field_size", options.field_size},
                                   {"correlation_length", options.correlation_length},

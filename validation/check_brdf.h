@@ -4,11 +4,11 @@
 // the Fig. 11 suite: sim/microsurface3d.h, sim/microsurface.h), bins the exits as that suite
 // does, integrates the user's f(wi, wo) cos(theta_o) over the same bins by adaptive Gauss-Legendre
 // cubature with an error bound, and compares as the suite does (validation/histogram_metrics.h):
-// the L1 of the normalized lobes and of the flux fractions against the noise expected at this
-// sample count plus `sigmas` sd plus model_tolerance, and the albedo against its binomial error.
-// With surface "heightfield" random heightfields are traced instead (CheckSurface, below).
-// Frame: n = (0, 0, 1), wi = dir3(theta_i, pi) towards the light; F = 1. A NaN, infinite or
-// negative value throws support::UserError naming it and its directions, before any tracing.
+// the L1 of the normalized lobes and of the flux fractions against the noise expected at the sample
+// count plus `sigmas` sd plus model_tolerance, and the albedo against its binomial error.
+// Surface "heightfield": random heightfields instead (CheckSurface); eta: BSDFs (check_bsdf.h).
+// Frame: n = (0, 0, 1), wi = dir3(theta_i, pi) towards the light; F = 1. A value that is NaN,
+// infinite or < 0 throws support::UserError naming it and its directions, before any tracing.
 // Tests: tests/validation/check_brdf_test.cpp (CheckBrdf.VgrooveModelPasses3d,
 // CheckBrdf.VgrooveModelPassesFlatland, CheckBrdf.TwoPercentLessEnergyFails, CheckBrdf.WrongRoughnessFailsOnShape,
 // CheckBrdf.AValueThatIsNotABrdfsFailsAtOnceNamingItsDirections, CheckBrdf.ResultsDoNotDependOnThreads).
@@ -17,6 +17,7 @@
 
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/common/ndf_kind.h"
+#include "vgroove/sim/dielectric_groove.h"
 #include "vgroove/sim/heightfield_tracer.h"
 #include "vgroove/validation/brdf_suite.h"
 
@@ -65,6 +66,10 @@ struct CheckBrdfOptions {
   int field_size = 256;
   double correlation_length = 8.0;
   int fields = 4;
+  // A dielectric surface (check_bsdf.h): eta = n2 / n1 in [0.1, 10], not 1, the light on `side`;
+  // 0: the conductor (F = 1) check above, untouched. Surface vgroove only.
+  double eta = 0.0;
+  sim::Medium side = sim::Medium::above;
   std::uint64_t seed = 1;                     // surface and rays
   int theta_bins = 30;                        // 3D: theta_o bins over [0, 90) deg
   int phi_bins = 24;                          // 3D: phi_o bins, even
@@ -81,6 +86,18 @@ struct CheckBrdfOptions {
 struct WorstBin {
   double theta_o_deg = 0.0, phi_o_deg = 0.0;  // the bin's centre (flatland: signed theta_o, phi 0)
   double sim = 0.0, model = 0.0;
+  std::string lobe;  // with eta: "reflected" or "transmitted" (theta_o from that side's normal)
+};
+
+// With eta, one exit hemisphere's lobe (check_bsdf.h): the albedo (R or T) with its binomial sd,
+// and the L1 of its normalized lobe and of its flux fractions, each against its threshold.
+struct CheckLobeSide {
+  std::string lobe;  // "reflected" (the light's side), "transmitted"
+  double albedo_sim = 0.0, albedo_model = 0.0, albedo_sd = 0.0, albedo_threshold = 0.0;
+  double l1 = 0.0, l1_expected = 0.0, l1_threshold = 0.0;
+  double l1_flux = 0.0, l1_flux_expected = 0.0, l1_flux_threshold = 0.0;
+  std::vector<WorstBin> worst;
+  bool pass = false;
 };
 
 struct CheckBrdfCase {
@@ -96,6 +113,9 @@ struct CheckBrdfCase {
   // A model bin that is not finite or is negative (compare_lobes; check_brdf throws before, at the
   // first such value, and model tables refuse them when read).
   bool non_finite = false;
+  // With eta: the reflected and the transmitted lobes (the figures above are then both
+  // hemispheres' bins as one lobe); pass = all three hold. Empty without eta.
+  std::vector<CheckLobeSide> lobes;
   bool pass = false;
 };
 

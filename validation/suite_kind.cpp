@@ -17,6 +17,7 @@ const std::vector<const SuiteKind*>& suite_kinds() {
       &energy_audit_kind(),
       &heightfield_kind(),
       &dielectric_grooves_kind(),
+      &dielectric_brdf_kind(),
       &heightfield_albedo_kind(),
   };
   return kinds;

@@ -16,6 +16,7 @@
 #include "vgroove/common/angles.h"
 #include "vgroove/support/parallel.h"
 #include "vgroove/validation/check_brdf.h"
+#include "vgroove/validation/check_bsdf.h"
 #include "vgroove/validation/ranges.h"
 #include "vgroove/validation/run_options.h"
 
@@ -321,10 +322,23 @@ py::object check_brdf(const py::object& f, const py::object& max_k, const std::s
                       const std::string& dim, const py::object& grooves, const py::object& seed, int theta_bins,
                       int phi_bins, int flatland_bins, double sigmas, double model_tolerance, int quadrature_order,
                       int threads, const py::object& progress, const std::string& surface, const py::object& field_size,
-                      double correlation_length, const py::object& fields) {
+                      double correlation_length, const py::object& fields, const py::object& eta,
+                      const std::string& side) {
+  // eta and side first: a BSDF's options are refused, one line each, before the conductor's check_options.
+  if (side != "above" && side != "below")
+    throw support::UserError("side = \"" + side + "\" is not one of \"above\", \"below\"");
+  validation::CheckBrdfOptions bsdf;
+  // None: the conductor check (C++'s eta 0); a given 0 is out of range like any other eta <= 0.
+  bsdf.eta = eta.is_none() ? 0.0 : eta.cast<double>();
+  if (!eta.is_none() && bsdf.eta == 0.0)
+    throw support::UserError("eta = 0 is out of range [0.1, 10], not 1 (None: the conductor check)");
+  bsdf.side = side == "below" ? sim::Medium::below : sim::Medium::above;
+  bsdf.surface = surface == "heightfield" ? validation::CheckSurface::heightfield : validation::CheckSurface::vgroove;
+  validation::check_bsdf_options(bsdf);
   validation::CheckBrdfOptions o = check_options(name, ndf, alpha, theta_i_deg, rays, dim, grooves, seed, theta_bins,
                                                  phi_bins, flatland_bins, sigmas, model_tolerance, quadrature_order,
                                                  threads, surface, field_size, correlation_length, fields);
+  o.eta = bsdf.eta, o.side = bsdf.side;
   ProgressRelay relay(progress);
   relay.set(0, 1);
   relay.flush();
@@ -488,7 +502,7 @@ void bind_brdfs(py::module_& m) {
         py::arg("theta_bins"), py::arg("phi_bins"), py::arg("flatland_bins"), py::arg("sigmas"),
         py::arg("model_tolerance"), py::arg("quadrature_order"), py::arg("threads"), py::arg("progress") = py::none(),
         py::arg("surface") = "vgroove", py::arg("field_size") = 256, py::arg("correlation_length") = 8.0,
-        py::arg("fields") = 4);
+        py::arg("fields") = 4, py::arg("eta") = py::none(), py::arg("side") = "above");
   // The orders each model sums when max_k is not given (analytic/brdf_model.h: the one table of
   // every face).
   py::dict defaults;

@@ -59,7 +59,8 @@ def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], npt.ArrayLike], str],
                flatland_bins: int = 90, sigmas: float = 5.0, model_tolerance: float = 1e-4,
                quadrature_order: int = 4, threads: int = 0, name: str = "check_brdf", max_k: Optional[int] = None,
                progress: Optional[ProgressFn] = None, surface: str = "vgroove", field_size: int = 256,
-               correlation_length: float = 8.0, fields: int = 4) -> dict[str, Any]: ...
+               correlation_length: float = 8.0, fields: int = 4, eta: Optional[float] = None,
+               side: str = "above") -> dict[str, Any]: ...
 def validate(suite: Union[str, os.PathLike[str], dict[str, Any]], *, rays: Optional[int] = None, threads: int = 0,
              sampling: Optional[str] = None, eq6_form: Optional[str] = None, seed: Optional[int] = None,
              model_table: Optional[str] = None, verbose: bool = False,

@@ -98,7 +98,8 @@ def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], np.ndarray], str], nd
                flatland_bins: int = 90, sigmas: float = 5.0, model_tolerance: float = 1e-4,
                quadrature_order: int = 4, threads: int = 0, name: str = "check_brdf", max_k: Optional[int] = None,
                progress: Optional[ProgressFn] = None, surface: str = "vgroove", field_size: int = 256,
-               correlation_length: float = 8.0, fields: int = 4) -> dict:
+               correlation_length: float = 8.0, fields: int = 4, eta: Optional[float] = None,
+               side: str = "above") -> dict:
     """Holds a BRDF against vgroove's exact simulation (validation/check_brdf.h; same verdict,
     thresholds and report as the C++ API ``vgroove::validation::check_brdf``).
 
@@ -146,6 +147,18 @@ def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], np.ndarray], str], nd
         With surface "heightfield": cells per side (a power of two in [16, 65536] whose field fits
         memory: refused otherwise), the correlation length in cells ([2, field_size / 8]), and
         independent fields in [2, 1000].
+    eta : float, optional
+        A rough-glass BSDF instead: the same V-grooves between two dielectrics, eta = n2 / n1 in
+        [$min_glass_eta, $max_glass_eta], not 1, traced with Fresnel and Snell at every hit
+        (validation/check_bsdf.h). f is then called for wo in both hemispheres (wo[:, 2] < 0:
+        below the surface) in flux form (f |cos theta_o| d omega_o is the share of the incident
+        flux leaving into d omega_o, as :func:`brdf` ``"walter"``), and each case holds, besides
+        both hemispheres as one lobe, "lobes": the reflected and the transmitted lobe apart (albedos
+        R and T with their binomial sd and thresholds, L1 of each normalized lobe and of its flux
+        fractions). None: the conductor check above. Surface "vgroove" only.
+    side : {"above", "below"}
+        With eta: the side the light comes from (below: wi[:, 2] < 0, inside the glass); theta_o
+        is measured from the normal of the side the light leaves into.
 
     Returns
     -------
@@ -175,7 +188,7 @@ def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], np.ndarray], str], nd
                                real(model_tolerance, "model_tolerance"), integer(quadrature_order, "quadrature_order"),
                                integer(threads, "threads"), _progress(progress), surface,
                                integer(field_size, "field_size"), real(correlation_length, "correlation_length"),
-                               integer(fields, "fields"))
+                               integer(fields, "fields"), None if eta is None else real(eta, "eta"), side)
 
 
 def dielectric_lobe(ndf: str, alpha: float, eta: float, theta_i_deg: float = 0.0, per_k: Union[bool, int] = False, *,

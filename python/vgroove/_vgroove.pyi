@@ -63,7 +63,8 @@ def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], npt.ArrayLike], str],
                ndf: str, alpha: float, theta_i_deg: Sequence[float], rays: int, dim: str, grooves: int, seed: int,
                theta_bins: int, phi_bins: int, flatland_bins: int, sigmas: float, model_tolerance: float,
                quadrature_order: int, threads: int, progress: Progress = None, surface: str = "vgroove",
-               field_size: int = 256, correlation_length: float = 8.0, fields: int = 4) -> dict[str, Any]: ...
+               field_size: int = 256, correlation_length: float = 8.0, fields: int = 4, eta: Optional[float] = None,
+               side: str = "above") -> dict[str, Any]: ...
 def dielectric_lobe(ndf: str, alpha: float, eta: float, theta_i_deg: float, dim: str, orders: int, flatland_bins: int,
                     theta_bins: int, phi_bins: int, progress: Progress = None) -> dict[str, Any]: ...
 

@@ -38,6 +38,9 @@ One or more images per report, named after the report (or --out) with a suffix p
     "energy_audit"                           BASE-REF-NDF.png  per compensation formula, its albedo minus the
                                                             exact one over (mu, alpha), the grey F0 with the
                                                             largest |error| per cell (REF: vgroove, smith_walk)
+    "dielectric_brdf"                        BASE-SURFACE-DIM-NDF-SIDE.png  rows alpha, columns theta_i x
+                                                            (reflected, transmitted): traced lobe (every k,
+                                                            k = 1, k = 2) and each model (3D: theta marginal)
     "table2"                                 BASE.png       the paper's bounce counts, ours, the traced ones
     `bench accuracy --out`                   BASE.png       L1 against wall time (log-log);
                                              BASE-cost.png  tracer vs model cost against theta_v
@@ -216,7 +219,7 @@ def report_kind(report: Node) -> str:
         raise report.fail(f"is {_kind(v)}: a report is a JSON object")
     kind = v.get("kind")
     if kind in ("brdf", "furnace", "table2", "check_brdf", "sampling", "nonsymmetric_brdf", "profiles",
-                "energy_audit", "model_table", "heightfield", "heightfield_albedo"):
+                "energy_audit", "model_table", "heightfield", "heightfield_albedo", "dielectric_brdf"):
         return kind
     if "runs" in v:
         return "accuracy"
@@ -1003,10 +1006,11 @@ def accuracy_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
 # the traced lobes: per incidence the L1 distances over their thresholds, the albedos, and the
 # bins where the two differ most.
 
-def _verdict_case(c: Node) -> Dict[str, Any]:
+def _verdict_case(c: Node, theta_i: Optional[Node] = None) -> Dict[str, Any]:
     worst = [(w["theta_o_deg"].number(-90.0, 90.0), w["phi_o_deg"].number(-180.0, 180.0), w["sim"].number(),
               w["model"].number()) for w in c["worst_bins"].items()]
-    return {"theta_i": c["theta_i_deg"].number(-90.0, 90.0), "l1": c["l1"].number(), "l1_thr": c["l1_threshold"].number(),
+    theta = (theta_i if theta_i is not None else c["theta_i_deg"]).number(-90.0, 90.0)
+    return {"theta_i": theta, "l1": c["l1"].number(), "l1_thr": c["l1_threshold"].number(),
             "flux": c["l1_flux"].number(), "flux_thr": c["l1_flux_threshold"].number(),
             "a_sim": c["albedo_sim"].number(), "a_model": c["albedo_model"].number(),
             "a_thr": c["albedo_threshold"].number(), "pass": c["pass"].boolean(), "worst": worst}
@@ -1061,7 +1065,17 @@ def check_brdf_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
     what = ""
     if inputs is not None and inputs.has("ndf") and inputs.has("alpha"):
         what = f" ({safe_text(inputs['ndf'].text(), 12)}, alpha {inputs['alpha'].number():g})"
-    return [("", _verdict_drawer(report, f"{name}{what}", {"": cases}, "the BRDF checked"))]
+    if not any(c.has("lobes") for c in report["cases"].nonempty()):
+        return [("", _verdict_drawer(report, f"{name}{what}", {"": cases}, "the BRDF checked"))]
+    # A BSDF (check_brdf with eta): both lobes as one, and the reflected and transmitted apart.
+    series: Dict[str, List[Dict[str, Any]]] = {"R + T": cases}
+    for c in report["cases"].nonempty():
+        for s in c["lobes"].nonempty():
+            series.setdefault(s["lobe"].one_of(("reflected", "transmitted")), []).append(
+                _verdict_case(s, c["theta_i_deg"]))
+    eta = f", eta {inputs['eta'].number():g} from {safe_text(inputs['side'].text(), 8)}" if inputs is not None and \
+        inputs.has("eta") and inputs.has("side") else ""
+    return [("", _verdict_drawer(report, f"{name}{what}{eta}", series, "the BSDF checked"))]
 
 
 def model_table_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
@@ -1341,6 +1355,91 @@ def heightfield_albedo_figures(report: Node, base: str) -> List[Tuple[str, Drawe
     return [(f"-{ndf}", drawer(ndf, by_alpha)) for ndf, by_alpha in groups.items()]
 
 
+# Rough dielectrics: reflected and transmitted lobes against each model ----------------------------
+
+_DIELECTRIC_MODELS = ("walter_vcavity", "walter_smith_separable", "walter_smith_correlated", "smith_walk",
+                      "kaleidoscopic")
+
+
+def _dielectric_curve(rows: Node, bins: int, dim: str, theta_bins: int, phi_bins: int, k: Optional[int]) -> List[float]:
+    """One side's lobe: row k (None: every k summed); in 3D its theta marginal (summed over phi)."""
+    table = [r.numbers(bins, 0.0) for r in rows.nonempty()]
+    if k is not None and k >= len(table):
+        raise rows.fail(f"has {len(table)} k rows, needs row {k}")
+    v = table[k] if k is not None else [sum(col) for col in zip(*table)]
+    if dim == "flatland":
+        return v
+    return [sum(v[t * phi_bins:(t + 1) * phi_bins]) for t in range(theta_bins)]
+
+
+def dielectric_brdf_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
+    inputs = report["inputs"]
+    fb = int(inputs["flatland_bins"].number(1))
+    tb, pb = int(inputs["theta_bins"].number(1)), int(inputs["phi_bins"].number(1))
+    groups: Dict[Tuple[str, str, str, str], List[Dict[str, Any]]] = {}
+    for c in report["cases"].nonempty():
+        dim = c["dimension"].one_of(("flatland", "3d"))
+        bins = fb if dim == "flatland" else tb * pb
+        case: Dict[str, Any] = {"alpha": c["alpha"].number(0.0, 2.0), "theta": c["theta_i_deg"].number(0.0, 90.0),
+                                "eta": c["eta"].number(0.0), "pass": c["pass"].boolean(), "dim": dim, "sides": {},
+                                "matching": [safe_text(m.text(), 32) for m in c["matching_models"].items()]}
+        for side in ("reflected", "transmitted"):
+            rows = c["traced"][side]["lobe_by_k"]
+            models = {}
+            for m in _DIELECTRIC_MODELS:
+                if c["models"].has(m):
+                    models[m] = _dielectric_curve(c["models"][m][side]["lobe_by_k"], bins, dim, tb, pb, None)
+            case["sides"][side] = {"all": _dielectric_curve(rows, bins, dim, tb, pb, None),
+                                   "k1": _dielectric_curve(rows, bins, dim, tb, pb, 1),
+                                   "k2": _dielectric_curve(rows, bins, dim, tb, pb, 2), "models": models}
+        key = (c["surface"].one_of(("vgroove", "profiles")), dim, c["ndf"].one_of(_NDFS), c["side"].one_of(("above", "below")))
+        groups.setdefault(key, []).append(case)
+    name = safe_text(report["suite"].text())
+    colors = {"walter_vcavity": "#d62728", "walter_smith_separable": "#2ca02c",
+              "walter_smith_correlated": "#1f77b4", "smith_walk": "#9467bd", "kaleidoscopic": "#ff7f0e"}
+
+    def drawer(key: Tuple[str, str, str, str], cases: List[Dict[str, Any]]) -> Drawer:
+        surface, dim, ndf, side = key
+
+        def draw() -> Figure:
+            rows = sorted({(c["alpha"], c["eta"]) for c in cases})
+            cols = sorted({c["theta"] for c in cases})
+            fig = _figure(2.6 * 2 * len(cols) + 1.0, 2.2 * len(rows) + 1.4)
+            axes = fig.subplots(len(rows), 2 * len(cols), squeeze=False)
+            for ax in axes.flat:
+                ax.set_visible(False)
+            if dim == "flatland":
+                x = [-90.0 + (b + 0.5) * 180.0 / fb for b in range(fb)]
+                xlabel = "exit angle from the exit side's normal (deg)"
+            else:
+                x = [(t + 0.5) * 90.0 / tb for t in range(tb)]
+                xlabel = "theta_o from the exit side's normal (deg; summed over phi)"
+            for c in cases:
+                r = rows.index((c["alpha"], c["eta"]))
+                for s, sname in enumerate(("reflected", "transmitted")):
+                    ax = axes[r][2 * cols.index(c["theta"]) + s]
+                    ax.set_visible(True)
+                    d = c["sides"][sname]
+                    ax.step(x, d["all"], where="mid", color="black", lw=1.1, label="traced, every k")
+                    ax.step(x, d["k1"], where="mid", color="grey", lw=0.8, ls="--", label="traced, k = 1")
+                    ax.step(x, d["k2"], where="mid", color="grey", lw=0.8, ls=":", label="traced, k = 2")
+                    for m, v in d["models"].items():
+                        ax.plot(x, v, color=colors[m], lw=0.9, label=m + (" (k = 1)" if m.startswith("walter") else ""))
+                    ax.set_title(f"{sname}: alpha {c['alpha']:g}, eta {c['eta']:g}, theta_i {c['theta']:g}",
+                                 fontsize=6, color="black" if c["pass"] else "#d62728")
+                    ax.set_xlabel(xlabel, fontsize=6)
+                    ax.set_ylabel("flux per bin", fontsize=6)
+                    ax.tick_params(labelsize=5)
+            next(a for a in fig.axes if a.get_visible()).legend(fontsize=5)
+            _suptitle(fig, f"{name}: {surface} {dim} {ndf}, light from {side}: reflected and transmitted lobes, "
+                           "traced per k against each model (red title: the tracer's checks failed)",
+                      _title_bits(report))
+            return fig
+        return draw
+
+    return [(f"-{s}-{d}-{n}-{side}", drawer((s, d, n, side), cs)) for (s, d, n, side), cs in groups.items()]
+
+
 KINDS = {
     "single_grooves": single_groove_figures,
     "brdf": brdf_figures,
@@ -1355,6 +1454,7 @@ KINDS = {
     "model_table": model_table_figures,
     "heightfield": heightfield_figures,
     "heightfield_albedo": heightfield_albedo_figures,
+    "dielectric_brdf": dielectric_brdf_figures,
     # A new report kind adds a function here (and its name to report_kind).
 }
 

@@ -104,3 +104,65 @@ def test_ctrl_c_stops_a_check_with_a_callback_within_a_second(vg, f):
                                      f"{dim}, threads=2)", delay=0.5)
     assert out == "interrupted"
     assert seconds < 1.5, seconds
+
+
+# check_brdf with eta: a BSDF against the dielectric V-groove surface (validation/check_bsdf.h).
+GLASS = dict(rays=20000, grooves=20000, theta_bins=6, phi_bins=4)
+
+
+def test_a_bsdf_is_called_below_the_surface_and_reported_per_lobe(vg):
+    seen = []
+
+    def walter(wi, wo):
+        seen.append(wo[:, 2].min())
+        return vg.brdf("walter", "ggx", 0.5, wi, wo, eta=1.5, masking="smith")
+
+    r = vg.check_brdf(walter, "ggx", 0.5, [30], eta=1.5, threads=2, **GLASS)
+    assert min(seen) < -0.9  # wo below: the transmitted hemisphere
+    assert r["inputs"]["eta"] == 1.5 and r["inputs"]["side"] == "above"
+    c = r["cases"][0]
+    assert [s["lobe"] for s in c["lobes"]] == ["reflected", "transmitted"]
+    R, T = (s["albedo_sim"] for s in c["lobes"])
+    assert R + T == pytest.approx(1.0, abs=1e-12) and 0.02 < R < 0.06  # about Fresnel's 0.04 (0.032 measured)
+    assert c["pass"] == (r["pass"]) == all(s["pass"] for s in c["lobes"]) and c["pass"] is not None
+    # The same light seen from inside the glass (eta inverted): total internal reflection, it fails.
+    bad = vg.check_brdf(lambda wi, wo: vg.brdf("walter", "ggx", 0.5, wi, wo, eta=1 / 1.5), "ggx", 0.5, [30],
+                        eta=1.5, **GLASS)
+    assert not bad["pass"] and not any(s["pass"] for s in bad["cases"][0]["lobes"])
+    # The conductor check's report has no eta, side or lobes.
+    plain = vg.check_brdf(lambda wi, wo: np.zeros(len(wi)), "ggx", 0.5, [30], **GLASS)
+    assert "eta" not in plain["inputs"] and "lobes" not in plain["cases"][0]
+
+
+def test_bad_eta_and_side_are_named(vg):
+    f = lambda wi, wo: np.zeros(len(wi))  # noqa: E731
+    for eta, text in ((-1, "-1"), (0.05, "0.05"), (1, "1"), (float("nan"), "nan"), (11, "11"), (0, "0")):
+        with pytest.raises(ValueError, match=r"^eta = " + re.escape(text) +
+                           r" is out of range \[0.1, 10\], not 1 \((0|None): the conductor check\)$"):
+            vg.check_brdf(f, eta=eta, rays=10, grooves=10)
+    with pytest.raises(ValueError, match=r'^side = "sideways" is not one of "above", "below"$'):
+        vg.check_brdf(f, eta=1.5, side="sideways", rays=10, grooves=10)
+    with pytest.raises(ValueError, match=r"^surface = heightfield: with eta the traced surface is the dielectric"):
+        vg.check_brdf(f, eta=1.5, surface="heightfield", rays=10, grooves=10)
+    with pytest.raises(ValueError, match=r"^f\(wi, wo\) = nan at wi = \(-0\.4999[0-9]*, [^,]+, -0\.866[0-9]*\), wo = \([^)]+, -[0-9.]+\) "
+                       r"\(theta_i_deg 30\): a BSDF's values must be finite and >= 0$"):
+        vg.check_brdf(lambda wi, wo: np.where(wo[:, 2] < 0, np.nan, 0.1), theta_i_deg=[30], eta=1.5, side="below", rays=10,
+                      grooves=10)
+
+
+def test_a_bsdf_report_draws_both_lobes(vg, tmp_path):
+    import json
+    from vgroove import plot
+    r = vg.check_brdf(lambda wi, wo: vg.brdf("walter", "ggx", 0.3, wi, wo, eta=1.5), "ggx", 0.3, [0, 40], eta=1.5,
+                      **GLASS)
+    path = tmp_path / "bsdf.json"
+    path.write_text(json.dumps(r))
+    assert plot.main([str(path), "--out", str(tmp_path / "bsdf")]) == 0
+    assert (tmp_path / "bsdf.png").stat().st_size > 0
+    # One figure, a series per lobe beside both as one (python/vgroove/plot.py check_brdf_figures).
+    (suffix, draw), = plot.figures_for(r, str(path))
+    fig = draw()
+    labels = [t.get_text() for ax in fig.axes if ax.get_legend() for t in ax.get_legend().get_texts()]
+    for lobe in ("R + T", "reflected", "transmitted"):
+        assert any(f"({lobe})" in t for t in labels), labels
+    assert "eta 1.5 from above" in fig._suptitle.get_text()

@@ -141,7 +141,7 @@ void make_room(json& doc, const Bound& b) {
     if (field == "aspect" || b.path[0] == "aspect") doc["field_size"] = 1024, doc["correlation_length"] = 16;
   }
   if (b.upper && (field == "flatland_bins" || field == "theta_bins" || field == "phi_bins" || field == "lobe_bins")) {
-    if (b.kind != "heightfield") doc["max_k"] = b.kind == "profiles" ? 1 : 0;
+    if (b.kind != "heightfield") doc["max_k"] = b.kind == "profiles" || b.kind == "dielectric_brdf" ? 1 : 0;
     if (field != "flatland_bins" && doc.contains("theta_bins")) doc["theta_bins"] = 1, doc["phi_bins"] = 2;
     if (field == "lobe_bins") doc["lobe_bins"] = 1;
   }

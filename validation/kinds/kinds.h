@@ -21,6 +21,7 @@ const SuiteKind& energy_audit_kind();        // "energy_audit" (energy_audit_kin
 const SuiteKind& heightfield_kind();         // "heightfield" (heightfield_kind.cpp)
 const SuiteKind& heightfield_albedo_kind();  // "heightfield_albedo" (heightfield_albedo_kind.cpp)
 const SuiteKind& dielectric_grooves_kind();  // "dielectric_grooves" (dielectric_grooves_kind.cpp)
+const SuiteKind& dielectric_brdf_kind();     // "dielectric_brdf" (dielectric_brdf_kind.cpp)
 
 // The result of a finished run: `print(std::ostream&)` writes its table, `report_json()` (called
 // only when `report`) builds its report.
