@@ -98,7 +98,8 @@ __all__ = [
     "direction", "output_deg", "kaleidoscope", "analytic", "trace", "groove_case",
     "Microsurface", "microsurface", "trace_microsurface", "lobe",
     "BRDF", "Lobe", "SampleBatch", "SurfaceTrace", "BRDF_MAX_K", "SAMPLER_MAX_K", "NONSYMMETRIC_SAMPLER_MAX_K",
-    "brdf", "check_brdf", "dielectric_lobe", "validate", "energy_lobe_shape", "glass_energy", "sample", "pdf", "uniforms", "tqdm_progress",
+    "brdf", "check_brdf", "dielectric_lobe", "validate", "energy_lobe_shape", "glass_energy", "sample", "pdf",
+    "uniforms", "tqdm_progress",
     "TqdmProgress",
 ]
 
