@@ -2,7 +2,8 @@
 // form Eq. 21-23 and Cook-Torrance, 3D and flatland, with a conductor's Fresnel in 3D), the
 // settings vgroove.BRDF checks when it is made, and check_brdf: a BRDF of the user's, a vectorized
 // Python callable, held against the exact simulation (validation/check_brdf.h), a batch of
-// directions per call.
+// directions per call; the kaleidoscopic dielectric model's binned lobe (`vgroove brdf --model
+// vgroove-dielectric`).
 #include "common.h"
 
 #include "vgroove/validation/spec_lists.h"
@@ -10,6 +11,7 @@
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/analytic/brdf_flatland.h"
 #include "vgroove/analytic/brdf_model.h"
+#include "vgroove/analytic/kaleidoscope_dielectric_lobe.h"
 #include "vgroove/analytic/partner_distribution.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/support/parallel.h"
@@ -415,9 +417,80 @@ py::object check_brdf(const py::object& f, const py::object& max_k, const std::s
   return to_python(r.to_json());
 }
 
+// The kaleidoscopic dielectric model's binned lobe (analytic/kaleidoscope_dielectric_lobe.h), checked
+// as `vgroove brdf --model vgroove-dielectric` checks its flags (the same ranges, named as the
+// arguments): reflected and transmitted flux per bin, per interaction count k (rows k = 0..orders and
+// one for every k > orders) when orders > 0, and the albedos.
+py::dict dielectric_lobe(const std::string& ndf_name, double alpha, double eta, double theta_i_deg,
+                         const std::string& dim_name, int orders, int flatland_bins, int theta_bins, int phi_bins,
+                         const py::object& progress) {
+  const NdfKind ndf = parse_ndf(ndf_name);
+  const bool flat = parse_dim(dim_name) == SurfaceDim::flatland;
+  check_alpha(alpha);
+  auto check = [](double v, double lo, bool lo_closed, double hi, bool hi_closed, const std::string& what) {
+    if (!(std::isfinite(v) && (lo_closed ? v >= lo : v > lo) && (hi_closed ? v <= hi : v < hi)))
+      throw support::UserError(what + " = " + support::number_text(v) + " is out of range " +
+                               support::interval_text(lo, lo_closed, hi, hi_closed));
+  };
+  check(eta, 0, false, validation::kMaxFresnelEta, true, "eta");
+  check(theta_i_deg, flat ? -90 : 0, !flat, 90, false, "theta_i_deg");
+  if (orders < 0 || orders > validation::kMaxPrintedK)
+    throw support::UserError("per_k = " + std::to_string(orders) + " is out of range [0, " +
+                             std::to_string(validation::kMaxPrintedK) + "] (0: none)");
+  auto count = [](int v, int hi, const char* what) {
+    if (v < 1 || v > hi)
+      throw support::UserError(std::string(what) + " = " + std::to_string(v) + " is out of range [1, " +
+                               std::to_string(hi) + "]");
+  };
+  if (flat) {
+    count(flatland_bins, validation::kMaxFlatlandBins, "flatland_bins");
+  } else {
+    count(theta_bins, validation::kMaxThetaBins, "theta_bins");
+    count(phi_bins, validation::kMaxPhiBins, "phi_bins");
+    if (phi_bins % 2 != 0)
+      throw support::UserError("phi_bins = " + std::to_string(phi_bins) +
+                               " must be even (bins centred on phi = 0 and on the light at phi = 180)");
+  }
+  const double ti = deg_to_rad(theta_i_deg);
+  // The library takes no cancel flag: Ctrl-C is raised when the lobe is done. progress: 0 of 1, 1 of 1.
+  ProgressRelay relay(progress);
+  relay.set(0, 1);
+  analytic::DielectricLobe L = run_interruptible(
+      [&](std::atomic<bool>&) {
+        analytic::DielectricLobe r =
+            flat ? analytic::kaleidoscope_dielectric_lobe_flatland(ndf, alpha, eta, ti, flatland_bins, orders)
+                 : analytic::kaleidoscope_dielectric_lobe_3d(ndf, alpha, eta, ti, theta_bins, phi_bins, orders);
+        relay.set(1, 1);
+        return r;
+      },
+      false, &relay);
+  std::vector<py::ssize_t> shape =
+      flat ? std::vector<py::ssize_t>{flatland_bins} : std::vector<py::ssize_t>{theta_bins, phi_bins};
+  py::dict d;
+  d["reflected"] = array_from(std::move(L.reflected), shape);
+  d["transmitted"] = array_from(std::move(L.transmitted), shape);
+  if (orders > 0) {
+    auto by_k = [&](std::vector<std::vector<double>>& rows_k) {
+      std::vector<double> all;
+      for (const auto& r : rows_k) all.insert(all.end(), r.begin(), r.end());
+      std::vector<py::ssize_t> s = shape;
+      s.insert(s.begin(), static_cast<py::ssize_t>(rows_k.size()));
+      return array_from(std::move(all), s);
+    };
+    d["reflected_by_k"] = by_k(L.reflected_by_k);
+    d["transmitted_by_k"] = by_k(L.transmitted_by_k);
+  }
+  d["albedo_r"] = L.albedo_r, d["albedo_t"] = L.albedo_t, d["shadow_or_unknown"] = L.shadow_or_unknown;
+  d["upward"] = L.upward, d["unresolved"] = L.unresolved, d["error_estimate"] = L.error_estimate;
+  return d;
+}
+
 }  // namespace
 
 void bind_brdfs(py::module_& m) {
+  m.def("dielectric_lobe", &dielectric_lobe, py::arg("ndf"), py::arg("alpha"), py::arg("eta"), py::arg("theta_i_deg"),
+        py::arg("dim"), py::arg("orders"), py::arg("flatland_bins"), py::arg("theta_bins"), py::arg("phi_bins"),
+        py::arg("progress") = py::none());
   m.def("brdf_settings", &settings_dict, py::arg("model"), py::arg("ndf"), py::arg("alpha"), py::arg("dim"),
         py::arg("max_k"), py::arg("alpha_y"), py::arg("partner"), py::arg("eta"), py::arg("masking") = py::none());
   m.def("brdf", &brdf, py::arg("model"), py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("wo"),

@@ -191,7 +191,80 @@ def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], np.ndarray], str], nd
                                integer(fields, "fields"), None if eta is None else real(eta, "eta"), side)
 
 
-for _f in (brdf, check_brdf):
+def dielectric_lobe(ndf: str, alpha: float, eta: float, theta_i_deg: float = 0.0, per_k: Union[bool, int] = False, *,
+                    dim: str = "3d", flatland_bins: int = 90, theta_bins: int = 18, phi_bins: int = 24,
+                    progress: Optional[ProgressFn] = None) -> dict:
+    """The kaleidoscopic dielectric model's lobe over an NDF: the fractions of the incident flux
+    reflected into each bin above and transmitted into each bin below (analytic/
+    kaleidoscope_dielectric_lobe.h; ``vgroove brdf --model vgroove-dielectric``, whose JSON holds the
+    same numbers with the default bins).
+
+    Parameters
+    ----------
+    ndf : {"ggx", "beckmann", "phong"}
+    alpha : float
+        Roughness in [$min_alpha, $max_alpha].
+    eta : float
+        n_far / n_near in (0, $max_fresnel_eta], the light in the near medium (below 1: from inside
+        the denser medium); 1: no interface, everything transmitted straight on.
+    theta_i_deg : float
+        The light: 3D polar angle in [0, 90) (at azimuth 180); flatland signed in (-90, 90).
+    per_k : bool or int
+        False: the sums only. True: also the lobes per interaction count k, rows k = 0..16 and one
+        for every k > 16 (``--per-k``); an int n in [0, 1000] (0: as False): rows 0..n and one for k > n
+        (``--per-k --per-k-max n``).
+    dim : {"3d", "flatland"}
+    flatland_bins, theta_bins, phi_bins
+        The bins (the defaults are ``vgroove brdf``'s, app/cmd_brdf.cpp): flatland_bins equal bins
+        over (-90, 90) deg (at most $max_flatland_bins); in 3D theta_bins over [0, 90) deg from the
+        exit side's normal (at most $max_theta_bins) x phi_bins (even, at most $max_phi_bins)
+        centred on phi = 0, the light at phi = 180 deg.
+    progress : callable, optional
+        ``progress(done, total)``: the start (0 of 1) and the end (1 of 1). Ctrl-C is raised when
+        the lobe is done (the library takes no cancel flag).
+
+    Returns
+    -------
+    dict
+        ``reflected``, ``transmitted``: arrays of shape (flatland_bins,) or (theta_bins, phi_bins),
+        flux fractions per bin, angles from the exit side's normal; with per_k ``reflected_by_k``,
+        ``transmitted_by_k`` of shape (rows,) + that; ``albedo_r``, ``albedo_t``,
+        ``shadow_or_unknown`` (not binned: albedo_r + albedo_t + shadow_or_unknown = 1), ``upward``
+        and ``unresolved`` (parts of it), ``error_estimate``; the bin edges in degrees,
+        ``theta_edges_deg`` (and ``phi_edges_deg`` in 3D).
+
+    Raises
+    ------
+    ValueError
+        An argument out of range, named as here, with ``vgroove brdf``'s range.
+
+    Examples
+    --------
+    >>> import vgroove
+    >>> L = vgroove.dielectric_lobe("ggx", 0.3, 1.5, 30, dim="flatland", flatland_bins=18)
+    >>> L["reflected"].shape, round(L["albedo_r"] + L["albedo_t"] + L["shadow_or_unknown"], 12)
+    ((18,), 1.0)
+    """
+    if isinstance(per_k, (bool, np.bool_)):
+        orders = PER_K_ORDERS if per_k else 0
+    else:
+        orders = integer(per_k, "per_k")
+    d = _vgroove.dielectric_lobe(text(ndf, "ndf"), real(alpha, "alpha"), real(eta, "eta"),
+                                 real(theta_i_deg, "theta_i_deg"), text(dim, "dim"), orders,
+                                 integer(flatland_bins, "flatland_bins"), integer(theta_bins, "theta_bins"),
+                                 integer(phi_bins, "phi_bins"), _progress(progress))
+    # The command line's edges (app/cmd_brdf.cpp): -90 + b * 180 / bins; 3D b * 90 / theta_bins and
+    # (b - 1/2) * 360 / phi_bins.
+    if dim == "flatland":
+        d["theta_edges_deg"] = np.array([-90.0 + b * (180.0 / flatland_bins) for b in range(flatland_bins + 1)])
+    else:
+        d["theta_edges_deg"] = np.array([b * (90.0 / theta_bins) for b in range(theta_bins + 1)])
+        dp = 360.0 / phi_bins
+        d["phi_edges_deg"] = np.array([b * dp - 0.5 * dp for b in range(phi_bins + 1)])
+    return d
+
+
+for _f in (brdf, check_brdf, dielectric_lobe):
     _f.__doc__ = fill_ranges(_f.__doc__, dict(per_k_orders=PER_K_ORDERS,
                                               flatland_max_k=BRDF_MAX_K[("vgroove", "flatland")],
                                               nonsymmetric_max_k=BRDF_MAX_K[("vgroove-nonsymmetric", "3d")]))

@@ -65,6 +65,8 @@ def check_brdf(f: Union[Callable[[np.ndarray, np.ndarray], npt.ArrayLike], str],
                quadrature_order: int, threads: int, progress: Progress = None, surface: str = "vgroove",
                field_size: int = 256, correlation_length: float = 8.0, fields: int = 4, eta: Optional[float] = None,
                side: str = "above") -> dict[str, Any]: ...
+def dielectric_lobe(ndf: str, alpha: float, eta: float, theta_i_deg: float, dim: str, orders: int, flatland_bins: int,
+                    theta_bins: int, phi_bins: int, progress: Progress = None) -> dict[str, Any]: ...
 
 def validate(path: str, rays: Optional[int], threads: int, sampling: Optional[str], eq6_form: Optional[str],
              seed: Optional[int], model_table: Optional[str], verbose: bool, suite_json: Optional[str] = None,

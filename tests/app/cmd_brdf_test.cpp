@@ -2,10 +2,13 @@
 // to the total; bad input named with its range; a directions file read strictly; the nonsymmetric
 // model (Lee et al. 2018, Eq. 21-23): its symmetric limit is the symmetric model (Eq. 24) and its
 // first order Cook-Torrance where Eq. (25) holds; Walter's BSDF on both sides of the interface: a
-// nearly flat interface gives Fresnel's R and T, peaked at the mirror and Snell directions.
+// nearly flat interface gives Fresnel's R and T, peaked at the mirror and Snell directions; the
+// kaleidoscopic dielectric lobe (--model vgroove-dielectric): the library's to the last bit, R + T +
+// unbinned = 1, eta = 1 all in the incident bin, bad input and the other models' flags refused.
 #include "vgroove/analytic/brdf_flatland.h"
 #include "vgroove/analytic/brdf_model.h"
 #include "vgroove/analytic/brdf_nonsymmetric.h"
+#include "vgroove/analytic/kaleidoscope_dielectric_lobe.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/optics/fresnel.h"
 
@@ -508,6 +511,141 @@ TEST(CmdBrdfWalter, BadInput) {
     EXPECT_EQ(r.status, 2) << c.args << "\n" << r;
     EXPECT_EQ(r.out, "") << c.args;
     EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// --model vgroove-dielectric: the kaleidoscopic dielectric model's binned lobe
+
+std::vector<double> doubles(const json& a) {
+  return a.is_array() ? a.get<std::vector<double>>() : std::vector<double>{};
+}
+
+double sum(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return s;
+}
+
+// Flatland, GGX alpha 0.3, from glass inside (eta 1 / 1.5) at 40 deg, beyond the flat critical angle
+// (41.8 deg less the facet tilts): the JSON is the library's lobe to the last digit, and the light is
+// all accounted for: albedo_r + albedo_t + shadow_or_unknown = 1 (KD-2: R + T = 1 per facet, the
+// lit widths make the opening), each side's bins sum to its albedo and each bin's rows k = 0..4 and
+// k > 4 sum to the bin. Broken variant: without shadow_or_unknown (here about 1e-3) the sum misses 1.
+TEST(CmdBrdfDielectric, JsonIsTheLibrarysLobeAndConservesEnergy) {
+  const double eta = 1 / 1.5;
+  std::ostringstream e;
+  e.precision(17);
+  e << eta;
+  const json j = run_json("--model vgroove-dielectric --dim flatland --alpha 0.3 --eta " + e.str() +
+                          " --theta-i-deg 40 --per-k --per-k-max 4");
+  ASSERT_TRUE(j.contains("reflected")) << j;
+  EXPECT_EQ(j["kind"], "brdf_lobe");
+  EXPECT_EQ(j["inputs"]["eta"].get<double>(), eta);
+  const analytic::DielectricLobe L =
+      analytic::kaleidoscope_dielectric_lobe_flatland(NdfKind::ggx, 0.3, eta, deg_to_rad(40.0), 90, 4);
+  const std::vector<double> R = doubles(j["reflected"]), T = doubles(j["transmitted"]);
+  EXPECT_EQ(R, L.reflected);
+  EXPECT_EQ(T, L.transmitted);
+  ASSERT_EQ(j["reflected_by_k"].size(), 6u);
+  ASSERT_EQ(j["transmitted_by_k"].size(), 6u);
+  for (std::size_t k = 0; k < 6; ++k) {
+    EXPECT_EQ(doubles(j["reflected_by_k"][k]), L.reflected_by_k[k]) << k;
+    EXPECT_EQ(doubles(j["transmitted_by_k"][k]), L.transmitted_by_k[k]) << k;
+  }
+  const double ar = j["albedo_r"].get<double>(), at = j["albedo_t"].get<double>();
+  const double rest = j["shadow_or_unknown"].get<double>();
+  EXPECT_EQ(ar, L.albedo_r);
+  EXPECT_EQ(at, L.albedo_t);
+  EXPECT_EQ(rest, L.shadow_or_unknown);
+  EXPECT_EQ(j["error_estimate"].get<double>(), L.error_estimate);
+  ASSERT_EQ(R.size(), 90u);
+  EXPECT_GT(ar, 0.1);  // partly total internal reflection
+  EXPECT_GT(at, 0.1);
+  EXPECT_NEAR(ar + at + rest, 1.0, 1e-9);
+  EXPECT_GT(std::abs(ar + at - 1.0), 1e-6) << "the broken variant (no shadow_or_unknown) should miss 1";
+  EXPECT_NEAR(sum(R), ar, 1e-12);
+  EXPECT_NEAR(sum(T), at, 1e-12);
+  for (std::size_t b = 0; b < R.size(); ++b) {
+    double r = 0, t = 0;
+    for (std::size_t k = 0; k < 6; ++k)
+      r += j["reflected_by_k"][k][b].get<double>(), t += j["transmitted_by_k"][k][b].get<double>();
+    EXPECT_NEAR(r, R[b], 1e-15 + 1e-12 * R[b]) << "bin " << b;
+    EXPECT_NEAR(t, T[b], 1e-15 + 1e-12 * T[b]) << "bin " << b;
+  }
+}
+
+// eta = 1 is no interface: F = 0 and refraction unbent (KD-3), so all the light passes at the first
+// hit along theta_i, into the incident direction's bin: flatland 33 deg is bin (33 + 90) / 2 = 61
+// of 90 (its middle), -33 deg bin 28. Only grooves beyond k_cap (`unresolved`) are not binned.
+// Broken variant: eta 1.05 puts light into other bins. (3D: tests/python/test_dielectric_lobe.py;
+// the command line's 18 x 24 bins cost 0.75 s.)
+TEST(CmdBrdfDielectric, EtaOneTransmitsEverythingIntoTheIncidentBin) {
+  auto check = [](const std::string& args, std::size_t bin, bool want_straight) {
+    const json j = run_json("--model vgroove-dielectric --alpha 0.5 " + args);
+    ASSERT_TRUE(j.contains("transmitted")) << args;
+    const std::vector<double> T = doubles(j["transmitted"]);
+    ASSERT_LT(bin, T.size());
+    double other = 0.0;
+    for (std::size_t b = 0; b < T.size(); ++b) other += b == bin ? 0.0 : T[b];
+    if (!want_straight) {
+      EXPECT_GT(other + j["albedo_r"].get<double>(), 1e-3) << args << ": the broken variant should leave the bin";
+      return;
+    }
+    EXPECT_EQ(j["albedo_r"].get<double>(), 0.0) << args;
+    EXPECT_EQ(sum(doubles(j["reflected"])), 0.0) << args;
+    EXPECT_NEAR(T[bin] + j["unresolved"].get<double>(), 1.0, 1e-12) << args;
+    EXPECT_LE(other, 1e-15) << args;
+    EXPECT_EQ(j["upward"].get<double>(), 0.0) << args;
+  };
+  check("--dim flatland --eta 1 --theta-i-deg 33", 61, true);
+  check("--dim flatland --eta 1 --theta-i-deg -33", 90 - 1 - 61, true);
+  check("--dim flatland --eta 1.05 --theta-i-deg 33", 61, false);
+}
+
+// Bad input: one line on stderr naming the flag and its range, exit 2, nothing on stdout; the
+// flags of the other models are refused, not ignored.
+TEST(CmdBrdfDielectric, BadInput) {
+  struct Case {
+    const char* args;
+    const char* message;
+  } cases[] = {
+      {"--eta 0", "--eta = 0 is out of range (0, 1000]"},
+      {"--eta -1.5", "--eta = -1.5 is out of range (0, 1000]"},
+      {"--eta nan", "--eta = \"nan\" is not a number"},
+      {"--eta inf", "--eta = \"inf\" is not a number"},
+      {"--eta 1001", "--eta = 1001 is out of range (0, 1000]"},
+      {"--alpha 0", "--alpha = 0 is out of range [0.01, 2]"},
+      {"--alpha nan", "--alpha = \"nan\" is not a number"},
+      {"--theta-i-deg 90", "--theta-i-deg = 90 is out of range [0, 90)"},
+      {"--theta-i-deg -10", "--theta-i-deg = -10 is out of range [0, 90)"},
+      {"--theta-i-deg nan", "--theta-i-deg = \"nan\" is not a number"},
+      {"--dim flatland --theta-i-deg -90", "--theta-i-deg = -90 is out of range (-90, 90)"},
+      {"--dim flatland --theta-i-deg 90", "--theta-i-deg = 90 is out of range (-90, 90)"},
+      {"--ndf cauchy", "--ndf = \"cauchy\" is not one of"},
+      {"--dim 2d", "--dim = \"2d\" is not one of \"3d\", \"flatland\""},
+      {"--per-k --per-k-max 0", "--per-k-max"},
+      {"--per-k --per-k-max 1001", "--per-k-max"},
+      {"--theta-o-deg 10", "--theta-o-deg does not apply to --model vgroove-dielectric"},
+      {"--masking smith", "--masking does not apply to --model vgroove-dielectric"},
+      {"--alpha-y 0.3", "--alpha-y does not apply to --model vgroove-dielectric"},
+      {"--partner symmetric", "--partner does not apply to --model vgroove-dielectric"},
+      {"--max-k 4", "--max-k does not apply to --model vgroove-dielectric"},
+  };
+  TempDir d;
+  write_text(d.file("dirs.json"), R"({"directions": [{"theta_i_deg": 10, "theta_o_deg": 20}]})");
+  std::vector<std::pair<std::string, std::string>> all;
+  for (const Case& c : cases) all.emplace_back(c.args, c.message);
+  all.emplace_back("--directions '" + d.file("dirs.json") + "'",
+                   "--directions does not apply to --model vgroove-dielectric");
+  for (std::size_t n = 0; n < all.size(); ++n) {  // every other case with --json
+    const auto& [args, message] = all[n];
+    const std::string cmd = "brdf --model vgroove-dielectric" + std::string(n % 2 ? " --json " : " ") + args;
+    const auto r = vgroove(cmd);
+    EXPECT_EQ(r.status, 2) << cmd << "\n" << r;
+    EXPECT_EQ(r.out, "") << cmd;
+    EXPECT_EQ(testing_files::lines(r.err), 1) << cmd << "\n" << r;
+    EXPECT_NE(r.err.find(message), std::string::npos) << cmd << "\n" << r;
   }
 }
 
