@@ -174,7 +174,8 @@ int cmd_brdf_dielectric_lobe(const BrdfArgs& a, NdfKind ndf, bool flat) {
   for (auto [given, flag] :
        {std::pair{a.theta_o_given, "--theta-o-deg"}, std::pair{!a.directions.empty(), "--directions"},
         std::pair{a.masking_given, "--masking"}, std::pair{a.alpha_y_given, "--alpha-y"},
-        std::pair{a.partner_given, "--partner"}, std::pair{a.max_k_given, "--max-k"}})
+        std::pair{a.partner_given, "--partner"}, std::pair{a.max_k_given, "--max-k"},
+        std::pair{a.phi_i_given, "--phi-i-deg"}, std::pair{a.phi_o_given, "--phi-o-deg"}})
     if (given)
       throw support::UserError(std::string(flag) +
                                " does not apply to --model vgroove-dielectric (it prints the binned lobe at "
@@ -399,11 +400,13 @@ void add_brdf_command(CLI::App& app, Commands& commands) {
   add_text(brdf, "--dim", ba.dim, "3d or flatland")->capture_default_str();
   add_real(brdf, "--theta-i-deg", ba.theta_i_deg, "light: polar angle, [0, 90) (flatland: signed, (-90, 90))")
       ->capture_default_str();
-  add_real(brdf, "--phi-i-deg", ba.phi_i_deg, "light: azimuth, [-360, 360] (3D only)")->capture_default_str();
+  auto* phi_i = add_real(brdf, "--phi-i-deg", ba.phi_i_deg, "light: azimuth, [-360, 360] (3D only)");
+  phi_i->capture_default_str();
   auto* theta_o = add_real(brdf, "--theta-o-deg", ba.theta_o_deg,
                            "viewer: polar angle, [0, 90] (flatland: signed, [-90, 90]); walter: [0, 180] "
                            "([-180, 180]), over 90 transmitted; required unless --directions");
-  add_real(brdf, "--phi-o-deg", ba.phi_o_deg, "viewer: azimuth, [-360, 360] (3D only)")->capture_default_str();
+  auto* phi_o = add_real(brdf, "--phi-o-deg", ba.phi_o_deg, "viewer: azimuth, [-360, 360] (3D only)");
+  phi_o->capture_default_str();
   auto* brdf_max_k =
       add_integer(brdf, "--max-k", ba.max_k,
                   "orders summed; vgroove 3D and cook-torrance: any, at no extra cost (default: all); vgroove "
@@ -420,10 +423,12 @@ void add_brdf_command(CLI::App& app, Commands& commands) {
            "JSON file {\"directions\": [{\"theta_i_deg\", \"theta_o_deg\"[, \"phi_i_deg\", "
            "\"phi_o_deg\"]}, ...]}: evaluate at every pair");
   brdf->add_flag("--json", ba.json, "print JSON");
-  brdf->callback([&ba, theta_o, brdf_alpha_y, brdf_partner, brdf_max_k, brdf_eta, brdf_masking]() {
+  brdf->callback([&ba, theta_o, phi_i, phi_o, brdf_alpha_y, brdf_partner, brdf_max_k, brdf_eta, brdf_masking]() {
     ba.eta_given = brdf_eta->count() > 0;
     ba.masking_given = brdf_masking->count() > 0;
     ba.theta_o_given = theta_o->count() > 0;
+    ba.phi_i_given = phi_i->count() > 0;
+    ba.phi_o_given = phi_o->count() > 0;
     ba.alpha_y_given = brdf_alpha_y->count() > 0;
     ba.partner_given = brdf_partner->count() > 0;
     ba.max_k_given = brdf_max_k->count() > 0;

@@ -169,7 +169,7 @@ struct BrdfArgs {
   std::string dim = "3d";
   double theta_i_deg = 0.0, phi_i_deg = 0.0;
   double theta_o_deg = 0.0, phi_o_deg = 180.0;
-  bool theta_o_given = false;
+  bool theta_o_given = false, phi_i_given = false, phi_o_given = false;
   // vgroove-nonsymmetric only: the roughness across the --alpha axis (3D, GGX and Beckmann) and the
   // partner law ("independent": Eq. 20; "symmetric": B = A).
   double alpha_y = 0.0;

@@ -631,6 +631,8 @@ TEST(CmdBrdfDielectric, BadInput) {
       {"--alpha-y 0.3", "--alpha-y does not apply to --model vgroove-dielectric"},
       {"--partner symmetric", "--partner does not apply to --model vgroove-dielectric"},
       {"--max-k 4", "--max-k does not apply to --model vgroove-dielectric"},
+      {"--phi-i-deg 30", "--phi-i-deg does not apply to --model vgroove-dielectric"},
+      {"--phi-o-deg 30", "--phi-o-deg does not apply to --model vgroove-dielectric"},
   };
   TempDir d;
   write_text(d.file("dirs.json"), R"({"directions": [{"theta_i_deg": 10, "theta_o_deg": 20}]})");
