@@ -1,5 +1,7 @@
 #include "vgroove/validation/glass_energy.h"
 
+#include "vgroove/analytic/albedo_glass.h"
+#include "vgroove/analytic/quadrature.h"
 #include "vgroove/analytic/smith_walk_3d_dielectric.h"
 #include "vgroove/analytic/smith_walk_flatland_dielectric.h"
 #include "vgroove/common/angles.h"
@@ -19,7 +21,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <numbers>
+#include <numeric>
+#include <string>
+#include <tuple>
 
 namespace vgroove::validation {
 
@@ -532,6 +538,7 @@ nlohmann::json glass_table_json(const GlassTable& t) {
                        "T_avg(above) = eta^p T_avg(below), p = 2 in 3D and 1 in flatland (reciprocity of "
                        "the exact surface, f_t(i, o) / n_o^p = f_t(o, i) / n_i^p)"},
                       {"pairs", pairs}};
+  j["kulla_conty_glass"] = glass_compensation_audit_json(glass_compensation_audit(t));
   return j;
 }
 
@@ -565,6 +572,133 @@ void print_glass_table(std::ostream& os, const GlassTable& t) {
                   r.cell.dim == SurfaceDim::three_d ? 2 : 1, r.scaled_below, r.z());
     os << line;
   }
+  print_glass_compensation_audit(os, glass_compensation_audit(t));
+}
+
+namespace {
+
+double audit_share(const std::vector<long long>& v, long long rays) {
+  return static_cast<double>(std::accumulate(v.begin(), v.end(), 0LL)) / static_cast<double>(rays);
+}
+
+// Both sides' R_avg, T_avg (8-point rule in mu, each value to tol 1e-5).
+struct SideAverages {
+  double R_out = 0.0, T_out = 0.0, R_in = 0.0, T_in = 0.0;
+};
+SideAverages averages(const analytic::MicrofacetModel& m, double alpha, double N) {
+  analytic::AlbedoOptions o;
+  o.tol = 1e-5;
+  const analytic::GaussLegendre g = analytic::gauss_legendre(8);
+  SideAverages s;
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    const double mu = 0.5 + 0.5 * g.x[k];
+    const analytic::GlassAlbedo a = analytic::albedo_glass(m, alpha, mu, N, o);
+    const analytic::GlassAlbedo b = analytic::albedo_glass(m, alpha, mu, 1.0 / N, o);
+    s.R_out += g.w[k] * mu * a.R.value, s.T_out += g.w[k] * mu * a.T.value;
+    s.R_in += g.w[k] * mu * b.R.value, s.T_in += g.w[k] * mu * b.T.value;
+  }
+  return s;
+}
+
+}  // namespace
+
+analytic::MicrofacetModel glass_single_scattering_model(GlassReference r, NdfKind ndf) {
+  return {ndf, r == GlassReference::smith_walk ? analytic::MaskingKind::smith_height_correlated
+                                               : analytic::MaskingKind::vcavity};
+}
+
+std::vector<GlassCompensationRow> glass_compensation_audit(const GlassTable& t) {
+  const GlassGrid& g = t.grid;
+  std::vector<GlassCompensationRow> rows;
+  if (g.conductor_limit) return rows;
+  std::map<std::tuple<std::string, double, double>, SideAverages> cache;
+  analytic::AlbedoOptions o;
+  o.tol = 1e-5;
+  const std::size_t all = g.cells() + g.average_cells();
+  for (std::size_t c = 0; c < all; ++c) {
+    const GlassCell x = g.cell_at(c);
+    if (x.dim != SurfaceDim::three_d) continue;
+    const analytic::MicrofacetModel m = glass_single_scattering_model(g.reference, x.ndf);
+    const double N = x.eta > 1.0 ? x.eta : 1.0 / x.eta;
+    const double eta_rel = x.from == sim::Medium::above ? x.eta : 1.0 / x.eta;
+    const auto key = std::make_tuple(std::string(ndf_name(x.ndf)), x.alpha, N);
+    auto it = cache.find(key);
+    if (it == cache.end()) it = cache.emplace(key, averages(m, x.alpha, N)).first;
+    const SideAverages& s = it->second;
+    analytic::KullaContyGlassAverages a;
+    a.N = N;
+    a.E_avg_out = s.R_out + s.T_out, a.E_avg_in = s.R_in + s.T_in;
+    analytic::AlbedoOptions f;
+    f.tol = 1e-12;
+    a.F_avg_out = analytic::dielectric_fresnel_average(N, f).value;
+    a.F_avg_in = analytic::dielectric_fresnel_average(1.0 / N, f).value;
+    GlassCompensationRow r;
+    r.cell = x;
+    if (x.mu == kHemisphere) {
+      r.E_R = eta_rel > 1.0 ? s.R_out : s.R_in;
+      r.E_T = eta_rel > 1.0 ? s.T_out : s.T_in;
+    } else {
+      const analytic::GlassAlbedo e = analytic::albedo_glass(m, x.alpha, x.mu, eta_rel, o);
+      r.E_R = e.R.value, r.E_T = e.T.value;
+    }
+    r.moonray = analytic::kulla_conty_glass_albedo(r.E_R, r.E_T, analytic::kulla_conty_glass_weights(eta_rel, a));
+    r.scale_one = analytic::kulla_conty_glass_albedo(
+        r.E_R, r.E_T, analytic::kulla_conty_glass_weights(eta_rel, a, analytic::KullaContyGlassForm::inside_scale_one));
+    const GlassCounts& n = t.cells[c];
+    const double rays = static_cast<double>(n.rays);
+    r.R = audit_share(n.reflected, n.rays), r.T = audit_share(n.transmitted, n.rays);
+    r.se_R = std::sqrt(r.R * (1.0 - r.R) / rays), r.se_T = std::sqrt(r.T * (1.0 - r.T) / rays);
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+void print_glass_compensation_audit(std::ostream& os, const std::vector<GlassCompensationRow>& rows) {
+  if (rows.empty()) return;
+  os << "  Kulla-Conty glass (MoonRay; scale one: the inside transmitted weight unscaled), fed with the exact\n"
+        "  single scattering E_ss; formula minus traced (se of the traced value):\n"
+        "  ndf       side   eta     alpha   mu      E_ss R   E_ss T   MoonRay dR  dT        scale one dR  dT      se\n";
+  char line[256];
+  for (const GlassCompensationRow& r : rows) {
+    char mu[16];
+    if (r.cell.mu == kHemisphere)
+      std::snprintf(mu, sizeof mu, "avg");
+    else
+      std::snprintf(mu, sizeof mu, "%.4g", r.cell.mu);
+    std::snprintf(line, sizeof line,
+                  "  %-9s %-6s %-7.4g %-7.4g %-7s %-8.5f %-8.5f %+-9.5f %+-9.5f %+-9.5f %+-9.5f %.1e\n",
+                  ndf_name(r.cell.ndf), r.cell.from == sim::Medium::above ? "above" : "below", r.cell.eta, r.cell.alpha,
+                  mu, r.E_R, r.E_T, r.moonray.R - r.R, r.moonray.T - r.T, r.scale_one.R - r.R, r.scale_one.T - r.T,
+                  std::max(r.se_R, r.se_T));
+    os << line;
+  }
+}
+
+nlohmann::json glass_compensation_audit_json(const std::vector<GlassCompensationRow>& rows) {
+  nlohmann::json cells = nlohmann::json::array();
+  for (const GlassCompensationRow& r : rows)
+    cells.push_back({{"ndf", ndf_name(r.cell.ndf)},
+                     {"side", r.cell.from == sim::Medium::above ? "above" : "below"},
+                     {"eta", r.cell.eta},
+                     {"alpha", r.cell.alpha},
+                     {"mu", r.cell.mu == kHemisphere ? nlohmann::json("average") : nlohmann::json(r.cell.mu)},
+                     {"E_ss_R", r.E_R},
+                     {"E_ss_T", r.E_T},
+                     {"moonray_R", r.moonray.R},
+                     {"moonray_T", r.moonray.T},
+                     {"scale_one_R", r.scale_one.R},
+                     {"scale_one_T", r.scale_one.T},
+                     {"traced_R", r.R},
+                     {"traced_T", r.T},
+                     {"se_R", r.se_R},
+                     {"se_T", r.se_T}});
+  return {{"definition",
+           "Kulla-Conty rough-glass compensation as MoonRay ships it (moonray) and with the inside transmitted "
+           "weight unscaled (scale_one), fed with the exact single scattering E_ss_R, E_ss_T of the reference's "
+           "model (smith_walk: Walter with the height-correlated Smith G2; vgroove: Walter with the V-cavity G) "
+           "and the exact dielectric F_avg, beside the traced totals; 3D cells; docs/derivations/"
+           "energy_compensation.md"},
+          {"cells", cells}};
 }
 
 }  // namespace vgroove::validation

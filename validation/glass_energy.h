@@ -6,13 +6,17 @@
 // vertex = 1 per cell (counts). Beside the grid, cosine-weighted cells give the hemispherical
 // averages, whose reciprocity T_avg(above) = eta^2 T_avg(below) (flatland: eta) the table reports.
 // With reference smith_walk, the same cells from the dielectric Smith walk (no surface, no grooves).
+// Audit columns: Kulla-Conty glass as MoonRay ships it beside the traced totals (see below).
 // Tests: tests/validation/glass_energy_test.cpp (GlassEnergy.NearlyFlatIsFresnel,
 // GlassEnergy.ReciprocityOfTheAverages, GlassEnergy.ConductorLimitIsTheConductorTable,
 // GlassEnergy.EnergyIsAccountedAndTheCountsDoNotDependOnThreads,
-// GlassEnergy.SmithWalkFirstOrderIsWaltersAndItsAveragesAreReciprocal).
+// GlassEnergy.SmithWalkFirstOrderIsWaltersAndItsAveragesAreReciprocal,
+// GlassEnergy.CompensationAuditBesideTheWalk).
 // Derivation: docs/derivations/dielectric_lifting.md ("Energy tables").
 #pragma once
 
+#include "vgroove/analytic/albedo_single.h"
+#include "vgroove/analytic/compensation_glass.h"
 #include "vgroove/common/ndf_kind.h"
 #include "vgroove/sim/dielectric_groove.h"
 #include "vgroove/sim/microsurface.h"
@@ -143,5 +147,25 @@ std::vector<GlassReciprocity> glass_reciprocity(const GlassTable& t);
 
 nlohmann::json glass_table_json(const GlassTable& t);
 void print_glass_table(std::ostream& os, const GlassTable& t);
+
+// The audit columns (glass_compensation_audit): Kulla and Conty's rough-glass compensation as
+// MoonRay ships it (analytic/compensation_glass.h) and with the inside transmitted weight unscaled,
+// fed with the exact single scattering of the reference's own model (Smith walk: Walter with the
+// height-correlated G2, its exact first order; V-groove: Walter with the V-cavity G, exact for the
+// reflected first order only) and the exact F_avg, averages by the 8-point rule in mu; 3D cells,
+// not the conductor limit. Formula minus traced, with the traced se.
+struct GlassCompensationRow {
+  GlassCell cell;               // 3D; mu = kHemisphere: the hemispherical averages
+  double E_R = 0.0, E_T = 0.0;  // the single scattering fed to the form (quadrature)
+  analytic::CompensatedGlass moonray, scale_one;
+  double R = 0.0, T = 0.0, se_R = 0.0, se_T = 0.0;  // traced totals (all orders)
+};
+
+// The single-scattering model whose E feeds the form for a reference.
+analytic::MicrofacetModel glass_single_scattering_model(GlassReference r, NdfKind ndf);
+
+std::vector<GlassCompensationRow> glass_compensation_audit(const GlassTable& t);
+void print_glass_compensation_audit(std::ostream& os, const std::vector<GlassCompensationRow>& rows);
+nlohmann::json glass_compensation_audit_json(const std::vector<GlassCompensationRow>& rows);
 
 }  // namespace vgroove::validation
