@@ -140,6 +140,10 @@ void make_room(json& doc, const Bound& b) {
     // a field where both ends of the aspect's range fit (the number, a list's item, a control's).
     if (field == "aspect" || b.path[0] == "aspect") doc["field_size"] = 1024, doc["correlation_length"] = 16;
   }
+  // The audit's heightfield: a correlation length in [2, field_size / 8] (its own refusal), so 2 at
+  // the smallest field.
+  if (b.kind == "energy_audit" && b.path[0] == "heightfield" && field == "field_size")
+    doc["heightfield"]["correlation_length"] = 2;
   if (b.upper && (field == "flatland_bins" || field == "theta_bins" || field == "phi_bins" || field == "lobe_bins")) {
     if (b.kind != "heightfield") doc["max_k"] = b.kind == "profiles" || b.kind == "dielectric_brdf" ? 1 : 0;
     if (field != "flatland_bins" && doc.contains("theta_bins")) doc["theta_bins"] = 1, doc["phi_bins"] = 2;
