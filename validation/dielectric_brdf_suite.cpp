@@ -100,10 +100,6 @@ int bin_3d(double x, double y, double z_from_normal, const DielectricBrdfSuite& 
   return t * s.phi_bins + p;
 }
 
-std::uint64_t derived_seed(std::uint64_t seed, std::uint64_t stream, std::uint64_t key) {
-  return sim::Rng(seed, stream, key).next_u64();
-}
-
 // The V-groove surface of a case: equal-width grooves, flatland facet law (make_microsurface) or
 // the 3D projected-area law with the grooves' axis drawn per ray (validation/glass_energy.cpp).
 sim::Microsurface vgroove_surface(const DielectricBrdfSuite& s, const DielectricBrdfCase& c, std::uint64_t seed) {
@@ -149,7 +145,7 @@ Tracing trace_vgroove(const DielectricBrdfSuite& s, std::size_t ci, long rays, s
   const DielectricBrdfCase& c = s.case_list[ci];
   const int bins = s.bins(c.dim);
   Tracing t(s.rows(), bins);
-  const sim::Microsurface surface = vgroove_surface(s, c, derived_seed(s.seed, kSurfaceSeeds, ci));
+  const sim::Microsurface surface = vgroove_surface(s, c, sim::derived_seed(s.seed, kSurfaceSeeds, ci));
   sim::DielectricOptions opt;
   opt.eta = c.eta, opt.branching = sim::Branching::random, opt.max_interactions = s.max_interactions;
   const sim::DielectricSurfaceTracer tracer(surface, opt);
@@ -157,7 +153,7 @@ Tracing trace_vgroove(const DielectricBrdfSuite& s, std::size_t ci, long rays, s
   const double st = std::sin(c.theta_i), ct = std::cos(c.theta_i);
   const double G = static_cast<double>(surface.grooves.size());
   const int last = static_cast<int>(surface.grooves.size()) - 1;
-  const std::uint64_t seed = derived_seed(s.seed, kRaySeeds, ci);
+  const std::uint64_t seed = sim::derived_seed(s.seed, kRaySeeds, ci);
   sim::DielectricResult r;
   for (std::int64_t chunk = 0; chunk * kChunk < rays; ++chunk) {
     if (support::cancelled(cancel)) return t;
@@ -209,11 +205,11 @@ Tracing trace_profiles(const DielectricBrdfSuite& s, std::size_t ci, long rays, 
   for (int real = 0; real < s.realizations; ++real) {
     sim::RandomProfileOptions po;
     po.ndf = c.ndf, po.alpha = c.alpha, po.segments = s.segments, po.samples_per_length = s.samples_per_length;
-    po.seed = derived_seed(s.seed, kSurfaceSeeds, ci * 4096 + static_cast<std::size_t>(real));
+    po.seed = sim::derived_seed(s.seed, kSurfaceSeeds, ci * 4096 + static_cast<std::size_t>(real));
     const sim::Polyline p = sim::make_random_profile(po);
     const sim::DielectricPolylineTracer tracer(p, opt);
     const std::int64_t n = rays / s.realizations + (real < rays % s.realizations ? 1 : 0);
-    const std::uint64_t seed = derived_seed(s.seed, kRaySeeds, ci * 4096 + static_cast<std::size_t>(real));
+    const std::uint64_t seed = sim::derived_seed(s.seed, kRaySeeds, ci * 4096 + static_cast<std::size_t>(real));
     sim::DielectricResult r;
     for (std::int64_t chunk = 0; chunk * kChunk < n; ++chunk) {
       if (support::cancelled(cancel)) return t;
@@ -239,7 +235,7 @@ Counts run_walk(const DielectricBrdfSuite& s, std::size_t ci, support::CancelFla
   const analytic::WalkMedium from =
       c.side == sim::Medium::above ? analytic::WalkMedium::above : analytic::WalkMedium::below;
   const double st = std::sin(c.theta_i), ct = std::cos(c.theta_i);
-  const std::uint64_t seed = derived_seed(s.seed, kWalkSeeds, ci);
+  const std::uint64_t seed = sim::derived_seed(s.seed, kWalkSeeds, ci);
   for (std::int64_t chunk = 0; chunk * kChunk < s.walk_paths; ++chunk) {
     if (support::cancelled(cancel)) return w;
     sim::Rng rng(seed, kWalkSeeds, static_cast<std::uint64_t>(chunk));
