@@ -139,8 +139,13 @@ struct CellData {
 
 // The feeds a reference's formulas take: engine tables against the walk and the heightfields
 // (both fed with Smith's single scattering) for GGX only.
-bool variant_applies(const FormulaVariant& v, int ref, NdfKind ndf) {
-  return v.feed == Feed::exact || (ref != 0 && ndf == NdfKind::ggx);
+// The engines' tables are made for Smith's microsurface (not the V-groove reference's V-cavity one);
+// MoonRay's for GGX and Beckmann up to alpha 1, the others' for GGX.
+bool variant_applies(const FormulaVariant& v, int ref, NdfKind ndf, double alpha) {
+  if (v.feed == Feed::exact) return true;
+  if (ref == 0) return false;
+  if (v.feed == Feed::moonray_table) return alpha <= 1.0;
+  return ndf == NdfKind::ggx;
 }
 
 // The references a suite audits: the V-groove model and the walk always, the heightfields opt-in.
@@ -228,11 +233,18 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
     }
     d.engine = {f.cycles_E, f.cycles_E_avg, f.filament_dfg_y,
                 analytic::karis_env_brdf_approx(std::min(1.0, std::sqrt(d.cell.alpha)), d.cell.mu)};
+    if (d.cell.alpha <= 1.0) {  // MoonRay's tables end at roughness 1
+      const MoonrayTables& m = published_moonray_tables();
+      d.engine.moonray_E = moonray_E(m, d.cell.ndf, d.cell.alpha, d.cell.mu);
+      d.engine.moonray_one_minus_E_avg = moonray_one_minus_E_avg(m, d.cell.ndf, d.cell.alpha);
+      d.engine.moonray_missing_average = moonray_missing_average(m, d.cell.ndf, d.cell.alpha);
+      d.engine.moonray_compensates = moonray_compensates(d.cell.alpha);
+    }
     for (int ref = 0; ref < kRefs; ++ref) {
       d.A[ref].assign(V, std::vector<double>(C, kNaN));
       if (!audited(s, ref)) continue;
       for (int v = 0; v < V; ++v) {
-        if (!variant_applies(variants[v], ref, d.cell.ndf)) continue;
+        if (!variant_applies(variants[v], ref, d.cell.ndf, d.cell.alpha)) continue;
         for (int c = 0; c < C; ++c) {
           const ChannelValues cv{channels.channels()[c].F0, channels.F_avg(c), (*d.E_F[ref])[c]};
           d.A[ref][v][c] = compensated_albedo(variants[v], d.ss_avg[ref], d.engine, cv, d.cell.alpha, d.cell.mu);
@@ -251,7 +263,7 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
     const CellData& d = cells[n];
     for (int ref = 0; ref < kRefs; ++ref)
       for (int v = 0; v < V; ++v) {
-        if (!audited(s, ref) || !variant_applies(variants[v], ref, d.cell.ndf)) continue;
+        if (!audited(s, ref) || !variant_applies(variants[v], ref, d.cell.ndf, d.cell.alpha)) continue;
         auto add = [&](int g, double e, const std::string& what) {
           for (int reg = 0; reg < kNumRegions; ++reg)
             if (in_region(reg, s, d.cell)) stat(v, ref, g, reg).add(e, [&] { return cell_text(d.cell) + ", " + what; });
@@ -293,7 +305,7 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
           Stat dE[kNumRegions], ratio[kNumRegions][3];
           bool any = false;
           for (const CellData& d : cells) {
-            if (!variant_applies(variants[v], ref, d.cell.ndf)) continue;
+            if (!variant_applies(variants[v], ref, d.cell.ndf, d.cell.alpha)) continue;
             double got[3], want[3];
             for (int b = 0; b < 3; ++b) {
               // R, G, B = bands 2, 1, 0 (~650, ~550, ~450 nm).

@@ -24,6 +24,8 @@ const char* feed_name(Feed f) {
       return "filament_lut";
     case Feed::karis_fit:
       return "karis_fit";
+    case Feed::moonray_table:
+      return "moonray_table";
   }
   return "?";
 }
@@ -37,6 +39,9 @@ const std::vector<FormulaVariant>& formula_variants() {
     add("single", Feed::exact, "single scattering alone: Smith height-correlated or V-cavity f_ss with F");
     const std::string kc = "Kulla and Conty 2017, SIGGRAPH course slides 'Energy compensation' (no equation numbers)";
     add("kulla_conty", Feed::exact, kc);
+    add("kulla_conty", Feed::moonray_table,
+        kc + "; as DreamWorks MoonRay ships it (CookTorranceEnergyCompensation.cc) with its ReflectionAlbedo.h "
+             "tables, the lobe added only where sqrt(alpha) > 0.5");
     add("turquin", Feed::exact, "Turquin 2019, ILM technical report, the compensation factor 1 + F0 (1 - E) / E");
     const std::string cy =
         "Blender Cycles intern/cycles/kernel/closure/bsdf_microfacet.h, microfacet_ggx_preserve_energy";
@@ -62,6 +67,13 @@ double compensated_albedo(const FormulaVariant& v, const SingleScattering& s, co
                           const ChannelValues& c, double alpha, double mu) {
   const std::string& f = v.formula;
   if (f == "single") return c.E_F;
+  if (f == "kulla_conty" && v.feed == Feed::moonray_table) {
+    // The lobe (1 - E(mu_o)) (1 - E(mu_i)) / (pi (1 - E_avg)) F_ms over the light's hemisphere.
+    const double missing = e.moonray_one_minus_E_avg;
+    if (!e.moonray_compensates || missing == 0.0) return c.E_F;  // MoonRay: a zero divisor adds nothing
+    return c.E_F + analytic::kulla_conty_fresnel_factor(c.F_avg, 1.0 - missing) * (1.0 - e.moonray_E) *
+                       e.moonray_missing_average / missing;
+  }
   if (f == "kulla_conty") return c.E_F + analytic::kulla_conty_fresnel_factor(c.F_avg, s.E_avg) * (1.0 - s.E);
   if (f == "turquin") return c.E_F * analytic::turquin_factor(c.F0, s.E);
   if (f == "filament") return c.E_F * analytic::filament_energy_compensation(c.F0, e.filament_dfg_y);
@@ -79,7 +91,8 @@ double compensated_albedo(const FormulaVariant& v, const SingleScattering& s, co
   return kNaN;
 }
 
-extern const char* const kCyclesGgxAlbedoJson;  // generated: validation/cycles_tables_text.cpp.in
+extern const char* const kCyclesGgxAlbedoJson;          // generated: validation/reference_text.cpp.in
+extern const char* const kMoonrayReflectionAlbedoJson;  // the same
 
 namespace {
 CyclesTables cycles_tables_from(const nlohmann::json& j, const std::string& file) {
@@ -130,6 +143,86 @@ double cycles_E(const CyclesTables& t, double alpha, double mu) {
 }
 
 double cycles_E_avg(const CyclesTables& t, double alpha) { return lookup_1d(t.E_avg.data(), std::sqrt(alpha), 32); }
+
+namespace {
+MoonrayTables moonray_tables_from(const nlohmann::json& j, const std::string& file) {
+  constexpr std::size_t n = kMoonrayTableSize;
+  MoonrayTables t;
+  auto rows = [&](const char* key, std::vector<double>& out) {
+    for (const auto& row : j.at(key)) {
+      if (row.size() != n) throw support::UserError(file + ": /" + key + " rows must hold 33 values");
+      for (const auto& v : row) out.push_back(v.get<double>());
+    }
+    if (out.size() != n * n) throw support::UserError(file + ": /" + key + " must be 33 x 33 (MoonRay's E table)");
+  };
+  auto list = [&](const char* key, std::vector<double>& out) {
+    for (const auto& v : j.at(key)) out.push_back(v.get<double>());
+    if (out.size() != n) throw support::UserError(file + ": /" + key + " must hold 33 values (MoonRay's 1 - E_avg)");
+  };
+  try {
+    rows("ggx_E", t.ggx_E), rows("beckmann_E", t.beckmann_E);
+    list("ggx_one_minus_E_avg", t.ggx_one_minus_E_avg), list("beckmann_one_minus_E_avg", t.beckmann_one_minus_E_avg);
+  } catch (const nlohmann::json::exception& e) {
+    throw support::UserError(file + ": not MoonRay's albedo tables (" + e.what() + ")");
+  }
+  return t;
+}
+
+// ReflectionAlbedo::rIndex in float: the row below r * 32 and the weight of the next.
+std::size_t moonray_row(double alpha, float& w) {
+  const float i = static_cast<float>(std::sqrt(alpha)) * static_cast<float>(kMoonrayTableSize - 1);
+  const float below = std::floor(i);
+  w = i - below;
+  return static_cast<std::size_t>(below);
+}
+
+// scene_rdl2::math::lerp.
+float lerp(float a, float b, float w) { return (1.0f - w) * a + w * b; }
+}  // namespace
+
+MoonrayTables read_moonray_tables(const std::string& file) {
+  return moonray_tables_from(support::read_json_file(file), file);
+}
+
+const MoonrayTables& published_moonray_tables() {
+  static const MoonrayTables t = moonray_tables_from(nlohmann::json::parse(kMoonrayReflectionAlbedoJson),
+                                                     "data/reference/moonray_reflection_albedo.json");
+  return t;
+}
+
+double moonray_E(const MoonrayTables& t, NdfKind ndf, double alpha, double mu) {
+  constexpr std::size_t n = kMoonrayTableSize;
+  float w = 0.0f;
+  const std::size_t low = moonray_row(alpha, w), high = std::min(low + 1, n - 1);
+  // ReflectionAlbedo::index: ceil(row * 33 + cos * 32) in float, the same column for both rows
+  // but where the float sum rounds differently (it does not for rows <= 32).
+  const float c = static_cast<float>(mu) * static_cast<float>(n - 1);
+  const auto at = [&](std::size_t row) {
+    const auto flat = static_cast<std::size_t>(std::ceil(static_cast<float>(row * n) + c));
+    return static_cast<float>(t.E(ndf)[std::min(flat, row * n + n - 1)]);
+  };
+  return lerp(at(low), at(high), w);
+}
+
+double moonray_one_minus_E_avg(const MoonrayTables& t, NdfKind ndf, double alpha) {
+  float w = 0.0f;
+  const std::size_t low = moonray_row(alpha, w), high = std::min<std::size_t>(low + 1, kMoonrayTableSize - 1);
+  const std::vector<double>& v = t.one_minus_E_avg(ndf);
+  return lerp(static_cast<float>(v[low]), static_cast<float>(v[high]), w);
+}
+
+double moonray_missing_average(const MoonrayTables& t, NdfKind ndf, double alpha) {
+  constexpr int n = kMoonrayTableSize - 1;
+  double sum = 0.0;
+  for (int j = 1; j <= n; ++j) {
+    // E is column j's on ((j - 1) / 32, j / 32]; 2 int x dx over it is (j^2 - (j - 1)^2) / 32^2.
+    const double E = moonray_E(t, ndf, alpha, (j - 0.5) / n);
+    sum += (1.0 - E) * static_cast<double>(2 * j - 1) / static_cast<double>(n * n);
+  }
+  return sum;
+}
+
+bool moonray_compensates(double alpha) { return std::max(0.0f, static_cast<float>(std::sqrt(alpha)) - 0.5f) > 0.0f; }
 
 double round_to_half(double v) {
   if (!(std::abs(v) > 0.0) || !std::isfinite(v)) return v;

@@ -230,6 +230,12 @@ TEST(EnergyAudit, SmallAuditChecksPassAndEveryFormulaKeepsTheWhiteFurnace) {
   // The engine feeds exist against the walk for GGX only.
   EXPECT_FALSE(b["errors"]["filament@filament_lut"].contains("vgroove"));
   EXPECT_TRUE(b["errors"]["filament@filament_lut"].contains("smith_walk"));
+  EXPECT_TRUE(b["errors"]["filament@filament_lut"]["smith_walk"][1][0][0][white].is_string());  // Beckmann: nan
+  // MoonRay's tables exist for Beckmann too (errors [ndf][alpha][mu][channel], Beckmann second).
+  const nlohmann::json& moonray = b["errors"]["kulla_conty@moonray_table"];
+  EXPECT_FALSE(moonray.contains("vgroove"));
+  for (std::size_t ndf : {0, 1})
+    for (std::size_t m : {0, 1}) EXPECT_TRUE(moonray["smith_walk"][ndf][0][m][white].is_number()) << ndf << " " << m;
   // A walk tally one unit short in one path's white energy fails the white furnace.
   auto broken = *results;
   const int C = ChannelSet(s.grey_F0, s.metals).size();
