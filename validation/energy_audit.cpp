@@ -303,12 +303,13 @@ EnergyAuditWork::Fixed EnergyAuditWork::run_fixed(std::size_t cell) const {
   f.vgroove_rows = v.by_k;
   analytic::AlbedoOptions opt;
   opt.tol = 1e-10;
-  auto single = [&](const analytic::MicrofacetModel& m, SingleScattering& s, std::vector<double>& E_F) {
+  auto single = [&](const analytic::MicrofacetModel& m, SingleScattering& s, std::vector<double>& E_F,
+                    bool with_E_avg = true) {
     s.E = analytic::albedo_single(m, c.alpha, c.mu, opt).value;
     const analytic::SplitSum ss = analytic::dfg_split_sum(m, c.alpha, c.mu, opt);
     s.scale = ss.scale.value, s.bias = ss.bias.value;
     s.E_avg = kNaN;
-    if (c.mu_index == 0) {
+    if (with_E_avg && c.mu_index == 0) {
       analytic::AlbedoOptions avg;
       avg.tol = 1e-9;
       s.E_avg = analytic::albedo_average(m, c.alpha, avg).value;
@@ -325,6 +326,7 @@ EnergyAuditWork::Fixed EnergyAuditWork::run_fixed(std::size_t cell) const {
   };
   single({c.ndf, analytic::MaskingKind::smith_height_correlated}, f.smith, f.smith_E_F);
   single({c.ndf, analytic::MaskingKind::vcavity}, f.vcavity, f.vcavity_E_F);
+  single({c.ndf, analytic::MaskingKind::smith_separable}, f.separable, f.separable_E_F, false);
   if (c.ndf == NdfKind::ggx) {
     f.filament_dfg_y = filament_dfg_y(c.alpha, c.mu);
     if (cycles) f.cycles_E = cycles_E(*cycles, c.alpha, c.mu), f.cycles_E_avg = cycles_E_avg(*cycles, c.alpha);
@@ -418,6 +420,8 @@ nlohmann::json EnergyAuditWork::fixed_json(const Fixed& f) {
           {"vcavity", ss(f.vcavity)},
           {"smith_E_F", exact_json(f.smith_E_F)},
           {"vcavity_E_F", exact_json(f.vcavity_E_F)},
+          {"separable", ss(f.separable)},
+          {"separable_E_F", exact_json(f.separable_E_F)},
           {"filament_dfg_y", exact_json(f.filament_dfg_y)},
           {"cycles_E", exact_json(f.cycles_E)},
           {"cycles_E_avg", exact_json(f.cycles_E_avg)},
@@ -450,16 +454,17 @@ EnergyAuditWork::Fixed EnergyAuditWork::read_fixed(support::JsonObject& j, std::
       o.fail(key, "= " + support::value_text(o.raw(key)) + " must be \"nan\" (not computed for this cell)");
     return x;
   };
-  auto ss = [&](const std::string& key, SingleScattering& s) {
+  auto ss = [&](const std::string& key, SingleScattering& s, bool with_E_avg = true) {
     support::JsonObject o = j.object(key);
     s.E = read_fraction(o, "E");
     s.scale = read_fraction(o, "scale");
     s.bias = read_fraction(o, "bias");
-    s.E_avg = nan_or(o, "E_avg", c.mu_index == 0);
+    s.E_avg = nan_or(o, "E_avg", with_E_avg && c.mu_index == 0);
     o.finish();
   };
   ss("smith", f.smith);
   ss("vcavity", f.vcavity);
+  ss("separable", f.separable, false);
   auto E_F = [&](const std::string& key, const SingleScattering& s) {
     std::vector<double> v = read_fractions(j, key, C);
     for (std::size_t ch = 0; ch < C; ++ch) {
@@ -473,6 +478,7 @@ EnergyAuditWork::Fixed EnergyAuditWork::read_fixed(support::JsonObject& j, std::
   };
   f.smith_E_F = E_F("smith_E_F", f.smith);
   f.vcavity_E_F = E_F("vcavity_E_F", f.vcavity);
+  f.separable_E_F = E_F("separable_E_F", f.separable);
   const bool ggx = c.ndf == NdfKind::ggx;
   f.filament_dfg_y = nan_or(j, "filament_dfg_y", ggx);
   f.cycles_E = read_exact_double(j, "cycles_E");

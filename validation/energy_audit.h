@@ -93,9 +93,12 @@ inline constexpr int kHeightfieldMaxBounces = 1000;
 
 // One cell's deterministic part.
 struct AuditFixed {
-  std::vector<double> vgroove_rows;               // [row * C + c], rows 0..max_k + 1
-  SingleScattering smith, vcavity;                // E_avg: NaN but at the cell of mu index 0
-  std::vector<double> smith_E_F, vcavity_E_F;     // [C]
+  std::vector<double> vgroove_rows;            // [row * C + c], rows 0..max_k + 1
+  SingleScattering smith, vcavity;             // E_avg: NaN but at the cell of mu index 0
+  std::vector<double> smith_E_F, vcavity_E_F;  // [C]
+  // Smith's separable G2 (MoonRay's lobes, the moonray_table feed's single scattering); E_avg NaN.
+  SingleScattering separable;
+  std::vector<double> separable_E_F;              // [C]
   double filament_dfg_y, cycles_E, cycles_E_avg;  // NaN when absent
   double seconds = 0.0;
 };

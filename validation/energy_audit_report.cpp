@@ -133,6 +133,7 @@ struct CellData {
   const SingleScattering* ss[kRefs] = {nullptr, nullptr, nullptr};
   SingleScattering ss_avg[kRefs];  // with the E_avg of its alpha
   const std::vector<double>* E_F[kRefs] = {nullptr, nullptr, nullptr};
+  const AuditFixed* fixed = nullptr;  // its separable single scattering: the moonray_table feed's lobe
   EngineValues engine{kNaN, kNaN, kNaN, {}};
   std::vector<std::vector<double>> A[kRefs];  // [variant][c]
 };
@@ -187,6 +188,7 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
     d.E[0].assign(C, 0.0), d.se[0].assign(C, 0.0);
     for (int k = 0; k < R; ++k)
       for (int c = 0; c < C; ++c) d.E[0][c] += f.vgroove_rows[static_cast<std::size_t>(k) * C + c];
+    d.fixed = &f;
     d.ss_avg[0] = f.vcavity, d.ss_avg[0].E_avg = avg.vcavity.E_avg, d.E_F[0] = &f.vcavity_E_F;
     // smith_walk: energy per path; the formulas on Smith's height-correlated model.
     const double N = static_cast<double>(t.paths);
@@ -246,7 +248,10 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
       for (int v = 0; v < V; ++v) {
         if (!variant_applies(variants[v], ref, d.cell.ndf, d.cell.alpha)) continue;
         for (int c = 0; c < C; ++c) {
-          const ChannelValues cv{channels.channels()[c].F0, channels.F_avg(c), (*d.E_F[ref])[c]};
+          // MoonRay's lobes have Smith's separable G2: its feed's single scattering is that one.
+          const std::vector<double>& E_F =
+              variants[v].feed == Feed::moonray_table ? d.fixed->separable_E_F : *d.E_F[ref];
+          const ChannelValues cv{channels.channels()[c].F0, channels.F_avg(c), E_F[c]};
           d.A[ref][v][c] = compensated_albedo(variants[v], d.ss_avg[ref], d.engine, cv, d.cell.alpha, d.cell.mu);
         }
       }
@@ -282,7 +287,9 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
             for (double m : s.metalness) {
               const double exact = (1.0 - m) * d.E[ref][dielectric] + m * d.E[ref][sc];
               const double F0 = (1.0 - m) * 0.04 + m * ch.F0;
-              const ChannelValues cv{F0, F0 + (1.0 - F0) / 21.0, F0 * d.ss_avg[ref].scale + d.ss_avg[ref].bias};
+              const SingleScattering& lobe =
+                  variants[v].feed == Feed::moonray_table ? d.fixed->separable : d.ss_avg[ref];
+              const ChannelValues cv{F0, F0 + (1.0 - F0) / 21.0, F0 * lobe.scale + lobe.bias};
               const double before =
                   compensated_albedo(variants[v], d.ss_avg[ref], d.engine, cv, d.cell.alpha, d.cell.mu);
               const double after = (1.0 - m) * d.A[ref][v][dielectric] + m * d.A[ref][v][sc];
@@ -553,9 +560,10 @@ EnergyAuditRun energy_audit_run_from(const EnergyAuditSuite& s, const std::vecto
     if (!audited(s, ref)) continue;
     os << "  against " << kAuditReferences[ref]
        << (ref == 0   ? " (the V-groove model; formulas fed with the V-cavity single scattering)\n"
-           : ref == 1 ? " (the Smith random walk; formulas fed with Smith's height-correlated single scattering)\n"
+           : ref == 1 ? " (the Smith random walk; formulas fed with Smith's height-correlated single scattering,\n"
+                        "  @moonray_table with the separable one of MoonRay's lobes)\n"
                       : " (random heightfields traced exactly; formulas fed with Smith's height-correlated single "
-                        "scattering)\n");
+                        "scattering,\n  @moonray_table with the separable one of MoonRay's lobes)\n");
     os << support::format("    %-30s %19s %9s %9s %9s %9s %9s %9s\n", "formula (feed)", "grey worst/mean", "rough",
                           "grazing", "conduct.", "engine", "mix-bef.", "mix-aft.");
     for (int v = 0; v < V; ++v) {

@@ -3,16 +3,14 @@
 // (its curve F, F0 = F(1), F_avg = 2 int F mu dmu): single, kulla_conty, turquin, filament,
 // bevy_direct, cycles, fdez_aguera, fdez_aguera_roughness; the quantity the energy audit
 // (validation/energy_audit.h) holds against the exact multiple-scattering albedo. Feeds: "exact"
-// (analytic/albedo_single.h quadrature), "cycles_table" (Cycles' table_ggx_E and table_ggx_Eavg
-// read as Cycles reads them, data/reference/cycles_ggx_albedo.json), "filament_lut" (Filament's
-// 128 x 128 RG16F DFG LUT layout, half-precision texels), "karis_fit" (Karis 2014's
-// EnvBRDFApprox), all three for GGX with Smith's height-correlated G2 only, and "moonray_table"
-// (DreamWorks MoonRay's 33 x 33 tables, GGX and Beckmann, read as MoonRay reads them,
-// data/reference/moonray_reflection_albedo.json).
+// (analytic/albedo_single.h quadrature); as each engine reads its table: "cycles_table" (Cycles'
+// table_ggx_E, Eavg), "filament_lut" (128 x 128 RG16F DFG LUT layout), "karis_fit" (Karis 2014's
+// EnvBRDFApprox), all three GGX with Smith's height-correlated G2, and "moonray_table" (MoonRay's
+// 33 x 33 Cook-Torrance tables, GGX and Beckmann); the published tables in data/reference/.
 // Tests: tests/validation/energy_audit_test.cpp (EngineTables.CyclesLookupHitsItsNodesAndIsLinearBetween,
 // EngineTables.HalfPrecisionRounding, EngineTables.FilamentTexelCentresHoldTheNextRowsRoughness,
-// EnergyAudit.SmallAuditChecksPassAndEveryFormulaKeepsTheWhiteFurnace, MoonrayTables.*),
-// tests/analytic/compensation_test.cpp.
+// EnergyAudit.SmallAuditChecksPassAndEveryFormulaKeepsTheWhiteFurnace), tests/validation/moonray_tables_test.cpp
+// (MoonrayTables.*), tests/analytic/compensation_test.cpp.
 // Derivation and sources: docs/derivations/energy_compensation.md.
 #pragma once
 

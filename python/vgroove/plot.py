@@ -867,7 +867,8 @@ def energy_audit_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
         raise errors.fail("holds no formula's errors against vgroove or smith_walk")
     name = safe_text(report["suite"].text())
     what = {"vgroove": "the V-groove model (formulas fed with the V-cavity single scattering)",
-            "smith_walk": "the Smith random walk (formulas fed with Smith's height-correlated single scattering)"}
+            "smith_walk": "the Smith random walk (formulas fed with Smith's height-correlated single scattering; "
+                          "@moonray_table with the separable one)"}
 
     def drawer(ref: str, ndf: str, panels: List[Tuple[str, List[List[float]], List[List[float]]]]) -> Drawer:
         def draw() -> Figure:

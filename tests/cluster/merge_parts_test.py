@@ -75,7 +75,7 @@ UNSEEN = {"thread_s", "wall_s", "model_s", "bounces", "max_k_seen", "k", "zones"
 UNSEEN_BY_KIND = {"audit": {"energy"}, "glass": {"interactions"}}
 # The audit's headers are every kind's (damaged above): its units of one part are damaged alone.
 DAMAGED = {"audit": ((0,), ("units",))}
-SLIGHTLY_UNSEEN = {"cook_torrance", "E", "E_avg", "smith_E_F", "vcavity_E_F", "filament_dfg_y", "vgroove_rows",
+SLIGHTLY_UNSEEN = {"cook_torrance", "E", "E_avg", "smith_E_F", "vcavity_E_F", "separable_E_F", "filament_dfg_y", "vgroove_rows",
                    "l1", "theta_o_error", "missed_bound", "narrowest_zone"}
 # A single groove's facet outcome holds these counts within its rays, with no sum over them.
 UNSEEN_IN_FACETS = {"vertex_hits", "bounce_limit", "wrong_first"}

@@ -37,8 +37,8 @@ TEST(MoonrayTables, LookupIsMoonRaysIndexing) {
       const double r = i / 32.0, alpha = r * r;
       for (int j : {1, 5, 16, 32}) {
         const double want = static_cast<float>(at(t.E(ndf), i, j));
-        EXPECT_EQ(moonray_E(t, ndf, alpha, j / 32.0), want) << i << " " << j;                  // on the column
-        EXPECT_EQ(moonray_E(t, ndf, alpha, (j - 1) / 32.0 + 1e-3), want) << i << " " << j;     // ceil from below
+        EXPECT_EQ(moonray_E(t, ndf, alpha, j / 32.0), want) << i << " " << j;               // on the column
+        EXPECT_EQ(moonray_E(t, ndf, alpha, (j - 1) / 32.0 + 1e-3), want) << i << " " << j;  // ceil from below
         if (j < 32) {  // just past the column: the next one
           EXPECT_EQ(moonray_E(t, ndf, alpha, j / 32.0 + 1e-3), static_cast<float>(at(t.E(ndf), i, j + 1)));
         }
@@ -146,7 +146,8 @@ TEST(MoonrayTables, TablesFollowSmithsSeparableAlbedoAndFallShortAtGrazing) {
         }
         if (!(x < 0.999)) continue;
         const double mu = j / 32.0;
-        const double s = x - analytic::albedo_single({ndf, analytic::MaskingKind::smith_separable}, alpha, mu, opt).value;
+        const double s =
+            x - analytic::albedo_single({ndf, analytic::MaskingKind::smith_separable}, alpha, mu, opt).value;
         const double h =
             x - analytic::albedo_single({ndf, analytic::MaskingKind::smith_height_correlated}, alpha, mu, opt).value;
         sep += s * s, hc += h * h, n += 1.0, sep_max = std::max(sep_max, std::abs(s));
@@ -154,9 +155,10 @@ TEST(MoonrayTables, TablesFollowSmithsSeparableAlbedoAndFallShortAtGrazing) {
       }
     }
     const double noise = std::sqrt(d2 / n2 / 6.0), rms_sep = std::sqrt(sep / n), rms_hc = std::sqrt(hc / n);
-    std::printf("%s: %g texels, noise sd %.5f; separable rms %.5f max %.5f, mu <= 1/8 mean %+.5f (%g texels); "
-                "height-correlated rms %.5f\n",
-                ndf_name(ndf), n, noise, rms_sep, sep_max, grazing / n_grazing, n_grazing, rms_hc);
+    std::printf(
+        "%s: %g texels, noise sd %.5f; separable rms %.5f max %.5f, mu <= 1/8 mean %+.5f (%g texels); "
+        "height-correlated rms %.5f\n",
+        ndf_name(ndf), n, noise, rms_sep, sep_max, grazing / n_grazing, n_grazing, rms_hc);
     EXPECT_LT(rms_sep, rms_hc) << ndf_name(ndf);
     EXPECT_LT(grazing / n_grazing, -5.0 * noise / std::sqrt(n_grazing)) << ndf_name(ndf);
   }
