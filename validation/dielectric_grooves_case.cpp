@@ -117,18 +117,26 @@ void check_dielectric_groove_case(const DielectricGrooveCase& c) {
     throw std::invalid_argument("eta = " + number_text(c.eta) + " is out of range (0, inf)");
 }
 
-TracedFacetEnergy trace_facet_energy(const DielectricGrooveCase& c, Side side, long grid, int max_interactions) {
-  TracedFacetEnergy out;
+namespace {
+// The breakpoint search over the rays aimed at `side`'s facet, light entering from `from` along
+// `dir`, outcomes by `outcome`: each zone's inner ray traced once (its weights hold across the zone,
+// KD-4) and its exits given to visit(share, result). Zones of vertex hits count as lost, zones
+// meeting a flat part first as flat; from below, a zone meeting the other facet first (a sliver at
+// the apex line, by rounding) as lost.
+template <class Visit>
+void trace_zones(const DielectricGrooveCase& c, Side side, long grid, int max_interactions, sim::Medium from,
+                 const sim::Vec2& dir, sim::TraceResult (*outcome)(const sim::DielectricResult&), ZoneSearchCounts& out,
+                 Visit&& visit) {
   const sim::Groove g = sim::make_symmetric_groove(c.theta_v);
+  // The lines of the rays aimed at the facet are those of light from above at theta_i (sim/beam.h).
   const sim::Interval aim = sim::aimed_at(g, c.theta_i, side);
-  if (!(aim.width() > 0.0)) return out;
+  if (!(aim.width() > 0.0)) return;
   out.lit = true;
   const sim::DielectricGrooveTracer tracer(g, split_options(c.eta, max_interactions));
-  const sim::Vec2 dir = sim::beam_direction(c.theta_i);
   sim::Rng unused(0, 0, 0);
   sim::DielectricResult r;
   auto trace = [&](double x) -> const sim::DielectricResult& {
-    tracer.trace(sim::beam_ray(g, dir, x), sim::Medium::above, unused, r);
+    tracer.trace(sim::beam_ray(g, dir, x), from, unused, r);
     ++out.traced;
     out.interactions += r.interactions;
     out.conservation = std::max(out.conservation, std::abs(1.0 - r.total()));
@@ -137,12 +145,11 @@ TracedFacetEnergy trace_facet_energy(const DielectricGrooveCase& c, Side side, l
   const sim::ZoneSearch zs = sim::find_zones(
       aim, grid,
       [&](const double* x, int n, sim::TraceResult* o) {
-        for (int q = 0; q < n; ++q) o[q] = outcome_of(trace(x[q]));
+        for (int q = 0; q < n; ++q) o[q] = outcome(trace(x[q]));
       },
-      [&](double x) { return outcome_of(trace(x)); }, sim::lemma_covers, [](double, const sim::TraceResult&) {});
+      [&](double x) { return outcome(trace(x)); }, sim::lemma_covers, [](double, const sim::TraceResult&) {});
   out.uncertified_cells = zs.uncertified_cells;
   out.missed_bound = zs.missed_bound() / aim.width();
-  // Each zone's energy: its width times one inner ray's weights (equal across the zone, KD-4).
   const sim::TraceResult* last = nullptr;
   for (const sim::Zone& z : zs.zones) {
     const double share = z.width() / aim.width();
@@ -153,29 +160,42 @@ TracedFacetEnergy trace_facet_energy(const DielectricGrooveCase& c, Side side, l
     if (last == nullptr || !sim::same_outcome(*last, z.ray)) ++out.zones;
     last = &z.ray;
     if (z.ray.how == sim::Termination::blocked) {
-      out.blocked += share;
+      out.flat += share;
+      continue;
+    }
+    if (from == sim::Medium::below && z.ray.first != side) {
+      out.lost += share;
       continue;
     }
     const sim::DielectricResult& t = trace(z.lo + 0.5 * (z.hi - z.lo));
     out.lost += share * (t.cut + t.bounce_limit + t.vertex);
     for (const sim::DielectricExit& e : t.exits) {
-      const double w = share * e.weight;
-      if (!std::isfinite(w) || !e.dir.allFinite()) out.non_finite = true;
-      if (e.path == 0) {
-        out.reflected[e.k] += w;
-        out.reflected_theta_o[e.k] = sim::exit_angle(e);
-        continue;
-      }
-      const int j = first_refraction(e.path);
-      out.refracted[j] += w;
-      if (e.k == j && e.side == sim::Medium::below) {
-        out.direct[j] += w;
-        out.direct_theta_t[j] = sim::exit_angle(e);
-      } else if (j < 64 && (e.path >> j & 1u) != 0) {
-        out.recross[j] += w;
-      }
+      if (!std::isfinite(share * e.weight) || !e.dir.allFinite()) out.non_finite = true;
+      visit(share, e);
     }
   }
+}
+}  // namespace
+
+TracedFacetEnergy trace_facet_energy(const DielectricGrooveCase& c, Side side, long grid, int max_interactions) {
+  TracedFacetEnergy out;
+  trace_zones(c, side, grid, max_interactions, sim::Medium::above, sim::beam_direction(c.theta_i), outcome_of, out,
+              [&](double share, const sim::DielectricExit& e) {
+                const double w = share * e.weight;
+                if (e.path == 0) {
+                  out.reflected[e.k] += w;
+                  out.reflected_theta_o[e.k] = sim::exit_angle(e);
+                  return;
+                }
+                const int j = first_refraction(e.path);
+                out.refracted[j] += w;
+                if (e.k == j && e.side == sim::Medium::below) {
+                  out.direct[j] += w;
+                  out.direct_theta_t[j] = sim::exit_angle(e);
+                } else if (j < 64 && (e.path >> j & 1u) != 0) {
+                  out.recross[j] += w;
+                }
+              });
   return out;
 }
 
@@ -194,7 +214,7 @@ DielectricFacetOutcome compare_facet(const analytic::DielectricFacetPrediction& 
   o.zones = t.zones, o.traced = t.traced, o.interactions = t.interactions;
   o.uncertified_cells = t.uncertified_cells, o.missed_bound = t.missed_bound, o.conservation = t.conservation;
   o.reflected = m.reflected_total(), o.transmitted = m.transmitted_total();
-  double l1 = std::abs(t.blocked - m.shadow) + t.lost;
+  double l1 = std::abs(t.flat - m.shadow) + t.lost;
   // R chains by n.
   std::map<int, double> model_r;
   std::map<int, double> model_theta_o;
@@ -278,57 +298,13 @@ double rounding_bound(const DielectricGrooveCase& c, Side side, double& dir) {
 
 TracedBelowEnergy trace_facet_energy_below(const DielectricGrooveCase& c, Side side, long grid, int max_interactions) {
   TracedBelowEnergy out;
-  const sim::Groove g = sim::make_symmetric_groove(c.theta_v);
-  // The lines of the rays aimed at the facet are those of light from above at theta_i (sim/beam.h).
-  const sim::Interval aim = sim::aimed_at(g, c.theta_i, side);
-  if (!(aim.width() > 0.0)) return out;
-  out.lit = true;
-  const sim::DielectricGrooveTracer tracer(g, split_options(c.eta, max_interactions));
-  const sim::Vec2 dir = sim::direction_at(c.theta_i);  // light from below travels up along it
-  sim::Rng unused(0, 0, 0);
-  sim::DielectricResult r;
-  auto trace = [&](double x) -> const sim::DielectricResult& {
-    tracer.trace(sim::beam_ray(g, dir, x), sim::Medium::below, unused, r);
-    ++out.traced;
-    out.interactions += r.interactions;
-    out.conservation = std::max(out.conservation, std::abs(1.0 - r.total()));
-    return r;
-  };
-  const sim::ZoneSearch zs = sim::find_zones(
-      aim, grid,
-      [&](const double* x, int n, sim::TraceResult* o) {
-        for (int q = 0; q < n; ++q) o[q] = outcome_below(trace(x[q]));
-      },
-      [&](double x) { return outcome_below(trace(x)); }, sim::lemma_covers, [](double, const sim::TraceResult&) {});
-  out.uncertified_cells = zs.uncertified_cells;
-  out.missed_bound = zs.missed_bound() / aim.width();
-  const sim::TraceResult* last = nullptr;
-  for (const sim::Zone& z : zs.zones) {
-    const double share = z.width() / aim.width();
-    if (z.ray.how == sim::Termination::vertex_hit) {
-      out.lost += share;
-      continue;
-    }
-    if (last == nullptr || !sim::same_outcome(*last, z.ray)) ++out.zones;
-    last = &z.ray;
-    if (z.ray.how == sim::Termination::blocked) {
-      out.flat += share;
-      continue;
-    }
-    if (z.ray.first != side) {  // the other facet first: a sliver at the apex line, by rounding
-      out.lost += share;
-      continue;
-    }
-    const sim::DielectricResult& t = trace(z.lo + 0.5 * (z.hi - z.lo));
-    out.lost += share * (t.cut + t.bounce_limit + t.vertex);
-    for (const sim::DielectricExit& e : t.exits) {
-      const double w = share * e.weight;
-      if (!std::isfinite(w) || !e.dir.allFinite()) out.non_finite = true;
-      const BelowSignature key{e.path, e.k, e.side == sim::Medium::above};
-      out.energy[key] += w;
-      out.theta[key] = sim::exit_angle(e);
-    }
-  }
+  // Light from below travels up along direction_at(theta_i), on the lines of light from above.
+  trace_zones(c, side, grid, max_interactions, sim::Medium::below, sim::direction_at(c.theta_i), outcome_below, out,
+              [&](double share, const sim::DielectricExit& e) {
+                const BelowSignature key{e.path, e.k, e.side == sim::Medium::above};
+                out.energy[key] += share * e.weight;
+                out.theta[key] = sim::exit_angle(e);
+              });
   return out;
 }
 

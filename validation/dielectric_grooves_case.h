@@ -86,21 +86,25 @@ struct DielectricCaseOutcome {
   double wall_s = 0.0;
 };
 
-// The exact traced energy of the rays aimed at one facet, by path class, as shares of them.
-struct TracedFacetEnergy {
+// What every breakpoint search over the rays aimed at a facet counts, from either side.
+struct ZoneSearchCounts {
   bool lit = false;
-  double blocked = 0.0;                     // met a flat part first (the model's shadow)
-  double lost = 0.0;                        // vertex hits, cut, bounce limit: no bin in the model
+  double flat = 0.0;  // met a flat part first (from above: the model's shadow; from below: none, KD-5)
+  double lost = 0.0;  // vertex hits, cut, bounce limit: no bin in the model
+  long zones = 0, traced = 0, uncertified_cells = 0;
+  std::int64_t interactions = 0;
+  double missed_bound = 0.0, conservation = 0.0;
+  bool non_finite = false;
+};
+
+// The exact traced energy of the rays aimed at one facet, by path class, as shares of them.
+struct TracedFacetEnergy : ZoneSearchCounts {
   std::map<int, double> reflected;          // pure R chains by hit count n
   std::map<int, double> refracted;          // every path refracted first at hit j (prefix R^(j-1) T), by j
   std::map<int, double> direct;             // R^(j-1) T that left downward at once, by j
   std::map<int, double> direct_theta_t;     // their exit angle below (one traced ray's; zones agree to rounding)
   std::map<int, double> reflected_theta_o;  // the R chains' exit angle
   std::map<int, double> recross;            // R^(j-1) T T...: crossed back at hit j + 1, by j
-  long zones = 0, traced = 0, uncertified_cells = 0;
-  std::int64_t interactions = 0;
-  double missed_bound = 0.0, conservation = 0.0;
-  bool non_finite = false;
 };
 
 // The breakpoint search over the rays aimed at `side` (grid rays + bisection to adjacent doubles).
@@ -133,16 +137,9 @@ using BelowSignature = std::tuple<std::uint64_t, int, bool>;
 // Light from below: the exact traced energy of the rays aimed at one facet (the rim-line interval of
 // sim::aimed_at: the same lines) per path signature, as shares of them, by the same breakpoint
 // search (the outcome: the part met first and the chain's hit count in medium 1).
-struct TracedBelowEnergy {
-  bool lit = false;
-  double flat = 0.0;  // met a flat part first (the model: none, KD-5)
-  double lost = 0.0;  // vertex hits, cut, bounce limit
+struct TracedBelowEnergy : ZoneSearchCounts {
   std::map<BelowSignature, double> energy;
   std::map<BelowSignature, double> theta;  // exit angle (sim::exit_angle; one traced ray's)
-  long zones = 0, traced = 0, uncertified_cells = 0;
-  std::int64_t interactions = 0;
-  double missed_bound = 0.0, conservation = 0.0;
-  bool non_finite = false;
 };
 TracedBelowEnergy trace_facet_energy_below(const DielectricGrooveCase& c, Side side, long grid, int max_interactions);
 
