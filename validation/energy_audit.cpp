@@ -5,6 +5,7 @@
 #include "vgroove/analytic/albedo_single.h"
 #include "vgroove/analytic/albedo_vgroove.h"
 #include "vgroove/analytic/smith_walk_3d.h"
+#include "vgroove/sim/heightfield.h"
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/rng.h"
 #include "vgroove/support/format.h"
@@ -491,6 +492,14 @@ EnergyAuditWork::Fixed EnergyAuditWork::read_fixed(support::JsonObject& j, std::
   same("cycles_E_avg", f.cycles_E_avg, ggx && cycles ? cycles_E_avg(*cycles, c.alpha) : kNaN);
   f.seconds = j.number("model_s", 0.0, true, 1e9, true);
   return f;
+}
+
+double energy_audit_memory_bytes(const EnergyAuditSuite& s, int threads) {
+  // Per cell its tally and fixed part (rows x channels, ~50 channels) and the report's arrays.
+  double bytes = static_cast<double>(s.cells()) * (s.max_k + 2) * 64.0 * 8.0 * 12.0;
+  if (s.heightfield)
+    bytes += 2.0 * s.hf_fields * support::resolve_threads(threads) * sim::heightfield_bytes(s.hf_field_size);
+  return bytes;
 }
 
 Job<EnergyAuditWork> energy_audit_job(const EnergyAuditSuite& s, nlohmann::json descriptor) {

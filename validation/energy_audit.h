@@ -124,6 +124,9 @@ struct EnergyAuditWork {
 };
 
 Job<EnergyAuditWork> energy_audit_job(const EnergyAuditSuite& s, nlohmann::json descriptor);
+// The memory a run holds: per cell its tally, fixed part and report arrays, and with the heightfield
+// reference each of `threads` workers' fields (up to two cells' hf_fields fields, sim::heightfield_bytes).
+double energy_audit_memory_bytes(const EnergyAuditSuite& s, int threads);
 
 // The heightfield reference's field `field` of a cell (the same fields at every mu of an (ndf,
 // alpha)), and the origins of chunk `chunk`'s rays (a cell chunk index, in the heightfield's

@@ -20,6 +20,7 @@
 #include "vgroove/optics/fresnel.h"
 #include "vgroove/sim/beam.h"
 #include "vgroove/sim/effects.h"
+#include "vgroove/sim/heightfield.h"
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/microsurface3d.h"
 #include "vgroove/sim/rng.h"
@@ -383,6 +384,18 @@ TEST(EnergyAudit, HeightfieldReferenceInTheReport) {
   const int C = ChannelSet(s.grey_F0, s.metals).size();
   broken[0].tally.hf_energy[static_cast<std::size_t>(2) * C + white] -= 1;
   EXPECT_FALSE(energy_audit_run_from(s, broken).pass);
+}
+
+// The plan's memory counts the heightfield reference's fields: each worker holds up to two cells'
+// fields (the job's own refusal assumes as much), each sim::heightfield_bytes of its size.
+TEST(EnergyAudit, MemoryCountsTheHeightfieldReferencesFields) {
+  EnergyAuditSuite s = tiny_heightfield_suite();
+  ASSERT_TRUE(s.heightfield);
+  const double with = energy_audit_memory_bytes(s, 3);
+  EXPECT_GT(with, energy_audit_memory_bytes(s, 1));
+  s.heightfield = false;
+  EXPECT_GE(with - energy_audit_memory_bytes(s, 3), 2.0 * s.hf_fields * 3 * sim::heightfield_bytes(s.hf_field_size));
+  EXPECT_EQ(energy_audit_memory_bytes(s, 3), energy_audit_memory_bytes(s, 1));  // no fields: no per-worker part
 }
 
 }  // namespace

@@ -19,11 +19,14 @@ class EnergyAuditPlan final : public PlannedSuite {
   }
   std::string name() const override { return suite_.name; }
   std::string kind() const override { return "energy_audit"; }
-  double memory_bytes(int, bool) const override {
-    // Per cell its tally and fixed part (rows x channels, ~50 channels) and the report's arrays.
-    return static_cast<double>(suite_.cells()) * (suite_.max_k + 2) * 64.0 * 8.0 * 12.0;
+  double memory_bytes(int threads, bool) const override { return energy_audit_memory_bytes(suite_, threads); }
+  std::string memory_what(int threads) const override {
+    std::string what = std::to_string(suite_.cells()) + " cells' tallies and arrays";
+    if (suite_.heightfield)
+      what += " and " + std::to_string(2 * suite_.hf_fields) + " " + std::to_string(suite_.hf_field_size) +
+              "^2 fields on each of " + std::to_string(support::resolve_threads(threads)) + " workers";
+    return what;
   }
-  std::string memory_what(int) const override { return std::to_string(suite_.cells()) + " cells' tallies and arrays"; }
   std::unique_ptr<SuiteJob> job(nlohmann::json descriptor, const std::atomic<bool>*) const override {
     return suite_job(energy_audit_job(suite_, std::move(descriptor)), suite_, energy_audit_run_from, print_energy_audit,
                      energy_audit_report_json);
