@@ -47,8 +47,9 @@ analytic::MaskingKind check_walter_options(const SampleArgs& a, NdfKind ndf) {
   const bool dielectric = a.model == "vgroove-dielectric";
   if (a.eta_given && !walter && !dielectric)
     // The words of python/vgroove/_sampling.py's message (tests/python/test_sample_walter.py holds the
-    // two equal): vgroove-dielectric takes --eta too.
-    throw support::UserError("--eta applies to --model walter only (--model = \"" + a.model + "\")");
+    // two equal).
+    throw support::UserError("--eta applies to --model walter and vgroove-dielectric only (--model = \"" + a.model +
+                             "\")");
   if (a.masking_given && !walter)
     throw support::UserError("--masking applies to --model walter only (--model = \"" + a.model + "\")");
   if (dielectric) {
@@ -58,13 +59,13 @@ analytic::MaskingKind check_walter_options(const SampleArgs& a, NdfKind ndf) {
           "grooves from the NDF and its chains by their energy)");
     if (a.max_k_given)
       throw support::UserError(
-          "--max-k applies to --model vgroove and vgroove-nonsymmetric only (vgroove-dielectric bins every chain "
+          "--max-k applies to --model vgroove and vgroove-nonsymmetric only (vgroove-dielectric takes every chain "
           "of grooves with k <= 32)");
     if (!(a.eta > 0.0 && a.eta <= validation::kMaxFresnelEta && a.eta != 1.0))
       out_of_range("--eta", a.eta,
                    support::interval_text(0, false, validation::kMaxFresnelEta, true) +
-                       ", not 1, with --model vgroove-dielectric (at eta = 1 every chain goes straight through "
-                       "into one bin: nothing to test)");
+                       ", not 1, with --model vgroove-dielectric (at eta = 1 every chain goes straight through: "
+                       "a delta, no lobe to sample)");
   }
   if (!walter) return analytic::MaskingKind::smith_separable;
   if (a.strategy_given)
@@ -444,11 +445,12 @@ int cmd_sample(const SampleArgs& a) {
   if (!analytic::strategy_supports(*strategy, *ndf, flatland))
     throw support::UserError("--strategy = \"" + a.strategy + "\" does not exist for --ndf " + a.ndf + " --dim " +
                              a.dim + " (smith-vndf: ggx only; bounded-vndf: ggx in 3d only)");
-  // vgroove-dielectric is accepted but not named here: the message is python/vgroove/_sampling.py's too.
+  // The message is python/vgroove/_sampling.py's too (python/src/sampling.cpp, parse_sampler_model).
   if (a.model != "vgroove" && a.model != "vgroove-nonsymmetric" && a.model != "walter" &&
       a.model != "vgroove-dielectric")
-    throw support::UserError("--model = \"" + a.model +
-                             "\" is not one of \"vgroove\", \"vgroove-nonsymmetric\", \"walter\"");
+    throw support::UserError(
+        "--model = \"" + a.model +
+        "\" is not one of \"vgroove\", \"vgroove-nonsymmetric\", \"walter\", \"vgroove-dielectric\"");
   const analytic::MaskingKind masking = check_walter_options(a, *ndf);
   const bool walter = a.model == "walter";
   const bool nonsymmetric = a.model == "vgroove-nonsymmetric";

@@ -1,13 +1,19 @@
-// vgroove Python module: energy_lobe_shape and glass_energy, the library calls `vgroove energy
-// --lobe-shape` and `vgroove energy --eta` make (validation/energy_lobe_shape.h,
-// validation/glass_energy.h), returning their reports as dicts.
+// vgroove Python module: energy_lobe_shape, glass_energy and energy_audit, the library calls
+// `vgroove energy --lobe-shape`, `vgroove energy --eta` and `vgroove energy --audit [--reference
+// heightfield]` make (validation/energy_lobe_shape.h, validation/glass_energy.h,
+// validation/energy_audit.h), returning their reports as dicts.
 #include "common.h"
 
 #include "vgroove/common/ndf_kind.h"
 #include "vgroove/validation/energy_lobe_shape.h"
+#include "vgroove/validation/energy_table.h"
 #include "vgroove/validation/glass_energy.h"
 #include "vgroove/validation/ranges.h"
 #include "vgroove/validation/run_options.h"
+#include "vgroove/validation/suite_kind.h"
+
+#include <algorithm>
+#include <limits>
 
 #include <sstream>
 
@@ -71,9 +77,98 @@ py::object glass_energy(const std::vector<double>& eta, const std::vector<double
   return to_python(validation::glass_table_json(*t));
 }
 
+// The ranges `vgroove energy` gives its flags (app/cmd_energy.cpp, add_integer), which the command
+// line checks as it reads them, before the audit's own (narrower) ranges.
+void check_flag_range(long long v, const std::string& name, long long hi, const std::string& note = "") {
+  if (v < 1 || v > hi)
+    throw support::UserError(name + " = " + std::to_string(v) + " is out of range [1, " + std::to_string(hi) + "]" +
+                             note);
+}
+
+// `vgroove energy --audit [--reference heightfield]` (app/cmd_energy_tables.cpp, cmd_energy_audit):
+// the same suite from the same arguments, checked in the same order with the same messages (the
+// arguments' names for the flags, "energy_audit" for "--audit"; tests/python/test_energy_audit.py
+// holds the two reports and messages equal); the report as a dict.
+py::object energy_audit(const std::vector<std::string>& ndfs, const std::optional<std::vector<double>>& alpha,
+                        const std::optional<std::vector<double>>& mu, int alpha_points, int mu_points,
+                        const py::object& rays_obj, const py::object& seed_obj, int max_k,
+                        const std::optional<std::string>& reference, int threads, bool verbose,
+                        const py::object& progress) {
+  using validation::kMaxAuditK, validation::kMaxAuditPaths;
+  validation::check_threads(threads, "threads");
+  const long long seed = to_seed(seed_obj, "seed");
+  const long long rays =
+      to_count(rays_obj, "rays", std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max());
+  check_flag_range(rays, "rays", validation::kMaxEnergyRays);
+  check_flag_range(max_k, "max_k", validation::kMaxEnergyK);
+  check_flag_range(alpha_points, "alpha_points", validation::kMaxAlphaPoints,
+                   " (the smallest midpoint 0.5/n stays >= 0.01)");
+  check_flag_range(mu_points, "mu_points", validation::kMaxMuPoints,
+                   " (the smallest midpoint 0.5/n stays >= cos 89.9 deg)");
+  if (max_k < 1 || max_k > kMaxAuditK)
+    throw support::UserError("max_k = " + std::to_string(max_k) + " is out of range [1, " + std::to_string(kMaxAuditK) +
+                             "] with energy_audit");
+  if (reference && *reference != "heightfield")
+    throw support::UserError("reference = \"" + *reference +
+                             "\" is not \"heightfield\" with energy_audit (the V-groove model and the Smith walk are "
+                             "always audited; heightfield adds the random heightfields)");
+  for (const std::string& n : ndfs)
+    if (n != "ggx" && n != "beckmann")
+      throw support::UserError("ndf = \"" + n +
+                               "\" is not one of \"ggx\", \"beckmann\" (the audit's Smith walk needs Lambda in "
+                               "closed form)");
+  nlohmann::json suite = {{"name", "energy_audit_cli"},
+                          {"kind", "energy_audit"},
+                          {"description", "vgroove energy --audit"},
+                          {"ndf", ndfs},
+                          {"alpha", alpha ? *alpha : validation::midpoints(alpha_points)},
+                          {"mu", mu ? *mu : validation::midpoints(mu_points)},
+                          {"walk_paths", rays},
+                          {"seed", seed},
+                          {"max_k", max_k},
+                          {"grey_F0", {0.02, 0.04, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0}},
+                          {"metals", {"Au", "Ag", "Cu", "Al"}},
+                          {"metalness", {0.0, 0.25, 0.5, 0.75, 1.0}},
+                          {"regions", {{"rough_alpha", 0.5}, {"grazing_mu", 0.25}}},
+                          {"cycles_table", true},
+                          {"thresholds", {{"sigmas", 5}, {"vgroove_furnace", 1e-7}}}};
+  if (reference) {
+    suite["references"] = {"vgroove", "smith_walk", "heightfield"};
+    suite["heightfield"] = {{"fields", 4},
+                            {"rays_per_field", std::max<long long>(1, rays / 4)},
+                            {"field_size", 256},
+                            {"correlation_length", 8}};
+  }
+  if (rays < 1 || rays > kMaxAuditPaths)
+    throw support::UserError("rays = " + std::to_string(rays) + " is out of range [1, " +
+                             std::to_string(kMaxAuditPaths) + "] (walk paths per cell with energy_audit)");
+  const std::unique_ptr<validation::PlannedSuite> plan = validation::find_kind(suite).plan(suite, "energy_audit", {});
+  // The command line's descriptor: the same job (its parts would merge with the command line's).
+  const nlohmann::json descriptor = {{"command", "energy --audit"}, {"kind", "energy_audit"}, {"input", suite}};
+  ProgressRelay relay(progress);
+  const std::optional<validation::SuiteResult> r = run_interruptible(
+      [&](std::atomic<bool>& cancel) {
+        return plan->job(descriptor, &cancel)->run(threads, relay.fn(), &cancel, true);
+      },
+      false, &relay);
+  if (!r) throw support::UserError("energy_audit: interrupted");
+  if (verbose) py::print(r->table, py::arg("end") = "");
+  return to_python(r->report);
+}
+
 }  // namespace
 
 void bind_energy(py::module_& m) {
+  m.def("energy_audit", &energy_audit, py::arg("ndf"), py::arg("alpha"), py::arg("mu"), py::arg("alpha_points"),
+        py::arg("mu_points"), py::arg("rays"), py::arg("seed"), py::arg("max_k"), py::arg("reference"),
+        py::arg("threads"), py::arg("verbose"), py::arg("progress") = py::none());
+  // energy_audit's ranges beyond `ranges` (validation/ranges.h), for its docstring.
+  py::dict audit_ranges;
+  audit_ranges["max_alpha_points"] = validation::kMaxAlphaPoints;
+  audit_ranges["max_mu_points"] = validation::kMaxMuPoints;
+  audit_ranges["max_audit_paths"] = validation::kMaxAuditPaths;
+  audit_ranges["max_audit_k"] = validation::kMaxAuditK;
+  m.attr("audit_ranges") = audit_ranges;
   m.def("glass_energy", &glass_energy, py::arg("eta"), py::arg("alpha"), py::arg("mu"), py::arg("ndf"), py::arg("dim"),
         py::arg("side"), py::arg("rays"), py::arg("grooves"), py::arg("seed"), py::arg("max_k"), py::arg("threads"),
         py::arg("verbose"), py::arg("reference") = "vgroove", py::arg("progress") = py::none());

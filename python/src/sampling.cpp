@@ -67,11 +67,14 @@ void check_uniforms(const double* u, std::size_t n, std::size_t m) {
 }
 
 // "vgroove" (symmetric grooves, four numbers per sample) or "vgroove-nonsymmetric" (Eq. 21-23 with
-// the independent partner law of Eq. 20, five numbers), as `vgroove sample --model`.
+// the independent partner law of Eq. 20, five numbers), as `vgroove sample --model`; the message
+// names the models python/vgroove/_sampling.py's sample() takes (walter and vgroove-dielectric have
+// calls of their own), as the command line's.
 bool parse_sampler_model(const std::string& m) {
   if (m == "vgroove") return false;
   if (m == "vgroove-nonsymmetric") return true;
-  throw support::UserError("model = \"" + m + "\" is not one of \"vgroove\", \"vgroove-nonsymmetric\", \"walter\"");
+  throw support::UserError(
+      "model = \"" + m + "\" is not one of \"vgroove\", \"vgroove-nonsymmetric\", \"walter\", \"vgroove-dielectric\"");
 }
 
 // The nonsymmetric sampler (its partner table), or UserError where the partner law does not exist.
@@ -396,7 +399,8 @@ py::dict dielectric_sample(const std::string& ndf_name, double alpha, double eta
   if (!(eta > 0.0 && eta <= validation::kMaxFresnelEta && eta != 1.0))
     throw support::UserError("eta = " + support::number_text(eta) + " is out of range " +
                              support::interval_text(0, false, validation::kMaxFresnelEta, true) +
-                             ", not 1, with model vgroove-dielectric");
+                             ", not 1, with model vgroove-dielectric (at eta = 1 every chain goes straight through: a "
+                             "delta, no lobe to sample)");
   const SurfaceDim dim = parse_dim(dim_name);
   const bool flat = dim == SurfaceDim::flatland;
   analytic::DielectricSamplerOptions opt;

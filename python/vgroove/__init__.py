@@ -82,7 +82,7 @@ from ._surfaces import Microsurface, lobe, microsurface, trace_microsurface
 from ._brdfs import BRDF_MAX_K, brdf, check_brdf, dielectric_lobe
 from ._sampling import NONSYMMETRIC_SAMPLER_MAX_K, SAMPLER_MAX_K, pdf, sample, uniforms
 from ._suites import validate
-from ._energy import energy_lobe_shape, glass_energy
+from ._energy import energy_audit, energy_lobe_shape, glass_energy
 from ._results import Lobe, SampleBatch, SurfaceTrace
 from ._brdf import BRDF
 from ._progress import TqdmProgress, tqdm_progress
@@ -98,7 +98,8 @@ __all__ = [
     "direction", "output_deg", "kaleidoscope", "analytic", "trace", "groove_case",
     "Microsurface", "microsurface", "trace_microsurface", "lobe",
     "BRDF", "Lobe", "SampleBatch", "SurfaceTrace", "BRDF_MAX_K", "SAMPLER_MAX_K", "NONSYMMETRIC_SAMPLER_MAX_K",
-    "brdf", "check_brdf", "dielectric_lobe", "validate", "energy_lobe_shape", "glass_energy", "sample", "pdf",
+    "brdf", "check_brdf", "dielectric_lobe", "validate", "energy_audit", "energy_lobe_shape", "glass_energy",
+    "sample", "pdf",
     "uniforms", "tqdm_progress",
     "TqdmProgress",
 ]

@@ -74,6 +74,10 @@ def glass_energy(eta: Sequence[float], alpha: Sequence[float] = (0.1, 0.5, 1.0),
                  side: Union[str, Sequence[str]] = ("above", "below"), rays: int = 100000, grooves: int = 10000,
                  seed: int = 1, max_k: int = 16, threads: int = 0, verbose: bool = False,
                  reference: str = "vgroove", progress: Optional[ProgressFn] = None) -> dict[str, Any]: ...
+def energy_audit(ndf: Union[str, Sequence[str]] = ("ggx", "beckmann"), alpha: Optional[Sequence[float]] = None,
+                 mu: Optional[Sequence[float]] = None, *, alpha_points: int = 8, mu_points: int = 8,
+                 rays: int = 100000, seed: int = 1, max_k: int = 16, reference: Optional[str] = None,
+                 threads: int = 0, verbose: bool = False, progress: Optional[ProgressFn] = None) -> dict[str, Any]: ...
 def energy_lobe_shape(ndf: str = "ggx", alpha: Sequence[float] = (0.5, 1.0),
                       theta_i_deg: Sequence[float] = (0, 40, 70), rays: int = 200000, *, grooves: int = 100000,
                       seed: int = 1, theta_bins: int = 15, phi_bins: int = 12, sigmas: float = 5.0, threads: int = 0,

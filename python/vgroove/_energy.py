@@ -1,6 +1,8 @@
 """energy_lobe_shape(): the compensated lobes' shape beyond energy, as ``vgroove energy --lobe-shape``
 computes it (validation/energy_lobe_shape.h); glass_energy(): rough glass tables, as ``vgroove energy
---eta`` computes them (validation/glass_energy.h); each report as a dict."""
+--eta`` computes them (validation/glass_energy.h); energy_audit(): the compensation formulas against
+exact multiple scattering, as ``vgroove energy --audit [--reference heightfield]`` computes it
+(validation/energy_audit.h); each report as a dict."""
 
 from __future__ import annotations
 
@@ -81,6 +83,80 @@ def energy_lobe_shape(ndf: str = "ggx", alpha: Sequence[float] = (0.5, 1.0),
 
 
 energy_lobe_shape.__doc__ = fill_ranges(energy_lobe_shape.__doc__)
+
+
+def energy_audit(ndf: Union[str, Sequence[str]] = ("ggx", "beckmann"), alpha: Optional[Sequence[float]] = None,
+                 mu: Optional[Sequence[float]] = None, *, alpha_points: int = 8, mu_points: int = 8,
+                 rays: int = 100000, seed: int = 1, max_k: int = 16, reference: Optional[str] = None,
+                 threads: int = 0, verbose: bool = False, progress: Optional[ProgressFn] = None) -> dict:
+    """The energy compensation formulas engines ship (Kulla-Conty, Turquin, Cycles, Filament, Bevy,
+    Fdez-Aguera) against exact multiple scattering over mu x alpha x reflectance, as ``vgroove
+    energy --audit`` runs it: the references are the V-groove model (quadrature) and the 3D Smith
+    random walk, and with ``reference="heightfield"`` (``--reference heightfield``) the random
+    Gaussian heightfields traced exactly as a third (4 fields of 256^2 cells, rays // 4 rays per
+    field and cell, correlation length 8 cells).
+
+    Parameters
+    ----------
+    ndf : str or sequence of str
+        "ggx", "beckmann" or both (the walk needs Smith's Lambda in closed form).
+    alpha, mu : sequence of float, optional
+        The grid's roughnesses, each in [$min_alpha, $max_alpha], and mu = cos theta_i, each in
+        [$min_mu, 1]; None: alpha_points (mu_points) midpoints (j + 1/2)/n of (0, 1].
+    alpha_points, mu_points : int
+        In [1, $max_alpha_points] and [1, $max_mu_points].
+    rays : int
+        Walk paths per cell, in [1, $max_audit_paths]; with the heightfields rays // 4 (at least 1)
+        rays per field and cell.
+    seed : int
+        In [0, 2^63 - 1]: the walks' and the fields' streams.
+    max_k : int
+        Bounce orders tabulated one by one, in [1, $max_audit_k].
+    reference : {None, "heightfield"}
+        None: the V-groove model and the Smith walk; "heightfield" adds the random heightfields.
+    threads : int
+        In [0, $max_threads] (0: all cores); the report's values do not depend on it.
+    verbose : bool
+        Print the command line's table.
+    progress : callable, optional
+        ``progress(done, total)``, counting the run's work items.
+
+    Returns
+    -------
+    dict
+        The report ``vgroove energy --audit --out`` writes for the same arguments (its "spec" a suite
+        for :func:`vgroove.validate`), with the same values: "cells" (per reference, NDF, alpha and
+        mu: E per k and per channel, each formula's albedo and error), "summary", "checks" and
+        "pass" (the references' checks held).
+
+    Raises
+    ------
+    ValueError
+        The command line's message for the same input, naming the argument (its flag without the
+        dashes, "energy_audit" for ``--audit``) and its range.
+
+    Examples
+    --------
+    >>> import vgroove
+    >>> vgroove.energy_audit(max_k=65)
+    Traceback (most recent call last):
+    ...
+    ValueError: max_k = 65 is out of range [1, $max_audit_k] with energy_audit
+    """
+    ndfs = [ndf] if isinstance(ndf, str) else list(ndf)
+    for n in ndfs:
+        text(n, "ndf")
+
+    def axis(values, name):
+        return None if values is None else [float(v) for v in np.atleast_1d(reals(values, name))]
+
+    return _vgroove.energy_audit(ndfs, axis(alpha, "alpha"), axis(mu, "mu"), integer(alpha_points, "alpha_points"),
+                                 integer(mu_points, "mu_points"), integer(rays, "rays"), integer(seed, "seed"),
+                                 integer(max_k, "max_k"), text(reference, "reference"), integer(threads, "threads"),
+                                 bool(verbose), progress=_progress(progress))
+
+
+energy_audit.__doc__ = fill_ranges(energy_audit.__doc__, dict(_vgroove.audit_ranges))
 
 
 def glass_energy(eta: Sequence[float], alpha: Sequence[float] = (0.1, 0.5, 1.0), mu: Sequence[float] = (1.0, 0.5),

@@ -1,7 +1,8 @@
-"""Importance sampling of the V-groove BRDF (Lee et al. 2018, Sec. 6) and of Walter et al. 2007's
-rough dielectric BSDF over arrays, the density of the directions they draw, and the uniform numbers
-of vgroove's deterministic streams (sim/rng.h). vgroove.BRDF.sample and vgroove.BRDF.pdf make the
-same calls with the light first (the V-groove models)."""
+"""Importance sampling of the V-groove BRDF (Lee et al. 2018, Sec. 6), of Walter et al. 2007's
+rough dielectric BSDF and of the kaleidoscopic dielectric model over arrays, the density of the
+directions the first two draw, and the uniform numbers of vgroove's deterministic streams
+(sim/rng.h). vgroove.BRDF.sample and vgroove.BRDF.pdf make the same calls with the light first (the
+V-groove models)."""
 
 from __future__ import annotations
 
@@ -26,22 +27,41 @@ def _sampler_max_k(max_k: Optional[int], model: str) -> int:
     return integer(max_k, "max_k")
 
 
-#: The dielectric's eta = n_far / n_near when ``model="walter"`` is given none (``vgroove sample --eta``'s).
+#: The dielectric's eta = n_far / n_near when ``model="walter"`` or ``"vgroove-dielectric"`` is given
+#: none (``vgroove sample --eta``'s).
 _WALTER_ETA = 1.5
 
 
 def _walter_args(model, strategy, max_k, eta, masking):
     """Walter's eta and G2 for the extension, whether strategy and max_k were given (the extension
     refuses them with walter), and the other models' refusal of eta and masking (``vgroove
-    sample``'s messages)."""
+    sample``'s messages; tests/python/test_sample_walter.py holds them equal). None for the other
+    models."""
     if model != "walter":
-        for value, name in ((eta, "eta"), (masking, "masking")):
-            if value is not None:
-                raise ValueError(f"{name} applies to model walter only (model = \"{model}\")")
+        if eta is not None and model != "vgroove-dielectric":
+            raise ValueError(f"eta applies to model walter and vgroove-dielectric only (model = \"{model}\")")
+        if masking is not None:
+            raise ValueError(f"masking applies to model walter only (model = \"{model}\")")
         return None
     eta = _WALTER_ETA if eta is None else real(eta, "eta")
     masking = "smith_separable" if masking is None else text(masking, "masking")
     return eta, masking, strategy is not None, max_k is not None
+
+
+def _dielectric_eta(strategy, max_k, eta, wi):
+    """The kaleidoscopic dielectric model's eta (None: 1.5), with ``vgroove sample --model
+    vgroove-dielectric``'s refusals of strategy and max_k (the extension checks eta's range with
+    its message); the light only as theta_i_deg (the command line's --theta-i-deg)."""
+    if strategy is not None:
+        raise ValueError("strategy applies to model vgroove and vgroove-nonsymmetric only (vgroove-dielectric "
+                         "draws its grooves from the NDF and its chains by their energy)")
+    if max_k is not None:
+        raise ValueError("max_k applies to model vgroove and vgroove-nonsymmetric only (vgroove-dielectric takes "
+                         "every chain of grooves with k <= 32)")
+    if wi is not None:
+        raise ValueError("wi does not apply to model vgroove-dielectric: give the light as theta_i_deg (at "
+                         "azimuth 180 deg, as vgroove sample --theta-i-deg)")
+    return _WALTER_ETA if eta is None else real(eta, "eta")
 
 
 def _light(wi, theta_i_deg):
@@ -74,8 +94,9 @@ def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = 
            dim: str = "3d", model: str = "vgroove", tolerance: float = 1e-9, threads: int = 0,
            eta: Optional[float] = None, masking: Optional[str] = None,
            progress: Optional[ProgressFn] = None) -> dict:
-    """Importance-samples the V-groove BRDF (Lee et al. 2018, Sec. 6) or, with ``model="walter"``,
-    Walter et al. 2007's rough dielectric BSDF: one exit direction per row of uniform numbers
+    """Importance-samples the V-groove BRDF (Lee et al. 2018, Sec. 6), with ``model="walter"``
+    Walter et al. 2007's rough dielectric BSDF, or with ``model="vgroove-dielectric"`` the
+    kaleidoscopic dielectric model: one exit direction per row of uniform numbers
     (:meth:`vgroove.BRDF.sample` takes the light first and returns a :class:`vgroove.SampleBatch`).
 
     Parameters
@@ -87,10 +108,13 @@ def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = 
         Uniform numbers in [0, 1) (:func:`uniforms` gives vgroove's streams): four per sample for
         ``model="vgroove"``, five for ``"vgroove-nonsymmetric"``, three for ``"walter"`` (the
         facet, then the branch: ``vgroove sample --model walter --seed S`` draws them from the
-        stream (S, (0x5a3d, 2))).
+        stream (S, (0x5a3d, 2))), five for ``"vgroove-dielectric"`` in 3d and four in flatland
+        (``vgroove sample --model vgroove-dielectric --seed S``: the streams (S, (0x5a3d, 3)) and
+        (S, (0x5a3d, 4))).
     wi : array_like, shape (..., 3), optional
         Unit vectors towards the light (flatland: in the plane y = 0), held to the range of
-        theta_i_deg by the angle from the normal rounded to 1e-9 deg.
+        theta_i_deg by the angle from the normal rounded to 1e-9 deg. Not with
+        ``model="vgroove-dielectric"``.
     theta_i_deg : array_like, optional
         Or the light's angles (the suites' light at azimuth 180 deg, the bits ``vgroove sample
         --theta-i-deg`` uses), in [0, $max_surface_theta_i_deg] deg (flatland: signed, in
@@ -99,28 +123,31 @@ def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = 
         How the facet met first is drawn: the V-cavity's visible normals (samples the BRDF
         exactly, weight 1 with F = 1), the paper's |s.n| D(s), Smith's VNDF (GGX), bounded VNDF
         (GGX, 3D). None: "vndf". Not with ``model="walter"``, whose facets come from the Smith
-        VNDF (GGX) or |m.n| D(m) (Beckmann, Phong).
+        VNDF (GGX) or |m.n| D(m) (Beckmann, Phong), nor ``"vgroove-dielectric"``.
     max_k : int, optional
         Paths of more reflections return zero weight (``beyond_max_k``), in [1, $max_sampler_k];
         None: ``vgroove sample --max-k``'s default, $sampler_max_k (:data:`SAMPLER_MAX_K`: fewer
         than one sample in 10^7 lost for GGX and Beckmann at any alpha and Phong up to alpha 1,
         analytic/sampling_3d.h), $nonsymmetric_sampler_max_k for the nonsymmetric model, whose pdf
-        costs O(max_k). Not with ``model="walter"`` (single scattering).
+        costs O(max_k). Not with ``model="walter"`` (single scattering) nor
+        ``"vgroove-dielectric"`` (every chain of grooves with k <= 32).
     dim : {"3d", "flatland"}
         ``model="walter"``: "3d" only.
-    model : {"vgroove", "vgroove-nonsymmetric", "walter"}
+    model : {"vgroove", "vgroove-nonsymmetric", "walter", "vgroove-dielectric"}
         Symmetric grooves (analytic/sampling_3d.h, sampling_flatland.h), Eq. 21-23 with the
-        independent partner law of Eq. 20 (analytic/sampling_nonsymmetric.h; Phong needs alpha <= 1)
-        or Walter's dielectric (analytic/walter_sampling.h: the light in the near medium, a facet
-        drawn, reflected with probability F, else refracted).
+        independent partner law of Eq. 20 (analytic/sampling_nonsymmetric.h; Phong needs alpha <= 1),
+        Walter's dielectric (analytic/walter_sampling.h: the light in the near medium, a facet
+        drawn, reflected with probability F, else refracted) or V-grooves between two dielectrics
+        (analytic/sampling_dielectric.h: the groove from the NDF, the facet by the width of the
+        beam it takes, one chain's end by its energy; 3d and flatland).
     tolerance : float
         The nonsymmetric pdf's relative tolerance per piece, in [1e-12, 0.01] (about a
         millisecond a sample at 1e-9; ``vgroove sample`` uses 1e-6).
     threads : int
         In [0, $max_threads] (0: all cores), without the GIL; the values do not depend on it.
     eta : float, optional
-        ``model="walter"`` only: n_far / n_near, in (0, $max_fresnel_eta], not 1 (None: 1.5; below
-        1: the light inside the denser medium).
+        ``model="walter"`` and ``"vgroove-dielectric"`` only: n_far / n_near, in (0,
+        $max_fresnel_eta], not 1 (None: 1.5; below 1: the light inside the denser medium).
     masking : {"smith", "smith_separable", "vcavity"}, optional
         ``model="walter"`` only: the G2 of the weights (None: smith_separable; the Smith ones need
         ggx or beckmann).
@@ -138,7 +165,13 @@ def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = 
         ``wo`` (on either side, wo[..., 2] < 0 transmitted; the normal where no direction),
         ``k`` (1, or 0: the facet gives no direction), ``pdf`` (per steradian, 0 where no
         direction), ``weight`` (f |cos theta_o| / pdf with the G2 ``masking``; its mean is the
-        albedo R + T) and ``transmitted`` (bool: the refracted branch gave wo).
+        albedo R + T) and ``transmitted`` (bool: the refracted branch gave wo). With
+        ``model="vgroove-dielectric"``: ``wo`` (wo[..., 2] < 0 transmitted; flatland in the plane
+        y = 0; the normal where no direction), ``k`` (the chain's interactions; 0: no direction:
+        transmitted light heading back up, a groove of k > 32, rounding), ``weight`` (1, or 0 where
+        no direction: the draws' density is the model's BSDF |cos theta_o|, so the mean weight is
+        R + T and the draws binned are :func:`vgroove.dielectric_lobe`'s bins) and ``reflected``
+        (bool); no pdf (:func:`pdf` refuses the model).
 
     Raises
     ------
@@ -154,9 +187,18 @@ def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = 
     >>> g = vgroove.sample("ggx", 0.5, vgroove.uniforms(1000, seed=1, dims=3), theta_i_deg=30, model="walter", eta=1.5)
     >>> bool(g["transmitted"].any() and (g["wo"][g["transmitted"], 2] < 0).all())
     True
+    >>> d = vgroove.sample("ggx", 0.3, vgroove.uniforms(1000, seed=1, stream=(0x5a3d, 3), dims=5), theta_i_deg=40,
+    ...                    model="vgroove-dielectric", eta=1.5)
+    >>> bool((d["weight"][d["k"] > 0] == 1).all() and (d["wo"][~d["reflected"] & (d["k"] > 0), 2] < 0).all())
+    True
     """
     walter = _walter_args(model, strategy, max_k, eta, masking)
-    m = 3 if model == "walter" else 5 if model == "vgroove-nonsymmetric" else 4
+    dielectric = model == "vgroove-dielectric"
+    if dielectric:
+        eta = _dielectric_eta(strategy, max_k, eta, wi)
+        m = 4 if dim == "flatland" else 5
+    else:
+        m = 3 if model == "walter" else 5 if model == "vgroove-nonsymmetric" else 4
     u = reals(u, "u")
     if u.shape[-1:] != (m,):
         raise ValueError(f"u must be an array of uniform numbers, shape (..., {m}); got {u.shape}")
@@ -164,7 +206,10 @@ def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = 
     shape = np.broadcast_shapes(u.shape[:-1], lshape)
     u = np.ascontiguousarray(np.broadcast_to(u, shape + (m,))).reshape(-1, m)
     wi_, ti = _light_rows(wi_, ti, shape)
-    if walter is not None:
+    if dielectric:
+        out = _vgroove.dielectric_sample(ndf, real(alpha, "alpha"), eta, ti, u, dim,
+                                         threads=integer(threads, "threads"), progress=_progress(progress))
+    elif walter is not None:
         out = _vgroove.walter_sample(ndf, real(alpha, "alpha"), wi_, ti, u, *walter, dim, integer(threads, "threads"),
                                      progress=_progress(progress))
     else:
@@ -189,7 +234,9 @@ def pdf(ndf: str, alpha: float, wo: np.ndarray, *, wi: Optional[np.ndarray] = No
     wo : array_like, shape (..., 3)
         Unit vectors towards the viewer (flatland: in the plane y = 0).
     wi, theta_i_deg, strategy, max_k, dim, model, tolerance, threads, eta, masking
-        As in :func:`sample`; the shapes broadcast to S.
+        As in :func:`sample`; the shapes broadcast to S. Not ``model="vgroove-dielectric"``
+        (its sampler gives no density at a direction yet; :func:`vgroove.dielectric_lobe` gives
+        it binned).
     progress : callable, optional
         ``progress(done, total)``, counting directions.
 
@@ -215,6 +262,9 @@ def pdf(ndf: str, alpha: float, wo: np.ndarray, *, wi: Optional[np.ndarray] = No
     >>> bool(abs(p - rho * vgroove.direction(40, 0)[2]) < 1e-12 * p)
     True
     """
+    if model == "vgroove-dielectric":
+        raise ValueError("model = \"vgroove-dielectric\" has no pdf here (its sampler draws with weight 1 but "
+                         "gives no density at a direction; vgroove.dielectric_lobe gives it binned)")
     wo = reals(wo, "wo")
     if wo.shape[-1:] != (3,):
         raise ValueError(f"wo must be an array of unit vectors, shape (..., 3); got {wo.shape}")
@@ -244,7 +294,8 @@ def uniforms(n: int, seed: int = 1, stream: Sequence[int] = (0, 0), dims: int = 
     stream : (int, int)
         ``vgroove sample --seed S`` draws its samples' four numbers from the stream (S, (0x5a3d,
         0)) in 3D and (S, (0x5a3d, 1)) in flatland; with ``--model walter`` three numbers from
-        (S, (0x5a3d, 2)).
+        (S, (0x5a3d, 2)); with ``--model vgroove-dielectric`` five from (S, (0x5a3d, 3)) in 3D and
+        four from (S, (0x5a3d, 4)) in flatland.
     dims : int
         Numbers per row, in [1, 64].
 

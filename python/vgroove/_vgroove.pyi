@@ -13,6 +13,7 @@ ranges: dict[str, float]
 BRDF_MAX_K: dict[tuple[str, str], int]
 SAMPLER_MAX_K: int
 NONSYMMETRIC_SAMPLER_MAX_K: int
+audit_ranges: dict[str, int]
 
 Progress = Optional[Callable[[int, int], Any]]
 
@@ -75,6 +76,9 @@ def validate(path: str, rays: Optional[int], threads: int, sampling: Optional[st
 def glass_energy(eta: Sequence[float], alpha: Sequence[float], mu: Sequence[float], ndf: Sequence[str],
                  dim: Sequence[str], side: Sequence[str], rays: int, grooves: int, seed: int, max_k: int, threads: int,
                  verbose: bool, reference: str = "vgroove", progress: Progress = None) -> dict[str, Any]: ...
+def energy_audit(ndf: Sequence[str], alpha: Optional[Sequence[float]], mu: Optional[Sequence[float]],
+                 alpha_points: int, mu_points: int, rays: int, seed: int, max_k: int, reference: Optional[str],
+                 threads: int, verbose: bool, progress: Progress = None) -> dict[str, Any]: ...
 def energy_lobe_shape(ndf: str, alpha: Sequence[float], theta_i_deg: Sequence[float], rays: int, grooves: int,
                       seed: int, theta_bins: int, phi_bins: int, sigmas: float, threads: int,
                       verbose: bool) -> dict[str, Any]: ...

@@ -162,7 +162,7 @@ TEST(CmdSampleWalter, BadInputIsOneLineNamingTheFlag) {
       {"--model walter --strategy vndf", "--strategy applies to --model vgroove and vgroove-nonsymmetric only"},
       {"--model walter --max-k 3", "--max-k applies to --model vgroove and vgroove-nonsymmetric only"},
       {"--model walter --dim flatland", "--dim = \"flatland\" is not available with --model walter"},
-      {"--eta 1.5", "--eta applies to --model walter only"},
+      {"--eta 1.5", "--eta applies to --model walter and vgroove-dielectric only (--model = \"vgroove\")"},
       {"--model vgroove-nonsymmetric --masking smith", "--masking applies to --model walter only"},
       {"--model walter --alpha 0", "--alpha = 0 is out of range [0.01, 2]"},
       {"--model walter --theta-i-deg 90", "--theta-i-deg = 90 is out of range [0, 89.9]"},

@@ -143,12 +143,16 @@ def test_walter_bad_input_gives_the_command_lines_message(vg, kwargs, flags):
 @pytest.mark.parametrize("model,kwargs,flags", [
     ("vgroove", {"eta": 1.5}, ["--eta", "1.5"]),
     ("vgroove-nonsymmetric", {"masking": "smith"}, ["--masking", "smith"]),
+    ("vgroove-dielectric", {"masking": "smith"}, ["--masking", "smith"]),
     ("cook-torrance", {}, []),
 ])
 def test_eta_and_masking_belong_to_walter(vg, model, kwargs, flags):
+    # eta belongs to walter and vgroove-dielectric, masking to walter: both faces name them alike.
     expected = cli_error("sample", "--model", model, *flags)
     for flag in ("--eta", "--masking", "--model"):
         expected = expected.replace(flag, flag[2:])
+    if "eta" in kwargs:
+        assert expected == f'eta applies to model walter and vgroove-dielectric only (model = "{model}")'
     m = 5 if model == "vgroove-nonsymmetric" else 4
     with pytest.raises(ValueError) as e:
         vg.sample("ggx", 0.5, [[0.1] * m], theta_i_deg=30, model=model, **kwargs)
