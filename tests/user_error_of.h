@@ -21,4 +21,17 @@ std::string user_error_of(F&& f) {
   return "";
 }
 
+// Success when f throws a UserError whose message contains `part`; otherwise a failure that prints
+// the message (or says none was thrown).
+template <class F>
+::testing::AssertionResult user_error_contains(F&& f, const std::string& part) {
+  try {
+    f();
+  } catch (const support::UserError& e) {
+    if (std::string(e.what()).find(part) != std::string::npos) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << "the message \"" << e.what() << "\" lacks \"" << part << "\"";
+  }
+  return ::testing::AssertionFailure() << "no UserError thrown";
+}
+
 }  // namespace vgroove::testing_files

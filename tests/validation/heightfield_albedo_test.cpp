@@ -6,6 +6,8 @@
 #include "vgroove/validation/outcome_fields.h"
 #include "vgroove/validation/partial_report.h"
 
+#include "tests/user_error_of.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -156,30 +158,25 @@ TEST(HeightfieldAlbedo, ReportAndTableSayWhichModelIsWithinNoise) {
   EXPECT_NE(table.str().find("2/2 (ndf, alpha) pass"), std::string::npos) << table.str();
 }
 
-#define EXPECT_USER_ERROR(stmt, part)                                           \
-  try {                                                                         \
-    stmt;                                                                       \
-    ADD_FAILURE() << "no support::UserError";                                   \
-  } catch (const support::UserError& e) {                                       \
-    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what(); \
-  }
-
 TEST(HeightfieldAlbedo, BadSpecsNameTheFieldAndRange) {
   json j = small();
   j["mu"] = {1.0, 0.0};
-  EXPECT_USER_ERROR(parse_heightfield_albedo_suite(j, "s.json"), "s.json: /mu/1 = 0 is out of range");
+  EXPECT_TRUE(testing_files::user_error_contains([&] { parse_heightfield_albedo_suite(j, "s.json"); },
+                                                 "s.json: /mu/1 = 0 is out of range"));
   j = small();
   j["field_size"] = 100;
-  EXPECT_USER_ERROR(parse_heightfield_albedo_suite(j, "s.json"), "/field_size = 100 must be a power of two");
+  EXPECT_TRUE(testing_files::user_error_contains([&] { parse_heightfield_albedo_suite(j, "s.json"); },
+                                                 "/field_size = 100 must be a power of two"));
   j = small();
   j["correlation_length"] = 9;
-  EXPECT_USER_ERROR(parse_heightfield_albedo_suite(j, "s.json"), "/correlation_length = 9 is out of range");
+  EXPECT_TRUE(testing_files::user_error_contains([&] { parse_heightfield_albedo_suite(j, "s.json"); },
+                                                 "/correlation_length = 9 is out of range"));
   j = small();
   j["ndf"] = {"phong"};
-  EXPECT_USER_ERROR(parse_heightfield_albedo_suite(j, "s.json"), "/ndf/0");
+  EXPECT_TRUE(testing_files::user_error_contains([&] { parse_heightfield_albedo_suite(j, "s.json"); }, "/ndf/0"));
   j = small();
   j["muu"] = 1;
-  EXPECT_USER_ERROR(parse_heightfield_albedo_suite(j, "s.json"), "muu");
+  EXPECT_TRUE(testing_files::user_error_contains([&] { parse_heightfield_albedo_suite(j, "s.json"); }, "muu"));
 }
 
 }  // namespace

@@ -17,6 +17,8 @@
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/heightfield_suite.h"
 
+#include "tests/user_error_of.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -66,14 +68,6 @@ json small() {
   return j;
 }
 
-#define EXPECT_USER_ERROR(stmt, part)                                               \
-  try {                                                                             \
-    stmt;                                                                           \
-    ADD_FAILURE() << "no support::UserError";                                       \
-  } catch (const support::UserError& err) {                                         \
-    EXPECT_NE(std::string(err.what()).find(part), std::string::npos) << err.what(); \
-  }
-
 TEST(HeightfieldMaskingControls, ShippedControlsParseAndBadOnesAreRefused) {
   const HeightfieldSuite s = parse_heightfield_suite(shipped(), "heightfield.json");
   ASSERT_TRUE(s.masking.has_value());
@@ -88,7 +82,7 @@ TEST(HeightfieldMaskingControls, ShippedControlsParseAndBadOnesAreRefused) {
   const auto bad = [](const json& ctl, const std::string& part) {
     json j = small();
     j["masking"]["controls"] = json::array({ctl});
-    EXPECT_USER_ERROR(parse_heightfield_suite(j, "h.json"), part);
+    EXPECT_TRUE(testing_files::user_error_contains([&] { parse_heightfield_suite(j, "h.json"); }, part));
   };
   bad(control("g1", "smith_separable", 75, 0, false), "h.json: /masking/controls/0/model");
   bad(control("g2", "smith", 75, 0, false), "h.json: /masking/controls/0/model");
