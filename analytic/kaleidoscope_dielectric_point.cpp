@@ -65,7 +65,7 @@ TransmittedExit transmitted_exit(double tf, double theta_v, double e, int j, boo
   if (!(rad > 0.0)) return x;
   const double sj = (j % 2 == 1) ? 1.0 : -1.0;
   x.ok = true;
-  x.t = sj * (std::asin(std::clamp(cb / e, -1.0, 1.0)) - 0.5 * (kPi - theta_v));  // KD-3
+  x.t = sj * (std::asin(std::clamp(cb / e, -1.0, 1.0)) - 0.5 * (kPi - theta_v));                // KD-3
   x.dt = broken_index ? sj * 0.5 : sj * (0.5 - (j - 0.5) * std::sin(x.beta) / std::sqrt(rad));  // KD-10
   return x;
 }
@@ -78,8 +78,8 @@ struct Acc {
 };
 
 // Adds the lobe's mass at theta_v per unit t: dP f_a / opening x share / |dt/dtheta_m|.
-void add_root(const Section& s, FacetSide side, double theta_v, bool reflected, int index, double dt_dv,
-              double weight, const Acc& acc) {
+void add_root(const Section& s, FacetSide side, double theta_v, bool reflected, int index, double dt_dv, double weight,
+              const Acc& acc) {
   const DielectricFacetPrediction p = predict(s, theta_v, side);
   if (!p.lit || p.k > s.opt->k_cap) return;
   double share = 0.0;
@@ -308,7 +308,7 @@ DielectricPointValue kaleidoscope_dielectric_bsdf_3d(NdfKind ndf, double alpha, 
   if (std::hypot(nm * m.x - std::sin(theta_i), nm * m.y) < 1e-9) {
     constexpr double d = 1e-7;
     for (double sgn : {-1.0, 1.0}) {
-      const Dir3 p{m.x * std::cos(d) , m.y * std::cos(d) + sgn * std::sin(d), m.z * std::cos(d)};
+      const Dir3 p{m.x * std::cos(d), m.y * std::cos(d) + sgn * std::sin(d), m.z * std::cos(d)};
       const double len = std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
       const Dir3 q{p.x / len, p.y / len, p.z / len};
       DielectricPointValue half;

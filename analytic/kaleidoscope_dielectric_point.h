@@ -7,8 +7,8 @@
 // Holds: integrated over a bin it is the binned lobe within the lobe's error; F = 1 gives the conductor
 // BRDFs (flatland_brdf_k, vgroove_brdf_k); reflection is reciprocal; finite at grazing angles, mirror
 // directions and total internal reflection; pdf = f |cos theta_o| and E[f |cos| / pdf] = R + T.
-// Tests: tests/analytic/kaleidoscope_dielectric_point_test.cpp (KaleidoscopeDielectricPoint.*,
-// KaleidoscopeDielectricPdf.*).
+// Tests: tests/analytic/kaleidoscope_dielectric_point_test.cpp (KaleidoscopeDielectricPoint.*, the bins and the
+// pdf: KaleidoscopeDielectricPointLong.*, KaleidoscopeDielectricPdfLong.*).
 // Derivation: docs/derivations/kaleidoscope_dielectric.md, "The BSDF at a point" (KD-9 to KD-12).
 #pragma once
 
@@ -23,9 +23,9 @@ namespace vgroove::analytic {
 // Deliberately wrong variants, for the tests' power.
 enum class DielectricPointBreak : unsigned char {
   none,
-  no_cosine,           // the density not divided by |cos theta_o|
-  section_jacobian,    // 3D: the lifted area element A (KD-11) left out (1 / |dt/dtheta_m| only)
-  no_index_jacobian,   // transmitted: |dt/dtheta_m| without the refraction's factor (KD-10's 1/2 term only)
+  no_cosine,          // the density not divided by |cos theta_o|
+  section_jacobian,   // 3D: the lifted area element A (KD-11) left out (1 / |dt/dtheta_m| only)
+  no_index_jacobian,  // transmitted: |dt/dtheta_m| without the refraction's factor (KD-10's 1/2 term only)
 };
 
 struct DielectricPointOptions {

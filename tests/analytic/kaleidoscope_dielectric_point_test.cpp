@@ -67,8 +67,7 @@ Panel panel_flatland(const Case& c, bool reflected, const DielectricPointOptions
   std::vector<int> zeros(kFlatMaxK + 2, 0);
   int n = 0;
   auto f = [&](double t) {
-    return kaleidoscope_dielectric_bsdf_flatland(c.ndf, c.alpha, c.eta, deg(c.theta_i_deg), t, reflected, kFlatMaxK,
-                                                 o);
+    return kaleidoscope_dielectric_bsdf_flatland(c.ndf, c.alpha, c.eta, deg(c.theta_i_deg), t, reflected, kFlatMaxK, o);
   };
   for (double t : {a, b}) {
     ++n;
@@ -103,8 +102,8 @@ void adaptive_flatland(const Case& c, bool reflected, const DielectricPointOptio
   adaptive_flatland(c, reflected, o, m, b, r, tol, depth + 1, sum, err);
 }
 
-std::vector<double> bin_integral_flatland(const Case& c, bool reflected, double a, double b, const DielectricPointOptions& o,
-                                          double& err) {
+std::vector<double> bin_integral_flatland(const Case& c, bool reflected, double a, double b,
+                                          const DielectricPointOptions& o, double& err) {
   std::vector<double> sum(kFlatMaxK + 2, 0.0);
   err = 0.0;
   constexpr int panels = 4;
@@ -156,16 +155,14 @@ BinCheck check_flatland_bins(const Case& c, const DielectricPointOptions& o) {
 
 const std::vector<Case>& flat_cases() {
   static const std::vector<Case> c{
-      {NdfKind::ggx, 0.3, 1.5, 30.0},
-      {NdfKind::beckmann, 0.5, 1.5, -45.0},
-      {NdfKind::ggx, 0.5, 1.0 / 1.5, 20.0},
-      {NdfKind::beckmann, 0.3, 1.5, 40.0, DielectricLightFrom::below},
+      {NdfKind::ggx, 0.3, 1.5, 30.0},       {NdfKind::beckmann, 0.5, 1.5, -45.0},
+      {NdfKind::ggx, 0.5, 1.0 / 1.5, 20.0}, {NdfKind::beckmann, 0.3, 1.5, 40.0, DielectricLightFrom::below},
       {NdfKind::ggx, 0.2, 2.4, 70.0},
   };
   return c;
 }
 
-TEST(KaleidoscopeDielectricPoint, FlatlandBinIntegralIsTheLobe) {
+TEST(KaleidoscopeDielectricPointLong, FlatlandBinIntegralIsTheLobe) {
   for (const Case& c : flat_cases()) {
     DielectricPointOptions o;
     o.from = c.from;
@@ -176,7 +173,7 @@ TEST(KaleidoscopeDielectricPoint, FlatlandBinIntegralIsTheLobe) {
   }
 }
 
-TEST(KaleidoscopeDielectricPoint, FlatlandBrokenJacobiansFailTheBins) {
+TEST(KaleidoscopeDielectricPointLong, FlatlandBrokenJacobiansFailTheBins) {
   const Case c{NdfKind::ggx, 0.3, 1.5, 30.0};
   for (DielectricPointBreak b : {DielectricPointBreak::no_cosine, DielectricPointBreak::no_index_jacobian}) {
     DielectricPointOptions o;
@@ -245,8 +242,8 @@ TEST(KaleidoscopeDielectricPoint, FlatlandFiniteAtHardPoints) {
                 const auto v = kaleidoscope_dielectric_bsdf_flatland(ndf, alpha, eta, deg(ti), deg(to), refl, 3, o);
                 ++n;
                 ASSERT_TRUE(std::isfinite(v.f) && v.f >= 0.0)
-                    << ndf_name(ndf) << " alpha " << alpha << " eta " << eta << " " << ti << " -> " << to << " "
-                    << refl << " f " << v.f;
+                    << ndf_name(ndf) << " alpha " << alpha << " eta " << eta << " " << ti << " -> " << to << " " << refl
+                    << " f " << v.f;
                 for (double x : v.by_k) ASSERT_TRUE(std::isfinite(x) && x >= 0.0);
               }
   EXPECT_GT(n, 1000);
@@ -313,15 +310,15 @@ BinCheck check_3d_bins(const Case& c, const DielectricPointOptions& o) {
           if (diff - allowed > r.worst_excess) {
             r.worst_excess = diff - allowed, r.worst_diff = diff, r.worst_allowed = allowed;
             r.where = describe(c) + (reflected ? " reflected" : " transmitted") + " bin " + std::to_string(t) + "," +
-                      std::to_string(p) + " k " + std::to_string(row) + " point " + std::to_string(q2[row]) +
-                      " lobe " + std::to_string(lobe);
+                      std::to_string(p) + " k " + std::to_string(row) + " point " + std::to_string(q2[row]) + " lobe " +
+                      std::to_string(lobe);
           }
         }
       }
   return r;
 }
 
-TEST(KaleidoscopeDielectricPoint, ThreeDBinIntegralIsTheLobe) {
+TEST(KaleidoscopeDielectricPointLong, ThreeDBinIntegralIsTheLobe) {
   for (const Case& c : {Case{NdfKind::beckmann, 0.3, 1.5, 40.0}, Case{NdfKind::ggx, 0.4, 1.0 / 1.5, 25.0},
                         Case{NdfKind::ggx, 0.3, 1.5, 30.0, DielectricLightFrom::below}}) {
     const BinCheck r = check_3d_bins(c, {});
@@ -331,7 +328,7 @@ TEST(KaleidoscopeDielectricPoint, ThreeDBinIntegralIsTheLobe) {
   }
 }
 
-TEST(KaleidoscopeDielectricPoint, ThreeDBrokenJacobianFailsTheBins) {
+TEST(KaleidoscopeDielectricPointLong, ThreeDBrokenJacobianFailsTheBins) {
   for (DielectricPointBreak b : {DielectricPointBreak::section_jacobian, DielectricPointBreak::no_cosine}) {
     DielectricPointOptions o;
     o.broken = b;
@@ -349,8 +346,8 @@ TEST(KaleidoscopeDielectricPoint, ThreeDConductorLimitIsVgrooveBrdf) {
   o.reflectance = [](double) { return 1.0; };
   double worst = 0.0;
   int nonzero = 0;
-  for (const Case& c : {Case{NdfKind::ggx, 0.3, 1.5, 30.0}, Case{NdfKind::beckmann, 0.6, 1.5, 65.0},
-                        Case{NdfKind::ggx, 1.0, 0.6, 0.0}})
+  for (const Case& c :
+       {Case{NdfKind::ggx, 0.3, 1.5, 30.0}, Case{NdfKind::beckmann, 0.6, 1.5, 65.0}, Case{NdfKind::ggx, 1.0, 0.6, 0.0}})
     for (double to : {3.0, 17.0, 38.0, 55.0, 71.0, 86.0})
       for (double po : {-170.0, -120.0, -61.0, 0.5, 44.0, 93.0, 150.0}) {
         const Dir3 i = light_dir(c), out = exit_dir(deg(to), deg(po), true);
@@ -395,7 +392,10 @@ TEST(KaleidoscopeDielectricPoint, ThreeDFiniteAtHardPoints) {
             const Dir3 i{-std::sin(deg(ti)), 0.0, z};
             const double st = std::sin(deg(ti));
             // o = n, the mirror direction, straight through, grazing, TIR-side directions.
-            std::vector<Dir3> outs{{0, 0, 1}, {0, 0, -1}, {st, 0, std::cos(deg(ti))}, {-st, 0, -std::cos(deg(ti))},
+            std::vector<Dir3> outs{{0, 0, 1},
+                                   {0, 0, -1},
+                                   {st, 0, std::cos(deg(ti))},
+                                   {-st, 0, -std::cos(deg(ti))},
                                    {st / eta, 0, -std::sqrt(std::max(0.0, 1 - st * st / (eta * eta)))}};
             for (double to : {89.999, 45.0, 60.0})
               for (double po : {0.0, 90.0, 180.0})
@@ -428,7 +428,7 @@ struct Uniforms {
 // Flatland: the draws' histogram against n x the pdf integrated over each bin (Gauss-Legendre, 16 x 8
 // nodes a bin), failures in a last cell expecting n (1 - int pdf); and the mean of f |cos| / pdf over
 // the draws (0 on failure) against the lobe's albedo_r + albedo_t within 4 standard errors.
-TEST(KaleidoscopeDielectricPdf, FlatlandHistogramAndEstimator) {
+TEST(KaleidoscopeDielectricPdfLong, FlatlandHistogramAndEstimator) {
   const std::vector<Case> cs{{NdfKind::ggx, 0.3, 1.5, 30.0},
                              {NdfKind::beckmann, 0.5, 1.0 / 1.5, -20.0},
                              {NdfKind::ggx, 0.5, 1.5, 40.0, DielectricLightFrom::below}};
@@ -472,8 +472,8 @@ TEST(KaleidoscopeDielectricPdf, FlatlandHistogramAndEstimator) {
       }
       const int b = std::clamp(static_cast<int>(std::floor((d.theta_o + 0.5 * kPi) / w)), 0, bins - 1);
       observed[(d.reflected ? 0 : 1) * bins + b] += 1.0;
-      const DielectricPointValue f =
-          kaleidoscope_dielectric_bsdf_flatland(c.ndf, c.alpha, c.eta, deg(c.theta_i_deg), d.theta_o, d.reflected, 0, po);
+      const DielectricPointValue f = kaleidoscope_dielectric_bsdf_flatland(c.ndf, c.alpha, c.eta, deg(c.theta_i_deg),
+                                                                           d.theta_o, d.reflected, 0, po);
       const double pdf =
           kaleidoscope_dielectric_pdf_flatland(c.ndf, c.alpha, c.eta, deg(c.theta_i_deg), d.theta_o, d.reflected, po);
       if (!(pdf > 0.0)) {
@@ -499,8 +499,9 @@ TEST(KaleidoscopeDielectricPdf, FlatlandHistogramAndEstimator) {
 }
 
 // 3D: the draws' histogram over (side, theta, phi) cells against n x the pdf integrated over each cell.
-TEST(KaleidoscopeDielectricPdf, ThreeDHistogram) {
-  const std::vector<Case> cs{{NdfKind::beckmann, 0.3, 1.5, 40.0}, {NdfKind::ggx, 0.4, 1.0 / 1.5, 25.0, DielectricLightFrom::below}};
+TEST(KaleidoscopeDielectricPdfLong, ThreeDHistogram) {
+  const std::vector<Case> cs{{NdfKind::beckmann, 0.3, 1.5, 40.0},
+                             {NdfKind::ggx, 0.4, 1.0 / 1.5, 25.0, DielectricLightFrom::below}};
   constexpr long n = 100000;
   constexpr int tb = 6, pb = 8;
   std::uint64_t seed = 91;
@@ -515,7 +516,7 @@ TEST(KaleidoscopeDielectricPdf, ThreeDHistogram) {
         for (int p = 0; p < pb; ++p) {
           const bool up = (side == 0) == from_above;
           const std::vector<double> s =
-              bin_integral_3d(c, up, t * dt, (t + 1) * dt, (p - 0.5) * dp, (p + 0.5) * dp, 3, po);
+              bin_integral_3d(c, up, t * dt, (t + 1) * dt, (p - 0.5) * dp, (p + 0.5) * dp, 4, po);
           double v = 0.0;
           for (double x : s) v += x;
           expected[(side * tb + t) * pb + p] = n * v;
