@@ -293,9 +293,10 @@ int cmd_brdf_dielectric_lobe(const BrdfArgs& a, NdfKind ndf, bool flat) {
   for (auto [given, flag] : {std::pair{a.masking_given, "--masking"}, std::pair{a.alpha_y_given, "--alpha-y"},
                              std::pair{a.partner_given, "--partner"}, std::pair{a.max_k_given, "--max-k"}})
     if (given)
-      throw support::UserError(std::string(flag) + " does not apply to --model vgroove-dielectric " +
-                               (point ? "(f sums every k up to 32; --per-k --per-k-max N splits it)"
-                                      : "(it prints the binned lobe at --theta-i-deg)"));
+      throw support::UserError(std::string(flag) + " does not apply to --model vgroove-dielectric" +
+                               (!point                           ? " (it prints the binned lobe at --theta-i-deg)"
+                                : std::string(flag) == "--max-k" ? " (f sums every k up to 32; --per-k splits it)"
+                                                                 : ""));
   if (point) return cmd_brdf_dielectric_point(a, ndf, flat);
   for (auto [given, flag] : {std::pair{a.phi_i_given, "--phi-i-deg"}, std::pair{a.phi_o_given, "--phi-o-deg"}})
     if (given)
