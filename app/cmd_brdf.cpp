@@ -1,5 +1,6 @@
 #include "vgroove/analytic/brdf_model.h"
 #include "vgroove/analytic/kaleidoscope_dielectric_lobe.h"
+#include "vgroove/analytic/kaleidoscope_dielectric_point.h"
 #include "vgroove/analytic/partner_distribution.h"
 #include "vgroove/app/cli_options.h"
 #include "vgroove/app/commands.h"
@@ -163,23 +164,145 @@ analytic::MaskingKind check_walter_options(const BrdfArgs& a, analytic::BrdfMode
   return *masking;
 }
 
-// --model vgroove-dielectric: the kaleidoscopic dielectric model's binned lobe (analytic/
-// kaleidoscope_dielectric_lobe.h) for light at --theta-i-deg, reflected and transmitted flux
-// fractions per bin: flatland 90 bins over (-90, 90) deg; 3D 18 theta bins over [0, 90) x 24 phi
-// bins centred on phi = 0, the light at phi = 180 (--phi-i-deg does not apply). Rows k = 1..
-// --per-k-max with --per-k.
+// --model vgroove-dielectric with --theta-o-deg or --directions: the kaleidoscopic dielectric
+// model's BSDF at a point (analytic/kaleidoscope_dielectric_point.h), the light above the interface
+// in the near medium (as walter: eta < 1 is light from inside the denser medium), the viewer on
+// either side (theta_o over 90: transmitted); f, f per k (rows k = 0..--per-k-max and one for every
+// k > --per-k-max) and pdf = f |cos theta_o|, the density of analytic/sampling_dielectric's draws.
+// Flatland: theta_o past 90 deg is measured from the lower normal, the library's theta_o = theta_o -
+// 180 sign(theta_o) (the straight-through direction of theta_i is theta_i - 180 sign(theta_i)).
+// The horizon (theta_o = 90 deg), where f = density / |cos theta_o| is not defined, is refused.
+struct DielectricPoint {
+  double f = 0.0, pdf = 0.0;
+  std::vector<double> by_k;
+};
+
+DielectricPoint dielectric_point(NdfKind ndf, double alpha, double eta, const Pair& p, bool flat, int rows) {
+  // pdf: the library's kaleidoscope_dielectric_pdf_* to the bit; without rows the same arithmetic on
+  // the value (f, a sum over the rows, rounds by the rows' grouping).
+  DielectricPoint r;
+  analytic::DielectricPointValue v;
+  if (flat) {
+    const bool reflected = std::abs(p.theta_o_deg) < 90.0;
+    const double ti = deg_to_rad(p.theta_i_deg);
+    const double to = deg_to_rad(reflected ? p.theta_o_deg : p.theta_o_deg - std::copysign(180.0, p.theta_o_deg));
+    v = analytic::kaleidoscope_dielectric_bsdf_flatland(ndf, alpha, eta, ti, to, reflected, rows);
+    r.pdf = rows == 0 ? v.f * std::cos(to)
+                      : analytic::kaleidoscope_dielectric_pdf_flatland(ndf, alpha, eta, ti, to, reflected);
+  } else {
+    const analytic::Dir3 i = direction(p.theta_i_deg, p.phi_i_deg, false);
+    const analytic::Dir3 o = direction(p.theta_o_deg, p.phi_o_deg, false);
+    v = analytic::kaleidoscope_dielectric_bsdf_3d(ndf, alpha, eta, i, o, rows);
+    r.pdf = rows == 0 ? v.f * std::abs(o.z) : analytic::kaleidoscope_dielectric_pdf_3d(ndf, alpha, eta, i, o);
+  }
+  r.f = v.f;
+  r.by_k = std::move(v.by_k);
+  return r;
+}
+
+// theta_o on the horizon: `name` as check_pair names it.
+void check_off_horizon(const Pair& p, bool flat, const std::string& name) {
+  if (std::abs(p.theta_o_deg) == 90.0)
+    throw support::UserError(name + " = " + support::number_text(p.theta_o_deg) + " is out of range " +
+                             (flat ? "[-180, -90) or (-90, 90) or (90, 180]" : "[0, 90) or (90, 180]") +
+                             " with --model vgroove-dielectric (on the horizon f = density / |cos theta_o| is not "
+                             "defined)");
+}
+
+int cmd_brdf_dielectric_point(const BrdfArgs& a, NdfKind ndf, bool flat) {
+  check_angle(a.eta, 0, false, validation::kMaxFresnelEta, true, "--eta");
+  if (a.per_k_max < 1 || a.per_k_max > validation::kMaxPrintedK)
+    throw support::UserError("--per-k-max = " + std::to_string(a.per_k_max) + " is out of range [1, " +
+                             std::to_string(validation::kMaxPrintedK) + "]");
+  std::vector<Pair> pairs;
+  if (!a.directions.empty()) {
+    if (a.theta_o_given)
+      throw support::UserError("--directions cannot be combined with --theta-o-deg (the file gives the directions)");
+    pairs = read_pairs(a.directions, flat, true, a.cancel);
+    if (support::cancelled(a.cancel)) return interrupted_no_report();
+    for (std::size_t n = 0; n < pairs.size(); ++n)
+      check_off_horizon(pairs[n], flat, a.directions + ": /directions/" + std::to_string(n) + "/theta_o_deg");
+  } else {
+    pairs.push_back({a.theta_i_deg, a.phi_i_deg, a.theta_o_deg, a.phi_o_deg});
+    check_pair(pairs.back(), flat, true, "--");
+    check_off_horizon(pairs.back(), flat, "--theta-o-deg");
+  }
+  if (a.dry_run) return 0;
+  const int rows = a.per_k ? a.per_k_max : 0;
+  std::vector<DielectricPoint> values;
+  values.reserve(pairs.size());
+  const support::ProgressFn progress = pairs.size() > 1 ? terminal_progress("brdf") : support::ProgressFn{};
+  for (const Pair& p : pairs) {
+    if (support::cancelled(a.cancel)) return interrupted_no_report();
+    values.push_back(dielectric_point(ndf, a.alpha, a.eta, p, flat, rows));
+    if (progress) progress(values.size(), pairs.size());
+  }
+  if (support::cancelled(a.cancel)) return interrupted_no_report();
+  const char* unit = flat ? "1/rad" : "1/sr";
+  if (a.json) {
+    nlohmann::json j = validation::provenance();
+    j["kind"] = "brdf";
+    j["inputs"] = {{"model", a.model}, {"ndf", a.ndf},       {"alpha", a.alpha},
+                   {"eta", a.eta},     {"dimension", a.dim}, {"per_k", rows}};
+    j["unit"] = unit;
+    j["pdf"] =
+        "f |cos theta_o|: the density of the sampler's directions (analytic/sampling_dielectric.h), in the "
+        "unit, integrating to albedo_r + albedo_t";
+    nlohmann::json points = nlohmann::json::array();
+    for (std::size_t n = 0; n < pairs.size(); ++n) {
+      nlohmann::json e = {{"theta_i_deg", pairs[n].theta_i_deg},
+                          {"theta_o_deg", pairs[n].theta_o_deg},
+                          {"value", values[n].f},
+                          {"pdf", values[n].pdf}};
+      if (!flat) e["phi_i_deg"] = pairs[n].phi_i_deg, e["phi_o_deg"] = pairs[n].phi_o_deg;
+      if (rows > 0) e["by_k"] = values[n].by_k;
+      points.push_back(std::move(e));
+    }
+    j["points"] = std::move(points);
+    std::cout << support::json_text(j, 1) << "\n";
+    return 0;
+  }
+  std::printf(
+      "brdf vgroove-dielectric: %s alpha %g, eta %g, %s, k up to 32; value in %s (theta_o over 90 deg: "
+      "transmitted), pdf = value |cos theta_o|\n",
+      a.ndf.c_str(), a.alpha, a.eta, flat ? "flatland" : "3D", unit);
+  std::printf("  %12s %10s %12s %10s  %-24s  %s\n", "theta_i_deg", "phi_i_deg", "theta_o_deg", "phi_o_deg", "value",
+              "pdf");
+  for (std::size_t n = 0; n < pairs.size(); ++n) {
+    std::printf("  %12.9g %10.9g %12.9g %10.9g  %-24.17g  %.17g\n", pairs[n].theta_i_deg,
+                flat ? 0.0 : pairs[n].phi_i_deg, pairs[n].theta_o_deg, flat ? 0.0 : pairs[n].phi_o_deg, values[n].f,
+                values[n].pdf);
+    if (rows == 0) continue;
+    for (int k = 0; k <= rows; ++k)
+      std::printf("  %48s k = %-4d %.17g\n", "", k, values[n].by_k[static_cast<std::size_t>(k)]);
+    std::printf("  %48s k > %-4d %.17g\n", "", rows, values[n].by_k[static_cast<std::size_t>(rows + 1)]);
+  }
+  return 0;
+}
+
+// --model vgroove-dielectric without --theta-o-deg or --directions: the kaleidoscopic dielectric
+// model's binned lobe (analytic/kaleidoscope_dielectric_lobe.h) for light at --theta-i-deg,
+// reflected and transmitted flux fractions per bin: flatland 90 bins over (-90, 90) deg; 3D 18
+// theta bins over [0, 90) x 24 phi bins centred on phi = 0, the light at phi = 180 (--phi-i-deg does
+// not apply). Rows k = 0..--per-k-max and one for every k > --per-k-max with --per-k.
 constexpr int kDielectricFlatBins = 90, kDielectricThetaBins = 18, kDielectricPhiBins = 24;
 
 int cmd_brdf_dielectric_lobe(const BrdfArgs& a, NdfKind ndf, bool flat) {
-  for (auto [given, flag] :
-       {std::pair{a.theta_o_given, "--theta-o-deg"}, std::pair{!a.directions.empty(), "--directions"},
-        std::pair{a.masking_given, "--masking"}, std::pair{a.alpha_y_given, "--alpha-y"},
-        std::pair{a.partner_given, "--partner"}, std::pair{a.max_k_given, "--max-k"},
-        std::pair{a.phi_i_given, "--phi-i-deg"}, std::pair{a.phi_o_given, "--phi-o-deg"}})
+  // The other models' flags, refused at a point and for the lobe; the directions' azimuths for the lobe.
+  const bool point = a.theta_o_given || !a.directions.empty();
+  for (auto [given, flag] : {std::pair{a.masking_given, "--masking"}, std::pair{a.alpha_y_given, "--alpha-y"},
+                             std::pair{a.partner_given, "--partner"}, std::pair{a.max_k_given, "--max-k"}})
+    if (given)
+      throw support::UserError(std::string(flag) + " does not apply to --model vgroove-dielectric" +
+                               (!point                           ? " (it prints the binned lobe at --theta-i-deg)"
+                                : std::string(flag) == "--max-k" ? " (f sums every k up to 32; --per-k splits it)"
+                                                                 : ""));
+  if (point) return cmd_brdf_dielectric_point(a, ndf, flat);
+  for (auto [given, flag] : {std::pair{a.phi_i_given, "--phi-i-deg"}, std::pair{a.phi_o_given, "--phi-o-deg"}})
     if (given)
       throw support::UserError(std::string(flag) +
-                               " does not apply to --model vgroove-dielectric (it prints the binned lobe at "
-                               "--theta-i-deg)");
+                               " does not apply to --model vgroove-dielectric without --theta-o-deg or --directions "
+                               "(it prints the binned lobe at --theta-i-deg)");
   check_angle(a.eta, 0, false, validation::kMaxFresnelEta, true, "--eta");
   if (flat)
     check_angle(a.theta_i_deg, -90, false, 90, false, "--theta-i-deg");
@@ -360,15 +483,19 @@ void add_brdf_command(CLI::App& app, Commands& commands) {
       "Evaluate a BRDF at a pair of directions (or every pair of a JSON file): vgroove's multiple-scattering "
       "model (Lee et al. 2018, Eq. 16-17), its nonsymmetric form (Eq. 21-23, partner facets by Eq. 20; "
       "anisotropic with --alpha-y) or Cook-Torrance (Eq. 1-3, V-cavity G), F = 1; or Walter et al. 2007's rough "
-      "dielectric BSDF (--eta, --masking), reflected and transmitted. 3D: polar angles from the "
+      "dielectric BSDF (--eta, --masking), reflected and transmitted; or the kaleidoscopic dielectric model's BSDF "
+      "(--model vgroove-dielectric --eta, k up to 32) or its binned lobe. 3D: polar angles from the "
       "normal, azimuths about it (phi_o = phi_i + 180 is the mirror side; with --alpha-y from the --alpha "
-      "axis); flatland: signed angles. Walter: the viewer's polar angle over 90 (flatland: |theta_o| over 90) "
+      "axis); flatland: signed angles. Walter and vgroove-dielectric: the viewer's polar angle over 90 (flatland: "
+      "|theta_o| over 90) "
       "is below the interface, in the far medium.");
   BrdfArgs& ba = commands.add(brdf, cmd_brdf);
   ba.cancel = commands.context().cancel;
   add_text(brdf, "--model", ba.model,
            "vgroove, vgroove-nonsymmetric, cook-torrance, walter, or vgroove-dielectric (the kaleidoscopic "
-           "dielectric model's binned lobe at --theta-i-deg, reflected and transmitted, with --eta)")
+           "dielectric model, --eta: its BSDF at --theta-o-deg or --directions, reflected and transmitted as "
+           "walter's, k up to 32, with \"pdf\" = value |cos theta_o|, the density of its sampler's directions; "
+           "without them its binned lobe at --theta-i-deg)")
       ->capture_default_str();
   add_text(brdf, "--ndf", ba.ndf, "ggx, beckmann or phong")->capture_default_str();
   add_real(brdf, "--alpha", ba.alpha,
@@ -402,9 +529,11 @@ void add_brdf_command(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   auto* phi_i = add_real(brdf, "--phi-i-deg", ba.phi_i_deg, "light: azimuth, [-360, 360] (3D only)");
   phi_i->capture_default_str();
-  auto* theta_o = add_real(brdf, "--theta-o-deg", ba.theta_o_deg,
-                           "viewer: polar angle, [0, 90] (flatland: signed, [-90, 90]); walter: [0, 180] "
-                           "([-180, 180]), over 90 transmitted; required unless --directions");
+  auto* theta_o =
+      add_real(brdf, "--theta-o-deg", ba.theta_o_deg,
+               "viewer: polar angle, [0, 90] (flatland: signed, [-90, 90]); walter: [0, 180] "
+               "([-180, 180]), over 90 transmitted; vgroove-dielectric: the same but 90 (-90); required unless "
+               "--directions (vgroove-dielectric: without either, the binned lobe)");
   auto* phi_o = add_real(brdf, "--phi-o-deg", ba.phi_o_deg, "viewer: azimuth, [-360, 360] (3D only)");
   phi_o->capture_default_str();
   auto* brdf_max_k =
@@ -416,7 +545,9 @@ void add_brdf_command(CLI::App& app, Commands& commands) {
                       "); vgroove-nonsymmetric: <= " + std::to_string(kNonsymmetricMaxK) + ", O(max_k^2) (default " +
                       std::to_string(analytic::default_max_k(analytic::BrdfModel::vgroove_nonsymmetric, false)) + ")",
                   1, std::numeric_limits<int>::max());
-  brdf->add_flag("--per-k", ba.per_k, "also print each order k = 1..--per-k-max");
+  brdf->add_flag("--per-k", ba.per_k,
+                 "also print each order k = 1..--per-k-max (vgroove-dielectric: rows k = 0..--per-k-max and k > "
+                 "--per-k-max, summing to the value)");
   add_integer(brdf, "--per-k-max", ba.per_k_max, "orders printed one by one with --per-k", 1, validation::kMaxPrintedK)
       ->capture_default_str();
   add_text(brdf, "--directions", ba.directions,

@@ -79,7 +79,7 @@ except ImportError as _e:
 from ._ranges import RANGES, fill_ranges as _fill_ranges
 from ._grooves import FATES, LEFT, RIGHT, analytic, direction, groove_case, kaleidoscope, output_deg, trace
 from ._surfaces import Microsurface, lobe, microsurface, trace_microsurface
-from ._brdfs import BRDF_MAX_K, brdf, check_brdf, dielectric_lobe
+from ._brdfs import BRDF_MAX_K, brdf, check_brdf, dielectric_bsdf, dielectric_lobe
 from ._sampling import NONSYMMETRIC_SAMPLER_MAX_K, SAMPLER_MAX_K, pdf, sample, uniforms
 from ._suites import validate
 from ._energy import energy_audit, energy_lobe_shape, glass_energy
@@ -98,8 +98,8 @@ __all__ = [
     "direction", "output_deg", "kaleidoscope", "analytic", "trace", "groove_case",
     "Microsurface", "microsurface", "trace_microsurface", "lobe",
     "BRDF", "Lobe", "SampleBatch", "SurfaceTrace", "BRDF_MAX_K", "SAMPLER_MAX_K", "NONSYMMETRIC_SAMPLER_MAX_K",
-    "brdf", "check_brdf", "dielectric_lobe", "validate", "energy_audit", "energy_lobe_shape", "glass_energy",
-    "sample", "pdf",
+    "brdf", "check_brdf", "dielectric_lobe", "dielectric_bsdf", "validate", "energy_audit", "energy_lobe_shape",
+    "glass_energy", "sample", "pdf",
     "uniforms", "tqdm_progress",
     "TqdmProgress",
 ]

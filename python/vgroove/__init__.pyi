@@ -69,6 +69,9 @@ def validate(suite: Union[str, os.PathLike[str], dict[str, Any]], *, rays: Optio
 def dielectric_lobe(ndf: str, alpha: float, eta: float, theta_i_deg: float = 0.0, per_k: Union[bool, int] = False, *,
                     dim: str = "3d", flatland_bins: int = 90, theta_bins: int = 18, phi_bins: int = 24,
                     progress: Optional[ProgressFn] = None) -> dict[str, Any]: ...
+def dielectric_bsdf(ndf: str, alpha: float, eta: float, theta_i_deg: ArrayLike, theta_o_deg: ArrayLike,
+                    per_k: Union[bool, int] = False, *, phi_i_deg: ArrayLike = 0.0, phi_o_deg: ArrayLike = 180.0,
+                    dim: str = "3d", threads: int = 0, progress: Optional[ProgressFn] = None) -> dict[str, Any]: ...
 def glass_energy(eta: Sequence[float], alpha: Sequence[float] = (0.1, 0.5, 1.0), mu: Sequence[float] = (1.0, 0.5),
                  *, ndf: Union[str, Sequence[str]] = "ggx", dim: Union[str, Sequence[str]] = "3d",
                  side: Union[str, Sequence[str]] = ("above", "below"), rays: int = 100000, grooves: int = 10000,

@@ -7,7 +7,7 @@ from typing import Callable, Optional, Sequence, Union
 
 import numpy as np
 
-from . import _vgroove
+from . import _args, _vgroove
 from ._args import (ProgressFn, integer, opt_complex, opt_integer, progress as _progress, real, reals, rows, text,
                     vectors)
 from ._ranges import fill_ranges
@@ -264,7 +264,79 @@ def dielectric_lobe(ndf: str, alpha: float, eta: float, theta_i_deg: float = 0.0
     return d
 
 
-for _f in (brdf, check_brdf, dielectric_lobe):
+def dielectric_bsdf(ndf: str, alpha: float, eta: float, theta_i_deg: _args.ArrayLike, theta_o_deg: _args.ArrayLike,
+                    per_k: Union[bool, int] = False, *, phi_i_deg: _args.ArrayLike = 0.0,
+                    phi_o_deg: _args.ArrayLike = 180.0, dim: str = "3d", threads: int = 0,
+                    progress: Optional[ProgressFn] = None) -> dict:
+    """The kaleidoscopic dielectric model's BSDF at points (analytic/kaleidoscope_dielectric_point.h;
+    ``vgroove brdf --model vgroove-dielectric --theta-o-deg``, whose JSON holds the same numbers to
+    the last bit): f(i, o) reflected and transmitted, summed over the interaction counts k up to 32,
+    and the density of the sampler's directions.
+
+    Parameters
+    ----------
+    ndf : {"ggx", "beckmann", "phong"}
+    alpha : float
+        Roughness in [$min_alpha, $max_alpha].
+    eta : float
+        n_far / n_near in (0, $max_fresnel_eta], the light in the near medium, above the interface
+        (below 1: from inside the denser medium).
+    theta_i_deg, theta_o_deg, phi_i_deg, phi_o_deg : array_like
+        The directions in degrees, the command line's: the light's polar angle in [0, 90) (flatland
+        signed, (-90, 90)); the viewer's in [0, 180] less 90 (flatland [-180, 180] less +-90), over
+        90 transmitted, below the interface (the horizon, where f = density / |cos theta_o| is not
+        defined, is refused); the azimuths in [-360, 360] (3D only; phi_o = phi_i + 180 is the
+        mirror side). Flatland: theta_o past 90 is measured from the lower normal, the
+        straight-through direction of theta_i is theta_i - 180 sign(theta_i). The four broadcast
+        to one shape S.
+    per_k : bool or int
+        False: f only. True: also f per interaction count, rows k = 0..16 and one for every k > 16
+        (``--per-k``); an int n in [0, 1000] (0: as False): rows 0..n and one for k > n (``--per-k
+        --per-k-max n``). The rows sum to f.
+    dim : {"3d", "flatland"}
+    threads : int
+        In [0, $max_threads] (0: all cores), without the GIL.
+    progress : callable, optional
+        ``progress(done, total)``, counting points.
+
+    Returns
+    -------
+    dict
+        ``value``: f, shape S, in 1/sr (flatland 1/rad); ``pdf``: f |cos theta_o|, shape S, the
+        density of the directions the model's sampler draws (analytic/sampling_dielectric.h; it
+        integrates to albedo_r + albedo_t); with per_k ``by_k``, shape S + (rows,).
+
+    Raises
+    ------
+    ValueError
+        An argument out of range, named as here (``theta_o_deg[j]``: row j of the flattened
+        broadcast), with ``vgroove brdf``'s range.
+
+    Examples
+    --------
+    >>> import vgroove
+    >>> b = vgroove.dielectric_bsdf("ggx", 0.3, 1.5, 30, [35, 160], phi_o_deg=180)
+    >>> b["value"].shape, bool((b["value"] > 0).all())
+    ((2,), True)
+    """
+    if isinstance(per_k, (bool, np.bool_)):
+        orders = PER_K_ORDERS if per_k else 0
+    else:
+        orders = integer(per_k, "per_k")
+    parts = [reals(theta_i_deg, "theta_i_deg"), reals(phi_i_deg, "phi_i_deg"), reals(theta_o_deg, "theta_o_deg"),
+             reals(phi_o_deg, "phi_o_deg")]
+    shape = np.broadcast_shapes(*(a.shape for a in parts))
+    angles = np.ascontiguousarray(np.stack([np.broadcast_to(a, shape).ravel() for a in parts], axis=-1),
+                                  dtype=np.float64).reshape(-1, 4)
+    d = _vgroove.dielectric_bsdf(text(ndf, "ndf"), real(alpha, "alpha"), real(eta, "eta"), angles, text(dim, "dim"),
+                                 orders, integer(threads, "threads"), _progress(progress))
+    out = {"value": d["value"].reshape(shape), "pdf": d["pdf"].reshape(shape)}
+    if "by_k" in d:
+        out["by_k"] = d["by_k"].reshape(shape + d["by_k"].shape[1:])
+    return out
+
+
+for _f in (brdf, check_brdf, dielectric_lobe, dielectric_bsdf):
     _f.__doc__ = fill_ranges(_f.__doc__, dict(per_k_orders=PER_K_ORDERS,
                                               flatland_max_k=BRDF_MAX_K[("vgroove", "flatland")],
                                               nonsymmetric_max_k=BRDF_MAX_K[("vgroove-nonsymmetric", "3d")]))

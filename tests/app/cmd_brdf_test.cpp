@@ -4,11 +4,14 @@
 // first order Cook-Torrance where Eq. (25) holds; Walter's BSDF on both sides of the interface: a
 // nearly flat interface gives Fresnel's R and T, peaked at the mirror and Snell directions; the
 // kaleidoscopic dielectric lobe (--model vgroove-dielectric): the library's to the last bit, R + T +
-// unbinned = 1, eta = 1 all in the incident bin, bad input and the other models' flags refused.
+// unbinned = 1, eta = 1 all in the incident bin, bad input and the other models' flags refused; its
+// BSDF at a point (--theta-o-deg, --directions): the library's f, rows and pdf to the last bit on
+// both sides of the interface, the rows summing to f, eta = 1 zero off the straight-through direction.
 #include "vgroove/analytic/brdf_flatland.h"
 #include "vgroove/analytic/brdf_model.h"
 #include "vgroove/analytic/brdf_nonsymmetric.h"
 #include "vgroove/analytic/kaleidoscope_dielectric_lobe.h"
+#include "vgroove/analytic/kaleidoscope_dielectric_point.h"
 #include "vgroove/common/angles.h"
 #include "vgroove/optics/fresnel.h"
 
@@ -603,6 +606,120 @@ TEST(CmdBrdfDielectric, EtaOneTransmitsEverythingIntoTheIncidentBin) {
   check("--dim flatland --eta 1.05 --theta-i-deg 33", 61, false);
 }
 
+// ---------------------------------------------------------------------------------------------
+// --model vgroove-dielectric at a point: the BSDF (analytic/kaleidoscope_dielectric_point.h)
+
+struct PointCase {
+  const char* dim;
+  double eta, theta_i_deg, theta_o_deg, phi_o_deg;
+};
+
+std::string exact(double x) {
+  std::ostringstream e;
+  e.precision(17);
+  e << x;
+  return e.str();
+}
+
+// The library at the command line's point: flatland theta_o past 90 deg from the lower normal
+// (theta_o - 180 sign(theta_o)); 3D the command line's direction vectors.
+analytic::DielectricPointValue point_lib(const PointCase& c, int rows, double* pdf) {
+  if (std::string(c.dim) == "flatland") {
+    const bool refl = std::abs(c.theta_o_deg) < 90;
+    const double to = deg_to_rad(refl ? c.theta_o_deg : c.theta_o_deg - std::copysign(180.0, c.theta_o_deg));
+    const double ti = deg_to_rad(c.theta_i_deg);
+    *pdf = analytic::kaleidoscope_dielectric_pdf_flatland(NdfKind::beckmann, 0.4, c.eta, ti, to, refl);
+    return analytic::kaleidoscope_dielectric_bsdf_flatland(NdfKind::beckmann, 0.4, c.eta, ti, to, refl, rows);
+  }
+  const analytic::Dir3 i = analytic::dir3(deg_to_rad(c.theta_i_deg), 0.0);
+  const analytic::Dir3 o = analytic::dir3(deg_to_rad(c.theta_o_deg), deg_to_rad(c.phi_o_deg));
+  *pdf = analytic::kaleidoscope_dielectric_pdf_3d(NdfKind::beckmann, 0.4, c.eta, i, o);
+  return analytic::kaleidoscope_dielectric_bsdf_3d(NdfKind::beckmann, 0.4, c.eta, i, o, rows);
+}
+
+// Beckmann alpha 0.4, light in air (eta 1.5) and inside glass (eta 1 / 1.5), reflected and
+// transmitted, flatland and 3D: "value", "pdf" and each row of "by_k" are the library's to the last
+// bit (pdf: kaleidoscope_dielectric_pdf_*, f |cos theta_o|), with and without --per-k; the rows
+// k = 0..3 and k > 3 sum to the value (to rounding). Every value is nonzero (the comparison is not
+// of zeros); the broken variant, the library 1e-9 deg away in theta_o, differs in some bit.
+TEST(CmdBrdfDielectric, PointIsTheLibrarysToTheBit) {
+  const PointCase cases[] = {
+      {"flatland", 1.5, 30, 38, 0},       {"flatland", 1.5, -20, 165, 0}, {"flatland", 1 / 1.5, 40, -45, 0},
+      {"flatland", 1 / 1.5, 20, -150, 0}, {"3d", 1.5, 30, 35, 170},       {"3d", 1.5, 30, 160, 180},
+      {"3d", 1 / 1.5, 20, 150, 175},      {"3d", 1 / 1.5, 50, 55, 160},
+  };
+  for (const PointCase& c : cases) {
+    const std::string args = "--model vgroove-dielectric --ndf beckmann --alpha 0.4 --dim " + std::string(c.dim) +
+                             " --eta " + exact(c.eta) + " --theta-i-deg " + exact(c.theta_i_deg) + " --theta-o-deg " +
+                             exact(c.theta_o_deg) + " --phi-o-deg " + exact(c.phi_o_deg);
+    const bool flat = std::string(c.dim) == "flatland";
+    SCOPED_TRACE(args);
+    for (int rows : {0, 3}) {
+      const json j = run_json(args + (rows ? " --per-k --per-k-max 3" : ""));
+      ASSERT_TRUE(j.contains("points")) << j;
+      EXPECT_EQ(j["kind"], "brdf");
+      EXPECT_EQ(j["unit"], flat ? "1/rad" : "1/sr");
+      EXPECT_EQ(j["inputs"]["eta"].get<double>(), c.eta);
+      const json& p = j["points"][0];
+      double pdf = 0.0;
+      const analytic::DielectricPointValue v = point_lib(c, rows, &pdf);
+      EXPECT_GT(v.f, 0.0);
+      EXPECT_EQ(p["value"].get<double>(), v.f);
+      EXPECT_EQ(p["pdf"].get<double>(), pdf);
+      const double cos_o = std::abs(std::cos(deg_to_rad(c.theta_o_deg)));
+      EXPECT_NEAR(pdf, v.f * cos_o, 1e-14 * pdf);
+      if (rows == 0) {
+        EXPECT_FALSE(p.contains("by_k"));
+        continue;
+      }
+      const std::vector<double> by_k = doubles(p["by_k"]);
+      EXPECT_EQ(by_k, v.by_k);
+      ASSERT_EQ(by_k.size(), 5u);
+      EXPECT_NEAR(sum(by_k), p["value"].get<double>(), 1e-14 * v.f);
+    }
+    double pdf = 0.0;
+    PointCase other = c;
+    other.theta_o_deg = c.theta_o_deg + 1e-9;
+    EXPECT_NE(point_lib(other, 0, &pdf).f, run_json(args)["points"][0]["value"].get<double>()) << "broken variant";
+  }
+}
+
+// eta = 1 is no interface (KD-3): all the light goes straight on, so f is 0 at every direction but
+// the straight-through one, theta_i - 180 sign(theta_i) in flatland (180 - theta_i at phi 180 in
+// 3D), reflected or transmitted; there flatland's is a numerical delta (> 1e10; 3D's, the mean of the
+// values 1e-7 rad either side (KD-11), is 0). Broken variant: eta 1.05 bends the light onto the
+// directions 2 and 4 deg away (some nonzero value). A --directions file
+// gives the same numbers as --theta-o-deg, in its order.
+TEST(CmdBrdfDielectric, PointEtaOneIsZeroOffTheStraightThroughDirection) {
+  TempDir d;
+  auto run = [&](const std::string& dim, double eta, const std::vector<std::pair<double, double>>& to) {
+    std::string list;
+    for (const auto& [t, phi] : to)
+      list += std::string(list.empty() ? "" : ", ") + "{\"theta_i_deg\": 33, \"theta_o_deg\": " + exact(t) +
+              ", \"phi_o_deg\": " + exact(phi) + "}";
+    write_text(d.file("d.json"), "{\"directions\": [" + list + "]}");
+    const json j = run_json("--model vgroove-dielectric --alpha 0.5 --dim " + dim + " --eta " + exact(eta) +
+                            " --directions " + d.file("d.json"));
+    std::vector<double> v;
+    for (const json& p : j["points"]) v.push_back(p["value"].get<double>());
+    return v;
+  };
+  const std::vector<std::pair<double, double>> flat_off = {{-149, 0}, {-151, 0}, {-143, 0},
+                                                           {33, 0},   {-33, 0},  {150, 0}},
+                                               d3_off = {{149, 180}, {151, 180}, {147, 175}, {147, 0}, {33, 180}};
+  for (double v : run("flatland", 1.0, flat_off)) EXPECT_EQ(v, 0.0);
+  for (double v : run("3d", 1.0, d3_off)) EXPECT_EQ(v, 0.0);
+  EXPECT_GT(run("flatland", 1.0, {{-147, 0}})[0], 1e10);
+  const std::vector<double> bent = run("flatland", 1.05, flat_off), bent3 = run("3d", 1.05, d3_off);
+  EXPECT_GT(bent[0] + bent[1] + bent[2], 0.0) << "the broken variant (eta 1.05) should bend light there";
+  EXPECT_GT(bent3[0] + bent3[1] + bent3[2], 0.0) << "the broken variant (eta 1.05) should bend light there";
+  // The file and the flag: the same bits.
+  const json one = run_json(
+      "--model vgroove-dielectric --alpha 0.5 --dim flatland --eta 1.05 --theta-i-deg 33 "
+      "--theta-o-deg -151");
+  EXPECT_EQ(one["points"][0]["value"].get<double>(), bent[1]);
+}
+
 // Bad input: one line on stderr naming the flag and its range, exit 2, nothing on stdout; the
 // flags of the other models are refused, not ignored.
 TEST(CmdBrdfDielectric, BadInput) {
@@ -626,20 +743,42 @@ TEST(CmdBrdfDielectric, BadInput) {
       {"--dim 2d", "--dim = \"2d\" is not one of \"3d\", \"flatland\""},
       {"--per-k --per-k-max 0", "--per-k-max"},
       {"--per-k --per-k-max 1001", "--per-k-max"},
-      {"--theta-o-deg 10", "--theta-o-deg does not apply to --model vgroove-dielectric"},
       {"--masking smith", "--masking does not apply to --model vgroove-dielectric"},
       {"--alpha-y 0.3", "--alpha-y does not apply to --model vgroove-dielectric"},
       {"--partner symmetric", "--partner does not apply to --model vgroove-dielectric"},
       {"--max-k 4", "--max-k does not apply to --model vgroove-dielectric"},
       {"--phi-i-deg 30", "--phi-i-deg does not apply to --model vgroove-dielectric"},
       {"--phi-o-deg 30", "--phi-o-deg does not apply to --model vgroove-dielectric"},
+      // At a point (--theta-o-deg): the ranges of walter's directions less the horizon.
+      {"--theta-o-deg 90", "--theta-o-deg = 90 is out of range [0, 90) or (90, 180] with --model vgroove-dielectric"},
+      {"--dim flatland --theta-o-deg -90",
+       "--theta-o-deg = -90 is out of range [-180, -90) or (-90, 90) or (90, 180] with --model vgroove-dielectric"},
+      {"--theta-o-deg 181", "--theta-o-deg = 181 is out of range [0, 180]"},
+      {"--theta-o-deg -1", "--theta-o-deg = -1 is out of range [0, 180]"},
+      {"--dim flatland --theta-o-deg -181", "--theta-o-deg = -181 is out of range [-180, 180]"},
+      {"--theta-o-deg nan", "--theta-o-deg = \"nan\" is not a number"},
+      {"--theta-o-deg 10 --theta-i-deg 90", "--theta-i-deg = 90 is out of range [0, 90)"},
+      {"--theta-o-deg 10 --dim flatland --theta-i-deg -90", "--theta-i-deg = -90 is out of range (-90, 90)"},
+      {"--theta-o-deg 10 --phi-o-deg 361", "--phi-o-deg = 361 is out of range [-360, 360]"},
+      {"--theta-o-deg 10 --phi-i-deg -361", "--phi-i-deg = -361 is out of range [-360, 360]"},
+      {"--theta-o-deg 10 --eta 0", "--eta = 0 is out of range (0, 1000]"},
+      {"--theta-o-deg 10 --max-k 4", "--max-k does not apply to --model vgroove-dielectric"},
+      {"--theta-o-deg 10 --masking smith", "--masking does not apply to --model vgroove-dielectric"},
+      {"--theta-o-deg 10 --per-k --per-k-max 0", "--per-k-max"},
   };
   TempDir d;
   write_text(d.file("dirs.json"), R"({"directions": [{"theta_i_deg": 10, "theta_o_deg": 20}]})");
   std::vector<std::pair<std::string, std::string>> all;
   for (const Case& c : cases) all.emplace_back(c.args, c.message);
-  all.emplace_back("--directions '" + d.file("dirs.json") + "'",
-                   "--directions does not apply to --model vgroove-dielectric");
+  write_text(d.file("horizon.json"), R"({"directions": [{"theta_i_deg": 10, "theta_o_deg": 20},
+                                                       {"theta_i_deg": 10, "theta_o_deg": 90}]})");
+  write_text(d.file("below.json"), R"({"directions": [{"theta_i_deg": 10, "theta_o_deg": 181}]})");
+  all.emplace_back("--directions '" + d.file("horizon.json") + "'",
+                   d.file("horizon.json") + ": /directions/1/theta_o_deg = 90 is out of range [0, 90) or (90, 180]");
+  all.emplace_back("--directions '" + d.file("below.json") + "'",
+                   d.file("below.json") + ": /directions/0/theta_o_deg = 181 is out of range [-180, 180]");
+  all.emplace_back("--directions '" + d.file("dirs.json") + "' --theta-o-deg 10",
+                   "--directions cannot be combined with --theta-o-deg");
   for (std::size_t n = 0; n < all.size(); ++n) {  // every other case with --json
     const auto& [args, message] = all[n];
     const std::string cmd = "brdf --model vgroove-dielectric" + std::string(n % 2 ? " --json " : " ") + args;
