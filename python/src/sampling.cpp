@@ -8,6 +8,7 @@
 
 #include "vgroove/analytic/brdf_3d.h"
 #include "vgroove/analytic/facet_strategy.h"
+#include "vgroove/analytic/kaleidoscope_dielectric_point.h"
 #include "vgroove/analytic/sampling_3d.h"
 #include "vgroove/analytic/sampling_dielectric.h"
 #include "vgroove/analytic/sampling_flatland.h"
@@ -391,23 +392,31 @@ py::dict walter_sample(const std::string& ndf_name, double alpha, const std::opt
 // 180 deg, [0, 89.9]; flatland signed); u of shape (n, 5) in 3d, (n, 4) in flatland; light_from
 // "above" or "below". Returns wo (n x 3, z > 0 above the macrosurface; flatland in the (x, z) plane;
 // the normal with no direction), k, weight (1, or 0 with no direction), reflected.
-py::dict dielectric_sample(const std::string& ndf_name, double alpha, double eta,
-                           const std::optional<DoubleArray>& theta_i_deg, DoubleArray u, const std::string& dim_name,
-                           const std::string& light_from, int threads, const py::object& progress) {
-  const NdfKind ndf = sampler_ndf(ndf_name);
-  check_alpha(alpha);
+// The kaleidoscopic dielectric sampler's eta and light side, refused as `vgroove sample` refuses them.
+void check_dielectric_eta(double eta) {
   if (!(eta > 0.0 && eta <= validation::kMaxFresnelEta && eta != 1.0))
     throw support::UserError("eta = " + support::number_text(eta) + " is out of range " +
                              support::interval_text(0, false, validation::kMaxFresnelEta, true) +
                              ", not 1, with model vgroove-dielectric (at eta = 1 every chain goes straight through: a "
                              "delta, no lobe to sample)");
+}
+analytic::DielectricLightFrom dielectric_light_from(const std::string& light_from) {
+  if (light_from == "below") return analytic::DielectricLightFrom::below;
+  if (light_from != "above")
+    throw support::UserError("light_from = \"" + light_from + "\" is not one of \"above\", \"below\"");
+  return analytic::DielectricLightFrom::above;
+}
+
+py::dict dielectric_sample(const std::string& ndf_name, double alpha, double eta,
+                           const std::optional<DoubleArray>& theta_i_deg, DoubleArray u, const std::string& dim_name,
+                           const std::string& light_from, int threads, const py::object& progress) {
+  const NdfKind ndf = sampler_ndf(ndf_name);
+  check_alpha(alpha);
+  check_dielectric_eta(eta);
   const SurfaceDim dim = parse_dim(dim_name);
   const bool flat = dim == SurfaceDim::flatland;
   analytic::DielectricSamplerOptions opt;
-  if (light_from == "below")
-    opt.from = analytic::DielectricLightFrom::below;
-  else if (light_from != "above")
-    throw support::UserError("light_from = \"" + light_from + "\" is not one of \"above\", \"below\"");
+  opt.from = dielectric_light_from(light_from);
   validation::check_threads(threads, "threads");
   const std::size_t m = flat ? 4 : 5;
   if (u.ndim() != 2 || static_cast<std::size_t>(u.shape(1)) != m)
@@ -453,6 +462,49 @@ py::dict dielectric_sample(const std::string& ndf_name, double alpha, double eta
   out["k"] = k;
   out["weight"] = weight;
   out["reflected"] = reflected;
+  return out;
+}
+
+// The density of dielectric_sample's directions at wo (analytic/kaleidoscope_dielectric_point.h):
+// per steradian in 3D, per radian of theta_o in flatland (wo in the plane y = 0, its angle from the
+// exit side's normal as the sampler encodes it); 0 on the horizon.
+py::array_t<double> dielectric_pdf(const std::string& ndf_name, double alpha, double eta,
+                                   const std::optional<DoubleArray>& theta_i_deg, DoubleArray wo,
+                                   const std::string& dim_name, const std::string& light_from, int threads,
+                                   const py::object& progress) {
+  const NdfKind ndf = sampler_ndf(ndf_name);
+  check_alpha(alpha);
+  check_dielectric_eta(eta);
+  const bool flat = parse_dim(dim_name) == SurfaceDim::flatland;
+  analytic::DielectricPointOptions opt;
+  opt.from = dielectric_light_from(light_from);
+  const bool below = opt.from == analytic::DielectricLightFrom::below;
+  validation::check_threads(threads, "threads");
+  if (wo.ndim() != 2 || wo.shape(1) != 3) throw support::UserError("wo must be an array of shape (n, 3)");
+  const std::size_t n = static_cast<std::size_t>(wo.shape(0));
+  std::optional<Rows> wi_unit;
+  const Light light = light_of(std::nullopt, wi_unit, theta_i_deg, n, flat);
+  wo = unit_directions(wo, "wo", flat);
+  ProgressRelay relay(progress);
+  auto out = new_array<double>({static_cast<py::ssize_t>(n)});
+  double* po = out.mutable_data();
+  const double* pw = wo.data();
+  for_rows(n, threads, light, relay, false, [&](std::size_t j, LightCursor&) {
+    const double* o = pw + 3 * j;
+    const double ti = light.angle(j);
+    if (o[2] == 0.0) {
+      po[j] = 0.0;
+    } else if (flat) {
+      // dielectric_sample's encoding: (-sin t, 0, cos t) above, (sin t, 0, -cos t) below.
+      const bool above = o[2] > 0.0;
+      const double t = above ? std::atan2(-o[0], o[2]) : std::atan2(o[0], -o[2]);
+      po[j] = analytic::kaleidoscope_dielectric_pdf_flatland(ndf, alpha, eta, ti, t, above != below, opt);
+    } else {
+      analytic::Dir3 i = analytic::dir3(ti, std::numbers::pi);  // the sampler's light, mirrored from below
+      if (below) i.z = -i.z;
+      po[j] = analytic::kaleidoscope_dielectric_pdf_3d(ndf, alpha, eta, i, analytic::Dir3{o[0], o[1], o[2]}, opt);
+    }
+  });
   return out;
 }
 
@@ -518,6 +570,9 @@ void bind_sampling(py::module_& m) {
   m.def("walter_pdf", &walter_pdf, py::arg("ndf"), py::arg("alpha"), py::arg("wi"), py::arg("theta_i_deg"),
         py::arg("wo"), py::arg("eta"), py::arg("masking"), py::arg("strategy_given"), py::arg("max_k_given"),
         py::arg("dim"), py::arg("threads"), py::arg("progress") = py::none());
+  m.def("dielectric_pdf", &dielectric_pdf, py::arg("ndf"), py::arg("alpha"), py::arg("eta"), py::arg("theta_i_deg"),
+        py::arg("wo"), py::arg("dim"), py::arg("light_from") = "above", py::arg("threads") = 0,
+        py::arg("progress") = py::none());
   m.def("dielectric_sample", &dielectric_sample, py::arg("ndf"), py::arg("alpha"), py::arg("eta"),
         py::arg("theta_i_deg"), py::arg("u"), py::arg("dim"), py::arg("light_from") = "above", py::arg("threads") = 0,
         py::arg("progress") = py::none());

@@ -171,7 +171,7 @@ def sample(ndf: str, alpha: float, u: np.ndarray, *, wi: Optional[np.ndarray] = 
         transmitted light heading back up, a groove of k > 32, rounding), ``weight`` (1, or 0 where
         no direction: the draws' density is the model's BSDF |cos theta_o|, so the mean weight is
         R + T and the draws binned are :func:`vgroove.dielectric_lobe`'s bins) and ``reflected``
-        (bool); no pdf (:func:`pdf` refuses the model).
+        (bool); their density is :func:`pdf`'s.
 
     Raises
     ------
@@ -234,9 +234,7 @@ def pdf(ndf: str, alpha: float, wo: np.ndarray, *, wi: Optional[np.ndarray] = No
     wo : array_like, shape (..., 3)
         Unit vectors towards the viewer (flatland: in the plane y = 0).
     wi, theta_i_deg, strategy, max_k, dim, model, tolerance, threads, eta, masking
-        As in :func:`sample`; the shapes broadcast to S. Not ``model="vgroove-dielectric"``
-        (its sampler gives no density at a direction yet; :func:`vgroove.dielectric_lobe` gives
-        it binned).
+        As in :func:`sample`; the shapes broadcast to S.
     progress : callable, optional
         ``progress(done, total)``, counting directions.
 
@@ -247,7 +245,11 @@ def pdf(ndf: str, alpha: float, wo: np.ndarray, *, wi: Optional[np.ndarray] = No
         reflections that ends at wo (analytic/sampling_3d.h); 0 below the horizon, +inf exactly
         at the mirror direction in 3D (where the BRDF diverges too). With ``strategy="vndf"`` the
         symmetric model's pdf equals rho(wi, wo) cos(theta_o) (F = 1). With ``model="walter"``
-        over the whole sphere (wo[..., 2] < 0: transmitted), per steradian.
+        over the whole sphere (wo[..., 2] < 0: transmitted), per steradian. With
+        ``model="vgroove-dielectric"`` over the whole sphere (circle in flatland) as :func:`sample`
+        draws it: f |cos theta_o| of the model's BSDF (analytic/kaleidoscope_dielectric_point.h,
+        :func:`vgroove.dielectric_bsdf`'s ``pdf``), integrating to R + T (the rest are the
+        sampler's zero-weight draws); 0 on the horizon.
 
     Raises
     ------
@@ -262,9 +264,10 @@ def pdf(ndf: str, alpha: float, wo: np.ndarray, *, wi: Optional[np.ndarray] = No
     >>> bool(abs(p - rho * vgroove.direction(40, 0)[2]) < 1e-12 * p)
     True
     """
-    if model == "vgroove-dielectric":
-        raise ValueError("model = \"vgroove-dielectric\" has no pdf here (its sampler draws with weight 1 but "
-                         "gives no density at a direction; vgroove.dielectric_lobe gives it binned)")
+    walter = _walter_args(model, strategy, max_k, eta, masking)
+    dielectric = model == "vgroove-dielectric"
+    if dielectric:
+        eta = _dielectric_eta(strategy, max_k, eta, wi)
     wo = reals(wo, "wo")
     if wo.shape[-1:] != (3,):
         raise ValueError(f"wo must be an array of unit vectors, shape (..., 3); got {wo.shape}")
@@ -272,7 +275,9 @@ def pdf(ndf: str, alpha: float, wo: np.ndarray, *, wi: Optional[np.ndarray] = No
     shape = np.broadcast_shapes(wo.shape[:-1], lshape)
     wo = np.ascontiguousarray(np.broadcast_to(wo, shape + (3,))).reshape(-1, 3)
     wi_, ti = _light_rows(wi_, ti, shape)
-    walter = _walter_args(model, strategy, max_k, eta, masking)
+    if dielectric:
+        return _vgroove.dielectric_pdf(ndf, real(alpha, "alpha"), eta, ti, wo, dim, threads=integer(threads, "threads"),
+                                       progress=_progress(progress)).reshape(shape)
     if walter is not None:
         return _vgroove.walter_pdf(ndf, real(alpha, "alpha"), wi_, ti, wo, *walter, dim, integer(threads, "threads"),
                                    progress=_progress(progress)).reshape(shape)

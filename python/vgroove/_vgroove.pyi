@@ -100,6 +100,9 @@ def walter_pdf(ndf: str, alpha: float, wi: Optional[npt.NDArray[np.float64]],
                theta_i_deg: Optional[npt.NDArray[np.float64]], wo: npt.NDArray[np.float64], eta: float,
                masking: str, strategy_given: bool, max_k_given: bool, dim: str, threads: int,
                progress: Progress = None) -> npt.NDArray[np.float64]: ...
+def dielectric_pdf(ndf: str, alpha: float, eta: float, theta_i_deg: Optional[npt.NDArray[np.float64]],
+                   wo: npt.NDArray[np.float64], dim: str, light_from: str = "above", threads: int = 0,
+                   progress: Progress = None) -> npt.NDArray[np.float64]: ...
 def dielectric_sample(ndf: str, alpha: float, eta: float, theta_i_deg: Optional[npt.NDArray[np.float64]],
                       u: npt.NDArray[np.float64], dim: str, light_from: str = "above", threads: int = 0,
                       progress: Progress = None) -> dict[str, np.ndarray]: ...
