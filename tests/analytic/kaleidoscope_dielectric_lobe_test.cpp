@@ -167,9 +167,12 @@ int flat_bin(double t, int bins) {
 
 constexpr std::uint64_t kSurfaceSeed = 0x6b64336c6f6265ULL;  // "kd3lobe"
 
-// Flatland: n grooves drawn from 2 D2 cos (make_microsurface), ray j landing uniformly across the
-// opening of groove j (every groove's opening has the same width).
-Traced trace_flatland(NdfKind ndf, double alpha, double eta, double theta_i, int bins, int n) {
+// Flatland: n grooves drawn from 2 D2 cos (make_microsurface), one ray each traced with Fresnel-
+// weighted random branching by trace_ray(surface, tracer, j, rng, result), its one exit binned as
+// sim::exit_angle: reflected when it leaves on the light's side `light`.
+template <class TraceRay>
+Traced trace_flatland_rays(NdfKind ndf, double alpha, double eta, int bins, int n, std::uint64_t stream,
+                           sim::Medium light, TraceRay&& trace_ray) {
   sim::MicrosurfaceOptions mo;
   mo.ndf = ndf, mo.alpha = alpha, mo.grooves = n, mo.seed = kSurfaceSeed;
   const sim::Microsurface surf = sim::make_microsurface(mo);
@@ -177,23 +180,33 @@ Traced trace_flatland(NdfKind ndf, double alpha, double eta, double theta_i, int
   o.eta = eta;
   o.branching = sim::Branching::random;
   const sim::DielectricSurfaceTracer tracer(surf, o);
-  sim::Rng rng(kSurfaceSeed, 1, 0);
+  sim::Rng rng(kSurfaceSeed, stream, 0);
   Traced out;
   out.r.assign(bins, 0.0), out.t.assign(bins, 0.0), out.n = n;
   sim::DielectricResult r;
   for (int j = 0; j < n; ++j) {
-    const sim::Groove& g = surf.grooves[j];
-    const double xl = g.rim_x(sim::Side::left), xr = g.rim_x(sim::Side::right);
-    const double x = xl + sim::uniform_open(rng) * (xr - xl);
-    tracer.trace_from_above(j, sim::beam_ray(g, sim::Vec2(std::sin(theta_i), -std::cos(theta_i)), x), rng, r);
+    trace_ray(surf, tracer, j, rng, r);
     if (r.exits.empty()) {
       out.lost += 1.0 / n;
       continue;
     }
     const sim::DielectricExit& e = r.exits.front();
-    (e.side == sim::Medium::above ? out.r : out.t)[flat_bin(sim::exit_angle(e), bins)] += 1.0 / n;
+    (e.side == light ? out.r : out.t)[flat_bin(sim::exit_angle(e), bins)] += 1.0 / n;
   }
   return out;
+}
+
+// From above: ray j landing uniformly across the opening of groove j (every opening is as wide).
+Traced trace_flatland(NdfKind ndf, double alpha, double eta, double theta_i, int bins, int n) {
+  return trace_flatland_rays(ndf, alpha, eta, bins, n, 1, sim::Medium::above,
+                             [&](const sim::Microsurface& surf, const sim::DielectricSurfaceTracer& tracer, int j,
+                                 sim::Rng& rng, sim::DielectricResult& r) {
+                               const sim::Groove& g = surf.grooves[j];
+                               const double xl = g.rim_x(sim::Side::left), xr = g.rim_x(sim::Side::right);
+                               const double x = xl + sim::uniform_open(rng) * (xr - xl);
+                               tracer.trace_from_above(
+                                   j, sim::beam_ray(g, sim::Vec2(std::sin(theta_i), -std::cos(theta_i)), x), rng, r);
+                             });
 }
 
 // 3D by lifting (validation/glass_energy.cpp's surface): n grooves with theta_m from the projected-
@@ -324,28 +337,12 @@ TEST(KaleidoscopeDielectricLobeLong, FlatlandMissesMeasured) {
 // Light from below on the flatland surface (trace_from_below: uniform over the period, travelling
 // along (sin theta_i, cos theta_i)), binned as sim::exit_angle: reflected = back below.
 Traced trace_flatland_from_below(NdfKind ndf, double alpha, double eta, double theta_i, int bins, int n) {
-  sim::MicrosurfaceOptions mo;
-  mo.ndf = ndf, mo.alpha = alpha, mo.grooves = n, mo.seed = kSurfaceSeed;
-  const sim::Microsurface surf = sim::make_microsurface(mo);
-  sim::DielectricOptions o;
-  o.eta = eta;
-  o.branching = sim::Branching::random;
-  const sim::DielectricSurfaceTracer tracer(surf, o);
-  sim::Rng rng(kSurfaceSeed, 4, 0);
-  Traced out;
-  out.r.assign(bins, 0.0), out.t.assign(bins, 0.0), out.n = n;
-  sim::DielectricResult r;
-  for (int j = 0; j < n; ++j) {
-    const double x = (j + sim::uniform_open(rng));
-    tracer.trace_from_below(x, sim::Vec2(std::sin(theta_i), std::cos(theta_i)), rng, r);
-    if (r.exits.empty()) {
-      out.lost += 1.0 / n;
-      continue;
-    }
-    const sim::DielectricExit& e = r.exits.front();
-    (e.side == sim::Medium::below ? out.r : out.t)[flat_bin(sim::exit_angle(e), bins)] += 1.0 / n;
-  }
-  return out;
+  return trace_flatland_rays(ndf, alpha, eta, bins, n, 4, sim::Medium::below,
+                             [&](const sim::Microsurface&, const sim::DielectricSurfaceTracer& tracer, int j,
+                                 sim::Rng& rng, sim::DielectricResult& r) {
+                               const double x = (j + sim::uniform_open(rng));
+                               tracer.trace_from_below(x, sim::Vec2(std::sin(theta_i), std::cos(theta_i)), rng, r);
+                             });
 }
 
 TEST(KaleidoscopeDielectricLobe, FromBelowIsTheModelAtTheInverseEtaMirrored) {
