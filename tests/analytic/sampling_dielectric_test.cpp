@@ -60,24 +60,31 @@ struct Outcome {
   std::string text;
 };
 
+// n samples' expected counts in the cells [side][row k][bin] of the lobe's bins per k (side 0
+// reflected), then the failures' cell: n times what the bins leave of 1.
+std::vector<double> expected_counts(const DielectricLobe& L, int bins, long n) {
+  const int rows = kMaxK + 2;
+  std::vector<double> expected(2u * rows * bins + 1, 0.0);
+  double mass = 0.0;
+  for (int side = 0; side < 2; ++side)
+    for (int row = 0; row < rows; ++row)
+      for (int b = 0; b < bins; ++b) {
+        const double v = (side == 0 ? L.reflected_by_k : L.transmitted_by_k)[row][b];
+        expected[(side * rows + row) * bins + b] = n * v;
+        mass += v;
+      }
+  expected.back() = n * (1.0 - mass);
+  return expected;
+}
+
 Outcome run(const Case& c, long n, int tests, std::uint64_t seed, DielectricSamplerBreak broken) {
   DielectricLobeOptions lo;
   lo.from = c.from;
   const DielectricLobe L =
       kaleidoscope_dielectric_lobe_flatland(c.ndf, c.alpha, c.eta, deg(c.theta_i_deg), kBins, kMaxK, lo);
   const int rows = kMaxK + 2;
-  // Cells: [side][row][bin], then the failures.
-  const std::size_t cells = 2u * rows * kBins + 1;
-  std::vector<double> expected(cells, 0.0), observed(cells, 0.0);
-  double mass = 0.0;
-  for (int side = 0; side < 2; ++side)
-    for (int row = 0; row < rows; ++row)
-      for (int b = 0; b < kBins; ++b) {
-        const double v = (side == 0 ? L.reflected_by_k : L.transmitted_by_k)[row][b];
-        expected[(side * rows + row) * kBins + b] = n * v;
-        mass += v;
-      }
-  expected.back() = n * (1.0 - mass);
+  const std::vector<double> expected = expected_counts(L, kBins, n);
+  std::vector<double> observed(expected.size(), 0.0);
   DielectricSamplerOptions so;
   so.from = c.from;
   so.broken = broken;
@@ -172,17 +179,8 @@ DielectricLobe lobe_3d(const Case& c, int phi_panels, bool error_estimate) {
 Outcome run_3d(const Case& c, const DielectricLobe& L, long n, int tests, std::uint64_t seed,
                DielectricSamplerBreak broken) {
   const int rows = kMaxK + 2, bins = kThetaBins * kPhiBins;
-  const std::size_t cells = 2u * rows * bins + 1;
-  std::vector<double> expected(cells, 0.0), observed(cells, 0.0);
-  double mass = 0.0;
-  for (int side = 0; side < 2; ++side)
-    for (int row = 0; row < rows; ++row)
-      for (int b = 0; b < bins; ++b) {
-        const double v = (side == 0 ? L.reflected_by_k : L.transmitted_by_k)[row][b];
-        expected[(side * rows + row) * bins + b] = n * v;
-        mass += v;
-      }
-  expected.back() = n * (1.0 - mass);
+  const std::vector<double> expected = expected_counts(L, bins, n);
+  std::vector<double> observed(expected.size(), 0.0);
   DielectricSamplerOptions so;
   so.from = c.from;
   so.broken = broken;
