@@ -761,8 +761,8 @@ double glass_noise_threshold(std::size_t m) {
 void GlassErrorStat::add(double e, double z, const std::string& where) {
   if (!std::isfinite(e)) return;
   ++n, sum_abs += std::abs(e), sum += e, sum_abs_z += std::abs(z);
-  if (n == 1 || std::abs(e) > std::abs(worst)) worst = e, at = where;
-  if (n == 1 || std::abs(z) > std::abs(worst_z)) worst_z = z, z_at = where;
+  if (n == 1 || std::abs(e) > std::abs(worst)) worst = e, worst_z = z, at = where;
+  if (n == 1 || std::abs(z) > std::abs(max_z)) max_z = z, z_at = where;
 }
 double GlassErrorStat::mean_abs() const { return n ? sum_abs / static_cast<double>(n) : std::nan(""); }
 double GlassErrorStat::mean() const { return n ? sum / static_cast<double>(n) : std::nan(""); }
@@ -843,13 +843,14 @@ void print_glass_form_summary(std::ostream& os, const GlassFormSummary& s, Glass
   const GlassErrorStat& any = s.at(0, 0, 0, 0);
   if (s.forms.empty() || any.n == 0) return;
   os << "  The forms over the grid against " << glass_reference_name(reference) << " (" << any.n
-     << " cells): error = formula - traced, worst (signed), its z = error / se and the mean |error|;\n"
-        "  se = sqrt(max(p (1 - p), 1 / rays) / rays) of the traced share; * within noise: max |z| <= z_m, m "
-        "erfc(z_m / sqrt 2) = 1 %\n  over the line's m cells (Bonferroni); rough: alpha >= "
+     << " cells): error = formula - traced, the worst (signed), its z = error / se, the mean |error|;\n"
+        "  se = sqrt(max(p (1 - p), 1 / rays) / rays) of the traced share; * within noise: the largest |z| of the "
+        "line's m cells\n  <= z_m, m erfc(z_m / sqrt 2) = 1 % (Bonferroni); rough: alpha >= "
      << support::number_text(s.regions.rough_alpha) << ", grazing: mu <= " << support::number_text(s.regions.grazing_mu)
      << " (the conductor audit's regions)\n";
   os << support::format("  %-13s %-5s %-7s %4s | %-27s | %-27s | %-27s | %s\n", "form", "side", "region", "n",
-                        "R' worst (z)  mean|e|", "T' worst (z)  mean|e|", "R'+T' worst (z)  mean|e|", "z_m");
+                        "R' worst (z)  mean|e|", "T' worst (z)  mean|e|", "R'+T' worst (z)  mean|e|",
+                        "z_m, largest |z|");
   for (std::size_t f = 0; f < s.forms.size(); ++f)
     for (int side = 0; side < 3; ++side)
       for (int reg = 0; reg < 3; ++reg) {
@@ -861,7 +862,10 @@ void print_glass_form_summary(std::ostream& os, const GlassFormSummary& s, Glass
           line += support::format(" | %+9.2e %7.1f%s %8.2e", st.worst, st.worst_z, st.within_noise() ? "*" : " ",
                                   st.mean_abs());
         }
-        os << line << support::format(" | %.2f\n", s.at(f, side, reg, 0).threshold());
+        os << line
+           << support::format(" | %.2f, %.1f / %.1f / %.1f\n", s.at(f, side, reg, 0).threshold(),
+                              std::abs(s.at(f, side, reg, 0).max_z), std::abs(s.at(f, side, reg, 1).max_z),
+                              std::abs(s.at(f, side, reg, 2).max_z));
       }
   for (int side = 0; side < 3; ++side)
     for (int reg = 0; reg < 3; ++reg)
@@ -901,7 +905,8 @@ nlohmann::json glass_form_summary_json(const GlassTable& t, const std::vector<Gl
                              {"mean_abs", num(st.mean_abs())},
                              {"mean", num(st.mean())},
                              {"worst_z", num(st.worst_z)},
-                             {"worst_z_at", st.z_at},
+                             {"max_z", num(st.max_z)},
+                             {"max_z_at", st.z_at},
                              {"mean_abs_z", num(st.mean_abs_z())},
                              {"z_threshold", st.threshold()},
                              {"within_noise", st.within_noise()}});

@@ -198,14 +198,16 @@ double glass_noise_threshold(std::size_t m);
 // One (form, side, region, quantity): the grid's cells (mu != kHemisphere), errors formula - traced.
 struct GlassErrorStat {
   long n = 0;
-  double worst = 0.0, sum_abs = 0.0, sum = 0.0, worst_z = 0.0, sum_abs_z = 0.0;  // worst, worst_z signed
+  double worst = 0.0, worst_z = 0.0;  // the largest |error| (signed) and its z, at `at`
+  double max_z = 0.0;                 // the largest |z| (signed), at `z_at`
+  double sum_abs = 0.0, sum = 0.0, sum_abs_z = 0.0;
   std::string at, z_at;
   void add(double e, double z, const std::string& where);
   double mean_abs() const;
   double mean() const;
   double mean_abs_z() const;
   double threshold() const { return glass_noise_threshold(static_cast<std::size_t>(n)); }
-  bool within_noise() const { return n > 0 && std::abs(worst_z) <= threshold(); }
+  bool within_noise() const { return n > 0 && std::abs(max_z) <= threshold(); }
 };
 struct GlassFormSummary {
   std::vector<std::string> forms;

@@ -340,6 +340,7 @@ TEST(GlassEnergy, FormSummaryIsTheHandComputation) {
   EXPECT_NEAR(R.mean_abs(), (std::abs(eR[0]) + std::abs(eR[1]) + std::abs(eR[2])) / 3.0, 1e-15);
   EXPECT_NEAR(R.mean(), (eR[0] + eR[1] + eR[2]) / 3.0, 1e-15);
   EXPECT_NEAR(R.worst_z, eR[0] / seR[0], 1e-9);
+  EXPECT_NEAR(R.max_z, eR[0] / seR[0], 1e-9);
   EXPECT_NEAR(R.mean_abs_z(), (std::abs(eR[0] / seR[0]) + std::abs(eR[1] / seR[1])) / 3.0, 1e-9);
   EXPECT_EQ(R.at, "ggx above eta 1.5 alpha 0.6 mu 0.2");
   EXPECT_FALSE(R.within_noise());  // 6.7 se > 2.94
@@ -348,7 +349,10 @@ TEST(GlassEnergy, FormSummaryIsTheHandComputation) {
   EXPECT_NEAR(T.mean_abs(), (std::abs(eT[0]) + std::abs(eT[2])) / 3.0, 1e-15);
   const GlassErrorStat& S = s.at(0, 0, 0, 2);
   EXPECT_NEAR(S.worst, eS[0], 1e-15);
-  EXPECT_NEAR(S.worst_z, eS[2] / seS[2], 1e-6);  // -300: R + T = 1 traced, its se one ray's worth
+  EXPECT_NEAR(S.worst_z, eS[0] / seS[0], 1e-9);  // at the worst error, row 0: 0.07 / 0.003
+  EXPECT_EQ(S.at, "ggx above eta 1.5 alpha 0.6 mu 0.2");
+  EXPECT_NEAR(S.max_z, eS[2] / seS[2], 1e-6);  // -300 at row 2: R + T = 1 traced, its se one ray's worth
+  EXPECT_EQ(S.z_at, "ggx above eta 1.5 alpha 0.6 mu 0.8");
   EXPECT_NEAR(S.mean_abs_z(), (std::abs(eS[0] / seS[0]) + std::abs(eS[1] / seS[1]) + std::abs(eS[2] / seS[2])) / 3.0,
               1e-6);
   // Rough (alpha >= 0.5): rows 0 and 2; grazing (mu <= 0.25): row 0; below: row 1.
@@ -359,6 +363,7 @@ TEST(GlassEnergy, FormSummaryIsTheHandComputation) {
   EXPECT_EQ(s.at(0, 2, 0, 0).n, 1);
   EXPECT_NEAR(s.at(0, 2, 0, 0).worst, eR[1], 1e-15);
   EXPECT_NEAR(s.at(0, 2, 0, 0).worst_z, -2.0, 1e-9);
+  EXPECT_NEAR(s.at(0, 2, 0, 0).max_z, -2.0, 1e-9);
   EXPECT_TRUE(s.at(0, 2, 0, 0).within_noise());  // |z| 2 <= 2.58 (m = 1)
   EXPECT_EQ(s.at(0, 1, 2, 0).n, 1);
   EXPECT_EQ(s.at(0, 2, 2, 0).n, 0);  // no grazing cell from below
