@@ -828,6 +828,10 @@ namespace {
 std::string tied_names(const GlassFormSummary& s, int side, int region, int quantity, bool farthest) {
   const int b = s.closest(side, region, quantity, farthest);
   if (b < 0) return "";
+  const double spread =
+      s.at(static_cast<std::size_t>(s.closest(side, region, quantity, true)), side, region, quantity).mean_abs() -
+      s.at(static_cast<std::size_t>(s.closest(side, region, quantity)), side, region, quantity).mean_abs();
+  if (farthest && spread <= 1e-12) return "none (all tied)";
   const double m = s.at(static_cast<std::size_t>(b), side, region, quantity).mean_abs();
   std::string out;
   for (std::size_t f = 0; f < s.forms.size(); ++f) {
