@@ -468,6 +468,36 @@ TEST(GlassEnergy, BrokenFormIsTheWorstOverTheGrid) {
   }
 }
 
+// The issue's grid against the walk (GGX, eta 1.33, 1.5, 2.4 x alpha 0.1, 0.3, 0.6, 1 x 8 mu
+// midpoints x both sides = 192 cells, 20000 walks a cell; ~11 s on 2 threads, label long): the
+// walk loses nothing, so the forms that conserve energy (scale_one and cycles_glass from both
+// sides, MoonRay from above) have R' + T' within noise over the whole grid, and MoonRay from below
+// falls short beyond it; Kulla-Conty from above reflects too much in the rough region (the measured
+// finding: mean error > 0, beyond noise). The summary is printed.
+TEST(GlassEnergyLong, FormsOverTheIssueGrid) {
+  GlassGrid g;
+  g.reference = GlassReference::smith_walk;
+  g.etas = {1.33, 1.5, 2.4};
+  g.alphas = {0.1, 0.3, 0.6, 1.0};
+  g.mus = midpoints(8);
+  g.rays = 20000;
+  const GlassTable t = run(g);
+  const std::vector<GlassCompensationRow> rows = glass_compensation_audit(t);
+  const GlassFormSummary s = glass_form_summary(rows, glass_forms());
+  print_glass_form_summary(std::cout, s, g.reference);
+  const std::size_t moon = 0, one = 1, cycles = 2;
+  const int both = 0, above = 1, below = 2, all = 0, rough = 1, sum = 2;
+  for (std::size_t f = 0; f < 3; ++f) EXPECT_EQ(s.at(f, both, all, sum).n, 192);
+  EXPECT_TRUE(s.at(one, both, all, sum).within_noise());
+  EXPECT_TRUE(s.at(cycles, both, all, sum).within_noise());
+  EXPECT_TRUE(s.at(moon, above, all, sum).within_noise());
+  EXPECT_FALSE(s.at(moon, below, all, sum).within_noise());
+  EXPECT_LT(s.at(moon, below, all, sum).worst, 0.0);
+  const GlassErrorStat& r = s.at(moon, above, rough, 0);
+  EXPECT_GT(r.mean(), 0.0);
+  EXPECT_FALSE(r.within_noise());
+}
+
 TEST(GlassEnergy, BadGridsAreNamed) {
   GlassGrid g;
   g.etas = {1.5};
