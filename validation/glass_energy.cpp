@@ -1,6 +1,7 @@
 #include "vgroove/validation/glass_energy.h"
 
 #include "vgroove/analytic/albedo_glass.h"
+#include "vgroove/analytic/compensation.h"
 #include "vgroove/analytic/quadrature.h"
 #include "vgroove/analytic/smith_walk_3d_dielectric.h"
 #include "vgroove/analytic/smith_walk_flatland_dielectric.h"
@@ -14,6 +15,7 @@
 #include "vgroove/support/seconds_since.h"
 #include "vgroove/support/user_error.h"
 #include "vgroove/validation/detail/part_fields.h"
+#include "vgroove/validation/energy_audit.h"
 #include "vgroove/validation/ranges.h"
 #include "vgroove/validation/report.h"
 
@@ -21,6 +23,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <numeric>
@@ -538,7 +541,11 @@ nlohmann::json glass_table_json(const GlassTable& t) {
                        "T_avg(above) = eta^p T_avg(below), p = 2 in 3D and 1 in flatland (reciprocity of "
                        "the exact surface, f_t(i, o) / n_o^p = f_t(o, i) / n_i^p)"},
                       {"pairs", pairs}};
-  j["kulla_conty_glass"] = glass_compensation_audit_json(glass_compensation_audit(t));
+  const std::vector<GlassCompensationRow> audit = glass_compensation_audit(t);
+  j["kulla_conty_glass"] = glass_compensation_audit_json(audit);
+  if (!audit.empty())
+    j["kulla_conty_glass"].update(
+        glass_form_summary_json(t, audit, glass_forms(), glass_form_summary(audit, glass_forms())));
   return j;
 }
 
@@ -572,7 +579,9 @@ void print_glass_table(std::ostream& os, const GlassTable& t) {
                   r.cell.dim == SurfaceDim::three_d ? 2 : 1, r.scaled_below, r.z());
     os << line;
   }
-  print_glass_compensation_audit(os, glass_compensation_audit(t));
+  const std::vector<GlassCompensationRow> rows = glass_compensation_audit(t);
+  print_glass_compensation_audit(os, rows);
+  if (!rows.empty()) print_glass_form_summary(os, glass_form_summary(rows, glass_forms()), g.reference);
 }
 
 namespace {
@@ -634,6 +643,8 @@ std::vector<GlassCompensationRow> glass_compensation_audit(const GlassTable& t) 
     a.F_avg_in = analytic::dielectric_fresnel_average(1.0 / N, f).value;
     GlassCompensationRow r;
     r.cell = x;
+    r.eta_rel = eta_rel;
+    r.averages = a;
     if (x.mu == kHemisphere) {
       r.E_R = eta_rel > 1.0 ? s.R_out : s.R_in;
       r.E_T = eta_rel > 1.0 ? s.T_out : s.T_in;
@@ -644,8 +655,13 @@ std::vector<GlassCompensationRow> glass_compensation_audit(const GlassTable& t) 
     r.moonray = analytic::kulla_conty_glass_albedo(r.E_R, r.E_T, analytic::kulla_conty_glass_weights(eta_rel, a));
     r.scale_one = analytic::kulla_conty_glass_albedo(
         r.E_R, r.E_T, analytic::kulla_conty_glass_weights(eta_rel, a, analytic::KullaContyGlassForm::inside_scale_one));
+    const double cycles_scale = analytic::cycles_glass_albedo_scaling(r.E_R + r.E_T, 1.0);  // clear glass: Fss 1
+    r.cycles = {r.E_R * cycles_scale, r.E_T * cycles_scale};
     const GlassCounts& n = t.cells[c];
     const double rays = static_cast<double>(n.rays);
+    r.rays = n.rays;
+    r.left = std::accumulate(n.reflected.begin(), n.reflected.end(), 0LL) +
+             std::accumulate(n.transmitted.begin(), n.transmitted.end(), 0LL);
     r.R = audit_share(n.reflected, n.rays), r.T = audit_share(n.transmitted, n.rays);
     r.se_R = std::sqrt(r.R * (1.0 - r.R) / rays), r.se_T = std::sqrt(r.T * (1.0 - r.T) / rays);
     rows.push_back(r);
@@ -688,17 +704,300 @@ nlohmann::json glass_compensation_audit_json(const std::vector<GlassCompensation
                      {"moonray_T", r.moonray.T},
                      {"scale_one_R", r.scale_one.R},
                      {"scale_one_T", r.scale_one.T},
+                     {"cycles_glass_R", r.cycles.R},
+                     {"cycles_glass_T", r.cycles.T},
                      {"traced_R", r.R},
                      {"traced_T", r.T},
                      {"se_R", r.se_R},
                      {"se_T", r.se_T}});
   return {{"definition",
            "Kulla-Conty rough-glass compensation as MoonRay ships it (moonray) and with the inside transmitted "
-           "weight unscaled (scale_one), fed with the exact single scattering E_ss_R, E_ss_T of the reference's "
+           "weight unscaled (scale_one), Cycles' glass scaling of both lobes by 1 / E (cycles_glass), fed with the "
+           "exact single scattering E_ss_R, E_ss_T of the reference's "
            "model (smith_walk: Walter with the height-correlated Smith G2; vgroove: Walter with the V-cavity G) "
            "and the exact dielectric F_avg, beside the traced totals; 3D cells; docs/derivations/"
            "energy_compensation.md"},
           {"cells", cells}};
+}
+
+// ---- The forms over the grid ----------------------------------------------------------------------
+
+const std::vector<GlassForm>& glass_forms() {
+  static const std::vector<GlassForm> forms = {
+      {"moonray",
+       "Kulla-Conty glass as MoonRay ships it: R' = E_R + w_R (1 - E), T' = E_T + w_T (1 - E), inside w_T "
+       "carrying n^2 = 1 / eta^2",
+       [](const GlassCompensationRow& r) { return r.moonray; }},
+      {"scale_one", "the same with the inside transmitted weight unscaled (n^2 -> 1)",
+       [](const GlassCompensationRow& r) { return r.scale_one; }},
+      {"cycles_glass",
+       "Cycles' glass (microfacet_ggx_glass_albedo_scaling, clear glass Fss = 1): R' = E_R / E, T' = E_T / E, "
+       "E = E_R + E_T of the lit side",
+       [](const GlassCompensationRow& r) { return r.cycles; }}};
+  return forms;
+}
+
+GlassRegions glass_regions() {
+  const EnergyAuditSuite s;
+  return {s.rough_alpha, s.grazing_mu};
+}
+
+double glass_share_se(double p, long long n) {
+  const double N = static_cast<double>(n);
+  return n > 0 ? std::sqrt(std::max(p * (1.0 - p), 1.0 / N) / N) : 0.0;
+}
+
+double glass_noise_threshold(std::size_t m) {
+  // m erfc(z / sqrt 2) = 0.01, by bisection (erfc falls monotonically).
+  const double want = 0.01 / static_cast<double>(std::max<std::size_t>(m, 1));
+  double lo = 0.0, hi = 40.0;
+  for (int i = 0; i < 200 && hi - lo > 1e-12; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (std::erfc(mid / std::numbers::sqrt2) > want ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+void GlassErrorStat::add(double e, double z, const std::string& where) {
+  if (!std::isfinite(e)) return;
+  ++n, sum_abs += std::abs(e), sum += e, sum_abs_z += std::abs(z);
+  if (n == 1 || std::abs(e) > std::abs(worst)) worst = e, worst_z = z, at = where;
+  if (n == 1 || std::abs(z) > std::abs(max_z)) max_z = z, z_at = where;
+}
+double GlassErrorStat::mean_abs() const { return n ? sum_abs / static_cast<double>(n) : std::nan(""); }
+double GlassErrorStat::mean() const { return n ? sum / static_cast<double>(n) : std::nan(""); }
+double GlassErrorStat::mean_abs_z() const { return n ? sum_abs_z / static_cast<double>(n) : std::nan(""); }
+
+int GlassFormSummary::closest(int side, int region, int quantity, bool farthest) const {
+  int best = -1;
+  for (std::size_t f = 0; f < forms.size(); ++f) {
+    const GlassErrorStat& st = at(f, side, region, quantity);
+    if (st.n == 0) continue;
+    const double m = st.mean_abs(),
+                 b = best < 0 ? 0.0 : at(static_cast<std::size_t>(best), side, region, quantity).mean_abs();
+    if (best < 0 || (farthest ? m > b : m < b)) best = static_cast<int>(f);
+  }
+  return best;
+}
+
+namespace {
+
+std::string glass_cell_text(const GlassCell& c) {
+  return support::format("%s %s eta %.4g alpha %.4g mu %.4g", ndf_name(c.ndf), side_name(c.from), c.eta, c.alpha, c.mu);
+}
+
+bool in_glass_region(int region, const GlassRegions& g, const GlassCell& c) {
+  return region == 0 || (region == 1 && c.alpha >= g.rough_alpha) || (region == 2 && c.mu <= g.grazing_mu);
+}
+
+// A row's errors (formula - traced) and their z for R', T', R' + T'.
+void row_errors(const GlassCompensationRow& r, const analytic::CompensatedGlass& f, double e[3], double z[3]) {
+  const double S = static_cast<double>(r.left) / static_cast<double>(r.rays);
+  e[0] = f.R - r.R, e[1] = f.T - r.T, e[2] = f.R + f.T - S;
+  z[0] = e[0] / glass_share_se(r.R, r.rays), z[1] = e[1] / glass_share_se(r.T, r.rays);
+  z[2] = e[2] / glass_share_se(S, r.rays);
+}
+
+}  // namespace
+
+GlassFormSummary glass_form_summary(const std::vector<GlassCompensationRow>& rows, const std::vector<GlassForm>& forms,
+                                    const GlassRegions& regions) {
+  GlassFormSummary s;
+  s.regions = regions;
+  for (const GlassForm& f : forms) s.forms.push_back(f.id);
+  s.stats.assign(forms.size() * 27, GlassErrorStat{});
+  for (const GlassCompensationRow& r : rows) {
+    if (r.cell.mu == kHemisphere || r.rays <= 0) continue;
+    const std::string where = glass_cell_text(r.cell);
+    for (std::size_t f = 0; f < forms.size(); ++f) {
+      double e[3], z[3];
+      row_errors(r, forms[f].of(r), e, z);
+      for (int side : {0, r.cell.from == sim::Medium::above ? 1 : 2})
+        for (int reg = 0; reg < 3; ++reg) {
+          if (!in_glass_region(reg, regions, r.cell)) continue;
+          for (int q = 0; q < 3; ++q) s.stats[((f * 3 + side) * 3 + reg) * 3 + q].add(e[q], z[q], where);
+        }
+    }
+  }
+  return s;
+}
+
+namespace {
+
+// The forms whose mean |error| is the closest's (or the farthest's) within 1e-12: ties named together.
+std::string tied_names(const GlassFormSummary& s, int side, int region, int quantity, bool farthest) {
+  const int b = s.closest(side, region, quantity, farthest);
+  if (b < 0) return "";
+  const double spread =
+      s.at(static_cast<std::size_t>(s.closest(side, region, quantity, true)), side, region, quantity).mean_abs() -
+      s.at(static_cast<std::size_t>(s.closest(side, region, quantity)), side, region, quantity).mean_abs();
+  if (farthest && spread <= 1e-12) return "none (all tied)";
+  const double m = s.at(static_cast<std::size_t>(b), side, region, quantity).mean_abs();
+  std::string out;
+  for (std::size_t f = 0; f < s.forms.size(); ++f) {
+    const GlassErrorStat& st = s.at(f, side, region, quantity);
+    if (st.n > 0 && std::abs(st.mean_abs() - m) <= 1e-12) out += (out.empty() ? "" : " = ") + s.forms[f];
+  }
+  return out;
+}
+
+}  // namespace
+
+void print_glass_form_summary(std::ostream& os, const GlassFormSummary& s, GlassReference reference) {
+  const GlassErrorStat& any = s.at(0, 0, 0, 0);
+  if (s.forms.empty() || any.n == 0) return;
+  os << "  The forms over the grid against " << glass_reference_name(reference) << " (" << any.n
+     << " cells): error = formula - traced, the worst (signed), its z = error / se, the mean |error|;\n"
+        "  se = sqrt(max(p (1 - p), 1 / rays) / rays) of the traced share; * within noise: the largest |z| of the "
+        "line's m cells\n  <= z_m, m erfc(z_m / sqrt 2) = 1 % (Bonferroni); rough: alpha >= "
+     << support::number_text(s.regions.rough_alpha) << ", grazing: mu <= " << support::number_text(s.regions.grazing_mu)
+     << " (the conductor audit's regions)\n";
+  os << support::format("  %-13s %-5s %-7s %4s | %-27s | %-27s | %-27s | %s\n", "form", "side", "region", "n",
+                        "R' worst (z)  mean|e|", "T' worst (z)  mean|e|", "R'+T' worst (z)  mean|e|",
+                        "z_m, largest |z|");
+  for (std::size_t f = 0; f < s.forms.size(); ++f)
+    for (int side = 0; side < 3; ++side)
+      for (int reg = 0; reg < 3; ++reg) {
+        if (s.at(f, side, reg, 0).n == 0) continue;
+        std::string line = support::format("  %-13s %-5s %-7s %4ld", s.forms[f].c_str(), kGlassSides[side],
+                                           kGlassRegionNames[reg], s.at(f, side, reg, 0).n);
+        for (int q = 0; q < 3; ++q) {
+          const GlassErrorStat& st = s.at(f, side, reg, q);
+          line += support::format(" | %+9.2e %7.1f%s %8.2e", st.worst, st.worst_z, st.within_noise() ? "*" : " ",
+                                  st.mean_abs());
+        }
+        os << line
+           << support::format(" | %.2f, %.1f / %.1f / %.1f\n", s.at(f, side, reg, 0).threshold(),
+                              std::abs(s.at(f, side, reg, 0).max_z), std::abs(s.at(f, side, reg, 1).max_z),
+                              std::abs(s.at(f, side, reg, 2).max_z));
+      }
+  for (int side = 0; side < 3; ++side)
+    for (int reg = 0; reg < 3; ++reg)
+      for (int q = 0; q < 3; ++q) {
+        const int b = s.closest(side, reg, q), w = s.closest(side, reg, q, true);
+        if (b < 0) continue;
+        const GlassErrorStat &sb = s.at(static_cast<std::size_t>(b), side, reg, q),
+                             &sw = s.at(static_cast<std::size_t>(w), side, reg, q);
+        os << support::format(
+            "  closest from %s, %s, %s': %s (mean |error| %.2e, worst %+.2e at %s, %s); farthest %s (%.2e)\n",
+            kGlassSides[side], kGlassRegionNames[reg], kGlassQuantities[q], tied_names(s, side, reg, q, false).c_str(),
+            sb.mean_abs(), sb.worst, sb.at.c_str(), sb.within_noise() ? "within noise" : "beyond noise",
+            tied_names(s, side, reg, q, true).c_str(), sw.mean_abs());
+      }
+}
+
+nlohmann::json glass_form_summary_json(const GlassTable& t, const std::vector<GlassCompensationRow>& rows,
+                                       const std::vector<GlassForm>& forms, const GlassFormSummary& s) {
+  const GlassGrid& g = t.grid;
+  nlohmann::json fj = nlohmann::json::array();
+  for (const GlassForm& f : forms) fj.push_back({{"id", f.id}, {"formula", f.formula}});
+  nlohmann::json summary = nlohmann::json::array(), closest = nlohmann::json::array();
+  const auto num = [](double x) { return exact_json(x); };
+  for (std::size_t f = 0; f < s.forms.size(); ++f)
+    for (int side = 0; side < 3; ++side)
+      for (int reg = 0; reg < 3; ++reg)
+        for (int q = 0; q < 3; ++q) {
+          const GlassErrorStat& st = s.at(f, side, reg, q);
+          if (st.n == 0) continue;
+          summary.push_back({{"form", s.forms[f]},
+                             {"side", kGlassSides[side]},
+                             {"region", kGlassRegionNames[reg]},
+                             {"quantity", kGlassQuantities[q]},
+                             {"count", st.n},
+                             {"worst", num(st.worst)},
+                             {"worst_at", st.at},
+                             {"mean_abs", num(st.mean_abs())},
+                             {"mean", num(st.mean())},
+                             {"worst_z", num(st.worst_z)},
+                             {"max_z", num(st.max_z)},
+                             {"max_z_at", st.z_at},
+                             {"mean_abs_z", num(st.mean_abs_z())},
+                             {"z_threshold", st.threshold()},
+                             {"within_noise", st.within_noise()}});
+        }
+  for (int side = 0; side < 3; ++side)
+    for (int reg = 0; reg < 3; ++reg)
+      for (int q = 0; q < 3; ++q) {
+        const int b = s.closest(side, reg, q), w = s.closest(side, reg, q, true);
+        if (b < 0) continue;
+        const GlassErrorStat &sb = s.at(static_cast<std::size_t>(b), side, reg, q),
+                             &sw = s.at(static_cast<std::size_t>(w), side, reg, q);
+        closest.push_back(
+            {{"side", kGlassSides[side]},
+             {"region", kGlassRegionNames[reg]},
+             {"quantity", kGlassQuantities[q]},
+             {"closest", s.forms[static_cast<std::size_t>(b)]},
+             {"closest_tied", tied_names(s, side, reg, q, false)},
+             {"mean_abs", num(sb.mean_abs())},
+             {"worst", num(sb.worst)},
+             {"within_noise", sb.within_noise()},
+             {"farthest", s.forms[static_cast<std::size_t>(w)]},
+             {"farthest_tied", tied_names(s, side, reg, q, true)},
+             {"farthest_mean_abs", num(sw.mean_abs())},
+             {"statement",
+              support::format("from %s, %s, %s': closest %s (mean |error| %.2e, worst %+.2e at %s, %s); farthest %s "
+                              "(mean |error| %.2e)",
+                              kGlassSides[side], kGlassRegionNames[reg], kGlassQuantities[q],
+                              tied_names(s, side, reg, q, false).c_str(), sb.mean_abs(), sb.worst, sb.at.c_str(),
+                              sb.within_noise() ? "within noise" : "beyond noise",
+                              tied_names(s, side, reg, q, true).c_str(), sw.mean_abs())}});
+      }
+  // The error maps: the grid's 3D cells, [ndf][side][eta][alpha][mu]; NaN (null) where no row.
+  const std::vector<std::size_t> shape{g.ndfs.size(), g.sides.size(), g.etas.size(), g.alphas.size(), g.mus.size()};
+  const std::size_t size = shape[0] * shape[1] * shape[2] * shape[3] * shape[4];
+  const auto index = [&](const GlassCell& c) {
+    const auto at = [](const auto& v, const auto& x) {
+      return static_cast<std::size_t>(std::find(v.begin(), v.end(), x) - v.begin());
+    };
+    return (((at(g.ndfs, c.ndf) * shape[1] + at(g.sides, c.from)) * shape[2] + at(g.etas, c.eta)) * shape[3] +
+            at(g.alphas, c.alpha)) *
+               shape[4] +
+           at(g.mus, c.mu);
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  nlohmann::json maps = nlohmann::json::object();
+  const char* keys[] = {"R", "T", "R+T"};
+  for (std::size_t f = 0; f < forms.size(); ++f) {
+    std::vector<double> e[3], z[3];
+    for (int q = 0; q < 3; ++q) e[q].assign(size, nan), z[q].assign(size, nan);
+    for (const GlassCompensationRow& r : rows) {
+      if (r.cell.mu == kHemisphere || r.rays <= 0) continue;
+      double ev[3], zv[3];
+      row_errors(r, forms[f].of(r), ev, zv);
+      const std::size_t i = index(r.cell);
+      for (int q = 0; q < 3; ++q) e[q][i] = ev[q], z[q][i] = zv[q];
+    }
+    nlohmann::json m = nlohmann::json::object();
+    for (int q = 0; q < 3; ++q) {
+      nlohmann::json ej = nlohmann::json::array(), zj = nlohmann::json::array();
+      for (std::size_t i = 0; i < size; ++i) ej.push_back(num(e[q][i])), zj.push_back(num(z[q][i]));
+      m[keys[q]] = {{"error", ej}, {"z", zj}};
+    }
+    maps[forms[f].id] = m;
+  }
+  nlohmann::json ndfs = nlohmann::json::array(), sides = nlohmann::json::array();
+  for (NdfKind n : g.ndfs) ndfs.push_back(ndf_name(n));
+  for (sim::Medium m : g.sides) sides.push_back(side_name(m));
+  return {{"forms", fj},
+          {"regions",
+           {{"rough", "alpha >= " + support::number_text(s.regions.rough_alpha)},
+            {"grazing", "mu <= " + support::number_text(s.regions.grazing_mu)},
+            {"source", "the conductor audit's regions (validation/energy_audit.h, EnergyAuditSuite)"}}},
+          {"noise",
+           {{"se", "sqrt(max(p (1 - p), 1 / rays) / rays) of the traced share p (R, T, or R + T: the rays that left)"},
+            {"z", "error / se, error = formula - traced"},
+            {"within_noise",
+             "max |z| over the line's cells <= z_threshold, m erfc(z_threshold / sqrt 2) = 0.01 for its m cells "
+             "(Bonferroni: a 1 % false alarm when the form is exact); the feed's quadrature (tol 1e-5) is not in se"}}},
+          {"summary", summary},
+          {"closest", closest},
+          {"error_maps",
+           {{"shape", shape},
+            {"axes", {{"ndf", ndfs}, {"side", sides}, {"eta", g.etas}, {"alpha", g.alphas}, {"mu", g.mus}}},
+            {"definition",
+             "per form and quantity, error (formula - traced) and z at [ndf][side][eta][alpha][mu], flattened "
+             "row-major; \"nan\" where no 3D cell"},
+            {"forms", maps}}}};
 }
 
 }  // namespace vgroove::validation

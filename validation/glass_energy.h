@@ -1,18 +1,18 @@
 // vgroove validation: exact energy tables of rough glass: E_R(mu, alpha, eta) and E_T per number of
 // interactions k of V-groove surfaces between two dielectrics, light from either side, traced with
 // Fresnel's random choice at every hit (sim/dielectric_microsurface.h; in 3D lifted,
-// sim/dielectric_lifted.h, on patches of parallel grooves with uniform azimuth). mu is the cosine
-// from the normal of the light's own side, eta = n2 / n1. Nothing is absorbed: E_R + E_T + limit +
-// vertex = 1 per cell (counts). Beside the grid, cosine-weighted cells give the hemispherical
-// averages, whose reciprocity T_avg(above) = eta^2 T_avg(below) (flatland: eta) the table reports.
-// With reference smith_walk, the same cells from the dielectric Smith walk (no surface, no grooves).
-// Audit columns: Kulla-Conty glass as MoonRay ships it beside the traced totals (see below).
+// sim/dielectric_lifted.h, on patches of parallel grooves with uniform azimuth), or (reference
+// smith_walk) the dielectric Smith walk. mu: the cosine from the light side's normal, eta = n2 / n1.
+// Nothing is absorbed: E_R + E_T + limit + vertex = 1 per cell. Hemispherical averages obey
+// T_avg(above) = eta^2 T_avg(below) (flatland: eta). The glass compensation forms (MoonRay's
+// Kulla-Conty, its inside scale one, Cycles') beside the traced totals, summarized over the grid.
 // Tests: tests/validation/glass_energy_test.cpp (GlassEnergy.NearlyFlatIsFresnel,
 // GlassEnergy.ReciprocityOfTheAverages, GlassEnergy.ConductorLimitIsTheConductorTable,
 // GlassEnergy.EnergyIsAccountedAndTheCountsDoNotDependOnThreads,
 // GlassEnergy.SmithWalkFirstOrderIsWaltersAndItsAveragesAreReciprocal,
-// GlassEnergy.CompensationAuditBesideTheWalk).
-// Derivation: docs/derivations/dielectric_lifting.md ("Energy tables").
+// GlassEnergy.CompensationAuditBesideTheWalk, GlassEnergy.FormSummaryIsTheHandComputation,
+// GlassEnergy.BrokenFormIsTheWorstOverTheGrid).
+// Derivation: docs/derivations/dielectric_lifting.md ("Energy tables"), energy_compensation.md.
 #pragma once
 
 #include "vgroove/analytic/albedo_single.h"
@@ -155,10 +155,13 @@ void print_glass_table(std::ostream& os, const GlassTable& t);
 // reflected first order only) and the exact F_avg, averages by the 8-point rule in mu; 3D cells,
 // not the conductor limit. Formula minus traced, with the traced se.
 struct GlassCompensationRow {
-  GlassCell cell;               // 3D; mu = kHemisphere: the hemispherical averages
-  double E_R = 0.0, E_T = 0.0;  // the single scattering fed to the form (quadrature)
-  analytic::CompensatedGlass moonray, scale_one;
-  double R = 0.0, T = 0.0, se_R = 0.0, se_T = 0.0;  // traced totals (all orders)
+  GlassCell cell;                                         // 3D; mu = kHemisphere: the hemispherical averages
+  double E_R = 0.0, E_T = 0.0;                            // the single scattering fed to the form (quadrature)
+  double eta_rel = 1.5;                                   // n_far / n_near of the lit side (eta above, 1 / eta below)
+  analytic::KullaContyGlassAverages averages;             // what the Kulla-Conty forms read (exact E_avg, F_avg)
+  analytic::CompensatedGlass moonray, scale_one, cycles;  // cycles: both lobes times 1 / (E_R + E_T)
+  double R = 0.0, T = 0.0, se_R = 0.0, se_T = 0.0;        // traced totals (all orders)
+  long long rays = 0, left = 0;                           // rays traced, rays that left (R + T)
 };
 
 // The single-scattering model whose E feeds the form for a reference.
@@ -167,5 +170,60 @@ analytic::MicrofacetModel glass_single_scattering_model(GlassReference r, NdfKin
 std::vector<GlassCompensationRow> glass_compensation_audit(const GlassTable& t);
 void print_glass_compensation_audit(std::ostream& os, const std::vector<GlassCompensationRow>& rows);
 nlohmann::json glass_compensation_audit_json(const std::vector<GlassCompensationRow>& rows);
+
+// ---- The forms over the grid (the summary and error maps of `kulla_conty_glass`) ------------------
+// A form: R', T' of a row. glass_forms(): moonray, scale_one, cycles_glass (the rows' values).
+struct GlassForm {
+  std::string id, formula;
+  analytic::CompensatedGlass (*of)(const GlassCompensationRow&) = nullptr;
+};
+const std::vector<GlassForm>& glass_forms();
+
+// The conductor audit's regions (EnergyAuditSuite's rough_alpha, grazing_mu, as `vgroove energy
+// --audit` runs them): all; rough alpha >= rough_alpha; grazing mu <= grazing_mu.
+struct GlassRegions {
+  double rough_alpha = 0.5, grazing_mu = 0.25;
+};
+GlassRegions glass_regions();
+inline constexpr const char* kGlassSides[] = {"both", "above", "below"};
+inline constexpr const char* kGlassRegionNames[] = {"all", "rough", "grazing"};
+inline constexpr const char* kGlassQuantities[] = {"R", "T", "R+T"};
+
+// The noise of a traced share p of n rays, for z: sqrt(max(p (1 - p), 1 / n) / n) (at least one
+// ray's worth: a share that is exactly 0 or 1, as R + T of the walk, still has a finite z).
+double glass_share_se(double p, long long n);
+// Within noise: max |z| over a family of m cells <= z with m P(|Z| > z) = 0.01 (Bonferroni, 1 %).
+double glass_noise_threshold(std::size_t m);
+
+// One (form, side, region, quantity): the grid's cells (mu != kHemisphere), errors formula - traced.
+struct GlassErrorStat {
+  long n = 0;
+  double worst = 0.0, worst_z = 0.0;  // the largest |error| (signed) and its z, at `at`
+  double max_z = 0.0;                 // the largest |z| (signed), at `z_at`
+  double sum_abs = 0.0, sum = 0.0, sum_abs_z = 0.0;
+  std::string at, z_at;
+  void add(double e, double z, const std::string& where);
+  double mean_abs() const;
+  double mean() const;
+  double mean_abs_z() const;
+  double threshold() const { return glass_noise_threshold(static_cast<std::size_t>(n)); }
+  bool within_noise() const { return n > 0 && std::abs(max_z) <= threshold(); }
+};
+struct GlassFormSummary {
+  std::vector<std::string> forms;
+  GlassRegions regions;
+  std::vector<GlassErrorStat> stats;  // [form][side 3][region 3][quantity 3]
+  const GlassErrorStat& at(std::size_t form, int side, int region, int quantity) const {
+    return stats[((form * 3 + side) * 3 + region) * 3 + quantity];
+  }
+  // The form of the least (closest) and largest (farthest) mean |error|; -1 when no cell.
+  int closest(int side, int region, int quantity, bool farthest = false) const;
+};
+GlassFormSummary glass_form_summary(const std::vector<GlassCompensationRow>& rows, const std::vector<GlassForm>& forms,
+                                    const GlassRegions& regions = glass_regions());
+void print_glass_form_summary(std::ostream& os, const GlassFormSummary& s, GlassReference reference);
+// The summary, the closest forms and the error maps [ndf][side][eta][alpha][mu] per form and quantity.
+nlohmann::json glass_form_summary_json(const GlassTable& t, const std::vector<GlassCompensationRow>& rows,
+                                       const std::vector<GlassForm>& forms, const GlassFormSummary& s);
 
 }  // namespace vgroove::validation

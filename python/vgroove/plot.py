@@ -219,7 +219,8 @@ def report_kind(report: Node) -> str:
         raise report.fail(f"is {_kind(v)}: a report is a JSON object")
     kind = v.get("kind")
     if kind in ("brdf", "furnace", "table2", "check_brdf", "sampling", "nonsymmetric_brdf", "profiles",
-                "energy_audit", "model_table", "heightfield", "heightfield_albedo", "dielectric_brdf"):
+                "energy_audit", "model_table", "heightfield", "heightfield_albedo", "dielectric_brdf",
+                "glass_energy"):
         return kind
     if "runs" in v:
         return "accuracy"
@@ -912,6 +913,99 @@ def energy_audit_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
     return [(f"-{ref.replace('_', '-')}-{ndf}", drawer(ref, ndf, panels)) for (ref, ndf), panels in maps.items()]
 
 
+# Rough glass (`vgroove energy --eta`): error maps of the compensation forms ------------------------
+
+_GLASS_QUANTITIES = ("R", "T", "R+T")
+
+
+def glass_energy_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
+    """One figure per (NDF, side, eta): rows R', T', R' + T', one column per form, each cell the
+    form minus the traced value over (mu, alpha) as the report's error_maps hold it; a circle marks
+    a cell within noise (|z| at most the z_threshold of the form's summary line for that side)."""
+    kc = report["kulla_conty_glass"]
+    if not kc.has("error_maps"):
+        raise kc.fail("has no \"error_maps\" (the forms are audited on 3D cells only, not in the conductor limit)")
+    maps = kc["error_maps"]
+    shape = [int(x) for x in maps["shape"].numbers(5, lo=1.0)]
+    axes = maps["axes"]
+    ndfs = [n.one_of(("ggx", "beckmann")) for n in axes["ndf"].nonempty()]
+    sides = [x.one_of(("above", "below")) for x in axes["side"].nonempty()]
+    etas = axes["eta"].numbers(lo=0.0)
+    alphas = axes["alpha"].numbers(lo=0.0, hi=2.0)
+    mus = axes["mu"].numbers(lo=0.0, hi=1.0)
+    if [len(ndfs), len(sides), len(etas), len(alphas), len(mus)] != shape:
+        raise maps["shape"].fail(f"is {shape}, the axes {[len(ndfs), len(sides), len(etas), len(alphas), len(mus)]}")
+    size = shape[0] * shape[1] * shape[2] * shape[3] * shape[4]
+    forms = [f["id"].text() for f in kc["forms"].nonempty()]
+    threshold: Dict[Tuple[str, str, str], float] = {}
+    for line in kc["summary"].items():
+        if line["region"].text() == "all":
+            threshold[(line["form"].text(), line["side"].text(), line["quantity"].text())] = \
+                line["z_threshold"].number(0.0)
+    values: Dict[Tuple[str, str], Tuple[List[float], List[float]]] = {}
+    for f in forms:
+        fm = maps["forms"][f]
+        for q in _GLASS_QUANTITIES:
+            err = fm[q]["error"].numbers_or_gaps(size, -4.0, 4.0)
+            z = fm[q]["z"].numbers_or_gaps(size)
+            values[(f, q)] = (err, z)
+    reference = safe_text(report["grid"]["reference"].text(), 24) if report["grid"].has("reference") else "vgroove"
+
+    def panel(err: List[float], n: int, s: int, e: int) -> List[List[float]]:
+        base_i = ((n * shape[1] + s) * shape[2] + e) * shape[3]
+        return [[err[(base_i + a) * shape[4] + u] for u in range(shape[4])] for a in range(shape[3])]
+
+    def drawer(n: int, s: int, e: int) -> Drawer:
+        def draw() -> Figure:
+            import numpy as np
+            from matplotlib.colors import TwoSlopeNorm
+            fig = _figure(3.2 * len(forms) + 1.6, 2.8 * len(_GLASS_QUANTITIES) + 1.2)
+            grid = fig.subplots(len(_GLASS_QUANTITIES), len(forms), squeeze=False)
+            xe = _edges(mus) if len(mus) > 1 else [mus[0] - 0.5, mus[0] + 0.5]
+            ye = _edges(alphas) if len(alphas) > 1 else [alphas[0] - 0.5, alphas[0] + 0.5]
+            for qi, q in enumerate(_GLASS_QUANTITIES):
+                panels = [(f, np.ma.masked_invalid(np.asarray(panel(values[(f, q)][0], n, s, e), dtype=float)),
+                           np.asarray(panel(values[(f, q)][1], n, s, e), dtype=float)) for f in forms]
+                lim = max([float(np.nanmax(np.abs(p.filled(np.nan)))) for _, p, _ in panels if p.count()] or [0.0])
+                norm = TwoSlopeNorm(0.0, -(lim or 1.0), lim or 1.0)
+                mesh = None
+                for fi, (f, err, z) in enumerate(panels):
+                    ax = grid[qi][fi]
+                    mesh = ax.pcolormesh(xe, ye, err, cmap="RdBu_r", norm=norm, shading="flat")
+                    zm = threshold.get((f, sides[s], q), math.nan)
+                    within = [(mus[u], alphas[a]) for a in range(len(alphas)) for u in range(len(mus))
+                              if math.isfinite(z[a][u]) and abs(z[a][u]) <= zm]
+                    if within:
+                        ax.scatter([w[0] for w in within], [w[1] for w in within], s=18, facecolors="none",
+                                   edgecolors="black", linewidths=0.8)
+                    if err.count():
+                        k = int(np.nanargmax(np.abs(err.filled(np.nan))))
+                        worst, wz = float(err.flat[k]), float(z.flat[k])
+                        ax.set_title(f"{safe_text(f, 24)} {q}': worst {worst:+.3g} ({wz:+.1f} se)", fontsize=8)
+                    else:
+                        ax.set_title(f"{safe_text(f, 24)} {q}': no cell", fontsize=8)
+                    ax.set_xlabel("mu = cos theta", fontsize=8)
+                    ax.set_ylabel("alpha", fontsize=8)
+                    ax.tick_params(labelsize=7)
+                if mesh is not None:
+                    cb = fig.colorbar(mesh, ax=list(grid[qi]), shrink=0.85, extend="both")
+                    cb.set_label(f"{q}' - traced", fontsize=8)
+            _suptitle(fig, f"Rough-glass compensation against {reference}: {ndfs[n]}, light from {sides[s]}, "
+                           f"eta {etas[e]:g}",
+                      f"cells: the form minus the traced albedo (red: too bright, blue: too dark); circles: within "
+                      f"noise (|z| <= the form's z_threshold over the grid); {_title_bits(report)}")
+            return fig
+        return draw
+
+    out = []
+    for n, ndf in enumerate(ndfs):
+        for s, side in enumerate(sides):
+            for e, eta in enumerate(etas):
+                tag = f"{eta:g}".replace(".", "p").replace("+", "").replace("-", "m")
+                out.append((f"-{ndf}-{side}-eta-{tag}".lower(), drawer(n, s, e)))
+    return out
+
+
 # Table 2 -------------------------------------------------------------------------------------------
 
 def table2_figures(report: Node, base: str) -> List[Tuple[str, Drawer]]:
@@ -1456,6 +1550,7 @@ KINDS = {
     "heightfield": heightfield_figures,
     "heightfield_albedo": heightfield_albedo_figures,
     "dielectric_brdf": dielectric_brdf_figures,
+    "glass_energy": glass_energy_figures,
     # A new report kind adds a function here (and its name to report_kind).
 }
 

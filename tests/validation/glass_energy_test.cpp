@@ -15,6 +15,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <iostream>
+
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -299,6 +302,200 @@ TEST(GlassEnergy, CompensationAuditBesideTheWalk) {
   std::printf("compensated averages: r MoonRay %+.4f, scale one %+.1e\n", r_moon, r_one);
   EXPECT_GT(r_moon, 0.03);
   EXPECT_LT(std::abs(r_one), 1e-3);
+}
+
+// The grid summary by hand on three synthetic rows (and a hemispherical one it must leave out):
+// worst (signed), mean |error|, mean, z = error / sqrt(max(p (1 - p), 1 / n) / n), the regions
+// (rough alpha >= 0.5, grazing mu <= 0.25, the conductor audit's) and sides, the Bonferroni
+// threshold (m = 1: the two-sided 1 % point 2.5758293) and the closest form.
+TEST(GlassEnergy, FormSummaryIsTheHandComputation) {
+  const GlassRegions regions = glass_regions();
+  EXPECT_EQ(regions.rough_alpha, 0.5);
+  EXPECT_EQ(regions.grazing_mu, 0.25);
+  EXPECT_NEAR(glass_noise_threshold(1), 2.5758293035489, 1e-9);
+  EXPECT_NEAR(std::erfc(glass_noise_threshold(3) / std::numbers::sqrt2), 0.01 / 3.0, 1e-12);
+  auto row = [](sim::Medium from, double alpha, double mu, double R, double T, long long left, double fR, double fT) {
+    GlassCompensationRow r;
+    r.cell.from = from, r.cell.alpha = alpha, r.cell.mu = mu;
+    r.R = R, r.T = T, r.rays = 10000, r.left = left;
+    r.moonray = {fR, fT};
+    r.scale_one = {R, T};  // exact: errors 0
+    return r;
+  };
+  const sim::Medium up = sim::Medium::above, down = sim::Medium::below;
+  std::vector<GlassCompensationRow> rows = {
+      row(up, 0.6, 0.2, 0.1, 0.8, 9000, 0.12, 0.85), row(down, 0.3, 0.8, 0.5, 0.5, 10000, 0.49, 0.5),
+      row(up, 0.6, 0.8, 0.04, 0.96, 10000, 0.04, 0.93), row(up, 0.6, kHemisphere, 0.5, 0.5, 10000, 0.9, 0.9)};
+  const std::vector<GlassForm> forms = {{"a", "", [](const GlassCompensationRow& r) { return r.moonray; }},
+                                        {"b", "", [](const GlassCompensationRow& r) { return r.scale_one; }}};
+  const GlassFormSummary s = glass_form_summary(rows, forms);
+  const double eR[3] = {0.12 - 0.1, 0.49 - 0.5, 0.04 - 0.04}, eT[3] = {0.85 - 0.8, 0.5 - 0.5, 0.93 - 0.96},
+               eS[3] = {0.97 - 0.9, 0.99 - 1.0, 0.97 - 1.0};
+  const double seR[3] = {std::sqrt(0.1 * 0.9 / 1e4), std::sqrt(0.25 / 1e4), std::sqrt(0.04 * 0.96 / 1e4)};
+  const double seS[3] = {std::sqrt(0.9 * 0.1 / 1e4), std::sqrt(1e-4 / 1e4), std::sqrt(1e-4 / 1e4)};
+  // All cells, both sides: rows 0, 1, 2.
+  const GlassErrorStat& R = s.at(0, 0, 0, 0);
+  EXPECT_EQ(R.n, 3);
+  EXPECT_NEAR(R.worst, eR[0], 1e-15);
+  EXPECT_NEAR(R.mean_abs(), (std::abs(eR[0]) + std::abs(eR[1]) + std::abs(eR[2])) / 3.0, 1e-15);
+  EXPECT_NEAR(R.mean(), (eR[0] + eR[1] + eR[2]) / 3.0, 1e-15);
+  EXPECT_NEAR(R.worst_z, eR[0] / seR[0], 1e-9);
+  EXPECT_NEAR(R.max_z, eR[0] / seR[0], 1e-9);
+  EXPECT_NEAR(R.mean_abs_z(), (std::abs(eR[0] / seR[0]) + std::abs(eR[1] / seR[1])) / 3.0, 1e-9);
+  EXPECT_EQ(R.at, "ggx above eta 1.5 alpha 0.6 mu 0.2");
+  EXPECT_FALSE(R.within_noise());  // 6.7 se > 2.94
+  const GlassErrorStat& T = s.at(0, 0, 0, 1);
+  EXPECT_NEAR(T.worst, eT[0], 1e-15);
+  EXPECT_NEAR(T.mean_abs(), (std::abs(eT[0]) + std::abs(eT[2])) / 3.0, 1e-15);
+  const GlassErrorStat& S = s.at(0, 0, 0, 2);
+  EXPECT_NEAR(S.worst, eS[0], 1e-15);
+  EXPECT_NEAR(S.worst_z, eS[0] / seS[0], 1e-9);  // at the worst error, row 0: 0.07 / 0.003
+  EXPECT_EQ(S.at, "ggx above eta 1.5 alpha 0.6 mu 0.2");
+  EXPECT_NEAR(S.max_z, eS[2] / seS[2], 1e-6);  // -300 at row 2: R + T = 1 traced, its se one ray's worth
+  EXPECT_EQ(S.z_at, "ggx above eta 1.5 alpha 0.6 mu 0.8");
+  EXPECT_NEAR(S.mean_abs_z(), (std::abs(eS[0] / seS[0]) + std::abs(eS[1] / seS[1]) + std::abs(eS[2] / seS[2])) / 3.0,
+              1e-6);
+  // Rough (alpha >= 0.5): rows 0 and 2; grazing (mu <= 0.25): row 0; below: row 1.
+  EXPECT_EQ(s.at(0, 0, 1, 1).n, 2);
+  EXPECT_NEAR(s.at(0, 0, 1, 1).mean_abs(), (std::abs(eT[0]) + std::abs(eT[2])) / 2.0, 1e-15);
+  EXPECT_EQ(s.at(0, 0, 2, 0).n, 1);
+  EXPECT_NEAR(s.at(0, 0, 2, 0).worst, eR[0], 1e-15);
+  EXPECT_EQ(s.at(0, 2, 0, 0).n, 1);
+  EXPECT_NEAR(s.at(0, 2, 0, 0).worst, eR[1], 1e-15);
+  EXPECT_NEAR(s.at(0, 2, 0, 0).worst_z, -2.0, 1e-9);
+  EXPECT_NEAR(s.at(0, 2, 0, 0).max_z, -2.0, 1e-9);
+  EXPECT_TRUE(s.at(0, 2, 0, 0).within_noise());  // |z| 2 <= 2.58 (m = 1)
+  EXPECT_EQ(s.at(0, 1, 2, 0).n, 1);
+  EXPECT_EQ(s.at(0, 2, 2, 0).n, 0);  // no grazing cell from below
+  // Form b is exact: closest everywhere, within noise, a the farthest.
+  for (int q = 0; q < 3; ++q) {
+    EXPECT_EQ(s.closest(0, 0, q), 1);
+    EXPECT_EQ(s.closest(0, 0, q, true), 0);
+    EXPECT_TRUE(s.at(1, 0, 0, q).within_noise());
+    EXPECT_EQ(s.at(1, 0, 0, q).worst, 0.0);
+  }
+}
+
+namespace {
+// A small 3D grid against the walk (both sides, eta 1.5, alpha 0.3 and 0.6, mu 0.2 and 0.8, 4000
+// walks a cell: se <= 0.008), made once.
+const GlassTable& small_walk_grid() {
+  static const GlassTable t = [] {
+    GlassGrid g;
+    g.reference = GlassReference::smith_walk;
+    g.etas = {1.5};
+    g.alphas = {0.3, 0.6};
+    g.mus = {0.2, 0.8};
+    g.rays = 4000;
+    return run(g);
+  }();
+  return t;
+}
+}  // namespace
+
+// Over a real grid the summary and the JSON's error maps are the rows' errors (recomputed here
+// cell by cell), and a deliberately broken form, each side fed the other side's Kulla-Conty
+// weights (the swap compensation_glass_test keeps failing), is the farthest: its T' from either
+// side and its R' + T' from above (it loses (1 - F_in)(1 - x)(1 - 1 / eta^2)(1 - E)). Physics:
+// from above MoonRay's and Cycles' R' + T' are the walk's 1 within noise, from below Cycles' and the
+// scale-one form's too, MoonRay's beyond it (its n^2).
+TEST(GlassEnergy, BrokenFormIsTheWorstOverTheGrid) {
+  const GlassTable& t = small_walk_grid();
+  const std::vector<GlassCompensationRow> rows = glass_compensation_audit(t);
+  ASSERT_EQ(rows.size(), 12u);  // 8 grid cells, 4 averages
+  std::vector<GlassForm> forms = glass_forms();
+  forms.push_back({"swapped_sides", "the other side's weights", [](const GlassCompensationRow& r) {
+                     return analytic::kulla_conty_glass_albedo(
+                         r.E_R, r.E_T, analytic::kulla_conty_glass_weights(1.0 / r.eta_rel, r.averages));
+                   }});
+  const GlassFormSummary s = glass_form_summary(rows, forms);
+  print_glass_form_summary(std::cout, s, GlassReference::smith_walk);
+  const std::size_t moon = 0, one = 1, cycles = 2, broken = 3;
+  // Recomputed by hand: worst and mean |error| of every form, side and quantity (region all).
+  for (std::size_t f = 0; f < forms.size(); ++f)
+    for (int side = 0; side < 3; ++side)
+      for (int q = 0; q < 3; ++q) {
+        double worst = 0.0, sum = 0.0;
+        int n = 0;
+        for (const GlassCompensationRow& r : rows) {
+          if (r.cell.mu == kHemisphere) continue;
+          if (side == 1 && r.cell.from != sim::Medium::above) continue;
+          if (side == 2 && r.cell.from != sim::Medium::below) continue;
+          const analytic::CompensatedGlass v = forms[f].of(r);
+          const double e = q == 0 ? v.R - r.R : q == 1 ? v.T - r.T : v.R + v.T - r.R - r.T;
+          if (std::abs(e) > std::abs(worst)) worst = e;
+          sum += std::abs(e), ++n;
+        }
+        const GlassErrorStat& st = s.at(f, side, 0, q);
+        EXPECT_EQ(st.n, n);
+        EXPECT_NEAR(st.worst, worst, 1e-14) << f << side << q;
+        EXPECT_NEAR(st.mean_abs(), sum / n, 1e-14) << f << side << q;
+      }
+  EXPECT_EQ(s.closest(0, 0, 1, true), static_cast<int>(broken));
+  EXPECT_EQ(s.closest(1, 0, 1, true), static_cast<int>(broken));
+  EXPECT_EQ(s.closest(2, 0, 1, true), static_cast<int>(broken));
+  EXPECT_EQ(s.closest(1, 0, 2, true), static_cast<int>(broken));
+  EXPECT_FALSE(s.at(broken, 1, 0, 2).within_noise());
+  EXPECT_TRUE(s.at(moon, 1, 0, 2).within_noise());
+  EXPECT_TRUE(s.at(cycles, 1, 0, 2).within_noise());
+  EXPECT_TRUE(s.at(cycles, 2, 0, 2).within_noise());
+  EXPECT_TRUE(s.at(one, 2, 0, 2).within_noise());
+  EXPECT_FALSE(s.at(moon, 2, 0, 2).within_noise());
+  // The JSON: the shipped forms' summary lines and maps are the rows' values.
+  const nlohmann::json j = glass_table_json(t)["kulla_conty_glass"];
+  ASSERT_EQ(j["forms"].size(), 3u);
+  const GlassFormSummary shipped = glass_form_summary(rows, glass_forms());
+  for (const nlohmann::json& line : j["summary"]) {
+    const auto f = static_cast<std::size_t>(
+        std::find(shipped.forms.begin(), shipped.forms.end(), line["form"].get<std::string>()) - shipped.forms.begin());
+    const auto pos = [](const auto& names, const std::string& x) {
+      return static_cast<int>(std::find(std::begin(names), std::end(names), x) - std::begin(names));
+    };
+    const GlassErrorStat& st = shipped.at(f, pos(kGlassSides, line["side"]), pos(kGlassRegionNames, line["region"]),
+                                          pos(kGlassQuantities, line["quantity"]));
+    EXPECT_EQ(line["count"].get<long>(), st.n);
+    EXPECT_EQ(line["worst"].get<double>(), st.worst);
+    EXPECT_EQ(line["mean_abs"].get<double>(), st.mean_abs());
+    EXPECT_EQ(line["within_noise"].get<bool>(), st.within_noise());
+  }
+  const nlohmann::json& maps = j["error_maps"];
+  EXPECT_EQ(maps["shape"], nlohmann::json({1, 2, 1, 2, 2}));
+  for (std::size_t c = 0; c < 8; ++c) {
+    const GlassCompensationRow& r = rows[c];  // grid order: side, alpha, mu (innermost)
+    EXPECT_EQ(maps["forms"]["moonray"]["R"]["error"][c].get<double>(), r.moonray.R - r.R) << c;
+    EXPECT_EQ(maps["forms"]["cycles_glass"]["T"]["error"][c].get<double>(), r.cycles.T - r.T) << c;
+    EXPECT_NEAR(maps["forms"]["scale_one"]["T"]["z"][c].get<double>(), (r.scale_one.T - r.T) / r.se_T, 1e-9) << c;
+  }
+}
+
+// The issue's grid against the walk (GGX, eta 1.33, 1.5, 2.4 x alpha 0.1, 0.3, 0.6, 1 x 8 mu
+// midpoints x both sides = 192 cells, 20000 walks a cell; ~11 s on 2 threads, label long): the
+// walk loses nothing, so the forms that conserve energy (scale_one and cycles_glass from both
+// sides, MoonRay from above) have R' + T' within noise over the whole grid, and MoonRay from below
+// falls short beyond it; Kulla-Conty from above reflects too much in the rough region (the measured
+// finding: mean error > 0, beyond noise). The summary is printed.
+TEST(GlassEnergyLong, FormsOverTheIssueGrid) {
+  GlassGrid g;
+  g.reference = GlassReference::smith_walk;
+  g.etas = {1.33, 1.5, 2.4};
+  g.alphas = {0.1, 0.3, 0.6, 1.0};
+  g.mus = midpoints(8);
+  g.rays = 20000;
+  const GlassTable t = run(g);
+  const std::vector<GlassCompensationRow> rows = glass_compensation_audit(t);
+  const GlassFormSummary s = glass_form_summary(rows, glass_forms());
+  print_glass_form_summary(std::cout, s, g.reference);
+  const std::size_t moon = 0, one = 1, cycles = 2;
+  const int both = 0, above = 1, below = 2, all = 0, rough = 1, sum = 2;
+  for (std::size_t f = 0; f < 3; ++f) EXPECT_EQ(s.at(f, both, all, sum).n, 192);
+  EXPECT_TRUE(s.at(one, both, all, sum).within_noise());
+  EXPECT_TRUE(s.at(cycles, both, all, sum).within_noise());
+  EXPECT_TRUE(s.at(moon, above, all, sum).within_noise());
+  EXPECT_FALSE(s.at(moon, below, all, sum).within_noise());
+  EXPECT_LT(s.at(moon, below, all, sum).worst, 0.0);
+  const GlassErrorStat& r = s.at(moon, above, rough, 0);
+  EXPECT_GT(r.mean(), 0.0);
+  EXPECT_FALSE(r.within_noise());
 }
 
 TEST(GlassEnergy, BadGridsAreNamed) {
