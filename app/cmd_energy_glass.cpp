@@ -74,9 +74,10 @@ int cmd_energy_glass(const EnergyArgs& a) {
 }
 
 void write_glass_table(const validation::GlassTable& t, const std::string& out, bool force) {
-  print_glass_table(std::cout, t);
+  const std::vector<validation::GlassCompensationRow> audit = validation::glass_compensation_audit(t);
+  print_glass_table(std::cout, t, audit);
   if (out.empty()) return;
-  support::write_file_atomically(out, support::json_text(glass_table_json(t), 1) + "\n", force);
+  support::write_file_atomically(out, support::json_text(glass_table_json(t, audit), 1) + "\n", force);
   std::cout << "table: " << support::printable(out) << "\n";
 }
 

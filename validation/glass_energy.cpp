@@ -443,7 +443,9 @@ std::vector<GlassReciprocity> glass_reciprocity(const GlassTable& t) {
   return out;
 }
 
-nlohmann::json glass_table_json(const GlassTable& t) {
+nlohmann::json glass_table_json(const GlassTable& t) { return glass_table_json(t, glass_compensation_audit(t)); }
+
+nlohmann::json glass_table_json(const GlassTable& t, const std::vector<GlassCompensationRow>& audit) {
   const GlassGrid& g = t.grid;
   nlohmann::json j = provenance();
   j["kind"] = "glass_energy";
@@ -541,7 +543,6 @@ nlohmann::json glass_table_json(const GlassTable& t) {
                        "T_avg(above) = eta^p T_avg(below), p = 2 in 3D and 1 in flatland (reciprocity of "
                        "the exact surface, f_t(i, o) / n_o^p = f_t(o, i) / n_i^p)"},
                       {"pairs", pairs}};
-  const std::vector<GlassCompensationRow> audit = glass_compensation_audit(t);
   j["kulla_conty_glass"] = glass_compensation_audit_json(audit);
   if (!audit.empty())
     j["kulla_conty_glass"].update(
@@ -549,7 +550,9 @@ nlohmann::json glass_table_json(const GlassTable& t) {
   return j;
 }
 
-void print_glass_table(std::ostream& os, const GlassTable& t) {
+void print_glass_table(std::ostream& os, const GlassTable& t) { print_glass_table(os, t, glass_compensation_audit(t)); }
+
+void print_glass_table(std::ostream& os, const GlassTable& t, const std::vector<GlassCompensationRow>& rows) {
   const GlassGrid& g = t.grid;
   char line[256];
   if (g.reference == GlassReference::smith_walk)
@@ -579,7 +582,6 @@ void print_glass_table(std::ostream& os, const GlassTable& t) {
                   r.cell.dim == SurfaceDim::three_d ? 2 : 1, r.scaled_below, r.z());
     os << line;
   }
-  const std::vector<GlassCompensationRow> rows = glass_compensation_audit(t);
   print_glass_compensation_audit(os, rows);
   if (!rows.empty()) print_glass_form_summary(os, glass_form_summary(rows, glass_forms()), g.reference);
 }

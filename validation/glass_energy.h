@@ -170,6 +170,10 @@ analytic::MicrofacetModel glass_single_scattering_model(GlassReference r, NdfKin
 std::vector<GlassCompensationRow> glass_compensation_audit(const GlassTable& t);
 void print_glass_compensation_audit(std::ostream& os, const std::vector<GlassCompensationRow>& rows);
 nlohmann::json glass_compensation_audit_json(const std::vector<GlassCompensationRow>& rows);
+// The table's JSON and printout from the audit rows glass_compensation_audit(t) gave (a caller that
+// prints and writes computes them once; the one-argument forms compute them).
+nlohmann::json glass_table_json(const GlassTable& t, const std::vector<GlassCompensationRow>& audit);
+void print_glass_table(std::ostream& os, const GlassTable& t, const std::vector<GlassCompensationRow>& audit);
 
 // ---- The forms over the grid (the summary and error maps of `kulla_conty_glass`) ------------------
 // A form: R', T' of a row. glass_forms(): moonray, scale_one, cycles_glass (the rows' values).

@@ -69,12 +69,13 @@ py::object glass_energy(const std::vector<double>& eta, const std::vector<double
       [&](std::atomic<bool>& cancel) { return validation::run_glass_table(g, threads, relay.fn(), &cancel); }, false,
       &relay);
   if (!t) throw support::UserError("glass_energy: interrupted");
+  const std::vector<validation::GlassCompensationRow> audit = validation::glass_compensation_audit(*t);
   if (verbose) {
     std::ostringstream os;
-    validation::print_glass_table(os, *t);
+    validation::print_glass_table(os, *t, audit);
     py::print(os.str(), py::arg("end") = "");
   }
-  return to_python(validation::glass_table_json(*t));
+  return to_python(validation::glass_table_json(*t, audit));
 }
 
 // The ranges `vgroove energy` gives its flags (app/cmd_energy.cpp, add_integer), which the command
