@@ -9,6 +9,7 @@
 #include "vgroove/sim/dielectric_lifted.h"
 #include "vgroove/sim/dielectric_microsurface.h"
 #include "vgroove/sim/dielectric_polyline.h"
+#include "vgroove/sim/dielectric_vgroove_surface.h"
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/microsurface3d.h"
 #include "vgroove/sim/profile_tally.h"
@@ -100,23 +101,11 @@ int bin_3d(double x, double y, double z_from_normal, const DielectricBrdfSuite& 
   return t * s.phi_bins + p;
 }
 
-// The V-groove surface of a case: equal-width grooves, flatland facet law (make_microsurface) or
-// the 3D projected-area law with the grooves' axis drawn per ray (validation/glass_energy.cpp).
+// The V-groove surface of a case (sim/dielectric_vgroove_surface.h).
 sim::Microsurface vgroove_surface(const DielectricBrdfSuite& s, const DielectricBrdfCase& c, std::uint64_t seed) {
   sim::MicrosurfaceOptions o;
   o.ndf = c.ndf, o.alpha = c.alpha, o.grooves = s.grooves, o.seed = seed;
-  if (c.dim == SurfaceDim::flatland) return sim::make_microsurface(o);
-  sim::Microsurface m;
-  m.options = o;
-  const double steepest = std::nextafter(0.5 * kPi, 0.0);
-  for (int j = 0; j < o.grooves; ++j) {
-    sim::Rng rng(o.seed, sim::kGrooveStream, static_cast<std::uint64_t>(j));
-    const double t = std::min(steepest, sim::sample_theta_m_3d(o.ndf, o.alpha, sim::uniform_open(rng)));
-    m.theta_m.push_back(t);
-    m.grooves.push_back(sim::make_symmetric_groove(kPi - 2.0 * t));
-    m.data.push_back(sim::symmetric_groove_data(m.grooves.back()));
-  }
-  return m;
+  return sim::make_dielectric_vgroove_surface(o, c.dim == SurfaceDim::three_d);
 }
 
 struct Tracing {
@@ -151,8 +140,6 @@ Tracing trace_vgroove(const DielectricBrdfSuite& s, std::size_t ci, long rays, s
   const sim::DielectricSurfaceTracer tracer(surface, opt);
   const bool above = c.side == sim::Medium::above;
   const double st = std::sin(c.theta_i), ct = std::cos(c.theta_i);
-  const double G = static_cast<double>(surface.grooves.size());
-  const int last = static_cast<int>(surface.grooves.size()) - 1;
   const std::uint64_t seed = sim::derived_seed(s.seed, kRaySeeds, ci);
   sim::DielectricResult r;
   for (std::int64_t chunk = 0; chunk * kChunk < rays; ++chunk) {
@@ -160,31 +147,18 @@ Tracing trace_vgroove(const DielectricBrdfSuite& s, std::size_t ci, long rays, s
     sim::Rng rng(seed, kRaySeeds, static_cast<std::uint64_t>(chunk));
     const std::int64_t end = std::min<std::int64_t>(rays, (chunk + 1) * kChunk);
     for (std::int64_t j = chunk * kChunk; j < end; ++j) {
-      const double x = sim::uniform_open(rng) * G;
-      const int gi = std::min(last, static_cast<int>(x));
-      const sim::Groove& groove = surface.grooves[static_cast<std::size_t>(gi)];
-      const double xl = groove.rim_x(sim::Side::left), xr = groove.rim_x(sim::Side::right);
-      const double x_open = xl + (x - gi) * (xr - xl);
-      if (c.dim == SurfaceDim::flatland) {
-        // From above the light travels along (sin, -cos), from below along (-sin, cos) (the walk's convention).
-        if (above)
-          tracer.trace_from_above(gi, sim::beam_ray(groove, sim::Vec2(st, -ct), x_open), rng, r);
-        else
-          tracer.trace_from_below(x, sim::Vec2(-st, ct), rng, r);
+      // Flatland: from above the light travels along (sin, -cos), from below along (-sin, cos) (the
+      // walk's convention). 3D: the light at azimuth pi, travelling along (st, 0, -+ct).
+      const bool flat = c.dim == SurfaceDim::flatland;
+      const sim::DielectricVgrooveRay ray = sim::trace_dielectric_vgroove_ray(
+          tracer, surface, !flat, c.side, above ? sim::Vec2(st, -ct) : sim::Vec2(-st, ct),
+          sim::Vec3(st, 0.0, above ? -ct : ct), opt, rng, r);
+      if (flat) {
         t.add(r, c.side, s, bins,
               [&](std::size_t, const sim::DielectricExit& e) { return flatland_bin(sim::exit_angle(e), bins); });
       } else {
-        // The light at azimuth pi: travel along (st, 0, -+ct); the grooves' axis at a uniform azimuth.
-        const double phi_a = kPi * rng.uniform();
-        const sim::GrooveFrame3d frame{std::cos(phi_a), std::sin(phi_a)};
-        const sim::Vec3 d(st, 0.0, above ? -ct : ct);
-        const sim::LiftedRay ray = sim::lift_ray(d, frame, c.side, opt);
-        if (above)
-          tracer.trace_from_above_with(gi, sim::beam_ray(groove, ray.e, x_open), ray.law, rng, r);
-        else
-          tracer.trace_from_below_with(x, ray.e, ray.law, rng, r);
         t.add(r, c.side, s, bins, [&](std::size_t, const sim::DielectricExit& e) {
-          const sim::Vec3 o = sim::lift_exit(ray, frame, e.dir, e.side);
+          const sim::Vec3 o = sim::lift_exit(ray.ray, ray.frame, e.dir, e.side);
           return bin_3d(o.x(), o.y(), e.side == sim::Medium::above ? o.z() : -o.z(), s);
         });
       }

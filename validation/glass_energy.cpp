@@ -9,6 +9,7 @@
 #include "vgroove/sim/beam.h"
 #include "vgroove/sim/dielectric_lifted.h"
 #include "vgroove/sim/dielectric_microsurface.h"
+#include "vgroove/sim/dielectric_vgroove_surface.h"
 #include "vgroove/sim/microsurface.h"
 #include "vgroove/sim/microsurface3d.h"
 #include "vgroove/support/format.h"
@@ -39,26 +40,15 @@ constexpr std::uint64_t kGlassRayStream = 0x676c61737372ULL;    // "glassr"
 
 const char* side_name(sim::Medium m) { return m == sim::Medium::above ? "above" : "below"; }
 
-// The surface of (ndf, dim, alpha): equal-width grooves with facet angles from the flatland law
-// (make_microsurface) or the 3D projected-area law; the seed set apart per (ndf, dim, alpha).
+// The surface of (ndf, dim, alpha) (sim/dielectric_vgroove_surface.h); the seed set apart per (ndf,
+// dim, alpha).
 sim::Microsurface glass_surface(const GlassGrid& g, const GlassCell& c, std::size_t surface_index) {
   sim::MicrosurfaceOptions o;
   o.ndf = c.ndf;
   o.alpha = c.alpha;
   o.grooves = g.grooves;
   o.seed = sim::Rng(g.seed, kGlassSurfaceStream, surface_index).next_u64();
-  if (c.dim == SurfaceDim::flatland) return sim::make_microsurface(o);
-  sim::Microsurface m;
-  m.options = o;
-  const double steepest = std::nextafter(0.5 * std::numbers::pi, 0.0);
-  for (int j = 0; j < o.grooves; ++j) {
-    sim::Rng rng(o.seed, sim::kGrooveStream, static_cast<std::uint64_t>(j));
-    const double t = std::min(steepest, sim::sample_theta_m_3d(o.ndf, o.alpha, sim::uniform_open(rng)));
-    m.theta_m.push_back(t);
-    m.grooves.push_back(sim::make_symmetric_groove(std::numbers::pi - 2.0 * t));
-    m.data.push_back(sim::symmetric_groove_data(m.grooves.back()));
-  }
-  return m;
+  return sim::make_dielectric_vgroove_surface(o, c.dim == SurfaceDim::three_d);
 }
 
 // Which surface a cell uses: its (ndf, dimension, alpha).
@@ -109,8 +99,6 @@ void trace_unit(const GlassGrid& g, std::size_t cell, const sim::Microsurface& s
   const bool hemisphere = c.mu == kHemisphere;
   double st = std::sqrt((1.0 - c.mu) * (1.0 + c.mu)), ct = c.mu;
   const bool above = c.from == sim::Medium::above;
-  const double groove_count = static_cast<double>(surface.grooves.size());
-  const int last = static_cast<int>(surface.grooves.size()) - 1;
   sim::DielectricResult r;
   for (std::int64_t chunk = chunk0; chunk < chunk1; ++chunk) {
     if (cancel && cancel->load(std::memory_order_relaxed)) return;
@@ -118,28 +106,11 @@ void trace_unit(const GlassGrid& g, std::size_t cell, const sim::Microsurface& s
     const std::int64_t n = std::min<std::int64_t>(sim::kRaysPerChunk, g.rays - chunk * sim::kRaysPerChunk);
     for (std::int64_t j = 0; j < n; ++j) {
       if (hemisphere) draw_cosine_weighted(c.dim, rng, st, ct);
-      // The lit point: a groove and a place across its opening (above), or a place in the period (below).
-      const double x = sim::uniform_open(rng) * groove_count;
-      const int gi = std::min(last, static_cast<int>(x));
-      const sim::Groove& groove = surface.grooves[static_cast<std::size_t>(gi)];
-      const double xl = groove.rim_x(sim::Side::left), xr = groove.rim_x(sim::Side::right);
-      const double x_open = xl + (x - gi) * (xr - xl);
-      if (c.dim == SurfaceDim::flatland) {
-        if (above)
-          tracer.trace_from_above(gi, sim::beam_ray(groove, sim::Vec2(st, -ct), x_open), rng, r);
-        else
-          tracer.trace_from_below(x, sim::Vec2(st, ct), rng, r);
-      } else {
-        // The patch's grooves at azimuth phi_a from the light's plane of incidence.
-        const double phi_a = std::numbers::pi * rng.uniform();
-        const sim::GrooveFrame3d frame{std::cos(phi_a), std::sin(phi_a)};
-        const sim::Vec3 d(-st, 0.0, above ? -ct : ct);
-        const sim::LiftedRay ray = sim::lift_ray(d, frame, c.from, opt);
-        if (above)
-          tracer.trace_from_above_with(gi, sim::beam_ray(groove, ray.e, x_open), ray.law, rng, r);
-        else
-          tracer.trace_from_below_with(x, ray.e, ray.law, rng, r);
-      }
+      // Flatland: the light travels along (st, -ct) from above, (st, ct) from below. 3D: the light's
+      // plane of incidence at azimuth 0, travelling along (-st, 0, -+ct).
+      sim::trace_dielectric_vgroove_ray(tracer, surface, c.dim == SurfaceDim::three_d, c.from,
+                                        sim::Vec2(st, above ? -ct : ct), sim::Vec3(-st, 0.0, above ? -ct : ct), opt,
+                                        rng, r);
       tally(r, c.from, g.max_k, t);
     }
   }
