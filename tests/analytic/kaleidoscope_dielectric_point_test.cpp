@@ -13,6 +13,8 @@
 #include "vgroove/analytic/sampling_dielectric.h"
 #include "vgroove/validation/chi_square.h"
 
+#include "tests/stats.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -413,17 +415,7 @@ TEST(KaleidoscopeDielectricPoint, ThreeDFiniteAtHardPoints) {
 
 // ---- The sampler's pdf ---------------------------------------------------------------------------
 
-// SplitMix64 on a counter (tests/stats.h's stream): uniforms in (0, 1), not the code's own RNG.
-struct Uniforms {
-  std::uint64_t state;
-  double operator()() {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return (static_cast<double>(z >> 11) + 0.5) * 0x1.0p-53;
-  }
-};
+using test_stats::Uniforms;  // uniforms in (0, 1), not the code's own RNG
 
 // Flatland: the draws' histogram against n x the pdf integrated over each bin (Gauss-Legendre, 16 x 8
 // nodes a bin), failures in a last cell expecting n (1 - int pdf); and the mean of f |cos| / pdf over
