@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <vector>
 
 namespace vgroove::app {
@@ -209,8 +210,10 @@ void check_off_horizon(const Pair& p, bool flat, const std::string& name) {
                              "defined)");
 }
 
-int cmd_brdf_dielectric_point(const BrdfArgs& a, NdfKind ndf, bool flat) {
-  check_angle(a.eta, 0, false, validation::kMaxFresnelEta, true, "--eta");
+// The points to evaluate, checked: --directions FILE's (read_pairs) or the flags' one pair
+// (check_pair); `both`: theta_o over 90 (transmitted) allowed. Also --per-k-max's range. Nothing
+// when interrupted while reading the file.
+std::optional<std::vector<Pair>> points_of(const BrdfArgs& a, bool flat, bool both) {
   if (a.per_k_max < 1 || a.per_k_max > validation::kMaxPrintedK)
     throw support::UserError("--per-k-max = " + std::to_string(a.per_k_max) + " is out of range [1, " +
                              std::to_string(validation::kMaxPrintedK) + "]");
@@ -218,15 +221,25 @@ int cmd_brdf_dielectric_point(const BrdfArgs& a, NdfKind ndf, bool flat) {
   if (!a.directions.empty()) {
     if (a.theta_o_given)
       throw support::UserError("--directions cannot be combined with --theta-o-deg (the file gives the directions)");
-    pairs = read_pairs(a.directions, flat, true, a.cancel);
-    if (support::cancelled(a.cancel)) return interrupted_no_report();
-    for (std::size_t n = 0; n < pairs.size(); ++n)
-      check_off_horizon(pairs[n], flat, a.directions + ": /directions/" + std::to_string(n) + "/theta_o_deg");
-  } else {
-    pairs.push_back({a.theta_i_deg, a.phi_i_deg, a.theta_o_deg, a.phi_o_deg});
-    check_pair(pairs.back(), flat, true, "--");
-    check_off_horizon(pairs.back(), flat, "--theta-o-deg");
+    pairs = read_pairs(a.directions, flat, both, a.cancel);
+    if (support::cancelled(a.cancel)) return std::nullopt;
+    return pairs;
   }
+  if (!a.theta_o_given) throw support::UserError("--theta-o-deg is required (or --directions FILE)");
+  pairs.push_back({a.theta_i_deg, a.phi_i_deg, a.theta_o_deg, a.phi_o_deg});
+  check_pair(pairs.back(), flat, both, "--");
+  return pairs;
+}
+
+int cmd_brdf_dielectric_point(const BrdfArgs& a, NdfKind ndf, bool flat) {
+  check_angle(a.eta, 0, false, validation::kMaxFresnelEta, true, "--eta");
+  const std::optional<std::vector<Pair>> read = points_of(a, flat, true);
+  if (!read) return interrupted_no_report();
+  const std::vector<Pair>& pairs = *read;
+  for (std::size_t n = 0; n < pairs.size(); ++n)
+    check_off_horizon(
+        pairs[n], flat,
+        a.directions.empty() ? "--theta-o-deg" : a.directions + ": /directions/" + std::to_string(n) + "/theta_o_deg");
   if (a.dry_run) return 0;
   const int rows = a.per_k ? a.per_k_max : 0;
   std::vector<DielectricPoint> values;
@@ -389,20 +402,9 @@ int cmd_brdf(const BrdfArgs& a) {
   const analytic::MaskingKind masking = check_walter_options(a, *model, *ndf);
   const bool walter = *model == analytic::BrdfModel::walter;
   const int max_k = orders(a, *model, flat);
-  if (a.per_k_max < 1 || a.per_k_max > validation::kMaxPrintedK)
-    throw support::UserError("--per-k-max = " + std::to_string(a.per_k_max) + " is out of range [1, " +
-                             std::to_string(validation::kMaxPrintedK) + "]");
-  std::vector<Pair> pairs;
-  if (!a.directions.empty()) {
-    if (a.theta_o_given)
-      throw support::UserError("--directions cannot be combined with --theta-o-deg (the file gives the directions)");
-    pairs = read_pairs(a.directions, flat, walter, a.cancel);
-    if (support::cancelled(a.cancel)) return interrupted_no_report();
-  } else {
-    if (!a.theta_o_given) throw support::UserError("--theta-o-deg is required (or --directions FILE)");
-    pairs.push_back({a.theta_i_deg, a.phi_i_deg, a.theta_o_deg, a.phi_o_deg});
-    check_pair(pairs.back(), flat, walter, "--");
-  }
+  const std::optional<std::vector<Pair>> read = points_of(a, flat, walter);
+  if (!read) return interrupted_no_report();
+  const std::vector<Pair>& pairs = *read;
   if (a.dry_run) return 0;
 
   analytic::BrdfEvalOptions opt;
