@@ -62,28 +62,12 @@ int cmd_energy_audit(const EnergyArgs& a) {
     throw support::UserError("--reference = \"" + a.reference +
                              "\" is not \"heightfield\" with --audit (the V-groove model and the Smith walk are always "
                              "audited; heightfield adds the random heightfields)");
-  nlohmann::json suite = {{"name", "energy_audit_cli"},
-                          {"kind", "energy_audit"},
-                          {"description", "vgroove energy --audit"},
-                          {"ndf", audit_ndfs(a.ndfs)},
-                          {"alpha", grid_values(a.alpha, a.alpha_points, "--alpha-points", kMaxAlphaPoints)},
-                          {"mu", grid_values(a.mu, a.mu_points, "--mu-points", kMaxMuPoints)},
-                          {"walk_paths", a.rays},
-                          {"seed", a.seed},
-                          {"max_k", a.max_k},
-                          {"grey_F0", {0.02, 0.04, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0}},
-                          {"metals", {"Au", "Ag", "Cu", "Al"}},
-                          {"metalness", {0.0, 0.25, 0.5, 0.75, 1.0}},
-                          {"regions", {{"rough_alpha", 0.5}, {"grazing_mu", 0.25}}},
-                          {"cycles_table", true},
-                          {"thresholds", {{"sigmas", 5}, {"vgroove_furnace", 1e-7}}}};
-  if (a.reference_given) {
-    suite["references"] = {"vgroove", "smith_walk", "heightfield"};
-    suite["heightfield"] = {{"fields", 4},
-                            {"rays_per_field", std::max<long long>(1, a.rays / 4)},
-                            {"field_size", 256},
-                            {"correlation_length", 8}};
-  }
+  // In this order, so that the first bad flag is the one named.
+  const std::vector<std::string> ndfs = audit_ndfs(a.ndfs);
+  const std::vector<double> alphas = grid_values(a.alpha, a.alpha_points, "--alpha-points", kMaxAlphaPoints);
+  const std::vector<double> mus = grid_values(a.mu, a.mu_points, "--mu-points", kMaxMuPoints);
+  const nlohmann::json suite =
+      energy_audit_command_suite(ndfs, alphas, mus, a.rays, a.seed, a.max_k, a.reference_given);
   const std::string where = "vgroove energy --audit";
   // The grid's own messages (--mu, --alpha, --rays) first, then the suite's.
   if (a.rays < 1 || a.rays > kMaxAuditPaths)

@@ -494,6 +494,34 @@ EnergyAuditWork::Fixed EnergyAuditWork::read_fixed(support::JsonObject& j, std::
   return f;
 }
 
+nlohmann::json energy_audit_command_suite(const std::vector<std::string>& ndfs, const std::vector<double>& alphas,
+                                          const std::vector<double>& mus, long long paths, long long seed, int max_k,
+                                          bool heightfield) {
+  nlohmann::json suite = {{"name", "energy_audit_cli"},
+                          {"kind", "energy_audit"},
+                          {"description", "vgroove energy --audit"},
+                          {"ndf", ndfs},
+                          {"alpha", alphas},
+                          {"mu", mus},
+                          {"walk_paths", paths},
+                          {"seed", seed},
+                          {"max_k", max_k},
+                          {"grey_F0", {0.02, 0.04, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0}},
+                          {"metals", {"Au", "Ag", "Cu", "Al"}},
+                          {"metalness", {0.0, 0.25, 0.5, 0.75, 1.0}},
+                          {"regions", {{"rough_alpha", 0.5}, {"grazing_mu", 0.25}}},
+                          {"cycles_table", true},
+                          {"thresholds", {{"sigmas", 5}, {"vgroove_furnace", 1e-7}}}};
+  if (heightfield) {
+    suite["references"] = {"vgroove", "smith_walk", "heightfield"};
+    suite["heightfield"] = {{"fields", 4},
+                            {"rays_per_field", std::max<long long>(1, paths / 4)},
+                            {"field_size", 256},
+                            {"correlation_length", 8}};
+  }
+  return suite;
+}
+
 double energy_audit_memory_bytes(const EnergyAuditSuite& s, int threads) {
   // Per cell its tally and fixed part (rows x channels, ~50 channels) and the report's arrays.
   double bytes = static_cast<double>(s.cells()) * (s.max_k + 2) * 64.0 * 8.0 * 12.0;

@@ -76,6 +76,12 @@ struct EnergyAuditSuite {
 EnergyAuditSuite parse_energy_audit(const nlohmann::json& j, const std::string& file);
 // The suite as its JSON (what `vgroove energy --audit` runs and writes into its report).
 nlohmann::json energy_audit_json(const EnergyAuditSuite& s);
+// The suite `vgroove energy --audit` and Python's energy_audit run over the grid given: every
+// default reflectance, region and threshold, and with `heightfield` the random heightfields (4
+// fields of 256^2 cells, correlation length 8, paths / 4 rays each).
+nlohmann::json energy_audit_command_suite(const std::vector<std::string>& ndfs, const std::vector<double>& alphas,
+                                          const std::vector<double>& mus, long long paths, long long seed, int max_k,
+                                          bool heightfield);
 
 // One cell's walks: counts per row (k = 0..max_k, max_k + 1 for k > max_k) and each row's energy
 // per channel, [row * C + c], in units of 2^-32.

@@ -5,6 +5,7 @@
 #include "common.h"
 
 #include "vgroove/common/ndf_kind.h"
+#include "vgroove/validation/energy_audit.h"
 #include "vgroove/validation/energy_lobe_shape.h"
 #include "vgroove/validation/energy_table.h"
 #include "vgroove/validation/glass_energy.h"
@@ -118,28 +119,9 @@ py::object energy_audit(const std::vector<std::string>& ndfs, const std::optiona
       throw support::UserError("ndf = \"" + n +
                                "\" is not one of \"ggx\", \"beckmann\" (the audit's Smith walk needs Lambda in "
                                "closed form)");
-  nlohmann::json suite = {{"name", "energy_audit_cli"},
-                          {"kind", "energy_audit"},
-                          {"description", "vgroove energy --audit"},
-                          {"ndf", ndfs},
-                          {"alpha", alpha ? *alpha : validation::midpoints(alpha_points)},
-                          {"mu", mu ? *mu : validation::midpoints(mu_points)},
-                          {"walk_paths", rays},
-                          {"seed", seed},
-                          {"max_k", max_k},
-                          {"grey_F0", {0.02, 0.04, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0}},
-                          {"metals", {"Au", "Ag", "Cu", "Al"}},
-                          {"metalness", {0.0, 0.25, 0.5, 0.75, 1.0}},
-                          {"regions", {{"rough_alpha", 0.5}, {"grazing_mu", 0.25}}},
-                          {"cycles_table", true},
-                          {"thresholds", {{"sigmas", 5}, {"vgroove_furnace", 1e-7}}}};
-  if (reference) {
-    suite["references"] = {"vgroove", "smith_walk", "heightfield"};
-    suite["heightfield"] = {{"fields", 4},
-                            {"rays_per_field", std::max<long long>(1, rays / 4)},
-                            {"field_size", 256},
-                            {"correlation_length", 8}};
-  }
+  const nlohmann::json suite = validation::energy_audit_command_suite(
+      ndfs, alpha ? *alpha : validation::midpoints(alpha_points), mu ? *mu : validation::midpoints(mu_points), rays,
+      seed, max_k, reference.has_value());
   if (rays < 1 || rays > kMaxAuditPaths)
     throw support::UserError("rays = " + std::to_string(rays) + " is out of range [1, " +
                              std::to_string(kMaxAuditPaths) + "] (walk paths per cell with energy_audit)");
