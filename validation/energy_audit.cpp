@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <mutex>
 
 namespace vgroove::validation {
@@ -140,7 +141,8 @@ nlohmann::json energy_audit_json(const EnergyAuditSuite& s) {
   return j;
 }
 
-// The fields of one cell, each made once on first use by whichever thread needs it.
+// The fields of one (ndf, alpha), each made once on first use by whichever thread needs it (every mu
+// of it traces the same fields: audit_heightfield_field).
 struct AuditFields {
   struct Slot {
     std::once_flag made;
@@ -149,12 +151,31 @@ struct AuditFields {
   std::vector<std::unique_ptr<Slot>> slots;
 };
 
-std::shared_ptr<const EnergyAuditWork::Context> EnergyAuditWork::prepare(std::size_t) const {
+// The fields some context holds now, by (ndf, alpha) index (weakly), and the group prepared last
+// (strongly: the next cell, usually of the same group, finds them after its predecessor's context
+// is gone). Memory: the contexts' fields and one group's more.
+struct AuditFieldShare {
+  std::mutex mutex;
+  std::map<std::size_t, std::weak_ptr<AuditFields>> held;
+  std::shared_ptr<AuditFields> last;
+};
+
+std::shared_ptr<const EnergyAuditWork::Context> EnergyAuditWork::prepare(std::size_t cell) const {
   auto ctx = std::make_shared<Context>();
-  if (suite.heightfield) {
-    ctx->fields = std::make_shared<AuditFields>();
-    for (int f = 0; f < suite.hf_fields; ++f) ctx->fields->slots.push_back(std::make_unique<AuditFields::Slot>());
+  if (!suite.heightfield) return ctx;
+  const std::size_t group = cell / suite.mus.size();
+  std::unique_lock<std::mutex> lock;
+  if (field_share) {
+    lock = std::unique_lock<std::mutex>(field_share->mutex);
+    ctx->fields = field_share->held[group].lock();
+    if (ctx->fields) {
+      field_share->last = ctx->fields;
+      return ctx;
+    }
   }
+  ctx->fields = std::make_shared<AuditFields>();
+  for (int f = 0; f < suite.hf_fields; ++f) ctx->fields->slots.push_back(std::make_unique<AuditFields::Slot>());
+  if (field_share) field_share->held[group] = field_share->last = ctx->fields;
   return ctx;
 }
 
@@ -525,18 +546,19 @@ nlohmann::json energy_audit_command_suite(const std::vector<std::string>& ndfs, 
 double energy_audit_memory_bytes(const EnergyAuditSuite& s, int threads) {
   // Per cell its tally and fixed part (rows x channels, ~50 channels) and the report's arrays.
   double bytes = static_cast<double>(s.cells()) * (s.max_k + 2) * 64.0 * 8.0 * 12.0;
-  if (s.heightfield)
-    bytes += 2.0 * s.hf_fields * support::resolve_threads(threads) * sim::heightfield_bytes(s.hf_field_size);
+  if (s.heightfield)  // two cells' fields per worker and the group prepared last (AuditFieldShare)
+    bytes += (2.0 * support::resolve_threads(threads) + 1.0) * s.hf_fields * sim::heightfield_bytes(s.hf_field_size);
   return bytes;
 }
 
 Job<EnergyAuditWork> energy_audit_job(const EnergyAuditSuite& s, nlohmann::json descriptor) {
-  EnergyAuditWork w{s, std::make_shared<const ChannelSet>(s.grey_F0, s.metals), nullptr};
+  EnergyAuditWork w{s, std::make_shared<const ChannelSet>(s.grey_F0, s.metals), nullptr, nullptr};
+  if (s.heightfield) w.field_share = std::make_shared<AuditFieldShare>();
   if (s.cycles_table) w.cycles = std::make_shared<const CyclesTables>(published_cycles_tables());
   std::vector<support::WorkUnit> units(s.cells());
-  // A worker holds its cell's fields (at most two cells' at once per worker).
+  // A worker holds its cell's fields (at most two cells' at once per worker), the share one group more.
   if (s.heightfield)
-    check_field_fits(s.hf_field_size, 2.0 * s.hf_fields * support::resolve_threads(0),
+    check_field_fits(s.hf_field_size, (2.0 * support::resolve_threads(0) + 1.0) * s.hf_fields,
                      s.file + ": /heightfield/field_size", 16);
   for (std::size_t c = 0; c < units.size(); ++c) {
     // Estimates (ns of one core; they only balance the shards): ~1.5 us a path, ~0.3 s the fixed part

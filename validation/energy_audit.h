@@ -109,7 +109,8 @@ struct AuditFixed {
   double seconds = 0.0;
 };
 
-struct AuditFields;  // a cell's fields, each made on first use (energy_audit.cpp)
+struct AuditFields;      // an (ndf, alpha)'s fields, each made on first use (energy_audit.cpp)
+struct AuditFieldShare;  // the fields held now, by (ndf, alpha): cells of one share them
 struct EnergyAuditWork {
   struct Context {
     std::shared_ptr<AuditFields> fields;  // null without the heightfield reference
@@ -119,6 +120,9 @@ struct EnergyAuditWork {
   EnergyAuditSuite suite;
   std::shared_ptr<const ChannelSet> channels;
   std::shared_ptr<const CyclesTables> cycles;  // null without the feed
+  // With the heightfield reference: a cell's context takes the fields another cell of its (ndf,
+  // alpha) still holds, so they are made once while consecutive cells run (energy_audit_job sets it).
+  std::shared_ptr<AuditFieldShare> field_share;
   std::shared_ptr<const Context> prepare(std::size_t cell) const;
   Tally run_chunks(const Context&, std::size_t cell, std::int64_t begin, std::int64_t end) const;
   Fixed run_fixed(std::size_t cell) const;
@@ -131,7 +135,8 @@ struct EnergyAuditWork {
 
 Job<EnergyAuditWork> energy_audit_job(const EnergyAuditSuite& s, nlohmann::json descriptor);
 // The memory a run holds: per cell its tally, fixed part and report arrays, and with the heightfield
-// reference each of `threads` workers' fields (up to two cells' hf_fields fields, sim::heightfield_bytes).
+// reference each of `threads` workers' fields (up to two cells' hf_fields fields, sim::heightfield_bytes)
+// and one (ndf, alpha)'s more (the share keeps the group prepared last).
 double energy_audit_memory_bytes(const EnergyAuditSuite& s, int threads);
 
 // The heightfield reference's field `field` of a cell (the same fields at every mu of an (ndf,
