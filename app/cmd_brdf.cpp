@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <iostream>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 namespace vgroove::app {
@@ -231,6 +232,24 @@ std::optional<std::vector<Pair>> points_of(const BrdfArgs& a, bool flat, bool bo
   return pairs;
 }
 
+// f at every point, in order. Up to 10^7 pairs, a pair up to ~20 ms (the nonsymmetric model at max_k
+// 1024): progress on a terminal (app/progress.h) past one point, the flag read before each pair;
+// nothing when interrupted.
+template <class F>
+auto evaluate_points(const std::vector<Pair>& pairs, support::CancelFlag cancel, F&& f)
+    -> std::optional<std::vector<std::invoke_result_t<F&, const Pair&>>> {
+  std::vector<std::invoke_result_t<F&, const Pair&>> values;
+  values.reserve(pairs.size());
+  const support::ProgressFn progress = pairs.size() > 1 ? terminal_progress("brdf") : support::ProgressFn{};
+  for (const Pair& p : pairs) {
+    if (support::cancelled(cancel)) return std::nullopt;
+    values.push_back(f(p));
+    if (progress) progress(values.size(), pairs.size());
+  }
+  if (support::cancelled(cancel)) return std::nullopt;
+  return values;
+}
+
 int cmd_brdf_dielectric_point(const BrdfArgs& a, NdfKind ndf, bool flat) {
   check_angle(a.eta, 0, false, validation::kMaxFresnelEta, true, "--eta");
   const std::optional<std::vector<Pair>> read = points_of(a, flat, true);
@@ -242,15 +261,10 @@ int cmd_brdf_dielectric_point(const BrdfArgs& a, NdfKind ndf, bool flat) {
         a.directions.empty() ? "--theta-o-deg" : a.directions + ": /directions/" + std::to_string(n) + "/theta_o_deg");
   if (a.dry_run) return 0;
   const int rows = a.per_k ? a.per_k_max : 0;
-  std::vector<DielectricPoint> values;
-  values.reserve(pairs.size());
-  const support::ProgressFn progress = pairs.size() > 1 ? terminal_progress("brdf") : support::ProgressFn{};
-  for (const Pair& p : pairs) {
-    if (support::cancelled(a.cancel)) return interrupted_no_report();
-    values.push_back(dielectric_point(ndf, a.alpha, a.eta, p, flat, rows));
-    if (progress) progress(values.size(), pairs.size());
-  }
-  if (support::cancelled(a.cancel)) return interrupted_no_report();
+  const auto evaluated = evaluate_points(
+      pairs, a.cancel, [&](const Pair& p) { return dielectric_point(ndf, a.alpha, a.eta, p, flat, rows); });
+  if (!evaluated) return interrupted_no_report();
+  const std::vector<DielectricPoint>& values = *evaluated;
   const char* unit = flat ? "1/rad" : "1/sr";
   if (a.json) {
     nlohmann::json j = validation::provenance();
@@ -421,18 +435,12 @@ int cmd_brdf(const BrdfArgs& a) {
     opt.symmetric_partner = a.partner == "symmetric";
   }
   nlohmann::json points = nlohmann::json::array();
-  std::vector<analytic::BrdfValue> values;
-  values.reserve(pairs.size());
-  // Up to 10^7 pairs, a pair up to ~20 ms (the nonsymmetric model at max_k 1024): progress on a
-  // terminal (app/progress.h) and the flag read before each pair.
-  const support::ProgressFn progress = pairs.size() > 1 ? terminal_progress("brdf") : support::ProgressFn{};
-  for (const Pair& p : pairs) {
-    if (support::cancelled(a.cancel)) return interrupted_no_report();
-    values.push_back(analytic::evaluate_brdf(*model, direction(p.theta_i_deg, p.phi_i_deg, flat),
-                                             direction(p.theta_o_deg, p.phi_o_deg, flat), opt));
-    if (progress) progress(values.size(), pairs.size());
-  }
-  if (support::cancelled(a.cancel)) return interrupted_no_report();
+  const auto evaluated = evaluate_points(pairs, a.cancel, [&](const Pair& p) {
+    return analytic::evaluate_brdf(*model, direction(p.theta_i_deg, p.phi_i_deg, flat),
+                                   direction(p.theta_o_deg, p.phi_o_deg, flat), opt);
+  });
+  if (!evaluated) return interrupted_no_report();
+  const std::vector<analytic::BrdfValue>& values = *evaluated;
   const char* unit = flat ? "1/rad" : "1/sr";
   if (a.json) {
     nlohmann::json j = validation::provenance();
