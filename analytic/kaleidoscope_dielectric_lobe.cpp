@@ -7,6 +7,7 @@
 // corner there). Derivation: docs/derivations/kaleidoscope_dielectric.md, "The BSDF over an NDF".
 #include "vgroove/analytic/kaleidoscope_dielectric_lobe.h"
 
+#include "vgroove/analytic/dielectric_section.h"
 #include "vgroove/analytic/kaleidoscope_dielectric.h"
 #include "vgroove/analytic/quadrature.h"
 #include "vgroove/optics/fresnel.h"
@@ -37,12 +38,7 @@ constexpr double kCutTolerance = 1e-14;
 constexpr double kCutTolerance3d = 1e-10;
 
 // One cross-section problem (flatland: the problem itself; 3D: one groove azimuth).
-struct Section {
-  double tau = 0.0;      // the projected angle of the light (towards it), analytic/kaleidoscope.h's theta_i
-  double eta_dir = 1.5;  // the index ratio of the directions: eta, or the lifted law's effective one
-  double c3d = 1.0;      // the 3D local cosine over the cross-section's (r_1 = sqrt(1 - q^2); 1 in flatland)
-  double eta = 1.5;      // the real index ratio (Fresnel)
-  bool all_tir = false;  // 3D, eta < |q|: medium 2 has no direction with the axis component q
+struct Section : DielectricSection {
   const DielectricLobeOptions* opt = nullptr;
   double cut_tolerance = kCutTolerance;  // in theta_m
   std::function<int(double)> bin_r;      // the 2D exit angle above -> bin, or kNotBinned
@@ -284,8 +280,7 @@ int flat_bin(double t, int bins) {
 DielectricLobe flatland_once(NdfKind ndf, double alpha, double eta, double theta_i, int bins, int max_k,
                              const DielectricLobeOptions& o) {
   Section s;
-  s.tau = theta_i;
-  s.eta = s.eta_dir = eta;
+  static_cast<DielectricSection&>(s) = flatland_section(theta_i, eta);
   s.opt = &o;
   s.bin_r = [bins](double t) { return std::cos(t) > 0.0 ? flat_bin(t, bins) : kNotBinned; };
   s.bin_t = [bins](double t) { return std::cos(t) > 0.0 ? flat_bin(t, bins) : kNotBinned; };
@@ -317,8 +312,7 @@ DielectricLobe lobe_3d_once(NdfKind ndf, double alpha, double eta, double theta_
     // its exits in the plane of a at theta = |t|; phi_a uniform spreads each theta bin's flux
     // uniformly over phi. One cross-section, binned in theta, then spread.
     Section s;
-    s.tau = 0.0;
-    s.eta = s.eta_dir = eta;
+    static_cast<DielectricSection&>(s) = flatland_section(0.0, eta);
     s.opt = &o;
     auto tbin = [&](double t) {
       return std::cos(t) > 0.0 ? std::min(tb - 1, static_cast<int>(std::abs(t) / dtheta)) : kNotBinned;
@@ -359,17 +353,12 @@ DielectricLobe lobe_3d_once(NdfKind ndf, double alpha, double eta, double theta_
       const double ca = std::cos(phi_a), sa = std::sin(phi_a);
       // The light i = (-sin theta_i, 0, cos theta_i); a = (ca, sa, 0), u = (-sa, ca, 0).
       const double i_a = -st * ca, i_u = st * sa;
-      const double c = std::sqrt((1.0 - i_u) * (1.0 + i_u));
-      const double q_1 = -i_u;  // the travel direction's axis component in medium 1 (= p, n1 = 1)
       Section s;
+      static_cast<DielectricSection&>(s) = lifted_section(i_a, i_u, ct, eta);
       s.cut_tolerance = kCutTolerance3d;
-      s.tau = std::atan2(-i_a, ct);
-      s.eta = eta;
-      s.c3d = c;
       s.opt = &o;
-      const double n2sq = (eta - q_1) * (eta + q_1);
-      s.all_tir = !(n2sq > 0.0);
-      s.eta_dir = s.all_tir ? 1.0 : std::sqrt(n2sq) / c;  // dielectric_lifting.md: sqrt(eta^2 - q^2) / sqrt(1 - q^2)
+      const double c = s.c3d;
+      const double q_1 = -i_u;  // the travel direction's axis component in medium 1 (= p, n1 = 1)
       const double q_2 = q_1 / eta, r_2 = s.all_tir ? 0.0 : std::sqrt((1.0 - q_2) * (1.0 + q_2));
       // Exits lifted: o = r (e_x a + e_y n) + q u, e = (-sin t, cos t) above, (sin t, -cos t) below.
       s.bin_r = [&, c, q_1, ca, sa](double t) {

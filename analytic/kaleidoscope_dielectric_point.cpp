@@ -6,6 +6,7 @@
 // density there. Derivation: docs/derivations/kaleidoscope_dielectric.md, "The BSDF at a point".
 #include "vgroove/analytic/kaleidoscope_dielectric_point.h"
 
+#include "vgroove/analytic/dielectric_section.h"
 #include "vgroove/analytic/kaleidoscope_dielectric.h"
 #include "vgroove/optics/fresnel.h"
 
@@ -22,13 +23,8 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kHalfPi = 0.5 * std::numbers::pi;
 
-// One cross-section problem (kaleidoscope_dielectric_lobe.cpp's Section, without the bins).
-struct Section {
-  double tau = 0.0;      // the projected angle of the light (towards it)
-  double eta_dir = 1.5;  // the index ratio of the directions (3D: the lifted law's effective one)
-  double c3d = 1.0;      // the 3D local cosine over the cross-section's (1 in flatland)
-  double eta = 1.5;      // the real index ratio (Fresnel)
-  bool all_tir = false;  // 3D: medium 2 has no direction with this axis component
+// One cross-section problem (dielectric_section.h) and what the density needs.
+struct Section : DielectricSection {
   bool three_d = false;  // the slope density: flatland 2 D2 cos, 3D 2 pi D cos sin
   NdfKind ndf = NdfKind::ggx;
   double alpha = 0.3;
@@ -228,19 +224,14 @@ void density_3d(NdfKind ndf, double alpha, double e, double theta_i, const Dir3&
   if (phi_a >= kPi) phi_a -= kPi;
   const double ca = std::cos(phi_a), sa = std::sin(phi_a);
   const double i_a = -st * ca, i_u = st * sa;
-  const double c = std::sqrt((1.0 - i_u) * (1.0 + i_u));
-  const double q_1 = -i_u, dq_1 = -st * ca;
   Section s;
-  s.tau = std::atan2(-i_a, ct);
-  s.eta = e;
-  s.c3d = c;
+  static_cast<DielectricSection&>(s) = lifted_section(i_a, i_u, ct, e);
+  const double c = s.c3d;
+  const double q_1 = -i_u, dq_1 = -st * ca;
   s.three_d = true;
   s.ndf = ndf;
   s.alpha = alpha;
   s.opt = &opt;
-  const double n2sq = (e - q_1) * (e + q_1);
-  s.all_tir = !(n2sq > 0.0);
-  s.eta_dir = s.all_tir ? 1.0 : std::sqrt(n2sq) / c;
   const double o_a = o.x * ca + o.y * sa;
   double t = 0.0, area = 0.0;
   if (reflected) {
@@ -273,8 +264,7 @@ DielectricPointValue kaleidoscope_dielectric_bsdf_flatland(NdfKind ndf, double a
   // Light from below: the model at 1 / eta mirrored in the macrosurface, exit angles negated.
   const bool below = opt.from == DielectricLightFrom::below;
   Section s;
-  s.tau = theta_i;
-  s.eta = s.eta_dir = below ? 1.0 / eta : eta;
+  static_cast<DielectricSection&>(s) = flatland_section(theta_i, below ? 1.0 / eta : eta);
   s.ndf = ndf;
   s.alpha = alpha;
   s.opt = &opt;

@@ -3,6 +3,7 @@
 // f_a / opening, its lobes' shares, Fresnel and (3D) lifting, here drawn instead of integrated.
 #include "vgroove/analytic/sampling_dielectric.h"
 
+#include "vgroove/analytic/dielectric_section.h"
 #include "vgroove/analytic/kaleidoscope_dielectric.h"
 #include "vgroove/analytic/vndf.h"
 #include "vgroove/optics/fresnel.h"
@@ -18,15 +19,6 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kHalfPi = 0.5 * std::numbers::pi;
 
-// One cross-section problem, as kaleidoscope_dielectric_lobe.cpp's Section.
-struct Section {
-  double tau = 0.0;      // the projected angle of the light (towards it)
-  double eta_dir = 1.5;  // the index ratio of the directions (3D: the lifted law's effective one)
-  double c3d = 1.0;      // the 3D local cosine over the cross-section's (1 in flatland)
-  double eta = 1.5;      // the real index ratio (Fresnel)
-  bool all_tir = false;  // 3D: medium 2 has no direction with this axis component
-};
-
 // The drawn chain end in the cross-section: t the 2D exit angle (reflected: exit_angle's; transmitted:
 // sim::exit_angle's angle below).
 struct Drawn {
@@ -37,7 +29,7 @@ struct Drawn {
   DielectricSampleFailure failure = DielectricSampleFailure::other;
 };
 
-Drawn draw_in_section(const Section& s, double theta_m, double u_facet, double u_lobe,
+Drawn draw_in_section(const DielectricSection& s, double theta_m, double u_facet, double u_lobe,
                       const DielectricSamplerOptions& opt) {
   Drawn d;
   const double theta_v = kPi - 2.0 * theta_m;
@@ -110,9 +102,7 @@ DielectricSampleFlatland sample_vgroove_dielectric_flatland(double theta_i, cons
   r.failure = DielectricSampleFailure::other;
   if (!(std::abs(theta_i) < kHalfPi && eta > 0.0 && alpha > 0.0)) return r;
   const bool below = opt.from == DielectricLightFrom::below;
-  Section s;
-  s.tau = theta_i;
-  s.eta = s.eta_dir = below ? 1.0 / eta : eta;
+  const DielectricSection s = flatland_section(theta_i, below ? 1.0 / eta : eta);
   // The groove slope: density 2 D2 cos over [0, pi/2] (the lobe's), |theta_s| of D2 cos.
   const double theta_m = std::abs(sample_projected_ndf2(ndf, alpha, u[0], u[1]));
   if (!(theta_m < kHalfPi)) return r;
@@ -143,15 +133,8 @@ DielectricSample3d sample_vgroove_dielectric_3d(double theta_i, const std::array
   const double st = std::sin(theta_i), ct = std::cos(theta_i);
   const double ca = std::cos(phi_a), sa = std::sin(phi_a);
   const double i_a = -st * ca, i_u = st * sa;
-  const double c = std::sqrt((1.0 - i_u) * (1.0 + i_u));
-  const double q_1 = -i_u;
-  Section s;
-  s.tau = std::atan2(-i_a, ct);
-  s.eta = e;
-  s.c3d = c;
-  const double n2sq = (e - q_1) * (e + q_1);
-  s.all_tir = !(n2sq > 0.0);
-  s.eta_dir = s.all_tir ? 1.0 : std::sqrt(n2sq) / c;
+  const DielectricSection s = lifted_section(i_a, i_u, ct, e);
+  const double c = s.c3d, q_1 = -i_u;
   const Drawn d = draw_in_section(s, theta_m, u[3], u[4], opt);
   r.failure = d.failure;
   if (!d.ok) return r;
